@@ -1,0 +1,53 @@
+#pragma once
+// CamLaw: the lift of a follower over cam angle, with its first three derivatives, exactly (closed
+// forms, never numerical differentiation). See shared/methods/valvetrain.md, stage 1.
+//
+// Contract
+//  - Cam angle phi in radians, measured from the nose (phi = 0 at the top of the lift for symmetric
+//    laws). The event is [event_begin(), event_end()]; outside it the lift and every derivative are
+//    zero, and the law repeats every 2*pi.
+//  - evaluate_in_event(phi) is only called with event_begin() < phi < event_end(); it returns
+//    h [m], dh/dphi [m/rad], d2h/dphi2 [m/rad^2], d3h/dphi3 [m/rad^3].
+//  - breakpoints(): the angles strictly inside the event where some derivative up to the third is
+//    discontinuous, sorted ascending. Integrators and extremum searches split there.
+//  - Implementations are immutable and thread-safe.
+#include <mechgraph/value.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string_view>
+#include <vector>
+
+namespace mechgraph {
+
+struct LiftDerivatives {
+  double lift = 0.0;          // m
+  double velocity = 0.0;      // m/rad
+  double acceleration = 0.0;  // m/rad^2
+  double jerk = 0.0;          // m/rad^3
+};
+
+class CamLaw : public DomainObject {
+ public:
+  static constexpr std::string_view kind_name = "cam_law";
+  std::string_view kind() const override { return kind_name; }
+
+  virtual double event_begin() const = 0;
+  virtual double event_end() const = 0;
+  virtual LiftDerivatives evaluate_in_event(double phi) const = 0;
+  virtual std::vector<double> breakpoints() const = 0;
+  virtual double max_lift() const = 0;
+  virtual double base_radius() const = 0;
+  /// Radius of a roller follower; 0 for a flat-faced (mushroom) tappet.
+  virtual double roller_radius() const { return 0.0; }
+
+  /// Lift and derivatives at any angle: reduced to [-pi, pi), zero outside the event.
+  LiftDerivatives at(double phi) const {
+    constexpr double two_pi = 2.0 * std::numbers::pi;
+    if (phi < -std::numbers::pi || phi >= std::numbers::pi) phi -= two_pi * std::floor((phi + std::numbers::pi) / two_pi);
+    if (phi <= event_begin() || phi >= event_end()) return {};
+    return evaluate_in_event(phi);
+  }
+};
+
+}  // namespace mechgraph

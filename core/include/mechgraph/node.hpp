@@ -1,0 +1,160 @@
+#pragma once
+// The node contract. A NodeType *describes* itself (NodeInfo: parameters, ports, accuracy knobs,
+// effects, output dependencies, work counters) separately from *evaluating*. evaluate() is a
+// pure function of parameters and inputs: it is const, keeps no state, and may be called from
+// many threads at once. Nodes never return NaN or Inf: the evaluator checks, and a node that
+// meets an infeasible or singular input throws NodeError naming the parameter and the limit.
+#include <mechgraph/dimension.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/params.hpp>
+#include <mechgraph/value.hpp>
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mechgraph {
+
+/// One parameter: its kind, dimension (SI), default, admissible range and documentation.
+/// A parameter marked `knob` is an accuracy setting (step, tolerance, samples, method):
+/// `mechgraph bench` varies knobs and nothing else.
+struct ParamSpec {
+  std::string name;
+  ParamKind kind = ParamKind::number;
+  Dimension dimension{};
+  std::string doc;
+  std::optional<ParamValue> default_value;  // absent and not required: the node sees has()==false
+  bool required = true;
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+  std::vector<std::string> choices;  // for choice
+  std::vector<ParamSpec> fields;     // for record_list: the fields of each record
+  bool knob = false;
+  std::string display_unit;          // unit used when describing and reporting, e.g. "mm"
+
+  // Fluent construction, so node descriptions read like a data sheet.
+  static ParamSpec number(std::string name, Dimension d, std::string doc, std::string unit = {});
+  static ParamSpec integer(std::string name, std::string doc);
+  static ParamSpec choice(std::string name, std::vector<std::string> choices, std::string doc);
+  static ParamSpec text(std::string name, std::string doc);
+  static ParamSpec number_list(std::string name, Dimension d, std::string doc, std::string unit = {});
+  static ParamSpec record_list(std::string name, std::vector<ParamSpec> fields, std::string doc);
+
+  ParamSpec& with_default(double v);
+  ParamSpec& with_default(std::string v);
+  ParamSpec& with_default(std::vector<double> v);
+  ParamSpec& optional();            // may be absent, no default
+  ParamSpec& positive();            // > 0
+  ParamSpec& non_negative();        // >= 0
+  ParamSpec& at_least(double v);
+  ParamSpec& above(double v);
+  ParamSpec& at_most(double v);
+  ParamSpec& below(double v);
+  ParamSpec& as_knob();
+};
+
+/// A typed port. Inputs marked `multiple` accept a list of connections (`fits: [a.fit, b.fit]`).
+struct PortSpec {
+  std::string name;
+  ValueKind kind = ValueKind::scalar;
+  Dimension dimension{};
+  std::string handle_kind;  // for handles: the DomainObject::kind() it carries
+  std::string doc;
+  bool multiple = false;
+  bool optional = false;
+  std::string display_unit;
+
+  static PortSpec scalar(std::string name, Dimension d, std::string doc, std::string unit = {});
+  static PortSpec series(std::string name, Dimension d, std::string doc, std::string unit = {});
+  static PortSpec handle(std::string name, std::string handle_kind, std::string doc);
+  PortSpec& many();
+  PortSpec& optional_port();
+};
+
+/// An optional piece of physics a node implements, switched on by the scene's `effects:`.
+struct EffectSpec {
+  std::string name;
+  std::string doc;
+};
+
+/// Everything a node type says about itself.
+struct NodeInfo {
+  std::string type;       // "cam.kurz"
+  int version = 1;        // bump when results change: part of the memo hash
+  std::string summary;
+  std::vector<ParamSpec> params;
+  std::vector<PortSpec> inputs;
+  std::vector<PortSpec> outputs;
+  std::vector<EffectSpec> effects;
+  std::vector<std::string> work_counters;  // what report_work() may count: "samples", "evaluations"
+  /// Which inputs each output depends on; an output not listed depends on all inputs.
+  std::map<std::string, std::vector<std::string>> output_dependencies;
+
+  const ParamSpec* find_param(std::string_view name) const;
+  const PortSpec* find_input(std::string_view name) const;
+  const PortSpec* find_output(std::string_view name) const;
+  bool implements_effect(std::string_view name) const;
+};
+
+/// The inputs of one evaluation: each port's connected values (several for `multiple` ports).
+class InputSet {
+ public:
+  void add(const std::string& port, Value v) { values_[port].push_back(std::move(v)); }
+  std::size_t count(std::string_view port) const;
+  const Value& value(std::string_view port, std::size_t i = 0) const;
+  double scalar(std::string_view port, std::size_t i = 0) const { return value(port, i).as_scalar(); }
+
+  /// The domain object behind a handle port, cast to its interface; throws NodeError if it is not one.
+  template <class T>
+  std::shared_ptr<const T> handle(std::string_view port, std::size_t i = 0) const {
+    auto object = std::dynamic_pointer_cast<const T>(value(port, i).as_handle());
+    if (!object) throw NodeError(std::string(port), "input '" + std::string(port) + "' does not carry the expected domain object");
+    return object;
+  }
+
+ private:
+  std::map<std::string, std::vector<Value>, std::less<>> values_;
+};
+
+/// The outputs one evaluation produces.
+class OutputSet {
+ public:
+  void set(std::string port, Value v) { values_[std::move(port)] = std::move(v); }
+  void set_scalar(std::string port, double v) { set(std::move(port), Value::scalar(v)); }
+  const std::map<std::string, Value, std::less<>>& all() const { return values_; }
+
+ private:
+  std::map<std::string, Value, std::less<>> values_;
+};
+
+enum class LogLevel { debug, info, warn };
+
+/// What the host gives a node while it evaluates: the effects switched on, a logger, and the
+/// work counters. Nodes log through this, never through a global logger.
+class EvalContext {
+ public:
+  virtual ~EvalContext() = default;
+  virtual bool effect(std::string_view name) const = 0;
+  virtual void log(LogLevel level, std::string_view message) = 0;
+  /// Adds `amount` to the named work counter (samples, steps, iterations, evaluations).
+  virtual void report_work(std::string_view counter, double amount) = 0;
+};
+
+/// A node type. Implementations are `final`, stateless and const.
+class NodeType {
+ public:
+  virtual ~NodeType() = default;
+  virtual const NodeInfo& info() const = 0;
+  virtual void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs,
+                        EvalContext& context) const = 0;
+};
+
+using NodeTypeList = std::vector<std::shared_ptr<const NodeType>>;
+
+}  // namespace mechgraph

@@ -1,0 +1,158 @@
+#include <mechgraph/node.hpp>
+
+#include <algorithm>
+
+namespace mechgraph {
+
+const ParamValue& ParamSet::get(std::string_view name) const {
+  auto it = values_.find(name);
+  if (it == values_.end()) throw NodeError(std::string(name), "parameter '" + std::string(name) + "' is not set");
+  return it->second;
+}
+
+ParamSpec ParamSpec::number(std::string name, Dimension d, std::string doc, std::string unit) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.kind = ParamKind::number;
+  s.dimension = d;
+  s.doc = std::move(doc);
+  s.display_unit = std::move(unit);
+  return s;
+}
+ParamSpec ParamSpec::integer(std::string name, std::string doc) {
+  ParamSpec s = number(std::move(name), dim::none, std::move(doc));
+  s.kind = ParamKind::integer;
+  return s;
+}
+ParamSpec ParamSpec::choice(std::string name, std::vector<std::string> choices, std::string doc) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.kind = ParamKind::choice;
+  s.choices = std::move(choices);
+  s.doc = std::move(doc);
+  return s;
+}
+ParamSpec ParamSpec::text(std::string name, std::string doc) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.kind = ParamKind::text;
+  s.doc = std::move(doc);
+  return s;
+}
+ParamSpec ParamSpec::number_list(std::string name, Dimension d, std::string doc, std::string unit) {
+  ParamSpec s = number(std::move(name), d, std::move(doc), std::move(unit));
+  s.kind = ParamKind::number_list;
+  return s;
+}
+ParamSpec ParamSpec::record_list(std::string name, std::vector<ParamSpec> fields, std::string doc) {
+  ParamSpec s;
+  s.name = std::move(name);
+  s.kind = ParamKind::record_list;
+  s.fields = std::move(fields);
+  s.doc = std::move(doc);
+  return s;
+}
+
+ParamSpec& ParamSpec::with_default(double v) {
+  default_value = kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(v)) : ParamValue::of_number(v);
+  required = false;
+  return *this;
+}
+ParamSpec& ParamSpec::with_default(std::string v) {
+  default_value = kind == ParamKind::choice ? ParamValue::of_choice(std::move(v)) : ParamValue::of_text(std::move(v));
+  required = false;
+  return *this;
+}
+ParamSpec& ParamSpec::with_default(std::vector<double> v) {
+  default_value = ParamValue::of_list(std::move(v));
+  required = false;
+  return *this;
+}
+ParamSpec& ParamSpec::optional() {
+  required = false;
+  return *this;
+}
+ParamSpec& ParamSpec::positive() { return above(0.0); }
+ParamSpec& ParamSpec::non_negative() { return at_least(0.0); }
+ParamSpec& ParamSpec::at_least(double v) {
+  min = v;
+  min_exclusive = false;
+  return *this;
+}
+ParamSpec& ParamSpec::above(double v) {
+  min = v;
+  min_exclusive = true;
+  return *this;
+}
+ParamSpec& ParamSpec::at_most(double v) {
+  max = v;
+  max_exclusive = false;
+  return *this;
+}
+ParamSpec& ParamSpec::below(double v) {
+  max = v;
+  max_exclusive = true;
+  return *this;
+}
+ParamSpec& ParamSpec::as_knob() {
+  knob = true;
+  return *this;
+}
+
+PortSpec PortSpec::scalar(std::string name, Dimension d, std::string doc, std::string unit) {
+  PortSpec p;
+  p.name = std::move(name);
+  p.kind = ValueKind::scalar;
+  p.dimension = d;
+  p.doc = std::move(doc);
+  p.display_unit = std::move(unit);
+  return p;
+}
+PortSpec PortSpec::series(std::string name, Dimension d, std::string doc, std::string unit) {
+  PortSpec p = scalar(std::move(name), d, std::move(doc), std::move(unit));
+  p.kind = ValueKind::series;
+  return p;
+}
+PortSpec PortSpec::handle(std::string name, std::string handle_kind, std::string doc) {
+  PortSpec p;
+  p.name = std::move(name);
+  p.kind = ValueKind::handle;
+  p.handle_kind = std::move(handle_kind);
+  p.doc = std::move(doc);
+  return p;
+}
+PortSpec& PortSpec::many() {
+  multiple = true;
+  return *this;
+}
+PortSpec& PortSpec::optional_port() {
+  optional = true;
+  return *this;
+}
+
+namespace {
+template <class T>
+const T* find_named(const std::vector<T>& items, std::string_view name) {
+  auto it = std::find_if(items.begin(), items.end(), [&](const T& t) { return t.name == name; });
+  return it == items.end() ? nullptr : &*it;
+}
+}  // namespace
+
+const ParamSpec* NodeInfo::find_param(std::string_view name) const { return find_named(params, name); }
+const PortSpec* NodeInfo::find_input(std::string_view name) const { return find_named(inputs, name); }
+const PortSpec* NodeInfo::find_output(std::string_view name) const { return find_named(outputs, name); }
+bool NodeInfo::implements_effect(std::string_view name) const { return find_named(effects, name) != nullptr; }
+
+std::size_t InputSet::count(std::string_view port) const {
+  auto it = values_.find(port);
+  return it == values_.end() ? 0 : it->second.size();
+}
+
+const Value& InputSet::value(std::string_view port, std::size_t i) const {
+  auto it = values_.find(port);
+  if (it == values_.end() || i >= it->second.size())
+    throw NodeError(std::string(port), "input '" + std::string(port) + "' is not connected");
+  return it->second[i];
+}
+
+}  // namespace mechgraph

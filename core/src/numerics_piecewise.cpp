@@ -1,0 +1,121 @@
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/roots.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+namespace mechgraph::numerics {
+namespace {
+
+// Sample points of one piece: uniform, the two ends pulled inside by a relative 1e-13 so that at a
+// knot where f jumps we see the one-sided limit belonging to this piece.
+double sample_point(double a, double b, int i, int n) {
+  const double inset = 1e-13 * (b - a);
+  if (i == 0) return a + inset;
+  if (i == n - 1) return b - inset;
+  return a + (b - a) * static_cast<double>(i) / (n - 1);
+}
+
+void check_knots(std::span<const double> knots, int samples) {
+  if (knots.size() < 2) throw std::invalid_argument("piecewise numerics need at least two knots");
+  if (samples < 3) throw std::invalid_argument("piecewise numerics need at least 3 samples per piece");
+}
+
+Extremum maximize(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
+  check_knots(knots, n);
+  Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    if (!(b > a)) continue;
+    int best_i = 0;
+    double best_v = -std::numeric_limits<double>::infinity();
+    std::vector<double> v(n);
+    for (int i = 0; i < n; ++i) {
+      v[i] = f(sample_point(a, b, i, n));
+      if (v[i] > best_v) { best_v = v[i]; best_i = i; }
+    }
+    evaluations += n;
+    Extremum piece{sample_point(a, b, best_i, n), best_v};
+    // Refine inside the bracket of the neighbouring samples (Brent, full precision).
+    const double lo = sample_point(a, b, std::max(best_i - 1, 0), n);
+    const double hi = sample_point(a, b, std::min(best_i + 1, n - 1), n);
+    std::uintmax_t iterations = 100;
+    auto r = boost::math::tools::brent_find_minima([&](double x) { return -f(x); }, lo, hi,
+                                                   std::numeric_limits<double>::digits / 2, iterations);
+    evaluations += static_cast<long>(iterations);
+    if (-r.second > piece.value) piece = {r.first, -r.second};
+    if (piece.value > best.value) best = piece;
+  }
+  return best;
+}
+
+}  // namespace
+
+Extremum maximize_piecewise(const Function1D& f, std::span<const double> knots, int samples, long& evaluations) {
+  return maximize(f, knots, samples, evaluations);
+}
+
+Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, int samples, long& evaluations) {
+  Extremum e = maximize([&](double x) { return -f(x); }, knots, samples, evaluations);
+  return {e.x, -e.value};
+}
+
+std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots, int n,
+                                        long& evaluations) {
+  check_knots(knots, n);
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    if (!(b > a)) continue;
+    double x_prev = sample_point(a, b, 0, n);
+    double f_prev = f(x_prev);
+    ++evaluations;
+    if (p > 0) {
+      // A jump across zero at the knot itself.
+      const double left = f(knots[p] - 1e-13 * (knots[p] - knots[p - 1]));
+      ++evaluations;
+      if ((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) return knots[p];
+    }
+    for (int i = 1; i < n; ++i) {
+      const double x = sample_point(a, b, i, n);
+      const double fx = f(x);
+      ++evaluations;
+      if (fx == 0.0) return x;
+      if ((f_prev > 0 && fx < 0) || (f_prev < 0 && fx > 0)) {
+        std::uintmax_t iterations = 200;
+        boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 3);
+        auto r = boost::math::tools::toms748_solve(f, x_prev, x, f_prev, fx, tol, iterations);
+        evaluations += static_cast<long>(iterations);
+        return 0.5 * (r.first + r.second);
+      }
+      x_prev = x;
+      f_prev = fx;
+    }
+  }
+  return std::nullopt;
+}
+
+double integrate_piecewise(const Function1D& f, std::span<const double> knots, double tolerance, long& evaluations,
+                           double* error_estimate) {
+  if (knots.size() < 2) throw std::invalid_argument("integrate_piecewise needs at least two knots");
+  double total = 0.0, error = 0.0;
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    if (!(b > a)) continue;
+    double piece_error = 0.0;
+    long count = 0;
+    auto counted = [&](double x) { ++count; return f(x); };
+    total += boost::math::quadrature::gauss_kronrod<double, 15>::integrate(counted, a, b, 15, tolerance, &piece_error);
+    evaluations += count;
+    error += piece_error;
+  }
+  if (error_estimate) *error_estimate = error;
+  return total;
+}
+
+}  // namespace mechgraph::numerics

@@ -1,0 +1,40 @@
+#pragma once
+// One NodeType for every cam law: the law-specific part is a description of its own parameters
+// and a factory that builds the CamLaw from them; the common parameters (max_lift,
+// action_angle, base_radius, samples) and the common outputs (law, max_velocity,
+// max_acceleration, min_acceleration, accel_angle, min_curvature_radius) are added here, so a new
+// law is a law class plus a few lines of registration.
+#include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/node.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace mechgraph::cams {
+
+/// The common cam parameters, already in SI, handed to each law's factory.
+struct CamBasics {
+  double max_lift = 0.0;      // m
+  double action_angle = 0.0;  // rad, total event (cam degrees)
+  double base_radius = 0.0;   // m
+};
+
+/// Builds the law; may also set law-specific outputs (e.g. three-arc radii) in `extra`.
+/// Throws NodeError naming the parameter when a request is infeasible.
+using CamLawFactory =
+    std::function<std::shared_ptr<const CamLaw>(const CamBasics&, const ParamSet&, OutputSet& extra)>;
+
+struct CamLawDefinition {
+  std::string type;     // "cam.kurz"
+  int version = 1;
+  std::string summary;
+  std::vector<ParamSpec> params;        // law-specific parameters only
+  std::vector<PortSpec> extra_outputs;  // law-specific outputs only
+  CamLawFactory make;
+};
+
+std::shared_ptr<const NodeType> make_cam_node_type(CamLawDefinition definition);
+
+}  // namespace mechgraph::cams

@@ -1,0 +1,15 @@
+// The cams plugin: every cam law of mechgraph behind the CamLaw interface.
+#include "registration.hpp"
+
+#include <mechgraph/plugin_abi.hpp>
+
+namespace {
+mechgraph::NodeTypeList make_node_types() {
+  mechgraph::NodeTypeList types;
+  mechgraph::cams::add_source_profile_types(types);
+  mechgraph::cams::add_standard_law_types(types);
+  return types;
+}
+}  // namespace
+
+MECHGRAPH_PLUGIN("cams", "0.1.0", &make_node_types)

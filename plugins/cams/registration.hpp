@@ -1,0 +1,13 @@
+#pragma once
+// The cam node types of this plugin, by family.
+#include <mechgraph/node.hpp>
+
+namespace mechgraph::cams {
+
+/// The profiles of the source study: cam.three_arc, cam.kurz, cam.polydyne.
+void add_source_profile_types(NodeTypeList& out);
+/// The textbook laws, ramps and tabulated lift: cam.cycloidal, cam.harmonic, cam.poly345,
+/// cam.poly4567, cam.modified_trapezoid, cam.modified_sine, cam.table.
+void add_standard_law_types(NodeTypeList& out);
+
+}  // namespace mechgraph::cams
