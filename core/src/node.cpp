@@ -98,6 +98,10 @@ ParamSpec& ParamSpec::as_knob() {
   knob = true;
   return *this;
 }
+ParamSpec& ParamSpec::as_path() {
+  is_path = true;
+  return *this;
+}
 
 PortSpec PortSpec::scalar(std::string name, Dimension d, std::string doc, std::string unit) {
   PortSpec p;

@@ -37,6 +37,7 @@ struct ParamSpec {
   std::vector<ParamSpec> fields;     // for record_list: the fields of each record
   bool knob = false;
   std::string display_unit;          // unit used when describing and reporting, e.g. "mm"
+  bool is_path = false;              // text naming a file: resolved against the scene's folder
 
   // Fluent construction, so node descriptions read like a data sheet.
   static ParamSpec number(std::string name, Dimension d, std::string doc, std::string unit = {});
@@ -57,6 +58,7 @@ struct ParamSpec {
   ParamSpec& at_most(double v);
   ParamSpec& below(double v);
   ParamSpec& as_knob();
+  ParamSpec& as_path();             // a text parameter that names a file
 };
 
 /// A typed port. Inputs marked `multiple` accept a list of connections (`fits: [a.fit, b.fit]`).
@@ -137,7 +139,7 @@ enum class LogLevel { debug, info, warn };
 
 /// What the host gives a node while it evaluates: the effects switched on, a logger, and the
 /// work counters. Nodes log through this, never through a global logger.
-class EvalContext {
+class MECHGRAPH_INTERFACE EvalContext {
  public:
   virtual ~EvalContext() = default;
   virtual bool effect(std::string_view name) const = 0;
@@ -147,7 +149,7 @@ class EvalContext {
 };
 
 /// A node type. Implementations are `final`, stateless and const.
-class NodeType {
+class MECHGRAPH_INTERFACE NodeType {
  public:
   virtual ~NodeType() = default;
   virtual const NodeInfo& info() const = 0;

@@ -9,11 +9,15 @@
 #include <string_view>
 #include <vector>
 
+/// Interfaces shared between the host and plugins keep default visibility so that their RTTI
+/// (dynamic_cast of domain objects) is one and the same across libraries.
+#define MECHGRAPH_INTERFACE __attribute__((visibility("default")))
+
 namespace mechgraph {
 
 /// Base of every domain object passed between nodes. `kind()` names the interface
 /// ("cam_law", "valve_motion", ...) and must equal the handle kind of the port carrying it.
-class DomainObject {
+class MECHGRAPH_INTERFACE DomainObject {
  public:
   virtual ~DomainObject() = default;
   virtual std::string_view kind() const = 0;

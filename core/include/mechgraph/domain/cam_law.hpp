@@ -27,7 +27,7 @@ struct LiftDerivatives {
   double jerk = 0.0;          // m/rad^3
 };
 
-class CamLaw : public DomainObject {
+class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
  public:
   static constexpr std::string_view kind_name = "cam_law";
   std::string_view kind() const override { return kind_name; }

@@ -1,0 +1,56 @@
+#pragma once
+// Demand-driven evaluation: each needed node runs once, producers first, and its outputs are
+// memoised under a hash of its type, version, parameters, the effects it reads and the hashes of
+// its inputs. A MemoCache kept across runs (a sweep) re-evaluates only what changed.
+#include <mechgraph/graph.hpp>
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace mechgraph {
+
+class MemoCache {
+ public:
+  std::shared_ptr<const OutputSet> find(std::uint64_t key) const;
+  void store(std::uint64_t key, std::shared_ptr<const OutputSet> outputs);
+  std::size_t size() const;
+
+ private:
+  mutable std::mutex mutex_;
+  std::unordered_map<std::uint64_t, std::shared_ptr<const OutputSet>> entries_;
+};
+
+struct OutputValue {
+  std::string label;  // "node.port"
+  Value value;
+  Dimension dimension;
+  std::string display_unit;
+};
+
+struct NodeRun {
+  std::string node;
+  std::string type;
+  std::uint64_t hash = 0;
+  bool reused = false;    // taken from the memo cache, not evaluated
+  double seconds = 0.0;
+  std::map<std::string, double> work;
+};
+
+struct RunResult {
+  std::vector<OutputValue> outputs;  // in the order of Graph::outputs
+  std::vector<NodeRun> runs;         // in evaluation order
+};
+
+/// The memo key of every node of the graph that is needed (0 for culled nodes).
+std::vector<std::uint64_t> node_hashes(const Graph& graph);
+
+/// Evaluates the needed nodes. Throws EvaluationError naming the node (and parameter) on failure,
+/// including a node that would emit NaN or Inf. `cache` may be shared across runs and threads.
+RunResult evaluate(const Graph& graph, MemoCache& cache);
+
+}  // namespace mechgraph

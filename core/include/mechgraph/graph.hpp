@@ -1,0 +1,77 @@
+#pragma once
+// A scene resolved against the loaded node types: every parameter parsed into SI and checked,
+// every connection checked for kind and dimension, cycles refused, and the nodes the requested
+// outputs need put in dependency order. Everything here happens before evaluation, so a scene
+// that builds is a scene whose only remaining failures are numerical.
+#include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mechgraph {
+
+/// `--set NAME=VALUE`: a scene parameter (`rpm=6000rpm`) or a node parameter (`cam.max_lift=10mm`).
+struct Override {
+  std::string target;
+  std::string value;
+  std::string text;  // as typed, for messages
+};
+Override parse_override(std::string_view text);
+
+struct GraphNode {
+  std::string name;
+  const RegisteredType* type = nullptr;
+  SourceLocation where;
+  ParamSet params;
+  struct Source {
+    std::size_t node;
+    std::string port;
+  };
+  struct Input {
+    std::string port;
+    std::vector<Source> sources;
+  };
+  std::vector<Input> inputs;
+  std::vector<std::size_t> upstream;       // distinct producer nodes
+  std::vector<std::string> effects_read;   // scene effects this node implements
+  bool needed = false;
+  const NodeInfo& info() const { return type->type->info(); }
+};
+
+struct RequestedOutput {
+  std::size_t node;
+  std::string port;
+  const PortSpec* spec = nullptr;
+  std::string label;  // "node.port"
+};
+
+struct ResolvedReport {
+  std::string title;
+  std::vector<std::string> columns;
+  struct Row {
+    std::string label;
+    std::string unit;                       // display unit ("" = SI)
+    std::vector<std::optional<std::size_t>> cells;  // index into Graph::outputs, per column
+  };
+  std::vector<Row> rows;
+};
+
+struct Graph {
+  std::string title;
+  std::string file;
+  std::vector<GraphNode> nodes;
+  std::vector<RequestedOutput> outputs;  // the scene's outputs, then what the report needs
+  std::size_t scene_output_count = 0;    // how many of `outputs` the scene's `outputs:` named
+  std::vector<std::string> effects;
+  std::vector<std::size_t> order;        // needed nodes in dependency order
+  std::optional<ResolvedReport> report;
+
+  std::optional<std::size_t> find(std::string_view name) const;
+};
+
+/// Throws SceneError naming file:line:column for every problem it finds (the first one).
+Graph build_graph(const SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides = {});
+
+}  // namespace mechgraph

@@ -1,0 +1,57 @@
+#pragma once
+// Loads plugins, checks their handshake, and holds their node types. Plugins are never unloaded
+// while the process runs; each node type and each object a node produces keeps its library
+// alive through its deleter, so nothing can outlive the code that destroys it.
+#include <mechgraph/node.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mechgraph {
+
+struct PluginInfo {
+  std::string id;
+  std::string version;
+  std::string fingerprint;
+  std::filesystem::path path;
+  std::vector<std::string> node_types;
+};
+
+/// A node type as the host sees it: the plugin's object plus what keeps its code loaded.
+struct RegisteredType {
+  std::shared_ptr<const NodeType> type;
+  std::shared_ptr<const void> library;  // the loaded library (opaque for users of this header)
+  std::string plugin_id;
+
+  /// Wraps an object the plugin produced so that it keeps the plugin's library alive.
+  std::shared_ptr<const DomainObject> keep_alive(std::shared_ptr<const DomainObject> object) const;
+};
+
+class PluginRegistry {
+ public:
+  /// Loads one plugin file. Throws PluginError naming the file and the reason: unreadable or not
+  /// a shared library, missing entry, ABI version or build fingerprint mismatch, a node type that
+  /// another plugin already provides, a plugin id already loaded.
+  void load_file(const std::filesystem::path& file);
+  /// Loads every shared library (*.so) in the folder, sorted by name.
+  void load_directory(const std::filesystem::path& folder);
+
+  /// The plugin folders in order of precedence: `plugin_dir` if given, else the folders of
+  /// MECHGRAPH_PLUGIN_PATH (':'-separated), else the build/install plugin folder. Never ".".
+  static std::vector<std::filesystem::path> search_path(const std::optional<std::filesystem::path>& plugin_dir);
+
+  const RegisteredType* find(std::string_view type) const;
+  std::vector<std::string> type_names() const;
+  const std::vector<PluginInfo>& plugins() const { return plugins_; }
+  /// Every effect some loaded node type implements.
+  std::vector<std::string> effect_names() const;
+
+ private:
+  std::vector<PluginInfo> plugins_;
+  std::vector<std::pair<std::string, RegisteredType>> types_;
+};
+
+}  // namespace mechgraph

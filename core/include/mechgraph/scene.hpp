@@ -1,0 +1,91 @@
+#pragma once
+// A scene file as written: the YAML read into plain structures that remember where each piece
+// stood (file:line:column), before any plugin is consulted. Checking names, units and
+// connections against the loaded node types is graph.hpp's job.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace mechgraph {
+
+struct SourceLocation {
+  std::string file;
+  int line = 0;    // 1-based; 0 when the value did not come from a file (e.g. --set)
+  int column = 0;  // 1-based
+  std::string str() const;  // "file:line:column: " or the origin label
+};
+
+/// A YAML value as written: a scalar's text, a list or a map, with its location.
+struct RawValue {
+  enum class Kind { scalar, list, map } kind = Kind::scalar;
+  std::string text;
+  std::vector<RawValue> items;
+  std::vector<std::pair<std::string, RawValue>> fields;
+  SourceLocation where;
+  SourceLocation key_where;  // where the key that holds this value stands
+};
+
+/// "node.port" as written in `inputs:` or `outputs:`.
+struct PortRef {
+  std::string node;
+  std::string port;
+  SourceLocation where;
+  std::string str() const { return node + "." + port; }
+};
+
+struct NodeSpec {
+  std::string name;
+  std::string type;
+  SourceLocation where;       // the node's name
+  SourceLocation type_where;  // its type
+  std::vector<std::pair<std::string, RawValue>> params;
+  struct InputSpec {
+    std::string port;
+    SourceLocation where;
+    std::vector<PortRef> sources;
+    bool listed = false;  // written as a list
+  };
+  std::vector<InputSpec> inputs;
+};
+
+/// An optional comparison table: columns map roles to nodes, rows name role.port and a unit.
+struct ReportSpec {
+  std::string title;
+  struct Column {
+    std::string label;
+    std::vector<std::pair<std::string, std::string>> roles;  // role -> node
+    SourceLocation where;
+  };
+  struct Row {
+    std::string label;
+    std::string role;
+    std::string port;
+    std::string unit;
+    SourceLocation where;
+  };
+  std::vector<Column> columns;
+  std::vector<Row> rows;
+  SourceLocation where;
+};
+
+struct SceneSpec {
+  std::string file;
+  std::string title;
+  std::vector<std::pair<std::string, RawValue>> params;
+  std::vector<NodeSpec> nodes;
+  std::vector<std::pair<std::string, SourceLocation>> effects;
+  std::vector<PortRef> outputs;
+  std::optional<ReportSpec> report;
+};
+
+/// Reads and shape-checks a scene; throws SceneError("file:line:column: ...").
+SceneSpec load_scene(const std::filesystem::path& file);
+SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label);
+
+/// Splits "node.port"; throws SceneError at `where` if malformed.
+PortRef parse_port_ref(std::string_view text, const SourceLocation& where);
+
+}  // namespace mechgraph

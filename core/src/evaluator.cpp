@@ -1,0 +1,188 @@
+#include <mechgraph/evaluator.hpp>
+
+#include <mechgraph/hash.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace mechgraph {
+
+std::shared_ptr<const OutputSet> MemoCache::find(std::uint64_t key) const {
+  std::lock_guard lock(mutex_);
+  auto it = entries_.find(key);
+  return it == entries_.end() ? nullptr : it->second;
+}
+
+void MemoCache::store(std::uint64_t key, std::shared_ptr<const OutputSet> outputs) {
+  std::lock_guard lock(mutex_);
+  entries_[key] = std::move(outputs);
+}
+
+std::size_t MemoCache::size() const {
+  std::lock_guard lock(mutex_);
+  return entries_.size();
+}
+
+namespace {
+
+void hash_param(Hasher& h, const ParamValue& v) {
+  h.add(static_cast<std::uint64_t>(v.kind));
+  switch (v.kind) {
+    case ParamKind::number:
+    case ParamKind::integer: h.add(v.number); break;
+    case ParamKind::choice:
+    case ParamKind::text: h.add(v.text); break;
+    case ParamKind::number_list:
+      h.add(static_cast<std::uint64_t>(v.numbers.size()));
+      for (double x : v.numbers) h.add(x);
+      break;
+    case ParamKind::record_list:
+      h.add(static_cast<std::uint64_t>(v.records.size()));
+      for (const Record& r : v.records) {
+        h.add(static_cast<std::uint64_t>(r.size()));
+        for (const auto& [name, field] : r) {
+          h.add(name);
+          hash_param(h, field);
+        }
+      }
+      break;
+  }
+}
+
+class NodeContext final : public EvalContext {
+ public:
+  NodeContext(const GraphNode& node, NodeRun& run) : node_(node), run_(run) {}
+  bool effect(std::string_view name) const override {
+    for (const std::string& e : node_.effects_read)
+      if (e == name) return true;
+    return false;
+  }
+  void log(LogLevel level, std::string_view message) override {
+    switch (level) {
+      case LogLevel::debug: spdlog::debug("[{}] {}", node_.name, message); break;
+      case LogLevel::info: spdlog::info("[{}] {}", node_.name, message); break;
+      case LogLevel::warn: spdlog::warn("[{}] {}", node_.name, message); break;
+    }
+  }
+  void report_work(std::string_view counter, double amount) override { run_.work[std::string(counter)] += amount; }
+
+ private:
+  const GraphNode& node_;
+  NodeRun& run_;
+};
+
+std::string where_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
+
+bool all_finite(const Value& v) {
+  if (v.kind() == ValueKind::scalar) return std::isfinite(v.as_scalar());
+  if (v.kind() == ValueKind::series) {
+    for (double x : v.as_series().values)
+      if (!std::isfinite(x)) return false;
+    for (double x : v.as_series().axis)
+      if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+// Checks what a node produced against what it declared, and ties handles to the plugin's library.
+std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const OutputSet& produced) {
+  auto checked = std::make_shared<OutputSet>();
+  for (const auto& [port, value] : produced.all()) {
+    const PortSpec* spec = node.info().find_output(port);
+    if (!spec) throw EvaluationError(where_of(node) + " produced output '" + port + "', which it does not declare");
+    if (value.kind() != spec->kind)
+      throw EvaluationError(where_of(node) + " produced a " + std::string(to_string(value.kind())) + " at output '" + port +
+                            "', declared as a " + std::string(to_string(spec->kind)));
+    if (!all_finite(value))
+      throw EvaluationError(where_of(node) + " produced a NaN or infinite value at output '" + port +
+                            "' (a bug in the node: infeasible inputs must be reported as errors)");
+    if (value.kind() == ValueKind::handle) {
+      if (!value.as_handle() || value.as_handle()->kind() != spec->handle_kind)
+        throw EvaluationError(where_of(node) + " produced no " + spec->handle_kind + " at output '" + port + "'");
+      checked->set(port, Value::handle(node.type->keep_alive(value.as_handle())));
+    } else {
+      checked->set(port, value);
+    }
+  }
+  return checked;
+}
+
+}  // namespace
+
+std::vector<std::uint64_t> node_hashes(const Graph& graph) {
+  std::vector<std::uint64_t> hashes(graph.nodes.size(), 0);
+  for (std::size_t i : graph.order) {
+    const GraphNode& node = graph.nodes[i];
+    Hasher h;
+    h.add(node.info().type).add(static_cast<std::uint64_t>(node.info().version));
+    for (const auto& [name, value] : node.params.all()) {
+      h.add(name);
+      hash_param(h, value);
+    }
+    for (const std::string& e : node.effects_read) h.add(e);
+    for (const GraphNode::Input& in : node.inputs) {
+      h.add(in.port);
+      for (const GraphNode::Source& s : in.sources) h.add(hashes[s.node]).add(s.port);
+    }
+    hashes[i] = h.value();
+  }
+  return hashes;
+}
+
+RunResult evaluate(const Graph& graph, MemoCache& cache) {
+  RunResult result;
+  const std::vector<std::uint64_t> hashes = node_hashes(graph);
+  std::vector<std::shared_ptr<const OutputSet>> produced(graph.nodes.size());
+  for (std::size_t i : graph.order) {
+    const GraphNode& node = graph.nodes[i];
+    NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}};
+    if (auto hit = cache.find(hashes[i])) {
+      produced[i] = hit;
+      run.reused = true;
+      spdlog::debug("{} reused from the memo cache", where_of(node));
+      result.runs.push_back(std::move(run));
+      continue;
+    }
+    InputSet inputs;
+    for (const GraphNode::Input& in : node.inputs)
+      for (const GraphNode::Source& s : in.sources) {
+        const auto& outs = produced[s.node]->all();
+        auto it = outs.find(s.port);
+        if (it == outs.end())
+          throw EvaluationError(where_of(node) + ": its input '" + in.port + "' needs '" + graph.nodes[s.node].name + "." +
+                                s.port + "', which that node did not produce (is an effect it needs switched off?)");
+        inputs.add(in.port, it->second);
+      }
+    OutputSet outputs;
+    NodeContext context(node, run);
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      node.type->type->evaluate(node.params, inputs, outputs, context);
+    } catch (const NodeError& e) {
+      throw EvaluationError(where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
+    } catch (const EvaluationError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw EvaluationError(where_of(node) + ": " + e.what());
+    }
+    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    produced[i] = checked_outputs(node, outputs);
+    cache.store(hashes[i], produced[i]);
+    spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
+    result.runs.push_back(std::move(run));
+  }
+  for (const RequestedOutput& o : graph.outputs) {
+    const auto& outs = produced[o.node]->all();
+    auto it = outs.find(o.port);
+    if (it == outs.end())
+      throw EvaluationError(where_of(graph.nodes[o.node]) + " did not produce the requested output '" + o.label +
+                            "' (it may need an effect switched on)");
+    result.outputs.push_back({o.label, it->second, o.spec->dimension, o.spec->display_unit});
+  }
+  return result;
+}
+
+}  // namespace mechgraph

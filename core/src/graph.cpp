@@ -1,0 +1,447 @@
+#include <mechgraph/graph.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/units.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace mechgraph {
+
+Override parse_override(std::string_view text) {
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
+    throw SceneError("--set " + std::string(text) + ": expected NAME=VALUE, e.g. --set rpm=6000rpm or --set cam.max_lift=10mm");
+  return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), std::string(text)};
+}
+
+std::optional<std::size_t> Graph::find(std::string_view name) const {
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes[i].name == name) return i;
+  return std::nullopt;
+}
+
+namespace {
+
+[[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw SceneError(where.str() + message); }
+
+std::string format_number(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+std::string quantity_text(double si, const ParamSpec& spec) {
+  if (!spec.display_unit.empty()) {
+    try {
+      return format_number(to_unit(si, spec.dimension, spec.display_unit)) + " " + spec.display_unit;
+    } catch (const UnitError&) {
+    }
+  }
+  const std::string unit = spec.dimension.si_unit();
+  return format_number(si) + (unit == "1" ? "" : " " + unit);
+}
+
+std::string example_unit(Dimension d) {
+  if (d == dim::length) return "e.g. '9 mm'";
+  if (d == dim::angle) return "e.g. '130 deg'";
+  if (d == dim::angular_speed) return "e.g. '5600 rpm'";
+  if (d == dim::mass) return "e.g. '85 g'";
+  if (d == dim::force) return "e.g. '400 N'";
+  if (d == dim::stiffness) return "e.g. '30 N/mm'";
+  if (d == dim::stress) return "e.g. '80 GPa'";
+  return "in " + d.si_unit();
+}
+
+class GraphBuilder {
+ public:
+  GraphBuilder(const SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides)
+      : scene_(scene), registry_(registry) {
+    for (const auto& [name, value] : scene.params) scene_params_[name] = value;
+    apply_overrides(overrides);
+  }
+
+  Graph build() {
+    graph_.title = scene_.title;
+    graph_.file = scene_.file;
+    std::set<std::string> names;
+    for (const NodeSpec& n : scene_.nodes) {
+      if (!names.insert(n.name).second) fail(n.where, "node '" + n.name + "' is defined twice");
+    }
+    for (const NodeSpec& n : scene_.nodes) graph_.nodes.push_back(resolve_node(n));
+    for (std::size_t i = 0; i < scene_.nodes.size(); ++i) connect(i, scene_.nodes[i]);
+    check_cycles();
+    resolve_effects();
+    for (const PortRef& r : scene_.outputs) request(r, r.where);
+    graph_.scene_output_count = graph_.outputs.size();
+    if (scene_.report) resolve_report(*scene_.report);
+    if (graph_.outputs.empty())
+      fail({scene_.file, 1, 1}, "the scene requests no outputs: add 'outputs: [node.port, ...]' (or a report)");
+    cull_and_order();
+    return std::move(graph_);
+  }
+
+ private:
+  // ----- overrides
+  void apply_overrides(const std::vector<Override>& overrides) {
+    for (const Override& o : overrides) {
+      RawValue v;
+      v.text = o.value;
+      v.where = {"--set " + o.text, 0, 0};
+      v.key_where = v.where;
+      const auto dot = o.target.find('.');
+      if (dot == std::string::npos) {
+        if (!scene_params_.count(o.target)) {
+          std::vector<std::string> valid;
+          for (const auto& [k, unused] : scene_params_) valid.push_back(k);
+          throw SceneError("--set " + o.text + ": " + unknown_name_message("scene parameter", o.target, valid) +
+                           " (a node parameter is set as node.param)");
+        }
+        scene_params_[o.target] = v;
+      } else {
+        node_overrides_[o.target.substr(0, dot)].emplace_back(o.target.substr(dot + 1), v);
+        override_texts_[o.target.substr(0, dot)] = o.text;
+      }
+    }
+    for (const auto& [node, list] : node_overrides_) {
+      const bool exists = std::any_of(scene_.nodes.begin(), scene_.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
+      if (!exists) throw SceneError("--set " + override_texts_[node] + ": " + unknown_name_message("node", node, node_names()));
+    }
+  }
+
+  std::vector<std::string> node_names() const {
+    std::vector<std::string> out;
+    for (const NodeSpec& n : scene_.nodes) out.push_back(n.name);
+    return out;
+  }
+
+  // ----- parameters
+  // Follows `$name` to the scene parameter; returns the value and, for messages, where it was defined.
+  const RawValue& dereference(const RawValue& v, std::string& via) const {
+    if (v.kind != RawValue::Kind::scalar || v.text.empty() || v.text[0] != '$') return v;
+    const std::string name = v.text.substr(1);
+    auto it = scene_params_.find(name);
+    if (it == scene_params_.end()) {
+      std::vector<std::string> valid;
+      for (const auto& [k, unused] : scene_params_) valid.push_back(k);
+      fail(v.where, unknown_name_message("scene parameter", "$" + name, valid));
+    }
+    std::string origin = it->second.where.str();
+    if (origin.size() >= 2 && origin.substr(origin.size() - 2) == ": ") origin.resize(origin.size() - 2);
+    via = " ($" + name + " = '" + it->second.text + "', set at " + origin + ")";
+    return it->second;
+  }
+
+  double parse_number(const RawValue& written, const ParamSpec& spec, const std::string& owner) const {
+    std::string via;
+    const RawValue& v = dereference(written, via);
+    const std::string what = "parameter '" + spec.name + "' of " + owner;
+    if (v.kind != RawValue::Kind::scalar) fail(written.where, what + ": expected a number" + via);
+    Quantity q;
+    try {
+      q = parse_quantity(v.text);
+    } catch (const UnitError& e) {
+      SourceLocation at = v.where;
+      if (at.line) at.column += static_cast<int>(e.column());
+      fail(at, what + ": " + e.what() + via);
+    }
+    if (!(q.dimension == spec.dimension)) {
+      if (q.dimension.dimensionless())
+        fail(written.where, what + ": '" + v.text + "' has no unit; expected " + spec.dimension.describe() + ", " +
+                                example_unit(spec.dimension) + via);
+      fail(written.where, what + ": '" + v.text + "' is " + q.dimension.describe() + ", expected " +
+                              spec.dimension.describe() + " (" + example_unit(spec.dimension) + ")" + via);
+    }
+    const bool low = spec.min_exclusive ? !(q.value > spec.min) : !(q.value >= spec.min);
+    const bool high = spec.max_exclusive ? !(q.value < spec.max) : !(q.value <= spec.max);
+    if (low || high) {
+      std::string range;
+      if (std::isfinite(spec.min)) range += (spec.min_exclusive ? "> " : ">= ") + quantity_text(spec.min, spec);
+      if (std::isfinite(spec.max))
+        range += (range.empty() ? "" : " and ") + std::string(spec.max_exclusive ? "< " : "<= ") + quantity_text(spec.max, spec);
+      fail(written.where, what + " = '" + v.text + "' is out of range: it must be " + range + via);
+    }
+    if (spec.kind == ParamKind::integer && q.value != std::floor(q.value))
+      fail(written.where, what + " = '" + v.text + "' must be a whole number" + via);
+    return q.value;
+  }
+
+  ParamValue parse_param(const RawValue& written, const ParamSpec& spec, const std::string& owner) const {
+    std::string via;
+    const RawValue& v = dereference(written, via);
+    const std::string what = "parameter '" + spec.name + "' of " + owner;
+    switch (spec.kind) {
+      case ParamKind::number: return ParamValue::of_number(parse_number(written, spec, owner));
+      case ParamKind::integer: return ParamValue::of_integer(static_cast<long>(parse_number(written, spec, owner)));
+      case ParamKind::choice: {
+        if (v.kind != RawValue::Kind::scalar) fail(written.where, what + ": expected one of the choices" + via);
+        if (std::find(spec.choices.begin(), spec.choices.end(), v.text) == spec.choices.end())
+          fail(v.where, what + ": " + unknown_name_message("choice", v.text, spec.choices) + via);
+        return ParamValue::of_choice(v.text);
+      }
+      case ParamKind::text: {
+        if (v.kind != RawValue::Kind::scalar) fail(written.where, what + ": expected text" + via);
+        std::string text = v.text;
+        if (spec.is_path && !text.empty() && !std::filesystem::path(text).is_absolute() && v.where.line != 0)
+          text = (std::filesystem::path(scene_.file).parent_path() / text).lexically_normal().string();
+        return ParamValue::of_text(text);
+      }
+      case ParamKind::number_list: {
+        if (v.kind != RawValue::Kind::list) fail(written.where, what + ": expected a list, e.g. [2, 6, 10]" + via);
+        ParamSpec element = spec;
+        element.kind = ParamKind::number;
+        std::vector<double> out;
+        for (const RawValue& item : v.items) out.push_back(parse_number(item, element, owner));
+        return ParamValue::of_list(std::move(out));
+      }
+      case ParamKind::record_list: {
+        if (v.kind != RawValue::Kind::list) fail(written.where, what + ": expected a list of records" + via);
+        ParamValue out;
+        out.kind = ParamKind::record_list;
+        std::size_t index = 0;
+        for (const RawValue& item : v.items) {
+          if (item.kind != RawValue::Kind::map) fail(item.where, what + ": each entry is a map { field: value, ... }");
+          const std::string item_owner = owner + ", entry " + std::to_string(index++);
+          out.records.push_back(parse_record(item, spec.fields, item_owner));
+        }
+        return out;
+      }
+    }
+    fail(written.where, what + ": unsupported parameter kind");
+  }
+
+  Record parse_record(const RawValue& map, const std::vector<ParamSpec>& fields, const std::string& owner) const {
+    Record record;
+    std::vector<std::string> valid;
+    for (const ParamSpec& f : fields) valid.push_back(f.name);
+    for (const auto& [key, value] : map.fields) {
+      auto it = std::find_if(fields.begin(), fields.end(), [&](const ParamSpec& f) { return f.name == key; });
+      if (it == fields.end()) fail(value.key_where, owner + ": " + unknown_name_message("field", key, valid));
+      record[key] = parse_param(value, *it, owner);
+    }
+    for (const ParamSpec& f : fields) {
+      if (record.count(f.name)) continue;
+      if (f.default_value) record[f.name] = *f.default_value;
+      else if (f.required) fail(map.where, owner + ": field '" + f.name + "' is required (" + f.doc + ")");
+    }
+    return record;
+  }
+
+  GraphNode resolve_node(const NodeSpec& n) {
+    GraphNode node;
+    node.name = n.name;
+    node.where = n.where;
+    node.type = registry_.find(n.type);
+    if (!node.type) fail(n.type_where, unknown_name_message("node type", n.type, registry_.type_names()));
+    const NodeInfo& info = node.info();
+    const std::string owner = "node '" + n.name + "' (" + n.type + ")";
+    std::vector<std::pair<std::string, RawValue>> written = n.params;
+    if (auto it = node_overrides_.find(n.name); it != node_overrides_.end()) {
+      for (const auto& [name, value] : it->second) {
+        auto w = std::find_if(written.begin(), written.end(), [&](const auto& p) { return p.first == name; });
+        if (w != written.end()) w->second = value;
+        else written.emplace_back(name, value);
+      }
+    }
+    std::vector<std::string> valid;
+    for (const ParamSpec& p : info.params) valid.push_back(p.name);
+    std::set<std::string> seen;
+    for (const auto& [name, value] : written) {
+      const ParamSpec* spec = info.find_param(name);
+      if (!spec) fail(value.key_where, owner + ": " + unknown_name_message("parameter", name, valid));
+      seen.insert(name);
+      node.params.set(name, parse_param(value, *spec, owner));
+    }
+    for (const ParamSpec& p : info.params) {
+      if (seen.count(p.name)) continue;
+      if (p.default_value) node.params.set(p.name, *p.default_value);
+      else if (p.required) fail(n.where, owner + ": parameter '" + p.name + "' is required (" + p.doc + ")");
+    }
+    return node;
+  }
+
+  // ----- connections
+  void connect(std::size_t index, const NodeSpec& n) {
+    GraphNode& node = graph_.nodes[index];
+    const NodeInfo& info = node.info();
+    const std::string owner = "node '" + n.name + "' (" + info.type + ")";
+    std::vector<std::string> valid;
+    for (const PortSpec& p : info.inputs) valid.push_back(p.name);
+    for (const NodeSpec::InputSpec& in : n.inputs) {
+      const PortSpec* spec = info.find_input(in.port);
+      if (!spec) fail(in.where, owner + ": " + unknown_name_message("input port", in.port, valid));
+      if (!spec->multiple && in.sources.size() != 1)
+        fail(in.where, owner + ": input '" + in.port + "' takes exactly one connection, found " + std::to_string(in.sources.size()));
+      GraphNode::Input input{in.port, {}};
+      for (const PortRef& ref : in.sources) {
+        const auto producer = graph_.find(ref.node);
+        if (!producer) fail(ref.where, owner + ", input '" + in.port + "': " + unknown_name_message("node", ref.node, node_names()));
+        if (*producer == index) fail(ref.where, owner + ": input '" + in.port + "' is connected to the node itself (a cycle)");
+        const NodeInfo& pinfo = graph_.nodes[*producer].info();
+        const PortSpec* out = pinfo.find_output(ref.port);
+        if (!out) {
+          std::vector<std::string> outs;
+          for (const PortSpec& p : pinfo.outputs) outs.push_back(p.name);
+          fail(ref.where, owner + ", input '" + in.port + "', node '" + ref.node + "' (" + pinfo.type + "): " +
+                              unknown_name_message("output port", ref.port, outs));
+        }
+        check_compatible(*out, *spec, ref, owner + ", input '" + in.port + "'");
+        input.sources.push_back({*producer, ref.port});
+        if (std::find(node.upstream.begin(), node.upstream.end(), *producer) == node.upstream.end())
+          node.upstream.push_back(*producer);
+      }
+      node.inputs.push_back(std::move(input));
+    }
+    for (const PortSpec& p : info.inputs) {
+      if (p.optional) continue;
+      const bool connected = std::any_of(n.inputs.begin(), n.inputs.end(), [&](const auto& i) { return i.port == p.name; });
+      if (!connected)
+        fail(n.where, owner + ": input '" + p.name + "' is not connected; it expects " + describe_port(p) + " (" + p.doc + ")");
+    }
+  }
+
+  static std::string describe_port(const PortSpec& p) {
+    if (p.kind == ValueKind::handle) return "a " + p.handle_kind + (p.multiple ? " (one or more)" : "");
+    return std::string("a ") + std::string(to_string(p.kind)) + " of " + p.dimension.describe();
+  }
+
+  void check_compatible(const PortSpec& out, const PortSpec& in, const PortRef& ref, const std::string& what) const {
+    bool ok = out.kind == in.kind;
+    if (ok && in.kind == ValueKind::handle) ok = out.handle_kind == in.handle_kind;
+    if (ok && in.kind != ValueKind::handle) ok = out.dimension == in.dimension;
+    if (!ok)
+      fail(ref.where, what + ": '" + ref.str() + "' is " + describe_port(out) + ", the input expects " + describe_port(in));
+  }
+
+  void check_cycles() const {
+    enum class Mark { none, active, done };
+    std::vector<Mark> mark(graph_.nodes.size(), Mark::none);
+    std::vector<std::size_t> path;
+    std::function<void(std::size_t)> visit = [&](std::size_t i) {
+      if (mark[i] == Mark::done) return;
+      if (mark[i] == Mark::active) {
+        auto start = std::find(path.begin(), path.end(), i);
+        std::string cycle;
+        for (auto it = start; it != path.end(); ++it) cycle += graph_.nodes[*it].name + " <- ";
+        cycle += graph_.nodes[i].name;
+        fail(graph_.nodes[i].where, "the graph has a cycle: " + cycle + " (each node takes an input from the next)");
+      }
+      mark[i] = Mark::active;
+      path.push_back(i);
+      for (std::size_t u : graph_.nodes[i].upstream) visit(u);
+      path.pop_back();
+      mark[i] = Mark::done;
+    };
+    for (std::size_t i = 0; i < graph_.nodes.size(); ++i) visit(i);
+  }
+
+  void resolve_effects() {
+    const std::vector<std::string> known = registry_.effect_names();
+    for (const auto& [name, where] : scene_.effects) {
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        fail(where, unknown_name_message("effect", name, known) + " (no loaded node type implements it)");
+      if (std::find(graph_.effects.begin(), graph_.effects.end(), name) == graph_.effects.end()) graph_.effects.push_back(name);
+    }
+    for (GraphNode& n : graph_.nodes)
+      for (const std::string& e : graph_.effects)
+        if (n.info().implements_effect(e)) n.effects_read.push_back(e);
+  }
+
+  std::size_t request(const PortRef& ref, const SourceLocation& where) {
+    const auto node = graph_.find(ref.node);
+    if (!node) fail(where, "output '" + ref.str() + "': " + unknown_name_message("node", ref.node, node_names()));
+    const NodeInfo& info = graph_.nodes[*node].info();
+    const PortSpec* spec = info.find_output(ref.port);
+    if (!spec) {
+      std::vector<std::string> outs;
+      for (const PortSpec& p : info.outputs) outs.push_back(p.name);
+      fail(where, "output '" + ref.str() + "' of node '" + ref.node + "' (" + info.type + "): " +
+                      unknown_name_message("output port", ref.port, outs));
+    }
+    for (std::size_t i = 0; i < graph_.outputs.size(); ++i)
+      if (graph_.outputs[i].node == *node && graph_.outputs[i].port == ref.port) return i;
+    graph_.outputs.push_back({*node, ref.port, spec, ref.str()});
+    return graph_.outputs.size() - 1;
+  }
+
+  void resolve_report(const ReportSpec& spec) {
+    ResolvedReport report;
+    report.title = spec.title;
+    std::set<std::string> roles;
+    for (const auto& c : spec.columns) {
+      report.columns.push_back(c.label);
+      for (const auto& [role, node] : c.roles) roles.insert(role);
+    }
+    for (const auto& row : spec.rows) {
+      if (!roles.count(row.role))
+        fail(row.where, "report row '" + row.label + "': " + unknown_name_message("role", row.role, {roles.begin(), roles.end()}));
+      ResolvedReport::Row out{row.label, row.unit, {}};
+      for (const auto& c : spec.columns) {
+        auto it = std::find_if(c.roles.begin(), c.roles.end(), [&](const auto& r) { return r.first == row.role; });
+        if (it == c.roles.end()) {
+          out.cells.emplace_back();
+          continue;
+        }
+        const std::size_t index = request(PortRef{it->second, row.port, c.where}, row.where);
+        const PortSpec& port = *graph_.outputs[index].spec;
+        if (port.kind != ValueKind::scalar)
+          fail(row.where, "report row '" + row.label + "': '" + graph_.outputs[index].label + "' is a " +
+                              std::string(to_string(port.kind)) + "; a table cell needs a scalar");
+        if (!row.unit.empty()) {
+          try {
+            to_unit(1.0, port.dimension, row.unit);
+          } catch (const UnitError& e) {
+            fail(row.where, "report row '" + row.label + "': " + e.what());
+          }
+        }
+        out.cells.push_back(index);
+      }
+      report.rows.push_back(std::move(out));
+    }
+    graph_.report = std::move(report);
+  }
+
+  void cull_and_order() {
+    std::vector<std::size_t> stack;
+    for (const RequestedOutput& o : graph_.outputs) stack.push_back(o.node);
+    while (!stack.empty()) {
+      const std::size_t i = stack.back();
+      stack.pop_back();
+      if (graph_.nodes[i].needed) continue;
+      graph_.nodes[i].needed = true;
+      for (std::size_t u : graph_.nodes[i].upstream) stack.push_back(u);
+    }
+    // Depth-first post-order: producers before consumers, scene order otherwise.
+    std::vector<bool> placed(graph_.nodes.size(), false);
+    std::function<void(std::size_t)> place = [&](std::size_t i) {
+      if (placed[i]) return;
+      placed[i] = true;
+      for (std::size_t u : graph_.nodes[i].upstream) place(u);
+      graph_.order.push_back(i);
+    };
+    for (std::size_t i = 0; i < graph_.nodes.size(); ++i)
+      if (graph_.nodes[i].needed) place(i);
+  }
+
+  const SceneSpec& scene_;
+  const PluginRegistry& registry_;
+  std::map<std::string, RawValue> scene_params_;
+  std::map<std::string, std::vector<std::pair<std::string, RawValue>>> node_overrides_;
+  std::map<std::string, std::string> override_texts_;
+  Graph graph_;
+};
+
+}  // namespace
+
+Graph build_graph(const SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides) {
+  return GraphBuilder(scene, registry, overrides).build();
+}
+
+}  // namespace mechgraph

@@ -1,0 +1,145 @@
+#include <mechgraph/plugin_registry.hpp>
+
+#include <mechgraph/plugin_abi.hpp>
+
+#include <boost/dll/shared_library.hpp>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <set>
+#include <sstream>
+
+#ifndef MECHGRAPH_DEFAULT_PLUGIN_DIR
+#define MECHGRAPH_DEFAULT_PLUGIN_DIR ""
+#endif
+
+namespace mechgraph {
+namespace {
+
+using Library = boost::dll::shared_library;
+
+// Libraries are kept for the whole process: plugins are never unloaded (DESIGN.md, Lifetime).
+// The list is leaked on purpose so no static destructor can unload a library before objects it
+// created are gone.
+std::vector<std::shared_ptr<Library>>& all_libraries() {
+  static auto* libraries = new std::vector<std::shared_ptr<Library>>();
+  return *libraries;
+}
+
+template <class T>
+std::shared_ptr<const T> tie_to_library(std::shared_ptr<const T> object, std::shared_ptr<const void> library) {
+  // Members are destroyed in reverse order: the object first, then the library handle.
+  struct Holder {
+    std::shared_ptr<const void> library;
+    std::shared_ptr<const T> object;
+  };
+  auto holder = std::make_shared<Holder>(Holder{std::move(library), object});
+  return std::shared_ptr<const T>(holder, object.get());
+}
+
+}  // namespace
+
+std::shared_ptr<const DomainObject> RegisteredType::keep_alive(std::shared_ptr<const DomainObject> object) const {
+  if (!object || !library) return object;
+  return tie_to_library(std::move(object), library);
+}
+
+void PluginRegistry::load_file(const std::filesystem::path& file) {
+  const std::string where = "plugin '" + file.string() + "'";
+  if (!std::filesystem::is_regular_file(file)) throw PluginError(where + ": no such file");
+  auto library = std::make_shared<Library>();
+  boost::dll::fs::error_code ec;
+  library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
+  if (ec || !library->is_loaded())
+    throw PluginError(where + ": cannot be loaded as a shared library (" + ec.message() + ")");
+  if (!library->has(plugin_entry_name))
+    throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
+                      "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
+  auto entry = library->get_alias<PluginEntry>(plugin_entry_name);
+  const PluginDescriptor* d = entry();
+  if (!d) throw PluginError(where + ": its entry returned no descriptor");
+  if (d->abi_version != plugin_abi_version)
+    throw PluginError(where + " was built for plugin ABI version " + std::to_string(d->abi_version) +
+                      ", this mechgraph uses ABI version " + std::to_string(plugin_abi_version) +
+                      "; rebuild the plugin against this mechgraph");
+  const std::string id = d->plugin_id ? d->plugin_id : "";
+  if (!d->build_fingerprint || std::string(d->build_fingerprint) != build_fingerprint)
+    throw PluginError(where + " ('" + id + "') was built with '" + (d->build_fingerprint ? d->build_fingerprint : "?") +
+                      "', this mechgraph with '" + build_fingerprint + "'; rebuild it with the same toolchain");
+  if (id.empty()) throw PluginError(where + ": its descriptor has an empty plugin id");
+  for (const PluginInfo& p : plugins_)
+    if (p.id == id) throw PluginError(where + ": plugin id '" + id + "' is already loaded from '" + p.path.string() + "'");
+  if (!d->make_node_types) throw PluginError(where + ": its descriptor has no node type factory");
+
+  NodeTypeList types = d->make_node_types();
+  std::shared_ptr<const void> keep = library;
+  std::set<std::string> own;
+  PluginInfo info{id, d->plugin_version ? d->plugin_version : "", d->build_fingerprint, file, {}};
+  std::vector<std::pair<std::string, RegisteredType>> added;
+  for (auto& t : types) {
+    if (!t) throw PluginError(where + ": returned an empty node type");
+    const std::string& name = t->info().type;
+    if (name.empty()) throw PluginError(where + ": a node type has an empty name");
+    if (const RegisteredType* other = find(name)) {
+      std::string other_path;
+      for (const PluginInfo& p : plugins_)
+        if (p.id == other->plugin_id) other_path = p.path.string();
+      throw PluginError(where + " ('" + id + "') provides node type '" + name + "', which plugin '" +
+                        other->plugin_id + "' (" + other_path + ") already provides");
+    }
+    if (!own.insert(name).second) throw PluginError(where + " provides node type '" + name + "' twice");
+    info.node_types.push_back(name);
+    added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id});
+  }
+  all_libraries().push_back(library);
+  for (auto& a : added) types_.push_back(std::move(a));
+  spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
+  plugins_.push_back(std::move(info));
+}
+
+void PluginRegistry::load_directory(const std::filesystem::path& folder) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(folder, ec)) throw PluginError("plugin folder '" + folder.string() + "' does not exist");
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().extension() == ".so") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& f : files) load_file(f);
+}
+
+std::vector<std::filesystem::path> PluginRegistry::search_path(const std::optional<std::filesystem::path>& plugin_dir) {
+  if (plugin_dir) return {*plugin_dir};
+  std::vector<std::filesystem::path> out;
+  if (const char* env = std::getenv("MECHGRAPH_PLUGIN_PATH"); env && *env) {
+    std::stringstream ss(env);
+    std::string item;
+    while (std::getline(ss, item, ':'))
+      if (!item.empty()) out.emplace_back(item);
+    if (!out.empty()) return out;
+  }
+  out.emplace_back(MECHGRAPH_DEFAULT_PLUGIN_DIR);
+  return out;
+}
+
+const RegisteredType* PluginRegistry::find(std::string_view type) const {
+  for (const auto& [name, t] : types_)
+    if (name == type) return &t;
+  return nullptr;
+}
+
+std::vector<std::string> PluginRegistry::type_names() const {
+  std::vector<std::string> out;
+  for (const auto& [name, t] : types_) out.push_back(name);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<std::string> PluginRegistry::effect_names() const {
+  std::set<std::string> names;
+  for (const auto& [name, t] : types_)
+    for (const EffectSpec& e : t.type->info().effects) names.insert(e.name);
+  return {names.begin(), names.end()};
+}
+
+}  // namespace mechgraph

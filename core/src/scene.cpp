@@ -1,0 +1,211 @@
+#include <mechgraph/scene.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace mechgraph {
+
+std::string SourceLocation::str() const {
+  if (line == 0) return file.empty() ? std::string() : file + ": ";
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": ";
+}
+
+namespace {
+
+class SceneReader {
+ public:
+  explicit SceneReader(std::string file) : file_(std::move(file)) {}
+
+  SourceLocation at(const YAML::Node& n) const {
+    const YAML::Mark m = n.Mark();
+    return {file_, m.line + 1, m.column + 1};
+  }
+
+  [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
+    throw SceneError(where.str() + message);
+  }
+
+  std::string scalar(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsScalar()) fail(at(n), "expected " + what + " (a single value), found " + shape(n));
+    return n.Scalar();
+  }
+
+  static std::string shape(const YAML::Node& n) {
+    if (n.IsMap()) return "a map";
+    if (n.IsSequence()) return "a list";
+    if (n.IsNull()) return "nothing";
+    return "'" + n.Scalar() + "'";
+  }
+
+  RawValue raw(const YAML::Node& n) const {
+    RawValue v;
+    v.where = at(n);
+    if (n.IsSequence()) {
+      v.kind = RawValue::Kind::list;
+      for (const auto& item : n) v.items.push_back(raw(item));
+    } else if (n.IsMap()) {
+      v.kind = RawValue::Kind::map;
+      for (const auto& kv : n) {
+        RawValue field = raw(kv.second);
+        field.key_where = at(kv.first);
+        v.fields.emplace_back(scalar(kv.first, "a key"), std::move(field));
+      }
+    } else if (n.IsScalar()) {
+      v.text = n.Scalar();
+    } else {
+      fail(v.where, "expected a value, found nothing");
+    }
+    return v;
+  }
+
+  void check_keys(const YAML::Node& map, const std::vector<std::string>& valid, const std::string& what) const {
+    for (const auto& kv : map) {
+      const std::string key = scalar(kv.first, "a key");
+      if (std::find(valid.begin(), valid.end(), key) == valid.end())
+        fail(at(kv.first), unknown_name_message(what, key, valid));
+    }
+  }
+
+  const YAML::Node& expect_map(const YAML::Node& n, const std::string& what) const {
+    if (!n.IsMap()) fail(at(n), "expected " + what + " as a map (name: value), found " + shape(n));
+    return n;
+  }
+
+  SceneSpec read(const YAML::Node& root) {
+    SceneSpec scene;
+    scene.file = file_;
+    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, params, nodes, effects, outputs, report");
+    check_keys(root, {"title", "params", "nodes", "effects", "outputs", "report"}, "scene key");
+    if (root["title"]) scene.title = scalar(root["title"], "a title");
+    if (const YAML::Node p = root["params"]; p && !p.IsNull()) {
+      expect_map(p, "params");
+      for (const auto& kv : p) {
+        RawValue v = raw(kv.second);
+        v.key_where = at(kv.first);
+        scene.params.emplace_back(scalar(kv.first, "a parameter name"), std::move(v));
+      }
+    }
+    const YAML::Node nodes = root["nodes"];
+    if (!nodes || nodes.IsNull()) fail({file_, 1, 1}, "the scene has no 'nodes'");
+    expect_map(nodes, "nodes");
+    for (const auto& kv : nodes) scene.nodes.push_back(read_node(kv.first, kv.second));
+    if (const YAML::Node e = root["effects"]; e && !e.IsNull()) {
+      if (!e.IsSequence()) fail(at(e), "expected effects as a list, e.g. [monte_carlo]");
+      for (const auto& item : e) scene.effects.emplace_back(scalar(item, "an effect name"), at(item));
+    }
+    if (const YAML::Node o = root["outputs"]; o && !o.IsNull()) {
+      if (!o.IsSequence()) fail(at(o), "expected outputs as a list of node.port");
+      for (const auto& item : o) scene.outputs.push_back(parse_port_ref(scalar(item, "node.port"), at(item)));
+    }
+    if (const YAML::Node r = root["report"]; r && !r.IsNull()) scene.report = read_report(r);
+    return scene;
+  }
+
+  NodeSpec read_node(const YAML::Node& key, const YAML::Node& body) {
+    NodeSpec node;
+    node.name = scalar(key, "a node name");
+    node.where = at(key);
+    if (node.name.find('.') != std::string::npos || node.name.find('$') != std::string::npos)
+      fail(node.where, "node name '" + node.name + "' may not contain '.' or '$'");
+    expect_map(body, "node '" + node.name + "'");
+    check_keys(body, {"type", "params", "inputs", "doc"}, "node key");
+    if (!body["type"]) fail(at(body), "node '" + node.name + "' has no 'type'");
+    node.type = scalar(body["type"], "a node type");
+    node.type_where = at(body["type"]);
+    if (const YAML::Node p = body["params"]; p && !p.IsNull()) {
+      expect_map(p, "params of node '" + node.name + "'");
+      for (const auto& kv : p) {
+        RawValue v = raw(kv.second);
+        v.key_where = at(kv.first);
+        node.params.emplace_back(scalar(kv.first, "a parameter name"), std::move(v));
+      }
+    }
+    if (const YAML::Node in = body["inputs"]; in && !in.IsNull()) {
+      expect_map(in, "inputs of node '" + node.name + "'");
+      for (const auto& kv : in) {
+        NodeSpec::InputSpec input;
+        input.port = scalar(kv.first, "an input port name");
+        input.where = at(kv.first);
+        if (kv.second.IsSequence()) {
+          input.listed = true;
+          for (const auto& item : kv.second) input.sources.push_back(parse_port_ref(scalar(item, "node.port"), at(item)));
+        } else {
+          input.sources.push_back(parse_port_ref(scalar(kv.second, "node.port"), at(kv.second)));
+        }
+        node.inputs.push_back(std::move(input));
+      }
+    }
+    return node;
+  }
+
+  ReportSpec read_report(const YAML::Node& r) {
+    ReportSpec report;
+    report.where = at(r);
+    expect_map(r, "report");
+    check_keys(r, {"title", "columns", "rows"}, "report key");
+    if (r["title"]) report.title = scalar(r["title"], "a title");
+    const YAML::Node columns = r["columns"];
+    if (!columns) fail(report.where, "report has no 'columns' (label: { role: node, ... })");
+    expect_map(columns, "report columns");
+    for (const auto& kv : columns) {
+      ReportSpec::Column c;
+      c.label = scalar(kv.first, "a column label");
+      c.where = at(kv.first);
+      expect_map(kv.second, "the roles of column '" + c.label + "'");
+      for (const auto& role : kv.second) c.roles.emplace_back(scalar(role.first, "a role"), scalar(role.second, "a node name"));
+      report.columns.push_back(std::move(c));
+    }
+    const YAML::Node rows = r["rows"];
+    if (!rows || !rows.IsSequence()) fail(report.where, "report has no 'rows' list ([label, role.port, unit])");
+    for (const auto& row : rows) {
+      if (!row.IsSequence() || row.size() < 2 || row.size() > 3)
+        fail(at(row), "a report row is [label, role.port] or [label, role.port, unit]");
+      ReportSpec::Row out;
+      out.label = scalar(row[0], "a row label");
+      const PortRef ref = parse_port_ref(scalar(row[1], "role.port"), at(row[1]));
+      out.role = ref.node;
+      out.port = ref.port;
+      out.where = ref.where;
+      if (row.size() == 3) out.unit = scalar(row[2], "a unit");
+      report.rows.push_back(std::move(out));
+    }
+    return report;
+  }
+
+ private:
+  std::string file_;
+};
+
+}  // namespace
+
+PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
+  const auto dot = text.find('.');
+  if (dot == std::string_view::npos || dot == 0 || dot + 1 == text.size() || text.find('.', dot + 1) != std::string_view::npos)
+    throw SceneError(where.str() + "expected 'node.port', found '" + std::string(text) + "'");
+  return {std::string(text.substr(0, dot)), std::string(text.substr(dot + 1)), where};
+}
+
+SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(std::string(yaml_text));
+  } catch (const YAML::Exception& e) {
+    throw SceneError(SourceLocation{file_label, e.mark.line + 1, e.mark.column + 1}.str() + "YAML syntax: " + e.msg);
+  }
+  return SceneReader(file_label).read(root);
+}
+
+SceneSpec load_scene(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw SceneError(file.string() + ": cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_scene(ss.str(), file.string());
+}
+
+}  // namespace mechgraph
