@@ -100,6 +100,40 @@ std::optional<double> first_sign_change(const Function1D& f, std::span<const dou
   return std::nullopt;
 }
 
+std::vector<double> all_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
+  check_knots(knots, n);
+  std::vector<double> roots;
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    if (!(b > a)) continue;
+    double x_prev = sample_point(a, b, 0, n);
+    double f_prev = f(x_prev);
+    ++evaluations;
+    if (p > 0) {
+      const double left = f(knots[p] - 1e-13 * (knots[p] - knots[p - 1]));
+      ++evaluations;
+      if ((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) roots.push_back(knots[p]);
+    }
+    for (int i = 1; i < n; ++i) {
+      const double x = sample_point(a, b, i, n);
+      const double fx = f(x);
+      ++evaluations;
+      if ((f_prev > 0 && fx < 0) || (f_prev < 0 && fx > 0)) {
+        std::uintmax_t iterations = 200;
+        boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 3);
+        auto r = boost::math::tools::toms748_solve(f, x_prev, x, f_prev, fx, tol, iterations);
+        evaluations += static_cast<long>(iterations);
+        roots.push_back(0.5 * (r.first + r.second));
+      }
+      if (fx != 0.0) {
+        x_prev = x;
+        f_prev = fx;
+      }
+    }
+  }
+  return roots;
+}
+
 double integrate_piecewise(const Function1D& f, std::span<const double> knots, double tolerance, long& evaluations,
                            double* error_estimate) {
   if (knots.size() < 2) throw std::invalid_argument("integrate_piecewise needs at least two knots");

@@ -1,13 +1,75 @@
 #include "cam_node.hpp"
 
 #include "cam_summary.hpp"
+#include "ramps.hpp"
+
+#include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <vector>
 
 namespace mechgraph::cams {
 namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// The common ramp parameters, checked: `ramp: none` with a height or length set is an error
+// rather than silently ignored; a ramp needs both.
+RampSpec read_ramp(const ParamSet& params) {
+  RampSpec r;
+  const std::string name = params.has("ramp") ? params.text("ramp") : std::string("none");
+  const auto type = ramp_type_from_name(name);
+  if (!type) throw NodeError("ramp", "unknown ramp '" + name + "'; valid ramps are: none constant_velocity cosine");
+  r.type = *type;
+  r.height = params.has("ramp_height") ? params.number("ramp_height") : 0.0;
+  r.length = params.has("ramp_length") ? params.number("ramp_length") : 0.0;
+  std::ostringstream m;
+  if (!(std::isfinite(r.height) && r.height >= 0.0)) {
+    m << "ramp_height must be >= 0 (got " << r.height * 1e3 << " mm)";
+    throw NodeError("ramp_height", m.str());
+  }
+  if (!(std::isfinite(r.length) && r.length >= 0.0)) {
+    m << "ramp_length must be >= 0 (got " << r.length * 180.0 / pi << " deg)";
+    throw NodeError("ramp_length", m.str());
+  }
+  if (r.type == RampType::none) {
+    if (r.height != 0.0) {
+      m << "ramp_height is " << r.height * 1e3 << " mm but ramp is none; choose ramp: constant_velocity or cosine";
+      throw NodeError("ramp_height", m.str());
+    }
+    if (r.length != 0.0) {
+      m << "ramp_length is " << r.length * 180.0 / pi << " deg but ramp is none; choose ramp: constant_velocity or cosine";
+      throw NodeError("ramp_length", m.str());
+    }
+    return r;
+  }
+  if (!(r.height > 0.0)) throw NodeError("ramp_height", "ramp " + name + " needs ramp_height > 0");
+  if (!(r.length > 0.0)) throw NodeError("ramp_length", "ramp " + name + " needs ramp_length > 0");
+  return r;
+}
+
+// The main law's share of max_lift once the ramp has taken its own (see ramps.hpp).
+double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
+  if (ramp.type == RampType::none) return max_lift;
+  if (!(action_angle + 2.0 * ramp.length < 2.0 * pi)) {
+    std::ostringstream m;
+    m << "action_angle + 2 ramp_length = " << (action_angle + 2.0 * ramp.length) * 180.0 / pi
+      << " deg must stay below 360 deg";
+    throw NodeError("ramp_length", m.str());
+  }
+  const double share = ramp_lift_at_nose(ramp, 0.5 * action_angle);
+  if (!(share < max_lift)) {
+    std::ostringstream m;
+    m << "the " << ramp_type_name(ramp.type) << " ramp takes " << share * 1e3 << " mm of the lift at the nose (ramp_height "
+      << ramp.height * 1e3 << " mm + its end velocity " << ramp_end_velocity(ramp) * 1e3 * pi / 180.0
+      << " mm/deg faded out over half the action angle), not less than max_lift " << max_lift * 1e3
+      << " mm; lower ramp_height or lengthen ramp_length";
+    throw NodeError("ramp_height", m.str());
+  }
+  return max_lift - share;
+}
 
 class CamNodeType final : public NodeType {
  public:
@@ -16,13 +78,39 @@ class CamNodeType final : public NodeType {
     info_.version = d.version;
     info_.summary = std::move(d.summary);
     info_.params = {
-        ParamSpec::number("max_lift", dim::length, "maximum follower lift at the nose", "mm").positive(),
-        ParamSpec::number("action_angle", dim::angle, "total cam angle of the lift event", "deg")
+        ParamSpec::number("max_lift", dim::length,
+                          "maximum follower lift at the nose; with a ramp the total lift: the ramp's share "
+                          "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
+                          "mm")
+            .positive(),
+        ParamSpec::number("action_angle", dim::angle,
+                          "total cam angle of the lift event of the main law (ramps add 2 ramp_length)", "deg")
             .positive()
             .below(2.0 * std::numbers::pi),
         ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive(),
     };
     for (auto& p : d.params) info_.params.push_back(std::move(p));
+    info_.params.push_back(
+        ParamSpec::choice("ramp", ramp_type_names(),
+                          "opening/closing ramps taking up the lash, superposed on the law: none; "
+                          "constant_velocity (lift grows linearly to ramp_height over ramp_length: the velocity "
+                          "jumps at the start of the ramp, an acceleration impulse, not shockless); cosine "
+                          "(ramp_height (1 - cos(pi x/2)): velocity continuous, finite acceleration step at the start). "
+                          "The ramp's end velocity is carried into the main lift and faded to zero at the nose by a "
+                          "3-4-5 polynomial, so lift, velocity (and for cosine acceleration) are continuous at the "
+                          "ramp/main junction; the event grows to action_angle + 2 ramp_length, symmetric")
+            .with_default("none"));
+    info_.params.push_back(ParamSpec::number("ramp_height", dim::length,
+                                             "lift at the end of each ramp (set with a ramp, 0 without)", "mm")
+                               .with_default(0.0)
+                               .non_negative());
+    info_.params.push_back(ParamSpec::number("ramp_length", dim::angle,
+                                             "cam angle of each ramp, before and after the action angle (set with a "
+                                             "ramp, 0 without)",
+                                             "deg")
+                               .with_default(0.0)
+                               .non_negative()
+                               .below(2.0 * std::numbers::pi));
     info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches")
                                .with_default(400.0)
                                .at_least(8)
@@ -42,9 +130,26 @@ class CamNodeType final : public NodeType {
   const NodeInfo& info() const override { return info_; }
 
   void evaluate(const ParamSet& params, const InputSet&, OutputSet& out, EvalContext& ctx) const override {
-    const CamBasics basics{params.number("max_lift"), params.number("action_angle"), params.number("base_radius")};
+    const RampSpec ramp = read_ramp(params);
+    const double action_angle = params.number("action_angle");
+    const CamBasics basics{main_lift(ramp, params.number("max_lift"), action_angle), action_angle,
+                           params.number("base_radius")};
     std::shared_ptr<const CamLaw> law = make_(basics, params, out);
-    const CamSummary s = summarize(*law, static_cast<int>(params.integer("samples")));
+    if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
+    const int samples = static_cast<int>(params.integer("samples"));
+    CamSummary s = summarize(*law, samples);
+    if (ramp.type == RampType::constant_velocity) {
+      // h'' is exactly zero along a constant-velocity ramp, which a sign-change search can take
+      // for a root; the positive-acceleration phase is searched from the end of the opening ramp
+      // and counted from the start of lift (the start of the ramp).
+      std::vector<double> knots{law->event_begin() + ramp.length};
+      for (double b : law->breakpoints())
+        if (b > knots.front()) knots.push_back(b);
+      knots.push_back(law->event_end());
+      auto acceleration = [&](double x) { return law->at(x).acceleration; };
+      const auto end_of_positive = numerics::first_sign_change(acceleration, knots, samples, s.evaluations);
+      s.accel_angle = end_of_positive ? *end_of_positive - law->event_begin() : 0.0;
+    }
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
     if (!(s.min_curvature_radius > 0.0)) {
       std::ostringstream msg;

@@ -17,8 +17,8 @@
 //  [2] rf-ghofmockel/rf-tolerance (GitHub), data/DIN286/*.js: IT1..IT18 per
 //      size range, Delta table, hole fundamental deviations with grade
 //      groups (K, M, N, P, T, U inspected).
-//  [3] K. L. Narayana et al., "Machine Drawing", Table 15.2 (shafts a..zc up
-//      to 500 mm, published scan).
+//  [3] A "Machine Drawing" textbook, Table 15.2 (shaft fundamental
+//      deviations a..zc up to 500 mm, published scan).
 //  [4] Machinery's Handbook 31st ed., Table 6a (BS 4500 = ISO hole
 //      fundamental deviations A..N, J, K/M/N <=IT8 / >IT8 columns).
 //  [5] DME technical reference, "Fundamental deviations of holes and shafts"
@@ -507,6 +507,10 @@ Designation parse_designation(std::string_view text) {
         fail_class(text, "empty designation; expected a fundamental deviation and a grade, e.g. 'H7' (hole) or 'g6' (shaft)");
     }
     if (letters.empty()) {
+        if (text[0] < '0' || text[0] > '9') {
+            fail_class(text, "unexpected character '" + std::string(1, text[0]) +
+                                 "'; expected a fundamental deviation and a grade, e.g. 'H7' (hole) or 'g6' (shaft)");
+        }
         fail_class(text, "missing fundamental deviation before the grade; expected e.g. 'H" + std::string(digits) +
                              "' (hole) or 'h" + std::string(digits) + "' (shaft)");
     }

@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <vector>
 
 namespace mechgraph::numerics {
 
@@ -27,6 +28,11 @@ Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, 
 /// sampling, then TOMS 748 to machine precision). A knot where f jumps across zero counts as a root.
 std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots,
                                         int samples_per_piece, long& evaluations);
+
+/// Every x where f changes sign, in ascending order (each bracket refined with TOMS 748); roots
+/// closer together than the sample spacing may be missed, so pass enough samples.
+std::vector<double> all_sign_changes(const Function1D& f, std::span<const double> knots, int samples_per_piece,
+                                     long& evaluations);
 
 /// Integral of f over [knots.front(), knots.back()], adaptive Gauss-Kronrod (15-point) on each
 /// piece to relative tolerance `tolerance`. `error_estimate` receives the summed estimate.

@@ -1,0 +1,44 @@
+#include "cli.hpp"
+
+#include <mechgraph/units.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+
+namespace mechgraph::cli {
+
+PluginRegistry load_plugins(const GlobalOptions& options) {
+  PluginRegistry registry;
+  std::optional<std::filesystem::path> dir;
+  if (options.plugin_dir) dir = *options.plugin_dir;
+  for (const auto& folder : PluginRegistry::search_path(dir)) {
+    spdlog::debug("loading plugins from {}", folder.string());
+    registry.load_directory(folder);
+  }
+  if (registry.plugins().empty())
+    throw PluginError("no plugins found; give a folder with --plugin-dir or MECHGRAPH_PLUGIN_PATH");
+  return registry;
+}
+
+Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry) {
+  std::vector<Override> overrides;
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  return build_graph(load_scene(scene_file), registry, overrides);
+}
+
+std::string format_value(double si, Dimension dimension, const std::string& unit) {
+  double shown = si;
+  std::string label = unit;
+  if (unit.empty()) {
+    label = dimension.si_unit();
+    if (label == "1") label.clear();
+  } else {
+    shown = to_unit(si, dimension, unit);
+  }
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.6g", shown);
+  return label.empty() ? std::string(buffer) : std::string(buffer) + " " + label;
+}
+
+}  // namespace mechgraph::cli

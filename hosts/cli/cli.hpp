@@ -1,0 +1,39 @@
+#pragma once
+// Shared pieces of the `mechgraph` subcommands: global options, plugin loading, exit codes.
+#include <mechgraph/graph.hpp>
+#include <mechgraph/plugin_registry.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mechgraph::cli {
+
+/// Exit codes (DESIGN.md): 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error.
+enum ExitCode : int { ok = 0, usage_error = 2, evaluation_error = 3, plugin_error = 4 };
+
+/// Thrown for a bad command line; main() prints it with the subcommand's usage and exits 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct GlobalOptions {
+  std::optional<std::string> plugin_dir;
+};
+
+/// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, build folder).
+PluginRegistry load_plugins(const GlobalOptions& options);
+
+/// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
+Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);
+
+/// "12.5 mm" from an SI value, in `unit` when given (else SI), 6 significant digits.
+std::string format_value(double si, Dimension dimension, const std::string& unit);
+
+int run_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int validate_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int graph_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int describe_command(const GlobalOptions& g, const std::vector<std::string>& args);
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,80 @@
+// mechgraph graph SCENE: the graph as Graphviz DOT. Needed nodes are solid; culled nodes (not
+// needed for any requested output) sit in a grey dashed cluster; requested outputs are bold.
+#include "cli.hpp"
+#include "options.hpp"
+
+#include <iostream>
+#include <set>
+
+namespace mechgraph::cli {
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+void write_dot(std::ostream& os, const Graph& graph) {
+  std::set<std::size_t> requested;
+  for (const RequestedOutput& o : graph.outputs) requested.insert(o.node);
+  os << "digraph mechgraph {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n";
+  if (!graph.title.empty()) os << "  label=" << quoted(graph.title) << ";\n  labelloc=t;\n";
+  auto node_line = [&](std::size_t i) {
+    const GraphNode& n = graph.nodes[i];
+    std::string label = n.name + "\\n" + n.info().type;
+    os << "    " << quoted(n.name) << " [label=\"" << label << "\"";
+    if (requested.count(i)) os << ", penwidth=2";
+    os << "];\n";
+  };
+  os << "  subgraph cluster_needed {\n    label=\"evaluated\";\n    style=solid;\n";
+  for (std::size_t i = 0; i < graph.nodes.size(); ++i)
+    if (graph.nodes[i].needed) node_line(i);
+  os << "  }\n";
+  bool any_culled = false;
+  for (const GraphNode& n : graph.nodes) any_culled |= !n.needed;
+  if (any_culled) {
+    os << "  subgraph cluster_culled {\n    label=\"culled (not needed)\";\n    style=dashed;\n    color=grey;\n"
+          "    fontcolor=grey;\n    node [color=grey, fontcolor=grey, style=dashed];\n";
+    for (std::size_t i = 0; i < graph.nodes.size(); ++i)
+      if (!graph.nodes[i].needed) node_line(i);
+    os << "  }\n";
+  }
+  for (const GraphNode& n : graph.nodes)
+    for (const GraphNode::Input& in : n.inputs)
+      for (const GraphNode::Source& s : in.sources) {
+        os << "  " << quoted(graph.nodes[s.node].name) << " -> " << quoted(n.name) << " [label="
+           << quoted(s.port + " -> " + in.port);
+        if (!n.needed) os << ", style=dashed, color=grey";
+        os << "];\n";
+      }
+  for (const RequestedOutput& o : graph.outputs) {
+    os << "  " << quoted("out:" + o.label) << " [shape=plaintext, label=" << quoted(o.label) << "];\n";
+    os << "  " << quoted(graph.nodes[o.node].name) << " -> " << quoted("out:" + o.label) << " [style=bold];\n";
+  }
+  os << "}\n";
+}
+
+}  // namespace
+
+int graph_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("graph options");
+  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
+                                                "override a parameter, as for run");
+  po::options_description all;
+  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
+  po::positional_options_description positional;
+  positional.add("scene", 1);
+  po::variables_map vm;
+  if (!parse_options(args, visible, all, positional, vm, "mechgraph graph SCENE [--set NAME=VALUE ...] | dot -Tsvg"))
+    return ok;
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  const PluginRegistry registry = load_plugins(g);
+  write_dot(std::cout, load_graph(vm["scene"].as<std::string>(), sets, registry));
+  return ok;
+}
+
+}  // namespace mechgraph::cli

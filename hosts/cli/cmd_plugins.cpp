@@ -1,0 +1,40 @@
+// mechgraph plugins [--json]: the loaded plugins and their node types.
+#include "cli.hpp"
+#include "node_info_format.hpp"
+#include "options.hpp"
+
+#include <iostream>
+
+namespace mechgraph::cli {
+
+int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("plugins options");
+  visible.add_options()("help,h", "this text")("json", "full descriptions as JSON");
+  po::positional_options_description none;
+  po::variables_map vm;
+  if (!parse_options(args, visible, visible, none, vm, "mechgraph plugins [--json]")) return ok;
+  const PluginRegistry registry = load_plugins(g);
+  if (vm.count("json")) {
+    JsonWriter json(std::cout);
+    json.begin_object().key("plugins").begin_array();
+    for (const PluginInfo& p : registry.plugins()) {
+      json.begin_object().key("id").value(p.id).key("version").value(p.version).key("path").value(p.path.string());
+      json.key("fingerprint").value(p.fingerprint).key("node_types").begin_array();
+      for (const auto& t : p.node_types) write_node_info_json(json, registry.find(t)->type->info());
+      json.end_array().end_object();
+    }
+    json.end_array().end_object();
+    std::cout << "\n";
+    return ok;
+  }
+  for (const PluginInfo& p : registry.plugins()) {
+    std::cout << p.id << " " << p.version << "  (" << p.path.string() << ")\n";
+    for (const auto& t : p.node_types) {
+      const NodeInfo& info = registry.find(t)->type->info();
+      std::cout << "  " << t << std::string(t.size() < 30 ? 30 - t.size() : 1, ' ') << info.summary << "\n";
+    }
+  }
+  return ok;
+}
+
+}  // namespace mechgraph::cli

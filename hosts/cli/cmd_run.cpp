@@ -1,0 +1,174 @@
+// mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]
+#include "cli.hpp"
+#include "options.hpp"
+
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/units.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace mechgraph::cli {
+namespace {
+
+void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
+  JsonWriter json(os);
+  json.begin_object();
+  json.key("title").value(graph.title);
+  json.key("outputs").begin_object();
+  for (const OutputValue& o : result.outputs) {
+    json.key(o.label).begin_object();
+    switch (o.value.kind()) {
+      case ValueKind::scalar: json.key("value").value(o.value.as_scalar()); break;
+      case ValueKind::series:
+        json.key("value").numbers(o.value.as_series().values);
+        json.key("axis").numbers(o.value.as_series().axis);
+        json.key("axis_unit").value(o.value.as_series().axis_dimension.si_unit());
+        break;
+      case ValueKind::handle: json.key("value").null().key("handle").value(o.value.as_handle()->kind()); break;
+    }
+    json.key("unit").value(o.dimension.si_unit());
+    json.end_object();
+  }
+  json.end_object();
+  json.key("evaluated").begin_array();
+  for (const NodeRun& r : result.runs)
+    if (!r.reused) json.value(r.node);
+  json.end_array();
+  json.key("reused").begin_array();
+  for (const NodeRun& r : result.runs)
+    if (r.reused) json.value(r.node);
+  json.end_array();
+  json.key("nodes").begin_object();
+  for (const NodeRun& r : result.runs) {
+    json.key(r.node).begin_object();
+    json.key("type").value(r.type);
+    json.key("seconds").value(r.seconds);
+    json.key("work").begin_object();
+    for (const auto& [counter, amount] : r.work) json.key(counter).value(amount);
+    json.end_object();
+    json.end_object();
+  }
+  json.end_object();
+  json.key("effects").begin_array();
+  for (const std::string& e : graph.effects) json.value(e);
+  json.end_array();
+  json.end_object();
+  os << "\n";
+}
+
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result) {
+  std::vector<std::string> header{"", "unit"};
+  for (const std::string& c : report.columns) header.push_back(c);
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& row : report.rows) {
+    std::vector<std::string> cells{row.label, row.unit};
+    for (const auto& cell : row.cells) {
+      if (!cell) {
+        cells.push_back("-");
+        continue;
+      }
+      const OutputValue& o = result.outputs[*cell];
+      if (cells[1].empty()) cells[1] = o.dimension.si_unit();
+      const double shown = row.unit.empty() ? o.value.as_scalar() : to_unit(o.value.as_scalar(), o.dimension, row.unit);
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.6g", shown);
+      cells.push_back(buffer);
+    }
+    rows.push_back(std::move(cells));
+  }
+  std::vector<std::size_t> width(header.size(), 0);
+  auto measure = [&](const std::vector<std::string>& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
+  };
+  measure(header);
+  for (const auto& r : rows) measure(r);
+  auto print_row = [&](const std::vector<std::string>& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      if (i == 0) os << std::left << std::setw(static_cast<int>(width[i])) << r[i];
+      else os << "  " << std::right << std::setw(static_cast<int>(width[i])) << r[i];
+    }
+    os << "\n";
+  };
+  if (!report.title.empty()) os << report.title << "\n\n";
+  print_row(header);
+  std::size_t total = 0;
+  for (std::size_t w : width) total += w + 2;
+  os << std::string(total - 2, '-') << "\n";
+  for (const auto& r : rows) print_row(r);
+}
+
+void write_csv(const std::filesystem::path& file, const OutputValue& o) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  const Series& s = o.value.as_series();
+  out << "axis [" << s.axis_dimension.si_unit() << "]," << o.label << " [" << o.dimension.si_unit() << "]\n";
+  out << std::setprecision(17);
+  for (std::size_t i = 0; i < s.values.size(); ++i) out << s.axis[i] << "," << s.values[i] << "\n";
+}
+
+}  // namespace
+
+int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("run options");
+  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
+                                                "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
+      "json", "print one JSON object on stdout")("out", po::value<std::string>(),
+                                                 "also write results.json and one CSV per series output into DIR");
+  po::options_description all;
+  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
+  po::positional_options_description positional;
+  positional.add("scene", 1);
+  po::variables_map vm;
+  if (!parse_options(args, visible, all, positional, vm, "mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]"))
+    return ok;
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+
+  const PluginRegistry registry = load_plugins(g);
+  const Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
+  MemoCache cache;
+  const RunResult result = evaluate(graph, cache);
+  std::size_t evaluated = 0;
+  for (const NodeRun& r : result.runs) evaluated += r.reused ? 0 : 1;
+  spdlog::info("evaluated {} of {} nodes ({} culled)", evaluated, graph.nodes.size(), graph.nodes.size() - graph.order.size());
+
+  if (vm.count("json")) {
+    write_json(std::cout, graph, result);
+  } else {
+    if (graph.report) {
+      print_report(std::cout, *graph.report, result);
+      if (graph.scene_output_count) std::cout << "\n";
+    } else if (!graph.title.empty()) {
+      std::cout << graph.title << "\n\n";
+    }
+    for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
+      const OutputValue& o = result.outputs[i];
+      std::cout << o.label << " = ";
+      if (o.value.kind() == ValueKind::scalar) std::cout << format_value(o.value.as_scalar(), o.dimension, o.display_unit);
+      else if (o.value.kind() == ValueKind::series) std::cout << "series of " << o.value.as_series().values.size() << " points";
+      else std::cout << "<" << o.value.as_handle()->kind() << ">";
+      std::cout << "\n";
+    }
+  }
+  if (vm.count("out")) {
+    const std::filesystem::path dir = vm["out"].as<std::string>();
+    std::filesystem::create_directories(dir);
+    std::ofstream json_file(dir / "results.json");
+    if (!json_file) throw std::runtime_error("cannot write '" + (dir / "results.json").string() + "'");
+    write_json(json_file, graph, result);
+    for (const OutputValue& o : result.outputs)
+      if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o);
+    spdlog::info("results written to {}", dir.string());
+  }
+  return ok;
+}
+
+}  // namespace mechgraph::cli

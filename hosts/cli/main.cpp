@@ -1,0 +1,119 @@
+// mechgraph: the command-line host. Subcommands live in one file each (cmd_*.cpp).
+#include "cli.hpp"
+
+#include <mechgraph/abi_version.hpp>
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <cstring>
+#include <iostream>
+#include <map>
+
+#ifndef MECHGRAPH_VERSION
+#define MECHGRAPH_VERSION "0"
+#endif
+
+namespace {
+
+constexpr const char* usage = R"(mechgraph - calculation graphs for mechanism design
+
+usage: mechgraph [--plugin-dir DIR] [-v|-q] COMMAND [ARGS...]
+
+commands:
+  run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]   evaluate the requested outputs
+  validate SCENE [--set NAME=VALUE ...]                   load and check, evaluate nothing
+  graph SCENE [--set NAME=VALUE ...]                      Graphviz DOT; culled nodes shown apart
+  plugins [--json]                                        plugins, node types, ports, params
+  describe TYPE [--json]                                  one node type in full
+
+global options:
+  --plugin-dir DIR   load plugins from DIR (else MECHGRAPH_PLUGIN_PATH, else the build's folder)
+  -v, --verbose      debug logging on stderr
+  -q, --quiet        only errors on stderr
+  --version          print the version and the plugin ABI version
+  -h, --help         this text; `mechgraph COMMAND --help` for a command
+
+exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace mechgraph;
+  auto logger = spdlog::stderr_color_mt("mechgraph");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%^[%l]%$ %v");
+  spdlog::set_level(spdlog::level::info);
+
+  cli::GlobalOptions global;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  std::size_t i = 0;
+  for (; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--version") {
+      std::cout << "mechgraph " << MECHGRAPH_VERSION << " (plugin ABI " << MECHGRAPH_PLUGIN_ABI_VERSION << ")\n";
+      return 0;
+    } else if (a == "-h" || a == "--help") {
+      std::cout << usage;
+      return 0;
+    } else if (a == "-v" || a == "--verbose") {
+      spdlog::set_level(spdlog::level::debug);
+    } else if (a == "-q" || a == "--quiet") {
+      spdlog::set_level(spdlog::level::err);
+    } else if (a == "--plugin-dir") {
+      if (i + 1 >= args.size()) {
+        std::cerr << "mechgraph: --plugin-dir needs a folder\n";
+        return cli::usage_error;
+      }
+      global.plugin_dir = args[++i];
+    } else if (a.rfind("--plugin-dir=", 0) == 0) {
+      global.plugin_dir = a.substr(std::strlen("--plugin-dir="));
+    } else {
+      break;
+    }
+  }
+  if (i >= args.size()) {
+    std::cerr << usage;
+    return cli::usage_error;
+  }
+  const std::string command = args[i];
+  std::vector<std::string> rest(args.begin() + static_cast<long>(i) + 1, args.end());
+  // Subcommand flags -v/-q are accepted after the command too.
+  for (auto it = rest.begin(); it != rest.end();) {
+    if (*it == "-v" || *it == "--verbose") { spdlog::set_level(spdlog::level::debug); it = rest.erase(it); }
+    else if (*it == "-q" || *it == "--quiet") { spdlog::set_level(spdlog::level::err); it = rest.erase(it); }
+    else ++it;
+  }
+
+  const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
+      {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
+      {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}};
+  auto it = commands.find(command);
+  if (it == commands.end()) {
+    std::vector<std::string> names;
+    for (const auto& [name, fn] : commands) names.push_back(name);
+    spdlog::error("{}", unknown_name_message("command", command, names));
+    return cli::usage_error;
+  }
+  try {
+    return it->second(global, rest);
+  } catch (const cli::UsageError& e) {
+    spdlog::error("{}: {} (see 'mechgraph {} --help')", command, e.what(), command);
+    return cli::usage_error;
+  } catch (const SceneError& e) {
+    spdlog::error("{}", e.what());
+    return cli::usage_error;
+  } catch (const EvaluationError& e) {
+    spdlog::error("{}", e.what());
+    return cli::evaluation_error;
+  } catch (const PluginError& e) {
+    spdlog::error("{}", e.what());
+    return cli::plugin_error;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return cli::evaluation_error;
+  }
+}

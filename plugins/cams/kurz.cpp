@@ -1,0 +1,107 @@
+#include "kurz.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+namespace mechgraph::cams {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+std::string deg(double rad) {
+  std::ostringstream s;
+  s << std::setprecision(4) << rad * 180.0 / pi << " deg";
+  return s.str();
+}
+
+}  // namespace
+
+double kurz_jerk_continuous_split(double phi_y, double phi_p) {
+  const double r = (phi_p - phi_y) / phi_y;
+  return 1.0 - pi * pi * r * r / 12.0;
+}
+
+double kurz_minimax_split(double phi_y, double phi_p) {
+  const double phi_3 = phi_p - phi_y;
+  // kappa = 6 phi_y^2 / (pi phi_3^2); the root of pi/(2 x1) = pi/(2 (phi_y - x1)) - k, written
+  // without the cancellation of kappa - pi + sqrt(pi^2 + kappa^2).
+  const double kappa = 6.0 * phi_y * phi_y / (pi * phi_3 * phi_3);
+  return 0.5 * (1.0 + kappa / (pi + std::hypot(pi, kappa)));
+}
+
+double kurz_default_split(double phi_y, double phi_p) {
+  const double jerk_continuous = kurz_jerk_continuous_split(phi_y, phi_p);
+  return jerk_continuous > 0.0 ? jerk_continuous : kurz_minimax_split(phi_y, phi_p);
+}
+
+std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double phi_y,
+                                                  std::optional<double> rise_split) {
+  const double phi_p = 0.5 * basics.action_angle;
+  if (!(phi_y > 0.0) || !(phi_y < phi_p)) {
+    std::ostringstream msg;
+    msg << "accel_angle = " << deg(phi_y) << " must be > 0 and below half the action angle (" << deg(phi_p)
+        << "): the negative-acceleration phase needs room before the nose";
+    throw NodeError("accel_angle", msg.str());
+  }
+  const double sigma = rise_split ? *rise_split : kurz_default_split(phi_y, phi_p);
+  if (!(sigma > 0.0) || !(sigma < 1.0)) {
+    std::ostringstream msg;
+    msg << "rise_split = " << sigma
+        << " must lie strictly between 0 and 1 (0 loses the quarter sine, so the acceleration would jump at "
+           "the start of lift; 1 loses the quarter cosine, so it would jump at the end of the positive phase)";
+    throw NodeError("rise_split", msg.str());
+  }
+  const double phi_1 = sigma * phi_y;
+  const double phi_2 = phi_y - phi_1;
+  const double phi_3 = phi_p - phi_y;
+  std::vector<ShapeSegment> positive{{std::make_shared<const QuarterSineRise>(), phi_1},
+                                     {std::make_shared<const QuarterCosineFall>(), phi_2}};
+  std::vector<ShapeSegment> negative{{std::make_shared<const ParabolaToVertex>(), phi_3}};
+  return std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
+                                              std::move(positive), std::move(negative));
+}
+
+CamLawDefinition kurz_definition() {
+  CamLawDefinition d;
+  d.type = "cam.kurz";
+  d.version = 1;
+  d.summary =
+      "Kurz shockless cam: acceleration a quarter sine up and a quarter cosine down over the positive phase, "
+      "then a parabola with its vertex at the nose; amplitudes from zero velocity and max_lift at the nose";
+  d.params = {
+      ParamSpec::number("accel_angle", dim::angle,
+                        "positive-acceleration phase phi_y from the start of lift; must be below half the action "
+                        "angle",
+                        "deg")
+          .positive(),
+      ParamSpec::number(
+          "rise_split", dim::none,
+          "share of the positive phase taken by the quarter sine (the rest is the quarter cosine). Default: the "
+          "split that makes the jerk continuous at the positive/negative junction, 1 - pi^2 (phi_3/phi_y)^2 / 12 "
+          "(phi_3 = half action angle - accel_angle), which exists only while phi_3 < 1.103 phi_y. Otherwise (the "
+          "usual case for valve cams) no split can make the jerk continuous there, and the default is the split "
+          "that minimises the larger of the two jerk jumps left, at the start of lift and at the junction: "
+          "(1 + k / (pi + sqrt(pi^2 + k^2))) / 2 with k = 6 phi_y^2 / (pi phi_3^2), between 0.5 and 0.62. The "
+          "default therefore changes branch where phi_3 = 1.103 phi_y. The split used is the rise_split output")
+          .optional()
+          .above(0.0)
+          .below(1.0),
+  };
+  d.extra_outputs = {
+      PortSpec::scalar("rise_split", dim::none, "share of the positive phase taken by the quarter sine, as used"),
+  };
+  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    const double phi_y = params.number("accel_angle");
+    std::optional<double> split;
+    if (params.has("rise_split")) split = params.number("rise_split");
+    auto law = make_kurz_law(basics, phi_y, split);
+    extra.set_scalar("rise_split", split ? *split : kurz_default_split(phi_y, 0.5 * basics.action_angle));
+    return law;
+  };
+  return d;
+}
+
+}  // namespace mechgraph::cams

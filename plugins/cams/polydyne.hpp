@@ -1,0 +1,70 @@
+#pragma once
+// Polydyne valve polynomial (Dudley 1948, Stoddart 1953; shared/methods/valvetrain.md, stage 1):
+//     x(u) = h [1 + C2 u^2 + Cp u^p + Cq u^q + Cr u^r + Cs u^s],   u = phi / phi_p in [-1, 1],
+// u = 0 at the nose, even exponents 2 < p < q < r < s (symmetric law), and
+// x(1) = x'(1) = x''(1) = x'''(1) = x''''(1) = 0 (the valve leaves and meets the seat smoothly).
+//
+// Coefficients in closed form. With n_0 = 0 (the constant term, coefficient 1) and n_1..n_5 the
+// exponents, the five end conditions say sum_i C_i Q(n_i) = 0 for every polynomial Q of degree
+// <= 4 in n (the falling factorials n(n-1)..(n-m+1) span them), so C_i are the weights of the 5th
+// divided difference over n_0..n_5, scaled to C_0 = 1:
+//     C_i = - prod_{j != i} n_j / prod_{j != i} (n_i - n_j)          (j over 1..5)
+// e.g. 2-6-10-14-18: C = -315/128, 105/32, -189/64, 45/32, -35/128. Exact rationals, no linear
+// solve of the (cond ~1e7) monomial system.
+//
+// Evaluation keeps its digits near the seat. Near u = 1 the sum of the large alternating terms
+// cancels (at u = 1 - 1e-4 the lift is ~1e-18 h). Every derivative has a zero of order 5 - m at
+// u = 1, so x^(m)(u) = (1 - u)^(5-m) q_m(u); q_m is found exactly (cpp_rational: division by
+// (1 - u) is a prefix sum of the coefficients) once, and evaluated by Horner in u in long double.
+// q_0 has only positive and q_1 only negative coefficients (checked at construction), so lift and
+// velocity are free of cancellation on the whole of [0, 1]; q_2 and q_3 change sign once inside,
+// where h'' and h''' must. 1 - u is formed as (phi_p - |phi|) / phi_p, exactly to one rounding.
+#include "cam_node.hpp"
+
+#include <mechgraph/domain/cam_law.hpp>
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace mechgraph::cams {
+
+/// Checks the `exponents` parameter: exactly five even integers, the first 2, strictly
+/// increasing, none above 1000. Throws NodeError naming "exponents".
+std::vector<int> validate_polydyne_exponents(const std::vector<double>& exponents);
+
+/// C2, Cp, Cq, Cr, Cs as exact fractions (numerator, denominator > 0, reduced).
+std::vector<std::pair<std::int64_t, std::int64_t>> polydyne_coefficients_exact(const std::vector<int>& exponents);
+
+class PolydyneLaw final : public CamLaw {
+ public:
+  /// `exponents` as returned by validate_polydyne_exponents.
+  PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents);
+
+  double event_begin() const override { return -half_action_; }
+  double event_end() const override { return half_action_; }
+  LiftDerivatives evaluate_in_event(double phi) const override;
+  std::vector<double> breakpoints() const override { return {}; }
+  double max_lift() const override { return max_lift_; }
+  double base_radius() const override { return base_radius_; }
+
+  const std::vector<int>& exponents() const { return exponents_; }
+  /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
+  const std::vector<double>& coefficients() const { return coefficients_; }
+  /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..3, in long double.
+  long double normalized_derivative(int m, long double w) const;
+
+ private:
+  double max_lift_ = 0.0;
+  double half_action_ = 0.0;
+  double base_radius_ = 0.0;
+  std::vector<int> exponents_;
+  std::vector<double> coefficients_;
+  std::array<std::vector<long double>, 4> q_;  // x^(m)(u)/h = (1 - u)^(5-m) q_m(u), monomial coefficients
+};
+
+/// cam.polydyne: parameter exponents (default 2, 6, 10, 14, 18); no extra outputs.
+CamLawDefinition polydyne_definition();
+
+}  // namespace mechgraph::cams

@@ -1,0 +1,156 @@
+#include "shockless.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <string>
+
+namespace mechgraph::cams {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double two_over_pi = 2.0 / std::numbers::pi;
+
+// 1 - cos x = 2 sin^2(x/2), without cancellation near 0.
+double one_minus_cos(double x) {
+  const double s = std::sin(0.5 * x);
+  return 2.0 * s * s;
+}
+
+// x - sin x, by its series below 1 (where the subtraction would lose digits), directly above.
+double x_minus_sin(double x) {
+  if (std::abs(x) >= 1.0) return x - std::sin(x);
+  const double x2 = x * x;
+  double term = x * x2 / 6.0;  // x^3/3!
+  double sum = term;
+  for (int k = 2; k < 12; ++k) {  // next term: -x^(2k+1)/(2k+1)!
+    term *= -x2 / ((2.0 * k) * (2.0 * k + 1.0));
+    sum += term;
+    if (std::abs(term) < 1e-18 * std::abs(sum)) break;
+  }
+  return sum;
+}
+
+}  // namespace
+
+// Quarter sine, theta = pi tau / 2: a = sin theta, I1 = (2/pi)(1 - cos theta),
+// I2 = (2/pi)^2 (theta - sin theta).
+double QuarterSineRise::value(double tau) const { return std::sin(0.5 * pi * tau); }
+double QuarterSineRise::slope(double tau) const { return 0.5 * pi * std::cos(0.5 * pi * tau); }
+double QuarterSineRise::integral(double tau) const { return two_over_pi * one_minus_cos(0.5 * pi * tau); }
+double QuarterSineRise::integral2(double tau) const { return two_over_pi * two_over_pi * x_minus_sin(0.5 * pi * tau); }
+
+// Quarter cosine: a = cos theta, I1 = (2/pi) sin theta, I2 = (2/pi)^2 (1 - cos theta).
+double QuarterCosineFall::value(double tau) const { return std::cos(0.5 * pi * tau); }
+double QuarterCosineFall::slope(double tau) const { return -0.5 * pi * std::sin(0.5 * pi * tau); }
+double QuarterCosineFall::integral(double tau) const { return two_over_pi * std::sin(0.5 * pi * tau); }
+double QuarterCosineFall::integral2(double tau) const {
+  return two_over_pi * two_over_pi * one_minus_cos(0.5 * pi * tau);
+}
+
+// Parabola a = tau (2 - tau): I1 = tau^2 (1 - tau/3), I2 = tau^3 (4 - tau) / 12.
+double ParabolaToVertex::value(double tau) const { return tau * (2.0 - tau); }
+double ParabolaToVertex::slope(double tau) const { return 2.0 * (1.0 - tau); }
+double ParabolaToVertex::integral(double tau) const { return tau * tau * (1.0 - tau / 3.0); }
+double ParabolaToVertex::integral2(double tau) const { return tau * tau * tau * (4.0 - tau) / 12.0; }
+
+ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_radius,
+                           std::vector<ShapeSegment> positive, std::vector<ShapeSegment> negative)
+    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {
+  if (positive.empty() || negative.empty()) throw std::invalid_argument("shockless law: each phase needs a shape");
+  constexpr double tol = 1e-12;
+  double total = 0.0;
+  for (const auto* phase : {&positive, &negative}) {
+    for (const ShapeSegment& s : *phase) {
+      if (!s.shape || !(s.length > 0.0)) throw std::invalid_argument("shockless law: empty segment");
+      total += s.length;
+    }
+  }
+  if (std::abs(total - half_action_) > 1e-12 * half_action_) {
+    throw std::invalid_argument("shockless law: segment lengths must add up to half the action angle");
+  }
+  // Continuity of the acceleration: zero at the start, at the phase change (different
+  // amplitudes) and at the nose-side end is free; inside a phase the shapes must meet.
+  auto meets = [&](double a, double b) { return std::abs(a - b) <= tol; };
+  if (!meets(positive.front().shape->value(0.0), 0.0)) {
+    throw std::invalid_argument("shockless law: the acceleration must start at zero");
+  }
+  for (const auto* phase : {&positive, &negative}) {
+    for (std::size_t i = 0; i + 1 < phase->size(); ++i) {
+      if (!meets((*phase)[i].shape->value(1.0), (*phase)[i + 1].shape->value(0.0))) {
+        throw std::invalid_argument("shockless law: shapes of one phase must join continuously");
+      }
+    }
+  }
+  if (!meets(positive.back().shape->value(1.0), 0.0) || !meets(negative.front().shape->value(0.0), 0.0)) {
+    throw std::invalid_argument("shockless law: the acceleration must cross zero between the phases");
+  }
+
+  // Lift and velocity at the nose per unit amplitude of each phase (index 0: A+, 1: A-):
+  // over a segment of phase p, v += L I1(1) [p], h += v L + L^2 I2(1) [p].
+  double h[2] = {0.0, 0.0}, v[2] = {0.0, 0.0};
+  auto propagate = [&](const ShapeSegment& s, int phase) {
+    const double L = s.length;
+    for (int k = 0; k < 2; ++k) h[k] += v[k] * L;
+    h[phase] += L * L * s.shape->integral2(1.0);
+    v[phase] += L * s.shape->integral(1.0);
+  };
+  for (const ShapeSegment& s : positive) propagate(s, 0);
+  for (const ShapeSegment& s : negative) propagate(s, 1);
+  // [v+ v-; h+ h-] [A+; A-] = [0; h_max]
+  const double det = v[0] * h[1] - v[1] * h[0];
+  amplitude_pos_ = -v[1] * max_lift_ / det;
+  amplitude_neg_ = v[0] * max_lift_ / det;
+  if (!(amplitude_pos_ > 0.0) || !(amplitude_neg_ < 0.0) || !std::isfinite(amplitude_pos_) ||
+      !std::isfinite(amplitude_neg_)) {
+    throw std::invalid_argument("shockless law: the shapes give no rising law (amplitudes " +
+                                std::to_string(amplitude_pos_) + ", " + std::to_string(amplitude_neg_) + ")");
+  }
+
+  // The pieces with their starting lift and velocity for the actual amplitudes.
+  double x = 0.0, lift = 0.0, vel = 0.0;
+  auto add = [&](const ShapeSegment& s, double A) {
+    pieces_.push_back({s.shape, x, s.length, A, lift, vel});
+    const double L = s.length;
+    lift += vel * L + A * L * L * s.shape->integral2(1.0);
+    vel += A * L * s.shape->integral(1.0);
+    x += L;
+  };
+  for (const ShapeSegment& s : positive) add(s, amplitude_pos_);
+  for (const ShapeSegment& s : negative) add(s, amplitude_neg_);
+  pieces_.back().length = half_action_ - pieces_.back().start;  // the last piece ends at the nose exactly
+
+  for (const double xj : junctions_from_start()) {
+    breakpoints_.push_back(-(half_action_ - xj));
+    breakpoints_.push_back(half_action_ - xj);
+  }
+  const Piece& last = pieces_.back();
+  if (last.amplitude * last.shape->slope(1.0) != 0.0) breakpoints_.push_back(0.0);  // jerk jumps at the nose
+  std::sort(breakpoints_.begin(), breakpoints_.end());
+}
+
+std::vector<double> ShocklessLaw::junctions_from_start() const {
+  std::vector<double> out;
+  for (std::size_t i = 1; i < pieces_.size(); ++i) out.push_back(pieces_[i].start);
+  return out;
+}
+
+LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
+  // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
+  const double x = half_action_ - std::abs(phi);
+  const double sign = phi < 0.0 ? 1.0 : -1.0;
+  std::size_t k = 0;
+  while (k + 1 < pieces_.size() && x >= pieces_[k + 1].start) ++k;
+  const Piece& p = pieces_[k];
+  const double y = x - p.start;
+  const double tau = std::clamp(y / p.length, 0.0, 1.0);
+  const double A = p.amplitude, L = p.length;
+  const double H = p.lift0 + p.velocity0 * y + A * L * L * p.shape->integral2(tau);
+  const double H1 = p.velocity0 + A * L * p.shape->integral(tau);
+  const double H2 = A * p.shape->value(tau);
+  const double H3 = A * p.shape->slope(tau) / L;
+  return {H, sign * H1, H2, sign * H3};
+}
+
+}  // namespace mechgraph::cams

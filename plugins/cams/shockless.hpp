@@ -1,0 +1,107 @@
+#pragma once
+// Shockless cams built from their acceleration diagram (shared/methods/valvetrain.md, stage 1,
+// "Kurz cam"): the positive-acceleration phase is a chain of shapes scaled by one amplitude A+,
+// the negative phase (to the nose) a chain scaled by A-; the shapes start and end where their
+// neighbours do, so the acceleration is continuous, and the first starts at zero (no shock at the
+// start of lift). With x from the start of lift, h(0) = h'(0) = 0 and the two amplitudes follow
+// from the two linear conditions at the nose x = phi_p:
+//     h'(phi_p) = A+ V+ + A- V- = 0,   h(phi_p) = A+ H+ + A- H- = h_max,
+// where (H, V) are the lift and velocity at the nose that each phase gives at unit amplitude.
+// The law is symmetric about the nose: h(phi) = H(phi_p - |phi|).
+//
+// A shape lives on the unit interval tau in [0, 1]; on a segment of length L starting at x_k with
+// amplitude A:  h'' = A a(tau),  h''' = A a'(tau) / L,  h' = v_k + A L I1(tau),
+// h = h_k + v_k (x - x_k) + A L^2 I2(tau), with I1, I2 the first and second integrals from 0.
+// Every shape gives these in closed form, so the lift and its derivatives are exact.
+#include <mechgraph/domain/cam_law.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace mechgraph::cams {
+
+/// One piece of an acceleration diagram on tau in [0, 1], with exact derivative and integrals.
+class AccelShape {
+ public:
+  virtual ~AccelShape() = default;
+  virtual double value(double tau) const = 0;      // a(tau)
+  virtual double slope(double tau) const = 0;      // da/dtau
+  virtual double integral(double tau) const = 0;   // I1(tau) = int_0^tau a
+  virtual double integral2(double tau) const = 0;  // I2(tau) = int_0^tau I1
+};
+
+/// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
+class QuarterSineRise final : public AccelShape {
+ public:
+  double value(double tau) const override;
+  double slope(double tau) const override;
+  double integral(double tau) const override;
+  double integral2(double tau) const override;
+};
+
+/// a = cos(pi tau / 2): a quarter cosine falling from 1 to 0 (zero jerk at its start).
+class QuarterCosineFall final : public AccelShape {
+ public:
+  double value(double tau) const override;
+  double slope(double tau) const override;
+  double integral(double tau) const override;
+  double integral2(double tau) const override;
+};
+
+/// a = 1 - (1 - tau)^2: a parabola from 0 to its vertex 1 at tau = 1 (zero slope there, so a
+/// law that ends with it at the nose has a continuous jerk across the nose).
+class ParabolaToVertex final : public AccelShape {
+ public:
+  double value(double tau) const override;
+  double slope(double tau) const override;
+  double integral(double tau) const override;
+  double integral2(double tau) const override;
+};
+
+struct ShapeSegment {
+  std::shared_ptr<const AccelShape> shape;
+  double length = 0.0;  // rad of cam angle
+};
+
+/// The generic law. Shapes are given as non-negative bumps; A+ comes out > 0 and A- < 0.
+class ShocklessLaw final : public CamLaw {
+ public:
+  /// The segment lengths of both phases must add up to half the action angle. Throws
+  /// std::invalid_argument if the shapes do not join continuously (a programming error).
+  ShocklessLaw(double max_lift, double action_angle, double base_radius, std::vector<ShapeSegment> positive,
+               std::vector<ShapeSegment> negative);
+
+  double event_begin() const override { return -half_action_; }
+  double event_end() const override { return half_action_; }
+  LiftDerivatives evaluate_in_event(double phi) const override;
+  /// Every segment junction on both sides (the formula changes there; at some of them only
+  /// derivatives above the third jump, which quadrature still likes to know), and the nose if
+  /// the jerk does not vanish there.
+  std::vector<double> breakpoints() const override { return breakpoints_; }
+  double max_lift() const override { return max_lift_; }
+  double base_radius() const override { return base_radius_; }
+
+  double positive_amplitude() const { return amplitude_pos_; }  // A+, m/rad^2
+  double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)
+  /// Junctions measured from the start of lift, x_1 ... x_{n-1}.
+  std::vector<double> junctions_from_start() const;
+
+ private:
+  struct Piece {
+    std::shared_ptr<const AccelShape> shape;
+    double start = 0.0;   // x_k from the start of lift
+    double length = 0.0;
+    double amplitude = 0.0;
+    double lift0 = 0.0;      // h at x_k
+    double velocity0 = 0.0;  // h' at x_k
+  };
+  double max_lift_ = 0.0;
+  double half_action_ = 0.0;
+  double base_radius_ = 0.0;
+  double amplitude_pos_ = 0.0;
+  double amplitude_neg_ = 0.0;
+  std::vector<Piece> pieces_;
+  std::vector<double> breakpoints_;
+};
+
+}  // namespace mechgraph::cams

@@ -1,0 +1,277 @@
+#include "three_arc.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+namespace mechgraph::cams {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+std::string deg(double rad) {
+  std::ostringstream s;
+  s << std::setprecision(4) << rad * 180.0 / pi << " deg";
+  return s.str();
+}
+
+std::string mm(double m) {
+  std::ostringstream s;
+  s << std::setprecision(4) << m * 1e3 << " mm";
+  return s.str();
+}
+
+// 1 - cos x without cancellation near x = 0.
+double one_minus_cos(double x) {
+  const double s = std::sin(0.5 * x);
+  return 2.0 * s * s;
+}
+
+// Completes the geometry from h, phi_p, r0, r2 (so a) and e, and checks the tangency closes.
+ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* parameter) {
+  ThreeArcGeometry g;
+  g.max_lift = b.max_lift;
+  g.half_action = 0.5 * b.action_angle;
+  g.base_radius = b.base_radius;
+  g.nose_radius = r2;
+  g.nose_centre = b.base_radius + b.max_lift - r2;
+  g.flank_centre = e;
+  g.flank_radius = b.base_radius + e;
+  // Direction of the common normal N - F = (a + e cos phi_p, e sin phi_p), from the nose.
+  g.junction_normal = std::atan2(e * std::sin(g.half_action), g.nose_centre + e * std::cos(g.half_action));
+  g.flank_angle = g.half_action - g.junction_normal;
+  const bool ok = std::isfinite(g.flank_radius) && g.nose_centre > 0.0 && e > 0.0 &&
+                  g.flank_radius > g.nose_radius && g.flank_angle > 0.0 && g.junction_normal > 0.0;
+  if (!ok) {
+    std::ostringstream msg;
+    msg << "the three-arc contour does not close: nose radius " << mm(r2) << ", flank radius "
+        << mm(g.flank_radius) << ", nose-centre distance " << mm(g.nose_centre)
+        << " (need r1 > r0, r1 > r2 and a > 0)";
+    throw NodeError(parameter, msg.str());
+  }
+  return g;
+}
+
+}  // namespace
+
+ThreeArcGeometry three_arc_from_accel_angle(const CamBasics& b, double phi_y) {
+  const double h = b.max_lift, r0 = b.base_radius;
+  const double phi_p = 0.5 * b.action_angle;
+  const double c = std::cos(phi_p), sp = std::sin(phi_p);
+  // s = sin(phi_p)/sin(phi_y) must exceed 1 with an acute phi_y (flank acceleration e cos x > 0):
+  // phi_y < phi_p, and phi_y < 180 deg - phi_p when the half action angle is obtuse.
+  const double phi_y_max = phi_p <= 0.5 * pi ? phi_p : pi - phi_p;
+  if (!(phi_y > 0.0) || !(phi_y < phi_y_max)) {
+    std::ostringstream msg;
+    msg << "accel_angle = " << deg(phi_y) << " must be > 0 and below "
+        << (phi_p <= 0.5 * pi ? "half the action angle (" : "180 deg minus half the action angle (")
+        << deg(phi_y_max) << ")";
+    throw NodeError("accel_angle", msg.str());
+  }
+  const double s = sp / std::sin(phi_y);
+  // valvetrain.md: A a^2 + B a + C = 0, the positive root; the form without cancellation.
+  const double A = 2.0 * (s - 1.0) * (1.0 - c);
+  const double B = -2.0 * h * (s - 1.0 + c);
+  const double C = -h * h;
+  const double disc = B * B - 4.0 * A * C;
+  if (!(A > 0.0) || !(disc >= 0.0) || !std::isfinite(disc)) {
+    std::ostringstream msg;
+    msg << "accel_angle = " << deg(phi_y) << " gives no real nose-centre distance (A = " << A
+        << ", discriminant = " << disc << "); choose accel_angle further inside (0, " << deg(phi_y_max) << ")";
+    throw NodeError("accel_angle", msg.str());
+  }
+  const double root = std::sqrt(disc);
+  const double a = B <= 0.0 ? (-B + root) / (2.0 * A) : 2.0 * h * h / (B + root);
+  const double r2 = r0 + h - a;
+  if (!(r2 > 0.0)) {
+    // r2 = 0 means a = r0 + h; then the quadratic is linear in (s - 1):
+    // (s - 1) 2 a ((1 - c) a - h) = h^2 + 2 h a c, one crossing at most.
+    const double a0 = r0 + h;
+    const double K = 2.0 * a0 * ((1.0 - c) * a0 - h);
+    const double sm1 = K != 0.0 ? (h * h + 2.0 * h * a0 * c) / K : -1.0;
+    std::ostringstream msg;
+    msg << "accel_angle = " << deg(phi_y) << " gives nose_radius = " << mm(r2) << "; it must be > 0: ";
+    if (sm1 > 0.0 && std::isfinite(sm1)) {
+      const double limit = std::asin(sp / (1.0 + sm1));
+      msg << "choose accel_angle " << (phi_y > limit ? "below " : "above ") << deg(limit);
+    } else {
+      msg << "no accel_angle below " << deg(phi_y_max)
+          << " gives a positive nose radius with this max_lift, action_angle and base_radius";
+    }
+    throw NodeError("accel_angle", msg.str());
+  }
+  const double e = a * (s - 1.0) + h;  // r1 - r0
+  return complete(b, r2, e, "accel_angle");
+}
+
+ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& b, double r2) {
+  const double h = b.max_lift, r0 = b.base_radius;
+  const double phi_p = 0.5 * b.action_angle;
+  const double c = std::cos(phi_p);
+  // The flank radius grows without bound as r2 -> r2_max = r0 - h cos(phi_p)/(1 - cos(phi_p))
+  // (the zero of the denominator below); beyond it no contour closes.
+  const double r2_max = r0 - h * c / (1.0 - c);
+  if (!(r2 > 0.0) || !(r2 < r2_max)) {
+    std::ostringstream msg;
+    msg << "nose_radius = " << mm(r2) << " is infeasible: it must be > 0 and below " << mm(r2_max)
+        << " (= r0 - h cos(phi_p)/(1 - cos(phi_p)), where the flank radius becomes infinite)";
+    if (!(r2_max > 0.0)) msg << "; no nose radius works: increase base_radius or action_angle";
+    throw NodeError("nose_radius", msg.str());
+  }
+  // Tangency with a = r0 + h - r2, b = r0 - r2 (a - b = h) is linear in e:
+  // e = (a^2 - b^2) / (2 (b - a c)) = h (a + b) / (2 (b - a c)).
+  const double a = r0 + h - r2, bb = r0 - r2;
+  const double e = h * (a + bb) / (2.0 * (bb - a * c));
+  return complete(b, r2, e, "nose_radius");
+}
+
+ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
+    : g_(geometry), roller_radius_(roller_radius) {
+  if (roller_radius_ <= 0.0) {
+    switch_angle_ = g_.junction_normal;
+    return;
+  }
+  // Roller: the pitch-curve junction N + (r2 + rr) n_alpha, seen from O.
+  const double R2 = g_.nose_radius + roller_radius_;
+  const double px = g_.nose_centre + R2 * std::cos(g_.junction_normal);
+  const double py = R2 * std::sin(g_.junction_normal);
+  switch_angle_ = std::atan2(py, px);
+  const double sb = std::sin(switch_angle_);
+  if (!(R2 * R2 - g_.nose_centre * g_.nose_centre * sb * sb > 0.0) || !(switch_angle_ > 0.0)) {
+    throw NodeError("roller_radius", "the roller pitch curve of this three-arc cam has no nose contact (roller_radius = " +
+                                         mm(roller_radius_) + ")");
+  }
+}
+
+LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
+  // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
+  const double psi = std::abs(phi);
+  const double sign = phi < 0.0 ? -1.0 : 1.0;
+  const double a = g_.nose_centre, e = g_.flank_centre, rr = roller_radius_;
+  double H = 0.0, H1 = 0.0, H2 = 0.0, H3 = 0.0;  // derivatives over psi
+  if (psi <= switch_angle_) {
+    const double t = psi;
+    const double st = std::sin(t), ct = std::cos(t);
+    if (rr <= 0.0) {
+      // Flat tappet on the nose arc: h = a cos t - (r0 - r2) = h_max - a (1 - cos t).
+      H = g_.max_lift - a * one_minus_cos(t);
+      H1 = -a * st;
+      H2 = -a * ct;
+      H3 = a * st;
+    } else {
+      // Roller centre on the pitch nose arc (centre distance a, radius R2 = r2 + rr, theta = t):
+      // s = a cos t + sqrt(R2^2 - a^2 sin^2 t); h = s - (r0 + rr), and a + R2 = r0 + rr + h_max, so
+      // h = h_max - a (1 - cos t) - a^2 sin^2 t / (R2 + sqrt(...)).
+      const double R2 = g_.nose_radius + rr;
+      const double a2 = a * a;
+      const double q = R2 * R2 - a2 * st * st;
+      const double g = std::sqrt(q);
+      const double s2 = std::sin(2.0 * t), c2 = std::cos(2.0 * t);
+      const double q1 = -a2 * s2, q2 = -2.0 * a2 * c2, q3 = 4.0 * a2 * s2;
+      const double g1 = q1 / (2.0 * g);
+      const double g2 = q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q);
+      const double g3 = q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q);
+      H = g_.max_lift - a * one_minus_cos(t) - a2 * st * st / (R2 + g);
+      H1 = -a * st + g1;
+      H2 = -a * ct + g2;
+      H3 = a * st + g3;
+    }
+  } else {
+    // Flank, x = phi_p - psi from the start of lift: d/dpsi = -d/dx.
+    const double x = g_.half_action - psi;
+    const double sx = std::sin(x), cx = std::cos(x);
+    double F = 0.0, F1 = 0.0, F2 = 0.0, F3 = 0.0;  // derivatives over x
+    if (rr <= 0.0) {
+      // Flat tappet on the flank arc: h = e (1 - cos x).
+      F = e * one_minus_cos(x);
+      F1 = e * sx;
+      F2 = e * cx;
+      F3 = -e * sx;
+    } else {
+      // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr, the centre
+      // opposite the follower: theta = pi + x): s = -e cos x + sqrt(R1^2 - e^2 sin^2 x), and
+      // R1 - e = r0 + rr, so h = e (1 - cos x) - e^2 sin^2 x / (R1 + sqrt(...)).
+      const double R1 = g_.flank_radius + rr;
+      const double e2 = e * e;
+      const double q = R1 * R1 - e2 * sx * sx;
+      const double g = std::sqrt(q);
+      const double s2 = std::sin(2.0 * x), c2 = std::cos(2.0 * x);
+      const double q1 = -e2 * s2, q2 = -2.0 * e2 * c2, q3 = 4.0 * e2 * s2;
+      const double g1 = q1 / (2.0 * g);
+      const double g2 = q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q);
+      const double g3 = q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q);
+      F = e * one_minus_cos(x) - e2 * sx * sx / (R1 + g);
+      F1 = e * sx + g1;
+      F2 = e * cx + g2;
+      F3 = -e * sx + g3;
+    }
+    H = F;
+    H1 = -F1;
+    H2 = F2;
+    H3 = -F3;
+  }
+  return {H, sign * H1, H2, sign * H3};
+}
+
+CamLawDefinition three_arc_definition() {
+  CamLawDefinition d;
+  d.type = "cam.three_arc";
+  d.version = 1;
+  d.summary =
+      "Three-arc convex cam (base circle, flank arcs, nose arc) with a flat or in-line roller tappet; "
+      "exact lift; not shockless (the acceleration jumps at the start of lift and at the flank/nose switch)";
+  d.params = {
+      ParamSpec::number("accel_angle", dim::angle,
+                        "flank angle phi_1 from the start of lift, which is the positive-acceleration phase of a "
+                        "flat tappet (a roller reaches the nose arc later: its achieved phase is the accel_angle "
+                        "output); the radii follow in closed form. Give exactly one of accel_angle and nose_radius",
+                        "deg")
+          .optional()
+          .positive(),
+      ParamSpec::number("nose_radius", dim::length,
+                        "nose-arc radius r2 of the contour; the flank radius and angle follow in closed form. Give "
+                        "exactly one of accel_angle and nose_radius",
+                        "mm")
+          .optional()
+          .positive(),
+      ParamSpec::choice("follower", {"flat", "roller"},
+                        "flat-faced tappet, or in-line roller (the lift is that of the roller centre on the offset "
+                        "contour)")
+          .with_default(std::string("flat")),
+      ParamSpec::number("roller_radius", dim::length, "roller radius, required for follower = roller", "mm")
+          .optional()
+          .positive(),
+  };
+  d.extra_outputs = {
+      PortSpec::scalar("flank_radius", dim::length, "flank-arc radius r1 of the contour", "mm"),
+      PortSpec::scalar("nose_radius", dim::length, "nose-arc radius r2 of the contour", "mm"),
+  };
+  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    const bool has_accel = params.has("accel_angle");
+    const bool has_nose = params.has("nose_radius");
+    if (has_accel == has_nose) {
+      throw NodeError("accel_angle", std::string("give exactly one of accel_angle and nose_radius (") +
+                                         (has_accel ? "both are set" : "neither is set") + ")");
+    }
+    double roller = 0.0;
+    const bool is_roller = params.has("follower") && params.text("follower") == "roller";
+    if (is_roller) {
+      if (!params.has("roller_radius")) throw NodeError("roller_radius", "follower = roller needs roller_radius");
+      roller = params.number("roller_radius");
+      if (!(roller > 0.0)) throw NodeError("roller_radius", "roller_radius = " + mm(roller) + " must be > 0");
+    } else if (params.has("roller_radius")) {
+      throw NodeError("roller_radius", "roller_radius is set but follower is flat: set follower: roller or remove it");
+    }
+    const ThreeArcGeometry g = has_accel ? three_arc_from_accel_angle(basics, params.number("accel_angle"))
+                                         : three_arc_from_nose_radius(basics, params.number("nose_radius"));
+    extra.set_scalar("flank_radius", g.flank_radius);
+    extra.set_scalar("nose_radius", g.nose_radius);
+    return std::make_shared<const ThreeArcLaw>(g, roller);
+  };
+  return d;
+}
+
+}  // namespace mechgraph::cams

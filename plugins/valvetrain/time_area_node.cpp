@@ -1,0 +1,115 @@
+// valvetrain.time_area: the valve's time-area and angle-area (methods/valvetrain.md, stage 3).
+//   A = integral f_v(h_v(phi)) dphi / w_k over the open period.
+// `exact` integrates piece by piece between the law's breakpoints (and the flow-area stage
+// changes) with adaptive Gauss-Kronrod; `rectangle` is the source's sum (dphi/w_k) sum f_v,i
+// on a grid of `step`, kept so its error can be shown.
+#include "flow_area.hpp"
+#include "node_types.hpp"
+#include "valve_motion.hpp"
+
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mechgraph::valvetrain {
+namespace {
+
+class TimeAreaType final : public NodeType {
+ public:
+  TimeAreaType() {
+    info_.type = "valvetrain.time_area";
+    info_.summary = "time-area, angle-area and mean flow area of the valve over its open period";
+    info_.params = {
+        ParamSpec::number("seat_diameter", dim::length, "inner seat diameter d0", "mm").positive(),
+        ParamSpec::number("seat_angle", dim::angle, "seat cone angle a (45 deg usual)", "deg")
+            .with_default(std::numbers::pi / 4.0)
+            .positive()
+            .below(std::numbers::pi / 2.0),
+        ParamSpec::choice("flow_area", {"conical", "three_stage"},
+                          "conical: the source's seat-cone formula; three_stage: seat cone, then seat-to-port "
+                          "transition, then the port (needs seat_width, port_diameter, stem_diameter)")
+            .with_default("conical"),
+        ParamSpec::number("seat_width", dim::length, "seat width w (three_stage)", "mm").optional().positive(),
+        ParamSpec::number("port_diameter", dim::length, "port diameter Dp (three_stage)", "mm").optional().positive(),
+        ParamSpec::number("stem_diameter", dim::length, "valve stem diameter Ds (three_stage)", "mm")
+            .with_default(0.0)
+            .non_negative(),
+        ParamSpec::choice("method", {"exact", "rectangle"},
+                          "exact: adaptive Gauss-Kronrod between breakpoints; rectangle: the source's sum with `step`")
+            .with_default("exact")
+            .as_knob(),
+        ParamSpec::number("step", dim::angle, "cam-angle step of the rectangle sum", "deg")
+            .with_default(std::numbers::pi / 180.0)
+            .positive()
+            .as_knob(),
+        ParamSpec::number("tolerance", dim::none, "relative tolerance of the exact quadrature")
+            .with_default(1e-12)
+            .positive()
+            .as_knob(),
+    };
+    info_.inputs = {PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion at one speed")};
+    info_.outputs = {
+        PortSpec::scalar("time_area", dim::area * dim::time, "integral of the flow area over time", "mm^2*s"),
+        PortSpec::scalar("angle_area", dim::area * dim::angle, "integral of the flow area over cam angle (rpm-free)",
+                         "mm^2*deg"),
+        PortSpec::scalar("mean_flow_area", dim::area, "angle_area / open cam angle", "mm^2"),
+        PortSpec::scalar("open_duration", dim::time, "time the valve is open", "ms"),
+    };
+    info_.work_counters = {"evaluations"};
+  }
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
+    const auto motion = in.handle<ValveMotion>("valve");
+    SeatGeometry seat{p.number("seat_diameter"), p.number("seat_angle")};
+    if (p.text("flow_area") == "three_stage") {
+      for (const char* name : {"seat_width", "port_diameter"})
+        if (!p.has(name)) throw NodeError(name, std::string("flow_area: three_stage needs ") + name);
+      seat.three_stage = true;
+      seat.seat_width = p.number("seat_width");
+      seat.port_diameter = p.number("port_diameter");
+      seat.stem_diameter = p.number("stem_diameter");
+    }
+    const FlowArea area(seat);
+    auto f = [&](double phi) { return area(motion->at(phi).lift); };
+    long evaluations = 0;
+    double angle_area = 0.0;
+    if (p.text("method") == "exact") {
+      // Split also where the flow-area formula changes stage, so every piece is smooth.
+      std::vector<double> knots = motion->knots();
+      for (double stage_lift : area.stage_lifts()) {
+        auto crossing = [&](double phi) { return motion->at(phi).lift - stage_lift; };
+        for (double x : numerics::all_sign_changes(crossing, motion->knots(), 200, evaluations)) knots.push_back(x);
+      }
+      std::sort(knots.begin(), knots.end());
+      angle_area = numerics::integrate_piecewise(f, knots, p.number("tolerance"), evaluations);
+    } else {
+      const double step = p.number("step");
+      const double span = motion->open_end() - motion->open_begin();
+      if (step > span / 2.0) throw NodeError("step", "the rectangle step must be at most half the open period");
+      double sum = 0.0;
+      for (double phi = motion->open_begin(); phi <= motion->open_end(); phi += step) {
+        sum += f(phi);
+        ++evaluations;
+      }
+      angle_area = sum * step;
+    }
+    ctx.report_work("evaluations", static_cast<double>(evaluations));
+    const double open_angle = motion->open_end() - motion->open_begin();
+    out.set_scalar("angle_area", angle_area);
+    out.set_scalar("time_area", angle_area / motion->camshaft_speed());
+    out.set_scalar("mean_flow_area", angle_area / open_angle);
+    out.set_scalar("open_duration", open_angle / motion->camshaft_speed());
+  }
+
+ private:
+  NodeInfo info_;
+};
+
+}  // namespace
+
+std::shared_ptr<const NodeType> make_time_area_type() { return std::make_shared<const TimeAreaType>(); }
+
+}  // namespace mechgraph::valvetrain

@@ -1,0 +1,45 @@
+#include "valve_motion.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <sstream>
+
+namespace mechgraph::valvetrain {
+
+ValveMotion::ValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash,
+                         int samples, long& evaluations)
+    : cam_(std::move(cam)), camshaft_speed_(camshaft_speed), rocker_ratio_(rocker_ratio), lash_(lash) {
+  std::vector<double> cam_knots{cam_->event_begin()};
+  for (double b : cam_->breakpoints()) cam_knots.push_back(b);
+  cam_knots.push_back(cam_->event_end());
+  if (lash_ <= 0.0) {
+    open_begin_ = cam_->event_begin();
+    open_end_ = cam_->event_end();
+  } else {
+    // The valve moves while i h(phi) > lash: the first and last crossings bound the open period.
+    auto gap = [&](double phi) { return rocker_ratio_ * cam_->at(phi).lift - lash_; };
+    const std::vector<double> crossings = numerics::all_sign_changes(gap, cam_knots, samples, evaluations);
+    if (crossings.size() < 2) {
+      std::ostringstream msg;
+      msg << "the valve never opens: rocker_ratio * cam lift reaches " << rocker_ratio_ * cam_->max_lift() * 1e3
+          << " mm, not more than the lash of " << lash_ * 1e3 << " mm";
+      throw NodeError("lash", msg.str());
+    }
+    open_begin_ = crossings.front();
+    open_end_ = crossings.back();
+  }
+  knots_.push_back(open_begin_);
+  for (double b : cam_->breakpoints())
+    if (b > open_begin_ && b < open_end_) knots_.push_back(b);
+  knots_.push_back(open_end_);
+}
+
+LiftDerivatives ValveMotion::at(double phi) const {
+  const LiftDerivatives h = cam_->at(phi);
+  const double lift = rocker_ratio_ * h.lift - lash_;
+  if (!(lift > 0.0)) return {};
+  return {lift, rocker_ratio_ * h.velocity, rocker_ratio_ * h.acceleration, rocker_ratio_ * h.jerk};
+}
+
+}  // namespace mechgraph::valvetrain

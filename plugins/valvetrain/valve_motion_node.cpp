@@ -1,0 +1,84 @@
+// valvetrain.valve_motion: valve kinematics at one engine speed (methods/valvetrain.md, stage 2).
+#include "node_types.hpp"
+#include "valve_motion.hpp"
+
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <cmath>
+#include <numbers>
+
+namespace mechgraph::valvetrain {
+namespace {
+
+class ValveMotionType final : public NodeType {
+ public:
+  ValveMotionType() {
+    info_.type = "valvetrain.valve_motion";
+    info_.summary = "valve lift, velocity and acceleration over cam angle and time at one engine speed";
+    info_.params = {
+        ParamSpec::number("rpm", dim::angular_speed, "crank speed; the camshaft turns at half of it (four-stroke)", "rpm")
+            .positive(),
+        ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p").with_default(1.0).positive(),
+        ParamSpec::number("lash", dim::length, "valve lash (cold clearance), taken up before the valve moves", "mm")
+            .with_default(0.0)
+            .non_negative(),
+        ParamSpec::integer("samples", "samples per smooth piece for the extremum searches").with_default(400.0).at_least(8).as_knob(),
+        ParamSpec::integer("curve_points", "points of the lift_curve series over the open period").with_default(361.0).at_least(2),
+    };
+    info_.inputs = {PortSpec::handle("cam", std::string(CamLaw::kind_name), "the cam's follower lift law")};
+    info_.outputs = {
+        PortSpec::handle("motion", std::string(ValveMotion::kind_name), "valve lift over cam angle at this speed"),
+        PortSpec::scalar("max_lift", dim::length, "maximum valve lift", "mm"),
+        PortSpec::scalar("max_velocity", dim::velocity, "maximum |valve velocity|", "m/s"),
+        PortSpec::scalar("max_acceleration", dim::acceleration, "maximum valve acceleration", "m/s^2"),
+        PortSpec::scalar("min_acceleration", dim::acceleration, "most negative valve acceleration (j_min)", "m/s^2"),
+        PortSpec::scalar("open_angle", dim::angle, "cam angle over which the valve is open", "deg"),
+        PortSpec::series("lift_curve", dim::length, "valve lift over cam angle (axis: rad from the nose)", "mm"),
+    };
+    info_.work_counters = {"evaluations"};
+  }
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
+    const double camshaft_speed = p.number("rpm") / 2.0;  // w_k = w / 2
+    long evaluations = 0;
+    const int samples = static_cast<int>(p.integer("samples"));
+    auto motion = std::make_shared<const ValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
+                                                      p.number("lash"), samples, evaluations);
+    const std::vector<double>& knots = motion->knots();
+    const auto lift = numerics::maximize_piecewise([&](double x) { return motion->at(x).lift; }, knots, samples, evaluations);
+    const auto velocity =
+        numerics::maximize_piecewise([&](double x) { return std::abs(motion->at(x).velocity); }, knots, samples, evaluations);
+    const auto acc_max =
+        numerics::maximize_piecewise([&](double x) { return motion->at(x).acceleration; }, knots, samples, evaluations);
+    const auto acc_min =
+        numerics::minimize_piecewise([&](double x) { return motion->at(x).acceleration; }, knots, samples, evaluations);
+    const double w = camshaft_speed;
+    Series curve;
+    curve.axis_dimension = dim::angle;
+    const long n = p.integer("curve_points");
+    for (long i = 0; i < n; ++i) {
+      const double phi = motion->open_begin() + (motion->open_end() - motion->open_begin()) * static_cast<double>(i) / (n - 1);
+      curve.axis.push_back(phi);
+      curve.values.push_back(motion->at(phi).lift);
+    }
+    evaluations += n;
+    ctx.report_work("evaluations", static_cast<double>(evaluations));
+    out.set_scalar("max_lift", lift.value);
+    out.set_scalar("max_velocity", w * velocity.value);
+    out.set_scalar("max_acceleration", w * w * acc_max.value);
+    out.set_scalar("min_acceleration", w * w * acc_min.value);
+    out.set_scalar("open_angle", motion->open_end() - motion->open_begin());
+    out.set("lift_curve", Value::series(std::move(curve)));
+    out.set("motion", Value::handle(std::move(motion)));
+  }
+
+ private:
+  NodeInfo info_;
+};
+
+}  // namespace
+
+std::shared_ptr<const NodeType> make_valve_motion_type() { return std::make_shared<const ValveMotionType>(); }
+
+}  // namespace mechgraph::valvetrain

@@ -1,0 +1,115 @@
+// A small, well-formed plugin for the framework's own tests: arithmetic on lengths, a series,
+// a domain object, a node that emits NaN (a bug the evaluator must catch), one that fails
+// properly, and one with an effect.
+#include <mechgraph/plugin_abi.hpp>
+
+#include <cmath>
+#include <limits>
+
+namespace {
+
+using namespace mechgraph;
+
+class Box final : public DomainObject {
+ public:
+  explicit Box(double v) : value(v) {}
+  std::string_view kind() const override { return "test_box"; }
+  double value;
+};
+
+class Arith final : public NodeType {
+ public:
+  enum class Op { constant, add, box, unbox, nan, fail, series, effectful };
+  Arith(Op op, std::string type) : op_(op) {
+    info_.type = std::move(type);
+    info_.summary = "test node";
+    info_.work_counters = {"calls"};
+    switch (op) {
+      case Op::constant:
+        info_.params = {ParamSpec::number("value", dim::length, "the value", "mm"),
+                        ParamSpec::choice("mode", {"plain", "fancy"}, "unused choice").with_default("plain")};
+        info_.outputs = {PortSpec::scalar("out", dim::length, "the value")};
+        break;
+      case Op::add:
+        info_.params = {ParamSpec::number("gain", dim::none, "multiplies the sum").with_default(1.0).positive()};
+        info_.inputs = {PortSpec::scalar("a", dim::length, "first"), PortSpec::scalar("b", dim::length, "second").many()};
+        info_.outputs = {PortSpec::scalar("sum", dim::length, "gain * (a + sum of b)"),
+                         PortSpec::scalar("twice", dim::length, "2 a")};
+        info_.output_dependencies = {{"twice", {"a"}}};
+        break;
+      case Op::box:
+        info_.inputs = {PortSpec::scalar("x", dim::length, "value to box")};
+        info_.outputs = {PortSpec::handle("box", "test_box", "boxed value")};
+        break;
+      case Op::unbox:
+        info_.inputs = {PortSpec::handle("box", "test_box", "boxed value")};
+        info_.outputs = {PortSpec::scalar("x", dim::length, "unboxed")};
+        break;
+      case Op::nan:
+        info_.outputs = {PortSpec::scalar("out", dim::length, "always NaN (a deliberately broken node)")};
+        break;
+      case Op::fail:
+        info_.params = {ParamSpec::number("limit", dim::length, "anything", "mm").with_default(0.001)};
+        info_.outputs = {PortSpec::scalar("out", dim::length, "never produced")};
+        break;
+      case Op::series:
+        info_.params = {ParamSpec::integer("points", "how many").with_default(5.0).at_least(2).as_knob()};
+        info_.outputs = {PortSpec::series("curve", dim::length, "x^2 over [0,1]")};
+        break;
+      case Op::effectful:
+        info_.effects = {{"test_effect", "doubles the output"}};
+        info_.params = {ParamSpec::number("value", dim::length, "the value", "mm")};
+        info_.outputs = {PortSpec::scalar("out", dim::length, "value, doubled with test_effect")};
+        break;
+    }
+  }
+  const NodeInfo& info() const override { return info_; }
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
+    ctx.report_work("calls", 1);
+    switch (op_) {
+      case Op::constant: out.set_scalar("out", p.number("value")); break;
+      case Op::add: {
+        double s = in.scalar("a");
+        for (std::size_t i = 0; i < in.count("b"); ++i) s += in.scalar("b", i);
+        out.set_scalar("sum", p.number("gain") * s);
+        out.set_scalar("twice", 2 * in.scalar("a"));
+        break;
+      }
+      case Op::box: out.set("box", Value::handle(std::make_shared<const Box>(in.scalar("x")))); break;
+      case Op::unbox: out.set_scalar("x", in.handle<Box>("box")->value); break;
+      case Op::nan: out.set_scalar("out", std::numeric_limits<double>::quiet_NaN()); break;
+      case Op::fail: throw NodeError("limit", "limit exceeded: 1 mm > 0.5 mm");
+      case Op::series: {
+        Series s;
+        const long n = p.integer("points");
+        for (long i = 0; i < n; ++i) {
+          const double x = static_cast<double>(i) / (n - 1);
+          s.axis.push_back(x);
+          s.values.push_back(x * x);
+        }
+        out.set("curve", Value::series(std::move(s)));
+        break;
+      }
+      case Op::effectful:
+        out.set_scalar("out", p.number("value") * (ctx.effect("test_effect") ? 2.0 : 1.0));
+        ctx.log(LogLevel::debug, "effectful evaluated");
+        break;
+    }
+  }
+
+ private:
+  Op op_;
+  NodeInfo info_;
+};
+
+NodeTypeList make_types() {
+  using Op = Arith::Op;
+  return {std::make_shared<Arith>(Op::constant, "test.constant"), std::make_shared<Arith>(Op::add, "test.add"),
+          std::make_shared<Arith>(Op::box, "test.box"),           std::make_shared<Arith>(Op::unbox, "test.unbox"),
+          std::make_shared<Arith>(Op::nan, "test.nan"),           std::make_shared<Arith>(Op::fail, "test.fail"),
+          std::make_shared<Arith>(Op::series, "test.series"),     std::make_shared<Arith>(Op::effectful, "test.effectful")};
+}
+
+}  // namespace
+
+MECHGRAPH_PLUGIN("test_arith", "1.2.3", &make_types)
