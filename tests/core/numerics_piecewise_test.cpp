@@ -1,0 +1,46 @@
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+using namespace mechgraph::numerics;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+TEST_CASE("piecewise quadrature reaches machine precision on smooth pieces", "[numerics]") {
+  long evaluations = 0;
+  const std::vector<double> knots{0.0, std::numbers::pi};
+  CHECK_THAT(integrate_piecewise([](double x) { return std::sin(x); }, knots, 1e-14, evaluations), WithinRel(2.0, 1e-14));
+  CHECK(evaluations > 0);
+  // |x - 1| has a kink at 1: with the kink as a knot the result is exact.
+  const std::vector<double> kinked{0.0, 1.0, 3.0};
+  CHECK_THAT(integrate_piecewise([](double x) { return std::abs(x - 1.0); }, kinked, 1e-14, evaluations),
+             WithinRel(0.5 + 2.0, 1e-14));
+}
+
+TEST_CASE("extrema and sign changes on piecewise functions", "[numerics]") {
+  long evaluations = 0;
+  const std::vector<double> knots{-1.0, 2.0};
+  const auto m = maximize_piecewise([](double x) { return 1.0 - (x - 0.3) * (x - 0.3); }, knots, 11, evaluations);
+  CHECK_THAT(m.x, WithinAbs(0.3, 1e-7));
+  CHECK_THAT(m.value, WithinAbs(1.0, 1e-14));
+  // A step: the one-sided limit at the knot is seen.
+  const std::vector<double> step_knots{0.0, 1.0, 2.0};
+  auto step = [](double x) { return x < 1.0 ? x : x - 5.0; };
+  CHECK_THAT(maximize_piecewise(step, step_knots, 5, evaluations).value, WithinAbs(1.0, 1e-12));
+  CHECK_THAT(minimize_piecewise(step, step_knots, 5, evaluations).value, WithinAbs(-4.0, 1e-12));
+  auto root = first_sign_change([](double x) { return std::cos(x); }, std::vector<double>{0.0, 3.0}, 10, evaluations);
+  REQUIRE(root);
+  CHECK_THAT(*root, WithinAbs(std::numbers::pi / 2.0, 1e-14));
+  // A jump across zero at a knot is a sign change at that knot.
+  auto jump = first_sign_change([](double x) { return x < 1.0 ? 1.0 : -1.0; }, step_knots, 5, evaluations);
+  REQUIRE(jump);
+  CHECK(*jump == 1.0);
+  const auto roots = all_sign_changes([](double x) { return std::sin(x); }, std::vector<double>{0.5, 10.0}, 50, evaluations);
+  REQUIRE(roots.size() == 3);
+  CHECK_THAT(roots[2], WithinAbs(3 * std::numbers::pi, 1e-13));
+  CHECK_FALSE(first_sign_change([](double) { return 1.0; }, knots, 5, evaluations));
+}

@@ -1,0 +1,166 @@
+// Valve motion and time-area against closed forms (methods/valvetrain.md, stages 2-3).
+#include "test_support.hpp"
+
+#include "flow_area.hpp"
+#include "node_types.hpp"
+#include "valve_motion.hpp"
+
+#include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/errors.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// A law with closed-form integrals: h = H/2 (1 + cos(2 pi phi / phi_d)) on |phi| < phi_d/2.
+//   int h dphi = H phi_d / 2,   int h^2 dphi = 3 H^2 phi_d / 8.
+class CosineBump final : public CamLaw {
+ public:
+  CosineBump(double H, double phi_d) : H_(H), d_(phi_d) {}
+  double event_begin() const override { return -d_ / 2; }
+  double event_end() const override { return d_ / 2; }
+  LiftDerivatives evaluate_in_event(double phi) const override {
+    const double k = 2 * pi / d_;
+    return {H_ / 2 * (1 + std::cos(k * phi)), -H_ / 2 * k * std::sin(k * phi), -H_ / 2 * k * k * std::cos(k * phi),
+            H_ / 2 * k * k * k * std::sin(k * phi)};
+  }
+  std::vector<double> breakpoints() const override { return {}; }
+  double max_lift() const override { return H_; }
+  double base_radius() const override { return 0.017; }
+
+ private:
+  double H_, d_;
+};
+
+struct Study {
+  double H = 9e-3, phi_d = 130 * pi / 180, rpm = 5600 * 2 * pi / 60, d0 = 0.034, a = pi / 4;
+};
+
+
+OutputSet run_motion(const Study& s, double rocker, double lash) {
+  auto type = valvetrain::make_valve_motion_type();
+  InputSet in;
+  in.add("cam", Value::handle(std::make_shared<const CosineBump>(s.H, s.phi_d)));
+  OutputSet out;
+  RecordingContext ctx;
+  type->evaluate(defaults_of(type->info(), {{"rpm", ParamValue::of_number(s.rpm)},
+                                            {"rocker_ratio", ParamValue::of_number(rocker)},
+                                            {"lash", ParamValue::of_number(lash)}}),
+                 in, out, ctx);
+  CHECK(ctx.work.at("evaluations") > 0);
+  return out;
+}
+
+double scalar(const OutputSet& o, const std::string& port) { return o.all().at(port).as_scalar(); }
+
+OutputSet run_time_area(const OutputSet& motion, const std::map<std::string, ParamValue>& params) {
+  auto type = valvetrain::make_time_area_type();
+  InputSet in;
+  in.add("valve", motion.all().at("motion"));
+  OutputSet out;
+  RecordingContext ctx;
+  type->evaluate(defaults_of(type->info(), params), in, out, ctx);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("valve motion: lift, velocity and acceleration in time", "[valvetrain]") {
+  const Study s;
+  const double i = 1.4;
+  const OutputSet m = run_motion(s, i, 0.0);
+  const double wk = s.rpm / 2, k = 2 * pi / s.phi_d;
+  CHECK_THAT(scalar(m, "max_lift"), WithinRel(i * s.H, 1e-12));
+  CHECK_THAT(scalar(m, "max_velocity"), WithinRel(wk * i * s.H / 2 * k, 1e-10));
+  CHECK_THAT(scalar(m, "max_acceleration"), WithinRel(wk * wk * i * s.H / 2 * k * k, 1e-9));
+  CHECK_THAT(scalar(m, "min_acceleration"), WithinRel(-wk * wk * i * s.H / 2 * k * k, 1e-10));
+  CHECK_THAT(scalar(m, "open_angle"), WithinRel(s.phi_d, 1e-14));
+  const Series& curve = m.all().at("lift_curve").as_series();
+  CHECK(curve.values.size() == 361);
+  CHECK_THAT(curve.values[180], WithinRel(i * s.H, 1e-12));
+}
+
+TEST_CASE("valve lash shortens the open period where i h = lash", "[valvetrain]") {
+  const Study s;
+  const double i = 1.5, lash = 0.3e-3;
+  const OutputSet m = run_motion(s, i, lash);
+  // i H/2 (1 + cos(k phi)) = lash  =>  phi = acos(2 lash / (i H) - 1) / k
+  const double phi_open = std::acos(2 * lash / (i * s.H) - 1) * s.phi_d / (2 * pi);
+  CHECK_THAT(scalar(m, "open_angle"), WithinRel(2 * phi_open, 1e-12));
+  CHECK_THAT(scalar(m, "max_lift"), WithinRel(i * s.H - lash, 1e-12));
+  CHECK_THROWS_MATCHES(run_motion(s, 1.0, 10e-3), NodeError, Catch::Matchers::Predicate<NodeError>([](const NodeError& e) {
+                         return e.parameter() == "lash" && std::string(e.what()).find("never opens") != std::string::npos;
+                       }));
+}
+
+TEST_CASE("time-area: exact quadrature against the closed form, rectangle sum converges", "[valvetrain]") {
+  const Study s;
+  const OutputSet m = run_motion(s, 1.0, 0.0);
+  // angle-area = pi (d0 cos a int h + sin a cos^2 a int h^2)
+  const double c = std::cos(s.a), sn = std::sin(s.a);
+  const double angle_area = pi * (s.d0 * c * s.H * s.phi_d / 2 + sn * c * c * 3 * s.H * s.H * s.phi_d / 8);
+  const double wk = s.rpm / 2;
+  const OutputSet exact = run_time_area(m, {{"seat_diameter", ParamValue::of_number(s.d0)}});
+  CHECK_THAT(scalar(exact, "angle_area"), WithinRel(angle_area, 1e-13));
+  CHECK_THAT(scalar(exact, "time_area"), WithinRel(angle_area / wk, 1e-13));
+  CHECK_THAT(scalar(exact, "mean_flow_area"), WithinRel(angle_area / s.phi_d, 1e-13));
+  CHECK_THAT(scalar(exact, "open_duration"), WithinRel(s.phi_d / wk, 1e-14));
+
+  double previous_error = 1.0;
+  for (double step_deg : {5.0, 2.0, 1.0}) {
+    const OutputSet rect = run_time_area(m, {{"seat_diameter", ParamValue::of_number(s.d0)},
+                                             {"method", ParamValue::of_choice("rectangle")},
+                                             {"step", ParamValue::of_number(step_deg * pi / 180)}});
+    const double error = std::abs(scalar(rect, "angle_area") / angle_area - 1);
+    CHECK(error < 0.05);
+    CHECK(error <= previous_error);
+    previous_error = error;
+  }
+}
+
+TEST_CASE("three-stage flow area: continuous, equal to the cone formula in stage 1, the port area in stage 3", "[valvetrain]") {
+  valvetrain::SeatGeometry seat{0.030, pi / 4, true, 2e-3, 0.031, 0.007};
+  const valvetrain::FlowArea staged(seat);
+  valvetrain::SeatGeometry cone = seat;
+  cone.three_stage = false;
+  const valvetrain::FlowArea conical(cone);
+  REQUIRE(staged.stage_lifts().size() == 2);
+  const double L1 = staged.stage_lifts()[0], L2 = staged.stage_lifts()[1];
+  CHECK_THAT(L1, WithinRel(2e-3 / (std::sin(pi / 4) * std::cos(pi / 4)), 1e-14));
+  CHECK_THAT(staged(0.5 * L1), WithinRel(conical(0.5 * L1), 1e-15));
+  for (double L : {L1, L2}) CHECK_THAT(staged(L * (1 - 1e-12)), WithinRel(staged(L * (1 + 1e-12)), 1e-9));
+  CHECK_THAT(staged(2 * L2), WithinRel(pi / 4 * (0.031 * 0.031 - 0.007 * 0.007), 1e-14));
+  CHECK(staged(0.0) == 0.0);
+  valvetrain::SeatGeometry narrow = seat;
+  narrow.port_diameter = 0.012;
+  CHECK_THROWS_WITH(valvetrain::FlowArea(narrow), Contains("too small for the seat"));
+}
+
+TEST_CASE("time-area with three stages integrates across the stage changes", "[valvetrain]") {
+  const Study s;
+  const OutputSet m = run_motion(s, 1.0, 0.0);
+  const std::map<std::string, ParamValue> staged{{"seat_diameter", ParamValue::of_number(0.030)},
+                                                 {"flow_area", ParamValue::of_choice("three_stage")},
+                                                 {"seat_width", ParamValue::of_number(1.5e-3)},
+                                                 {"port_diameter", ParamValue::of_number(0.029)},
+                                                 {"stem_diameter", ParamValue::of_number(0.007)}};
+  const double exact = scalar(run_time_area(m, staged), "angle_area");
+  auto fine = staged;
+  fine["method"] = ParamValue::of_choice("rectangle");
+  fine["step"] = ParamValue::of_number(0.005 * pi / 180);
+  CHECK_THAT(scalar(run_time_area(m, fine), "angle_area"), WithinRel(exact, 1e-6));
+  auto missing = staged;
+  missing.erase("port_diameter");
+  CHECK_THROWS_WITH(run_time_area(m, missing), Contains("port_diameter"));
+}

@@ -1,0 +1,108 @@
+#pragma once
+// Helpers shared by the framework's tests: loading the test plugins, building graphs from inline
+// YAML, running the `mechgraph` command.
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/graph.hpp>
+#include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <cstdio>
+#include <map>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace mechgraph::testing {
+
+/// The host's handshake values, read through the public ABI header.
+std::string build_fingerprint_for_tests();
+std::uint32_t plugin_abi_version_for_tests();
+
+/// An EvalContext for calling node types directly: effects by name, work summed, logs kept.
+class RecordingContext final : public EvalContext {
+ public:
+  explicit RecordingContext(std::vector<std::string> effects = {}) : effects_(std::move(effects)) {}
+  bool effect(std::string_view name) const override {
+    for (const auto& e : effects_)
+      if (e == name) return true;
+    return false;
+  }
+  void log(LogLevel, std::string_view message) override { logs.emplace_back(message); }
+  void report_work(std::string_view counter, double amount) override { work[std::string(counter)] += amount; }
+  std::map<std::string, double> work;
+  std::vector<std::string> logs;
+
+ private:
+  std::vector<std::string> effects_;
+};
+
+/// A node type's parameters with its defaults filled in, then `values` (SI) on top.
+inline ParamSet defaults_of(const NodeInfo& info, const std::map<std::string, ParamValue>& values = {}) {
+  ParamSet p;
+  for (const ParamSpec& s : info.params)
+    if (s.default_value) p.set(s.name, *s.default_value);
+  for (const auto& [k, v] : values) p.set(k, v);
+  return p;
+}
+
+inline std::filesystem::path test_plugin(const std::string& name) {
+  return std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / name / ("mechgraph_" + name + ".so");
+}
+
+inline const PluginRegistry& arith_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.load_file(test_plugin("test_arith"));
+    return r;
+  }();
+  return registry;
+}
+
+inline const PluginRegistry& project_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.load_directory(MECHGRAPH_PLUGIN_DIR);
+    return r;
+  }();
+  return registry;
+}
+
+inline Graph graph_from(const std::string& yaml, const PluginRegistry& registry = arith_registry(),
+                        const std::vector<Override>& overrides = {}) {
+  return build_graph(parse_scene(yaml, "scene.yaml"), registry, overrides);
+}
+
+/// The value of one requested output of a run.
+inline const Value& output(const RunResult& r, const std::string& label) {
+  for (const OutputValue& o : r.outputs)
+    if (o.label == label) return o.value;
+  throw std::runtime_error("no output " + label);
+}
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs the mechgraph command with `args` (a shell fragment), capturing stdout and stderr.
+inline CommandResult run_cli(const std::string& args) {
+  static int counter = 0;
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto out_file = dir / ("mechgraph_test_out_" + std::to_string(::getpid()) + "_" + std::to_string(counter));
+  const auto err_file = dir / ("mechgraph_test_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const std::string command = std::string("'") + MECHGRAPH_CLI + "' " + args + " >'" + out_file.string() + "' 2>'" +
+                              err_file.string() + "'";
+  const int status = std::system(command.c_str());
+  auto slurp = [](const std::filesystem::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  CommandResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out_file), slurp(err_file)};
+  std::filesystem::remove(out_file);
+  std::filesystem::remove(err_file);
+  return r;
+}
+
+}  // namespace mechgraph::testing
