@@ -92,10 +92,7 @@ class GraphBuilder {
   // ----- overrides
   void apply_overrides(const std::vector<Override>& overrides) {
     for (const Override& o : overrides) {
-      RawValue v;
-      v.text = o.value;
-      v.where = {"--set " + o.text, 0, 0};
-      v.key_where = v.where;
+      const RawValue v = parse_raw_value(o.value, {"--set " + o.text, 0, 0});
       const auto dot = o.target.find('.');
       if (dot == std::string::npos) {
         if (!scene_params_.count(o.target)) {

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 namespace mechgraph {
@@ -188,6 +189,24 @@ PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
   if (dot == std::string_view::npos || dot == 0 || dot + 1 == text.size() || text.find('.', dot + 1) != std::string_view::npos)
     throw SceneError(where.str() + "expected 'node.port', found '" + std::string(text) + "'");
   return {std::string(text.substr(0, dot)), std::string(text.substr(dot + 1)), where};
+}
+
+RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
+  YAML::Node node;
+  try {
+    node = YAML::Load(std::string(text));
+  } catch (const YAML::Exception& e) {
+    throw SceneError(where.str() + "cannot read '" + std::string(text) + "': " + e.msg);
+  }
+  RawValue v = SceneReader(where.file).raw(node);
+  std::function<void(RawValue&)> relocate = [&](RawValue& r) {
+    r.where = where;
+    r.key_where = where;
+    for (auto& item : r.items) relocate(item);
+    for (auto& [k, field] : r.fields) relocate(field);
+  };
+  relocate(v);
+  return v;
 }
 
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label) {

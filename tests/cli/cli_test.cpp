@@ -62,7 +62,7 @@ TEST_CASE("run --json prints outputs, units, evaluated nodes and work; logs go t
 TEST_CASE("exit codes: 2 scene, 3 evaluation, 4 plugins", "[cli]") {
   const auto scene_error = run_cli(arith_dir() + " run " + write_scene("mg_bad.yaml", "nodes: { a: { type: test.nope } }\noutputs: [a.x]\n"));
   CHECK(scene_error.exit_code == 2);
-  CHECK_THAT(scene_error.err, Contains("mg_bad.yaml:1:20: unknown node type 'test.nope'"));
+  CHECK_THAT(scene_error.err, Contains("mg_bad.yaml:1:21: unknown node type 'test.nope'"));
   const auto eval_error = run_cli(arith_dir() + " run " + write_scene("mg_nan.yaml", "nodes: { n: { type: test.nan } }\noutputs: [n.out]\n"));
   CHECK(eval_error.exit_code == 3);
   CHECK_THAT(eval_error.err, Contains("node 'n' (test.nan)"));

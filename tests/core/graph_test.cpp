@@ -64,24 +64,24 @@ TEST_CASE("scene errors carry file:line:column and the valid choices", "[graph]"
                      "unknown node type 'test.constnt'; did you mean 'test.constant'?");
   expect_scene_error("nodes:\n  a: { type: test.constant, params: { valu: 1 mm } }\noutputs: [a.out]\n", "scene.yaml:2:39:",
                      "unknown parameter 'valu'; did you mean 'value'?");
-  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 deg } }\noutputs: [a.out]\n", "scene.yaml:2:45:",
+  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 deg } }\noutputs: [a.out]\n", "scene.yaml:2:46:",
                      "'1 deg' is angle, expected length");
-  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 } }\noutputs: [a.out]\n", "scene.yaml:2:45:",
+  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 } }\noutputs: [a.out]\n", "scene.yaml:2:46:",
                      "has no unit");
-  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 mmm } }\noutputs: [a.out]\n", "scene.yaml:2:47:",
+  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 mmm } }\noutputs: [a.out]\n", "scene.yaml:2:48:",
                      "unknown unit 'mmm'");
   expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 mm, mode: fanzy } }\noutputs: [a.out]\n",
-                     "scene.yaml:2:57:", "unknown choice 'fanzy'; did you mean 'fancy'?");
+                     "scene.yaml:2:58:", "unknown choice 'fanzy'; did you mean 'fancy'?");
   expect_scene_error("nodes:\n  a: { type: test.constant }\noutputs: [a.out]\n", "scene.yaml:2:3:",
                      "parameter 'value' is required");
   expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 mm } }\noutputs: [a.outt]\n", "scene.yaml:3:11:",
                      "unknown output port 'outt'; did you mean 'out'?");
   expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: 1 mm } }\noutputs: [b.out]\n", "scene.yaml:3:11:",
                      "unknown node 'b'");
-  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: $x } }\noutputs: [a.out]\n", "scene.yaml:2:45:",
+  expect_scene_error("nodes:\n  a: { type: test.constant, params: { value: $x } }\noutputs: [a.out]\n", "scene.yaml:2:46:",
                      "unknown scene parameter '$x'");
   expect_scene_error("params: { x: 3 deg }\nnodes:\n  a: { type: test.constant, params: { value: $x } }\noutputs: [a.out]\n",
-                     "scene.yaml:3:45:", "($x = '3 deg', set at scene.yaml:1:14)");
+                     "scene.yaml:3:46:", "($x = '3 deg', set at scene.yaml:1:14)");
   expect_scene_error("nodes:\n  a: { type: test.add, params: { gain: -1 }, inputs: { a: a.sum, b: a.sum } }\noutputs: [a.sum]\n",
                      "scene.yaml:2:40:", "out of range: it must be > 0");
   expect_scene_error("nodes: { a: { type: test.constant, params: { value: 1 mm } } }\noutputs: [a.out]\nefects: []\n",

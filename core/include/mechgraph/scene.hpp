@@ -85,6 +85,10 @@ struct SceneSpec {
 SceneSpec load_scene(const std::filesystem::path& file);
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label);
 
+/// Reads one value written on the command line (`--set x=[2, 6, 10]`) as YAML, so lists work
+/// there as in the file; every part of it is located at `where`.
+RawValue parse_raw_value(std::string_view text, const SourceLocation& where);
+
 /// Splits "node.port"; throws SceneError at `where` if malformed.
 PortRef parse_port_ref(std::string_view text, const SourceLocation& where);
 

@@ -124,7 +124,7 @@ TEST_CASE("time-area: exact quadrature against the closed form, rectangle sum co
                                              {"step", ParamValue::of_number(step_deg * pi / 180)}});
     const double error = std::abs(scalar(rect, "angle_area") / angle_area - 1);
     CHECK(error < 0.05);
-    CHECK(error <= previous_error);
+    CHECK(error <= previous_error + 1e-15);  // a smooth bump: the sum converges spectrally
     previous_error = error;
   }
 }

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Installs mechgraph's build dependencies from Debian 12 packages (only what is missing).
+set -euo pipefail
+packages=(cmake g++ ninja-build ccache pkg-config
+          libboost-dev libboost-program-options-dev libboost-filesystem-dev
+          libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  echo "installing: ${missing[*]}" >&2
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
