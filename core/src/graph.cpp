@@ -81,7 +81,7 @@ class GraphBuilder {
     resolve_effects();
     for (const PortRef& r : scene_.outputs) request(r, r.where);
     graph_.scene_output_count = graph_.outputs.size();
-    if (scene_.report) resolve_report(*scene_.report);
+    for (const ReportSpec& table : scene_.report) resolve_report(table);
     if (graph_.outputs.empty())
       fail({scene_.file, 1, 1}, "the scene requests no outputs: add 'outputs: [node.port, ...]' (or a report)");
     cull_and_order();
@@ -377,20 +377,29 @@ class GraphBuilder {
       for (const auto& [role, node] : c.roles) roles.insert(role);
     }
     for (const auto& row : spec.rows) {
-      if (!roles.count(row.role))
-        fail(row.where, "report row '" + row.label + "': " + unknown_name_message("role", row.role, {roles.begin(), roles.end()}));
       ResolvedReport::Row out{row.label, row.unit, {}};
-      for (const auto& c : spec.columns) {
-        auto it = std::find_if(c.roles.begin(), c.roles.end(), [&](const auto& r) { return r.first == row.role; });
-        if (it == c.roles.end()) {
+      std::vector<std::optional<CellRef>> cells = row.cells;
+      if (cells.empty()) {
+        if (!roles.count(row.role))
+          fail(row.where, "report row '" + row.label + "': " + unknown_name_message("role", row.role, {roles.begin(), roles.end()}));
+        for (const auto& c : spec.columns) {
+          auto it = std::find_if(c.roles.begin(), c.roles.end(), [&](const auto& r) { return r.first == row.role; });
+          if (it == c.roles.end()) cells.emplace_back();
+          else cells.push_back(CellRef{it->second, row.port, std::nullopt, row.where});
+        }
+      }
+      for (const auto& cell : cells) {
+        if (!cell) {
           out.cells.emplace_back();
           continue;
         }
-        const std::size_t index = request(PortRef{it->second, row.port, c.where}, row.where);
+        const std::size_t index = request(PortRef{cell->node, cell->port, cell->where}, cell->where);
         const PortSpec& port = *graph_.outputs[index].spec;
-        if (port.kind != ValueKind::scalar)
-          fail(row.where, "report row '" + row.label + "': '" + graph_.outputs[index].label + "' is a " +
-                              std::string(to_string(port.kind)) + "; a table cell needs a scalar");
+        const std::string what = "report row '" + row.label + "', '" + graph_.outputs[index].label + "'";
+        if (port.kind == ValueKind::handle) fail(cell->where, what + " is a " + port.handle_kind + "; a table cell needs a number");
+        if (port.kind == ValueKind::series && !cell->element)
+          fail(cell->where, what + " is a series; name one element, e.g. " + graph_.outputs[index].label + "[0]");
+        if (port.kind == ValueKind::scalar && cell->element) fail(cell->where, what + " is a scalar; it has no elements");
         if (!row.unit.empty()) {
           try {
             to_unit(1.0, port.dimension, row.unit);
@@ -398,11 +407,11 @@ class GraphBuilder {
             fail(row.where, "report row '" + row.label + "': " + e.what());
           }
         }
-        out.cells.push_back(index);
+        out.cells.push_back(ResolvedReport::Cell{index, cell->element});
       }
       report.rows.push_back(std::move(out));
     }
-    graph_.report = std::move(report);
+    graph_.reports.push_back(std::move(report));
   }
 
   void cull_and_order() {

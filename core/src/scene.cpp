@@ -5,6 +5,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <charconv>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -103,7 +104,12 @@ class SceneReader {
       if (!o.IsSequence()) fail(at(o), "expected outputs as a list of node.port");
       for (const auto& item : o) scene.outputs.push_back(parse_port_ref(scalar(item, "node.port"), at(item)));
     }
-    if (const YAML::Node r = root["report"]; r && !r.IsNull()) scene.report = read_report(r);
+    if (const YAML::Node r = root["report"]; r && !r.IsNull()) {
+      if (r.IsSequence())
+        for (const auto& table : r) scene.report.push_back(read_report(table));
+      else
+        scene.report.push_back(read_report(r));
+    }
     return scene;
   }
 
@@ -151,27 +157,38 @@ class SceneReader {
     check_keys(r, {"title", "columns", "rows"}, "report key");
     if (r["title"]) report.title = scalar(r["title"], "a title");
     const YAML::Node columns = r["columns"];
-    if (!columns) fail(report.where, "report has no 'columns' (label: { role: node, ... })");
-    expect_map(columns, "report columns");
-    for (const auto& kv : columns) {
-      ReportSpec::Column c;
-      c.label = scalar(kv.first, "a column label");
-      c.where = at(kv.first);
-      expect_map(kv.second, "the roles of column '" + c.label + "'");
-      for (const auto& role : kv.second) c.roles.emplace_back(scalar(role.first, "a role"), scalar(role.second, "a node name"));
-      report.columns.push_back(std::move(c));
+    if (!columns) fail(report.where, "report has no 'columns' (label: { role: node, ... }, or a list of labels)");
+    if (columns.IsSequence()) {
+      for (const auto& label : columns) report.columns.push_back({scalar(label, "a column label"), {}, at(label)});
+    } else {
+      expect_map(columns, "report columns");
+      for (const auto& kv : columns) {
+        ReportSpec::Column c;
+        c.label = scalar(kv.first, "a column label");
+        c.where = at(kv.first);
+        expect_map(kv.second, "the roles of column '" + c.label + "'");
+        for (const auto& role : kv.second) c.roles.emplace_back(scalar(role.first, "a role"), scalar(role.second, "a node name"));
+        report.columns.push_back(std::move(c));
+      }
     }
     const YAML::Node rows = r["rows"];
     if (!rows || !rows.IsSequence()) fail(report.where, "report has no 'rows' list ([label, role.port, unit])");
     for (const auto& row : rows) {
       if (!row.IsSequence() || row.size() < 2 || row.size() > 3)
-        fail(at(row), "a report row is [label, role.port] or [label, role.port, unit]");
+        fail(at(row), "a report row is [label, role.port, unit] or [label, [node.port, node.port[i], -, ...], unit]");
       ReportSpec::Row out;
       out.label = scalar(row[0], "a row label");
-      const PortRef ref = parse_port_ref(scalar(row[1], "role.port"), at(row[1]));
-      out.role = ref.node;
-      out.port = ref.port;
-      out.where = ref.where;
+      out.where = at(row[1]);
+      if (row[1].IsSequence()) {
+        if (row[1].size() != report.columns.size())
+          fail(at(row[1]), "row '" + out.label + "' has " + std::to_string(row[1].size()) + " cells for " +
+                               std::to_string(report.columns.size()) + " columns");
+        for (const auto& cell : row[1]) out.cells.push_back(parse_cell_ref(scalar(cell, "node.port"), at(cell)));
+      } else {
+        const PortRef ref = parse_port_ref(scalar(row[1], "role.port"), at(row[1]));
+        out.role = ref.node;
+        out.port = ref.port;
+      }
       if (row.size() == 3) out.unit = scalar(row[2], "a unit");
       report.rows.push_back(std::move(out));
     }
@@ -183,6 +200,23 @@ class SceneReader {
 };
 
 }  // namespace
+
+std::optional<CellRef> parse_cell_ref(std::string_view text, const SourceLocation& where) {
+  if (text == "-") return std::nullopt;
+  std::optional<std::size_t> element;
+  if (!text.empty() && text.back() == ']') {
+    const auto open = text.rfind('[');
+    std::size_t index = 0;
+    const auto digits = text.substr(open + 1, text.size() - open - 2);
+    auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (open == std::string_view::npos || digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size())
+      throw SceneError(where.str() + "expected 'node.port[index]' with a whole index, found '" + std::string(text) + "'");
+    element = index;
+    text = text.substr(0, open);
+  }
+  const PortRef ref = parse_port_ref(text, where);
+  return CellRef{ref.node, ref.port, element, where};
+}
 
 PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
   const auto dot = text.find('.');

@@ -2,6 +2,7 @@
 #include "cli.hpp"
 #include "options.hpp"
 
+#include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/units.hpp>
@@ -76,9 +77,19 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
         cells.push_back("-");
         continue;
       }
-      const OutputValue& o = result.outputs[*cell];
+      const OutputValue& o = result.outputs[cell->output];
+      double value = 0.0;
+      if (cell->element) {
+        const auto& values = o.value.as_series().values;
+        if (*cell->element >= values.size())
+          throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
+                                " elements, the row asks for element " + std::to_string(*cell->element));
+        value = values[*cell->element];
+      } else {
+        value = o.value.as_scalar();
+      }
       if (cells[1].empty()) cells[1] = o.dimension.si_unit();
-      const double shown = row.unit.empty() ? o.value.as_scalar() : to_unit(o.value.as_scalar(), o.dimension, row.unit);
+      const double shown = row.unit.empty() ? value : to_unit(value, o.dimension, row.unit);
       char buffer[32];
       std::snprintf(buffer, sizeof buffer, "%.6g", shown);
       cells.push_back(buffer);
@@ -104,6 +115,22 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
   for (std::size_t w : width) total += w + 2;
   os << std::string(total - 2, '-') << "\n";
   for (const auto& r : rows) print_row(r);
+}
+
+// Short series inline ([a, b, c] unit), long ones as a count (their CSV is in --out).
+void print_series(std::ostream& os, const OutputValue& o) {
+  const auto& values = o.value.as_series().values;
+  if (values.size() > 12) {
+    os << "series of " << values.size() << " points (see --out for the CSV)";
+    return;
+  }
+  os << "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::string text = format_value(values[i], o.dimension, o.display_unit);
+    os << (i ? ", " : "") << text.substr(0, text.find(' '));
+  }
+  const std::string unit = o.display_unit.empty() ? o.dimension.si_unit() : o.display_unit;
+  os << "]" << (unit == "1" ? "" : " " + unit);
 }
 
 void write_csv(const std::filesystem::path& file, const OutputValue& o) {
@@ -143,17 +170,19 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   if (vm.count("json")) {
     write_json(std::cout, graph, result);
   } else {
-    if (graph.report) {
-      print_report(std::cout, *graph.report, result);
-      if (graph.scene_output_count) std::cout << "\n";
-    } else if (!graph.title.empty()) {
+    for (std::size_t t = 0; t < graph.reports.size(); ++t) {
+      if (t) std::cout << "\n";
+      print_report(std::cout, graph.reports[t], result);
+    }
+    if (!graph.reports.empty() && graph.scene_output_count) std::cout << "\n";
+    if (graph.reports.empty() && !graph.title.empty()) {
       std::cout << graph.title << "\n\n";
     }
     for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
       const OutputValue& o = result.outputs[i];
       std::cout << o.label << " = ";
       if (o.value.kind() == ValueKind::scalar) std::cout << format_value(o.value.as_scalar(), o.dimension, o.display_unit);
-      else if (o.value.kind() == ValueKind::series) std::cout << "series of " << o.value.as_series().values.size() << " points";
+      else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
       else std::cout << "<" << o.value.as_handle()->kind() << ">";
       std::cout << "\n";
     }

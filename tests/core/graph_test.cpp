@@ -145,3 +145,39 @@ outputs: [p.sum]
 )",
                      "scene.yaml:3:37:", "connected to the node itself");
 }
+
+TEST_CASE("report tables: role rows, explicit cells with series elements, and their errors", "[graph]") {
+  const char* scene = R"(nodes:
+  a: { type: test.constant, params: { value: 1 mm } }
+  b: { type: test.constant, params: { value: 2 mm } }
+  s: { type: test.series, params: { points: 3 } }
+report:
+  - title: by role
+    columns: { first: { x: a }, second: { x: b } }
+    rows: [ [ value, x.out, mm ] ]
+  - title: explicit
+    columns: [ one, two ]
+    rows:
+      - [ mixed, [ a.out, "s.curve[2]" ] ]
+      - [ blank, [ "-", b.out ], um ]
+)";
+  const Graph g = graph_from(scene);
+  REQUIRE(g.reports.size() == 2);
+  CHECK(g.reports[0].rows[0].cells.size() == 2);
+  const auto& mixed = g.reports[1].rows[0].cells;
+  REQUIRE(mixed[1]);
+  CHECK(mixed[1]->element == std::size_t{2});
+  CHECK_FALSE(g.reports[1].rows[1].cells[0]);
+  expect_scene_error(R"(nodes: { s: { type: test.series } }
+report: { columns: [ one ], rows: [ [ c, [ s.curve ] ] ] })",
+                     "scene.yaml:2:45:", "is a series; name one element, e.g. s.curve[0]");
+  expect_scene_error(R"(nodes: { a: { type: test.constant, params: { value: 1 mm } } }
+report: { columns: [ one, two ], rows: [ [ c, [ a.out ] ] ] })",
+                     "scene.yaml:2:46:", "has 1 cells for 2 columns");
+  expect_scene_error(R"(nodes: { a: { type: test.constant, params: { value: 1 mm } } }
+report: { columns: { one: { x: a } }, rows: [ [ c, y.out ] ] })",
+                     "scene.yaml:2:52:", "unknown role 'y'; did you mean 'x'?");
+  expect_scene_error(R"(nodes: { a: { type: test.constant, params: { value: 1 mm } } }
+report: { columns: { one: { x: a } }, rows: [ [ c, x.out, deg ] ] })",
+                     "scene.yaml:2:52:", "unit 'deg' is angle, the value is length");
+}

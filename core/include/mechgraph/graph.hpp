@@ -50,10 +50,14 @@ struct RequestedOutput {
 struct ResolvedReport {
   std::string title;
   std::vector<std::string> columns;
+  struct Cell {
+    std::size_t output;                   // index into Graph::outputs
+    std::optional<std::size_t> element;   // element of a series output
+  };
   struct Row {
     std::string label;
     std::string unit;                       // display unit ("" = SI)
-    std::vector<std::optional<std::size_t>> cells;  // index into Graph::outputs, per column
+    std::vector<std::optional<Cell>> cells;  // per column; empty = "-"
   };
   std::vector<Row> rows;
 };
@@ -66,7 +70,7 @@ struct Graph {
   std::size_t scene_output_count = 0;    // how many of `outputs` the scene's `outputs:` named
   std::vector<std::string> effects;
   std::vector<std::size_t> order;        // needed nodes in dependency order
-  std::optional<ResolvedReport> report;
+  std::vector<ResolvedReport> reports;
 
   std::optional<std::size_t> find(std::string_view name) const;
 };

@@ -51,7 +51,16 @@ struct NodeSpec {
   std::vector<InputSpec> inputs;
 };
 
-/// An optional comparison table: columns map roles to nodes, rows name role.port and a unit.
+/// One cell written out in full: "node.port", "node.port[i]" (element i of a series) or "-".
+struct CellRef {
+  std::string node;
+  std::string port;
+  std::optional<std::size_t> element;
+  SourceLocation where;
+};
+
+/// A table of the report. Columns map roles to nodes and a row names `role.port`, so one row
+/// reads the same port in every column; or a row lists its cells one per column.
 struct ReportSpec {
   std::string title;
   struct Column {
@@ -61,8 +70,9 @@ struct ReportSpec {
   };
   struct Row {
     std::string label;
-    std::string role;
+    std::string role;                              // with `port`: the same port in every column
     std::string port;
+    std::vector<std::optional<CellRef>> cells;     // or: explicit cells, one per column
     std::string unit;
     SourceLocation where;
   };
@@ -78,7 +88,7 @@ struct SceneSpec {
   std::vector<NodeSpec> nodes;
   std::vector<std::pair<std::string, SourceLocation>> effects;
   std::vector<PortRef> outputs;
-  std::optional<ReportSpec> report;
+  std::vector<ReportSpec> report;  // `report:` is one table or a list of tables
 };
 
 /// Reads and shape-checks a scene; throws SceneError("file:line:column: ...").
@@ -88,6 +98,9 @@ SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label)
 /// Reads one value written on the command line (`--set x=[2, 6, 10]`) as YAML, so lists work
 /// there as in the file; every part of it is located at `where`.
 RawValue parse_raw_value(std::string_view text, const SourceLocation& where);
+
+/// Parses "node.port", "node.port[3]" or "-" (an empty cell).
+std::optional<CellRef> parse_cell_ref(std::string_view text, const SourceLocation& where);
 
 /// Splits "node.port"; throws SceneError at `where` if malformed.
 PortRef parse_port_ref(std::string_view text, const SourceLocation& where);
