@@ -170,10 +170,10 @@ report:
   CHECK_FALSE(g.reports[1].rows[1].cells[0]);
   expect_scene_error(R"(nodes: { s: { type: test.series } }
 report: { columns: [ one ], rows: [ [ c, [ s.curve ] ] ] })",
-                     "scene.yaml:2:45:", "is a series; name one element, e.g. s.curve[0]");
+                     "scene.yaml:2:44:", "is a series; name one element, e.g. s.curve[0]");
   expect_scene_error(R"(nodes: { a: { type: test.constant, params: { value: 1 mm } } }
 report: { columns: [ one, two ], rows: [ [ c, [ a.out ] ] ] })",
-                     "scene.yaml:2:46:", "has 1 cells for 2 columns");
+                     "scene.yaml:2:47:", "has 1 cells for 2 columns");
   expect_scene_error(R"(nodes: { a: { type: test.constant, params: { value: 1 mm } } }
 report: { columns: { one: { x: a } }, rows: [ [ c, y.out ] ] })",
                      "scene.yaml:2:52:", "unknown role 'y'; did you mean 'x'?");

@@ -101,7 +101,12 @@ TEST_CASE("fit thermal effect: clearance grows by about D (alpha_hole - alpha_sh
                                                  {"operating_temperature", ParamValue::of_number(393.15)}};
   const auto cold = run(type, params);
   const auto hot = run(type, params, {"thermal"});
-  const double expected_shift = 0.020 * (23e-6 - 11.5e-6) * 100.0 * 1e6;  // 23 um
-  CHECK_THAT(um(hot, "clearance_mean") - um(cold, "clearance_mean"), WithinAbs(expected_shift, 0.01));
-  CHECK_THAT(um(hot, "clearance_min") - um(cold, "clearance_min"), WithinAbs(expected_shift, 0.01));
+  // Each mean diameter D + dev grows by (D + dev) alpha dT; 20 H7 mean dev +10.5 um, 20 g6 -13.5 um.
+  const double exact_shift = ((0.020 + 10.5e-6) * 23e-6 - (0.020 - 13.5e-6) * 11.5e-6) * 100.0 * 1e6;
+  CHECK_THAT(um(hot, "clearance_mean") - um(cold, "clearance_mean"), WithinAbs(exact_shift, 1e-9));
+  // and to first order D (alpha_h - alpha_s) dT = 23 um
+  CHECK_THAT(um(hot, "clearance_mean") - um(cold, "clearance_mean"), WithinAbs(23.0, 0.05));
+  // the minimum clearance (EI of the hole, es of the shaft) shifts by its own exact amount
+  const double min_shift = ((0.020 + 0.0) * 23e-6 - (0.020 - 7e-6) * 11.5e-6) * 100.0 * 1e6;
+  CHECK_THAT(um(hot, "clearance_min") - um(cold, "clearance_min"), WithinAbs(min_shift, 1e-9));
 }
