@@ -126,7 +126,8 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
     breakpoints_.push_back(half_action_ - xj);
   }
   const Piece& last = pieces_.back();
-  if (last.amplitude * last.shape->slope(1.0) != 0.0) breakpoints_.push_back(0.0);  // jerk jumps at the nose
+  // h''' is odd about the nose: it jumps there unless the last shape ends with zero slope.
+  if (std::abs(last.shape->slope(1.0)) > 1e-12) breakpoints_.push_back(0.0);
   std::sort(breakpoints_.begin(), breakpoints_.end());
 }
 

@@ -1,0 +1,316 @@
+// cam.polydyne: closed-form coefficients against independent solves of the end conditions
+// (exact rational elimination, and long double elimination within its conditioning), the end
+// conditions themselves, precision near the seat against a 100-digit reference, exact
+// derivatives against central differences, exponent validation and extreme exponent sets.
+#include <catch2/catch.hpp>
+
+#include "polydyne.hpp"
+#include "registration.hpp"
+
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <boost/multiprecision/cpp_int.hpp>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace mechgraph;
+using namespace mechgraph::cams;
+using boost::multiprecision::cpp_bin_float_100;
+using boost::multiprecision::cpp_int;
+using boost::multiprecision::cpp_rational;
+
+constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180.0;
+constexpr double mm = 1e-3;
+
+class TestContext final : public EvalContext {
+ public:
+  bool effect(std::string_view) const override { return false; }
+  void log(LogLevel, std::string_view) override {}
+  void report_work(std::string_view, double) override {}
+};
+
+OutputSet run_polydyne(std::map<std::string, ParamValue> given) {
+  static const NodeTypeList types = [] {
+    NodeTypeList list;
+    add_source_profile_types(list);
+    return list;
+  }();
+  const NodeType* type = nullptr;
+  for (const auto& t : types)
+    if (t->info().type == "cam.polydyne") type = t.get();
+  REQUIRE(type != nullptr);
+  ParamSet params;
+  for (auto& [name, value] : given) params.set(name, value);
+  for (const ParamSpec& spec : type->info().params)
+    if (!params.has(spec.name) && spec.default_value) params.set(spec.name, *spec.default_value);
+  OutputSet out;
+  TestContext ctx;
+  type->evaluate(params, InputSet{}, out, ctx);
+  return out;
+}
+
+// Base radius large enough that a flat tappet does not undercut even [2, 4, 6, 8, 10]
+// (r0 + h + h'' > 0 with h''(0) = -10 h / phi_p^2).
+std::map<std::string, ParamValue> base_params() {
+  return {{"max_lift", ParamValue::of_number(9 * mm)},
+          {"action_angle", ParamValue::of_number(160 * deg)},
+          {"base_radius", ParamValue::of_number(50 * mm)}};
+}
+
+std::string exponent_error(std::vector<double> exponents) {
+  auto p = base_params();
+  p["exponents"] = ParamValue::of_list(std::move(exponents));
+  try {
+    run_polydyne(p);
+  } catch (const NodeError& e) {
+    return e.parameter() + ": " + e.what();
+  }
+  return "";
+}
+
+// Falling factorial n (n-1) ... (n-m+1): d^m/du^m u^n at u = 1.
+template <class T>
+T falling(int n, int m) {
+  T r = 1;
+  for (int k = 0; k < m; ++k) r *= T(n - k);
+  return r;
+}
+
+// The end conditions as a linear system: sum_i C_i P_m(n_i) = -[m == 0], m = 0..4.
+template <class T>
+std::vector<std::vector<T>> end_condition_matrix(const std::vector<int>& n) {
+  std::vector<std::vector<T>> M(5, std::vector<T>(6));
+  for (int m = 0; m < 5; ++m) {
+    for (int i = 0; i < 5; ++i) M[m][i] = falling<T>(n[i], m);
+    M[m][5] = m == 0 ? T(-1) : T(0);
+  }
+  return M;
+}
+
+// Gaussian elimination with partial pivoting on an augmented 5x6 matrix.
+template <class T>
+std::vector<T> solve(std::vector<std::vector<T>> M) {
+  using std::abs;
+  const int N = 5;
+  for (int c = 0; c < N; ++c) {
+    int p = c;
+    for (int r = c + 1; r < N; ++r)
+      if (abs(M[r][c]) > abs(M[p][c])) p = r;
+    std::swap(M[c], M[p]);
+    for (int r = c + 1; r < N; ++r) {
+      const T f = M[r][c] / M[c][c];
+      for (int k = c; k <= N; ++k) M[r][k] -= f * M[c][k];
+    }
+  }
+  std::vector<T> x(N);
+  for (int r = N - 1; r >= 0; --r) {
+    T s = M[r][N];
+    for (int k = r + 1; k < N; ++k) s -= M[r][k] * x[k];
+    x[r] = s / M[r][r];
+  }
+  return x;
+}
+
+// 1-norm condition number of the 5x5 system matrix, its inverse column by column.
+long double condition_number(const std::vector<int>& n) {
+  auto M = end_condition_matrix<long double>(n);
+  long double norm = 0, inv_norm = 0;
+  for (int c = 0; c < 5; ++c) {
+    long double col = 0;
+    for (int r = 0; r < 5; ++r) col += std::abs(M[r][c]);
+    norm = std::max(norm, col);
+  }
+  for (int c = 0; c < 5; ++c) {
+    auto A = M;
+    for (int r = 0; r < 5; ++r) A[r][5] = r == c ? 1.0L : 0.0L;
+    long double col = 0;
+    for (long double v : solve(A)) col += std::abs(v);
+    inv_norm = std::max(inv_norm, col);
+  }
+  return norm * inv_norm;
+}
+
+std::vector<cpp_rational> closed_form_rational(const std::vector<int>& n) {
+  std::vector<cpp_rational> c;
+  for (const auto& [num, den] : polydyne_coefficients_exact(n)) c.emplace_back(cpp_int(num), cpp_int(den));
+  return c;
+}
+
+// 100-digit reference of d^m/du^m x(u)/h from the exact coefficients, summed as monomials.
+cpp_bin_float_100 reference(const std::vector<int>& n, const std::vector<cpp_rational>& c, int m,
+                           const cpp_bin_float_100& u) {
+  cpp_bin_float_100 sum = m == 0 ? 1 : 0;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const cpp_bin_float_100 ci = cpp_bin_float_100(numerator(c[i])) / cpp_bin_float_100(denominator(c[i]));
+    sum += ci * falling<cpp_bin_float_100>(n[i], m) * pow(u, n[i] - m);
+  }
+  return sum;
+}
+
+const std::vector<std::vector<int>> kExponentSets{
+    {2, 6, 10, 14, 18}, {2, 10, 20, 30, 40}, {2, 4, 6, 8, 10}, {2, 10, 18, 26, 34}, {2, 14, 26, 38, 50}};
+
+}  // namespace
+
+TEST_CASE("polydyne: closed-form coefficients", "[cams][polydyne]") {
+  // 2-6-10-14-18 (the family of Dudley's and Stoddart's valve cams; Rothbart, Cam Design
+  // Handbook, fig. 4.9): C = -315/128, 105/32, -189/64, 45/32, -35/128.
+  const auto c = polydyne_coefficients_exact({2, 6, 10, 14, 18});
+  const std::vector<std::pair<std::int64_t, std::int64_t>> expected{
+      {-315, 128}, {105, 32}, {-189, 64}, {45, 32}, {-35, 128}};
+  CHECK(c == expected);
+  // [2, 4, 6, 8, 10] is x = (1 - u^2)^5: binomial coefficients.
+  const std::vector<std::pair<std::int64_t, std::int64_t>> binomial{{-5, 1}, {10, 1}, {-10, 1}, {5, 1}, {-1, 1}};
+  CHECK(polydyne_coefficients_exact({2, 4, 6, 8, 10}) == binomial);
+
+  for (const auto& n : kExponentSets) {
+    INFO("exponents " << n[0] << "-" << n[1] << "-" << n[2] << "-" << n[3] << "-" << n[4]);
+    const std::vector<cpp_rational> closed = closed_form_rational(n);
+    // Independent 1: exact rational elimination of the end-condition system: identical.
+    const std::vector<cpp_rational> exact = solve(end_condition_matrix<cpp_rational>(n));
+    for (int i = 0; i < 5; ++i) CHECK(closed[i] == exact[i]);
+    // The end conditions hold exactly: x(1) = x'(1) = ... = x''''(1) = 0, and x(0) = 1 by form.
+    for (int m = 0; m < 5; ++m) {
+      cpp_rational s = m == 0 ? 1 : 0;
+      for (int i = 0; i < 5; ++i) s += closed[i] * falling<cpp_rational>(n[i], m);
+      CHECK(s == 0);
+    }
+    // Independent 2: long double elimination, within what its conditioning allows.
+    const std::vector<long double> ld = solve(end_condition_matrix<long double>(n));
+    const long double cond = condition_number(n);
+    const long double tol = 100.0L * cond * std::numeric_limits<long double>::epsilon();
+    INFO("condition number " << static_cast<double>(cond));
+    const PolydyneLaw law(9 * mm, 130 * deg, 17 * mm, n);
+    long double cmax = 0;
+    for (long double v : ld) cmax = std::max(cmax, std::abs(v));
+    for (int i = 0; i < 5; ++i) {
+      CHECK(static_cast<double>(std::abs(ld[i] - static_cast<long double>(law.coefficients()[i]))) <=
+            static_cast<double>(tol * cmax) + 1e-16 * std::abs(law.coefficients()[i]));
+    }
+  }
+  // The conditioning the method note warns about.
+  CHECK(condition_number({2, 14, 26, 38, 50}) > 1e6);
+}
+
+TEST_CASE("polydyne: lift keeps its digits near the seat", "[cams][polydyne]") {
+  const double phi_p = 65 * deg, h = 9 * mm;
+  for (const auto& n : kExponentSets) {
+    INFO("exponents " << n[0] << "-" << n[1] << "-" << n[2] << "-" << n[3] << "-" << n[4]);
+    const PolydyneLaw law(h, 2 * phi_p, 17 * mm, n);
+    const std::vector<cpp_rational> c = closed_form_rational(n);
+    // x^(5)(1): x^(m)(1 - w) ~ x^(5)(1) (-w)^(5-m) / (5-m)! sets the local scale of each derivative.
+    cpp_rational d5 = 0;
+    for (int i = 0; i < 5; ++i) d5 += c[i] * falling<cpp_rational>(n[i], 5);
+    const double x5 = std::abs(static_cast<double>(cpp_bin_float_100(numerator(d5)) / cpp_bin_float_100(denominator(d5))));
+    for (double w : {0.9, 0.5, 0.2, 1e-2, 1e-4, 1e-6, 1e-8}) {
+      const double phi = phi_p * (1.0 - w);  // the double the law sees; the reference uses it exactly
+      const cpp_bin_float_100 u = cpp_bin_float_100(phi) / cpp_bin_float_100(phi_p);
+      const LiftDerivatives d = law.evaluate_in_event(phi);
+      const double got[4] = {d.lift / h, d.velocity * phi_p / h, d.acceleration * phi_p * phi_p / h,
+                             d.jerk * phi_p * phi_p * phi_p / h};
+      for (int m = 0; m < 4; ++m) {
+        const double ref = static_cast<double>(reference(n, c, m, u));
+        double factorial = 1;
+        for (int k = 2; k <= 5 - m; ++k) factorial *= k;
+        const double local = x5 / factorial * std::pow(w, 5 - m);
+        INFO("w = " << w << ", derivative " << m << ", reference " << ref);
+        CHECK(got[m] == Approx(ref).epsilon(1e-14).margin(1e-15 * local));
+      }
+    }
+  }
+  // At u = 1 - 1e-4 the lift is ~2.5e-18 h: the naive monomial sum in double has no digit left,
+  // the factored form has all of them.
+  const std::vector<int> n{2, 6, 10, 14, 18};
+  const PolydyneLaw law(h, 2 * phi_p, 17 * mm, n);
+  const double phi = phi_p * (1.0 - 1e-4);
+  const double u = phi / phi_p;
+  double naive = 1.0;
+  for (int i = 0; i < 5; ++i) naive += law.coefficients()[i] * std::pow(u, n[i]);
+  const double ref =
+      static_cast<double>(reference(n, closed_form_rational(n), 0, cpp_bin_float_100(phi) / cpp_bin_float_100(phi_p)));
+  CHECK(ref == Approx(252e-20).epsilon(1e-3).margin(0));  // q_0(1) = 252: x ~ 252 w^5
+  CHECK(std::abs(naive - ref) / ref > 1e-2);
+  CHECK(law.evaluate_in_event(phi).lift / h == Approx(ref).epsilon(1e-15).margin(1e-40));
+}
+
+TEST_CASE("polydyne: law values, symmetry and derivatives", "[cams][polydyne]") {
+  const PolydyneLaw law(9 * mm, 130 * deg, 17 * mm, {2, 6, 10, 14, 18});
+  CHECK(law.at(0.0).lift == Approx(9 * mm).epsilon(1e-15).margin(0));
+  CHECK(law.at(0.0).velocity == 0.0);
+  CHECK(law.at(0.0).acceleration == Approx(2.0 * (-315.0 / 128.0) * 9 * mm / std::pow(65 * deg, 2)).epsilon(1e-15).margin(0));
+  CHECK(law.breakpoints().empty());
+  for (double phi : {0.05, 0.3, 0.7, 1.1}) {
+    const LiftDerivatives p = law.at(phi), m = law.at(-phi);
+    CHECK(p.lift == m.lift);
+    CHECK(p.velocity == -m.velocity);
+    CHECK(p.acceleration == m.acceleration);
+    CHECK(p.jerk == -m.jerk);
+  }
+  // Central differences of each derivative against the next one.
+  const double step = 1e-5, sh = 9 * mm;
+  for (int i = 1; i < 60; ++i) {
+    const double phi = -65 * deg + 130 * deg * i / 60.0 + 7e-4;
+    const LiftDerivatives m = law.at(phi - step), c = law.at(phi), p = law.at(phi + step);
+    CHECK(c.velocity == Approx((p.lift - m.lift) / (2 * step)).epsilon(1e-7).margin(1e-9 * sh));
+    CHECK(c.acceleration == Approx((p.velocity - m.velocity) / (2 * step)).epsilon(1e-7).margin(1e-9 * sh));
+    CHECK(c.jerk == Approx((p.acceleration - m.acceleration) / (2 * step)).epsilon(1e-6).margin(1e-8 * sh));
+  }
+  // Smooth onto the base circle: all four quantities vanish at the ends.
+  for (int m = 0; m < 4; ++m) CHECK(law.normalized_derivative(m, 0.0L) == 0.0L);
+  const LiftDerivatives end = law.at(65 * deg * (1 - 1e-9));
+  CHECK(std::abs(end.lift) < 1e-40);
+  CHECK(std::abs(end.jerk) < 1e-12);
+}
+
+TEST_CASE("polydyne node: default and extreme exponents", "[cams][polydyne]") {
+  for (const auto& n : kExponentSets) {
+    auto p = base_params();
+    p["exponents"] = ParamValue::of_list(std::vector<double>(n.begin(), n.end()));
+    const OutputSet out = run_polydyne(p);
+    const auto law = std::dynamic_pointer_cast<const PolydyneLaw>(out.all().at("law").as_handle());
+    REQUIRE(law);
+    const double accel = out.all().at("accel_angle").as_scalar();
+    INFO("exponents " << n[0] << "-" << n[1] << "-" << n[2] << "-" << n[3] << "-" << n[4]);
+    CHECK(accel > 0.0);
+    CHECK(accel < 80 * deg);
+    CHECK(law->at(-80 * deg + accel).acceleration == Approx(0.0).margin(1e-9 * 9 * mm));
+    CHECK(out.all().at("max_acceleration").as_scalar() > 0.0);
+    CHECK(out.all().at("min_acceleration").as_scalar() < 0.0);
+    // Lift falls monotonically from the nose.
+    double last = law->at(0.0).lift;
+    for (int i = 1; i <= 200; ++i) {
+      const double now = law->at(80 * deg * i / 200.0).lift;
+      CHECK(now <= last);
+      last = now;
+    }
+  }
+  // Higher exponents: shorter positive phase.
+  auto p = base_params();
+  const double default_accel = run_polydyne(p).all().at("accel_angle").as_scalar();
+  p["exponents"] = ParamValue::of_list({2, 14, 26, 38, 50});
+  CHECK(run_polydyne(p).all().at("accel_angle").as_scalar() < default_accel);
+  // Large exponents stay exact and finite.
+  const PolydyneLaw big(9 * mm, 130 * deg, 17 * mm, {2, 4, 6, 8, 1000});
+  CHECK(std::isfinite(big.at(-64 * deg).jerk));
+  CHECK(big.at(0.0).lift == Approx(9 * mm).epsilon(1e-15).margin(0));
+}
+
+TEST_CASE("polydyne: exponent validation", "[cams][polydyne]") {
+  CHECK(exponent_error({2, 6, 10, 14, 18}).empty());
+  CHECK_THAT(exponent_error({2, 6, 10, 14}), Catch::StartsWith("exponents: ") && Catch::Contains("exactly five"));
+  CHECK_THAT(exponent_error({2, 6, 10, 14, 18, 22}), Catch::Contains("exactly five"));
+  CHECK_THAT(exponent_error({4, 6, 10, 14, 18}), Catch::StartsWith("exponents: ") && Catch::Contains("first exponent must be 2"));
+  CHECK_THAT(exponent_error({2, 6, 6, 14, 18}), Catch::Contains("increase strictly"));
+  CHECK_THAT(exponent_error({2, 10, 6, 14, 18}), Catch::Contains("increase strictly"));
+  CHECK_THAT(exponent_error({2, 5, 10, 14, 18}), Catch::Contains("even") && Catch::Contains("5 is odd"));
+  CHECK_THAT(exponent_error({2, 6.5, 10, 14, 18}), Catch::Contains("integer"));
+  CHECK_THAT(exponent_error({2, 6, 10, 14, 2000}), Catch::Contains("[2, 1000]"));
+  CHECK_THAT(exponent_error({2, 6, 10, 14, -18}), Catch::StartsWith("exponents: "));
+}
