@@ -6,6 +6,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace mechgraph {
@@ -50,6 +52,13 @@ void hash_param(Hasher& h, const ParamValue& v) {
       }
       break;
   }
+}
+
+void hash_file(Hasher& h, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // the node reports the missing file when it runs
+  std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  h.add(contents);
 }
 
 class NodeContext final : public EvalContext {
@@ -121,6 +130,9 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph) {
     for (const auto& [name, value] : node.params.all()) {
       h.add(name);
       hash_param(h, value);
+      // A file named by a parameter is part of the input: its contents enter the key, so an
+      // edited table is not mistaken for the cached one.
+      if (const ParamSpec* spec = node.info().find_param(name); spec && spec->is_path) hash_file(h, value.text);
     }
     for (const std::string& e : node.effects_read) h.add(e);
     for (const GraphNode::Input& in : node.inputs) {

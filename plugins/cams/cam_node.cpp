@@ -138,18 +138,6 @@ class CamNodeType final : public NodeType {
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
     CamSummary s = summarize(*law, samples);
-    if (ramp.type == RampType::constant_velocity) {
-      // h'' is exactly zero along a constant-velocity ramp, which a sign-change search can take
-      // for a root; the positive-acceleration phase is searched from the end of the opening ramp
-      // and counted from the start of lift (the start of the ramp).
-      std::vector<double> knots{law->event_begin() + ramp.length};
-      for (double b : law->breakpoints())
-        if (b > knots.front()) knots.push_back(b);
-      knots.push_back(law->event_end());
-      auto acceleration = [&](double x) { return law->at(x).acceleration; };
-      const auto end_of_positive = numerics::first_sign_change(acceleration, knots, samples, s.evaluations);
-      s.accel_angle = end_of_positive ? *end_of_positive - law->event_begin() : 0.0;
-    }
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
     if (!(s.min_curvature_radius > 0.0)) {
       std::ostringstream msg;

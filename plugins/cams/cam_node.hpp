@@ -1,7 +1,7 @@
 #pragma once
 // One NodeType for every cam law: the law-specific part is a description of its own parameters
 // and a factory that builds the CamLaw from them; the common parameters (max_lift,
-// action_angle, base_radius, samples) and the common outputs (law, max_velocity,
+// action_angle, base_radius, ramp, ramp_height, ramp_length, samples) and the common outputs (law, max_velocity,
 // max_acceleration, min_acceleration, accel_angle, min_curvature_radius) are added here, so a new
 // law is a law class plus a few lines of registration.
 #include <mechgraph/domain/cam_law.hpp>

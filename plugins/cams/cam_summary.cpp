@@ -17,6 +17,25 @@ std::vector<double> knots_of(const CamLaw& law) {
 
 }  // namespace
 
+double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluations) {
+  const std::vector<double> knots = knots_of(law);
+  auto acceleration = [&](double x) { return law.at(x).acceleration; };
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    for (int i = 0; i < samples; ++i) {
+      // Inset from the knot, as the extremum searches are, to see this piece's one-sided value.
+      const double x = i == 0 ? a + 1e-13 * (b - a) : a + (b - a) * static_cast<double>(i) / samples;
+      ++evaluations;
+      if (!(acceleration(x) > 0.0)) continue;
+      std::vector<double> rest{x};
+      for (std::size_t q = p + 1; q < knots.size(); ++q) rest.push_back(knots[q]);
+      const auto end = numerics::first_sign_change(acceleration, rest, samples, evaluations);
+      return end ? *end - law.event_begin() : 0.0;
+    }
+  }
+  return 0.0;
+}
+
 double contour_curvature_radius(const CamLaw& law, double phi) {
   const LiftDerivatives d = law.at(phi);
   const double rr = law.roller_radius();
@@ -36,9 +55,7 @@ CamSummary summarize(const CamLaw& law, int samples) {
   s.max_velocity = numerics::maximize_piecewise(velocity, k, samples, s.evaluations).value;
   s.max_acceleration = numerics::maximize_piecewise(acceleration, k, samples, s.evaluations).value;
   s.min_acceleration = numerics::minimize_piecewise(acceleration, k, samples, s.evaluations).value;
-  // End of the positive-acceleration phase: first sign change of h'' after the start of lift.
-  const auto end_of_positive = numerics::first_sign_change(acceleration, k, samples, s.evaluations);
-  s.accel_angle = end_of_positive ? *end_of_positive - law.event_begin() : 0.0;
+  s.accel_angle = positive_acceleration_phase(law, samples, s.evaluations);
   // The contour's curvature is checked around the whole cam: on the base circle it is r0 (flat)
   // or r0 (roller contour) and inside the event it varies.
   auto rho = [&](double x) { return contour_curvature_radius(law, x); };

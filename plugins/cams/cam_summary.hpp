@@ -1,7 +1,7 @@
 #pragma once
 // Characteristic figures of any cam law, found numerically on the law's exact derivatives:
 // extrema by sampling each smooth piece and refining with Brent's method; the end of the
-// positive-acceleration phase by TOMS 748 on h''.
+// positive-acceleration phase by TOMS 748 on h'' (see positive_acceleration_phase).
 #include <mechgraph/domain/cam_law.hpp>
 
 namespace mechgraph::cams {
@@ -17,6 +17,11 @@ struct CamSummary {
 
 /// `samples` per smooth piece (the accuracy knob of every cam node).
 CamSummary summarize(const CamLaw& law, int samples);
+
+/// The positive-acceleration phase measured from the start of lift: up to the first + to -
+/// change of sign of h'' after the first angle where h'' > 0 (so a constant-velocity ramp, where
+/// h'' is exactly 0, or a table starting with a tiny negative h'' does not end it early).
+double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluations);
 
 /// Radius of curvature of the cam contour at angle phi: flat-faced follower rho = r0 + h + h'';
 /// in-line roller of radius rr: pitch radius R = r0 + rr + h,

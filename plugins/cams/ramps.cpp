@@ -105,6 +105,11 @@ RampedLaw::RampedLaw(std::shared_ptr<const CamLaw> main, RampSpec ramp)
     throw NodeError("ramp", m.str());
   }
   half_main_ = 0.5 * (e - b);
+  // The largest derivatives of R: on a cosine ramp H q^k (q = pi/(2L)), under the fade v,
+  // 1.875 v/P and 5.78 v/P^2; all must be finite numbers.
+  const double q = 0.5 * pi / ramp_.length, v = ramp_end_velocity(ramp_);
+  if (!std::isfinite(ramp_.height * q * q * q) || !std::isfinite(6.0 * v / (half_main_ * half_main_)))
+    throw NodeError("ramp_length", "ramp_length " + degrees(ramp_.length) + " is too short for double precision");
   if (!(half_main_ + ramp_.length < pi)) {
     std::ostringstream m;
     m << "action_angle + 2 ramp_length = " << degrees(2.0 * (half_main_ + ramp_.length))

@@ -169,6 +169,12 @@ SymmetricRiseReturnLaw::SymmetricRiseReturnLaw(RiseShape shape, double max_lift,
   m.str("");
   m << "roller_radius must be non-negative and finite (got " << roller_radius * 1e3 << " mm)";
   require(std::isfinite(roller_radius) && roller_radius >= 0.0, "roller_radius", m.str());
+  // |s'''| < 70 for all six laws: the jerk H s'''/P^3 must be a finite number.
+  const double k = 1.0 / half_action_;
+  m.str("");
+  m << "action_angle " << action_angle * 180.0 / pi << " deg is too small for double precision at max_lift "
+    << max_lift * 1e3 << " mm (the jerk overflows)";
+  require(std::isfinite(70.0 * max_lift * k * k * k), "action_angle", m.str());
 }
 
 LiftDerivatives SymmetricRiseReturnLaw::evaluate_in_event(double phi) const {

@@ -10,7 +10,7 @@
 //   cycloidal            2                      2 pi                 = 6.2832
 //   harmonic             pi/2     = 1.5708      pi^2/2               = 4.9348
 //   poly345              15/8     = 1.8750      10/sqrt(3)           = 5.7735
-//   poly4567             35/16    = 2.1875      s''((5-sqrt5)/10)    = 7.5107
+//   poly4567             35/16    = 2.1875      84 sqrt(5)/25        = 7.5132
 //   modified_trapezoid   2                      8 pi/(2+pi)          = 4.8881
 //   modified_sine        4 pi/(4+pi) = 1.7596   4 pi^2/(4+pi)        = 5.5280
 #include <mechgraph/domain/cam_law.hpp>
@@ -67,6 +67,8 @@ class SymmetricRiseReturnLaw final : public CamLaw {
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
   LiftDerivatives evaluate_in_event(double phi) const override;
+  /// The junctions of the rise's and the return's pieces and the nose, where the formula changes
+  /// (a superset of the contract's discontinuities: at some only the fourth derivative steps).
   std::vector<double> breakpoints() const override;
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }

@@ -106,3 +106,16 @@ TEST_CASE("series outputs carry their axis", "[evaluator]") {
   CHECK(s.values == std::vector<double>{0.0, 0.25, 1.0});
   CHECK(s.axis == std::vector<double>{0.0, 0.5, 1.0});
 }
+
+TEST_CASE("a file named by a parameter enters the memo key with its contents", "[evaluator]") {
+  const auto file = std::filesystem::temp_directory_path() / "mechgraph_memo_table.csv";
+  std::ofstream(file) << "0, 0\n";
+  const std::string yaml = "nodes:\n  t: { type: cam.table, params: { file: '" + file.string() +
+                           "', max_lift: 1 mm, action_angle: 10 deg, base_radius: 10 mm } }\noutputs: [t.max_velocity]\n";
+  const Graph g = graph_from(yaml, project_registry());
+  const auto before = node_hashes(g);
+  std::ofstream(file) << "0, 0\n1, 0\n";
+  const auto after = node_hashes(g);
+  CHECK(before[0] != after[0]);
+  std::filesystem::remove(file);
+}
