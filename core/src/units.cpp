@@ -154,13 +154,13 @@ Quantity parse_quantity(std::string_view text) {
   return {(value + unit.offset) * unit.scale, unit.dimension};
 }
 
-double to_unit(double si_value, Dimension dimension, std::string_view unit) {
+double to_unit(double value_in_si, Dimension dimension, std::string_view unit) {
   const UnitScale u = parse_unit(unit);
   if (!(u.dimension == dimension))
     throw UnitError("unit '" + std::string(unit) + "' is " + u.dimension.describe() + ", the value is " +
                         dimension.describe(),
                     0);
-  return si_value / u.scale - u.offset;
+  return value_in_si / u.scale - u.offset;
 }
 
 }  // namespace mechgraph

@@ -40,7 +40,7 @@ UnitScale parse_unit(std::string_view text);
 Quantity parse_quantity(std::string_view text);
 
 /// Converts an SI value to a display unit; throws UnitError if the dimensions differ.
-double to_unit(double si_value, Dimension dimension, std::string_view unit);
+double to_unit(double value_in_si, Dimension dimension, std::string_view unit);
 
 /// The unit symbols the parser knows, for error messages ("valid units are ...").
 std::string known_unit_symbols();

@@ -6,6 +6,7 @@
 #include "cam_node.hpp"
 #include "ramps.hpp"
 #include "rise_law.hpp"
+#include "test_support.hpp"
 
 #include <mechgraph/node.hpp>
 #include <mechgraph/units.hpp>
@@ -33,15 +34,7 @@ inline constexpr double deg = std::numbers::pi / 180.0;
 inline constexpr double mm = 1e-3;
 
 /// A host stand-in: no effects, logs kept, work counted.
-class TestContext final : public EvalContext {
- public:
-  bool effect(std::string_view) const override { return false; }
-  void log(LogLevel, std::string_view message) override { messages.emplace_back(message); }
-  void report_work(std::string_view counter, double amount) override { work[std::string(counter)] += amount; }
-
-  std::vector<std::string> messages;
-  std::map<std::string, double> work;
-};
+using TestContext = mechgraph::testing::RecordingContext;
 
 /// An SI value as scene text ("0.0090000000000000002 m"), parsed back exactly.
 inline std::string si(double value, const char* unit) {

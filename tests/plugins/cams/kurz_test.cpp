@@ -1,6 +1,8 @@
 // cam.kurz and the generic ShocklessLaw: nose conditions, shocklessness, continuity at the
 // junctions, the default rise_split (jerk continuity, or the minimax fallback), exact derivatives
 // against central differences and quadrature, and the accel_angle the summary finds.
+#include "cam_test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include "kurz.hpp"
@@ -25,32 +27,8 @@ constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 constexpr double mm = 1e-3;
 
-class TestContext final : public EvalContext {
- public:
-  bool effect(std::string_view) const override { return false; }
-  void log(LogLevel, std::string_view) override {}
-  void report_work(std::string_view, double) override {}
-};
 
-OutputSet run_kurz(std::map<std::string, ParamValue> given) {
-  static const NodeTypeList types = [] {
-    NodeTypeList list;
-    add_source_profile_types(list);
-    return list;
-  }();
-  const NodeType* type = nullptr;
-  for (const auto& t : types)
-    if (t->info().type == "cam.kurz") type = t.get();
-  REQUIRE(type != nullptr);
-  ParamSet params;
-  for (auto& [name, value] : given) params.set(name, value);
-  for (const ParamSpec& spec : type->info().params)
-    if (!params.has(spec.name) && spec.default_value) params.set(spec.name, *spec.default_value);
-  OutputSet out;
-  TestContext ctx;
-  type->evaluate(params, InputSet{}, out, ctx);
-  return out;
-}
+OutputSet run_kurz(const std::map<std::string, ParamValue>& given) { return mechgraph::cams::testing::run_cam("cam.kurz", given); }
 
 const CamBasics kBasics{9 * mm, 130 * deg, 17 * mm};
 

@@ -2,6 +2,8 @@
 // (exact rational elimination, and long double elimination within its conditioning), the end
 // conditions themselves, precision near the seat against a 100-digit reference, exact
 // derivatives against central differences, exponent validation and extreme exponent sets.
+#include "cam_test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include "polydyne.hpp"
@@ -29,32 +31,8 @@ constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 constexpr double mm = 1e-3;
 
-class TestContext final : public EvalContext {
- public:
-  bool effect(std::string_view) const override { return false; }
-  void log(LogLevel, std::string_view) override {}
-  void report_work(std::string_view, double) override {}
-};
 
-OutputSet run_polydyne(std::map<std::string, ParamValue> given) {
-  static const NodeTypeList types = [] {
-    NodeTypeList list;
-    add_source_profile_types(list);
-    return list;
-  }();
-  const NodeType* type = nullptr;
-  for (const auto& t : types)
-    if (t->info().type == "cam.polydyne") type = t.get();
-  REQUIRE(type != nullptr);
-  ParamSet params;
-  for (auto& [name, value] : given) params.set(name, value);
-  for (const ParamSpec& spec : type->info().params)
-    if (!params.has(spec.name) && spec.default_value) params.set(spec.name, *spec.default_value);
-  OutputSet out;
-  TestContext ctx;
-  type->evaluate(params, InputSet{}, out, ctx);
-  return out;
-}
+OutputSet run_polydyne(const std::map<std::string, ParamValue>& given) { return mechgraph::cams::testing::run_cam("cam.polydyne", given); }
 
 // Base radius large enough that a flat tappet does not undercut even [2, 4, 6, 8, 10]
 // (r0 + h + h'' > 0 with h''(0) = -10 h / phi_p^2).

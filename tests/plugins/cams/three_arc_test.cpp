@@ -1,6 +1,8 @@
 // cam.three_arc: closed-form radii against the tangency relations, the lift against an
 // independent geometric construction (support function / roller envelope over the sampled
 // contour), exact derivatives against central differences, and the infeasible requests.
+#include "cam_test_support.hpp"
+
 #include <catch2/catch.hpp>
 
 #include "registration.hpp"
@@ -22,38 +24,10 @@ constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 constexpr double mm = 1e-3;
 
-class TestContext final : public EvalContext {
- public:
-  bool effect(std::string_view) const override { return false; }
-  void log(LogLevel, std::string_view) override {}
-  void report_work(std::string_view, double) override {}
-};
-
-const NodeType& three_arc_type() {
-  static const NodeTypeList types = [] {
-    NodeTypeList list;
-    add_source_profile_types(list);
-    return list;
-  }();
-  for (const auto& t : types)
-    if (t->info().type == "cam.three_arc") return *t;
-  FAIL("cam.three_arc is not registered");
-  throw std::logic_error("unreachable");
-}
 
 // Evaluates the node with the given parameters, the ParamSpec defaults filled in as the
 // evaluator would.
-OutputSet run(std::map<std::string, ParamValue> given) {
-  const NodeType& type = three_arc_type();
-  ParamSet params;
-  for (auto& [name, value] : given) params.set(name, value);
-  for (const ParamSpec& spec : type.info().params)
-    if (!params.has(spec.name) && spec.default_value) params.set(spec.name, *spec.default_value);
-  OutputSet out;
-  TestContext ctx;
-  type.evaluate(params, InputSet{}, out, ctx);
-  return out;
-}
+OutputSet run(const std::map<std::string, ParamValue>& given) { return mechgraph::cams::testing::run_cam("cam.three_arc", given); }
 
 std::map<std::string, ParamValue> base_params() {
   return {{"max_lift", ParamValue::of_number(9 * mm)},
