@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -66,43 +67,14 @@ Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, 
   return {e.x, -e.value};
 }
 
-std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots, int n,
-                                        long& evaluations) {
-  check_knots(knots, n);
-  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
-    const double a = knots[p], b = knots[p + 1];
-    if (!(b > a)) continue;
-    double x_prev = sample_point(a, b, 0, n);
-    double f_prev = f(x_prev);
-    ++evaluations;
-    if (p > 0) {
-      // A jump across zero at the knot itself.
-      const double left = f(knots[p] - 1e-13 * (knots[p] - knots[p - 1]));
-      ++evaluations;
-      if ((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) return knots[p];
-    }
-    for (int i = 1; i < n; ++i) {
-      const double x = sample_point(a, b, i, n);
-      const double fx = f(x);
-      ++evaluations;
-      if (fx == 0.0) return x;
-      if ((f_prev > 0 && fx < 0) || (f_prev < 0 && fx > 0)) {
-        std::uintmax_t iterations = 200;
-        boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 3);
-        auto r = boost::math::tools::toms748_solve(f, x_prev, x, f_prev, fx, tol, iterations);
-        evaluations += static_cast<long>(iterations);
-        return 0.5 * (r.first + r.second);
-      }
-      x_prev = x;
-      f_prev = fx;
-    }
-  }
-  return std::nullopt;
-}
+namespace {
 
-std::vector<double> all_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
+// Walks the samples of every piece and reports each change of sign (refined with TOMS 748) to
+// `on_root`, which returns false to stop. Samples where f is exactly zero are stepped over, so a
+// function that only touches zero does not count. A jump across zero at a knot is a root there.
+void scan_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations,
+                       const std::function<bool(double)>& on_root) {
   check_knots(knots, n);
-  std::vector<double> roots;
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a = knots[p], b = knots[p + 1];
     if (!(b > a)) continue;
@@ -112,7 +84,7 @@ std::vector<double> all_sign_changes(const Function1D& f, std::span<const double
     if (p > 0) {
       const double left = f(knots[p] - 1e-13 * (knots[p] - knots[p - 1]));
       ++evaluations;
-      if ((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) roots.push_back(knots[p]);
+      if (((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) && !on_root(knots[p])) return;
     }
     for (int i = 1; i < n; ++i) {
       const double x = sample_point(a, b, i, n);
@@ -123,7 +95,7 @@ std::vector<double> all_sign_changes(const Function1D& f, std::span<const double
         boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 3);
         auto r = boost::math::tools::toms748_solve(f, x_prev, x, f_prev, fx, tol, iterations);
         evaluations += static_cast<long>(iterations);
-        roots.push_back(0.5 * (r.first + r.second));
+        if (!on_root(0.5 * (r.first + r.second))) return;
       }
       if (fx != 0.0) {
         x_prev = x;
@@ -131,6 +103,26 @@ std::vector<double> all_sign_changes(const Function1D& f, std::span<const double
       }
     }
   }
+}
+
+}  // namespace
+
+std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots, int n,
+                                        long& evaluations) {
+  std::optional<double> first;
+  scan_sign_changes(f, knots, n, evaluations, [&](double x) {
+    first = x;
+    return false;
+  });
+  return first;
+}
+
+std::vector<double> all_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
+  std::vector<double> roots;
+  scan_sign_changes(f, knots, n, evaluations, [&](double x) {
+    roots.push_back(x);
+    return true;
+  });
   return roots;
 }
 

@@ -25,7 +25,8 @@ Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, 
                             long& evaluations);
 
 /// First x where f changes sign going from knots.front() to knots.back() (a bracket found by
-/// sampling, then TOMS 748 to machine precision). A knot where f jumps across zero counts as a root.
+/// sampling, then TOMS 748 to machine precision). A knot where f jumps across zero counts as a
+/// root; a function that only touches zero (or stays at zero) does not change sign there.
 std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots,
                                         int samples_per_piece, long& evaluations);
 
