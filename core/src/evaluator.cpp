@@ -165,7 +165,8 @@ RunResult evaluate(const Graph& graph, MemoCache& cache) {
         auto it = outs.find(s.port);
         if (it == outs.end())
           throw EvaluationError(where_of(node) + ": its input '" + in.port + "' needs '" + graph.nodes[s.node].name + "." +
-                                s.port + "', which that node did not produce (is an effect it needs switched off?)");
+                                s.port + "', which that node did not produce: it needs an effect or parameters that node "
+                                "was not given");
         inputs.add(in.port, it->second);
       }
     OutputSet outputs;
@@ -191,7 +192,8 @@ RunResult evaluate(const Graph& graph, MemoCache& cache) {
     auto it = outs.find(o.port);
     if (it == outs.end())
       throw EvaluationError(where_of(graph.nodes[o.node]) + " did not produce the requested output '" + o.label +
-                            "' (it may need an effect switched on)");
+                            "': that output needs an effect or parameters this node was not given (see 'mechgraph "
+                            "describe " + graph.nodes[o.node].info().type + "')");
     result.outputs.push_back({o.label, it->second, o.spec->dimension, o.spec->display_unit});
   }
   return result;

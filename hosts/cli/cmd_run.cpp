@@ -165,7 +165,8 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   const RunResult result = evaluate(graph, cache);
   std::size_t evaluated = 0;
   for (const NodeRun& r : result.runs) evaluated += r.reused ? 0 : 1;
-  spdlog::info("evaluated {} of {} nodes ({} culled)", evaluated, graph.nodes.size(), graph.nodes.size() - graph.order.size());
+  spdlog::info("evaluated {} of {} nodes ({} reused from an identical node, {} culled)", evaluated, graph.nodes.size(),
+               result.runs.size() - evaluated, graph.nodes.size() - graph.order.size());
 
   if (vm.count("json")) {
     write_json(std::cout, graph, result);

@@ -63,3 +63,44 @@ TEST_CASE("the culling demo evaluates only the requested branch", "[scenes]") {
   REQUIRE(dot.exit_code == 0);
   CHECK_THAT(dot.out, Contains("cluster_culled") && Contains("\"cyc\""));
 }
+
+TEST_CASE("the backlash study: per-hinge play, totals by three methods, hinge shares", "[scenes]") {
+  const auto r = run_cli(plugins() + "run " + scene("backlash_chain.yaml"));
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("h5 bearing") && Contains("worst case") && Contains("RSS") && Contains("Monte Carlo") &&
+                        Contains("arcmin") && Contains("share of the worst case"));
+  const auto j = run_cli(plugins() + "-q run " + scene("backlash_chain.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  // The source's worst case: rod maximum = actuator (25 + 25 um) + the sum of the hinges' greatest
+  // play (all transfer ratios 1), over the 500 mm moment arm for the nozzle.
+  double hinges = 0.0;
+  for (const char* h : {"h1", "h2", "h3", "h4", "h5"}) hinges += value(json, std::string(h) + ".play_max");
+  CHECK_THAT(value(json, "chain.rod_backlash_max"), WithinRel(50e-6 + hinges, 1e-12));
+  CHECK_THAT(value(json, "chain.angular_backlash_max"), WithinRel((50e-6 + hinges) / 0.5, 1e-12));
+  // Statistics are tighter than the worst case; RSS and Monte Carlo agree within a few %.
+  CHECK(value(json, "chain.rod_backlash_rss_max") < value(json, "chain.rod_backlash_max"));
+  CHECK_THAT(value(json, "chain.rod_backlash_mc_q999"), WithinRel(value(json, "chain.rod_backlash_rss_max"), 0.05));
+  // Seeded: the same run gives the same Monte Carlo numbers.
+  const auto again = run_cli(plugins() + "-q run " + scene("backlash_chain.yaml") + " --json");
+  CHECK(value(YAML::Load(again.out), "chain.rod_backlash_mc_mean") == value(json, "chain.rod_backlash_mc_mean"));
+}
+
+TEST_CASE("the tolerance-stack scene reproduces the printed worst case", "[scenes]") {
+  const auto j = run_cli(plugins() + "-q run " + scene("tolerance_stack.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  CHECK_THAT(value(json, "gap.mean"), WithinRel(0.4e-3, 1e-9));
+  CHECK_THAT(value(json, "gap.worst_case_min"), WithinRel(0.017e-3, 1e-6));
+  CHECK_THAT(value(json, "gap.worst_case_max"), WithinRel(0.783e-3, 1e-9));
+}
+
+TEST_CASE("the backlash study's pin hinges carry the ISO 286 clearances of their seats", "[scenes]") {
+  const auto j = run_cli(plugins() + "-q run " + scene("backlash_chain.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  // H11/h11: clearance from 0 to 2 x IT11; IT11 = 130 um over 18..30 mm, 110 um over 10..18 mm.
+  CHECK_THAT(value(json, "h1.play_max"), Catch::Matchers::WithinAbs(260e-6, 1e-12));
+  CHECK_THAT(value(json, "h3.play_max"), Catch::Matchers::WithinAbs(220e-6, 1e-12));
+  CHECK_THAT(value(json, "h1.play_min"), Catch::Matchers::WithinAbs(0.0, 1e-15));
+}

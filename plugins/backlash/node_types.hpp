@@ -1,0 +1,67 @@
+#pragma once
+// The node types of the backlash plugin, and the few things their descriptions share.
+#include <mechgraph/node.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace mechgraph::backlash {
+
+std::shared_ptr<const NodeType> make_stack_linear_type();
+std::shared_ptr<const NodeType> make_backlash_chain_type();
+std::shared_ptr<const NodeType> make_two_axis_type();
+
+/// Effect names this plugin implements.
+inline constexpr const char* monte_carlo_effect = "monte_carlo";
+inline constexpr const char* compliance_effect = "compliance";
+
+inline constexpr double max_samples = 1e7;  // 80 MB of doubles: the samples are kept for the quantiles
+
+/// The Monte Carlo knobs every stacking node offers.
+inline ParamSpec samples_param() {
+  return ParamSpec::integer("samples", "Monte Carlo sample count N (with monte_carlo); the standard error of the mean "
+                                       "falls as 1/sqrt(N)")
+      .with_default(100000.0)
+      .at_least(100)
+      .at_most(max_samples)
+      .as_knob();
+}
+inline ParamSpec seed_param() {
+  return ParamSpec::integer("seed", "Monte Carlo seed of the mt19937_64 engine (with monte_carlo): the same seed gives "
+                                    "the same numbers on every platform")
+      .with_default(1.0)
+      .non_negative()
+      .at_most(9007199254740992.0);
+}
+
+/// A number as text for messages, with up to six significant digits.
+inline std::string number_text(double x) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+/// A length as text for messages, in mm with four significant digits.
+inline std::string mm_text(double metres) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
+  return buffer;
+}
+
+/// Reads and re-checks the Monte Carlo knobs (a node may be called without the scene's checks).
+inline std::size_t read_samples(const ParamSet& p) {
+  const double n = p.number("samples");
+  if (!(n >= 100.0 && n <= max_samples) || n != std::floor(n))
+    throw NodeError("samples", "samples must be a whole number from 100 to 10000000, got " + number_text(n));
+  return static_cast<std::size_t>(n);
+}
+inline std::uint64_t read_seed(const ParamSet& p) {
+  const double s = p.number("seed");
+  if (!(s >= 0.0 && s <= 9007199254740992.0) || s != std::floor(s))
+    throw NodeError("seed", "seed must be a whole number from 0 to 2^53, got " + number_text(s));
+  return static_cast<std::uint64_t>(s);
+}
+
+}  // namespace mechgraph::backlash

@@ -1,0 +1,157 @@
+// stack.linear: a one-dimensional tolerance stack Y = sum_i s_i X_i, by worst case, RSS and
+// (with the monte_carlo effect) Monte Carlo (shared/methods/backlash.md, "Stacking methods side
+// by side"; the formulas are in stacking.hpp).
+// A link is a part's size: nominal with its upper and lower limit deviations, so its mean is
+// m = nominal + (upper + lower)/2 and its half tolerance h = (upper - lower)/2 (the source's
+// A = A_nom + (dB + dH)/2, dA = (dB - dH)/2).
+#include "node_types.hpp"
+#include "stacking.hpp"
+
+#include <mechgraph/domain/tolerance.hpp>
+
+#include <cmath>
+#include <optional>
+
+namespace mechgraph::backlash {
+namespace {
+
+std::optional<Distribution> distribution_named(const std::string& name) {
+  for (Distribution d : {Distribution::normal, Distribution::uniform, Distribution::triangular})
+    if (name == to_string(d)) return d;
+  return std::nullopt;
+}
+
+Series indexed_series(std::vector<double> values) {
+  Series s;
+  for (std::size_t i = 0; i < values.size(); ++i) s.axis.push_back(static_cast<double>(i));
+  s.values = std::move(values);
+  s.axis_dimension = dim::none;
+  return s;
+}
+
+class StackLinearType final : public NodeType {
+ public:
+  StackLinearType() {
+    info_.type = "stack.linear";
+    info_.summary = "one-dimensional tolerance stack sum s_i X_i: worst case, RSS and Monte Carlo, with each link's share";
+    info_.params = {
+        ParamSpec::record_list(
+            "links",
+            {
+                ParamSpec::number("nominal", dim::length, "nominal size of the part", "mm"),
+                ParamSpec::number("upper", dim::length, "upper limit deviation of the part from nominal (es, ES)", "mm"),
+                ParamSpec::number("lower", dim::length, "lower limit deviation of the part from nominal (ei, EI)", "mm"),
+                ParamSpec::number("sensitivity", dim::none,
+                                  "how much of the part reaches the result (+1 opens the gap, -1 closes it; a lever ratio)")
+                    .with_default(1.0),
+                ParamSpec::choice("distribution", {"normal", "uniform", "triangular"},
+                                  "spread over the tolerance: normal with T = 6 sigma, uniform, or symmetric triangular")
+                    .with_default("normal"),
+                ParamSpec::text("label", "name of the link in reports").optional(),
+            },
+            "the parts of the stack, each { nominal, upper, lower, sensitivity, distribution, label }"),
+        samples_param(),
+        seed_param(),
+    };
+    const auto L = dim::length;
+    info_.outputs = {
+        PortSpec::scalar("mean", L, "mean of the stack, sum s_i (nominal_i + (upper_i + lower_i)/2)", "mm"),
+        PortSpec::scalar("worst_case_min", L, "worst case minimum, mean - sum |s_i| T_i/2", "mm"),
+        PortSpec::scalar("worst_case_max", L, "worst case maximum, mean + sum |s_i| T_i/2", "mm"),
+        PortSpec::scalar("rss_sigma", L, "RSS standard deviation sqrt(sum s_i^2 sigma_i^2)", "mm"),
+        PortSpec::scalar("rss_min", L, "mean - 3 rss_sigma", "mm"),
+        PortSpec::scalar("rss_max", L, "mean + 3 rss_sigma", "mm"),
+        PortSpec::series("contribution_worst_case", dim::none,
+                         "share of each link in the worst case, |s_i| T_i/2 / sum (axis: link index)"),
+        PortSpec::series("contribution_rss", dim::none,
+                         "share of each link in the RSS variance, s_i^2 sigma_i^2 / sum (axis: link index)"),
+        PortSpec::scalar("mc_mean", L, "Monte Carlo mean (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_sigma", L, "Monte Carlo standard deviation (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_min", L, "smallest Monte Carlo sample (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_max", L, "largest Monte Carlo sample (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_q001", L, "Monte Carlo quantile at 0.135 %, the -3 sigma equivalent (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_q999", L, "Monte Carlo quantile at 99.865 %, the +3 sigma equivalent (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_mean_error", L, "standard error of mc_mean, mc_sigma/sqrt(N) (with monte_carlo)", "mm"),
+        PortSpec::scalar("mc_sigma_error", L, "standard error of mc_sigma, mc_sigma/sqrt(2(N-1)) (with monte_carlo)", "mm"),
+    };
+    info_.effects = {{monte_carlo_effect, "sample every link from its distribution (samples, seed) and report the "
+                                          "sample statistics with their standard errors"}};
+    info_.work_counters = {"samples"};
+  }
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& p, const InputSet&, OutputSet& out, EvalContext& ctx) const override {
+    const std::vector<ToleranceLink> links = read_links(p.records("links"));
+    const LinearStack s = stack_linear(links);
+    out.set_scalar("mean", s.mean);
+    out.set_scalar("worst_case_min", s.mean - s.worst_case_half);
+    out.set_scalar("worst_case_max", s.mean + s.worst_case_half);
+    out.set_scalar("rss_sigma", s.rss_sigma);
+    out.set_scalar("rss_min", s.mean - 3.0 * s.rss_sigma);
+    out.set_scalar("rss_max", s.mean + 3.0 * s.rss_sigma);
+    out.set("contribution_worst_case", Value::series(indexed_series(s.contribution_worst_case)));
+    out.set("contribution_rss", Value::series(indexed_series(s.contribution_rss)));
+
+    if (!ctx.effect(monte_carlo_effect)) return;
+    const std::size_t n = read_samples(p);
+    const SampleSummary mc = summarize(sample_linear_stack(links, n, read_seed(p)));
+    ctx.report_work("samples", static_cast<double>(n));
+    out.set_scalar("mc_mean", mc.mean);
+    out.set_scalar("mc_sigma", mc.sigma);
+    out.set_scalar("mc_min", mc.min);
+    out.set_scalar("mc_max", mc.max);
+    out.set_scalar("mc_q001", mc.q_low);
+    out.set_scalar("mc_q999", mc.q_high);
+    out.set_scalar("mc_mean_error", mc.mean_error);
+    out.set_scalar("mc_sigma_error", mc.sigma_error);
+  }
+
+ private:
+  static std::vector<ToleranceLink> read_links(const std::vector<Record>& records) {
+    if (records.empty()) throw NodeError("links", "links is empty: a stack needs at least one link");
+    std::vector<ToleranceLink> links;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+      const Record& r = records[i];
+      const std::string entry = "links entry " + std::to_string(i);
+      auto number = [&](const char* field, std::optional<double> fallback) {
+        const auto it = r.find(field);
+        if (it == r.end()) {
+          if (fallback) return *fallback;
+          throw NodeError("links", entry + ": field '" + field + "' is required");
+        }
+        if (!std::isfinite(it->second.number))
+          throw NodeError("links", entry + ": field '" + field + "' must be a finite number");
+        return it->second.number;
+      };
+      ToleranceLink l;
+      const double nominal = number("nominal", std::nullopt);
+      const double upper = number("upper", std::nullopt);
+      const double lower = number("lower", std::nullopt);
+      l.sensitivity = number("sensitivity", 1.0);
+      if (const auto it = r.find("label"); it != r.end()) l.label = it->second.text;
+      if (const auto it = r.find("distribution"); it != r.end()) {
+        const auto d = distribution_named(it->second.text);
+        if (!d)
+          throw NodeError("links", entry + ": distribution '" + it->second.text +
+                                       "' is not one of normal, uniform, triangular");
+        l.distribution = *d;
+      }
+      if (upper < lower)
+        throw NodeError("links", entry + (l.label.empty() ? "" : " ('" + l.label + "')") + ": upper deviation " +
+                                     mm_text(upper) + " is below the lower deviation " + mm_text(lower) +
+                                     " (upper must be >= lower)");
+      l.mean = nominal + 0.5 * (upper + lower);
+      l.half_range = 0.5 * (upper - lower);
+      links.push_back(std::move(l));
+    }
+    return links;
+  }
+
+  NodeInfo info_;
+};
+
+}  // namespace
+
+std::shared_ptr<const NodeType> make_stack_linear_type() { return std::make_shared<const StackLinearType>(); }
+
+}  // namespace mechgraph::backlash
