@@ -104,3 +104,29 @@ TEST_CASE("the backlash study's pin hinges carry the ISO 286 clearances of their
   CHECK_THAT(value(json, "h3.play_max"), Catch::Matchers::WithinAbs(220e-6, 1e-12));
   CHECK_THAT(value(json, "h1.play_min"), Catch::Matchers::WithinAbs(0.0, 1e-15));
 }
+
+TEST_CASE("the backlash scene names of the contract load and give hand-computed values", "[scenes]") {
+  const auto j = run_cli(plugins() + "-q run '" + std::string(MECHGRAPH_SOURCE_DIR) +
+                         "/tests/scenes/data/backlash_contract.yaml' --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  using Catch::Matchers::WithinAbs;
+  // 20 H11/h11: clearance 0 .. 260 um (IT11 = 130 um).
+  CHECK_THAT(value(json, "f1.clearance_max"), WithinAbs(260e-6, 1e-12));
+  // L = L_act + S_pin + S_bearing (mean fit clearance 130 um + the bearing's mean internal clearance).
+  const double bearing_internal_mean = value(json, "chain.rod_backlash_mean") - 25e-6 - 130e-6 - 130e-6;
+  CHECK(bearing_internal_mean > 0.0);
+  CHECK_THAT(value(json, "chain.angular_backlash_mean"), WithinAbs(value(json, "chain.rod_backlash_mean") / 0.5, 1e-15));
+  CHECK_THAT(value(json, "chain.angular_backlash_max"),
+             WithinAbs((value(json, "chain.rod_backlash_mean") + value(json, "chain.rod_backlash_limit")) / 0.5, 1e-15));
+  // Cardan: atan2(sin 30, cos 30 cos 20) and cos b / (1 - sin^2 b cos^2 t1).
+  const double pi = std::numbers::pi, t1 = 30 * pi / 180, b = 20 * pi / 180;
+  CHECK_THAT(value(json, "uj.output_angle"), WithinAbs(std::atan2(std::sin(t1), std::cos(t1) * std::cos(b)), 1e-15));
+  CHECK_THAT(value(json, "uj.speed_ratio"),
+             WithinRel(std::cos(b) / (1 - std::sin(b) * std::sin(b) * std::cos(t1) * std::cos(t1)), 1e-14));
+  // Stack: 120 +-0.05 minus 3.5 (+0/-0.04): mean 116.52, worst case +-0.07, RSS sigma sqrt((0.05/3)^2 + (0.02/3)^2).
+  CHECK_THAT(value(json, "stack.mean"), WithinAbs(116.52e-3, 1e-12));
+  CHECK_THAT(value(json, "stack.worst_case_min"), WithinAbs(116.45e-3, 1e-12));
+  CHECK_THAT(value(json, "stack.worst_case_max"), WithinAbs(116.59e-3, 1e-12));
+  CHECK_THAT(value(json, "stack.rss_sigma"), WithinRel(std::hypot(0.05e-3 / 3, 0.02e-3 / 3), 1e-12));
+}
