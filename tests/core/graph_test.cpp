@@ -46,7 +46,7 @@ TEST_CASE("a scene builds into a culled, ordered graph", "[graph]") {
   CHECK(g.nodes[*g.find("a")].params.text("mode") == "plain");  // default filled in
 }
 
-TEST_CASE("--set overrides scene and node parameters", "[graph]") {
+TEST_CASE("overrides from the command line (--set) reach scene and node parameters", "[graph]") {
   const Graph g = graph_from(two_branches, arith_registry(), {parse_override("len=5mm"), parse_override("b.value=1 in")});
   CHECK(g.nodes[*g.find("a")].params.number("value") == Approx(5e-3).epsilon(1e-15).margin(0));
   CHECK(g.nodes[*g.find("b")].params.number("value") == Approx(0.0254).epsilon(1e-15).margin(0));
