@@ -23,6 +23,11 @@ void MemoCache::store(std::uint64_t key, std::shared_ptr<const OutputSet> output
   entries_[key] = std::move(outputs);
 }
 
+void MemoCache::erase(std::uint64_t key) {
+  std::lock_guard lock(mutex_);
+  entries_.erase(key);
+}
+
 std::size_t MemoCache::size() const {
   std::lock_guard lock(mutex_);
   return entries_.size();

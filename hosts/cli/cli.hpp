@@ -35,5 +35,6 @@ int validate_command(const GlobalOptions& g, const std::vector<std::string>& arg
 int graph_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int describe_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int bench_command(const GlobalOptions& g, const std::vector<std::string>& args);
 
 }  // namespace mechgraph::cli

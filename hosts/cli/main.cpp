@@ -28,6 +28,7 @@ commands:
   graph SCENE [--set NAME=VALUE ...]                      Graphviz DOT; culled nodes shown apart
   plugins [--json]                                        plugins, node types, ports, params
   describe TYPE [--json]                                  one node type in full
+  bench SCENE [--node NAME] [--json] [--out DIR]          accuracy knobs: error against a reference vs time
 
 global options:
   --plugin-dir DIR   load plugins from DIR (else MECHGRAPH_PLUGIN_PATH, else the build's folder)
@@ -90,7 +91,7 @@ int main(int argc, char** argv) {
 
   const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
       {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
-      {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}};
+      {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command}};
   auto it = commands.find(command);
   if (it == commands.end()) {
     std::vector<std::string> names;

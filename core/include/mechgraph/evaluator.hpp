@@ -18,6 +18,7 @@ class MemoCache {
  public:
   std::shared_ptr<const OutputSet> find(std::uint64_t key) const;
   void store(std::uint64_t key, std::shared_ptr<const OutputSet> outputs);
+  void erase(std::uint64_t key);
   std::size_t size() const;
 
  private:

@@ -21,7 +21,9 @@ namespace mechgraph {
 
 /// One parameter: its kind, dimension (SI), default, admissible range and documentation.
 /// A parameter marked `knob` is an accuracy setting (step, tolerance, samples, method):
-/// `mechgraph bench` varies knobs and nothing else.
+/// `mechgraph bench` varies knobs and nothing else. Its convention: an integer knob is more
+/// accurate when larger, a real knob when smaller, and a choice knob lists its most accurate
+/// choice first.
 struct ParamSpec {
   std::string name;
   ParamKind kind = ParamKind::number;

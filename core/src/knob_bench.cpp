@@ -1,0 +1,194 @@
+#include <mechgraph/knob_bench.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/evaluator.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+namespace mechgraph {
+namespace {
+
+// The graph cut down to what `node` needs, requesting every numeric output of it.
+Graph focus_on(const Graph& graph, std::size_t node) {
+  Graph g = graph;
+  g.reports.clear();
+  g.outputs.clear();
+  for (const PortSpec& p : g.nodes[node].info().outputs)
+    if (p.kind != ValueKind::handle) g.outputs.push_back({node, p.name, &p, g.nodes[node].name + "." + p.name});
+  std::vector<bool> keep(g.nodes.size(), false);
+  std::vector<std::size_t> stack{node};
+  while (!stack.empty()) {
+    const std::size_t i = stack.back();
+    stack.pop_back();
+    if (keep[i]) continue;
+    keep[i] = true;
+    for (std::size_t u : g.nodes[i].upstream) stack.push_back(u);
+  }
+  std::vector<std::size_t> order;
+  for (std::size_t i : graph.order)
+    if (keep[i]) order.push_back(i);
+  // Keep the node even when the scene did not need it (bench --node on a culled node).
+  if (std::find(order.begin(), order.end(), node) == order.end()) {
+    for (std::size_t i = 0; i < g.nodes.size(); ++i)
+      if (keep[i] && std::find(order.begin(), order.end(), i) == order.end()) order.push_back(i);
+  }
+  g.order = std::move(order);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
+  return g;
+}
+
+std::string text_of(const ParamSpec& spec, const ParamValue& v) {
+  if (spec.kind == ParamKind::choice || spec.kind == ParamKind::text) return v.text;
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v.number);
+  const std::string unit = spec.dimension.si_unit();
+  return unit == "1" ? std::string(buffer) : std::string(buffer) + " " + unit;
+}
+
+bool in_range(const ParamSpec& s, double v) {
+  if (s.min_exclusive ? !(v > s.min) : !(v >= s.min)) return false;
+  if (s.max_exclusive ? !(v < s.max) : !(v <= s.max)) return false;
+  return true;
+}
+
+// The knob's value `k` steps tighter than `base` (k < 0: looser).
+std::optional<ParamValue> tighter(const ParamSpec& spec, const ParamValue& base, int k) {
+  ParamValue v = base;
+  if (spec.kind == ParamKind::integer) {
+    v.number = std::round(base.number * std::ldexp(1.0, k));
+  } else if (spec.kind == ParamKind::number) {
+    v.number = base.number * std::ldexp(1.0, -k);
+  } else {
+    return std::nullopt;
+  }
+  if (!in_range(spec, v.number)) return std::nullopt;
+  return v;
+}
+
+struct Measured {
+  std::vector<OutputValue> outputs;
+  NodeRun run;
+  std::string failure;
+};
+
+Measured measure(Graph g, std::size_t node, MemoCache& upstream, int repeats) {
+  Measured m;
+  m.run.seconds = std::numeric_limits<double>::infinity();
+  const std::uint64_t key = node_hashes(g)[node];
+  for (int r = 0; r < std::max(1, repeats); ++r) {
+    upstream.erase(key);  // the node itself runs every time; its producers come from the cache
+    try {
+      RunResult result = evaluate(g, upstream);
+      for (const NodeRun& run : result.runs)
+        if (run.node == g.nodes[node].name && run.seconds < m.run.seconds) m.run = run;
+      m.outputs = std::move(result.outputs);
+    } catch (const EvaluationError& e) {
+      m.failure = e.what();
+      return m;
+    }
+  }
+  return m;
+}
+
+// Largest relative difference over all numeric outputs (series element by element).
+void compare(const Measured& trial, const Measured& reference, KnobTrial& out) {
+  for (std::size_t i = 0; i < trial.outputs.size() && i < reference.outputs.size(); ++i) {
+    const Value& a = trial.outputs[i].value;
+    const Value& b = reference.outputs[i].value;
+    auto consider = [&](double x, double ref) {
+      const double e = std::abs(x - ref) / std::max(std::abs(ref), 1e-300);
+      if (e > out.max_relative_error) {
+        out.max_relative_error = e;
+        out.worst_output = trial.outputs[i].label;
+      }
+    };
+    if (a.kind() == ValueKind::scalar) {
+      consider(a.as_scalar(), b.as_scalar());
+    } else if (a.kind() == ValueKind::series) {
+      const auto& va = a.as_series().values;
+      const auto& vb = b.as_series().values;
+      if (va.size() != vb.size()) continue;  // a knob that sets the number of points: not comparable
+      for (std::size_t j = 0; j < va.size(); ++j) consider(va[j], vb[j]);
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<KnobTrial> bench_knobs(const Graph& graph, const KnobBenchOptions& options) {
+  std::vector<std::size_t> nodes;
+  if (options.node) {
+    const auto i = graph.find(*options.node);
+    if (!i) {
+      std::vector<std::string> names;
+      for (const GraphNode& n : graph.nodes) names.push_back(n.name);
+      throw SceneError("bench: " + unknown_name_message("node", *options.node, names));
+    }
+    nodes.push_back(*i);
+  } else {
+    nodes = graph.order;
+  }
+  std::vector<KnobTrial> trials;
+  for (std::size_t node : nodes) {
+    const GraphNode& n = graph.nodes[node];
+    std::vector<const ParamSpec*> knobs;
+    for (const ParamSpec& p : n.info().params)
+      if (p.knob && n.params.has(p.name)) knobs.push_back(&p);
+    if (knobs.empty()) {
+      if (options.node) throw SceneError("bench: node '" + n.name + "' (" + n.info().type + ") has no accuracy knobs");
+      continue;
+    }
+    Graph focused = focus_on(graph, node);
+    MemoCache cache;
+    // Reference: every numeric knob well past the tightest rung of the ladder, every choice knob
+    // at its first (most accurate) choice.
+    Graph reference_graph = focused;
+    for (const ParamSpec* k : knobs) {
+      if (k->kind == ParamKind::choice && !k->choices.empty())
+        reference_graph.nodes[node].params.set(k->name, ParamValue::of_choice(k->choices.front()));
+      for (int extra = options.steps + 2; extra > 0; --extra)
+        if (auto v = tighter(*k, n.params.get(k->name), extra)) {
+          reference_graph.nodes[node].params.set(k->name, *v);
+          break;
+        }
+    }
+    const Measured reference = measure(reference_graph, node, cache, 1);
+    if (!reference.failure.empty())
+      throw EvaluationError("bench: the reference evaluation of node '" + n.name + "' failed: " + reference.failure);
+    for (const ParamSpec* k : knobs) {
+      std::vector<ParamValue> settings;
+      const ParamValue& base = n.params.get(k->name);
+      if (k->kind == ParamKind::choice) {
+        for (const std::string& c : k->choices) settings.push_back(ParamValue::of_choice(c));
+      } else {
+        for (int step = -options.steps; step <= options.steps; ++step)
+          if (auto v = tighter(*k, base, step)) settings.push_back(*v);
+      }
+      for (const ParamValue& setting : settings) {
+        Graph trial_graph = focused;
+        trial_graph.nodes[node].params.set(k->name, setting);
+        const Measured m = measure(trial_graph, node, cache, options.repeats);
+        KnobTrial t;
+        t.node = n.name;
+        t.type = n.info().type;
+        t.knob = k->name;
+        t.setting = text_of(*k, setting);
+        t.is_default = t.setting == text_of(*k, base);
+        t.failure = m.failure;
+        if (m.failure.empty()) {
+          t.seconds = m.run.seconds;
+          t.work = m.run.work;
+          compare(m, reference, t);
+        }
+        trials.push_back(std::move(t));
+      }
+    }
+  }
+  return trials;
+}
+
+}  // namespace mechgraph
