@@ -75,6 +75,7 @@ void write_ports_text(std::ostream& os, const std::vector<PortSpec>& ports) {
     os << "  " << p.name << "  (";
     if (p.kind == ValueKind::handle) os << "handle: " << p.handle_kind;
     else os << to_string(p.kind) << ", " << p.dimension.describe() << ", " << p.dimension.si_unit();
+    if (!p.display_unit.empty()) os << ", shown in " << p.display_unit;
     if (p.multiple) os << ", one or more";
     if (p.optional) os << ", optional";
     os << ")\n      " << p.doc << "\n";
@@ -119,6 +120,7 @@ void write_ports_json(JsonWriter& json, const std::vector<PortSpec>& ports) {
     json.key("name").value(p.name).key("kind").value(to_string(p.kind)).key("doc").value(p.doc);
     if (p.kind == ValueKind::handle) json.key("handle").value(p.handle_kind);
     else json.key("dimension").value(p.dimension.describe()).key("unit").value(p.dimension.si_unit());
+    if (!p.display_unit.empty()) json.key("display_unit").value(p.display_unit);
     json.key("multiple").value(p.multiple).key("optional").value(p.optional);
     json.end_object();
   }
