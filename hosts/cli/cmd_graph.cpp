@@ -4,6 +4,7 @@
 #include "options.hpp"
 
 #include <iostream>
+#include <map>
 #include <set>
 
 namespace mechgraph::cli {
@@ -48,12 +49,19 @@ void write_dot(std::ostream& os, const Graph& graph) {
       for (const GraphNode::Source& s : in.sources) {
         os << "  " << quoted(graph.nodes[s.node].name) << " -> " << quoted(n.name) << " [label="
            << quoted(s.port + " -> " + in.port);
-        if (!n.needed) os << ", style=dashed, color=grey";
+        if (!n.needed) os << ", style=dashed, color=grey, fontcolor=grey";
         os << "];\n";
       }
+  // One box per node listing what is requested of it, so many outputs don't bury the graph.
+  std::map<std::size_t, std::string> requested_ports;
   for (const RequestedOutput& o : graph.outputs) {
-    os << "  " << quoted("out:" + o.label) << " [shape=plaintext, label=" << quoted(o.label) << "];\n";
-    os << "  " << quoted(graph.nodes[o.node].name) << " -> " << quoted("out:" + o.label) << " [style=bold];\n";
+    std::string& ports = requested_ports[o.node];
+    ports += (ports.empty() ? "" : "\\n") + o.port;
+  }
+  for (const auto& [node, ports] : requested_ports) {
+    const std::string id = "out:" + graph.nodes[node].name;
+    os << "  " << quoted(id) << " [shape=note, fontsize=10, label=\"" << ports << "\"];\n";
+    os << "  " << quoted(graph.nodes[node].name) << " -> " << quoted(id) << " [style=bold, arrowhead=none];\n";
   }
   os << "}\n";
 }
