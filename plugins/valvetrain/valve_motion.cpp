@@ -17,17 +17,27 @@ ValveMotion::ValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_spee
     open_begin_ = cam_->event_begin();
     open_end_ = cam_->event_end();
   } else {
-    // The valve moves while i h(phi) > lash: the first and last crossings bound the open period.
+    // The valve moves while i h(phi) > lash. The top of the lift brackets both crossings, however
+    // narrow the open period is: the opening is the first crossing before the top, the closing the
+    // last one after it.
     auto gap = [&](double phi) { return rocker_ratio_ * cam_->at(phi).lift - lash_; };
-    const std::vector<double> crossings = numerics::all_sign_changes(gap, cam_knots, samples, evaluations);
-    if (crossings.size() < 2) {
+    const numerics::Extremum top = numerics::maximize_piecewise(gap, cam_knots, samples, evaluations);
+    if (!(top.value > 0.0)) {
       std::ostringstream msg;
-      msg << "the valve never opens: rocker_ratio * cam lift reaches " << rocker_ratio_ * cam_->max_lift() * 1e3
+      msg << "the valve never opens: rocker_ratio * cam lift reaches " << (top.value + lash_) * 1e3
           << " mm, not more than the lash of " << lash_ * 1e3 << " mm";
       throw NodeError("lash", msg.str());
     }
-    open_begin_ = crossings.front();
-    open_end_ = crossings.back();
+    std::vector<double> rising{cam_->event_begin()}, falling{top.x};
+    for (double b : cam_->breakpoints()) (b < top.x ? rising : falling).push_back(b);
+    rising.push_back(top.x);
+    falling.push_back(cam_->event_end());
+    const auto opening = numerics::first_sign_change(gap, rising, samples, evaluations);
+    const std::vector<double> closings = numerics::all_sign_changes(gap, falling, samples, evaluations);
+    if (!opening || closings.empty())
+      throw NodeError("lash", "the opening or closing angle of the valve could not be bracketed");
+    open_begin_ = *opening;
+    open_end_ = closings.back();
   }
   knots_.push_back(open_begin_);
   for (double b : cam_->breakpoints())

@@ -164,3 +164,18 @@ TEST_CASE("time-area with three stages integrates across the stage changes", "[v
   missing.erase("port_diameter");
   CHECK_THROWS_WITH(run_time_area(m, missing), Contains("port_diameter"));
 }
+
+TEST_CASE("hard case: lash just below the valve's full lift leaves a tiny, finite open period", "[valvetrain]") {
+  const Study s;
+  const double lash = s.H * (1 - 1e-6);  // the valve opens by 9 nm
+  const OutputSet m = run_motion(s, 1.0, lash);
+  // H/2 (1 + cos k phi) = lash  =>  open angle = 2 acos(2 lash/H - 1) / k
+  const double open = 2 * std::acos(2 * lash / s.H - 1) * s.phi_d / (2 * pi);
+  CHECK_THAT(scalar(m, "open_angle"), WithinRel(open, 1e-6));
+  CHECK_THAT(scalar(m, "max_lift"), WithinRel(s.H - lash, 1e-6));
+  const OutputSet ta = run_time_area(m, {{"seat_diameter", ParamValue::of_number(s.d0)}});
+  CHECK(std::isfinite(scalar(ta, "time_area")));
+  CHECK(scalar(ta, "time_area") > 0.0);
+  // Near the top the lift is a parabola: angle-area ~ pi d0 cos a (2/3) (H - lash) open.
+  CHECK_THAT(scalar(ta, "angle_area"), WithinRel(pi * s.d0 * std::cos(s.a) * 2.0 / 3.0 * (s.H - lash) * open, 1e-4));
+}
