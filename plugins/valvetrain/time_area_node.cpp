@@ -77,11 +77,18 @@ class TimeAreaType final : public NodeType {
     long evaluations = 0;
     double angle_area = 0.0;
     if (p.text("method") == "exact") {
-      // Split also where the flow-area formula changes stage, so every piece is smooth.
+      // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
+      // the lift joins the search knots: a stage lift just below it is crossed twice close together,
+      // and the top keeps those two crossings in different pieces.
       std::vector<double> knots = motion->knots();
-      for (double stage_lift : area.stage_lifts()) {
-        auto crossing = [&](double phi) { return motion->at(phi).lift - stage_lift; };
-        for (double x : numerics::all_sign_changes(crossing, motion->knots(), 200, evaluations)) knots.push_back(x);
+      if (!area.stage_lifts().empty()) {
+        std::vector<double> search = knots;
+        search.push_back(numerics::maximize_piecewise([&](double x) { return motion->at(x).lift; }, knots, 200, evaluations).x);
+        std::sort(search.begin(), search.end());
+        for (double stage_lift : area.stage_lifts()) {
+          auto crossing = [&](double phi) { return motion->at(phi).lift - stage_lift; };
+          for (double x : numerics::all_sign_changes(crossing, search, 200, evaluations)) knots.push_back(x);
+        }
       }
       std::sort(knots.begin(), knots.end());
       angle_area = numerics::integrate_piecewise(f, knots, p.number("tolerance"), evaluations);
