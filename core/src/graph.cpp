@@ -167,6 +167,8 @@ class GraphBuilder {
     }
     if (spec.kind == ParamKind::integer && q.value != std::floor(q.value))
       fail(written.where, what + " = '" + v.text + "' must be a whole number" + via);
+    if (spec.kind == ParamKind::integer && std::abs(q.value) > 9007199254740992.0)  // 2^53: exact in a double
+      fail(written.where, what + " = '" + v.text + "' is too large for a whole number (at most 2^53)" + via);
     return q.value;
   }
 

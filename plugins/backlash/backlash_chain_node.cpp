@@ -23,6 +23,7 @@
 #include <mechgraph/domain/tolerance.hpp>
 
 #include <cmath>
+#include <sstream>
 
 namespace mechgraph::backlash {
 namespace {
@@ -239,6 +240,11 @@ class BacklashChainType final : public NodeType {
       const double load = p.number("load");
       if (!(load >= 0.0) || !std::isfinite(load)) throw NodeError("load", "load must be >= 0 and finite");
       const double deflection = load / stiffness;  // Hooke: x = F / c
+      if (!std::isfinite((max + deflection) / arm)) {
+        std::ostringstream msg;
+        msg << "load / stiffness = " << load << " N / " << stiffness << " N/m overflows: the chain would not hold the load";
+        throw NodeError("stiffness", msg.str());
+      }
       out.set_scalar("rod_elastic_deflection", deflection);
       out.set_scalar("rod_total_under_load", max + deflection);
       out.set_scalar("angular_total_under_load", (max + deflection) / arm);

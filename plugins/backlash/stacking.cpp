@@ -42,18 +42,22 @@ double link_sigma(const ToleranceLink& l) { return standard_deviation(l.distribu
 
 LinearStack stack_linear(const std::vector<ToleranceLink>& links) {
   LinearStack s;
-  double variance = 0.0;
+  // The variances are summed scaled by the largest |s_i sigma_i| (a hypot over many terms), so
+  // sizes far from 1 m neither overflow nor underflow when squared.
+  double scale = 0.0;
+  for (const ToleranceLink& l : links) scale = std::max(scale, std::abs(l.sensitivity * link_sigma(l)));
+  double variance = 0.0;  // in units of scale^2
   std::vector<double> worst(links.size()), var(links.size());
   for (std::size_t i = 0; i < links.size(); ++i) {
     const ToleranceLink& l = links[i];
     s.mean += l.sensitivity * l.mean;
     worst[i] = std::abs(l.sensitivity) * l.half_range;
-    const double si = l.sensitivity * link_sigma(l);
+    const double si = scale > 0.0 ? l.sensitivity * link_sigma(l) / scale : 0.0;
     var[i] = si * si;
     s.worst_case_half += worst[i];
     variance += var[i];
   }
-  s.rss_sigma = std::sqrt(variance);
+  s.rss_sigma = scale * std::sqrt(variance);
   s.contribution_worst_case.assign(links.size(), 0.0);
   s.contribution_rss.assign(links.size(), 0.0);
   for (std::size_t i = 0; i < links.size(); ++i) {

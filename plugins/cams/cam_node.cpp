@@ -114,6 +114,7 @@ class CamNodeType final : public NodeType {
     info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches")
                                .with_default(400.0)
                                .at_least(8)
+                               .at_most(1e6)
                                .as_knob());
     info_.outputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name), "follower lift over cam angle with 3 derivatives"),

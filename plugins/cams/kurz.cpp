@@ -40,10 +40,14 @@ double kurz_default_split(double phi_y, double phi_p) {
 std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double phi_y,
                                                   std::optional<double> rise_split) {
   const double phi_p = 0.5 * basics.action_angle;
-  if (!(phi_y > 0.0) || !(phi_y < phi_p)) {
+  // Both phases need a resolvable share of the half event: a phase of 1e-3 of it or less makes the
+  // law impulsive (not shockless any more) and its amplitudes overflow.
+  constexpr double min_share = 1e-3;
+  if (!(phi_y >= min_share * phi_p) || !(phi_y <= (1.0 - min_share) * phi_p)) {
     std::ostringstream msg;
-    msg << "accel_angle = " << deg(phi_y) << " must be > 0 and below half the action angle (" << deg(phi_p)
-        << "): the negative-acceleration phase needs room before the nose";
+    msg << "accel_angle = " << deg(phi_y) << " must lie between " << deg(min_share * phi_p) << " and "
+        << deg((1.0 - min_share) * phi_p) << " (0.1 % and 99.9 % of half the action angle, " << deg(phi_p)
+        << "): both the positive and the negative phase need room";
     throw NodeError("accel_angle", msg.str());
   }
   const double sigma = rise_split ? *rise_split : kurz_default_split(phi_y, phi_p);

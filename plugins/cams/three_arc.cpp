@@ -43,15 +43,25 @@ ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* p
   // Direction of the common normal N - F = (a + e cos phi_p, e sin phi_p), from the nose.
   g.junction_normal = std::atan2(e * std::sin(g.half_action), g.nose_centre + e * std::cos(g.half_action));
   g.flank_angle = g.half_action - g.junction_normal;
-  const bool ok = std::isfinite(g.flank_radius) && g.nose_centre > 0.0 && e > 0.0 &&
-                  g.flank_radius > g.nose_radius && g.flank_angle > 0.0 && g.junction_normal > 0.0;
-  if (!ok) {
-    std::ostringstream msg;
-    msg << "the three-arc contour does not close: nose radius " << mm(r2) << ", flank radius "
-        << mm(g.flank_radius) << ", nose-centre distance " << mm(g.nose_centre)
-        << " (need r1 > r0, r1 > r2 and a > 0)";
-    throw NodeError(parameter, msg.str());
-  }
+  // Each closing condition on its own, so the message names the one that failed.
+  std::ostringstream msg;
+  if (!std::isfinite(g.flank_radius) || !(e > 0.0))
+    msg << "the flank radius " << mm(g.flank_radius) << " must be finite and larger than the base radius";
+  else if (!(g.nose_centre > 0.0))
+    msg << "the nose-centre distance a = r0 + h - r2 = " << mm(g.nose_centre) << " must be > 0";
+  else if (!(g.flank_radius > g.nose_radius))
+    msg << "the flank radius " << mm(g.flank_radius) << " must exceed the nose radius " << mm(r2);
+  else if (!(g.flank_angle > 0.0) || !(g.junction_normal > 0.0))
+    msg << "the flank/nose junction falls outside the half action angle (flank angle " << deg(g.flank_angle)
+        << ", nose angle " << deg(g.junction_normal) << ")";
+  else if (g.junction_normal > 0.5 * pi)
+    // On the nose arc h'' = -a cos t: beyond t = 90 deg from the nose it turns positive, and the
+    // positive-acceleration phase would no longer be the flank angle.
+    msg << "the nose arc would span " << deg(g.junction_normal)
+        << " from the nose, past 90 deg where its acceleration turns positive; the flank angle must be at least "
+           "half the action angle minus 90 deg ("
+        << deg(g.half_action - 0.5 * pi) << ")";
+  if (!msg.str().empty()) throw NodeError(parameter, "the three-arc contour does not close: " + msg.str());
   return g;
 }
 

@@ -12,9 +12,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 namespace mechgraph::valvetrain {
 namespace {
+
+constexpr double max_rectangles = 1e8;  // a rectangle sum finer than this is a mistake, not a method
 
 class TimeAreaType final : public NodeType {
  public:
@@ -96,11 +99,19 @@ class TimeAreaType final : public NodeType {
       const double step = p.number("step");
       const double span = motion->open_end() - motion->open_begin();
       if (step > span / 2.0) throw NodeError("step", "the rectangle step must be at most half the open period");
-      double sum = 0.0;
-      for (double phi = motion->open_begin(); phi <= motion->open_end(); phi += step) {
-        sum += f(phi);
-        ++evaluations;
+      // The source's sum over phi_i = begin + i step, counted by index so a tiny step cannot stall.
+      const double count = std::floor(span / step);
+      if (count > max_rectangles) {
+        std::ostringstream msg;
+        msg << "a step of " << step * 180.0 / std::numbers::pi << " deg needs " << count << " rectangles over the "
+            << span * 180.0 / std::numbers::pi << " deg open period; at most " << max_rectangles
+            << " are allowed (use method: exact for a tight answer)";
+        throw NodeError("step", msg.str());
       }
+      double sum = 0.0;
+      const long n = static_cast<long>(count);
+      for (long i = 0; i <= n; ++i) sum += f(motion->open_begin() + static_cast<double>(i) * step);
+      evaluations += n + 1;
       angle_area = sum * step;
     }
     ctx.report_work("evaluations", static_cast<double>(evaluations));

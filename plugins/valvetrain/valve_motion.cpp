@@ -3,6 +3,7 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
+#include <algorithm>
 #include <sstream>
 
 namespace mechgraph::valvetrain {
@@ -46,9 +47,11 @@ ValveMotion::ValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_spee
 }
 
 LiftDerivatives ValveMotion::at(double phi) const {
+  // Open between the crossings found at construction; there the valve follows the cam (the lift
+  // clipped at 0 against rounding right at the crossings), elsewhere it rests on its seat.
+  if (phi < open_begin_ || phi > open_end_) return {};
   const LiftDerivatives h = cam_->at(phi);
-  const double lift = rocker_ratio_ * h.lift - lash_;
-  if (!(lift > 0.0)) return {};
+  const double lift = std::max(0.0, rocker_ratio_ * h.lift - lash_);
   return {lift, rocker_ratio_ * h.velocity, rocker_ratio_ * h.acceleration, rocker_ratio_ * h.jerk};
 }
 

@@ -17,13 +17,24 @@ class ValveMotionType final : public NodeType {
     info_.summary = "valve lift, velocity and acceleration over cam angle and time at one engine speed";
     info_.params = {
         ParamSpec::number("rpm", dim::angular_speed, "crank speed; the camshaft turns at half of it (four-stroke)", "rpm")
-            .positive(),
-        ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p").with_default(1.0).positive(),
+            .at_least(2.0 * std::numbers::pi / 60.0)       // 1 rpm
+            .at_most(1e6 * 2.0 * std::numbers::pi / 60.0),  // 1e6 rpm
+        ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p")
+            .with_default(1.0)
+            .at_least(0.01)
+            .at_most(100.0),
         ParamSpec::number("lash", dim::length, "valve lash (cold clearance), taken up before the valve moves", "mm")
             .with_default(0.0)
             .non_negative(),
-        ParamSpec::integer("samples", "samples per smooth piece for the extremum searches").with_default(400.0).at_least(8).as_knob(),
-        ParamSpec::integer("curve_points", "points of the lift_curve series over the open period").with_default(361.0).at_least(2),
+        ParamSpec::integer("samples", "samples per smooth piece for the extremum searches")
+            .with_default(400.0)
+            .at_least(8)
+            .at_most(1e6)
+            .as_knob(),
+        ParamSpec::integer("curve_points", "points of the lift_curve series over the open period")
+            .with_default(361.0)
+            .at_least(2)
+            .at_most(1e6),
     };
     info_.inputs = {PortSpec::handle("cam", std::string(CamLaw::kind_name), "the cam's follower lift law")};
     info_.outputs = {

@@ -80,7 +80,7 @@ TEST_CASE("the backlash study: per-hinge play, totals by three methods, hinge sh
   CHECK_THAT(value(json, "chain.angular_backlash_max"), WithinRel((50e-6 + hinges) / 0.5, 1e-12));
   // Statistics are tighter than the worst case; RSS and Monte Carlo agree within a few %.
   CHECK(value(json, "chain.rod_backlash_rss_max") < value(json, "chain.rod_backlash_max"));
-  CHECK_THAT(value(json, "chain.rod_backlash_mc_q999"), WithinRel(value(json, "chain.rod_backlash_rss_max"), 0.05));
+  CHECK_THAT(value(json, "chain.rod_backlash_mc_q999"), WithinRel(value(json, "chain.rod_backlash_rss_max"), 1e-3));
   // Seeded: the same run gives the same Monte Carlo numbers.
   const auto again = run_cli(plugins() + "-q run " + scene("backlash_chain.yaml") + " --json");
   CHECK(value(YAML::Load(again.out), "chain.rod_backlash_mc_mean") == value(json, "chain.rod_backlash_mc_mean"));
@@ -114,8 +114,9 @@ TEST_CASE("the backlash scene names of the contract load and give hand-computed 
   // 20 H11/h11: clearance 0 .. 260 um (IT11 = 130 um).
   CHECK_THAT(value(json, "f1.clearance_max"), WithinAbs(260e-6, 1e-12));
   // L = L_act + S_pin + S_bearing (mean fit clearance 130 um + the bearing's mean internal clearance).
+  // ISO 12240-1, normal group, bore over 12 up to 20 mm: radial internal clearance 40..82 um, mean 61 um.
   const double bearing_internal_mean = value(json, "chain.rod_backlash_mean") - 25e-6 - 130e-6 - 130e-6;
-  CHECK(bearing_internal_mean > 0.0);
+  CHECK_THAT(bearing_internal_mean, WithinAbs(61e-6, 1e-12));
   CHECK_THAT(value(json, "chain.angular_backlash_mean"), WithinAbs(value(json, "chain.rod_backlash_mean") / 0.5, 1e-15));
   CHECK_THAT(value(json, "chain.angular_backlash_max"),
              WithinAbs((value(json, "chain.rod_backlash_mean") + value(json, "chain.rod_backlash_limit")) / 0.5, 1e-15));
