@@ -285,7 +285,10 @@ class BacklashChainType final : public NodeType {
     const Vec3 axis = point_param(p, "axis_direction");
     if (!(norm(moving - fixed) > 1e-9))
       throw NodeError("rod_attach_moving", "rod_attach_moving coincides with rod_attach_fixed: the rod has no direction");
-    if (!(norm(axis) > 1e-12)) throw NodeError("axis_direction", "axis_direction is the zero vector: the axis has no direction");
+    // The direction is normalised, so any length will do; only an exact zero (or a denormal that
+    // cannot be normalised) has no direction.
+    if (!(norm(axis) > 1e-300) || !std::isfinite(norm(axis)))
+      throw NodeError("axis_direction", "axis_direction is the zero vector: the axis has no direction");
     const double R = moment_arm(fixed, moving, axis_point, axis);
     if (!std::isfinite(R)) throw NodeError("rod_attach_moving", "the moment arm of the geometry is not finite");
     if (std::abs(R) < limit)
