@@ -2,6 +2,7 @@
 
 #include <mechgraph/plugin_abi.hpp>
 
+#include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <spdlog/spdlog.h>
 
@@ -117,6 +118,19 @@ std::vector<std::filesystem::path> PluginRegistry::search_path(const std::option
     while (std::getline(ss, item, ':'))
       if (!item.empty()) out.emplace_back(item);
     if (!out.empty()) return out;
+  }
+  // Beside the program: <prefix>/bin/mechgraph finds <prefix>/lib/mechgraph/plugins, in the build
+  // tree as after `cmake --install`. The build's own folder is the last resort.
+  boost::dll::fs::error_code ec;
+  const auto program = boost::dll::program_location(ec);
+  if (!ec) {
+    const std::filesystem::path beside =
+        std::filesystem::path(program.string()).parent_path().parent_path() / "lib" / "mechgraph" / "plugins";
+    std::error_code exists_error;
+    if (std::filesystem::is_directory(beside, exists_error)) {
+      out.push_back(beside.lexically_normal());
+      return out;
+    }
   }
   out.emplace_back(MECHGRAPH_DEFAULT_PLUGIN_DIR);
   return out;

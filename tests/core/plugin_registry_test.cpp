@@ -92,4 +92,7 @@ TEST_CASE("plugin search path: --plugin-dir, then MECHGRAPH_PLUGIN_PATH, never t
   REQUIRE(fallback.size() == 1);
   CHECK(fallback[0] != ".");
   CHECK(fallback[0].is_absolute());
+  // build/tests/mechgraph_tests finds build/lib/mechgraph/plugins beside its bin-like folder,
+  // as an installed bin/mechgraph finds lib/mechgraph/plugins.
+  CHECK(std::filesystem::equivalent(fallback[0], MECHGRAPH_PLUGIN_DIR));
 }

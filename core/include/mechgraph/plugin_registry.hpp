@@ -40,7 +40,8 @@ class PluginRegistry {
   void load_directory(const std::filesystem::path& folder);
 
   /// The plugin folders in order of precedence: `plugin_dir` if given, else the folders of
-  /// MECHGRAPH_PLUGIN_PATH (':'-separated), else the build/install plugin folder. Never ".".
+  /// MECHGRAPH_PLUGIN_PATH (':'-separated), else lib/mechgraph/plugins beside the program's bin/
+  /// folder (build tree and install tree alike), else the build's plugin folder. Never ".".
   static std::vector<std::filesystem::path> search_path(const std::optional<std::filesystem::path>& plugin_dir);
 
   const RegisteredType* find(std::string_view type) const;
