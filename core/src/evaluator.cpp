@@ -4,7 +4,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <thread>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -149,48 +153,114 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph) {
   return hashes;
 }
 
-RunResult evaluate(const Graph& graph, MemoCache& cache) {
+namespace {
+
+// Evaluates node i (or takes it from the cache); its producers are in `produced` already.
+NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
+                 std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache) {
+  const GraphNode& node = graph.nodes[i];
+  NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}};
+  if (auto hit = cache.find(hashes[i])) {
+    produced[i] = hit;
+    run.reused = true;
+    spdlog::debug("{} reused from the memo cache", where_of(node));
+    return run;
+  }
+  InputSet inputs;
+  for (const GraphNode::Input& in : node.inputs)
+    for (const GraphNode::Source& s : in.sources) {
+      const auto& outs = produced[s.node]->all();
+      auto it = outs.find(s.port);
+      if (it == outs.end())
+        throw EvaluationError(where_of(node) + ": its input '" + in.port + "' needs '" + graph.nodes[s.node].name + "." +
+                              s.port + "', which that node did not produce: it needs an effect or parameters that node "
+                              "was not given");
+      inputs.add(in.port, it->second);
+    }
+  OutputSet outputs;
+  NodeContext context(node, run);
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    node.type->type->evaluate(node.params, inputs, outputs, context);
+  } catch (const NodeError& e) {
+    throw EvaluationError(where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
+  } catch (const EvaluationError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw EvaluationError(where_of(node) + ": " + e.what());
+  }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  produced[i] = checked_outputs(node, outputs);
+  cache.store(hashes[i], produced[i]);
+  spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
+  return run;
+}
+
+// Runs the needed nodes on `threads` workers: a node starts as soon as all its producers are done.
+void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
+                  std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache, unsigned threads,
+                  std::vector<NodeRun>& runs) {
+  const std::size_t n = graph.nodes.size();
+  std::vector<std::size_t> waiting(n, 0);                 // producers not finished yet
+  std::vector<std::vector<std::size_t>> consumers(n);
+  for (std::size_t i : graph.order)
+    for (std::size_t u : graph.nodes[i].upstream) {
+      ++waiting[i];
+      consumers[u].push_back(i);
+    }
+  std::vector<std::size_t> ready;
+  for (std::size_t i : graph.order)
+    if (waiting[i] == 0) ready.push_back(i);
+  std::vector<NodeRun> by_node(n);
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::size_t remaining = graph.order.size();
+  std::exception_ptr failure;
+  auto worker = [&] {
+    std::unique_lock lock(mutex);
+    while (true) {
+      changed.wait(lock, [&] { return !ready.empty() || remaining == 0 || failure; });
+      if (remaining == 0 || failure) return;
+      const std::size_t i = ready.back();
+      ready.pop_back();
+      lock.unlock();
+      NodeRun run;
+      std::exception_ptr error;
+      try {
+        run = run_node(graph, i, hashes, produced, cache);
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      if (error) {
+        if (!failure) failure = error;
+      } else {
+        by_node[i] = std::move(run);
+        --remaining;
+        for (std::size_t c : consumers[i])
+          if (--waiting[c] == 0) ready.push_back(c);
+      }
+      changed.notify_all();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
+  for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
+  for (std::size_t i : graph.order) runs.push_back(std::move(by_node[i]));
+}
+
+}  // namespace
+
+RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
   RunResult result;
   const std::vector<std::uint64_t> hashes = node_hashes(graph);
   std::vector<std::shared_ptr<const OutputSet>> produced(graph.nodes.size());
-  for (std::size_t i : graph.order) {
-    const GraphNode& node = graph.nodes[i];
-    NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}};
-    if (auto hit = cache.find(hashes[i])) {
-      produced[i] = hit;
-      run.reused = true;
-      spdlog::debug("{} reused from the memo cache", where_of(node));
-      result.runs.push_back(std::move(run));
-      continue;
-    }
-    InputSet inputs;
-    for (const GraphNode::Input& in : node.inputs)
-      for (const GraphNode::Source& s : in.sources) {
-        const auto& outs = produced[s.node]->all();
-        auto it = outs.find(s.port);
-        if (it == outs.end())
-          throw EvaluationError(where_of(node) + ": its input '" + in.port + "' needs '" + graph.nodes[s.node].name + "." +
-                                s.port + "', which that node did not produce: it needs an effect or parameters that node "
-                                "was not given");
-        inputs.add(in.port, it->second);
-      }
-    OutputSet outputs;
-    NodeContext context(node, run);
-    const auto start = std::chrono::steady_clock::now();
-    try {
-      node.type->type->evaluate(node.params, inputs, outputs, context);
-    } catch (const NodeError& e) {
-      throw EvaluationError(where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
-    } catch (const EvaluationError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw EvaluationError(where_of(node) + ": " + e.what());
-    }
-    run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    produced[i] = checked_outputs(node, outputs);
-    cache.store(hashes[i], produced[i]);
-    spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
-    result.runs.push_back(std::move(run));
+  if (threads <= 1 || graph.order.size() <= 1) {
+    for (std::size_t i : graph.order) result.runs.push_back(run_node(graph, i, hashes, produced, cache));
+  } else {
+    run_parallel(graph, hashes, produced, cache, std::min<unsigned>(threads, static_cast<unsigned>(graph.order.size())),
+                 result.runs);
   }
   for (const RequestedOutput& o : graph.outputs) {
     const auto& outs = produced[o.node]->all();

@@ -16,6 +16,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 namespace mechgraph::cli {
 namespace {
@@ -148,7 +149,9 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("run options");
   visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
                                                 "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
-      "json", "print one JSON object on stdout")("out", po::value<std::string>(),
+      "json", "print one JSON object on stdout")(
+      "threads", po::value<unsigned>()->default_value(1),
+      "evaluate independent nodes on this many threads (0: one per core)")("out", po::value<std::string>(),
                                                  "also write results.json and one CSV per series output into DIR");
   po::options_description all;
   all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
@@ -162,7 +165,9 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
   MemoCache cache;
-  const RunResult result = evaluate(graph, cache);
+  unsigned threads = vm["threads"].as<unsigned>();
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  const RunResult result = evaluate(graph, cache, threads);
   std::size_t evaluated = 0;
   for (const NodeRun& r : result.runs) evaluated += r.reused ? 0 : 1;
   spdlog::info("evaluated {} of {} nodes ({} reused from an identical node, {} culled)", evaluated, graph.nodes.size(),

@@ -52,6 +52,9 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph);
 
 /// Evaluates the needed nodes. Throws EvaluationError naming the node (and parameter) on failure,
 /// including a node that would emit NaN or Inf. `cache` may be shared across runs and threads.
-RunResult evaluate(const Graph& graph, MemoCache& cache);
+/// With `threads` > 1, independent nodes run at once (a node starts when its producers are done);
+/// the results are the same, `runs` stays in dependency order, but two identical nodes of one
+/// graph may then both be evaluated instead of one being reused.
+RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads = 1);
 
 }  // namespace mechgraph
