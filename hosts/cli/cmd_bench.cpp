@@ -80,20 +80,15 @@ void write_table(std::ostream& os, const std::vector<KnobTrial>& trials) {
 
 int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("bench options");
-  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
-                                                "override a parameter, as for run")(
+  add_scene_options(visible);
+  visible.add_options()(
       "node", po::value<std::string>(), "only this node")("steps", po::value<int>()->default_value(3),
                                                           "ladder: each knob from x 2^-steps to x 2^steps")(
       "repeats", po::value<int>()->default_value(3), "time = fastest of this many evaluations")(
       "json", "print JSON on stdout")("out", po::value<std::string>(), "also write bench.csv and bench.json into DIR");
-  po::options_description all;
-  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
-  po::positional_options_description positional;
-  positional.add("scene", 1);
   po::variables_map vm;
-  if (!parse_options(args, visible, all, positional, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--json] [--out DIR]"))
+  if (!parse_scene_command(args, visible, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--json] [--out DIR]"))
     return ok;
-  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   KnobBenchOptions options;
   if (vm.count("node")) options.node = vm["node"].as<std::string>();
   options.steps = vm["steps"].as<int>();
@@ -101,7 +96,7 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   if (options.steps < 0 || options.steps > 20) throw UsageError("--steps must be between 0 and 20");
   if (options.repeats < 1) throw UsageError("--repeats must be at least 1");
   const PluginRegistry registry = load_plugins(g);
-  const Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
+  const Graph graph = load_scene_graph(vm, registry);
   const std::vector<KnobTrial> trials = bench_knobs(graph, options);
   spdlog::info("{} knob settings measured", trials.size());
   if (vm.count("json")) write_json(std::cout, trials);

@@ -70,18 +70,12 @@ void write_dot(std::ostream& os, const Graph& graph) {
 
 int graph_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("graph options");
-  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
-                                                "override a parameter, as for run");
-  po::options_description all;
-  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
-  po::positional_options_description positional;
-  positional.add("scene", 1);
+  add_scene_options(visible);
   po::variables_map vm;
-  if (!parse_options(args, visible, all, positional, vm, "mechgraph graph SCENE [--set NAME=VALUE ...] | dot -Tsvg"))
+  if (!parse_scene_command(args, visible, vm, "mechgraph graph SCENE [--set NAME=VALUE ...] | dot -Tsvg"))
     return ok;
-  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   const PluginRegistry registry = load_plugins(g);
-  write_dot(std::cout, load_graph(vm["scene"].as<std::string>(), sets, registry));
+  write_dot(std::cout, load_scene_graph(vm, registry));
   return ok;
 }
 

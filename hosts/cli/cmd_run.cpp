@@ -147,23 +147,19 @@ void write_csv(const std::filesystem::path& file, const OutputValue& o) {
 
 int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("run options");
-  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
-                                                "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
+  add_scene_options(visible);
+  visible.add_options()(
       "json", "print one JSON object on stdout")(
       "threads", po::value<unsigned>()->default_value(1),
       "evaluate independent nodes on this many threads (0: one per core)")("out", po::value<std::string>(),
                                                  "also write results.json and one CSV per series output into DIR");
-  po::options_description all;
-  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
-  po::positional_options_description positional;
-  positional.add("scene", 1);
   po::variables_map vm;
-  if (!parse_options(args, visible, all, positional, vm, "mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]"))
+  if (!parse_scene_command(args, visible, vm,
+                           "mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--threads N] [--out DIR]"))
     return ok;
-  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
 
   const PluginRegistry registry = load_plugins(g);
-  const Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
+  const Graph graph = load_scene_graph(vm, registry);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());

@@ -27,4 +27,26 @@ inline bool parse_options(const std::vector<std::string>& args, const po::option
   return true;
 }
 
+/// The options of every command that reads a scene: --help and --set (SCENE is positional).
+inline void add_scene_options(po::options_description& visible) {
+  visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
+                                                "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm");
+}
+
+/// Parses a scene command (SCENE plus `visible`); returns false after printing --help.
+inline bool parse_scene_command(const std::vector<std::string>& args, const po::options_description& visible,
+                                po::variables_map& vm, const char* synopsis) {
+  po::options_description all;
+  all.add(visible).add_options()("scene", po::value<std::string>()->required(), "scene file");
+  po::positional_options_description positional;
+  positional.add("scene", 1);
+  return parse_options(args, visible, all, positional, vm, synopsis);
+}
+
+/// The scene named on the command line, loaded and checked with its --set overrides.
+inline Graph load_scene_graph(const po::variables_map& vm, const PluginRegistry& registry) {
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  return load_graph(vm["scene"].as<std::string>(), sets, registry);
+}
+
 }  // namespace mechgraph::cli
