@@ -183,7 +183,10 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
   try {
     node.type->type->evaluate(node.params, inputs, outputs, context);
   } catch (const NodeError& e) {
-    throw EvaluationError(where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
+    // Point at the parameter's value in the scene when it was written there, else at the node.
+    auto at = node.param_where.find(e.parameter());
+    const SourceLocation& where = at != node.param_where.end() ? at->second : node.where;
+    throw EvaluationError(where.str() + where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
   } catch (const EvaluationError&) {
     throw;
   } catch (const std::exception& e) {

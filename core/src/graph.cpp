@@ -257,6 +257,7 @@ class GraphBuilder {
       if (!spec) fail(value.key_where, owner + ": " + unknown_name_message("parameter", name, valid));
       seen.insert(name);
       node.params.set(name, parse_param(value, *spec, owner));
+      node.param_where[name] = value.where;
     }
     for (const ParamSpec& p : info.params) {
       if (seen.count(p.name)) continue;

@@ -119,3 +119,11 @@ TEST_CASE("a file named by a parameter enters the memo key with its contents", "
   CHECK(before[0] != after[0]);
   std::filesystem::remove(file);
 }
+
+TEST_CASE("a node's error points at the parameter's value in the scene, else at the node", "[evaluator]") {
+  MemoCache cache;
+  CHECK_THROWS_WITH(evaluate(graph_from("nodes:\n  f: { type: test.fail, params: { limit: 2 mm } }\noutputs: [f.out]\n"), cache),
+                    Catch::Matchers::StartsWith("scene.yaml:2:42: node 'f' (test.fail), parameter 'limit'"));
+  CHECK_THROWS_WITH(evaluate(graph_from("nodes:\n  f: { type: test.fail }\noutputs: [f.out]\n"), cache),
+                    Catch::Matchers::StartsWith("scene.yaml:2:3: node 'f' (test.fail), parameter 'limit'"));
+}

@@ -6,6 +6,7 @@
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,7 @@ struct GraphNode {
   const RegisteredType* type = nullptr;
   SourceLocation where;
   ParamSet params;
+  std::map<std::string, SourceLocation> param_where;  // where each written parameter's value stands
   struct Source {
     std::size_t node;
     std::string port;
