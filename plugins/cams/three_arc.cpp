@@ -30,6 +30,23 @@ double one_minus_cos(double x) {
   return 2.0 * s * s;
 }
 
+// The roller centre on an offset arc of radius R whose centre is c from the cam centre, at angle
+// t: s = +-c cos t + g, g = sqrt(q), q = R^2 - c^2 sin^2 t. Returns R - g = c^2 sin^2 t / (R + g)
+// (no cancellation) and the first three derivatives of g over t, from those of q:
+// g1 = q1/2g, g2 = q2/2g - q1^2/4gq, g3 = q3/2g - 3 q1 q2/4gq + 3 q1^3/8gq^2.
+struct ArcRoot {
+  double excess, d1, d2, d3;
+};
+ArcRoot arc_root(double c, double R, double t) {
+  const double c2 = c * c, st = std::sin(t);
+  const double q = R * R - c2 * st * st;
+  const double g = std::sqrt(q);
+  const double sin2 = std::sin(2.0 * t), cos2 = std::cos(2.0 * t);
+  const double q1 = -c2 * sin2, q2 = -2.0 * c2 * cos2, q3 = 4.0 * c2 * sin2;
+  return {c2 * st * st / (R + g), q1 / (2.0 * g), q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q),
+          q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q)};
+}
+
 // Completes the geometry from h, phi_p, r0, r2 (so a) and e, and checks the tangency closes.
 ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* parameter) {
   ThreeArcGeometry g;
@@ -175,19 +192,11 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
       // Roller centre on the pitch nose arc (centre distance a, radius R2 = r2 + rr, theta = t):
       // s = a cos t + sqrt(R2^2 - a^2 sin^2 t); h = s - (r0 + rr), and a + R2 = r0 + rr + h_max, so
       // h = h_max - a (1 - cos t) - a^2 sin^2 t / (R2 + sqrt(...)).
-      const double R2 = g_.nose_radius + rr;
-      const double a2 = a * a;
-      const double q = R2 * R2 - a2 * st * st;
-      const double g = std::sqrt(q);
-      const double s2 = std::sin(2.0 * t), c2 = std::cos(2.0 * t);
-      const double q1 = -a2 * s2, q2 = -2.0 * a2 * c2, q3 = 4.0 * a2 * s2;
-      const double g1 = q1 / (2.0 * g);
-      const double g2 = q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q);
-      const double g3 = q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q);
-      H = g_.max_lift - a * one_minus_cos(t) - a2 * st * st / (R2 + g);
-      H1 = -a * st + g1;
-      H2 = -a * ct + g2;
-      H3 = a * st + g3;
+      const ArcRoot r = arc_root(a, g_.nose_radius + rr, t);
+      H = g_.max_lift - a * one_minus_cos(t) - r.excess;
+      H1 = -a * st + r.d1;
+      H2 = -a * ct + r.d2;
+      H3 = a * st + r.d3;
     }
   } else {
     // Flank, x = phi_p - psi from the start of lift: d/dpsi = -d/dx.
@@ -204,19 +213,11 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
       // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr, the centre
       // opposite the follower: theta = pi + x): s = -e cos x + sqrt(R1^2 - e^2 sin^2 x), and
       // R1 - e = r0 + rr, so h = e (1 - cos x) - e^2 sin^2 x / (R1 + sqrt(...)).
-      const double R1 = g_.flank_radius + rr;
-      const double e2 = e * e;
-      const double q = R1 * R1 - e2 * sx * sx;
-      const double g = std::sqrt(q);
-      const double s2 = std::sin(2.0 * x), c2 = std::cos(2.0 * x);
-      const double q1 = -e2 * s2, q2 = -2.0 * e2 * c2, q3 = 4.0 * e2 * s2;
-      const double g1 = q1 / (2.0 * g);
-      const double g2 = q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q);
-      const double g3 = q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q);
-      F = e * one_minus_cos(x) - e2 * sx * sx / (R1 + g);
-      F1 = e * sx + g1;
-      F2 = e * cx + g2;
-      F3 = -e * sx + g3;
+      const ArcRoot r = arc_root(e, g_.flank_radius + rr, x);
+      F = e * one_minus_cos(x) - r.excess;
+      F1 = e * sx + r.d1;
+      F2 = e * cx + r.d2;
+      F3 = -e * sx + r.d3;
     }
     H = F;
     H1 = -F1;
