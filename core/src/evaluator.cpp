@@ -102,7 +102,28 @@ bool all_finite(const Value& v) {
     for (double x : v.as_series().axis)
       if (!std::isfinite(x)) return false;
   }
+  if (v.kind() == ValueKind::table) {
+    for (double x : v.as_table().axis.values)
+      if (!std::isfinite(x)) return false;
+    for (const Table::Column& c : v.as_table().channels)
+      for (double x : c.values)
+        if (!std::isfinite(x)) return false;
+  }
   return true;
+}
+
+// A table's channels are as long as its axis and named once each.
+void check_table_shape(const GraphNode& node, const std::string& port, const Table& t) {
+  for (std::size_t i = 0; i < t.channels.size(); ++i) {
+    const Table::Column& c = t.channels[i];
+    if (c.values.size() != t.axis.values.size())
+      throw EvaluationError(where_of(node) + " produced table '" + port + "' whose channel '" + c.name + "' has " +
+                            std::to_string(c.values.size()) + " values for an axis of " +
+                            std::to_string(t.axis.values.size()));
+    for (std::size_t j = 0; j < i; ++j)
+      if (t.channels[j].name == c.name)
+        throw EvaluationError(where_of(node) + " produced table '" + port + "' with channel '" + c.name + "' twice");
+  }
 }
 
 // Checks what a node produced against what it declared, and ties handles to the plugin's library.
@@ -117,6 +138,7 @@ std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const Ou
     if (!all_finite(value))
       throw EvaluationError(where_of(node) + " produced a NaN or infinite value at output '" + port +
                             "' (a bug in the node: infeasible inputs must be reported as errors)");
+    if (value.kind() == ValueKind::table) check_table_shape(node, port, value.as_table());
     if (value.kind() == ValueKind::handle) {
       if (!value.as_handle() || value.as_handle()->kind() != spec->handle_kind)
         throw EvaluationError(where_of(node) + " produced no " + spec->handle_kind + " at output '" + port + "'");

@@ -12,6 +12,8 @@
 #include <set>
 #include <sstream>
 
+#include <spdlog/spdlog.h>
+
 namespace mechgraph {
 
 Override parse_override(std::string_view text) {
@@ -76,9 +78,9 @@ class GraphBuilder {
       if (!names.insert(n.name).second) fail(n.where, "node '" + n.name + "' is defined twice");
     }
     for (const NodeSpec& n : scene_.nodes) graph_.nodes.push_back(resolve_node(n));
+    resolve_effects();
     for (std::size_t i = 0; i < scene_.nodes.size(); ++i) connect(i, scene_.nodes[i]);
     check_cycles();
-    resolve_effects();
     for (const PortRef& r : scene_.outputs) request(r, r.where);
     graph_.scene_output_count = graph_.outputs.size();
     for (const ReportSpec& table : scene_.report) resolve_report(table);
@@ -293,6 +295,7 @@ class GraphBuilder {
                               unknown_name_message("output port", ref.port, outs));
         }
         check_compatible(*out, *spec, ref, owner + ", input '" + in.port + "'");
+        check_effect_on(*producer, ref.port, ref.where, owner + ", input '" + in.port + "': '" + ref.str() + "'");
         input.sources.push_back({*producer, ref.port});
         if (std::find(node.upstream.begin(), node.upstream.end(), *producer) == node.upstream.end())
           node.upstream.push_back(*producer);
@@ -309,6 +312,7 @@ class GraphBuilder {
 
   static std::string describe_port(const PortSpec& p) {
     if (p.kind == ValueKind::handle) return "a " + p.handle_kind + (p.multiple ? " (one or more)" : "");
+    if (p.kind == ValueKind::table) return "a table of curves";
     return std::string("a ") + std::string(to_string(p.kind)) + " of " + p.dimension.describe();
   }
 
@@ -342,6 +346,8 @@ class GraphBuilder {
     for (std::size_t i = 0; i < graph_.nodes.size(); ++i) visit(i);
   }
 
+  // The scene's effects reach every node that implements them; a node's own `effects:` add to
+  // those for that node alone (and must be effects its type implements).
   void resolve_effects() {
     const std::vector<std::string> known = registry_.effect_names();
     for (const auto& [name, where] : scene_.effects) {
@@ -349,9 +355,41 @@ class GraphBuilder {
         fail(where, unknown_name_message("effect", name, known) + " (no loaded node type implements it)");
       if (std::find(graph_.effects.begin(), graph_.effects.end(), name) == graph_.effects.end()) graph_.effects.push_back(name);
     }
-    for (GraphNode& n : graph_.nodes)
+    for (std::size_t i = 0; i < graph_.nodes.size(); ++i) {
+      GraphNode& n = graph_.nodes[i];
+      const NodeInfo& info = n.info();
       for (const std::string& e : graph_.effects)
-        if (n.info().implements_effect(e)) n.effects_read.push_back(e);
+        if (info.implements_effect(e)) n.effects_read.push_back(e);
+      for (const auto& [name, where] : scene_.nodes[i].effects) {
+        if (!info.implements_effect(name)) {
+          std::vector<std::string> valid;
+          for (const EffectSpec& e : info.effects) valid.push_back(e.name);
+          fail(where, "node '" + n.name + "' (" + info.type + "): " + unknown_name_message("effect", name, valid) +
+                          (valid.empty() ? " (this node type implements no effects)" : ""));
+        }
+        if (std::find(n.effects_read.begin(), n.effects_read.end(), name) == n.effects_read.end())
+          n.effects_read.push_back(name);
+      }
+      for (const auto& [param, where] : n.param_where) {
+        const EffectSpec* effect = info.effect_of_param(param);
+        if (effect && !effect_on(n, effect->name))
+          spdlog::warn("{}node '{}' ({}): parameter '{}' is unused: it belongs to effect '{}', which is off for this node",
+                       where.str(), n.name, info.type, param, effect->name);
+      }
+    }
+  }
+
+  static bool effect_on(const GraphNode& n, std::string_view effect) {
+    return std::find(n.effects_read.begin(), n.effects_read.end(), effect) != n.effects_read.end();
+  }
+
+  // An output that an effect brings exists only while the effect is on for its node.
+  void check_effect_on(std::size_t node, const std::string& port, const SourceLocation& where, const std::string& what) const {
+    const GraphNode& n = graph_.nodes[node];
+    const EffectSpec* effect = n.info().effect_of_output(port);
+    if (!effect || effect_on(n, effect->name)) return;
+    fail(where, what + " needs effect '" + effect->name + "', which is off for node '" + n.name + "': add it to the scene's " +
+                    "'effects:' or to the node's own 'effects: [" + effect->name + "]'");
   }
 
   std::size_t request(const PortRef& ref, const SourceLocation& where) {
@@ -365,6 +403,7 @@ class GraphBuilder {
       fail(where, "output '" + ref.str() + "' of node '" + ref.node + "' (" + info.type + "): " +
                       unknown_name_message("output port", ref.port, outs));
     }
+    check_effect_on(*node, ref.port, where, "output '" + ref.str() + "'");
     for (std::size_t i = 0; i < graph_.outputs.size(); ++i)
       if (graph_.outputs[i].node == *node && graph_.outputs[i].port == ref.port) return i;
     graph_.outputs.push_back({*node, ref.port, spec, ref.str()});
@@ -400,6 +439,8 @@ class GraphBuilder {
         const PortSpec& port = *graph_.outputs[index].spec;
         const std::string what = "report row '" + row.label + "', '" + graph_.outputs[index].label + "'";
         if (port.kind == ValueKind::handle) fail(cell->where, what + " is a " + port.handle_kind + "; a table cell needs a number");
+        if (port.kind == ValueKind::table)
+          fail(cell->where, what + " is a table of curves; a table cell needs a number (request it in 'outputs:' for its CSV)");
         if (port.kind == ValueKind::series && !cell->element)
           fail(cell->where, what + " is a series; name one element, e.g. " + graph_.outputs[index].label + "[0]");
         if (port.kind == ValueKind::scalar && cell->element) fail(cell->where, what + " is a scalar; it has no elements");

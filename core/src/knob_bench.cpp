@@ -113,6 +113,25 @@ void compare(const Measured& trial, const Measured& reference, KnobTrial& out) {
       const auto& vb = b.as_series().values;
       if (va.size() != vb.size()) continue;  // a knob that sets the number of points: not comparable
       for (std::size_t j = 0; j < va.size(); ++j) consider(va[j], vb[j]);
+    } else if (a.kind() == ValueKind::table) {
+      const Table& ta = a.as_table();
+      const Table& tb = b.as_table();
+      if (ta.axis.values.size() != tb.axis.values.size()) continue;
+      for (const Table::Column& ca : ta.channels) {
+        const Table::Column* cb = tb.find(ca.name);
+        if (!cb) continue;
+        // Channel by channel, relative to the channel's own scale: a curve crossing zero would
+        // otherwise turn tiny absolute differences into huge relative ones.
+        double scale = 0.0;
+        for (double v : cb->values) scale = std::max(scale, std::abs(v));
+        for (std::size_t j = 0; j < ca.values.size(); ++j) {
+          const double e = std::abs(ca.values[j] - cb->values[j]) / std::max(scale, 1e-300);
+          if (e > out.max_relative_error) {
+            out.max_relative_error = e;
+            out.worst_output = trial.outputs[i].label + ":" + ca.name;
+          }
+        }
+      }
     }
   }
 }

@@ -117,6 +117,11 @@ PortSpec PortSpec::series(std::string name, Dimension d, std::string doc, std::s
   p.kind = ValueKind::series;
   return p;
 }
+PortSpec PortSpec::table(std::string name, std::string doc) {
+  PortSpec p = scalar(std::move(name), dim::none, std::move(doc));
+  p.kind = ValueKind::table;
+  return p;
+}
 PortSpec PortSpec::handle(std::string name, std::string handle_kind, std::string doc) {
   PortSpec p;
   p.name = std::move(name);
@@ -146,6 +151,18 @@ const ParamSpec* NodeInfo::find_param(std::string_view name) const { return find
 const PortSpec* NodeInfo::find_input(std::string_view name) const { return find_named(inputs, name); }
 const PortSpec* NodeInfo::find_output(std::string_view name) const { return find_named(outputs, name); }
 bool NodeInfo::implements_effect(std::string_view name) const { return find_named(effects, name) != nullptr; }
+
+const EffectSpec* NodeInfo::effect_of_output(std::string_view port) const {
+  for (const EffectSpec& e : effects)
+    if (std::find(e.outputs.begin(), e.outputs.end(), port) != e.outputs.end()) return &e;
+  return nullptr;
+}
+
+const EffectSpec* NodeInfo::effect_of_param(std::string_view name) const {
+  for (const EffectSpec& e : effects)
+    if (std::find(e.params.begin(), e.params.end(), name) != e.params.end()) return &e;
+  return nullptr;
+}
 
 std::size_t InputSet::count(std::string_view port) const {
   auto it = values_.find(port);

@@ -120,7 +120,7 @@ class SceneReader {
     if (node.name.find('.') != std::string::npos || node.name.find('$') != std::string::npos)
       fail(node.where, "node name '" + node.name + "' may not contain '.' or '$'");
     expect_map(body, "node '" + node.name + "'");
-    check_keys(body, {"type", "params", "inputs", "doc"}, "node key");
+    check_keys(body, {"type", "params", "inputs", "effects", "doc"}, "node key");
     if (!body["type"]) fail(at(body), "node '" + node.name + "' has no 'type'");
     node.type = scalar(body["type"], "a node type");
     node.type_where = at(body["type"]);
@@ -146,6 +146,10 @@ class SceneReader {
         }
         node.inputs.push_back(std::move(input));
       }
+    }
+    if (const YAML::Node e = body["effects"]; e && !e.IsNull()) {
+      if (!e.IsSequence()) fail(at(e), "expected the effects of node '" + node.name + "' as a list, e.g. [elastic_drive]");
+      for (const auto& item : e) node.effects.emplace_back(scalar(item, "an effect name"), at(item));
     }
     return node;
   }

@@ -7,6 +7,7 @@ std::string_view to_string(ValueKind kind) {
     case ValueKind::scalar: return "scalar";
     case ValueKind::series: return "series";
     case ValueKind::handle: return "handle";
+    case ValueKind::table: return "table";
   }
   return "?";
 }

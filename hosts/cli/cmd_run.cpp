@@ -36,8 +36,20 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
         json.key("axis_unit").value(o.value.as_series().axis_dimension.si_unit());
         break;
       case ValueKind::handle: json.key("value").null().key("handle").value(o.value.as_handle()->kind()); break;
+      case ValueKind::table: {
+        // {"axis": name, "columns": {name: {"unit": SI unit, "values": [...]}, ...}}, axis first.
+        const Table& t = o.value.as_table();
+        json.key("value").begin_object().key("axis").value(t.axis.name).key("columns").begin_object();
+        auto column = [&](const Table::Column& c) {
+          json.key(c.name).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values).end_object();
+        };
+        column(t.axis);
+        for (const Table::Column& c : t.channels) column(c);
+        json.end_object().end_object();
+        break;
+      }
     }
-    json.key("unit").value(o.dimension.si_unit());
+    json.key("unit").value(o.value.kind() == ValueKind::table ? std::string("table") : o.dimension.si_unit());
     json.end_object();
   }
   json.end_object();
@@ -134,6 +146,20 @@ void print_series(std::ostream& os, const OutputValue& o) {
   os << "]" << (unit == "1" ? "" : " " + unit);
 }
 
+// One CSV per table: the axis, then each channel; header `name [SI unit]`.
+void write_table_csv(const std::filesystem::path& file, const Table& t) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  out << t.axis.name << " [" << t.axis.dimension.si_unit() << "]";
+  for (const Table::Column& c : t.channels) out << "," << c.name << " [" << c.dimension.si_unit() << "]";
+  out << "\n" << std::setprecision(17);
+  for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
+    out << t.axis.values[i];
+    for (const Table::Column& c : t.channels) out << "," << c.values[i];
+    out << "\n";
+  }
+}
+
 void write_csv(const std::filesystem::path& file, const OutputValue& o) {
   std::ofstream out(file);
   if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
@@ -185,6 +211,9 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       std::cout << o.label << " = ";
       if (o.value.kind() == ValueKind::scalar) std::cout << format_value(o.value.as_scalar(), o.dimension, o.display_unit);
       else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
+      else if (o.value.kind() == ValueKind::table)
+        std::cout << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()
+                  << " points (see --out for the CSV)";
       else std::cout << "<" << o.value.as_handle()->kind() << ">";
       std::cout << "\n";
     }
@@ -197,6 +226,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     write_json(json_file, graph, result);
     for (const OutputValue& o : result.outputs)
       if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o);
+      else if (o.value.kind() == ValueKind::table) write_table_csv(dir / (o.label + ".csv"), o.value.as_table());
     spdlog::info("results written to {}", dir.string());
   }
   return ok;

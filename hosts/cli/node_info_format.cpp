@@ -74,6 +74,7 @@ void write_ports_text(std::ostream& os, const std::vector<PortSpec>& ports) {
   for (const PortSpec& p : ports) {
     os << "  " << p.name << "  (";
     if (p.kind == ValueKind::handle) os << "handle: " << p.handle_kind;
+    else if (p.kind == ValueKind::table) os << "table of curves";
     else os << to_string(p.kind) << ", " << p.dimension.describe() << ", " << p.dimension.si_unit();
     if (!p.display_unit.empty()) os << ", shown in " << p.display_unit;
     if (p.multiple) os << ", one or more";
@@ -119,6 +120,7 @@ void write_ports_json(JsonWriter& json, const std::vector<PortSpec>& ports) {
     json.begin_object();
     json.key("name").value(p.name).key("kind").value(to_string(p.kind)).key("doc").value(p.doc);
     if (p.kind == ValueKind::handle) json.key("handle").value(p.handle_kind);
+    else if (p.kind == ValueKind::table) {}
     else json.key("dimension").value(p.dimension.describe()).key("unit").value(p.dimension.si_unit());
     if (!p.display_unit.empty()) json.key("display_unit").value(p.display_unit);
     json.key("multiple").value(p.multiple).key("optional").value(p.optional);
@@ -147,7 +149,17 @@ void write_node_info_text(std::ostream& os, const NodeInfo& info) {
   }
   os << "\neffects:\n";
   if (info.effects.empty()) os << "  (none)\n";
-  for (const EffectSpec& e : info.effects) os << "  " << e.name << ": " << e.doc << "\n";
+  for (const EffectSpec& e : info.effects) {
+    os << "  " << e.name << ": " << e.doc << "\n";
+    auto list = [&](const char* what, const std::vector<std::string>& names) {
+      if (names.empty()) return;
+      os << "      " << what << ":";
+      for (const auto& n : names) os << " " << n;
+      os << "\n";
+    };
+    list("brings outputs", e.outputs);
+    list("reads parameters", e.params);
+  }
   os << "\nwork counters:";
   for (const auto& w : info.work_counters) os << " " << w;
   os << "\n";
@@ -163,7 +175,14 @@ void write_node_info_json(JsonWriter& json, const NodeInfo& info) {
   json.key("outputs");
   write_ports_json(json, info.outputs);
   json.key("effects").begin_array();
-  for (const EffectSpec& e : info.effects) json.begin_object().key("name").value(e.name).key("doc").value(e.doc).end_object();
+  for (const EffectSpec& e : info.effects) {
+    json.begin_object().key("name").value(e.name).key("doc").value(e.doc);
+    json.key("outputs").begin_array();
+    for (const auto& o : e.outputs) json.value(o);
+    json.end_array().key("params").begin_array();
+    for (const auto& p : e.params) json.value(p);
+    json.end_array().end_object();
+  }
   json.end_array();
   json.key("work_counters").begin_array();
   for (const auto& w : info.work_counters) json.value(w);

@@ -8,7 +8,7 @@
 
 namespace mechgraph::valvetrain {
 
-ValveMotion::ValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash,
+CamValveMotion::CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash,
                          int samples, long& evaluations)
     : cam_(std::move(cam)), camshaft_speed_(camshaft_speed), rocker_ratio_(rocker_ratio), lash_(lash) {
   std::vector<double> cam_knots{cam_->event_begin()};
@@ -46,7 +46,7 @@ ValveMotion::ValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_spee
   knots_.push_back(open_end_);
 }
 
-LiftDerivatives ValveMotion::at(double phi) const {
+LiftDerivatives CamValveMotion::at(double phi) const {
   // Open between the crossings found at construction; there the valve follows the cam (the lift
   // clipped at 0 against rounding right at the crossings), elsewhere it rests on its seat.
   if (phi < open_begin_ || phi > open_end_) return {};

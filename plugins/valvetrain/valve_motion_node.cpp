@@ -54,7 +54,7 @@ class ValveMotionType final : public NodeType {
     const double camshaft_speed = p.number("rpm") / 2.0;  // w_k = w / 2
     long evaluations = 0;
     const int samples = static_cast<int>(p.integer("samples"));
-    auto motion = std::make_shared<const ValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
+    auto motion = std::make_shared<const CamValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
                                                       p.number("lash"), samples, evaluations);
     const std::vector<double>& knots = motion->knots();
     const auto lift = numerics::maximize_piecewise([&](double x) { return motion->at(x).lift; }, knots, samples, evaluations);

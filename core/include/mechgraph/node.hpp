@@ -77,14 +77,21 @@ struct PortSpec {
   static PortSpec scalar(std::string name, Dimension d, std::string doc, std::string unit = {});
   static PortSpec series(std::string name, Dimension d, std::string doc, std::string unit = {});
   static PortSpec handle(std::string name, std::string handle_kind, std::string doc);
+  /// A table port: its channels carry their own dimensions (the port's dimension is none).
+  static PortSpec table(std::string name, std::string doc);
   PortSpec& many();
   PortSpec& optional_port();
 };
 
-/// An optional piece of physics a node implements, switched on by the scene's `effects:`.
+/// An optional piece of physics a node implements, switched on by the scene's `effects:` or the
+/// node's own `effects:`. The outputs it lists exist only while it is on: asking for one of them
+/// with the effect off is a load-time error naming the effect. The parameters it lists are read
+/// only while it is on (a value written for one with the effect off is reported as unused).
 struct EffectSpec {
   std::string name;
   std::string doc;
+  std::vector<std::string> outputs{};
+  std::vector<std::string> params{};
 };
 
 /// Everything a node type says about itself.
@@ -104,6 +111,10 @@ struct NodeInfo {
   const PortSpec* find_input(std::string_view name) const;
   const PortSpec* find_output(std::string_view name) const;
   bool implements_effect(std::string_view name) const;
+  /// The effect that brings output `port`, or nullptr if the output is always there.
+  const EffectSpec* effect_of_output(std::string_view port) const;
+  /// The effect that brings parameter `name`, or nullptr.
+  const EffectSpec* effect_of_param(std::string_view name) const;
 };
 
 /// The inputs of one evaluation: each port's connected values (several for `multiple` ports).

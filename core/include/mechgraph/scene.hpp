@@ -49,6 +49,7 @@ struct NodeSpec {
     bool listed = false;  // written as a list
   };
   std::vector<InputSpec> inputs;
+  std::vector<std::pair<std::string, SourceLocation>> effects;  // this node's own, added to the scene's
 };
 
 /// One cell written out in full: "node.port", "node.port[i]" (element i of a series) or "-".

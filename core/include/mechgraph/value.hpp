@@ -1,6 +1,6 @@
 #pragma once
-// What flows along the edges of a graph: a scalar, a series over an axis, or a handle to a
-// domain object (a cam law, a valve motion, a fit ...). Values are immutable once produced and
+// What flows along the edges of a graph: a scalar, a series over an axis, a table (one axis,
+// several named channels), or a handle to a domain object (a cam law, a valve motion, a fit ...). Values are immutable once produced and
 // shared between consumers, so evaluation can run on many threads.
 #include <mechgraph/dimension.hpp>
 
@@ -31,7 +31,33 @@ struct Series {
   Dimension axis_dimension{};
 };
 
-enum class ValueKind { scalar, series, handle };
+/// A curve with several channels over one axis: SVAJ curves (lift, velocity, acceleration, jerk)
+/// over cam angle, or a simulation's state. Every channel has as many values as the axis, its own
+/// name and dimension (SI); `display_unit` is how a report prints it ("" = SI).
+struct Table {
+  struct Column {
+    std::string name;
+    Dimension dimension{};
+    std::vector<double> values;
+    std::string display_unit;
+  };
+  Column axis;
+  std::vector<Column> channels;
+
+  /// The channel called `name`, or nullptr.
+  const Column* find(std::string_view name) const {
+    for (const Column& c : channels)
+      if (c.name == name) return &c;
+    return nullptr;
+  }
+  /// Adds a channel; its values are filled by the caller (same length as the axis).
+  Column& add_channel(std::string name, Dimension d, std::string display_unit = {}) {
+    channels.push_back({std::move(name), d, {}, std::move(display_unit)});
+    return channels.back();
+  }
+};
+
+enum class ValueKind { scalar, series, handle, table };
 
 std::string_view to_string(ValueKind kind);
 
@@ -50,6 +76,12 @@ class Value {
     out.series_ = std::make_shared<const Series>(std::move(s));
     return out;
   }
+  static Value table(Table t) {
+    Value out;
+    out.kind_ = ValueKind::table;
+    out.table_ = std::make_shared<const Table>(std::move(t));
+    return out;
+  }
   static Value handle(std::shared_ptr<const DomainObject> object) {
     Value out;
     out.kind_ = ValueKind::handle;
@@ -60,12 +92,14 @@ class Value {
   ValueKind kind() const { return kind_; }
   double as_scalar() const { return scalar_; }
   const Series& as_series() const { return *series_; }
+  const Table& as_table() const { return *table_; }
   const std::shared_ptr<const DomainObject>& as_handle() const { return handle_; }
 
  private:
   ValueKind kind_ = ValueKind::scalar;
   double scalar_ = 0.0;
   std::shared_ptr<const Series> series_;
+  std::shared_ptr<const Table> table_;
   std::shared_ptr<const DomainObject> handle_;
 };
 
