@@ -101,7 +101,7 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
       } else {
         value = o.value.as_scalar();
       }
-      if (cells[1].empty()) cells[1] = o.dimension.si_unit();
+      if (cells[1].empty() && o.dimension.si_unit() != "1") cells[1] = o.dimension.si_unit();
       const double shown = row.unit.empty() ? value : to_unit(value, o.dimension, row.unit);
       char buffer[32];
       std::snprintf(buffer, sizeof buffer, "%.6g", shown);

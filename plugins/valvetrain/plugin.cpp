@@ -5,7 +5,9 @@
 
 namespace {
 mechgraph::NodeTypeList make_node_types() {
-  return {mechgraph::valvetrain::make_valve_motion_type(), mechgraph::valvetrain::make_time_area_type()};
+  using namespace mechgraph::valvetrain;
+  return {make_valve_motion_type(), make_time_area_type(), make_masses_type(), make_spring_design_type(),
+          make_resonance_type()};
 }
 }  // namespace
 

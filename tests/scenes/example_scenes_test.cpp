@@ -47,9 +47,10 @@ TEST_CASE("the valve-train study: equal lift and phi_y, exact time-area agrees w
     CHECK_THAT(value(f, ta), WithinRel(value(e, ta), 1e-4));
   }
   // A higher speed shortens the open time: time-area scales as 1/rpm.
-  const auto fast = run_cli(plugins() + "-q run " + scene("valvetrain_cams.yaml") + " --json --set rpm=11200rpm");
+  // (half the speed: at twice the speed the study's spring would have no fixed point)
+  const auto fast = run_cli(plugins() + "-q run " + scene("valvetrain_cams.yaml") + " --json --set rpm=2800rpm");
   REQUIRE(fast.exit_code == 0);
-  CHECK_THAT(value(YAML::Load(fast.out), "ta_kurz.time_area"), WithinRel(value(e, "ta_kurz.time_area") / 2, 1e-12));
+  CHECK_THAT(value(YAML::Load(fast.out), "ta_kurz.time_area"), WithinRel(value(e, "ta_kurz.time_area") * 2, 1e-12));
 }
 
 TEST_CASE("the culling demo evaluates only the requested branch", "[scenes]") {
