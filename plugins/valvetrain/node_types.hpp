@@ -8,5 +8,6 @@ std::shared_ptr<const NodeType> make_time_area_type();
 std::shared_ptr<const NodeType> make_masses_type();
 std::shared_ptr<const NodeType> make_spring_design_type();
 std::shared_ptr<const NodeType> make_resonance_type();
+std::shared_ptr<const NodeType> make_dynamics_type();
 
 }  // namespace mechgraph::valvetrain

@@ -50,7 +50,8 @@ struct Table {
       if (c.name == name) return &c;
     return nullptr;
   }
-  /// Adds a channel; its values are filled by the caller (same length as the axis).
+  /// Adds a channel; its values are filled by the caller (same length as the axis). The reference
+  /// is invalidated by the next add_channel.
   Column& add_channel(std::string name, Dimension d, std::string display_unit = {}) {
     channels.push_back({std::move(name), d, {}, std::move(display_unit)});
     return channels.back();

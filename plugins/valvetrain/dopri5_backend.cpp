@@ -1,0 +1,136 @@
+// The explicit backend: Boost.Odeint's Dormand-Prince 5(4) with step-size control and dense
+// output. The event functions are checked at the end of every step; a sign change (in the counted
+// direction) is refined on the dense output with TOMS 748 and the earliest one stops the step.
+// The state is integrated scaled by the absolute tolerances, so one tolerance fits lift and speed.
+#include "ode_backend.hpp"
+
+#include <boost/math/tools/roots.hpp>
+#include <boost/numeric/odeint.hpp>
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace mechgraph::valvetrain {
+namespace {
+
+namespace odeint = boost::numeric::odeint;
+using Scaled = std::array<double, 2>;
+
+class Dopri5Backend final : public OdeBackend {
+ public:
+  Dopri5Backend(const SingleMassModel& model, const SimulationOptions& options)
+      : model_(model), options_(options),
+        dense_(odeint::make_dense_output(1.0, options.rtol, options.max_step, odeint::runge_kutta_dopri5<Scaled>())) {}
+
+  void restart(double t, const OdeState& s, Mode m) override {
+    mode_ = m;
+    const double first = first_step_ > 0.0 ? first_step_ : 1e-9;
+    dense_.initialize(scale(s), t, first);
+    ++initialisations_;
+    stepped_ = false;
+    root_ = -1;
+    g_.assign(static_cast<std::size_t>(model_.root_count(m)), 0.0);
+    if (!g_.empty()) model_.roots(m, t, s, g_.data());
+  }
+
+  BackendStep advance(double target, double limit) override {
+    for (;;) {
+      const double now = dense_.current_time();
+      if (stepped_ && root_ >= 0 && root_time_ <= target) return {root_time_, state_at(root_time_), root_};
+      if (stepped_ && target <= now) return {target, state_at(target), -1};
+      if (target - now <= 4.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(now)))
+        return {target, unscale(dense_.current_state()), -1};  // closer than rounding: there
+      // Never step past `limit` (a kink of the excitation): shorten the next step to end there.
+      if (now + dense_.current_time_step() > limit) {
+        dense_.initialize(dense_.current_state(), now, limit - now);
+        ++initialisations_;
+      }
+      dense_.do_step(System{this});
+      ++steps_;
+      stepped_ = true;
+      first_step_ = dense_.current_time_step();
+      find_root();
+      if (++checked_ > options_.max_steps)
+        throw std::runtime_error("dopri5: more than " + std::to_string(options_.max_steps) + " steps");
+    }
+  }
+
+  void add_work(std::map<std::string, double>& work) const override {
+    work["steps"] += static_cast<double>(steps_);
+    work["rhs_evaluations"] += static_cast<double>(rhs_);
+    work["root_evaluations"] += static_cast<double>(root_evaluations_);
+    // Each attempted step costs six new stages (the seventh is the next step's first: FSAL), and
+    // every initialisation one more evaluation: what is left over are rejected attempts.
+    const long attempts = (rhs_ - initialisations_) / 6;
+    work["rejected_steps"] += static_cast<double>(std::max(0L, attempts - steps_));
+  }
+
+ private:
+  struct System {
+    Dopri5Backend* self;
+    void operator()(const Scaled& q, Scaled& dq, double t) const {
+      ++self->rhs_;
+      OdeState ds;
+      self->model_.rhs(self->mode_, t, self->unscale(q), ds);
+      dq = {ds.x / self->options_.atol_x, ds.v / self->options_.atol_v};
+    }
+  };
+
+  Scaled scale(const OdeState& s) const { return {s.x / options_.atol_x, s.v / options_.atol_v}; }
+  OdeState unscale(const Scaled& q) const { return {q[0] * options_.atol_x, q[1] * options_.atol_v}; }
+  OdeState state_at(double t) {
+    Scaled q;
+    dense_.calc_state(t, q);
+    return unscale(q);
+  }
+
+  // The earliest event in the last step [t0, t1], to full precision in time.
+  void find_root() {
+    root_ = -1;
+    if (g_.empty()) return;
+    const double t0 = dense_.previous_time(), t1 = dense_.current_time();
+    std::vector<double> g1(g_.size());
+    model_.roots(mode_, t1, unscale(dense_.current_state()), g1.data());
+    ++root_evaluations_;
+    const std::vector<int> direction = model_.root_directions(mode_);
+    for (std::size_t i = 0; i < g_.size(); ++i) {
+      const bool crosses = direction[i] > 0 ? (g_[i] < 0.0 && g1[i] >= 0.0) : (g_[i] > 0.0 && g1[i] <= 0.0);
+      if (!crosses) continue;
+      auto g = [&](double t) {
+        std::vector<double> v(g_.size());
+        model_.roots(mode_, t, state_at(t), v.data());
+        ++root_evaluations_;
+        return v[i];
+      };
+      boost::uintmax_t iterations = 100;
+      const auto bracket = boost::math::tools::toms748_solve(g, t0, t1, g_[i], g1[i],
+                                                             boost::math::tools::eps_tolerance<double>(50), iterations);
+      const double t = bracket.second;  // the side where the function has crossed
+      if (root_ < 0 || t < root_time_) {
+        root_ = static_cast<int>(i);
+        root_time_ = t;
+      }
+    }
+    g_ = std::move(g1);
+  }
+
+  const SingleMassModel& model_;
+  SimulationOptions options_;
+  odeint::dense_output_runge_kutta<odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Scaled>>> dense_;
+  Mode mode_ = Mode::seated;
+  bool stepped_ = false;
+  std::vector<double> g_;  // the event functions at the start of the next step
+  int root_ = -1;
+  double root_time_ = 0.0;
+  double first_step_ = 0.0;
+  long steps_ = 0, rhs_ = 0, root_evaluations_ = 0, initialisations_ = 0, checked_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<OdeBackend> make_dopri5_backend(const SingleMassModel& model, const SimulationOptions& options) {
+  return std::make_unique<Dopri5Backend>(model, options);
+}
+
+}  // namespace mechgraph::valvetrain

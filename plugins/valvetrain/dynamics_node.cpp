@@ -1,0 +1,253 @@
+// valvetrain.dynamics: the valve's motion with the drive's elasticity and the contacts as effects
+// (docs/methods/valvetrain.md, "dynamic simulation"; the model is in single_mass_model.hpp).
+// With elastic_drive off the node is a pass-through: the rigid drive's (kinematic) lift, nothing
+// integrated. Results are taken from the last of `revolutions` cam revolutions, so the start-up
+// transient has died out when the drive is damped.
+#include "node_types.hpp"
+#include "single_mass_model.hpp"
+#include "train_masses.hpp"
+
+#include <mechgraph/domain/valve_motion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace mechgraph::valvetrain {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+class DynamicsType final : public NodeType {
+ public:
+  DynamicsType() {
+    info_.type = "valvetrain.dynamics";
+    info_.version = 1;
+    info_.summary = "valve motion on an elastic drive (single mass), cam contact and seat as located events; rigid when "
+                    "elastic_drive is off";
+    info_.params = {
+        ParamSpec::number("drive_stiffness", dim::stiffness, "k_d: the drive's stiffness reduced to the valve (elastic_drive)",
+                          "N/mm")
+            .optional()
+            .positive()
+            .at_most(1e13),
+        ParamSpec::number("damping_ratio", dim::none, "drive damping as a share of critical on k_d + c_s (elastic_drive)")
+            .with_default(0.06)
+            .non_negative()
+            .at_most(2.0),
+        ParamSpec::integer("revolutions", "cam revolutions simulated; results from the last")
+            .with_default(2.0)
+            .at_least(1)
+            .at_most(1000),
+        ParamSpec::number("tolerance", dim::none,
+                          "relative tolerance of the integration (absolute: this times the full lift, and times the "
+                          "full lift x camshaft speed for the velocity)")
+            .with_default(1e-8)
+            .at_least(1e-13)
+            .at_most(1e-2)
+            .as_knob(),
+        ParamSpec::choice("integrator", {"cvode", "dopri5"},
+                          "cvode: SUNDIALS CVODE, BDF with root finding (stiff drives); dopri5: explicit Dormand-Prince "
+                          "5(4) with event location")
+            .with_default("cvode")
+            .as_knob(),
+        ParamSpec::integer("curve_points", "points of the curves over the last cam revolution (also where deviations are read)")
+            .with_default(1441.0)
+            .at_least(16)
+            .at_most(1e7)
+            .as_knob(),
+        ParamSpec::number("restitution", dim::none, "coefficient of restitution of the valve on its seat (seat_impact)")
+            .with_default(0.3)
+            .non_negative()
+            .below(1.0),
+        ParamSpec::number("seating_speed", dim::velocity, "a landing slower than this seats the valve (seat_impact)", "m/s")
+            .with_default(0.01)
+            .positive()
+            .at_most(100.0),
+    };
+    info_.inputs = {
+        PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's kinematic motion at the speed simulated"),
+        PortSpec::handle("design", std::string(SpringDesign::kind_name), "spring and reduced mass (valvetrain.spring_design)"),
+    };
+    info_.outputs = {
+        PortSpec::table("curves", "over the last revolution's cam angle: lift x, quasi-static x_qs, kinematic lift, drive "
+                                  "displacement y, velocity, contact force, spring force"),
+        PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the curve points", "mm"),
+        PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
+        PortSpec::scalar("min_contact_force", dim::force, "least drive (cam) force while the valve is off its seat", "N"),
+        PortSpec::scalar("seating_velocity", dim::velocity, "speed of the first landing in the last revolution", "m/s"),
+        PortSpec::scalar("floats", dim::none, "1 if the valve lost cam contact in the last revolution, else 0"),
+        PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
+        PortSpec::scalar("bounce_height", dim::length, "highest lift after the first landing of the last revolution", "mm"),
+    };
+    info_.effects = {
+        {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass); off: rigid drive",
+         {"max_deviation", "residual_amplitude"}, {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions"}},
+        {"contact_loss", "unilateral cam contact: the valve flies free while the drive would pull it (needs elastic_drive)",
+         {"floats"}, {}},
+        {"seat_impact", "the valve bounces on its seat with a coefficient of restitution (needs elastic_drive)",
+         {"bounces", "bounce_height"}, {"restitution", "seating_speed"}},
+    };
+    info_.work_counters = {"steps", "rhs_evaluations", "jacobian_evaluations", "root_evaluations", "rejected_steps",
+                           "newton_iterations", "events"};
+  }
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
+    const auto motion = in.handle<ValveMotion>("valve");
+    const auto design = in.handle<SpringDesign>("design");
+    const bool elastic = ctx.effect("elastic_drive");
+    for (const char* effect : {"contact_loss", "seat_impact"})
+      if (ctx.effect(effect) && !elastic)
+        throw NodeError("drive_stiffness", std::string(effect) + " needs the elastic_drive effect as well (a rigid drive "
+                                           "neither loses contact nor lets the valve bounce)");
+    const double w = motion->camshaft_speed();
+    const double period = 2.0 * pi / w;
+    const double M = design->reduced_mass;
+    const double P0 = design->spring->preload();
+    const double c_s = design->spring->stiffness(0.0);
+    const long n = p.integer("curve_points");
+    const int revolutions = static_cast<int>(p.integer("revolutions"));
+
+    // The curves' cam angles: one revolution from -pi, the nose at 0.
+    std::vector<double> phi(static_cast<std::size_t>(n));
+    for (long j = 0; j < n; ++j) phi[static_cast<std::size_t>(j)] = -pi + 2.0 * pi * static_cast<double>(j) / static_cast<double>(n - 1);
+
+    Table curves;
+    curves.axis = {"cam_angle", dim::angle, phi, "deg"};
+    curves.add_channel("lift", dim::length, "mm");
+    curves.add_channel("quasi_static_lift", dim::length, "mm");
+    curves.add_channel("kinematic_lift", dim::length, "mm");
+    curves.add_channel("drive_displacement", dim::length, "mm");
+    curves.add_channel("velocity", dim::velocity, "m/s");
+    curves.add_channel("contact_force", dim::force, "N");
+    curves.add_channel("spring_force", dim::force, "N");
+    auto& lift = curves.channels[0].values;  // (references taken once every channel is in place)
+    auto& quasi_static = curves.channels[1].values;
+    auto& kinematic = curves.channels[2].values;
+    auto& drive = curves.channels[3].values;
+    auto& velocity = curves.channels[4].values;
+    auto& contact = curves.channels[5].values;
+    auto& spring = curves.channels[6].values;
+
+    double min_contact = std::numeric_limits<double>::infinity();
+    double seating_velocity = 0.0, bounce_height = 0.0, max_dev = 0.0, residual = 0.0;
+    double floats = 0.0, bounces = 0.0;
+
+    if (!elastic) {
+      // Rigid drive: the valve follows the cam; the cam must carry inertia and spring.
+      for (double a : phi) {
+        const LiftDerivatives x = motion->at(a);
+        const double force = M * w * w * x.acceleration + P0 + c_s * x.lift;
+        lift.push_back(x.lift);
+        quasi_static.push_back(x.lift);
+        kinematic.push_back(x.lift);
+        drive.push_back(motion->drive(a).lift);
+        velocity.push_back(w * x.velocity);
+        contact.push_back(x.lift > 0.0 ? force : 0.0);
+        spring.push_back(P0 + c_s * x.lift);
+        if (x.lift > 0.0) min_contact = std::min(min_contact, force);
+      }
+      seating_velocity = w * std::abs(motion->at(motion->open_end() - 1e-12).velocity);
+      for (const char* counter : {"steps", "rhs_evaluations", "events"}) ctx.report_work(counter, 0.0);
+    } else {
+      if (!p.has("drive_stiffness")) throw NodeError("drive_stiffness", "elastic_drive needs drive_stiffness");
+      const double k_d = p.number("drive_stiffness");
+      SingleMassParams mp;
+      mp.mass = M;
+      mp.drive_stiffness = k_d;
+      mp.drive_damping = 2.0 * p.number("damping_ratio") * std::sqrt((k_d + c_s) * M);
+      mp.preload = P0;
+      mp.spring_rate = c_s;
+      mp.contact_loss = ctx.effect("contact_loss");
+      mp.seat_impact = ctx.effect("seat_impact");
+      mp.restitution = p.number("restitution");
+      mp.seating_speed = p.number("seating_speed");
+      // t = 0 at cam angle -pi (the base circle, valve seated).
+      const SingleMassModel model(mp, [&](double t, double& y, double& dy) {
+        const LiftDerivatives d = motion->drive(-pi + w * t);
+        y = d.lift;
+        dy = w * d.velocity;
+      });
+      const double h_max = motion->rocker_ratio() * motion->cam().max_lift() - motion->lash();
+      SimulationOptions options;
+      options.integrator = p.text("integrator");
+      options.rtol = p.number("tolerance");
+      options.atol_x = options.rtol * h_max;
+      options.atol_v = options.rtol * h_max * w;
+      options.max_step = period / 720.0;  // half a cam degree: no two events hide inside one step
+      std::vector<double> knots;
+      std::vector<double> cam_knots{motion->cam().event_begin(), motion->cam().event_end()};
+      for (double b : motion->cam().breakpoints()) cam_knots.push_back(b);
+      for (int r = 0; r < revolutions; ++r)
+        for (double k : cam_knots) knots.push_back((r + (k + pi) / (2.0 * pi)) * period);
+      std::sort(knots.begin(), knots.end());
+      const double last = (revolutions - 1) * period;
+      std::vector<double> times;
+      for (double a : phi) times.push_back(last + (a + pi) / w);
+      SimulationResult run;
+      try {
+        run = simulate(model, 0.0, revolutions * period, times, knots, options);
+      } catch (const std::runtime_error& e) {
+        throw NodeError("tolerance", std::string("the simulation failed: ") + e.what() +
+                                         " (loosen tolerance, or try integrator: " +
+                                         (options.integrator == "cvode" ? "dopri5" : "cvode") + ")");
+      }
+      for (const auto& [counter, amount] : run.work) ctx.report_work(counter, amount);
+
+      double first_landing = std::numeric_limits<double>::infinity();
+      for (const EventRecord& e : run.events) {
+        if (e.t < last) continue;
+        if (e.kind == "contact_loss") floats = 1.0;
+        if (e.kind == "bounce") bounces += 1.0;
+        if ((e.kind == "landing" || e.kind == "bounce") && e.t < first_landing) {
+          first_landing = e.t;
+          seating_velocity = e.speed;
+        }
+      }
+      for (std::size_t j = 0; j < phi.size(); ++j) {
+        const OdeState& s = run.state[j];
+        const double y = motion->drive(phi[j]).lift;
+        const double x_qs = std::max(0.0, (k_d * y - P0) / (k_d + c_s));
+        // The cam's force on the valve: none in flight, none across an open lash while seated.
+        const double drive_force = model.drive_force(run.t[j], s);
+        const double force = run.mode[j] == Mode::flight ? 0.0
+                             : run.mode[j] == Mode::seated ? std::max(0.0, drive_force)
+                                                           : drive_force;
+        lift.push_back(s.x);
+        quasi_static.push_back(x_qs);
+        kinematic.push_back(motion->at(phi[j]).lift);
+        drive.push_back(y);
+        velocity.push_back(s.v);
+        contact.push_back(force);
+        spring.push_back(P0 + c_s * s.x);
+        const double dev = std::abs(s.x - x_qs);
+        max_dev = std::max(max_dev, dev);
+        if (phi[j] >= 0.0) residual = std::max(residual, dev);
+        if (s.x > 0.0 && run.mode[j] != Mode::flight) min_contact = std::min(min_contact, force);
+        if (run.t[j] > first_landing) bounce_height = std::max(bounce_height, s.x);
+      }
+      out.set_scalar("max_deviation", max_dev);
+      out.set_scalar("residual_amplitude", residual);
+      if (mp.contact_loss) out.set_scalar("floats", floats);
+      if (mp.seat_impact) {
+        out.set_scalar("bounces", bounces);
+        out.set_scalar("bounce_height", bounce_height);
+      }
+    }
+    if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat at the curve points
+    out.set_scalar("min_contact_force", min_contact);
+    out.set_scalar("seating_velocity", seating_velocity);
+    out.set("curves", Value::table(std::move(curves)));
+  }
+
+ private:
+  NodeInfo info_;
+};
+
+}  // namespace
+
+std::shared_ptr<const NodeType> make_dynamics_type() { return std::make_shared<const DynamicsType>(); }
+
+}  // namespace mechgraph::valvetrain

@@ -1,0 +1,211 @@
+// valvetrain.dynamics and the single-mass model under it: a closed form for the drive, agreement
+// of the two integrators, the effects switched on and off, and the hard cases (a very stiff drive,
+// a long dwell, a valve that floats every cycle, a chattering landing) ending with finite results
+// and bounded work.
+#include "single_mass_model.hpp"
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <yaml-cpp/yaml.h>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using namespace mechgraph::valvetrain;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// Residual vibration after a cycloidal rise of duration T on an undamped mass of natural period
+// Tn, r = T / Tn: A / h = |sin(pi r)| / (pi r |1 - r^2|).
+double residual_closed_form(double r) { return std::abs(std::sin(pi * r)) / (pi * r * std::abs(1 - r * r)); }
+
+double simulated_residual(double r, const std::string& integrator) {
+  const double h = 0.01, T = 0.02, omega = 2 * pi * r / T;  // Tn = T / r
+  SingleMassParams p;
+  p.mass = 0.2;
+  p.drive_stiffness = p.mass * omega * omega;
+  p.seat = false;  // the drive alone
+  const SingleMassModel model(p, [&](double t, double& y, double& dy) {
+    if (t >= T) {
+      y = h;
+      dy = 0;
+      return;
+    }
+    y = h * (t / T - std::sin(2 * pi * t / T) / (2 * pi));
+    dy = h / T * (1 - std::cos(2 * pi * t / T));
+  });
+  SimulationOptions o;
+  o.integrator = integrator;
+  o.rtol = 1e-11;
+  o.atol_x = 1e-11 * h;
+  o.atol_v = 1e-11 * h / T;
+  // After the rise the motion is free: its amplitude about h is read from the state at T.
+  const SimulationResult run = simulate(model, 0.0, 2 * T, {T}, {T}, o);
+  const OdeState s = run.state.at(0);
+  return std::hypot(s.x - h, s.v / omega) / h;
+}
+
+RunResult run_scene(const std::string& yaml, const std::vector<Override>& overrides = {}) {
+  MemoCache cache;
+  return evaluate(graph_from(yaml, project_registry(), overrides), cache);
+}
+
+double num(const RunResult& r, const std::string& label) { return output(r, label).as_scalar(); }
+
+const NodeRun& node_run(const RunResult& r, const std::string& name) {
+  for (const NodeRun& n : r.runs)
+    if (n.node == name) return n;
+  throw std::runtime_error("no run of " + name);
+}
+
+// A cam, valve, masses, spring and spring design as in the study; `cam` and `dyn` vary.
+std::string dynamics_scene(const std::string& cam, const std::string& dyn, const std::string& outputs,
+                           const std::string& rpm = "5600 rpm", const std::string& lash = "0.25 mm",
+                           const std::string& extra_nodes = "") {
+  return "nodes:\n" + extra_nodes + "  cam: " + cam + R"(
+  v:      { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: )" + rpm + ", rocker_ratio: 1.5, lash: " + lash + R"( } }
+  train:  { type: valvetrain.masses, params: { valve_mass: 55 g, retainer_mass: 18 g, tappet_mass: 60 g, pushrod_mass: 50 g,
+                                               rocker_inertia: 4e-5 kg*m^2, arm_valve: 45 mm, arm_pushrod: 30 mm } }
+  spring: { type: spring.helical }
+  sd:     { type: valvetrain.spring_design, inputs: { valve: v.motion, spring: spring.model, masses: train.masses } }
+  dyn: )" + dyn + R"(
+outputs: [ )" + outputs + " ]\n";
+}
+
+const std::string kurz = "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }";
+
+}  // namespace
+
+TEST_CASE("dynamics: residual vibration after a cycloidal rise matches the closed form, both integrators", "[valvetrain][dynamics]") {
+  for (const char* integrator : {"cvode", "dopri5"})
+    for (double r : {0.5, 0.8, 1.5, 2.5, 3.7}) {
+      INFO(integrator << ", r = T/Tn = " << r);
+      CHECK_THAT(simulated_residual(r, integrator), WithinAbs(residual_closed_form(r), 1e-6 * residual_closed_form(r) + 1e-9));
+    }
+  // At whole r the residual vanishes (the rise takes whole periods).
+  CHECK_THAT(simulated_residual(2.0, "cvode"), WithinAbs(0.0, 1e-7));
+}
+
+TEST_CASE("dynamics: the two integrators agree on the elastic valve train", "[valvetrain][dynamics]") {
+  const std::string dyn =
+      "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ elastic_drive ], "
+      "params: { drive_stiffness: 4000 N/mm, tolerance: 1e-10 } }";
+  const std::string scene = dynamics_scene(kurz, dyn, "dyn.curves, dyn.max_deviation");
+  const RunResult a = run_scene(scene);
+  const RunResult b = run_scene(scene, {parse_override("dyn.integrator=dopri5")});
+  const Table& ta = output(a, "dyn.curves").as_table();
+  const Table& tb = output(b, "dyn.curves").as_table();
+  double worst = 0;
+  for (std::size_t i = 0; i < ta.axis.values.size(); ++i)
+    worst = std::max(worst, std::abs(ta.find("lift")->values[i] - tb.find("lift")->values[i]));
+  CHECK(worst < 1e-8);  // 11.75 mm of lift: 1e-6 relative
+  CHECK_THAT(num(a, "dyn.max_deviation"), WithinRel(num(b, "dyn.max_deviation"), 1e-5));
+  // Work is reported by both.
+  CHECK(node_run(a, "dyn").work.at("steps") > 0);
+  CHECK(node_run(a, "dyn").work.at("jacobian_evaluations") > 0);
+  CHECK(node_run(b, "dyn").work.at("rhs_evaluations") > node_run(b, "dyn").work.at("steps"));
+}
+
+TEST_CASE("dynamics: effects off are not computed, and their outputs cannot be asked for", "[valvetrain][dynamics]") {
+  const std::string rigid = "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design } }";
+  const RunResult r = run_scene(dynamics_scene(kurz, rigid, "dyn.curves, dyn.min_contact_force, v.min_acceleration, sd.reduced_mass, sd.preload, sd.stiffness"));
+  CHECK(node_run(r, "dyn").work.at("steps") == 0);
+  // Rigid: the lift is the kinematic lift, the cam force M a + P0 + c_s x.
+  const Table& t = output(r, "dyn.curves").as_table();
+  for (std::size_t i = 0; i < t.axis.values.size(); ++i)
+    REQUIRE(t.find("lift")->values[i] == t.find("kinematic_lift")->values[i]);
+  // With K = 1.5 the spring outweighs the inertia force everywhere: the cam always pushes, less than P0 at the nose.
+  CHECK(num(r, "dyn.min_contact_force") > 0);
+  CHECK(num(r, "dyn.min_contact_force") < num(r, "sd.preload"));
+  // Asking for an output of an effect that is off fails when the scene loads, naming the effect.
+  try {
+    graph_from(dynamics_scene(kurz, rigid, "dyn.max_deviation"), project_registry());
+    FAIL("no error");
+  } catch (const SceneError& e) {
+    CHECK_THAT(e.what(), Contains("scene.yaml:") && Contains("needs effect 'elastic_drive'") && Contains("effects: [elastic_drive]"));
+  }
+  // A scene-level effect switches it on for every node that has it; a node's own for that node.
+  const std::string scene_level = dynamics_scene(kurz, rigid, "dyn.max_deviation") + "effects: [ elastic_drive ]\n";
+  CHECK_THROWS_WITH(run_scene(scene_level), Contains("drive_stiffness"));  // now on, and it needs its stiffness
+  // An effect the node type does not implement: named with the valid ones.
+  try {
+    graph_from(dynamics_scene(kurz, "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ elastic_drvie ] }",
+                              "dyn.curves"),
+               project_registry());
+    FAIL("no error");
+  } catch (const SceneError& e) {
+    CHECK_THAT(e.what(), Contains("elastic_drvie") && Contains("elastic_drive") && Contains("contact_loss"));
+  }
+  // contact_loss without elastic_drive is refused.
+  CHECK_THROWS_WITH(run_scene(dynamics_scene(kurz, "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ contact_loss ] }",
+                                             "dyn.floats")),
+                    Contains("needs the elastic_drive effect"));
+}
+
+TEST_CASE("dynamics hard cases: finite results and bounded work", "[valvetrain][dynamics][stability]") {
+  auto dyn = [](const std::string& effects, const std::string& params) {
+    return "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ " + effects +
+           " ], params: { " + params + " } }";
+  };
+  auto finite_curves = [](const RunResult& r) {
+    for (const auto& c : output(r, "dyn.curves").as_table().channels)
+      for (double v : c.values) REQUIRE(std::isfinite(v));
+  };
+  for (const char* integrator : {"cvode", "dopri5"}) {
+    INFO(integrator);
+    const std::string chosen = std::string(", integrator: ") + integrator;
+    SECTION("a drive 1e10 times its mass: the valve follows its quasi-static lift") {
+      // k_d / M_red = 1e10 on a shockless law without lash: the deviation is of order M a / k_d.
+      const std::string cam = "{ type: cam.poly4567, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 45 mm } }";
+      const RunResult r = run_scene(dynamics_scene(cam, dyn("elastic_drive", "drive_stiffness: 1.8e6 N/mm" + chosen),
+                                                   "dyn.curves, dyn.max_deviation, sd.reduced_mass", "3000 rpm", "0 mm"));
+      finite_curves(r);
+      CHECK_THAT(1.8e9 / num(r, "sd.reduced_mass"), WithinRel(1e10, 0.1));
+      CHECK(num(r, "dyn.max_deviation") < 1e-6);
+      CHECK(node_run(r, "dyn").work.at("steps") < 20000);
+    }
+    SECTION("a dwell of 300 deg") {
+      const std::string cam = "{ type: cam.cycloidal, params: { max_lift: 4 mm, action_angle: 60 deg, base_radius: 120 mm } }";
+      const RunResult r = run_scene(dynamics_scene(cam, dyn("elastic_drive", "drive_stiffness: 4000 N/mm" + chosen),
+                                                   "dyn.curves, dyn.max_deviation", "3000 rpm"));
+      finite_curves(r);
+      CHECK(std::isfinite(num(r, "dyn.max_deviation")));
+      CHECK(node_run(r, "dyn").work.at("steps") < 20000);
+    }
+    SECTION("a valve that floats every cycle") {
+      // The spring is designed for 5600 rpm; the valve runs at 7500 rpm.
+      std::string d = dyn("elastic_drive, contact_loss, seat_impact", "drive_stiffness: 4000 N/mm, revolutions: 4" + chosen);
+      d.replace(d.find("v.motion"), 8, "fast.motion");
+      const std::string fast =
+          "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 7500 rpm, rocker_ratio: 1.5, "
+          "lash: 0.25 mm } }\n";
+      const RunResult r = run_scene(dynamics_scene(kurz, d, "dyn.curves, dyn.floats, dyn.seating_velocity, dyn.min_contact_force, dyn.bounces",
+                                                   "5600 rpm", "0.25 mm", fast));
+      finite_curves(r);
+      CHECK(num(r, "dyn.floats") == 1);
+      CHECK(num(r, "dyn.min_contact_force") >= 0);  // unilateral: the cam never pulls
+      CHECK(std::isfinite(num(r, "dyn.seating_velocity")));
+      CHECK(node_run(r, "dyn").work.at("events") < 1000);
+    }
+    SECTION("a chattering landing ends") {
+      // Restitution 0.95 and a seating speed of 1 um/s: a long series of ever smaller bounces,
+      // cut by the bounce limit per landing.
+      const RunResult r = run_scene(dynamics_scene(kurz, dyn("elastic_drive, contact_loss, seat_impact",
+                                                             "drive_stiffness: 4000 N/mm, restitution: 0.95, seating_speed: 1e-6 m/s" + chosen),
+                                                   "dyn.curves, dyn.bounces, dyn.bounce_height"));
+      finite_curves(r);
+      CHECK(num(r, "dyn.bounces") >= 1);
+      CHECK(node_run(r, "dyn").work.at("events") < 2000);
+    }
+  }
+}
