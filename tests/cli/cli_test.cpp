@@ -5,14 +5,19 @@
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
 
 namespace {
 std::string arith_dir() { return "--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
 
+// Each test process writes into its own folder: ctest runs test cases in parallel processes.
 std::string write_scene(const std::string& name, const std::string& yaml) {
-  const auto file = std::filesystem::temp_directory_path() / name;
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_cli_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / name;
   std::ofstream(file) << yaml;
   return "'" + file.string() + "'";
 }
