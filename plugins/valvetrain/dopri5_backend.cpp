@@ -7,6 +7,7 @@
 #include <boost/math/tools/roots.hpp>
 #include <boost/numeric/odeint.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -31,7 +32,21 @@ class Dopri5Backend final : public OdeBackend {
     stepped_ = false;
     root_ = -1;
     g_.assign(static_cast<std::size_t>(model_.root_count(m)), 0.0);
-    if (!g_.empty()) model_.roots(m, t, s, g_.data());
+    bracket_from_ = t;
+    if (g_.empty()) return;
+    model_.roots(m, t, s, g_.data());
+    // An event function that starts at zero (x = 0 right after a bounce) takes its sign from just
+    // after the start, as CVODE does; its roots are searched from there, so a hop shorter than
+    // one step is still found and the start itself is never taken for a root.
+    if (std::find(g_.begin(), g_.end(), 0.0) != g_.end()) {
+      bracket_from_ = t + nudge;
+      OdeState ds;
+      model_.rhs(m, t, s, ds);
+      std::vector<double> ahead(g_.size());
+      model_.roots(m, bracket_from_, {s.x + nudge * ds.x, s.v + nudge * ds.v}, ahead.data());
+      for (std::size_t i = 0; i < g_.size(); ++i)
+        if (g_[i] == 0.0) g_[i] = ahead[i];
+    }
   }
 
   BackendStep advance(double target, double limit) override {
@@ -89,7 +104,8 @@ class Dopri5Backend final : public OdeBackend {
   void find_root() {
     root_ = -1;
     if (g_.empty()) return;
-    const double t0 = dense_.previous_time(), t1 = dense_.current_time();
+    const double t0 = std::max(dense_.previous_time(), bracket_from_), t1 = dense_.current_time();
+    if (t0 >= t1) return;
     std::vector<double> g1(g_.size());
     model_.roots(mode_, t1, unscale(dense_.current_state()), g1.data());
     ++root_evaluations_;
@@ -104,7 +120,9 @@ class Dopri5Backend final : public OdeBackend {
         return v[i];
       };
       boost::uintmax_t iterations = 100;
-      const auto bracket = boost::math::tools::toms748_solve(g, t0, t1, g_[i], g1[i],
+      const double g0 = t0 > dense_.previous_time() ? g(t0) : g_[i];
+      if (g0 == 0.0 || (g0 > 0.0) == (g1[i] > 0.0)) continue;
+      const auto bracket = boost::math::tools::toms748_solve(g, t0, t1, g0, g1[i],
                                                              boost::math::tools::eps_tolerance<double>(50), iterations);
       const double t = bracket.second;  // the side where the function has crossed
       if (root_ < 0 || t < root_time_) {
@@ -124,6 +142,8 @@ class Dopri5Backend final : public OdeBackend {
   int root_ = -1;
   double root_time_ = 0.0;
   double first_step_ = 0.0;
+  double bracket_from_ = 0.0;             // roots are searched after this time (just after a restart)
+  static constexpr double nudge = 1e-10;  // s
   long steps_ = 0, rhs_ = 0, root_evaluations_ = 0, initialisations_ = 0, checked_ = 0;
 };
 
