@@ -20,7 +20,7 @@ namespace {
 
 using Library = boost::dll::shared_library;
 
-// Libraries are kept for the whole process: plugins are never unloaded (DESIGN.md, Lifetime).
+// Libraries are kept for the whole process: plugins are never unloaded (docs/writing-plugins.md).
 // The list is leaked on purpose so no static destructor can unload a library before objects it
 // created are gone.
 std::vector<std::shared_ptr<Library>>& all_libraries() {

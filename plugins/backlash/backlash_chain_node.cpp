@@ -1,5 +1,5 @@
 // backlash.chain: the free play of the steering drive's kinematic chain, reduced to the actuator
-// rod and to the nozzle's swivel axis (shared/methods/backlash.md, steps 3-4, and the
+// rod and to the nozzle's swivel axis (docs/methods/backlash.md, steps 3-4, and the
 // extensions listed there: RSS, Monte Carlo of the truncated play, geometry, compliance).
 //
 // Every play is peak to peak: the travel between the two contact sides (a fit's clearance is

@@ -1,5 +1,5 @@
 #pragma once
-// Geometry of the steering drive (shared/methods/backlash.md, "Geometry, not only scalar k_i").
+// Geometry of the steering drive (docs/methods/backlash.md, "Geometry instead of a scalar lever arm").
 //
 // Moment arm. The rod acts along its line through the fixed attachment F and the moving
 // attachment P, unit direction u = (P - F)/|P - F|. The nozzle swivels about the axis through A

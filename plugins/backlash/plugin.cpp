@@ -1,5 +1,5 @@
 // The backlash plugin: tolerance stacks and the free play of the steering drive's kinematic
-// chain (shared/methods/backlash.md).
+// chain (docs/methods/backlash.md).
 #include "node_types.hpp"
 
 #include <mechgraph/plugin_abi.hpp>

@@ -1,6 +1,6 @@
 // stack.linear: a one-dimensional tolerance stack Y = sum_i s_i X_i, by worst case, RSS and
-// (with the monte_carlo effect) Monte Carlo (shared/methods/backlash.md, "Stacking methods side
-// by side"; the formulas are in stacking.hpp).
+// (with the monte_carlo effect) Monte Carlo (docs/methods/backlash.md, "Stacking: worst
+// case, RSS, Monte Carlo"; the formulas are in stacking.hpp).
 // A link is a part's size: nominal with its upper and lower limit deviations, so its mean is
 // m = nominal + (upper + lower)/2 and its half tolerance h = (upper - lower)/2 (the source's
 // A = A_nom + (dB + dH)/2, dA = (dB - dH)/2).

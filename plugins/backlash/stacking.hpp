@@ -1,6 +1,6 @@
 #pragma once
-// Stacking of toleranced sizes and of free play (shared/methods/backlash.md, "Stacking methods
-// side by side"). Pure mathematics, SI throughout; the nodes read parameters and call these.
+// Stacking of toleranced sizes and of free play (docs/methods/backlash.md, "Stacking:
+// worst case, RSS, Monte Carlo"). Pure mathematics, SI throughout; the nodes read parameters and call these.
 //
 // A link i is a size X_i spread over [m_i - h_i, m_i + h_i] (h_i = T_i/2, the source's limit
 // deviation dA) with sensitivity s_i. For the linear stack Y = sum_i s_i X_i:

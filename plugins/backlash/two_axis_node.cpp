@@ -1,6 +1,6 @@
 // backlash.two_axis: two actuators (pitch and yaw) share one nozzle; their rods' free plays
-// combine through the 2x2 Jacobian J_ij = dL_i/d theta_j (shared/methods/backlash.md, "Two
-// actuators ... combine through the 2x2 Jacobian"; the algebra is in chain_geometry.hpp).
+// combine through the 2x2 Jacobian J_ij = dL_i/d theta_j (docs/methods/backlash.md, "Geometry
+// instead of a scalar lever arm"; the algebra is in chain_geometry.hpp).
 // With both rods free by b_1, b_2 (peak to peak), the nozzle's angle about axis j can move by
 //   delta_j = sum_i |(J^-1)_ji| b_i          (worst case, peak to peak),
 // which is exact for the linearised chain: the reachable set of d_theta is the parallelogram

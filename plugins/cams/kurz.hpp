@@ -1,5 +1,5 @@
 #pragma once
-// Kurz cam (shared/methods/valvetrain.md, stage 1): a ShocklessLaw whose acceleration, from the
+// Kurz cam (docs/methods/valvetrain.md, stage 1): a ShocklessLaw whose acceleration, from the
 // start of lift x = 0 to the nose x = phi_p, is
 //     A+ sin(pi x / (2 phi_1))                         0 <= x <= phi_1        quarter sine up
 //     A+ cos(pi (x - phi_1) / (2 phi_2))               phi_1 <= x <= phi_y    quarter cosine down

@@ -1,5 +1,5 @@
 #pragma once
-// Polydyne valve polynomial (Dudley 1948, Stoddart 1953; shared/methods/valvetrain.md, stage 1):
+// Polydyne valve polynomial (Dudley 1948, Stoddart 1953; docs/methods/valvetrain.md, stage 1):
 //     x(u) = h [1 + C2 u^2 + Cp u^p + Cq u^q + Cr u^r + Cs u^s],   u = phi / phi_p in [-1, 1],
 // u = 0 at the nose, even exponents 2 < p < q < r < s (symmetric law), and
 // x(1) = x'(1) = x''(1) = x'''(1) = x''''(1) = 0 (the valve leaves and meets the seat smoothly).

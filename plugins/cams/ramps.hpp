@@ -1,6 +1,6 @@
 #pragma once
 // Opening and closing ramps that take up the lash, for any cam law symmetric about the nose.
-// See shared/methods/valvetrain.md, stage 1 (ramps are our extension of the source).
+// See docs/methods/valvetrain.md, stage 1 (ramps are our extension of the source).
 //
 // Definition (all angles from the nose; the main law spans [-P, P], the ramps have length L and
 // height H_r; x = (phi + P + L)/L in [0, 1] on the opening ramp, w = (phi + P)/P in [0, 1] from

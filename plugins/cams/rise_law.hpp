@@ -1,6 +1,6 @@
 #pragma once
 // The textbook rise laws as a normalised rise s(x), and the symmetric rise-return cam built on one.
-// See shared/methods/valvetrain.md, stage 1 ("Beyond the source: the laws engineers expect").
+// See docs/methods/valvetrain.md, stage 1 ("Beyond the source: the laws engineers expect").
 //
 // Normalised rise: x in [0, 1] (fraction of the rise angle) -> s in [0, 1], with s(0) = 0, s(1) = 1,
 // s'(0) = s'(1) = 0 and s', s'', s''' exact (derivatives over x). Every one of the six laws is

@@ -1,5 +1,5 @@
 #pragma once
-// Shockless cams built from their acceleration diagram (shared/methods/valvetrain.md, stage 1,
+// Shockless cams built from their acceleration diagram (docs/methods/valvetrain.md, stage 1,
 // "Kurz cam"): the positive-acceleration phase is a chain of shapes scaled by one amplitude A+,
 // the negative phase (to the nose) a chain scaled by A-; the shapes start and end where their
 // neighbours do, so the acceleration is continuous, and the first starts at zero (no shock at the

@@ -1,4 +1,4 @@
-// The profiles of the source study (shared/methods/valvetrain.md, stage 1): three-arc convex,
+// The profiles of the source study (docs/methods/valvetrain.md, stage 1): three-arc convex,
 // Kurz and polydyne. Each law's file pair describes its node; this file registers them.
 #include "kurz.hpp"
 #include "polydyne.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // cam.table: a tabulated lift (measured, or exported by another tool) read from CSV, interpolated
 // by a quintic spline whose derivatives are the exact derivatives of the interpolant.
-// See shared/methods/valvetrain.md, stage 1 ("a tabulated lift ... read from CSV").
+// See docs/methods/valvetrain.md, stage 1 ("a tabulated lift ... read from CSV").
 //
 // File: one row per line, two columns: cam angle from the nose, lift (units from the node's
 // angle_unit / lift_unit, default deg and mm). Columns separated by ',' or ';' (or, with neither,

@@ -1,6 +1,6 @@
 #pragma once
 // Three-arc convex cam: base circle r0, two flank arcs r1, nose arc r2, all tangent
-// (shared/methods/valvetrain.md, stage 1). Cam frame: cam centre O at the origin, nose on +x.
+// (docs/methods/valvetrain.md, stage 1). Cam frame: cam centre O at the origin, nose on +x.
 //
 //   nose-arc centre N = (a, 0),                   a = r0 + h_max - r2
 //   flank-arc centre F = -e (cos phi_p, sin phi_p), e = r1 - r0   (flank of the phi > 0 side)

@@ -1,4 +1,4 @@
-// fit.iso286 and fit.explicit (shared/methods/backlash.md, steps 1-2): the limit deviations of a
+// fit.iso286 and fit.explicit (docs/methods/backlash.md, steps 1-2): the limit deviations of a
 // hole and a shaft, the clearance S = hole - shaft (min = EI - es, max = ES - ei, mean from the
 // parts' mean sizes A = A_nom + (dB + dH)/2), and the Fit handle joints consume.
 //

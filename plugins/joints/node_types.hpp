@@ -1,5 +1,5 @@
 #pragma once
-// The joint node types of this plugin and the contract they share (shared/methods/backlash.md,
+// The joint node types of this plugin and the contract they share (docs/methods/backlash.md,
 // "Joint types as plugins").
 //
 // Every joint outputs

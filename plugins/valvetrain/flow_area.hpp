@@ -1,5 +1,5 @@
 #pragma once
-// Flow area of a poppet valve with a conical seat (shared/methods/valvetrain.md, stage 3).
+// Flow area of a poppet valve with a conical seat (docs/methods/valvetrain.md, stage 3).
 //
 // Conical (the source): f = pi L (d0 cos a + L sin a cos^2 a), for valve lift L, seat angle a
 // (from the valve axis' normal, 45 deg usual), inner seat diameter d0. It holds only while the

@@ -1,5 +1,5 @@
 #pragma once
-// The valve's motion over cam angle at one engine speed (shared/methods/valvetrain.md, stage 2):
+// The valve's motion over cam angle at one engine speed (docs/methods/valvetrain.md, stage 2):
 // valve lift h_v = i h(phi) - lash while that is positive (rocker ratio i = l_v/l_p), zero
 // otherwise; derivatives i h', i h'', i h''' over cam angle; in time multiply by w_k, w_k^2, w_k^3
 // with the camshaft speed w_k = w_crank / 2 (four-stroke).

@@ -1,4 +1,4 @@
-// backlash.chain against hand computations of the source's method (shared/methods/backlash.md,
+// backlash.chain against hand computations of the source's method (docs/methods/backlash.md,
 // steps 3-4), the geometry of the moment arm, and the closed form of a truncated normal.
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-// stack.linear against published stack-ups and closed forms (shared/methods/backlash.md,
+// stack.linear against published stack-ups and closed forms (docs/methods/backlash.md,
 // "Stacking methods side by side").
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-// backlash.two_axis: two rods' play through the 2x2 Jacobian (shared/methods/backlash.md,
+// backlash.two_axis: two rods' play through the 2x2 Jacobian (docs/methods/backlash.md,
 // "Two actuators (pitch and yaw) share the nozzle").
 #include "test_support.hpp"
 

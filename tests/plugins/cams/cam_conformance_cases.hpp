@@ -271,7 +271,7 @@ inline const std::vector<ConformanceCase>& conformance_cases() {
       c.lift_tolerance = 1e-3;
       v.push_back(c);
     }
-    // The source study's profiles (shared/methods/valvetrain.md). Their accel_angle keeps the
+    // The source study's profiles (docs/methods/valvetrain.md). Their accel_angle keeps the
     // proportion of the scene example (18 deg of 130 deg). Continuity: three-arc, acceleration
     // steps at the start and at the flank/nose junction; Kurz and polydyne, shockless (jerk may
     // step).

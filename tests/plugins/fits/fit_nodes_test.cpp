@@ -1,5 +1,5 @@
 // fit.iso286 and fit.explicit: deviations and clearances against ISO 286-2 table values and hand
-// arithmetic (shared/methods/backlash.md, steps 1-2), the thermal effect against the first-order
+// arithmetic (docs/methods/backlash.md, steps 1-2), the thermal effect against the first-order
 // formula, and the errors a designer meets.
 #include "test_support.hpp"
 

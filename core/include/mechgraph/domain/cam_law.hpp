@@ -1,6 +1,6 @@
 #pragma once
 // CamLaw: the lift of a follower over cam angle, with its first three derivatives, exactly (closed
-// forms, never numerical differentiation). See shared/methods/valvetrain.md, stage 1.
+// forms, never numerical differentiation). See docs/methods/valvetrain.md, stage 1.
 //
 // Contract
 //  - Cam angle phi in radians, measured from the nose (phi = 0 at the top of the lift for symmetric

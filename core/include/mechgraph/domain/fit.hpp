@@ -1,5 +1,5 @@
 #pragma once
-// A fit between a hole and a shaft of one nominal size (shared/methods/backlash.md, steps 1-2):
+// A fit between a hole and a shaft of one nominal size (docs/methods/backlash.md, steps 1-2):
 // each part's limit deviations; the clearance S = hole - shaft, its limits and mean; and the
 // clearance as a PlayTerm for stacking (hole +1, shaft -1, each with its distribution).
 #include <mechgraph/domain/tolerance.hpp>

@@ -1,6 +1,6 @@
 #pragma once
 // Toleranced quantities and free play, as fits, joints and chains pass them on
-// (shared/methods/backlash.md). Plain data: immutable once made, shared between nodes.
+// (docs/methods/backlash.md). Plain data: immutable once made, shared between nodes.
 //
 //  - A ToleranceLink is one toleranced size: mean value, half its tolerance (the source's limit
 //    deviation dA = (dB - dH)/2), a distribution across that range, and a sensitivity (how much
