@@ -19,7 +19,7 @@ class Box final : public DomainObject {
 
 class Arith final : public NodeType {
  public:
-  enum class Op { constant, add, box, unbox, nan, fail, series, effectful };
+  enum class Op { constant, add, box, unbox, nan, fail, series, effectful, table };
   Arith(Op op, std::string type) : op_(op) {
     info_.type = std::move(type);
     info_.summary = "test node";
@@ -61,6 +61,14 @@ class Arith final : public NodeType {
         info_.params = {ParamSpec::number("value", dim::length, "the value", "mm")};
         info_.outputs = {PortSpec::scalar("out", dim::length, "value, doubled with test_effect")};
         break;
+      case Op::table:
+        info_.params = {ParamSpec::integer("points", "how many").with_default(4.0).at_least(2),
+                        ParamSpec::choice("defect", {"none", "nan", "short", "twice"}, "a deliberate defect").with_default("none"),
+                        ParamSpec::number("extra_gain", dim::none, "scales extra (test_extra)").with_default(1.0)};
+        info_.outputs = {PortSpec::table("curves", "x^2 [m] and 2x [m/s] over x [s]"),
+                         PortSpec::scalar("extra", dim::length, "only with test_extra")};
+        info_.effects = {{"test_extra", "brings the output extra", {"extra"}, {"extra_gain"}}};
+        break;
     }
   }
   const NodeInfo& info() const override { return info_; }
@@ -94,6 +102,25 @@ class Arith final : public NodeType {
         out.set_scalar("out", p.number("value") * (ctx.effect("test_effect") ? 2.0 : 1.0));
         ctx.log(LogLevel::debug, "effectful evaluated");
         break;
+      case Op::table: {
+        Table t;
+        t.axis = {"time", dim::time, {}, "ms"};
+        const long n = p.integer("points");
+        for (long i = 0; i < n; ++i) t.axis.values.push_back(static_cast<double>(i) / (n - 1));
+        t.add_channel("square", dim::length);
+        t.add_channel("speed", dim::velocity);
+        for (double x : t.axis.values) {
+          t.channels[0].values.push_back(x * x);
+          t.channels[1].values.push_back(2 * x);
+        }
+        const std::string& defect = p.text("defect");
+        if (defect == "nan") t.channels[1].values.back() = std::numeric_limits<double>::quiet_NaN();
+        if (defect == "short") t.channels[0].values.pop_back();
+        if (defect == "twice") t.channels[1].name = "square";
+        out.set("curves", Value::table(std::move(t)));
+        if (ctx.effect("test_extra")) out.set_scalar("extra", p.number("extra_gain"));
+        break;
+      }
     }
   }
 
@@ -107,7 +134,8 @@ NodeTypeList make_types() {
   return {std::make_shared<Arith>(Op::constant, "test.constant"), std::make_shared<Arith>(Op::add, "test.add"),
           std::make_shared<Arith>(Op::box, "test.box"),           std::make_shared<Arith>(Op::unbox, "test.unbox"),
           std::make_shared<Arith>(Op::nan, "test.nan"),           std::make_shared<Arith>(Op::fail, "test.fail"),
-          std::make_shared<Arith>(Op::series, "test.series"),     std::make_shared<Arith>(Op::effectful, "test.effectful")};
+          std::make_shared<Arith>(Op::series, "test.series"),     std::make_shared<Arith>(Op::effectful, "test.effectful"),
+          std::make_shared<Arith>(Op::table, "test.table")};
 }
 
 }  // namespace
