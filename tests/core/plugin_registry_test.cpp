@@ -20,8 +20,8 @@ TEST_CASE("a good plugin loads with its descriptor and node types", "[plugins]")
   CHECK(r.plugins()[0].fingerprint == build_fingerprint_for_tests());
   CHECK(r.find("test.add") != nullptr);
   CHECK(r.find("test.nope") == nullptr);
-  CHECK(r.type_names().size() == 8);
-  CHECK(r.effect_names() == std::vector<std::string>{"test_effect"});
+  CHECK(r.type_names().size() == 9);
+  CHECK(r.effect_names() == std::vector<std::string>{"test_effect", "test_extra"});
 }
 
 TEST_CASE("broken plugins are refused with a precise reason", "[plugins]") {

@@ -1,0 +1,348 @@
+#!/usr/bin/python3
+"""Peer benchmark: mechgraph's `valvetrain.dynamics` (SUNDIALS CVODE, BDF with root finding)
+against the same model written the way an engineer would in Python, with scipy's
+`solve_ivp(method="Radau", events=...)`.
+
+Requirements: Debian's /usr/bin/python3 with python3-numpy and python3-scipy
+(`apt-get install -y python3-numpy python3-scipy`); a built mechgraph CLI.
+
+Usage:
+    /usr/bin/python3 bench/peers/valvetrain_dynamics.py [--mechgraph build/bin/mechgraph]
+        [--scene bench/peers/valvetrain_dynamics.yaml] [--repeats 5] [--quick]
+or simply bench/peers/run.sh.
+
+The model (plugins/valvetrain/single_mass_model.hpp, dynamics_node.cpp), valve side:
+    cam angle   phi = -pi + w_k t,  w_k = rpm/2 in rad/s (t = 0 on the base circle, at -pi)
+    drive       y = i h(phi) - lash (here lash = 0), y' = w_k i h'(phi)
+    force       N = k_d (y - x) + c (y' - x'),  c = 2 zeta sqrt((k_d + c_s) M)
+    seated      x = x' = 0 until N - P0 crosses 0 upward (lift-off)
+    attached    M x'' = N - P0 - c_s x, until x crosses 0 downward (landing: seated, x' = 0;
+                attached on at once if the drive already pushes harder than P0)
+with the cycloidal rise-return law h of plugins/cams/rise_law.cpp (nose at phi = 0, event over
+[-action/2, action/2]). Two revolutions are simulated; the lift of the last one is read at 1441
+points over [-pi, pi]. Both sides restart the integration at the cam's knots (start and end of the
+event, the nose) and use the same tolerances: rtol = tol, atol = tol h_max for x and
+tol h_max w_k for x' (h_max = i H - lash), and mechgraph's max_step of half a cam degree.
+
+Timing. mechgraph: the node's own time, `nodes.dyn.seconds` of `mechgraph run --json` (process
+start, plugin loading, scene parsing and the other nodes are excluded; the node time does
+include filling its seven output curves). scipy: time.perf_counter around the simulation
+(the 1441 lift values included). Each is the fastest of --repeats runs.
+
+Error. max |x - x_ref| over the 1441 points, x_ref: mechgraph at tolerance 1e-12, cross-checked
+against scipy at its tightest tolerance (the difference is printed).
+
+The scipy side is meant to be the honest, reasonably efficient script: the Jacobian of the
+attached mode is constant and passed to Radau as a matrix (never re-evaluated, one LU per step
+size), the right-hand side works on Python floats with `math` (faster than numpy on scalars),
+the outputs come from solve_ivp's t_eval, and the seated phases -- where x = x' = 0 exactly and
+the lift-off condition does not depend on the state -- are not integrated: the lift-off is the
+first upward sign change of N - P0 on the same half-degree grid the max_step gives an
+integrator (evaluated vectorised), refined by brentq to machine precision, which is exactly
+what solve_ivp's event location would find there, without the stepping. A second scipy variant
+without max_step shows what that limit costs.
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+# --- The scene's parameters (bench/peers/valvetrain_dynamics.yaml), SI, converted as mechgraph does.
+PI = math.pi
+MAX_LIFT = 8.0 * 1e-3                 # H, m
+ACTION = 130.0 * (PI / 180.0)         # rad
+RPM = 5600.0 * (2.0 * PI / 60.0)      # crank speed, rad/s
+W = RPM / 2.0                         # camshaft speed w_k, rad/s
+RATIO = 1.5                           # rocker ratio i
+LASH = 0.0                            # m
+K_D = 4000.0 * 1e3                    # drive stiffness, N/m
+ZETA = 0.06                           # damping ratio (default)
+REVOLUTIONS = 2
+CURVE_POINTS = 1441
+PERIOD = 2.0 * PI / W
+MAX_STEP = PERIOD / 720.0             # half a cam degree, as dynamics_node.cpp
+H_MAX = RATIO * MAX_LIFT - LASH
+
+HALF = 0.5 * ACTION
+KH = 1.0 / HALF
+TWO_PI = 2.0 * PI
+
+
+# --- The cam: cycloidal rise over [-HALF, 0], mirrored return over [0, HALF], zero elsewhere.
+def drive_scalar(t):
+    """y(t) and y'(t) (m, m/s) of the drive at time t; Python floats, for the right-hand side."""
+    phi = -PI + W * t
+    phi -= TWO_PI * math.floor((phi + PI) / TWO_PI)          # into [-pi, pi)
+    if phi <= -HALF or phi >= HALF:
+        return 0.0, 0.0
+    if phi <= 0.0:
+        x, sign = (phi + HALF) * KH, 1.0
+    else:
+        x, sign = (HALF - phi) * KH, -1.0
+    a = TWO_PI * x
+    s = x - math.sin(a) / TWO_PI
+    ds = 1.0 - math.cos(a)
+    return RATIO * MAX_LIFT * s - LASH, sign * W * RATIO * MAX_LIFT * ds * KH
+
+
+def drive_array(t):
+    """y(t), y'(t) on an array of times (vectorised)."""
+    phi = -PI + W * np.asarray(t, dtype=float)
+    phi = phi - TWO_PI * np.floor((phi + PI) / TWO_PI)
+    inside = (phi > -HALF) & (phi < HALF)
+    rising = phi <= 0.0
+    x = np.where(rising, (phi + HALF) * KH, (HALF - phi) * KH)
+    a = TWO_PI * x
+    s = x - np.sin(a) / TWO_PI
+    ds = 1.0 - np.cos(a)
+    y = np.where(inside, RATIO * MAX_LIFT * s - LASH, 0.0)
+    dy = np.where(inside, np.where(rising, 1.0, -1.0) * W * RATIO * MAX_LIFT * ds * KH, 0.0)
+    return y, dy
+
+
+class Model:
+    """The single-mass model with the spring design mechgraph computed (P0, c_s, M_red)."""
+
+    def __init__(self, preload, spring_rate, mass):
+        self.P0, self.cs, self.M = preload, spring_rate, mass
+        self.c = 2.0 * ZETA * math.sqrt((K_D + spring_rate) * mass)
+        self.jac = np.array([[0.0, 1.0], [-(K_D + spring_rate) / mass, -self.c / mass]])
+        P0, cs, M, c = self.P0, self.cs, self.M, self.c
+
+        def rhs(t, s):
+            x, v = s
+            y, dy = drive_scalar(t)
+            return [v, (K_D * (y - x) + c * (dy - v) - P0 - cs * x) / M]
+
+        def landing(t, s):
+            return s[0]
+        landing.terminal = True
+        landing.direction = -1.0
+
+        self.rhs, self.landing = rhs, landing
+
+        # Knots: where the excitation is not smooth (event start, nose, event end), every revolution.
+        knots = []
+        for r in range(REVOLUTIONS):
+            for k in (-HALF, 0.0, HALF):
+                knots.append((r + (k + PI) / TWO_PI) * PERIOD)
+        self.knots = np.array(sorted(knots))
+        self.t_end = REVOLUTIONS * PERIOD
+        last = (REVOLUTIONS - 1) * PERIOD
+        phi = -PI + TWO_PI * np.arange(CURVE_POINTS) / (CURVE_POINTS - 1)
+        self.phi = phi
+        self.t_out = last + (phi + PI) / W
+        # Lift-off search grid: one point per max_step (half a cam degree) over the whole run.
+        self.grid = np.linspace(0.0, self.t_end, 720 * REVOLUTIONS + 1)
+        y, dy = drive_array(self.grid)
+        self.g_grid = K_D * y + self.c * dy - P0       # N - P0 with the valve seated
+
+    def lift_off_g(self, t):
+        y, dy = drive_scalar(t)
+        return K_D * y + self.c * dy - self.P0
+
+    def next_lift_off(self, t0):
+        """First upward crossing of N - P0 (seated: x = x' = 0) after t0, or None."""
+        grid, g = self.grid, self.g_grid
+        j = int(np.searchsorted(grid, t0, side="right"))
+        if j >= len(grid):
+            return None
+        ts = np.concatenate(([t0], grid[j:]))
+        gs = np.concatenate(([self.lift_off_g(t0)], g[j:]))
+        up = np.nonzero((gs[:-1] <= 0.0) & (gs[1:] > 0.0))[0]
+        if len(up) == 0:
+            return None
+        a, b = ts[up[0]], ts[up[0] + 1]
+        t = brentq(self.lift_off_g, a, b, xtol=1e-15 * b, rtol=4.0 * np.finfo(float).eps)
+        while self.lift_off_g(t) <= 0.0 and t < b:  # just past the crossing, as CVODE's root finder returns
+            t = np.nextafter(t, math.inf)
+        return float(t)
+
+    def simulate(self, tol, max_step=MAX_STEP):
+        """Lift x at the output times; (x, work) with work = rhs evaluations, LU decompositions, events."""
+        atol = np.array([tol * H_MAX, tol * H_MAX * W])
+        t_out, knots, t_end = self.t_out, self.knots, self.t_end
+        x_out = np.zeros(len(t_out))
+        nfev = nlu = events = 0
+        t, state, seated = 0.0, (0.0, 0.0), True
+        stops = [k for k in knots if 0.0 < k < t_end] + [t_end]
+        kw = {"max_step": max_step} if max_step else {}
+        while t < t_end:
+            if seated:
+                # x = x' = 0 until the drive pushes harder than the preload; outputs stay 0.
+                t_lift = self.next_lift_off(t)
+                if t_lift is None:
+                    break
+                t, state, seated = t_lift, (0.0, 0.0), False
+                events += 1
+                continue
+            # Attached: integrate up to the next knot, stopping at a landing.
+            t_stop = next(k for k in stops if k > t)
+            i0 = int(np.searchsorted(t_out, t, side="right"))
+            i1 = int(np.searchsorted(t_out, t_stop, side="right"))
+            t_eval = np.clip(t_out[i0:i1], t, t_stop)
+            n_out = len(t_eval)
+            if n_out == 0 or t_eval[-1] != t_stop:
+                t_eval = np.append(t_eval, t_stop)  # the state at the knot, to restart from
+            sol = solve_ivp(self.rhs, (t, t_stop), state, method="Radau", t_eval=t_eval, events=self.landing,
+                            rtol=tol, atol=atol, jac=self.jac, **kw)
+            if sol.status < 0:
+                raise RuntimeError(f"solve_ivp failed at t = {t}: {sol.message}")
+            nfev += sol.nfev
+            nlu += sol.nlu
+            n = min(len(sol.t), n_out)
+            x_out[i0:i0 + n] = sol.y[0][:n]
+            if sol.status == 1:  # landing: seated, unless the drive already pushes harder than P0
+                events += 1
+                t = float(sol.t_events[0][0])
+                state = (0.0, 0.0)
+                seated = not (self.lift_off_g(t) > 0.0)
+            else:
+                t = t_stop
+                state = (float(sol.y[0][-1]), float(sol.y[1][-1]))
+        return x_out, {"rhs": nfev, "lu": nlu, "events": events}
+
+
+# --- mechgraph side -------------------------------------------------------------------------------
+def run_mechgraph(exe, scene, tol, repeats):
+    best, data = math.inf, None
+    for _ in range(repeats):
+        out = subprocess.run([exe, "-q", "run", scene, "--json", "--set", f"dyn.tolerance={tol!r}"],
+                             check=True, capture_output=True, text=True).stdout
+        d = json.loads(out)
+        secs = d["nodes"]["dyn"]["seconds"]
+        if data is None:
+            data = d
+        best = min(best, secs)
+    cols = data["outputs"]["dyn.curves"]["value"]["columns"]
+    return {
+        "seconds": best,
+        "lift": np.array(cols["lift"]["values"], dtype=float),
+        "phi": np.array(cols["cam_angle"]["values"], dtype=float),
+        "drive": np.array(cols["drive_displacement"]["values"], dtype=float),
+        "work": data["nodes"]["dyn"]["work"],
+        "outputs": data["outputs"],
+    }
+
+
+def time_scipy(model, tol, repeats, max_step):
+    best, result = math.inf, None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        x, work = model.simulate(tol, max_step)
+        best = min(best, time.perf_counter() - t0)
+        result = (x, work)
+    return best, result[0], result[1]
+
+
+def pareto(errors, times):
+    """The points no other point beats in both error and time, sorted by error."""
+    pts = sorted(zip(errors, times))
+    front, best_t = [], math.inf
+    for e, t in pts:
+        if t < best_t and e > 0.0:
+            front.append((e, t))
+            best_t = t
+    return front
+
+
+def time_at_error(front, err):
+    """log-log interpolation of time at `err` on a Pareto front; None outside its range."""
+    es = np.log([e for e, _ in front])
+    ts = np.log([t for _, t in front])
+    le = math.log(err)
+    if le < es.min() or le > es.max():
+        return None
+    order = np.argsort(es)
+    return float(np.exp(np.interp(le, es[order], ts[order])))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--mechgraph", default=os.environ.get("MECHGRAPH", os.path.join(ROOT, "build", "bin", "mechgraph")))
+    ap.add_argument("--scene", default=os.path.join(HERE, "valvetrain_dynamics.yaml"))
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--quick", action="store_true", help="fewer tolerances, 2 repetitions")
+    args = ap.parse_args()
+    if args.quick:
+        args.repeats = min(args.repeats, 2)
+    tols = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11]
+    if args.quick:
+        tols = [1e-5, 1e-7, 1e-9, 1e-11]
+    ref_tol = 1e-12
+
+    print(f"mechgraph: {args.mechgraph}\nscene:     {args.scene}")
+    ref = run_mechgraph(args.mechgraph, args.scene, ref_tol, 1)
+    o = ref["outputs"]
+    model = Model(o["sd.preload"]["value"], o["sd.stiffness"]["value"], o["sd.reduced_mass"]["value"])
+    print(f"design:    P0 = {model.P0:.6g} N, c_s = {model.cs / 1e3:.6g} N/mm, M_red = {model.M * 1e3:.6g} g, "
+          f"c = {model.c:.6g} N*s/m; w_k = {W:.6g} rad/s, h_max = {H_MAX * 1e3:g} mm")
+
+    # Same cam, same output grid: the drive displacement mechgraph reports against ours.
+    if not np.array_equal(ref["phi"], model.phi):
+        print(f"  output angles differ by up to {np.max(np.abs(ref['phi'] - model.phi)):.3g} rad")
+    y_ours, _ = drive_array((model.phi + PI) / W)
+    print(f"check:     drive displacement y, max |numpy - mechgraph| = {np.max(np.abs(y_ours - ref['drive'])):.3g} m "
+          f"(of {H_MAX:.3g} m)")
+
+    x_ref = ref["lift"]
+    print(f"reference: mechgraph at tolerance {ref_tol:g} ({ref['work'].get('steps')} steps, "
+          f"{ref['work'].get('events')} events)")
+    x_sp_ref, w_sp_ref = model.simulate(ref_tol)
+    d = np.abs(x_sp_ref - x_ref)
+    j = int(np.argmax(d))
+    print(f"cross-check: scipy Radau at rtol {ref_tol:g} vs the reference: max |dx| = {d[j]:.3g} m "
+          f"at cam angle {math.degrees(model.phi[j]):.2f} deg (max lift {x_ref.max() * 1e3:.4f} mm)")
+
+    rows = {"mechgraph (CVODE BDF)": [], "scipy Radau, max_step 1/2 deg": [], "scipy Radau, no max_step": []}
+    for tol in tols:
+        m = run_mechgraph(args.mechgraph, args.scene, tol, args.repeats)
+        rows["mechgraph (CVODE BDF)"].append((tol, float(np.max(np.abs(m["lift"] - x_ref))), m["seconds"],
+                                              f"{m['work'].get('steps')} steps, {m['work'].get('rhs_evaluations')} rhs"))
+        for name, ms in (("scipy Radau, max_step 1/2 deg", MAX_STEP), ("scipy Radau, no max_step", None)):
+            secs, x, work = time_scipy(model, tol, args.repeats, ms)
+            rows[name].append((tol, float(np.max(np.abs(x - x_ref))), secs, f"{work['rhs']} rhs, {work['lu']} LU"))
+        # Agreement within tolerance: the two sides at the same tol, against each other.
+    print()
+    print(f"work-precision: error = max |x - x_ref| over {CURVE_POINTS} points, time = fastest of {args.repeats}")
+    print(f"{'integrator':32s} {'tol':>7s} {'error [m]':>10s} {'error/h_max':>11s} {'time [ms]':>10s}  work")
+    for name, rs in rows.items():
+        for tol, err, secs, work in rs:
+            print(f"{name:32s} {tol:7.0e} {err:10.3e} {err / H_MAX:11.2e} {secs * 1e3:10.3f}  {work}")
+    print()
+    fronts = {name: pareto([r[1] for r in rs], [r[2] for r in rs]) for name, rs in rows.items()}
+    mech = fronts["mechgraph (CVODE BDF)"]
+    print("speed ratio at equal error (scipy time / mechgraph time, log-log interpolation):")
+    print(f"{'error [m]':>10s} {'mechgraph [ms]':>15s} {'Radau max_step [ms]':>20s} {'ratio':>7s} "
+          f"{'Radau free [ms]':>16s} {'ratio':>7s}")
+    for err in (1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10):
+        tm = time_at_error(mech, err)
+        t1 = time_at_error(fronts["scipy Radau, max_step 1/2 deg"], err)
+        t2 = time_at_error(fronts["scipy Radau, no max_step"], err)
+        f = lambda v: f"{v * 1e3:.3f}" if v is not None else "-"
+        r = lambda a, b: f"{a / b:.0f}x" if a is not None and b is not None else "-"
+        print(f"{err:10.0e} {f(tm):>15s} {f(t1):>20s} {r(t1, tm):>7s} {f(t2):>16s} {r(t2, tm):>7s}")
+    print()
+    tm = time_at_error(mech, 1e-7)
+    t1 = time_at_error(fronts["scipy Radau, max_step 1/2 deg"], 1e-7)
+    t2 = time_at_error(fronts["scipy Radau, no max_step"], 1e-7)
+    if tm and t1:
+        extra = f" (scipy without max_step: {t2 / tm:.0f}x)" if t2 else ""
+        print(f"ratio at equal error 1e-7 m: {t1 / tm:.0f}x{extra}")
+    else:
+        print("ratio at equal error 1e-7 m: out of the measured range")
+
+
+if __name__ == "__main__":
+    main()
