@@ -202,7 +202,8 @@ class Model:
             nfev += sol.nfev
             nlu += sol.nlu
             n = min(len(sol.t), n_out)
-            x_out[i0:i0 + n] = sol.y[0][:n]
+            if n:
+                x_out[i0:i0 + n] = sol.y[0][:n]
             if sol.status == 1:  # landing: seated, unless the drive already pushes harder than P0
                 events += 1
                 t = float(sol.t_events[0][0])

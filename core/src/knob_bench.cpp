@@ -12,13 +12,19 @@
 namespace mechgraph {
 namespace {
 
-// The graph cut down to what `node` needs, requesting every numeric output of it.
+// The graph cut down to what `node` needs, requesting every numeric output of it that exists
+// (an output brought by an effect that is off for the node is not there).
 Graph focus_on(const Graph& graph, std::size_t node) {
   Graph g = graph;
   g.reports.clear();
   g.outputs.clear();
-  for (const PortSpec& p : g.nodes[node].info().outputs)
-    if (p.kind != ValueKind::handle) g.outputs.push_back({node, p.name, &p, g.nodes[node].name + "." + p.name});
+  const GraphNode& n = g.nodes[node];
+  for (const PortSpec& p : n.info().outputs) {
+    if (p.kind == ValueKind::handle) continue;
+    const EffectSpec* effect = n.info().effect_of_output(p.name);
+    if (effect && std::find(n.effects_read.begin(), n.effects_read.end(), effect->name) == n.effects_read.end()) continue;
+    g.outputs.push_back({node, p.name, &p, n.name + "." + p.name});
+  }
   std::vector<bool> keep(g.nodes.size(), false);
   std::vector<std::size_t> stack{node};
   while (!stack.empty()) {
