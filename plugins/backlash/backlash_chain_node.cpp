@@ -150,9 +150,14 @@ class BacklashChainType final : public NodeType {
     info_.effects = {
         {monte_carlo_effect, "sample every fit's hole and shaft (samples, seed), each play term truncated at zero, and "
                              "the actuator's backlash as normal with dL_act = 3 sigma, clipped at zero: the statistics "
-                             "of the free play without linearisation"},
+                             "of the free play without linearisation",
+         {"rod_backlash_mc_mean", "rod_backlash_mc_sigma", "rod_backlash_mc_q999", "angular_backlash_mc_mean",
+          "angular_backlash_mc_q999", "mc_mean_error"},
+         {"samples", "seed"}},
         {compliance_effect, "elastic deflection load/stiffness of the chain under the measuring load, reported apart "
-                            "from the free play: measured play = clearance + load/stiffness"},
+                            "from the free play: measured play = clearance + load/stiffness",
+         {"rod_elastic_deflection", "rod_total_under_load", "angular_total_under_load"},
+         {"load", "stiffness"}},
     };
     info_.work_counters = {"samples"};
     info_.output_dependencies = {{"lever_arm", {}}};

@@ -75,7 +75,9 @@ class StackLinearType final : public NodeType {
         PortSpec::scalar("mc_sigma_error", L, "standard error of mc_sigma, mc_sigma/sqrt(2(N-1)) (with monte_carlo)", "mm"),
     };
     info_.effects = {{monte_carlo_effect, "sample every link from its distribution (samples, seed) and report the "
-                                          "sample statistics with their standard errors"}};
+                                          "sample statistics with their standard errors",
+                      {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999", "mc_mean_error", "mc_sigma_error"},
+                      {"samples", "seed"}}};
     info_.work_counters = {"samples"};
   }
   const NodeInfo& info() const override { return info_; }
