@@ -4,8 +4,7 @@
 // integrated. Results are taken from the last of `revolutions` cam revolutions, so the start-up
 // transient has died out when the drive is damped.
 #include "node_types.hpp"
-#include "single_mass_model.hpp"
-#include "train_masses.hpp"
+#include "valve_simulation.hpp"
 
 #include <mechgraph/domain/valve_motion.hpp>
 
@@ -153,47 +152,20 @@ class DynamicsType final : public NodeType {
       for (const char* counter : {"steps", "rhs_evaluations", "events"}) ctx.report_work(counter, 0.0);
     } else {
       if (!p.has("drive_stiffness")) throw NodeError("drive_stiffness", "elastic_drive needs drive_stiffness");
-      const double k_d = p.number("drive_stiffness");
-      SingleMassParams mp;
-      mp.mass = M;
-      mp.drive_stiffness = k_d;
-      mp.drive_damping = 2.0 * p.number("damping_ratio") * std::sqrt((k_d + c_s) * M);
-      mp.preload = P0;
-      mp.spring_rate = c_s;
-      mp.contact_loss = ctx.effect("contact_loss");
-      mp.seat_impact = ctx.effect("seat_impact");
-      mp.restitution = p.number("restitution");
-      mp.seating_speed = p.number("seating_speed");
-      // t = 0 at cam angle -pi (the base circle, valve seated).
-      const SingleMassModel model(mp, [&](double t, double& y, double& dy) {
-        const LiftDerivatives d = motion->drive(-pi + w * t);
-        y = d.lift;
-        dy = w * d.velocity;
-      });
-      const double h_max = motion->rocker_ratio() * motion->cam().max_lift() - motion->lash();
-      SimulationOptions options;
-      options.integrator = p.text("integrator");
-      options.rtol = p.number("tolerance");
-      options.atol_x = options.rtol * h_max;
-      options.atol_v = options.rtol * h_max * w;
-      options.max_step = period / 720.0;  // half a cam degree: no two events hide inside one step
-      std::vector<double> knots;
-      std::vector<double> cam_knots{motion->cam().event_begin(), motion->cam().event_end()};
-      for (double b : motion->cam().breakpoints()) cam_knots.push_back(b);
-      for (int r = 0; r < revolutions; ++r)
-        for (double k : cam_knots) knots.push_back((r + (k + pi) / (2.0 * pi)) * period);
-      std::sort(knots.begin(), knots.end());
-      const double last = (revolutions - 1) * period;
-      std::vector<double> times;
-      for (double a : phi) times.push_back(last + (a + pi) / w);
-      SimulationResult run;
-      try {
-        run = simulate(model, 0.0, revolutions * period, times, knots, options);
-      } catch (const std::runtime_error& e) {
-        throw NodeError("tolerance", std::string("the simulation failed: ") + e.what() +
-                                         " (loosen tolerance, or try integrator: " +
-                                         (options.integrator == "cvode" ? "dopri5" : "cvode") + ")");
-      }
+      DriveSettings settings;
+      settings.stiffness = p.number("drive_stiffness");
+      settings.damping_ratio = p.number("damping_ratio");
+      settings.revolutions = revolutions;
+      settings.tolerance = p.number("tolerance");
+      settings.integrator = p.text("integrator");
+      settings.contact_loss = ctx.effect("contact_loss");
+      settings.seat_impact = ctx.effect("seat_impact");
+      settings.restitution = p.number("restitution");
+      settings.seating_speed = p.number("seating_speed");
+      const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi);
+      const SimulationResult& run = sim.run;
+      const SingleMassModel& model = sim.model;
+      const double k_d = settings.stiffness, last = sim.last_start;
       for (const auto& [counter, amount] : run.work) ctx.report_work(counter, amount);
 
       double first_landing = std::numeric_limits<double>::infinity();
@@ -233,8 +205,8 @@ class DynamicsType final : public NodeType {
       }
       out.set_scalar("max_deviation", max_dev);
       out.set_scalar("residual_amplitude", residual);
-      if (mp.contact_loss) out.set_scalar("floats", floats);
-      if (mp.seat_impact) {
+      if (settings.contact_loss) out.set_scalar("floats", floats);
+      if (settings.seat_impact) {
         out.set_scalar("bounces", bounces);
         out.set_scalar("bounce_height", bounce_height);
       }

@@ -9,5 +9,6 @@ std::shared_ptr<const NodeType> make_masses_type();
 std::shared_ptr<const NodeType> make_spring_design_type();
 std::shared_ptr<const NodeType> make_resonance_type();
 std::shared_ptr<const NodeType> make_dynamics_type();
+std::shared_ptr<const NodeType> make_float_speed_type();
 
 }  // namespace mechgraph::valvetrain

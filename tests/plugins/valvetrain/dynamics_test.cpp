@@ -236,3 +236,34 @@ TEST_CASE("dynamics hard cases: finite results and bounded work", "[valvetrain][
     }
   }
 }
+
+TEST_CASE("float_speed: the bracket it returns holds below and floats above, checked by the dynamics node", "[valvetrain][dynamics]") {
+  const std::string ramped =
+      "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm, "
+      "ramp: cosine, ramp_height: 0.2 mm, ramp_length: 20 deg } }";
+  const std::string fs =
+      "{ type: valvetrain.float_speed, inputs: { valve: v.motion, design: sd.design }, "
+      "params: { rpm_min: 2000 rpm, rpm_max: 9000 rpm, drive_stiffness: 4000 N/mm, speed_tolerance: 0.5 rpm } }";
+  const RunResult r = run_scene(dynamics_scene(ramped, fs, "dyn.float_speed, dyn.held_speed, dyn.simulations"));
+  const double rpm = 2 * pi / 60;
+  const double floats_at = num(r, "dyn.float_speed"), held_at = num(r, "dyn.held_speed");
+  CHECK(floats_at > held_at);
+  CHECK(floats_at - held_at <= 0.5 * rpm);
+  CHECK(num(r, "dyn.simulations") < 40);
+  // Second method: the dynamics node itself, with unilateral contact, at both ends of the bracket.
+  auto floats = [&](double speed) {
+    const std::string fast = "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: " +
+                             std::to_string(speed / rpm) + " rpm, rocker_ratio: 1.5, lash: 0.25 mm } }\n";
+    const std::string dyn =
+        "{ type: valvetrain.dynamics, inputs: { valve: fast.motion, design: sd.design }, effects: [ elastic_drive, contact_loss ], "
+        "params: { drive_stiffness: 4000 N/mm, revolutions: 3 } }";
+    return num(run_scene(dynamics_scene(ramped, dyn, "dyn.floats", "5600 rpm", "0.25 mm", fast)), "dyn.floats");
+  };
+  CHECK(floats(held_at) == 0);
+  CHECK(floats(floats_at) == 1);
+  // A range without float says so, naming rpm_max.
+  std::string none = fs;
+  none.replace(none.find("rpm_max: 9000 rpm"), 17, "rpm_max: 2500 rpm");
+  CHECK_THROWS_WITH(run_scene(dynamics_scene(ramped, none, "dyn.float_speed")),
+                    Contains("parameter 'rpm_max'") && Contains("does not float between"));
+}

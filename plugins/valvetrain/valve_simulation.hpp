@@ -1,0 +1,57 @@
+#pragma once
+// The valve train's single-mass simulation set up from a valve motion and a spring design: the
+// piece valvetrain.dynamics and valvetrain.float_speed share (single_mass_model.hpp has the model).
+#include "single_mass_model.hpp"
+#include "train_masses.hpp"
+
+#include <mechgraph/domain/valve_motion.hpp>
+
+#include <string>
+#include <vector>
+
+namespace mechgraph::valvetrain {
+
+struct DriveSettings {
+  double stiffness = 0.0;      // k_d, N/m, valve side
+  double damping_ratio = 0.0;  // share of critical on k_d + c_s
+  int revolutions = 2;         // results from the last
+  double tolerance = 1e-8;     // relative; absolute: times the full lift (and x w_k for speed)
+  std::string integrator = "cvode";
+  bool contact_loss = false;
+  bool seat_impact = false;
+  double restitution = 0.0;
+  double seating_speed = 0.0;
+};
+
+struct ValveSimulation {
+  SingleMassModel model;
+  SimulationResult run;  // states at the requested cam angles of the last revolution
+  double period = 0.0;   // s, one cam revolution
+  double last_start = 0.0;  // s, start of the last revolution
+};
+
+/// Simulates `revolutions` cam revolutions from the base circle (t = 0 at cam angle -pi, valve
+/// seated) and records the state at `cam_angles` (in [-pi, pi], ascending) of the last one.
+/// Throws NodeError("tolerance") if the integrator fails.
+ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& design, const DriveSettings& drive,
+                               const std::vector<double>& cam_angles);
+
+/// The same valve motion at another camshaft speed (the motion over cam angle does not depend on it).
+class RespeededMotion final : public ValveMotion {
+ public:
+  RespeededMotion(const ValveMotion& base, double camshaft_speed) : base_(base), speed_(camshaft_speed) {}
+  LiftDerivatives at(double phi) const override { return base_.at(phi); }
+  double camshaft_speed() const override { return speed_; }
+  double open_begin() const override { return base_.open_begin(); }
+  double open_end() const override { return base_.open_end(); }
+  const std::vector<double>& knots() const override { return base_.knots(); }
+  double rocker_ratio() const override { return base_.rocker_ratio(); }
+  double lash() const override { return base_.lash(); }
+  const CamLaw& cam() const override { return base_.cam(); }
+
+ private:
+  const ValveMotion& base_;
+  double speed_;
+};
+
+}  // namespace mechgraph::valvetrain
