@@ -100,7 +100,7 @@ PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radiu
     coefficients_.push_back(static_cast<double>(num) / static_cast<double>(den));
   }
   std::vector<cpp_rational> derivative = p;
-  for (int m = 0; m < 4; ++m) {
+  for (int m = 0; m < 6; ++m) {
     if (m > 0) {  // d/du of sum c_k u^k
       std::vector<cpp_rational> d(derivative.size() - 1);
       for (std::size_t k = 1; k < derivative.size(); ++k) d[k - 1] = derivative[k] * static_cast<long long>(k);
@@ -131,6 +131,16 @@ long double PolydyneLaw::normalized_derivative(int m, long double w) const {
   long double factor = 1.0L;
   for (int k = 0; k < 5 - m; ++k) factor *= w;
   return factor * sum;
+}
+
+bool PolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
+  const long double phi_p = half_action_;
+  const long double w = (phi_p - std::abs(static_cast<long double>(phi))) / phi_p;
+  const long double h = max_lift_;
+  const long double scale4 = h / (phi_p * phi_p * phi_p * phi_p);
+  d4 = static_cast<double>(scale4 * normalized_derivative(4, w));  // even in phi
+  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * normalized_derivative(5, w));
+  return true;
 }
 
 LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const {

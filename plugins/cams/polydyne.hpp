@@ -45,6 +45,7 @@ class PolydyneLaw final : public CamLaw {
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
   LiftDerivatives evaluate_in_event(double phi) const override;
+  bool higher_derivatives(double phi, double& d4, double& d5) const override;
   std::vector<double> breakpoints() const override { return {}; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
@@ -52,7 +53,7 @@ class PolydyneLaw final : public CamLaw {
   const std::vector<int>& exponents() const { return exponents_; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
   const std::vector<double>& coefficients() const { return coefficients_; }
-  /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..3, in long double.
+  /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
   long double normalized_derivative(int m, long double w) const;
 
  private:
@@ -61,7 +62,7 @@ class PolydyneLaw final : public CamLaw {
   double base_radius_ = 0.0;
   std::vector<int> exponents_;
   std::vector<double> coefficients_;
-  std::array<std::vector<long double>, 4> q_;  // x^(m)(u)/h = (1 - u)^(5-m) q_m(u), monomial coefficients
+  std::array<std::vector<long double>, 6> q_;  // x^(m)(u)/h = (1 - u)^(5-m) q_m(u) (m <= 5), monomial coefficients
 };
 
 /// cam.polydyne: parameter exponents (default 2, 6, 10, 14, 18); no extra outputs.

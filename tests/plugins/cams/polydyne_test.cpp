@@ -292,3 +292,33 @@ TEST_CASE("polydyne: exponent validation", "[cams][polydyne]") {
   CHECK_THAT(exponent_error({2, 6, 10, 14, 2000}), Catch::Contains("[2, 1000]"));
   CHECK_THAT(exponent_error({2, 6, 10, 14, -18}), Catch::StartsWith("exponents: "));
 }
+
+TEST_CASE("polydyne: the 4th and 5th derivatives against central differences of the lower ones", "[cams][polydyne]") {
+  // Second method: 4-point central differences of the jerk (for d4) and of d4 (for d5), with the
+  // step chosen for ~1e-8 relative accuracy; and the end conditions: d4 = 0 at the seat.
+  const PolydyneLaw law(8e-3, 130 * std::numbers::pi / 180, 17e-3, {2, 6, 10, 14, 18});
+  const double phi_p = 65 * std::numbers::pi / 180;
+  for (double f : {-0.9, -0.5, -0.1, 0.05, 0.3, 0.7, 0.95}) {
+    const double phi = f * phi_p, h = 1e-3;
+    INFO("phi = " << f << " phi_p");
+    double d4 = 0, d5 = 0;
+    REQUIRE(law.higher_derivatives(phi, d4, d5));
+    auto jerk = [&](double x) { return law.evaluate_in_event(x).jerk; };
+    auto fourth = [&](double x) {
+      double a = 0, b = 0;
+      law.higher_derivatives(x, a, b);
+      return a;
+    };
+    const double d4_fd = (-jerk(phi + 2 * h) + 8 * jerk(phi + h) - 8 * jerk(phi - h) + jerk(phi - 2 * h)) / (12 * h);
+    const double d5_fd = (-fourth(phi + 2 * h) + 8 * fourth(phi + h) - 8 * fourth(phi - h) + fourth(phi - 2 * h)) / (12 * h);
+    const double scale4 = 8e-3 / std::pow(phi_p, 4), scale5 = scale4 / phi_p;
+    CHECK_THAT(d4, Catch::Matchers::WithinAbs(d4_fd, 1e-7 * scale4 * 1e3));
+    CHECK_THAT(d5, Catch::Matchers::WithinAbs(d5_fd, 1e-7 * scale5 * 1e4));
+  }
+  // d4 has a simple zero at the seat (d4 ~ 1 - u): a thousand times closer, a thousand times smaller.
+  double near4 = 0, near5 = 0, nearer4 = 0, nearer5 = 0;
+  law.higher_derivatives(phi_p * (1 - 1e-6), near4, near5);
+  law.higher_derivatives(phi_p * (1 - 1e-9), nearer4, nearer5);
+  CHECK_THAT(nearer4 / near4, Catch::Matchers::WithinRel(1e-3, 1e-4));
+  CHECK_THAT(nearer5, Catch::Matchers::WithinRel(near5, 1e-4));  // d5 does not vanish there
+}

@@ -10,6 +10,9 @@
 //    h [m], dh/dphi [m/rad], d2h/dphi2 [m/rad^2], d3h/dphi3 [m/rad^3].
 //  - breakpoints(): the angles strictly inside the event where some derivative up to the third is
 //    discontinuous, sorted ascending. Integrators and extremum searches split there.
+//  - higher_derivatives(phi) gives d4h/dphi4 [m/rad^4] and d5h/dphi5 [m/rad^5] inside the event for
+//    laws that have them in closed form (returns false otherwise, the default). Cam synthesis
+//    against an elastic drive needs them (valvetrain.polydyne_cam).
 //  - Implementations are immutable and thread-safe.
 #include <mechgraph/value.hpp>
 
@@ -40,6 +43,8 @@ class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
   virtual double base_radius() const = 0;
   /// Radius of a roller follower; 0 for a flat-faced (mushroom) tappet.
   virtual double roller_radius() const { return 0.0; }
+  /// d4h/dphi4 and d5h/dphi5 at event_begin() < phi < event_end(); false if the law cannot give them.
+  virtual bool higher_derivatives(double /*phi*/, double& /*d4*/, double& /*d5*/) const { return false; }
 
   /// Lift and derivatives at any angle: reduced to [-pi, pi), zero outside the event.
   LiftDerivatives at(double phi) const {
