@@ -68,6 +68,9 @@ class DynamicsType final : public NodeType {
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's kinematic motion at the speed simulated"),
         PortSpec::handle("design", std::string(SpringDesign::kind_name), "spring and reduced mass (valvetrain.spring_design)"),
+        PortSpec::handle("target", std::string(ValveMotion::kind_name),
+                         "optional: the lift the valve should follow (e.g. the law a polydyne cam was made for)")
+            .optional_port(),
     };
     info_.outputs = {
         PortSpec::table("curves", "over the last revolution's cam angle: lift x, quasi-static x_qs, kinematic lift, drive "
@@ -79,6 +82,7 @@ class DynamicsType final : public NodeType {
         PortSpec::scalar("floats", dim::none, "1 if the valve lost cam contact in the last revolution, else 0"),
         PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
         PortSpec::scalar("bounce_height", dim::length, "highest lift after the first landing of the last revolution", "mm"),
+        PortSpec::scalar("target_deviation", dim::length, "max |x - target lift| over the curve points (with a target)", "mm"),
     };
     info_.effects = {
         {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass); off: rigid drive",
@@ -210,6 +214,12 @@ class DynamicsType final : public NodeType {
         out.set_scalar("bounces", bounces);
         out.set_scalar("bounce_height", bounce_height);
       }
+    }
+    if (in.count("target")) {
+      const auto target = in.handle<ValveMotion>("target");
+      double worst = 0.0;
+      for (std::size_t j = 0; j < phi.size(); ++j) worst = std::max(worst, std::abs(lift[j] - target->at(phi[j]).lift));
+      out.set_scalar("target_deviation", worst);
     }
     if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat at the curve points
     out.set_scalar("min_contact_force", min_contact);

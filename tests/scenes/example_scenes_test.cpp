@@ -6,6 +6,9 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
 #include <numbers>
 
 using namespace mechgraph::testing;
@@ -131,4 +134,49 @@ TEST_CASE("the backlash scene names of the contract load and give hand-computed 
   CHECK_THAT(value(json, "stack.worst_case_min"), WithinAbs(116.45e-3, 1e-12));
   CHECK_THAT(value(json, "stack.worst_case_max"), WithinAbs(116.59e-3, 1e-12));
   CHECK_THAT(value(json, "stack.rss_sigma"), WithinRel(std::hypot(0.05e-3 / 3, 0.02e-3 / 3), 1e-12));
+}
+
+TEST_CASE("the valve-train study prints stage 4 by both spring rules", "[scenes]") {
+  const auto r = run_cli(plugins() + "run " + scene("valvetrain_cams.yaml"));
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("source's rule") && Contains("free-length rule") && Contains("reduced mass M_red") &&
+                        Contains("harmonic k") && Contains("distortion, harmonic k+1, %") && Contains("least safety factor"));
+  const auto j = run_cli(plugins() + "-q run " + scene("valvetrain_cams.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  for (const char* cam : {"arc", "kurz", "poly"}) {
+    INFO(cam);
+    // The free-length line touches K x the inertia force; the source's line may dip below it.
+    CHECK_THAT(value(json, "sd_" + std::string(cam) + ".min_safety_factor"), WithinRel(1.5, 1e-9));
+    CHECK(value(json, "src_" + std::string(cam) + ".min_safety_factor") <= 1.5 * (1 + 1e-9));
+  }
+}
+
+TEST_CASE("the dynamics scene: effects side by side, curves as CSV with units", "[scenes]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_dyn_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const auto r = run_cli(plugins() + "run " + scene("valvetrain_dynamics.yaml") + " --out '" + dir.string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("rigid (5600 rpm)") && Contains("seating velocity") && Contains("float speed"));
+  std::ifstream csv(dir / "elastic.curves.csv");
+  std::string header;
+  std::getline(csv, header);
+  CHECK(header == "cam_angle [rad],lift [m],quasi_static_lift [m],kinematic_lift [m],drive_displacement [m],velocity [m/s],"
+                  "contact_force [N],spring_force [N]");
+  std::filesystem::remove_all(dir);
+  // The rigid node integrates nothing; the elastic ones report their steps.
+  const auto j = run_cli(plugins() + "-q run " + scene("valvetrain_dynamics.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  CHECK(json["nodes"]["rigid"]["work"]["steps"].as<double>() == 0);
+  CHECK(json["nodes"]["elastic"]["work"]["steps"].as<double>() > 100);
+}
+
+TEST_CASE("the polydyne synthesis scene: exact at the design speed", "[scenes]") {
+  const auto j = run_cli(plugins() + "-q run " + scene("polydyne_synthesis.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  CHECK(value(json, "d_5600.target_deviation") < 1e-9);
+  CHECK(value(json, "d_4500.target_deviation") > 1e-5);
+  CHECK(value(json, "damped.target_deviation") > 1e-6);  // the synthesis leaves damping out
 }
