@@ -342,21 +342,35 @@ def main():
              ("scipy Radau", "Radau", None)]
     if args.all_methods:
         sides += [("scipy BDF", "BDF", None), ("scipy LSODA", "LSODA", None)]
-    rows = {name: [] for name, _, _ in sides}
-    for tol in tols:
-        for name, method, max_step in sides:
-            try:
-                if method is None:
-                    m = run_mechgraph(args.mechgraph, args.scene, tol, args.repeats)
-                    secs, x = m["seconds"], m["lift"]
-                    work = f"{m['work'].get('steps')} steps, {m['work'].get('rhs_evaluations')} rhs"
+    # The repetitions are rounds over the whole ladder, so a burst of load on the machine spreads
+    # over all points instead of spoiling one; each point keeps its fastest time.
+    best = {}  # (name, tol) -> [error, seconds, work]
+    failed = set()
+    for _ in range(args.repeats):
+        for tol in tols:
+            for name, method, max_step in sides:
+                if (name, tol) in failed:
+                    continue
+                try:
+                    if method is None:
+                        m = run_mechgraph(args.mechgraph, args.scene, tol, 1)
+                        secs, x = m["seconds"], m["lift"]
+                        work = f"{m['work'].get('steps')} steps, {m['work'].get('rhs_evaluations')} rhs"
+                    else:
+                        secs, x, w = time_scipy(model, tol, 1, method, max_step)
+                        work = f"{w['rhs']} rhs, {w['lu']} LU"
+                except RuntimeError as e:
+                    print(f"  {name} at tol {tol:g} failed: {e}")
+                    failed.add((name, tol))
+                    continue
+                err = float(np.max(np.abs(x - x_ref)))
+                if (name, tol) not in best:
+                    best[(name, tol)] = [err, secs, work]
                 else:
-                    secs, x, w = time_scipy(model, tol, args.repeats, method, max_step)
-                    work = f"{w['rhs']} rhs, {w['lu']} LU"
-            except RuntimeError as e:
-                print(f"  {name} at tol {tol:g} failed: {e}")
-                continue
-            rows[name].append((tol, float(np.max(np.abs(x - x_ref))), secs, work))
+                    if err != best[(name, tol)][0]:
+                        print(f"  {name} at tol {tol:g}: not deterministic ({err:.3g} m vs {best[(name, tol)][0]:.3g} m)")
+                    best[(name, tol)][1] = min(best[(name, tol)][1], secs)
+    rows = {name: [(tol, *best[(name, tol)]) for tol in tols if (name, tol) in best] for name, _, _ in sides}
 
     print()
     print(f"work-precision: error = max |x - x_ref| over {CURVE_POINTS} points of the last revolution; "

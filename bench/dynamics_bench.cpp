@@ -1,0 +1,63 @@
+// What the valve train's dynamic simulation costs: the elastic node of scenes/valvetrain_dynamics.yaml
+// (two cam revolutions, 1441 curve points), its upstream served from the memo cache, per
+// integrator and tolerance. bench/peers/ runs the same model in scipy for comparison.
+//   build/bench/mechgraph_bench --benchmark_filter=Dynamics
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/graph.hpp>
+#include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+namespace {
+
+using namespace mechgraph;
+
+const PluginRegistry& plugins() {
+  static const PluginRegistry r = [] {
+    PluginRegistry loaded;
+    loaded.load_directory(MECHGRAPH_PLUGIN_DIR);
+    return loaded;
+  }();
+  return r;
+}
+
+void run_dynamics(benchmark::State& state, const std::string& node, const std::string& integrator, const std::string& tolerance) {
+  static const SceneSpec scene = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_dynamics.yaml");
+  SceneSpec one = scene;
+  one.outputs = {PortRef{node, "curves", {}}};
+  one.report.clear();
+  const Graph g = build_graph(one, plugins(), {parse_override(node + ".integrator=" + integrator),
+                                               parse_override(node + ".tolerance=" + tolerance)});
+  const std::uint64_t key = node_hashes(g)[*g.find(node)];
+  MemoCache cache;
+  evaluate(g, cache);
+  double steps = 0;
+  for (auto _ : state) {
+    cache.erase(key);  // everything upstream stays cached: only the simulation runs
+    const RunResult r = evaluate(g, cache);
+    steps = r.runs.back().work.at("steps");
+  }
+  state.counters["steps"] = steps;
+}
+
+void BM_DynamicsElastic(benchmark::State& state, const char* integrator, const char* tolerance) {
+  run_dynamics(state, "elastic", integrator, tolerance);
+}
+BENCHMARK_CAPTURE(BM_DynamicsElastic, cvode_1e-6, "cvode", "1e-6")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsElastic, cvode_1e-8, "cvode", "1e-8")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsElastic, cvode_1e-10, "cvode", "1e-10")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsElastic, dopri5_1e-6, "dopri5", "1e-6")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsElastic, dopri5_1e-8, "dopri5", "1e-8")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsElastic, dopri5_1e-10, "dopri5", "1e-10")->Unit(benchmark::kMillisecond);
+
+// Float, bounces and three revolutions at 7500 rpm.
+void BM_DynamicsOverspeed(benchmark::State& state, const char* integrator) {
+  run_dynamics(state, "overspeed", integrator, "1e-8");
+}
+BENCHMARK_CAPTURE(BM_DynamicsOverspeed, cvode, "cvode")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsOverspeed, dopri5, "dopri5")->Unit(benchmark::kMillisecond);
+
+}  // namespace
