@@ -11,7 +11,7 @@ Usage:
         [--scene bench/peers/valvetrain_dynamics.yaml] [--repeats 5] [--quick] [--all-methods]
 or simply bench/peers/run.sh (same arguments). MECHGRAPH in the environment names the CLI.
 
-The model (plugins/valvetrain/single_mass_model.hpp; the node's setup in dynamics_node.cpp /
+The model (plugins/valvetrain/chain_model.hpp; the node's setup in dynamics_node.cpp /
 valve_simulation.cpp), valve side:
     cam angle   phi = -pi + w_k t,  w_k = rpm/2 in rad/s (t = 0 on the base circle, at -pi)
     drive       y = i h(phi) - lash (here lash = 0), y' = w_k i h'(phi)
@@ -31,7 +31,8 @@ with the same cap ("scipy Radau, max_step 1/2 deg").
 Timing. mechgraph: the node's own time, `nodes.dyn.seconds` of `mechgraph run --json` (process
 start, plugin loading, scene parsing and the other nodes are excluded; the node time does
 include filling its seven output curves). scipy: time.perf_counter around the simulation
-(the 1441 lift values included). Each is the fastest of --repeats runs.
+(the 1441 lift values included). Each point is the fastest of --repeats runs, taken in rounds
+over the whole ladder so that a burst of load elsewhere on the machine spoils no single point.
 
 Error. max |x - x_ref| over the 1441 points, x_ref: mechgraph at tolerance 1e-12, cross-checked
 against scipy Radau at rtol 1e-13 (the difference is printed: errors below about twice it are

@@ -1,5 +1,5 @@
-// The CVODE backend: BDF (orders 1-5) with Newton iterations on the model's analytic 2x2
-// Jacobian, and CVODE's own root finding for the contact events. Each instance owns its SUNDIALS
+// The CVODE backend: BDF (orders 1-5) with Newton iterations on the model's exact (constant per
+// mode) Jacobian, and CVODE's own root finding for the contact events. Each instance owns its SUNDIALS
 // context, so simulations on several threads never share solver memory.
 #include "ode_backend.hpp"
 
@@ -8,6 +8,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace mechgraph::valvetrain {
@@ -15,13 +16,14 @@ namespace {
 
 class CvodeBackend final : public OdeBackend {
  public:
-  CvodeBackend(const SingleMassModel& model, const SimulationOptions& options) : model_(model), options_(options) {
+  CvodeBackend(const ChainModel& model, const SimulationOptions& options)
+      : model_(model), options_(options), size_(static_cast<sunindextype>(2 * model.positions())) {
     if (SUNContext_Create(nullptr, &context_) != 0) throw std::runtime_error("CVODE: cannot create a SUNDIALS context");
-    y_ = N_VNew_Serial(2, context_);
-    atol_ = N_VNew_Serial(2, context_);
-    NV_Ith_S(atol_, 0) = options.atol_x;
-    NV_Ith_S(atol_, 1) = options.atol_v;
-    matrix_ = SUNDenseMatrix(2, 2, context_);
+    y_ = N_VNew_Serial(size_, context_);
+    atol_ = N_VNew_Serial(size_, context_);
+    const sunindextype P = size_ / 2;
+    for (sunindextype i = 0; i < size_; ++i) NV_Ith_S(atol_, i) = i < P ? options.atol_x : options.atol_v;
+    matrix_ = SUNDenseMatrix(size_, size_, context_);
     solver_ = SUNLinSol_Dense(y_, matrix_, context_);
     memory_ = CVodeCreate(CV_BDF, context_);
     if (!y_ || !atol_ || !matrix_ || !solver_ || !memory_) {
@@ -33,10 +35,9 @@ class CvodeBackend final : public OdeBackend {
   CvodeBackend(const CvodeBackend&) = delete;
   CvodeBackend& operator=(const CvodeBackend&) = delete;
 
-  void restart(double t, const OdeState& s, Mode m) override {
+  void restart(double t, const ChainState& s, const Mode& m) override {
     collect_work();
-    NV_Ith_S(y_, 0) = s.x;
-    NV_Ith_S(y_, 1) = s.v;
+    for (sunindextype i = 0; i < size_; ++i) NV_Ith_S(y_, i) = s[static_cast<std::size_t>(i)];
     if (!initialised_) {
       check(CVodeInit(memory_, &CvodeBackend::rhs, t, y_), "CVodeInit");
       check(CVodeSetErrHandlerFn(memory_, &CvodeBackend::on_error, this), "CVodeSetErrHandlerFn");
@@ -51,8 +52,9 @@ class CvodeBackend final : public OdeBackend {
     } else {
       check(CVodeReInit(memory_, t, y_), "CVodeReInit");
     }
+    if (!(m == mode_) || jacobian_.empty()) jacobian_ = model_.jacobian(m);
     mode_ = m;
-    const int n = model_.root_count(m);
+    const int n = static_cast<int>(model_.root_kinds(m).size());
     check(CVodeRootInit(memory_, n, n ? &CvodeBackend::roots : nullptr), "CVodeRootInit");
     if (n) {
       directions_ = model_.root_directions(m);
@@ -65,9 +67,9 @@ class CvodeBackend final : public OdeBackend {
     advanced_ = true;
     sunrealtype t = 0.0;
     const int flag = CVode(memory_, target, y_, &t, CV_NORMAL);
-    BackendStep step{t, {NV_Ith_S(y_, 0), NV_Ith_S(y_, 1)}, -1};
+    BackendStep step{t, state(y_), -1};
     if (flag == CV_ROOT_RETURN) {
-      std::vector<int> found(static_cast<std::size_t>(model_.root_count(mode_)), 0);
+      std::vector<int> found(model_.root_kinds(mode_).size(), 0);
       check(CVodeGetRootInfo(memory_, found.data()), "CVodeGetRootInfo");
       for (std::size_t i = 0; i < found.size(); ++i)
         if (found[i] != 0) {
@@ -90,30 +92,31 @@ class CvodeBackend final : public OdeBackend {
   }
 
  private:
+  ChainState state(N_Vector y) const {
+    const sunrealtype* data = N_VGetArrayPointer(y);
+    return ChainState(data, data + size_);
+  }
   static int rhs(sunrealtype t, N_Vector y, N_Vector dy, void* data) {
     auto* self = static_cast<CvodeBackend*>(data);
     ++self->rhs_count_;
-    OdeState ds;
-    self->model_.rhs(self->mode_, t, {NV_Ith_S(y, 0), NV_Ith_S(y, 1)}, ds);
-    NV_Ith_S(dy, 0) = ds.x;
-    NV_Ith_S(dy, 1) = ds.v;
+    ChainState ds;
+    self->model_.rhs(self->mode_, t, self->state(y), ds);
+    std::copy(ds.begin(), ds.end(), N_VGetArrayPointer(dy));
     return 0;
   }
   static int jacobian(sunrealtype, N_Vector, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector, N_Vector) {
     auto* self = static_cast<CvodeBackend*>(data);
     ++self->jacobian_count_;
-    double a_x = 0.0, a_v = 0.0;
-    self->model_.jacobian(self->mode_, a_x, a_v);
-    SM_ELEMENT_D(J, 0, 0) = 0.0;
-    SM_ELEMENT_D(J, 0, 1) = self->mode_ == Mode::seated ? 0.0 : 1.0;
-    SM_ELEMENT_D(J, 1, 0) = a_x;
-    SM_ELEMENT_D(J, 1, 1) = a_v;
+    const auto n = static_cast<std::size_t>(self->size_);
+    for (std::size_t r = 0; r < n; ++r)
+      for (std::size_t c = 0; c < n; ++c)
+        SM_ELEMENT_D(J, static_cast<sunindextype>(r), static_cast<sunindextype>(c)) = self->jacobian_[r * n + c];
     return 0;
   }
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
     auto* self = static_cast<CvodeBackend*>(data);
     ++self->root_count_;
-    self->model_.roots(self->mode_, t, {NV_Ith_S(y, 0), NV_Ith_S(y, 1)}, g);
+    self->model_.roots(self->mode_, t, self->state(y), g);
     return 0;
   }
   static void on_error(int, const char*, const char* function, char* message, void* data) {
@@ -150,8 +153,10 @@ class CvodeBackend final : public OdeBackend {
     if (context_) SUNContext_Free(&context_);
   }
 
-  const SingleMassModel& model_;
+  const ChainModel& model_;
   SimulationOptions options_;
+  sunindextype size_;
+  std::vector<double> jacobian_;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;
   N_Vector atol_ = nullptr;
@@ -159,7 +164,7 @@ class CvodeBackend final : public OdeBackend {
   SUNLinearSolver solver_ = nullptr;
   void* memory_ = nullptr;
   bool initialised_ = false;
-  Mode mode_ = Mode::seated;
+  Mode mode_{};
   std::vector<int> directions_;
   std::string error_;
   std::map<std::string, double> totals_;
@@ -169,7 +174,7 @@ class CvodeBackend final : public OdeBackend {
 
 }  // namespace
 
-std::unique_ptr<OdeBackend> make_cvode_backend(const SingleMassModel& model, const SimulationOptions& options) {
+std::unique_ptr<OdeBackend> make_cvode_backend(const ChainModel& model, const SimulationOptions& options) {
   return std::make_unique<CvodeBackend>(model, options);
 }
 

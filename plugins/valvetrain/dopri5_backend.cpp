@@ -16,22 +16,22 @@ namespace mechgraph::valvetrain {
 namespace {
 
 namespace odeint = boost::numeric::odeint;
-using Scaled = std::array<double, 2>;
+using Scaled = std::vector<double>;
 
 class Dopri5Backend final : public OdeBackend {
  public:
-  Dopri5Backend(const SingleMassModel& model, const SimulationOptions& options)
-      : model_(model), options_(options),
+  Dopri5Backend(const ChainModel& model, const SimulationOptions& options)
+      : model_(model), options_(options), positions_(model.positions()),
         dense_(odeint::make_dense_output(1.0, options.rtol, options.max_step, odeint::runge_kutta_dopri5<Scaled>())) {}
 
-  void restart(double t, const OdeState& s, Mode m) override {
+  void restart(double t, const ChainState& s, const Mode& m) override {
     mode_ = m;
     const double first = first_step_ > 0.0 ? first_step_ : 1e-9;
     dense_.initialize(scale(s), t, first);
     ++initialisations_;
     stepped_ = false;
     root_ = -1;
-    g_.assign(static_cast<std::size_t>(model_.root_count(m)), 0.0);
+    g_.assign(model_.root_kinds(m).size(), 0.0);
     bracket_from_ = t;
     if (g_.empty()) return;
     model_.roots(m, t, s, g_.data());
@@ -40,10 +40,11 @@ class Dopri5Backend final : public OdeBackend {
     // one step is still found and the start itself is never taken for a root.
     if (std::find(g_.begin(), g_.end(), 0.0) != g_.end()) {
       bracket_from_ = t + nudge;
-      OdeState ds;
+      ChainState ds, ahead_state = s;
       model_.rhs(m, t, s, ds);
+      for (std::size_t i = 0; i < s.size(); ++i) ahead_state[i] += nudge * ds[i];
       std::vector<double> ahead(g_.size());
-      model_.roots(m, bracket_from_, {s.x + nudge * ds.x, s.v + nudge * ds.v}, ahead.data());
+      model_.roots(m, bracket_from_, ahead_state, ahead.data());
       for (std::size_t i = 0; i < g_.size(); ++i)
         if (g_[i] == 0.0) g_[i] = ahead[i];
     }
@@ -86,16 +87,25 @@ class Dopri5Backend final : public OdeBackend {
     Dopri5Backend* self;
     void operator()(const Scaled& q, Scaled& dq, double t) const {
       ++self->rhs_;
-      OdeState ds;
+      ChainState ds;
       self->model_.rhs(self->mode_, t, self->unscale(q), ds);
-      dq = {ds.x / self->options_.atol_x, ds.v / self->options_.atol_v};
+      dq = self->scale(ds);
     }
   };
 
-  Scaled scale(const OdeState& s) const { return {s.x / options_.atol_x, s.v / options_.atol_v}; }
-  OdeState unscale(const Scaled& q) const { return {q[0] * options_.atol_x, q[1] * options_.atol_v}; }
-  OdeState state_at(double t) {
-    Scaled q;
+  // Positions in units of atol_x, velocities in units of atol_v.
+  Scaled scale(const ChainState& s) const {
+    Scaled q(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i) q[i] = s[i] / (i < positions_ ? options_.atol_x : options_.atol_v);
+    return q;
+  }
+  ChainState unscale(const Scaled& q) const {
+    ChainState s(q.size());
+    for (std::size_t i = 0; i < q.size(); ++i) s[i] = q[i] * (i < positions_ ? options_.atol_x : options_.atol_v);
+    return s;
+  }
+  ChainState state_at(double t) {
+    Scaled q(2 * positions_);
     dense_.calc_state(t, q);
     return unscale(q);
   }
@@ -133,10 +143,11 @@ class Dopri5Backend final : public OdeBackend {
     g_ = std::move(g1);
   }
 
-  const SingleMassModel& model_;
+  const ChainModel& model_;
   SimulationOptions options_;
+  std::size_t positions_;
   odeint::dense_output_runge_kutta<odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Scaled>>> dense_;
-  Mode mode_ = Mode::seated;
+  Mode mode_{};
   bool stepped_ = false;
   std::vector<double> g_;  // the event functions at the start of the next step
   int root_ = -1;
@@ -149,7 +160,7 @@ class Dopri5Backend final : public OdeBackend {
 
 }  // namespace
 
-std::unique_ptr<OdeBackend> make_dopri5_backend(const SingleMassModel& model, const SimulationOptions& options) {
+std::unique_ptr<OdeBackend> make_dopri5_backend(const ChainModel& model, const SimulationOptions& options) {
   return std::make_unique<Dopri5Backend>(model, options);
 }
 

@@ -56,6 +56,22 @@ class DynamicsType final : public NodeType {
             .at_least(16)
             .at_most(1e7)
             .as_knob(),
+        ParamSpec::number_list("stiffnesses", dim::stiffness,
+                               "multi_mass: stiffnesses reduced to the valve, cam-tappet, tappet-pushrod, pushrod-rocker, "
+                               "rocker-valve",
+                               "N/mm")
+            .optional()
+            .positive()
+            .at_most(1e13),
+        ParamSpec::integer("coils", "spring_surge: coil masses the spring is cut into")
+            .with_default(8.0)
+            .at_least(1)
+            .at_most(200)
+            .as_knob(),
+        ParamSpec::number("surge_damping_ratio", dim::none, "spring_surge: damping of the first surge mode, share of critical")
+            .with_default(0.01)
+            .non_negative()
+            .at_most(1.0),
         ParamSpec::number("restitution", dim::none, "coefficient of restitution of the valve on its seat (seat_impact)")
             .with_default(0.3)
             .non_negative()
@@ -83,14 +99,24 @@ class DynamicsType final : public NodeType {
         PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
         PortSpec::scalar("bounce_height", dim::length, "highest lift after the first landing of the last revolution", "mm"),
         PortSpec::scalar("target_deviation", dim::length, "max |x - target lift| over the curve points (with a target)", "mm"),
+        PortSpec::scalar("max_spring_force", dim::force, "greatest spring force on the valve over the curve points", "N"),
+        PortSpec::series("natural_frequencies", dim::frequency,
+                         "of the drive (valve off its seat, cam in contact), lowest first; with spring_surge the coils' too",
+                         "Hz"),
     };
     info_.effects = {
         {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass); off: rigid drive",
-         {"max_deviation", "residual_amplitude"}, {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions"}},
+         {"max_deviation", "residual_amplitude", "natural_frequencies"},
+         {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions"}},
         {"contact_loss", "unilateral cam contact: the valve flies free while the drive would pull it (needs elastic_drive)",
          {"floats"}, {}},
         {"seat_impact", "the valve bounces on its seat with a coefficient of restitution (needs elastic_drive)",
          {"bounces", "bounce_height"}, {"restitution", "seating_speed"}},
+        {"multi_mass", "tappet, pushrod, rocker and valve as four masses on their own stiffnesses (needs elastic_drive)",
+         {}, {"stiffnesses"}},
+        {"spring_surge", "the valve spring as a chain of coil masses, its first mode at the surge frequency (needs "
+                         "elastic_drive)",
+         {}, {"coils", "surge_damping_ratio"}},
     };
     info_.work_counters = {"steps", "rhs_evaluations", "jacobian_evaluations", "root_evaluations", "rejected_steps",
                            "newton_iterations", "events"};
@@ -101,10 +127,10 @@ class DynamicsType final : public NodeType {
     const auto motion = in.handle<ValveMotion>("valve");
     const auto design = in.handle<SpringDesign>("design");
     const bool elastic = ctx.effect("elastic_drive");
-    for (const char* effect : {"contact_loss", "seat_impact"})
+    for (const char* effect : {"contact_loss", "seat_impact", "multi_mass", "spring_surge"})
       if (ctx.effect(effect) && !elastic)
         throw NodeError("drive_stiffness", std::string(effect) + " needs the elastic_drive effect as well (a rigid drive "
-                                           "neither loses contact nor lets the valve bounce)");
+                                           "has no vibration to show)");
     const double w = motion->camshaft_speed();
     const double period = 2.0 * pi / w;
     const double M = design->reduced_mass;
@@ -119,6 +145,7 @@ class DynamicsType final : public NodeType {
 
     Table curves;
     curves.axis = {"cam_angle", dim::angle, phi, "deg"};
+    curves.channels.reserve(8);  // room for tappet_lift (multi_mass): the references below stay valid
     curves.add_channel("lift", dim::length, "mm");
     curves.add_channel("quasi_static_lift", dim::length, "mm");
     curves.add_channel("kinematic_lift", dim::length, "mm");
@@ -155,9 +182,19 @@ class DynamicsType final : public NodeType {
       seating_velocity = w * std::abs(motion->at(motion->open_end() - 1e-12).velocity);
       for (const char* counter : {"steps", "rhs_evaluations", "events"}) ctx.report_work(counter, 0.0);
     } else {
-      if (!p.has("drive_stiffness")) throw NodeError("drive_stiffness", "elastic_drive needs drive_stiffness");
       DriveSettings settings;
-      settings.stiffness = p.number("drive_stiffness");
+      settings.multi_mass = ctx.effect("multi_mass");
+      if (settings.multi_mass) {
+        if (!p.has("stiffnesses")) throw NodeError("stiffnesses", "multi_mass needs stiffnesses (four, valve side)");
+        settings.stiffnesses = p.numbers("stiffnesses");
+      } else {
+        if (!p.has("drive_stiffness")) throw NodeError("drive_stiffness", "elastic_drive needs drive_stiffness");
+        settings.stiffness = p.number("drive_stiffness");
+      }
+      if (ctx.effect("spring_surge")) {
+        settings.coils = static_cast<int>(p.integer("coils"));
+        settings.surge_damping_ratio = p.number("surge_damping_ratio");
+      }
       settings.damping_ratio = p.number("damping_ratio");
       settings.revolutions = revolutions;
       settings.tolerance = p.number("tolerance");
@@ -168,8 +205,24 @@ class DynamicsType final : public NodeType {
       settings.seating_speed = p.number("seating_speed");
       const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi);
       const SimulationResult& run = sim.run;
-      const SingleMassModel& model = sim.model;
-      const double k_d = settings.stiffness, last = sim.last_start;
+      const ChainModel& model = sim.model;
+      const std::size_t v = model.valve(), P = model.positions();
+      const double last = sim.last_start;
+      // The drive's stiffness in series, for the quasi-static lift.
+      double compliance = 0.0;
+      for (double k : model.params().link_stiffness) compliance += 1.0 / k;
+      const double k_d = 1.0 / compliance;
+      std::vector<double> frequencies;
+      for (double omega : natural_frequencies(model.params())) frequencies.push_back(omega / (2.0 * pi));
+      Series modes;
+      modes.values = frequencies;
+      for (std::size_t i = 0; i < frequencies.size(); ++i) modes.axis.push_back(static_cast<double>(i + 1));
+      out.set("natural_frequencies", Value::series(std::move(modes)));
+      std::vector<double>* tappet = nullptr;
+      if (settings.multi_mass) {
+        curves.add_channel("tappet_lift", dim::length, "mm");
+        tappet = &curves.channels.back().values;
+      }
       for (const auto& [counter, amount] : run.work) ctx.report_work(counter, amount);
 
       double first_landing = std::numeric_limits<double>::infinity();
@@ -186,26 +239,34 @@ class DynamicsType final : public NodeType {
         }
       }
       for (std::size_t j = 0; j < phi.size(); ++j) {
-        const OdeState& s = run.state[j];
+        const ChainState& s = run.state[j];
+        const Mode& mode = run.mode[j];
+        const double x = s[v];
         const double y = motion->drive(phi[j]).lift;
         const double x_qs = std::max(0.0, (k_d * y - P0) / (k_d + c_s));
-        // The cam's force on the valve: none in flight, none across an open lash while seated.
-        const double drive_force = model.drive_force(run.t[j], s);
-        const double force = run.mode[j] == Mode::flight ? 0.0
-                             : run.mode[j] == Mode::seated ? std::max(0.0, drive_force)
-                                                           : drive_force;
-        lift.push_back(s.x);
+        // The cam's force: none without contact, none across an open lash while a lone valve sits.
+        const double cam_force = model.cam_force(run.t[j], s);
+        const double force = !mode.contact ? 0.0
+                             : mode.seated && model.rigid_when_seated() ? std::max(0.0, cam_force)
+                                                                        : cam_force;
+        // The spring's force on the valve: its line, or the first coil element's with spring_surge.
+        const double spring_force = model.params().coils == 0
+                                        ? P0 + c_s * x
+                                        : P0 + (model.params().coils + 1) * c_s * (x - s[model.params().mass.size()]) +
+                                              model.params().coil_damping * (s[P + v] - s[P + model.params().mass.size()]);
+        lift.push_back(x);
         quasi_static.push_back(x_qs);
         kinematic.push_back(motion->at(phi[j]).lift);
         drive.push_back(y);
-        velocity.push_back(s.v);
+        velocity.push_back(s[P + v]);
         contact.push_back(force);
-        spring.push_back(P0 + c_s * s.x);
-        const double dev = std::abs(s.x - x_qs);
+        spring.push_back(spring_force);
+        if (tappet) tappet->push_back(s[0]);
+        const double dev = std::abs(x - x_qs);
         max_dev = std::max(max_dev, dev);
         if (phi[j] >= 0.0) residual = std::max(residual, dev);
-        if (s.x > 0.0 && run.mode[j] != Mode::flight) min_contact = std::min(min_contact, force);
-        if (run.t[j] > first_landing) bounce_height = std::max(bounce_height, s.x);
+        if (x > 0.0 && mode.contact) min_contact = std::min(min_contact, force);
+        if (run.t[j] > first_landing) bounce_height = std::max(bounce_height, x);
       }
       out.set_scalar("max_deviation", max_dev);
       out.set_scalar("residual_amplitude", residual);
@@ -222,6 +283,7 @@ class DynamicsType final : public NodeType {
       out.set_scalar("target_deviation", worst);
     }
     if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat at the curve points
+    out.set_scalar("max_spring_force", *std::max_element(spring.begin(), spring.end()));
     out.set_scalar("min_contact_force", min_contact);
     out.set_scalar("seating_velocity", seating_velocity);
     out.set("curves", Value::table(std::move(curves)));

@@ -2,29 +2,113 @@
 
 #include <mechgraph/errors.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
 namespace mechgraph::valvetrain {
 
+namespace {
+
+// K and M of the chain (positions only), valve off the seat, cam in contact.
+void chain_matrices(const ChainParams& c, Eigen::MatrixXd& K, Eigen::VectorXd& m) {
+  const std::size_t n = c.mass.size(), P = n + static_cast<std::size_t>(c.coils);
+  K = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(P));
+  m.resize(static_cast<Eigen::Index>(P));
+  auto spring = [&](std::size_t a, long b, double k) {  // b < 0: to ground
+    const auto ia = static_cast<Eigen::Index>(a);
+    K(ia, ia) += k;
+    if (b >= 0) {
+      K(b, b) += k;
+      K(ia, b) -= k;
+      K(b, ia) -= k;
+    }
+  };
+  spring(0, -1, c.link_stiffness[0]);  // the cam holds the first mass (bilateral)
+  for (std::size_t j = 1; j < n; ++j) spring(j, static_cast<long>(j - 1), c.link_stiffness[j]);
+  if (c.coils == 0) {
+    spring(n - 1, -1, c.spring_rate);
+  } else {
+    const double k_e = (c.coils + 1) * c.spring_rate;
+    spring(n - 1, static_cast<long>(n), k_e);
+    for (int e = 1; e < c.coils; ++e) spring(n + static_cast<std::size_t>(e) - 1, static_cast<long>(n) + e, k_e);
+    spring(n + static_cast<std::size_t>(c.coils) - 1, -1, k_e);
+  }
+  for (std::size_t i = 0; i < P; ++i) m(static_cast<Eigen::Index>(i)) = i < n ? c.mass[i] : c.coil_mass;
+}
+
+}  // namespace
+
+std::vector<double> natural_frequencies(const ChainParams& chain) {
+  Eigen::MatrixXd K;
+  Eigen::VectorXd m;
+  chain_matrices(chain, K, m);
+  // M^-1/2 K M^-1/2 is symmetric with the same eigenvalues omega^2.
+  const Eigen::VectorXd r = m.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd A = r.asDiagonal() * K * r.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(A, Eigen::EigenvaluesOnly);
+  std::vector<double> w;
+  for (Eigen::Index i = 0; i < solver.eigenvalues().size(); ++i) w.push_back(std::sqrt(std::max(0.0, solver.eigenvalues()(i))));
+  return w;
+}
+
+ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) {
+  const double c_s = design.spring->stiffness(0.0);
+  ChainParams c;
+  c.preload = design.spring->preload();
+  c.spring_rate = c_s;
+  // The valve carries a third of the spring's mass unless the spring's coils are masses of their own.
+  const double spring_share = drive.coils > 0 ? design.spring->effective_mass() : 0.0;
+  if (!drive.multi_mass) {
+    c.mass = {design.reduced_mass - spring_share};
+    c.link_stiffness = {drive.stiffness};
+    c.link_damping = {2.0 * drive.damping_ratio * std::sqrt((drive.stiffness + c_s) * design.reduced_mass)};
+  } else {
+    const TrainMasses& m = *design.masses;
+    const double back = m.arm_pushrod / m.arm_valve;
+    c.mass = {m.tappet * back * back, m.pushrod * back * back, m.rocker_inertia / (m.arm_valve * m.arm_valve),
+              design.reduced_mass - (m.tappet + m.pushrod) * back * back - m.rocker_inertia / (m.arm_valve * m.arm_valve) -
+                  spring_share};
+    const char* names[] = {"tappet_mass", "pushrod_mass", "rocker_inertia"};
+    for (int i = 0; i < 3; ++i)
+      if (!(c.mass[static_cast<std::size_t>(i)] > 0.0))
+        throw NodeError("stiffnesses", std::string("multi_mass needs every moving part: ") + names[i] +
+                                           " is 0 in the masses node (or use the single mass)");
+    if (drive.stiffnesses.size() != 4)
+      throw NodeError("stiffnesses", "multi_mass needs four stiffnesses (valve side): cam-tappet, tappet-pushrod, "
+                                     "pushrod-rocker, rocker-valve");
+    c.link_stiffness = drive.stiffnesses;
+  }
+  if (drive.coils > 0) {
+    c.coils = drive.coils;
+    c.coil_mass = design.spring->mass() / drive.coils;
+    // Stiffness-proportional damping of the coils: the first surge mode at surge_damping_ratio.
+    const double omega_surge = 2.0 * std::numbers::pi * design.spring->surge_frequency();
+    c.coil_damping = 2.0 * drive.surge_damping_ratio / omega_surge * (drive.coils + 1) * c_s;
+  }
+  if (drive.multi_mass) {
+    // Stiffness-proportional (Rayleigh) damping of the links: the first mode at damping_ratio.
+    c.link_damping.assign(c.link_stiffness.size(), 0.0);
+    const double omega_1 = natural_frequencies(c).front();
+    for (std::size_t j = 0; j < c.link_stiffness.size(); ++j)
+      c.link_damping[j] = 2.0 * drive.damping_ratio / omega_1 * c.link_stiffness[j];
+  }
+  return c;
+}
+
 ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& design, const DriveSettings& drive,
                                const std::vector<double>& cam_angles) {
   constexpr double pi = std::numbers::pi;
   const double w = motion.camshaft_speed();
-  const double c_s = design.spring->stiffness(0.0);
-  SingleMassParams mp;
-  mp.mass = design.reduced_mass;
-  mp.drive_stiffness = drive.stiffness;
-  mp.drive_damping = 2.0 * drive.damping_ratio * std::sqrt((drive.stiffness + c_s) * design.reduced_mass);
-  mp.preload = design.spring->preload();
-  mp.spring_rate = c_s;
+  ChainParams mp = build_chain(design, drive);
   mp.contact_loss = drive.contact_loss;
   mp.seat_impact = drive.seat_impact;
   mp.restitution = drive.restitution;
   mp.seating_speed = drive.seating_speed;
   // t = 0 at cam angle -pi (the base circle, valve seated).
-  ValveSimulation sim{SingleMassModel(mp,
+  ValveSimulation sim{ChainModel(std::move(mp),
                                       [&motion, w](double t, double& y, double& dy) {
                                         const LiftDerivatives d = motion.drive(-pi + w * t);
                                         y = d.lift;

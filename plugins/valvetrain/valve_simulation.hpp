@@ -1,7 +1,7 @@
 #pragma once
-// The valve train's single-mass simulation set up from a valve motion and a spring design: the
-// piece valvetrain.dynamics and valvetrain.float_speed share (single_mass_model.hpp has the model).
-#include "single_mass_model.hpp"
+// The valve train's simulation set up from a valve motion and a spring design: the piece
+// valvetrain.dynamics and valvetrain.float_speed share (chain_model.hpp has the model).
+#include "chain_model.hpp"
 #include "train_masses.hpp"
 
 #include <mechgraph/domain/valve_motion.hpp>
@@ -12,8 +12,12 @@
 namespace mechgraph::valvetrain {
 
 struct DriveSettings {
-  double stiffness = 0.0;      // k_d, N/m, valve side
-  double damping_ratio = 0.0;  // share of critical on k_d + c_s
+  double stiffness = 0.0;      // k_d, N/m, valve side (single mass)
+  double damping_ratio = 0.0;  // of the first mode (single mass: of critical on k_d + c_s)
+  bool multi_mass = false;     // tappet, pushrod, rocker, valve: `stiffnesses` from the cam to the valve
+  std::vector<double> stiffnesses;
+  int coils = 0;               // spring_surge: coil masses of the spring (0: massless spring)
+  double surge_damping_ratio = 0.0;
   int revolutions = 2;         // results from the last
   double tolerance = 1e-8;     // relative; absolute: times the full lift (and x w_k for speed)
   std::string integrator = "cvode";
@@ -24,11 +28,18 @@ struct DriveSettings {
 };
 
 struct ValveSimulation {
-  SingleMassModel model;
+  ChainModel model;
   SimulationResult run;  // states at the requested cam angles of the last revolution
   double period = 0.0;   // s, one cam revolution
   double last_start = 0.0;  // s, start of the last revolution
 };
+
+/// The chain of masses, stiffnesses and damping the settings describe (valve side). Throws
+/// NodeError naming the parameter when a part needed has no mass or stiffness.
+ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive);
+
+/// Natural frequencies (rad/s, ascending) of the chain with the valve off its seat and the cam in contact.
+std::vector<double> natural_frequencies(const ChainParams& chain);
 
 /// Simulates `revolutions` cam revolutions from the base circle (t = 0 at cam angle -pi, valve
 /// seated) and records the state at `cam_angles` (in [-pi, pi], ascending) of the last one.
