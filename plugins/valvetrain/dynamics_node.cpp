@@ -31,7 +31,9 @@ class DynamicsType final : public NodeType {
             .optional()
             .positive()
             .at_most(1e13),
-        ParamSpec::number("damping_ratio", dim::none, "drive damping as a share of critical on k_d + c_s (elastic_drive)")
+        ParamSpec::number("damping_ratio", dim::none,
+                          "damping of the drive's first mode, share of critical (stiffness-proportional on the drive's "
+                          "links) (elastic_drive)")
             .with_default(0.06)
             .non_negative()
             .at_most(2.0),

@@ -28,7 +28,7 @@ class FloatSpeedType final : public NodeType {
         ParamSpec::number("drive_stiffness", dim::stiffness, "k_d: the drive's stiffness reduced to the valve", "N/mm")
             .positive()
             .at_most(1e13),
-        ParamSpec::number("damping_ratio", dim::none, "drive damping as a share of critical on k_d + c_s")
+        ParamSpec::number("damping_ratio", dim::none, "damping of the drive's first mode, share of critical")
             .with_default(0.06)
             .non_negative()
             .at_most(2.0),

@@ -64,7 +64,6 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
   if (!drive.multi_mass) {
     c.mass = {design.reduced_mass - spring_share};
     c.link_stiffness = {drive.stiffness};
-    c.link_damping = {2.0 * drive.damping_ratio * std::sqrt((drive.stiffness + c_s) * design.reduced_mass)};
   } else {
     const TrainMasses& m = *design.masses;
     const double back = m.arm_pushrod / m.arm_valve;
@@ -83,13 +82,20 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
   }
   if (drive.coils > 0) {
     c.coils = drive.coils;
-    c.coil_mass = design.spring->mass() / drive.coils;
+    // The coil masses are set so that the chain of p masses and p + 1 elements k_e = (p + 1) c_s,
+    // held at both ends, has its first mode at the spring's surge frequency: that mode is
+    // w_1 = 2 sqrt(k_e / m_e) sin(pi / (2 (p + 1))), so m_e = 4 k_e sin^2(pi / (2 (p + 1))) / w_s^2
+    // (p m_e tends to the active coils' mass c_s / (2 f1)^2 as p grows).
+    const double omega_s = 2.0 * std::numbers::pi * design.spring->surge_frequency();
+    const double half_angle = std::sin(std::numbers::pi / (2.0 * (drive.coils + 1)));
+    c.coil_mass = 4.0 * (drive.coils + 1) * c_s * half_angle * half_angle / (omega_s * omega_s);
     // Stiffness-proportional damping of the coils: the first surge mode at surge_damping_ratio.
     const double omega_surge = 2.0 * std::numbers::pi * design.spring->surge_frequency();
     c.coil_damping = 2.0 * drive.surge_damping_ratio / omega_surge * (drive.coils + 1) * c_s;
   }
-  if (drive.multi_mass) {
-    // Stiffness-proportional (Rayleigh) damping of the links: the first mode at damping_ratio.
+  {
+    // Stiffness-proportional (Rayleigh) damping of the drive's links, the spring undamped: the first
+    // mode of the drive at damping_ratio (for one mass: c = 2 zeta k_d / omega_0).
     c.link_damping.assign(c.link_stiffness.size(), 0.0);
     const double omega_1 = natural_frequencies(c).front();
     for (std::size_t j = 0; j < c.link_stiffness.size(); ++j)
