@@ -1,9 +1,11 @@
 #include "polydyne.hpp"
 
+#include <boost/math/tools/roots.hpp>
 #include <boost/multiprecision/cpp_int.hpp>
 
 #include <cmath>
 #include <memory>
+#include <numbers>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -158,6 +160,61 @@ LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const {
           static_cast<double>(h * x2 / (phi_p * phi_p)), sign * static_cast<double>(h * x3 / (phi_p * phi_p * phi_p))};
 }
 
+RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents)
+    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {
+  exponents_.push_back(0.0L);
+  for (long double n : exponents) exponents_.push_back(n);
+  // C_i = w_i / w_0, w_i = 1 / prod_{j != i} (n_i - n_j): the 5th divided-difference weights.
+  auto weight = [&](std::size_t i) {
+    long double w = 1.0L;
+    for (std::size_t j = 0; j < exponents_.size(); ++j)
+      if (j != i) w *= exponents_[i] - exponents_[j];
+    return 1.0L / w;
+  };
+  const long double w0 = weight(0);
+  for (std::size_t i = 0; i < exponents_.size(); ++i) coefficients_.push_back(weight(i) / w0);
+}
+
+long double RealPolydyneLaw::normalized_derivative(int m, long double u) const {
+  long double sum = m == 0 ? 1.0L : 0.0L;
+  for (std::size_t i = 1; i < exponents_.size(); ++i) {
+    const long double n = exponents_[i];
+    long double factor = 1.0L;
+    for (int k = 0; k < m; ++k) factor *= n - k;
+    sum += coefficients_[i] * factor * std::pow(u, n - m);
+  }
+  return sum;
+}
+
+LiftDerivatives RealPolydyneLaw::evaluate_in_event(double phi) const {
+  const long double phi_p = half_action_;
+  const long double u = std::min(1.0L, std::abs(static_cast<long double>(phi)) / phi_p);
+  const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in phi: odd derivatives change sign
+  const long double h = max_lift_;
+  return {std::max(0.0, static_cast<double>(h * normalized_derivative(0, u))),
+          sign * static_cast<double>(h * normalized_derivative(1, u) / phi_p),
+          static_cast<double>(h * normalized_derivative(2, u) / (phi_p * phi_p)),
+          sign * static_cast<double>(h * normalized_derivative(3, u) / (phi_p * phi_p * phi_p))};
+}
+
+bool RealPolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
+  const long double phi_p = half_action_;
+  const long double u = std::min(1.0L, std::abs(static_cast<long double>(phi)) / phi_p);
+  const long double scale4 = max_lift_ / (phi_p * phi_p * phi_p * phi_p);
+  d4 = static_cast<double>(scale4 * normalized_derivative(4, u));
+  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * normalized_derivative(5, u));
+  return true;
+}
+
+double polydyne_accel_angle(double q, double step, double action_angle) {
+  const RealPolydyneLaw law(1.0, action_angle, 1.0, {2.0L, q, q + step, q + 2 * step, q + 3 * step});
+  // x'' < 0 at the nose, > 0 near the seat (as (1 - u)^3): one sign change in between.
+  auto acc = [&](double u) { return static_cast<double>(law.normalized_derivative(2, u)); };
+  boost::uintmax_t iterations = 200;
+  const auto r = boost::math::tools::toms748_solve(acc, 0.0, 1.0 - 1e-3, boost::math::tools::eps_tolerance<double>(52), iterations);
+  return 0.5 * action_angle * (1.0 - 0.5 * (r.first + r.second));
+}
+
 CamLawDefinition polydyne_definition() {
   CamLawDefinition d;
   d.type = "cam.polydyne";
@@ -167,14 +224,48 @@ CamLawDefinition polydyne_definition() {
       "derivatives up to the 4th zero at the seat; exact rational coefficients (the kinematic polynomial: "
       "synthesising the cam against the drive elasticity is a separate step)";
   d.params = {
+      ParamSpec::number("accel_angle", dim::angle,
+                        "positive-acceleration phase from the start of lift: solves for a real q in the exponents "
+                        "[2, q, q+s, q+2s, q+3s] (s = exponent_step); exponents is then not used",
+                        "deg")
+          .optional()
+          .positive(),
+      ParamSpec::number("exponent_step", dim::none, "s, the spacing of the exponents found for accel_angle")
+          .with_default(8.0)
+          .at_least(1.0)
+          .at_most(100.0),
       ParamSpec::number_list("exponents", dim::none,
                              "the exponents 2, p, q, r, s: five even integers, the first 2, strictly increasing, "
                              "at most 1000; they set the positive-acceleration phase (higher exponents: shorter, "
                              "sharper opening)")
           .with_default(std::vector<double>{2.0, 6.0, 10.0, 14.0, 18.0}),
   };
-  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet&) -> std::shared_ptr<const CamLaw> {
+  d.extra_outputs = {PortSpec::scalar("exponent_q", dim::none, "the second exponent (q; found for accel_angle)")};
+  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    if (params.has("accel_angle")) {
+      // phi_y falls as q grows; q from 4 (the jerk stays continuous at the nose) to 1000 - 3s.
+      const double s = params.number("exponent_step"), target = params.number("accel_angle");
+      const double q_low = 4.0, q_high = 1000.0 - 3.0 * s;
+      auto phase = [&](double q) { return polydyne_accel_angle(q, s, basics.action_angle); };
+      const double widest = phase(q_low), narrowest = phase(q_high);
+      if (!(target <= widest && target >= narrowest)) {
+        std::ostringstream msg;
+        msg.precision(6);
+        msg << "accel_angle " << target * 180.0 / std::numbers::pi << " deg is out of reach of the exponents [2, q, q+"
+            << s << ", ...] for this action angle: it must lie in [" << narrowest * 180.0 / std::numbers::pi << ", "
+            << widest * 180.0 / std::numbers::pi << "] deg (change exponent_step to move the interval)";
+        throw NodeError("accel_angle", msg.str());
+      }
+      boost::uintmax_t iterations = 200;
+      const auto r = boost::math::tools::toms748_solve([&](double q) { return phase(q) - target; }, q_low, q_high,
+                                                       boost::math::tools::eps_tolerance<double>(50), iterations);
+      const double q = 0.5 * (r.first + r.second);
+      extra.set_scalar("exponent_q", q);
+      return std::make_shared<const RealPolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
+                                                     std::vector<long double>{2.0L, q, q + s, q + 2 * s, q + 3 * s});
+    }
     std::vector<int> exponents = validate_polydyne_exponents(params.numbers("exponents"));
+    extra.set_scalar("exponent_q", exponents[1]);
     return std::make_shared<const PolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
                                                std::move(exponents));
   };

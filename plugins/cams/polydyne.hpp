@@ -65,7 +65,37 @@ class PolydyneLaw final : public CamLaw {
   std::array<std::vector<long double>, 6> q_;  // x^(m)(u)/h = (1 - u)^(5-m) q_m(u) (m <= 5), monomial coefficients
 };
 
-/// cam.polydyne: parameter exponents (default 2, 6, 10, 14, 18); no extra outputs.
+/// The polydyne polynomial with real exponents 2 < n_2 < ... < n_5 (the family [2, q, q+s, q+2s,
+/// q+3s] that `accel_angle` solves for). Coefficients from the same divided-difference weights in
+/// long double; evaluated as the sum of powers of u = |phi| / phi_p in long double, so near the
+/// seat (where the terms cancel) the lift is good to ~1e-17 h absolute, and is clipped at 0.
+class RealPolydyneLaw final : public CamLaw {
+ public:
+  RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents);
+  double event_begin() const override { return -half_action_; }
+  double event_end() const override { return half_action_; }
+  LiftDerivatives evaluate_in_event(double phi) const override;
+  bool higher_derivatives(double phi, double& d4, double& d5) const override;
+  std::vector<double> breakpoints() const override { return {}; }
+  double max_lift() const override { return max_lift_; }
+  double base_radius() const override { return base_radius_; }
+  /// d^m/du^m of x(u)/h, m = 0..5, at u in [0, 1].
+  long double normalized_derivative(int m, long double u) const;
+
+ private:
+  double max_lift_ = 0.0;
+  double half_action_ = 0.0;
+  double base_radius_ = 0.0;
+  std::vector<long double> exponents_;     // 0 (the constant), 2, q, q+s, q+2s, q+3s
+  std::vector<long double> coefficients_;  // 1, C2, Cq, ...
+};
+
+/// The positive-acceleration phase (from the start of lift) of the polydyne with exponents
+/// [2, q, q+s, q+2s, q+3s] over `action_angle`: phi_p (1 - u*), x''(u*) = 0.
+double polydyne_accel_angle(double q, double step, double action_angle);
+
+/// cam.polydyne: exponents (default 2, 6, 10, 14, 18), or accel_angle with exponent_step; extra
+/// output exponent_q (the second exponent).
 CamLawDefinition polydyne_definition();
 
 }  // namespace mechgraph::cams

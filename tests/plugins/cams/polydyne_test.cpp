@@ -322,3 +322,49 @@ TEST_CASE("polydyne: the 4th and 5th derivatives against central differences of 
   CHECK_THAT(nearer4 / near4, Catch::Matchers::WithinRel(1e-3, 1e-4));
   CHECK_THAT(nearer5, Catch::Matchers::WithinRel(near5, 1e-4));  // d5 does not vanish there
 }
+
+TEST_CASE("polydyne accel_angle: a real exponent q for the positive-acceleration phase", "[cams][polydyne]") {
+  using Catch::Matchers::WithinAbs;
+  using Catch::Matchers::WithinRel;
+  const double deg = std::numbers::pi / 180;
+  const std::map<std::string, ParamValue> basics{{"max_lift", ParamValue::of_number(8e-3)},
+                                                 {"action_angle", ParamValue::of_number(130 * deg)},
+                                                 {"base_radius", ParamValue::of_number(17e-3)}};
+  auto with = [&](std::map<std::string, ParamValue> extra) {
+    auto all = basics;
+    all.insert(extra.begin(), extra.end());
+    return all;
+  };
+  // Second method: the exact integer family 2-14-26-38-50 has some phase phi_y; asking the real
+  // solver for that phase with step 12 must give back q = 14 and the same law.
+  const OutputSet exact = cams::testing::run_cam("cam.polydyne", with({{"exponents", ParamValue::of_list({2, 14, 26, 38, 50})}}));
+  const double phi_y = exact.all().at("accel_angle").as_scalar();
+  const OutputSet real = cams::testing::run_cam("cam.polydyne", with({{"accel_angle", ParamValue::of_number(phi_y)},
+                                                                {"exponent_step", ParamValue::of_number(12)}}));
+  CHECK_THAT(real.all().at("exponent_q").as_scalar(), WithinRel(14.0, 1e-9));
+  const auto a = std::dynamic_pointer_cast<const CamLaw>(exact.all().at("law").as_handle());
+  const auto b = std::dynamic_pointer_cast<const CamLaw>(real.all().at("law").as_handle());
+  for (double f : {-0.99, -0.6, -0.2, 0.0, 0.3, 0.8, 0.97}) {
+    const double phi = f * 65 * deg;
+    INFO("phi = " << f << " phi_p");
+    CHECK_THAT(b->at(phi).lift, WithinAbs(a->at(phi).lift, 1e-13 * 8e-3));
+    CHECK_THAT(b->at(phi).acceleration, WithinAbs(a->at(phi).acceleration, 1e-9 * 8e-3));
+  }
+  // The phase asked for is the phase achieved (the node's own search of the law, a second method).
+  for (double target : {14.0, 18.0, 25.0}) {
+    INFO(target << " deg");
+    const OutputSet out = cams::testing::run_cam("cam.polydyne", with({{"accel_angle", ParamValue::of_number(target * deg)}}));
+    CHECK_THAT(out.all().at("accel_angle").as_scalar(), WithinRel(target * deg, 1e-9));
+    // No negative lift, even right at the seat where the real-exponent terms cancel.
+    const auto law = std::dynamic_pointer_cast<const CamLaw>(out.all().at("law").as_handle());
+    for (double w : {1e-2, 1e-4, 1e-6, 1e-9}) CHECK(law->at(65 * deg * (1 - w)).lift >= 0.0);
+  }
+  // Out of reach: the achievable interval is named.
+  try {
+    cams::testing::run_cam("cam.polydyne", with({{"accel_angle", ParamValue::of_number(60 * deg)}}));
+    FAIL("no error");
+  } catch (const NodeError& e) {
+    CHECK(e.parameter() == "accel_angle");
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("must lie in [") && Catch::Matchers::Contains("exponent_step"));
+  }
+}
