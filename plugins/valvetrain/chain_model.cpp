@@ -50,14 +50,14 @@ void ChainModel::forces(const Mode& m, double t, const ChainState& s, std::vecto
 }
 
 double ChainModel::force_on_valve(double t, const ChainState& s) const {
-  std::vector<double> f;
+  thread_local std::vector<double> f;  // scratch: called in the integrators' inner loops
   forces(Mode{false, true}, t, s, f);
   return f[valve()];
 }
 
 void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const {
   const std::size_t P = positions_, n = p_.mass.size();
-  std::vector<double> f;
+  thread_local std::vector<double> f;  // scratch: called in the integrators' inner loops
   forces(m, t, s, f);
   ds.resize(2 * P);
   for (std::size_t i = 0; i < P; ++i) {
@@ -270,7 +270,9 @@ SimulationResult simulate(const ChainModel& model, double t0, double t1, const s
     ++next_output;
   }
   long event_count = 0, seated_evaluations = 0;
-  const double seated_step = options.max_step > 0.0 ? options.max_step : (t1 - t0) / 1000.0;
+  const double seated_step = options.scan_step > 0.0  ? options.scan_step
+                             : options.max_step > 0.0 ? options.max_step
+                                                      : (t1 - t0) / 1000.0;
   auto count_event = [&] {
     if (++event_count > options.max_events)
       throw std::runtime_error("more than " + std::to_string(options.max_events) + " contact events (chattering)");

@@ -92,7 +92,8 @@ struct SimulationOptions {
   double rtol = 1e-8;
   double atol_x = 1e-10;             // m
   double atol_v = 1e-8;              // m/s
-  double max_step = 0.0;             // s, 0: none
+  double max_step = 0.0;             // s, 0: none; the integrators' largest step
+  double scan_step = 0.0;            // s: sampling of a seated valve's lift-off search (0: max_step)
   long max_steps = 2000000;
   long max_events = 100000;
 };

@@ -96,12 +96,17 @@ class CvodeBackend final : public OdeBackend {
     const sunrealtype* data = N_VGetArrayPointer(y);
     return ChainState(data, data + size_);
   }
+  // The callbacks' view of CVODE's vector, in a buffer kept across calls (no allocation per call).
+  const ChainState& view(N_Vector y) {
+    const sunrealtype* data = N_VGetArrayPointer(y);
+    scratch_.assign(data, data + size_);
+    return scratch_;
+  }
   static int rhs(sunrealtype t, N_Vector y, N_Vector dy, void* data) {
     auto* self = static_cast<CvodeBackend*>(data);
     ++self->rhs_count_;
-    ChainState ds;
-    self->model_.rhs(self->mode_, t, self->state(y), ds);
-    std::copy(ds.begin(), ds.end(), N_VGetArrayPointer(dy));
+    self->model_.rhs(self->mode_, t, self->view(y), self->derivative_);
+    std::copy(self->derivative_.begin(), self->derivative_.end(), N_VGetArrayPointer(dy));
     return 0;
   }
   static int jacobian(sunrealtype, N_Vector, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector, N_Vector) {
@@ -116,7 +121,7 @@ class CvodeBackend final : public OdeBackend {
   static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
     auto* self = static_cast<CvodeBackend*>(data);
     ++self->root_count_;
-    self->model_.roots(self->mode_, t, self->state(y), g);
+    self->model_.roots(self->mode_, t, self->view(y), g);
     return 0;
   }
   static void on_error(int, const char*, const char* function, char* message, void* data) {
@@ -157,6 +162,7 @@ class CvodeBackend final : public OdeBackend {
   SimulationOptions options_;
   sunindextype size_;
   std::vector<double> jacobian_;
+  ChainState scratch_, derivative_;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;
   N_Vector atol_ = nullptr;

@@ -87,13 +87,17 @@ class Dopri5Backend final : public OdeBackend {
     Dopri5Backend* self;
     void operator()(const Scaled& q, Scaled& dq, double t) const {
       ++self->rhs_;
-      ChainState ds;
-      self->model_.rhs(self->mode_, t, self->unscale(q), ds);
-      dq = self->scale(ds);
+      ChainState& s = self->scratch_;
+      s.resize(q.size());
+      for (std::size_t i = 0; i < q.size(); ++i) s[i] = q[i] * self->unit(i);
+      self->model_.rhs(self->mode_, t, s, self->derivative_);
+      dq.resize(q.size());
+      for (std::size_t i = 0; i < q.size(); ++i) dq[i] = self->derivative_[i] / self->unit(i);
     }
   };
 
   // Positions in units of atol_x, velocities in units of atol_v.
+  double unit(std::size_t i) const { return i < positions_ ? options_.atol_x : options_.atol_v; }
   Scaled scale(const ChainState& s) const {
     Scaled q(s.size());
     for (std::size_t i = 0; i < s.size(); ++i) q[i] = s[i] / (i < positions_ ? options_.atol_x : options_.atol_v);
@@ -146,6 +150,7 @@ class Dopri5Backend final : public OdeBackend {
   const ChainModel& model_;
   SimulationOptions options_;
   std::size_t positions_;
+  ChainState scratch_, derivative_;  // the right-hand side's buffers, kept across calls
   odeint::dense_output_runge_kutta<odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Scaled>>> dense_;
   Mode mode_{};
   bool stepped_ = false;

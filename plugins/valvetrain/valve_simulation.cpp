@@ -129,6 +129,7 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   options.atol_x = drive.tolerance * h_max;
   options.atol_v = drive.tolerance * h_max * w;
   options.max_step = sim.period / 720.0;  // half a cam degree: no two events hide inside one step
+  options.scan_step = sim.period / 720.0;  // half a cam degree: the seated valve's lift-off cannot hide
   // The excitation is not smooth at the cam's event ends and breakpoints: restart there.
   std::vector<double> cam_knots{motion.cam().event_begin(), motion.cam().event_end()};
   for (double b : motion.cam().breakpoints()) cam_knots.push_back(b);
