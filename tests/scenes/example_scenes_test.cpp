@@ -97,6 +97,12 @@ TEST_CASE("the tolerance-stack scene reproduces the printed worst case", "[scene
   CHECK_THAT(value(json, "gap.mean"), WithinRel(0.4e-3, 1e-9));
   CHECK_THAT(value(json, "gap.worst_case_min"), WithinRel(0.017e-3, 1e-6));
   CHECK_THAT(value(json, "gap.worst_case_max"), WithinRel(0.783e-3, 1e-9));
+  // MITCalc's printed RSS, +-0.17825 mm, with every part normal (T = 6 sigma) ...
+  CHECK_THAT(value(json, "mitcalc.rss_max") - value(json, "mitcalc.mean"), WithinRel(0.17825e-3, 1e-4));
+  // ... and with the case uniform, its sigma T / (2 sqrt 3): 3 sqrt(sum of the others' (T/6)^2 + (0.29/(2 sqrt 3))^2).
+  const double others = (0.072 * 0.072 + 0.06 * 0.06 + 2 * 0.12 * 0.12 + 2 * 0.052 * 0.052) / 36;
+  const double uniform_case = 0.29 * 0.29 / 12;
+  CHECK_THAT(value(json, "gap.rss_max") - value(json, "gap.mean"), WithinRel(3e-3 * std::sqrt(others + uniform_case), 1e-12));
 }
 
 TEST_CASE("the backlash study's pin hinges carry the ISO 286 clearances of their seats", "[scenes]") {
