@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -118,6 +119,7 @@ class CamNodeType final : public NodeType {
                                .as_knob());
     info_.outputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name), "follower lift over cam angle with 3 derivatives"),
+        PortSpec::scalar("max_lift", dim::length, "follower (tappet) lift at the nose, ramps included", "mm"),
         PortSpec::scalar("max_velocity", dim::length / dim::angle, "max |dh/dphi|", "mm/deg"),
         PortSpec::scalar("max_acceleration", dim::length / dim::angle.pow(2), "max d2h/dphi2"),
         PortSpec::scalar("min_acceleration", dim::length / dim::angle.pow(2), "min (most negative) d2h/dphi2"),
@@ -143,10 +145,14 @@ class CamNodeType final : public NodeType {
     if (!(s.min_curvature_radius > 0.0)) {
       std::ostringstream msg;
       msg << "the cam contour is undercut: its smallest radius of curvature is " << s.min_curvature_radius * 1e3
-          << " mm (must be > 0); increase base_radius or soften the law";
+          << " mm (must be > 0); ";
+      const auto r_min = smallest_base_radius(params, ramp, basics, samples);
+      if (r_min) msg << "base_radius must be at least " << *r_min * 1e3 << " mm for this law and follower, or soften the law";
+      else msg << "no base_radius up to " << basics.base_radius * 1e6 << " mm removes it: soften the law";
       throw NodeError("base_radius", msg.str());
     }
     out.set("law", Value::handle(law));
+    out.set_scalar("max_lift", law->max_lift());
     out.set_scalar("max_velocity", s.max_velocity);
     out.set_scalar("max_acceleration", s.max_acceleration);
     out.set_scalar("min_acceleration", s.min_acceleration);
@@ -155,6 +161,35 @@ class CamNodeType final : public NodeType {
   }
 
  private:
+  // The smallest base radius at which the same request gives a contour without undercut. The law
+  // is rebuilt for each trial radius (a three-arc cam's arcs depend on it) and its smallest radius
+  // of curvature found again; that grows with the base radius, so the limit is bracketed by
+  // growing the radius and bisected to 0.001 mm. None within 1000 x the radius asked: nullopt.
+  std::optional<double> smallest_base_radius(const ParamSet& params, const RampSpec& ramp, const CamBasics& basics,
+                                             int samples) const {
+    auto feasible = [&](double r0) {
+      try {
+        OutputSet scratch;
+        std::shared_ptr<const CamLaw> law = make_(CamBasics{basics.max_lift, basics.action_angle, r0}, params, scratch);
+        if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
+        return summarize(*law, samples).min_curvature_radius > 0.0;
+      } catch (const NodeError&) {
+        return false;  // this radius does not give a law at all (e.g. a three-arc without solution)
+      }
+    };
+    double low = basics.base_radius, high = basics.base_radius;
+    while (!feasible(high)) {
+      low = high;
+      high *= 1.5;
+      if (high > 1000.0 * basics.base_radius) return std::nullopt;
+    }
+    while (high - low > 1e-6) {
+      const double mid = 0.5 * (low + high);
+      (feasible(mid) ? high : low) = mid;
+    }
+    return high;
+  }
+
   NodeInfo info_;
   CamLawFactory make_;
 };

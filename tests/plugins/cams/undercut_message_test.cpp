@@ -1,0 +1,64 @@
+// An undercut cam is refused with the smallest base radius that would work, computed: for a flat
+// tappet the contour's radius of curvature is r0 + h + h'', so the limit is r0 - rho_min exactly
+// (a second method); with ramps the stated radius is checked by building the cam just above and
+// just below it.
+#include "cam_test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <numbers>
+#include <regex>
+
+using namespace mechgraph;
+using namespace mechgraph::cams::testing;
+
+namespace {
+const double deg = std::numbers::pi / 180;
+
+// The radius the message names, in m.
+double stated_radius(const std::string& type, const std::map<std::string, ParamValue>& p, double* rho_min = nullptr) {
+  try {
+    run_cam(type, p);
+  } catch (const NodeError& e) {
+    CHECK(e.parameter() == "base_radius");
+    std::smatch m;
+    const std::string text = e.what();
+    REQUIRE(std::regex_search(text, m, std::regex("base_radius must be at least ([0-9.eE+-]+) mm")));
+    if (rho_min) {
+      std::smatch r;
+      REQUIRE(std::regex_search(text, r, std::regex("radius of curvature is ([0-9.eE+-]+) mm")));
+      *rho_min = std::stod(r[1]) * 1e-3;
+    }
+    return std::stod(m[1]) * 1e-3;
+  }
+  FAIL("the cam was not refused");
+  return 0;
+}
+}  // namespace
+
+TEST_CASE("undercut: the smallest base radius that works is named, flat tappet in closed form", "[cams][undercut]") {
+  for (const char* type : {"cam.kurz", "cam.poly4567", "cam.cycloidal"}) {
+    INFO(type);
+    std::map<std::string, ParamValue> p{{"max_lift", ParamValue::of_number(8e-3)}, {"action_angle", ParamValue::of_number(110 * deg)},
+                                        {"base_radius", ParamValue::of_number(10e-3)}};
+    if (std::string(type) == "cam.kurz") p["accel_angle"] = ParamValue::of_number(18 * deg);
+    double rho_min = 0;
+    const double r = stated_radius(type, p, &rho_min);
+    CHECK_THAT(r, Catch::Matchers::WithinAbs(10e-3 - rho_min, 2e-6));  // message digits and 1 um bisection
+  }
+}
+
+TEST_CASE("undercut: the named radius is the limit, ramps included", "[cams][undercut]") {
+  // The search rebuilds the law for each trial radius: checked by building it just above and below.
+  std::map<std::string, ParamValue> p{{"max_lift", ParamValue::of_number(8e-3)}, {"action_angle", ParamValue::of_number(110 * deg)},
+                                      {"accel_angle", ParamValue::of_number(15 * deg)}, {"base_radius", ParamValue::of_number(10e-3)},
+                                      {"ramp", ParamValue::of_choice("cosine")}, {"ramp_height", ParamValue::of_number(0.2e-3)},
+                                      {"ramp_length", ParamValue::of_number(20 * deg)}};
+  const double r = stated_radius("cam.kurz", p);
+  p["base_radius"] = ParamValue::of_number(r + 1e-5);
+  CHECK_NOTHROW(run_cam("cam.kurz", p));
+  p["base_radius"] = ParamValue::of_number(r - 1e-5);
+  CHECK_THROWS_AS(run_cam("cam.kurz", p), NodeError);
+}
