@@ -51,6 +51,25 @@ std::string quantity_text(double si, const ParamSpec& spec) {
   return format_number(si) + (unit == "1" ? "" : " " + unit);
 }
 
+// A raw value as it was written, for messages: "5 mm", "[5000rpm, 6000rpm]", "{a: 1}".
+std::string written_text(const RawValue& v) {
+  switch (v.kind) {
+    case RawValue::Kind::scalar: return v.text;
+    case RawValue::Kind::list: {
+      std::string out = "[";
+      for (std::size_t i = 0; i < v.items.size(); ++i) out += (i ? ", " : "") + written_text(v.items[i]);
+      return out + "]";
+    }
+    case RawValue::Kind::map: {
+      std::string out = "{";
+      for (std::size_t i = 0; i < v.fields.size(); ++i)
+        out += (i ? ", " : "") + v.fields[i].first + ": " + written_text(v.fields[i].second);
+      return out + "}";
+    }
+  }
+  return v.text;
+}
+
 std::string example_unit(Dimension d) {
   if (d == dim::length) return "e.g. '9 mm'";
   if (d == dim::angle) return "e.g. '130 deg'";
@@ -134,7 +153,7 @@ class GraphBuilder {
     }
     std::string origin = it->second.where.str();
     if (origin.size() >= 2 && origin.substr(origin.size() - 2) == ": ") origin.resize(origin.size() - 2);
-    via = " ($" + name + " = '" + it->second.text + "', set at " + origin + ")";
+    via = " ($" + name + " = '" + written_text(it->second) + "', set at " + origin + ")";
     return it->second;
   }
 
@@ -142,7 +161,10 @@ class GraphBuilder {
     std::string via;
     const RawValue& v = dereference(written, via);
     const std::string what = "parameter '" + spec.name + "' of " + owner;
-    if (v.kind != RawValue::Kind::scalar) fail(written.where, what + ": expected a number" + via);
+    if (v.kind != RawValue::Kind::scalar)
+      fail(written.where, what + ": expected one number with its unit, " + example_unit(spec.dimension) + ", got " +
+                              (v.kind == RawValue::Kind::list ? "the list " : "the map ") + written_text(v) + via +
+                              (v.kind == RawValue::Kind::list ? "; a run takes one value: run once per value to compare several" : ""));
     Quantity q;
     try {
       q = parse_quantity(v.text);

@@ -181,3 +181,15 @@ report: { columns: { one: { x: a } }, rows: [ [ c, y.out ] ] })",
 report: { columns: { one: { x: a } }, rows: [ [ c, x.out, deg ] ] })",
                      "scene.yaml:2:52:", "unit 'deg' is angle, the value is length");
 }
+
+TEST_CASE("a list given where one number is expected: the message shows what was given", "[graph]") {
+  const std::string yaml = "params: { len: 2 mm }\nnodes: { a: { type: test.constant, params: { value: $len } } }\noutputs: [a.out]\n";
+  try {
+    graph_from(yaml, arith_registry(), {parse_override("len=[1mm, 2mm]")});
+    FAIL("no error");
+  } catch (const SceneError& e) {
+    CHECK_THAT(e.what(), Catch::Matchers::Contains("expected one number with its unit, e.g. '9 mm', got the list [1mm, 2mm]") &&
+                             Catch::Matchers::Contains("$len = '[1mm, 2mm]'") &&
+                             Catch::Matchers::Contains("run once per value"));
+  }
+}
