@@ -74,7 +74,7 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
 
 class CamNodeType final : public NodeType {
  public:
-  explicit CamNodeType(CamLawDefinition d) : make_(std::move(d.make)) {
+  explicit CamNodeType(CamLawDefinition d) : make_(std::move(d.make)), derived_(d.derives_lift_and_action) {
     info_.type = std::move(d.type);
     info_.version = d.version;
     info_.summary = std::move(d.summary);
@@ -90,6 +90,12 @@ class CamNodeType final : public NodeType {
             .below(2.0 * std::numbers::pi),
         ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive(),
     };
+    if (derived_) {
+      for (std::size_t i = 0; i < 2; ++i) {
+        info_.params[i].optional();
+        info_.params[i].doc += " (taken from the data; give it only to check the data against it)";
+      }
+    }
     for (auto& p : d.params) info_.params.push_back(std::move(p));
     info_.params.push_back(
         ParamSpec::choice("ramp", ramp_type_names(),
@@ -134,9 +140,12 @@ class CamNodeType final : public NodeType {
 
   void evaluate(const ParamSet& params, const InputSet&, OutputSet& out, EvalContext& ctx) const override {
     const RampSpec ramp = read_ramp(params);
-    const double action_angle = params.number("action_angle");
-    const CamBasics basics{main_lift(ramp, params.number("max_lift"), action_angle), action_angle,
-                           params.number("base_radius")};
+    const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
+    if (ramp.type != RampType::none && !(has_lift && has_action))
+      throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
+    const double action_angle = has_action ? params.number("action_angle") : 0.0;
+    const CamBasics basics{has_lift ? main_lift(ramp, params.number("max_lift"), action_angle) : 0.0, action_angle,
+                           params.number("base_radius"), has_lift, has_action};
     std::shared_ptr<const CamLaw> law = make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
@@ -170,7 +179,8 @@ class CamNodeType final : public NodeType {
     auto feasible = [&](double r0) {
       try {
         OutputSet scratch;
-        std::shared_ptr<const CamLaw> law = make_(CamBasics{basics.max_lift, basics.action_angle, r0}, params, scratch);
+        std::shared_ptr<const CamLaw> law =
+            make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle}, params, scratch);
         if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
         return summarize(*law, samples).min_curvature_radius > 0.0;
       } catch (const NodeError&) {
@@ -192,6 +202,7 @@ class CamNodeType final : public NodeType {
 
   NodeInfo info_;
   CamLawFactory make_;
+  bool derived_ = false;
 };
 
 }  // namespace

@@ -19,6 +19,10 @@ struct CamBasics {
   double max_lift = 0.0;      // m
   double action_angle = 0.0;  // rad, total event (cam degrees)
   double base_radius = 0.0;   // m
+  /// With CamLawDefinition::derives_lift_and_action the law takes max_lift and action_angle from
+  /// its own data; these say whether the scene gave them anyway (to be checked against the data).
+  bool has_max_lift = true;
+  bool has_action_angle = true;
 };
 
 /// Builds the law; may also set law-specific outputs (e.g. three-arc radii) in `extra`.
@@ -33,6 +37,8 @@ struct CamLawDefinition {
   std::vector<ParamSpec> params;        // law-specific parameters only
   std::vector<PortSpec> extra_outputs;  // law-specific outputs only
   CamLawFactory make;
+  /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.
+  bool derives_lift_and_action = false;
 };
 
 std::shared_ptr<const NodeType> make_cam_node_type(CamLawDefinition definition);

@@ -256,7 +256,8 @@ TableLaw::TableLaw(const LiftTable& table, double base_radius) : base_radius_(ba
   if (rows[first].angle < -pi || rows[last - 1].angle > pi) {
     std::ostringstream m;
     m << src << ": the lift event (lines " << rows[first].line << " .. " << rows[last - 1].line
-      << ") must lie within -180 .. 180 deg from the nose";
+      << ") must lie within -180 .. 180 deg from the nose (angles counted from the start of lift? set "
+         "angle_origin: start_of_lift)";
     throw NodeError("file", m.str());
   }
   first_line_ = rows[first].line;
@@ -298,13 +299,18 @@ CamLawDefinition table_law_definition() {
   CamLawDefinition d;
   d.type = "cam.table";
   d.version = 1;
-  d.summary = "tabulated lift from a CSV file (angle from the nose, lift), quintic spline interpolation";
+  d.summary = "tabulated lift from a CSV file (cam angle, lift), quintic spline interpolation; lift and event from the file";
+  d.derives_lift_and_action = true;
   d.params = {
       ParamSpec::text("file",
-                      "CSV lift table: cam angle from the nose, lift; ',' ';' or blank separated, '#' comments, "
-                      "one header line allowed; a relative path is taken from the scene file's folder. The table "
-                      "must agree with max_lift (0.1 %) and action_angle (1e-4 deg)")
+                      "CSV lift table: cam angle, lift; ',' ';' or blank separated, '#' comments, one header line "
+                      "allowed; a relative path is taken from the scene file's folder. max_lift and action_angle come "
+                      "from it; if given they must agree (0.1 %, 1e-4 deg)")
           .as_path(),
+      ParamSpec::choice("angle_origin", {"nose", "start_of_lift"},
+                        "where the table's angles are counted from: nose (0 at the top, the lift event around it), or "
+                        "start_of_lift (0 where the lift begins; the event is then centred on 0)")
+          .with_default("nose"),
       ParamSpec::text("angle_unit", "unit of the table's angle column").with_default(std::string("deg")),
       ParamSpec::text("lift_unit", "unit of the table's lift column").with_default(std::string("mm")),
   };
@@ -325,10 +331,21 @@ CamLawDefinition table_law_definition() {
     const double angle_scale = scale_of("angle_unit", "deg", dim::angle, "an angle");
     const double lift_scale = scale_of("lift_unit", "mm", dim::length, "a length");
     const std::string& path = params.text("file");
-    auto law = std::make_shared<const TableLaw>(read_lift_table(path, angle_scale, lift_scale), basics.base_radius);
+    LiftTable table = read_lift_table(path, angle_scale, lift_scale);
+    if (params.text("angle_origin") == "start_of_lift" && !table.rows.empty()) {
+      // Centre the lift event (between the last zero row before it and the first after) on 0.
+      std::size_t first = 0, last = table.rows.size() - 1;
+      while (first + 1 < table.rows.size() && table.rows[first + 1].lift == 0.0) ++first;
+      while (last > 0 && table.rows[last - 1].lift == 0.0) --last;
+      if (first < last) {
+        const double middle = 0.5 * (table.rows[first].angle + table.rows[last].angle);
+        for (LiftTableRow& r : table.rows) r.angle -= middle;
+      }
+    }
+    auto law = std::make_shared<const TableLaw>(table, basics.base_radius);
 
     const double span = law->event_end() - law->event_begin();
-    if (!(std::abs(span - basics.action_angle) <= 1e-4 * pi / 180.0)) {
+    if (basics.has_action_angle && !(std::abs(span - basics.action_angle) <= 1e-4 * pi / 180.0)) {
       std::ostringstream m;
       m.precision(10);
       m << path << ": the table's lift event spans " << span * 180.0 / pi << " deg ("
@@ -337,7 +354,7 @@ CamLawDefinition table_law_definition() {
         << " deg; they must agree within 1e-4 deg";
       throw NodeError("action_angle", m.str());
     }
-    if (!(std::abs(law->max_lift() - basics.max_lift) <= 1e-3 * basics.max_lift)) {
+    if (basics.has_max_lift && !(std::abs(law->max_lift() - basics.max_lift) <= 1e-3 * basics.max_lift)) {
       std::ostringstream m;
       m.precision(10);
       m << path << ": the table's maximum lift is " << law->max_lift() * 1e3 << " mm (at "

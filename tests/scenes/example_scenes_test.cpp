@@ -190,3 +190,26 @@ TEST_CASE("the polydyne synthesis scene: exact at the design speed", "[scenes]")
   CHECK(value(json, "d_4500.target_deviation") > 1e-5);
   CHECK(value(json, "damped.target_deviation") > 1e-6);  // the synthesis leaves damping out
 }
+
+TEST_CASE("the cam-table scene: lift and event from the file, angles from the start of lift", "[scenes]") {
+  const auto j = run_cli(plugins() + "-q run " + scene("cam_table.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  // The table is the cycloidal law sampled every 0.5 deg: the spline through it gives the law's
+  // figures back (a second method: the closed form).
+  CHECK_THAT(value(json, "table.max_lift"), WithinRel(8e-3, 1e-9));
+  CHECK_THAT(value(json, "ta_table.time_area"), WithinRel(value(json, "ta_cyc.time_area"), 1e-7));
+  CHECK_THAT(value(json, "v_table.max_velocity"), WithinRel(value(json, "v_cyc.max_velocity"), 1e-6));
+  CHECK_THAT(value(json, "table.accel_angle"), WithinRel(value(json, "cyc.accel_angle"), 1e-5));
+  // Given anyway, max_lift and action_angle are checked against the file.
+  const auto wrong = run_cli(plugins() + "-q run " + scene("cam_table.yaml") + " --set table.max_lift=9mm");
+  CHECK(wrong.exit_code == 3);
+  CHECK_THAT(wrong.err, Contains("maximum lift is 8") && Contains("max_lift asks for 9"));
+  const auto right = run_cli(plugins() + "-q run " + scene("cam_table.yaml") + " --set table.action_angle=130deg");
+  CHECK(right.exit_code == 0);
+  // Read as angles from the nose, the same file lies outside -180..180 deg: the message says what to set.
+  const auto nose = run_cli(plugins() + "-q run " + scene("cam_table.yaml") + " --set table.angle_origin=nose --set table.file=" +
+                            std::string(MECHGRAPH_SOURCE_DIR) + "/tests/scenes/data/lift_from_start_wide.csv");
+  CHECK(nose.exit_code == 3);
+  CHECK_THAT(nose.err, Contains("angle_origin: start_of_lift"));
+}
