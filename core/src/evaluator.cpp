@@ -120,6 +120,8 @@ void check_table_shape(const GraphNode& node, const std::string& port, const Tab
       throw EvaluationError(where_of(node) + " produced table '" + port + "' whose channel '" + c.name + "' has " +
                             std::to_string(c.values.size()) + " values for an axis of " +
                             std::to_string(t.axis.values.size()));
+    if (c.name == t.axis.name)
+      throw EvaluationError(where_of(node) + " produced table '" + port + "' with a channel named like its axis ('" + c.name + "')");
     for (std::size_t j = 0; j < i; ++j)
       if (t.channels[j].name == c.name)
         throw EvaluationError(where_of(node) + " produced table '" + port + "' with channel '" + c.name + "' twice");

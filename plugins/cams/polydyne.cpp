@@ -173,15 +173,41 @@ RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double ba
   };
   const long double w0 = weight(0);
   for (std::size_t i = 0; i < exponents_.size(); ++i) coefficients_.push_back(weight(i) / w0);
+  // The series about the seat: u^n = (1 - w)^n = sum_k binom(n, k) (-w)^k. With n w <= 2 its terms
+  // fall as 2^k / k!: 48 terms reach far below rounding.
+  constexpr int terms = 48;
+  seat_series_.assign(terms + 1, 0.0L);
+  for (std::size_t i = 1; i < exponents_.size(); ++i) {
+    long double binomial = 1.0L;  // binom(n, k)
+    for (int k = 1; k <= terms; ++k) {
+      binomial *= (exponents_[i] - (k - 1)) / k;
+      if (k >= 5) seat_series_[static_cast<std::size_t>(k)] += coefficients_[i] * binomial;
+    }
+  }
+  seat_zone_ = std::min(0.1L, 2.0L / exponents_.back());
 }
 
 long double RealPolydyneLaw::normalized_derivative(int m, long double u) const {
+  const long double w = 1.0L - u;
+  if (w < seat_zone_) {
+    // d^m/du^m = (-1)^m d^m/dw^m of sum_k a_k (-1)^k w^k.
+    long double sum = 0.0L;
+    for (std::size_t k = seat_series_.size(); k-- > 5;) {
+      if (static_cast<int>(k) < m) break;
+      long double falling = 1.0L;
+      for (int j = 0; j < m; ++j) falling *= static_cast<long double>(k) - j;
+      const long double term = seat_series_[k] * falling * std::pow(w, static_cast<long double>(static_cast<int>(k) - m));
+      sum += (k % 2 == 0 ? term : -term);
+    }
+    return m % 2 == 0 ? sum : -sum;
+  }
   long double sum = m == 0 ? 1.0L : 0.0L;
   for (std::size_t i = 1; i < exponents_.size(); ++i) {
     const long double n = exponents_[i];
     long double factor = 1.0L;
     for (int k = 0; k < m; ++k) factor *= n - k;
-    sum += coefficients_[i] * factor * std::pow(u, n - m);
+    if (factor == 0.0L) continue;  // u^2 differentiated three times or more: nothing (and no 0 * inf at u = 0)
+    sum += coefficients_[i] * factor * (n == m ? 1.0L : std::pow(u, n - m));
   }
   return sum;
 }
@@ -243,9 +269,10 @@ CamLawDefinition polydyne_definition() {
   d.extra_outputs = {PortSpec::scalar("exponent_q", dim::none, "the second exponent (q; found for accel_angle)")};
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
     if (params.has("accel_angle")) {
-      // phi_y falls as q grows; q from 4 (the jerk stays continuous at the nose) to 1000 - 3s.
+      // phi_y falls as q grows; q from 5 (derivatives to the 5th stay finite at the nose, as cam
+      // synthesis needs) to 1000 - 3s.
       const double s = params.number("exponent_step"), target = params.number("accel_angle");
-      const double q_low = 4.0, q_high = 1000.0 - 3.0 * s;
+      const double q_low = 5.0, q_high = 1000.0 - 3.0 * s;
       auto phase = [&](double q) { return polydyne_accel_angle(q, s, basics.action_angle); };
       const double widest = phase(q_low), narrowest = phase(q_high);
       if (!(target <= widest && target >= narrowest)) {

@@ -68,7 +68,9 @@ class PolydyneLaw final : public CamLaw {
 /// The polydyne polynomial with real exponents 2 < n_2 < ... < n_5 (the family [2, q, q+s, q+2s,
 /// q+3s] that `accel_angle` solves for). Coefficients from the same divided-difference weights in
 /// long double; evaluated as the sum of powers of u = |phi| / phi_p in long double, so near the
-/// seat (where the terms cancel) the lift is good to ~1e-17 h absolute, and is clipped at 0.
+/// seat the terms cancel, so there (w = 1 - u below 2 / n_max) the law is summed as its series in
+/// w instead: x/h = sum_{k>=5} a_k (-w)^k, a_k = sum_i C_i binom(n_i, k) (a_0..a_4 vanish by the end
+/// conditions), which keeps the relative accuracy of lift and derivatives up to the seat.
 class RealPolydyneLaw final : public CamLaw {
  public:
   RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents);
@@ -88,6 +90,8 @@ class RealPolydyneLaw final : public CamLaw {
   double base_radius_ = 0.0;
   std::vector<long double> exponents_;     // 0 (the constant), 2, q, q+s, q+2s, q+3s
   std::vector<long double> coefficients_;  // 1, C2, Cq, ...
+  std::vector<long double> seat_series_;   // a_k of x/h = sum_k a_k (-w)^k, w = 1 - u (a_0..a_4 = 0)
+  long double seat_zone_ = 0.0L;           // w below which the series is used
 };
 
 /// The positive-acceleration phase (from the start of lift) of the polydyne with exponents

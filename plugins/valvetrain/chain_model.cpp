@@ -22,10 +22,18 @@ double ChainModel::cam_force(double t, const ChainState& s) const {
   return p_.link_stiffness[0] * (y - s[0]) + p_.link_damping[0] * (dy - s[positions_]);
 }
 
+double ChainModel::pushing_force(double t, const ChainState& s) const {
+  if (!p_.contact_loss) return cam_force(t, s);  // bilateral: the drive may pull
+  double y = 0.0, dy = 0.0;
+  y_(t, y, dy);
+  // Unilateral: nothing across an open gap, and the damper cannot pull.
+  return y > s[0] ? std::max(0.0, cam_force(t, s)) : 0.0;
+}
+
 void ChainModel::forces(const Mode& m, double t, const ChainState& s, std::vector<double>& f) const {
   const std::size_t n = p_.mass.size(), P = positions_, v = valve();
   f.assign(P, 0.0);
-  if (m.contact) f[0] += cam_force(t, s);
+  if (m.contact) f[0] += pushing_force(t, s);
   for (std::size_t j = 1; j < n; ++j) {
     const double link = p_.link_stiffness[j] * (s[j - 1] - s[j]) + p_.link_damping[j] * (s[P + j - 1] - s[P + j]);
     f[j - 1] -= link;
@@ -162,7 +170,8 @@ class EventHandler {
     const std::size_t v = model_.valve(), P = model_.positions();
     const double speed = std::abs(s[P + v]);
     s[v] = 0.0;
-    if (p_.seat_impact && speed >= p_.seating_speed && bounces_ < p_.max_bounces) {
+    // A bounce that would leave slower than the seating speed (e = 0 included) seats the valve.
+    if (p_.seat_impact && p_.restitution * speed >= p_.seating_speed && bounces_ < p_.max_bounces) {
       ++bounces_;
       result_.events.push_back({t, "bounce", speed});
       s[P + v] = p_.restitution * speed;
@@ -318,6 +327,9 @@ SimulationResult simulate(const ChainModel& model, double t0, double t1, const s
       if (next_stop < stops.size()) backend->restart(t, s, mode);  // a kink of the excitation
     }
   }
+  if (next_output < output_times.size())
+    throw std::logic_error("simulate: output times after the end of the run (" + std::to_string(output_times[next_output]) +
+                           " s > " + std::to_string(t1) + " s)");
   backend->add_work(result.work);
   result.work["events"] = static_cast<double>(event_count);
   result.work["root_evaluations"] += static_cast<double>(seated_evaluations);

@@ -70,6 +70,8 @@ class ChainModel {
   bool rigid_when_seated() const { return p_.mass.size() == 1 && p_.coils == 0; }
 
   double cam_force(double t, const ChainState& s) const;
+  /// The cam force as it acts: cam_force, or with contact_loss only while the cam touches and pushes.
+  double pushing_force(double t, const ChainState& s) const;
   /// Net force on the valve from the chain and the spring (without the seat's reaction).
   double force_on_valve(double t, const ChainState& s) const;
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const;

@@ -63,6 +63,7 @@ class CvodeBackend final : public OdeBackend {
   }
 
   BackendStep advance(double target, double limit) override {
+    error_.clear();
     check(CVodeSetStopTime(memory_, limit), "CVodeSetStopTime");
     advanced_ = true;
     sunrealtype t = 0.0;

@@ -95,7 +95,10 @@ class DynamicsType final : public NodeType {
                                   "displacement y, velocity, contact force, spring force"),
         PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the curve points", "mm"),
         PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
-        PortSpec::scalar("min_contact_force", dim::force, "least drive (cam) force while the valve is off its seat", "N"),
+        PortSpec::scalar("min_contact_force", dim::force,
+                         "least cam force while the valve is off its seat (0 if contact is lost; negative: the bilateral "
+                         "drive would have to pull)",
+                         "N"),
         PortSpec::scalar("seating_velocity", dim::velocity, "speed of the first landing in the last revolution", "m/s"),
         PortSpec::scalar("floats", dim::none, "1 if the valve lost cam contact in the last revolution, else 0"),
         PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
@@ -207,6 +210,9 @@ class DynamicsType final : public NodeType {
       settings.seating_speed = p.number("seating_speed");
       const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi);
       const SimulationResult& run = sim.run;
+      if (run.state.size() != phi.size())
+        throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
+                               std::to_string(phi.size()) + " curve points");
       const ChainModel& model = sim.model;
       const std::size_t v = model.valve(), P = model.positions();
       const double last = sim.last_start;
@@ -247,10 +253,9 @@ class DynamicsType final : public NodeType {
         const double y = motion->drive(phi[j]).lift;
         const double x_qs = std::max(0.0, (k_d * y - P0) / (k_d + c_s));
         // The cam's force: none without contact, none across an open lash while a lone valve sits.
-        const double cam_force = model.cam_force(run.t[j], s);
-        const double force = !mode.contact ? 0.0
-                             : mode.seated && model.rigid_when_seated() ? std::max(0.0, cam_force)
-                                                                        : cam_force;
+        const double force = mode.seated && model.rigid_when_seated() ? std::max(0.0, model.pushing_force(run.t[j], s))
+                             : !mode.contact                            ? 0.0
+                                                                        : model.pushing_force(run.t[j], s);
         // The spring's force on the valve: its line, or the first coil element's with spring_surge.
         const double spring_force = model.params().coils == 0
                                         ? P0 + c_s * x
@@ -267,7 +272,7 @@ class DynamicsType final : public NodeType {
         const double dev = std::abs(x - x_qs);
         max_dev = std::max(max_dev, dev);
         if (phi[j] >= 0.0) residual = std::max(residual, dev);
-        if (x > 0.0 && mode.contact) min_contact = std::min(min_contact, force);
+        if (x > 0.0) min_contact = std::min(min_contact, force);  // 0 while the valve flies off the cam
         if (run.t[j] > first_landing) bounce_height = std::max(bounce_height, x);
       }
       out.set_scalar("max_deviation", max_dev);

@@ -43,7 +43,7 @@ class FloatSpeedType final : public NodeType {
             .as_knob(),
         ParamSpec::number("speed_tolerance", dim::angular_speed, "width of the final bracket", "rpm")
             .with_default(1.0 * rpm)
-            .positive()
+            .at_least(1e-6 * rpm)
             .as_knob(),
         ParamSpec::number("tolerance", dim::none, "relative tolerance of each simulation")
             .with_default(1e-8)
@@ -115,6 +115,7 @@ class FloatSpeedType final : public NodeType {
       const double tol = p.number("speed_tolerance");
       while (floating - held > tol) {
         const double mid = 0.5 * (held + floating);
+        if (mid <= held || mid >= floating) break;  // adjacent doubles: as narrow as it gets
         (floats(mid) ? floating : held) = mid;
       }
     }

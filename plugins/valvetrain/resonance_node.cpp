@@ -101,6 +101,9 @@ class ResonanceType final : public NodeType {
     const double f_k = scale * std::hypot(a_k, b_k);
     const double f_k1 = scale * std::hypot(a_k1, b_k1);
     const double x_rms = std::sqrt(sum_sq / static_cast<double>(n));
+    if (!(x_rms > 0.0))
+      throw NodeError("samples", "no sample of the revolution falls inside the open period: raise samples (now " +
+                                     std::to_string(n) + ")");
     const double amp_k = f_k / (xi * omega0);
     const double amp_k1 = f_k1 / (xi * omega0);
     const double d_k = 100.0 * amp_k / x_rms;

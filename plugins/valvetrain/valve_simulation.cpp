@@ -70,11 +70,11 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
     c.mass = {m.tappet * back * back, m.pushrod * back * back, m.rocker_inertia / (m.arm_valve * m.arm_valve),
               design.reduced_mass - (m.tappet + m.pushrod) * back * back - m.rocker_inertia / (m.arm_valve * m.arm_valve) -
                   spring_share};
-    const char* names[] = {"tappet_mass", "pushrod_mass", "rocker_inertia"};
-    for (int i = 0; i < 3; ++i)
-      if (!(c.mass[static_cast<std::size_t>(i)] > 0.0))
-        throw NodeError("stiffnesses", std::string("multi_mass needs every moving part: ") + names[i] +
-                                           " is 0 in the masses node (or use the single mass)");
+    const char* names[] = {"tappet_mass", "pushrod_mass", "rocker_inertia", "valve_mass"};
+    for (int i = 0; i < 4; ++i)
+      if (!(c.mass[static_cast<std::size_t>(i)] > 1e-6 * design.reduced_mass))
+        throw NodeError("design", std::string("multi_mass needs every moving part: ") + names[i] +
+                                      " is (nearly) 0 in the masses node (or use the single mass)");
     if (drive.stiffnesses.size() != 4)
       throw NodeError("stiffnesses", "multi_mass needs four stiffnesses (valve side): cam-tappet, tappet-pushrod, "
                                      "pushrod-rocker, rocker-valve");
@@ -97,7 +97,9 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
     // Stiffness-proportional (Rayleigh) damping of the drive's links, the spring undamped: the first
     // mode of the drive at damping_ratio (for one mass: c = 2 zeta k_d / omega_0).
     c.link_damping.assign(c.link_stiffness.size(), 0.0);
-    const double omega_1 = natural_frequencies(c).front();
+    ChainParams drive_alone = c;  // the drive's first mode, not the spring's surge
+    drive_alone.coils = 0;
+    const double omega_1 = natural_frequencies(drive_alone).front();
     for (std::size_t j = 0; j < c.link_stiffness.size(); ++j)
       c.link_damping[j] = 2.0 * drive.damping_ratio / omega_1 * c.link_stiffness[j];
   }
@@ -138,9 +140,10 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
     for (double k : cam_knots) knots.push_back((r + (k + pi) / (2.0 * pi)) * sim.period);
   std::sort(knots.begin(), knots.end());
   std::vector<double> times;
-  for (double a : cam_angles) times.push_back(sim.last_start + (a + pi) / w);
+  const double end = drive.revolutions * sim.period;
+  for (double a : cam_angles) times.push_back(std::min(end, sim.last_start + (a + pi) / w));  // phi = pi: the very end
   try {
-    sim.run = simulate(sim.model, 0.0, drive.revolutions * sim.period, times, knots, options);
+    sim.run = simulate(sim.model, 0.0, end, times, knots, options);
   } catch (const std::runtime_error& e) {
     throw NodeError("tolerance", std::string("the simulation failed: ") + e.what() + " (loosen tolerance, or try integrator: " +
                                      (options.integrator == "cvode" ? "dopri5" : "cvode") + ")");

@@ -213,3 +213,11 @@ TEST_CASE("the cam-table scene: lift and event from the file, angles from the st
   CHECK(nose.exit_code == 3);
   CHECK_THAT(nose.err, Contains("angle_origin: start_of_lift"));
 }
+
+TEST_CASE("the polydyne synthesis also takes a polydyne made for an accel_angle", "[scenes]") {
+  // (the real-exponent law once gave a NaN jerk at the nose, which the synthesis turned into a NaN cam)
+  const auto j = run_cli(plugins() + "-q run " + scene("polydyne_synthesis.yaml") +
+                         " --json --set poly.accel_angle=18deg --set d_5600.curve_points=1441");
+  REQUIRE(j.exit_code == 0);
+  CHECK(value(YAML::Load(j.out), "d_5600.target_deviation") < 1e-9);
+}

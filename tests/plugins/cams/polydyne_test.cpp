@@ -350,6 +350,30 @@ TEST_CASE("polydyne accel_angle: a real exponent q for the positive-acceleration
     CHECK_THAT(b->at(phi).lift, WithinAbs(a->at(phi).lift, 1e-13 * 8e-3));
     CHECK_THAT(b->at(phi).acceleration, WithinAbs(a->at(phi).acceleration, 1e-9 * 8e-3));
   }
+  // Right at the seat (where the powers cancel and the law is summed as its series about u = 1) the
+  // real law keeps its relative accuracy against the exact one; across the switch it is continuous.
+  for (double w : {1e-2, 1e-3, 1e-5, 1e-7}) {
+    const double phi = 65 * deg * (1 - w);
+    INFO("w = " << w);
+    CHECK_THAT(b->at(phi).lift, WithinRel(a->at(phi).lift, 1e-9));
+    CHECK_THAT(b->at(phi).velocity, WithinRel(a->at(phi).velocity, 1e-9));
+    CHECK_THAT(b->at(phi).acceleration, WithinRel(a->at(phi).acceleration, 1e-8));
+    CHECK_THAT(b->at(phi).jerk, WithinRel(a->at(phi).jerk, 1e-7));
+  }
+  const RealPolydyneLaw direct(8e-3, 130 * deg, 17e-3, {2.0L, 14.0L, 26.0L, 38.0L, 50.0L});
+  const long double zone = 2.0L / 50.0L;
+  for (int m = 0; m <= 5; ++m) {
+    INFO("derivative " << m);
+    const long double below = direct.normalized_derivative(m, 1.0L - zone * (1 + 1e-12L));
+    const long double above = direct.normalized_derivative(m, 1.0L - zone * (1 - 1e-12L));
+    CHECK_THAT(static_cast<double>(below), WithinRel(static_cast<double>(above), 1e-9));
+  }
+  // No NaN at the nose, where u^2 differentiated three times vanishes.
+  double d4 = 0, d5 = 0;
+  CHECK(direct.higher_derivatives(0.0, d4, d5));
+  CHECK(std::isfinite(d4));
+  CHECK(std::isfinite(d5));
+  CHECK(std::isfinite(direct.evaluate_in_event(0.0).jerk));
   // The phase asked for is the phase achieved (the node's own search of the law, a second method).
   for (double target : {14.0, 18.0, 25.0}) {
     INFO(target << " deg");

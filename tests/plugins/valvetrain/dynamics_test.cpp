@@ -394,3 +394,46 @@ TEST_CASE("multi_mass with stiff inner links moves as the single mass; spring_su
   // Missing pieces are named.
   CHECK_THROWS_WITH(run_scene(scene_with(", multi_mass", "drive_stiffness: 4000 N/mm")), Contains("stiffnesses"));
 }
+
+TEST_CASE("dynamics regressions found in review", "[valvetrain][dynamics]") {
+  auto dyn = [](const std::string& effects, const std::string& params) {
+    return "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ " + effects +
+           " ], params: { drive_stiffness: 4000 N/mm, " + params + " } }";
+  };
+  SECTION("the last curve point (cam angle pi) is the end of the run, whatever rpm and revolutions") {
+    // 3000 rpm with 6, 15 or 18 revolutions put it one rounding past the end: a read past the states.
+    for (int revolutions : {6, 15, 18}) {
+      INFO(revolutions << " revolutions");
+      const RunResult r = run_scene(dynamics_scene(kurz, dyn("elastic_drive", "revolutions: " + std::to_string(revolutions)),
+                                                   "dyn.curves", "3000 rpm"));
+      CHECK(output(r, "dyn.curves").as_table().find("lift")->values.size() == 1441);
+    }
+  }
+  SECTION("a restitution of 0 seats the valve instead of letting it sink through the seat") {
+    const std::string fast =
+        "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 7500 rpm, rocker_ratio: 1.5, "
+        "lash: 0.25 mm } }\n";
+    std::string d = dyn("elastic_drive, contact_loss, seat_impact", "restitution: 0");
+    d.replace(d.find("v.motion"), 8, "fast.motion");
+    const RunResult r = run_scene(dynamics_scene(kurz, d, "dyn.curves, dyn.bounces", "5600 rpm", "0.25 mm", fast));
+    for (double x : output(r, "dyn.curves").as_table().find("lift")->values) REQUIRE(x >= 0.0);
+    CHECK(num(r, "dyn.bounces") == 0);
+  }
+  SECTION("a unilateral cam pushes only while it touches, whatever the damping") {
+    // damping_ratio 2 once pushed the valve across the open lash through the damper.
+    const RunResult r = run_scene(dynamics_scene(kurz, dyn("elastic_drive, contact_loss", "damping_ratio: 2"), "dyn.curves", "3000 rpm"));
+    const Table& t = output(r, "dyn.curves").as_table();
+    for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
+      const double force = t.find("contact_force")->values[i];
+      REQUIRE(force >= 0.0);
+      if (force > 0.0) REQUIRE(t.find("drive_displacement")->values[i] > t.find("lift")->values[i] - 1e-12);
+    }
+  }
+  SECTION("float_speed's bisection ends at the finest speed tolerance") {
+    const std::string fs =
+        "{ type: valvetrain.float_speed, inputs: { valve: v.motion, design: sd.design }, "
+        "params: { rpm_min: 2000 rpm, rpm_max: 9000 rpm, drive_stiffness: 4000 N/mm, speed_tolerance: 1e-6 rpm } }";
+    const RunResult r = run_scene(dynamics_scene(kurz, fs, "dyn.float_speed, dyn.simulations"));
+    CHECK(num(r, "dyn.simulations") < 80);
+  }
+}
