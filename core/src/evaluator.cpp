@@ -131,6 +131,7 @@ void check_table_shape(const GraphNode& node, const std::string& port, const Tab
 // Checks what a node produced against what it declared, and ties handles to the plugin's library.
 std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const OutputSet& produced) {
   auto checked = std::make_shared<OutputSet>();
+  for (const std::string& n : produced.notes()) checked->note(n);
   for (const auto& [port, value] : produced.all()) {
     const PortSpec* spec = node.info().find_output(port);
     if (!spec) throw EvaluationError(where_of(node) + " produced output '" + port + "', which it does not declare");
@@ -183,10 +184,11 @@ namespace {
 NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
                  std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache) {
   const GraphNode& node = graph.nodes[i];
-  NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}};
+  NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}, {}};
   if (auto hit = cache.find(hashes[i])) {
     produced[i] = hit;
     run.reused = true;
+    run.notes = hit->notes();
     spdlog::debug("{} reused from the memo cache", where_of(node));
     return run;
   }
@@ -218,6 +220,7 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   produced[i] = checked_outputs(node, outputs);
+  run.notes = produced[i]->notes();
   cache.store(hashes[i], produced[i]);
   spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
   return run;

@@ -34,6 +34,11 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
         json.key("value").numbers(o.value.as_series().values);
         json.key("axis").numbers(o.value.as_series().axis);
         json.key("axis_unit").value(o.value.as_series().axis_dimension.si_unit());
+        if (!o.value.as_series().labels.empty()) {
+          json.key("labels").begin_array();
+          for (const std::string& l : o.value.as_series().labels) json.value(l);
+          json.end_array();
+        }
         break;
       case ValueKind::handle: json.key("value").null().key("handle").value(o.value.as_handle()->kind()); break;
       case ValueKind::table: {
@@ -75,6 +80,14 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
   json.key("effects").begin_array();
   for (const std::string& e : graph.effects) json.value(e);
   json.end_array();
+  json.key("notes").begin_object();
+  for (const NodeRun& r : result.runs) {
+    if (r.notes.empty()) continue;
+    json.key(r.node).begin_array();
+    for (const std::string& n : r.notes) json.value(n);
+    json.end_array();
+  }
+  json.end_object();
   json.end_object();
   os << "\n";
 }
@@ -133,6 +146,13 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
 // Short series inline ([a, b, c] unit), long ones as a count (their CSV is in --out).
 void print_series(std::ostream& os, const OutputValue& o) {
   const auto& values = o.value.as_series().values;
+  const auto& labels = o.value.as_series().labels;
+  if (labels.size() == values.size() && !values.empty()) {
+    // Named elements: "shaft 9.4 %, retaining ring 7.8 %, ...".
+    for (std::size_t i = 0; i < values.size(); ++i)
+      os << (i ? ", " : "") << labels[i] << " " << format_value(values[i], o.dimension, o.display_unit);
+    return;
+  }
   if (values.size() > 12) {
     os << "series of " << values.size() << " points (see --out for the CSV)";
     return;
@@ -217,6 +237,14 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       else std::cout << "<" << o.value.as_handle()->kind() << ">";
       std::cout << "\n";
     }
+    // How results were made (Monte Carlo samples and seed, ...), under everything they belong to.
+    bool first_note = true;
+    for (const NodeRun& r : result.runs)
+      for (const std::string& n : r.notes) {
+        if (first_note) std::cout << "\n";
+        first_note = false;
+        std::cout << r.node << ": " << n << "\n";
+      }
   }
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();

@@ -124,11 +124,12 @@ class BacklashChainType final : public NodeType {
         PortSpec::scalar("angular_backlash_max", A, "(L + dL)/|R|: worst-case maximum angular free play", "arcmin"),
         PortSpec::scalar("lever_arm", L, "R, given or from the geometry ((P - A) x u_rod) . n (signed)", "mm"),
         PortSpec::series("joint_contribution_worst_case", dim::none,
-                         "k_i (S_i + dS_i) / (L + dL): share of joint i in the worst-case maximum (axis: joint index)"),
+                         "k_i (S_i + dS_i) / (L + dL): share of joint i in the worst-case maximum (axis: joint index; labelled by joint)",
+                         "%"),
         PortSpec::scalar("actuator_contribution_worst_case", dim::none,
-                         "(L_act + dL_act) / (L + dL): the actuator's share in the worst-case maximum"),
+                         "(L_act + dL_act) / (L + dL): the actuator's share in the worst-case maximum", "%"),
         PortSpec::series("joint_contribution_rss", dim::none,
-                         "k_i^2 sigma_i^2 / sigma_L^2: share of joint i in the RSS variance (axis: joint index)"),
+                         "k_i^2 sigma_i^2 / sigma_L^2: share of joint i in the RSS variance (axis: joint index; labelled by joint)", "%"),
         PortSpec::scalar("rod_backlash_rss_sigma", L,
                          "sigma_L = sqrt((dL_act/3)^2 + sum k_i^2 sigma_i^2), each term's sigma from its links", "um"),
         PortSpec::scalar("rod_backlash_rss_max", L, "L + 3 sigma_L", "um"),
@@ -213,9 +214,11 @@ class BacklashChainType final : public NodeType {
     out.set_scalar("angular_backlash_limit", limit / arm);
     out.set_scalar("angular_backlash_max", max / arm);
     out.set_scalar("lever_arm", R);
-    out.set("joint_contribution_worst_case", Value::series(indexed(std::move(share_worst))));
+    std::vector<std::string> names;
+    for (const auto& j : joints) names.push_back(j->joint());
+    out.set("joint_contribution_worst_case", Value::series(indexed(std::move(share_worst), names)));
     out.set_scalar("actuator_contribution_worst_case", max > 0.0 ? (act_mean + act_limit) / max : 0.0);
-    out.set("joint_contribution_rss", Value::series(indexed(std::move(share_rss))));
+    out.set("joint_contribution_rss", Value::series(indexed(std::move(share_rss), names)));
     out.set_scalar("rod_backlash_rss_sigma", sigma);
     out.set_scalar("rod_backlash_rss_max", mean + 3.0 * sigma);
     out.set_scalar("angular_backlash_rss_max", (mean + 3.0 * sigma) / arm);
@@ -227,8 +230,10 @@ class BacklashChainType final : public NodeType {
       for (std::size_t i = 0; i < n; ++i)
         for (const PlayTerm& t : joints[i]->terms()) stack.terms.push_back({k[i], t});
       const std::size_t samples = read_samples(p);
-      const SampleSummary mc = summarize(sample_play_stack(stack, samples, read_seed(p)));
+      const std::uint64_t seed = read_seed(p);
+      const SampleSummary mc = summarize(sample_play_stack(stack, samples, seed));
       ctx.report_work("samples", static_cast<double>(samples));
+      out.note(monte_carlo_note(samples, seed, mc.mean_error));
       out.set_scalar("rod_backlash_mc_mean", mc.mean);
       out.set_scalar("rod_backlash_mc_sigma", mc.sigma);
       out.set_scalar("rod_backlash_mc_q999", mc.q_high);
@@ -257,11 +262,12 @@ class BacklashChainType final : public NodeType {
   }
 
  private:
-  static Series indexed(std::vector<double> values) {
+  static Series indexed(std::vector<double> values, std::vector<std::string> labels) {
     Series s;
     for (std::size_t i = 0; i < values.size(); ++i) s.axis.push_back(static_cast<double>(i));
     s.values = std::move(values);
     s.axis_dimension = dim::none;
+    s.labels = std::move(labels);
     return s;
   }
 

@@ -21,11 +21,12 @@ std::optional<Distribution> distribution_named(const std::string& name) {
   return std::nullopt;
 }
 
-Series indexed_series(std::vector<double> values) {
+Series indexed_series(std::vector<double> values, std::vector<std::string> labels = {}) {
   Series s;
   for (std::size_t i = 0; i < values.size(); ++i) s.axis.push_back(static_cast<double>(i));
   s.values = std::move(values);
   s.axis_dimension = dim::none;
+  s.labels = std::move(labels);
   return s;
 }
 
@@ -62,9 +63,10 @@ class StackLinearType final : public NodeType {
         PortSpec::scalar("rss_min", L, "mean - 3 rss_sigma", "mm"),
         PortSpec::scalar("rss_max", L, "mean + 3 rss_sigma", "mm"),
         PortSpec::series("contribution_worst_case", dim::none,
-                         "share of each link in the worst case, |s_i| T_i/2 / sum (axis: link index)"),
+                         "share of each link in the worst case, |s_i| T_i/2 / sum (axis: link index; labelled by link)", "%"),
         PortSpec::series("contribution_rss", dim::none,
-                         "share of each link in the RSS variance, s_i^2 sigma_i^2 / sum (axis: link index)"),
+                         "share of each link in the RSS variance, s_i^2 sigma_i^2 / sum (axis: link index; labelled by link)",
+                         "%"),
         PortSpec::scalar("mc_mean", L, "Monte Carlo mean (with monte_carlo)", "mm"),
         PortSpec::scalar("mc_sigma", L, "Monte Carlo standard deviation (with monte_carlo)", "mm"),
         PortSpec::scalar("mc_min", L, "smallest Monte Carlo sample (with monte_carlo)", "mm"),
@@ -91,13 +93,18 @@ class StackLinearType final : public NodeType {
     out.set_scalar("rss_sigma", s.rss_sigma);
     out.set_scalar("rss_min", s.mean - 3.0 * s.rss_sigma);
     out.set_scalar("rss_max", s.mean + 3.0 * s.rss_sigma);
-    out.set("contribution_worst_case", Value::series(indexed_series(s.contribution_worst_case)));
-    out.set("contribution_rss", Value::series(indexed_series(s.contribution_rss)));
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < links.size(); ++i)
+      names.push_back(links[i].label.empty() ? "link " + std::to_string(i) : links[i].label);
+    out.set("contribution_worst_case", Value::series(indexed_series(s.contribution_worst_case, names)));
+    out.set("contribution_rss", Value::series(indexed_series(s.contribution_rss, names)));
 
     if (!ctx.effect(monte_carlo_effect)) return;
     const std::size_t n = read_samples(p);
-    const SampleSummary mc = summarize(sample_linear_stack(links, n, read_seed(p)));
+    const std::uint64_t seed = read_seed(p);
+    const SampleSummary mc = summarize(sample_linear_stack(links, n, seed));
     ctx.report_work("samples", static_cast<double>(n));
+    out.note(monte_carlo_note(n, seed, mc.mean_error));
     out.set_scalar("mc_mean", mc.mean);
     out.set_scalar("mc_sigma", mc.sigma);
     out.set_scalar("mc_min", mc.min);

@@ -221,3 +221,35 @@ TEST_CASE("the polydyne synthesis also takes a polydyne made for an accel_angle"
   REQUIRE(j.exit_code == 0);
   CHECK(value(YAML::Load(j.out), "d_5600.target_deviation") < 1e-9);
 }
+
+TEST_CASE("Monte Carlo results say how they were made; contributions name their links", "[scenes]") {
+  const auto r = run_cli(plugins() + "run " + scene("tolerance_stack.yaml"));
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("gap: Monte Carlo: 1000000 samples, seed 1, standard error of the mean"));
+  CHECK_THAT(r.out, Contains("gap.contribution_rss = shaft 1.7") && Contains("case 85.4"));
+  const auto j = run_cli(plugins() + "-q run " + scene("tolerance_stack.yaml") + " --json");
+  REQUIRE(j.exit_code == 0);
+  const YAML::Node json = YAML::Load(j.out);
+  CHECK(json["outputs"]["gap.contribution_worst_case"]["labels"][4].as<std::string>() == "case");
+  CHECK_THAT(json["notes"]["gap"][0].as<std::string>(), Contains("1000000 samples, seed 1"));
+  CHECK_FALSE(json["notes"]["mitcalc"]);  // no Monte Carlo there: its effect is the gap node's own
+  const auto chain = run_cli(plugins() + "run " + scene("backlash_chain.yaml"));
+  REQUIRE(chain.exit_code == 0);
+  CHECK_THAT(chain.out, Contains("chain: Monte Carlo: 200000 samples, seed 1"));
+}
+
+TEST_CASE("notes stay with results taken from the memo cache", "[scenes][evaluator]") {
+  const std::string yaml = R"(
+nodes:
+  s: { type: stack.linear, effects: [ monte_carlo ], params: { samples: 1000, seed: 7,
+       links: [ { nominal: 10 mm, upper: 0.1 mm, lower: -0.1 mm, label: a } ] } }
+outputs: [ s.mc_mean ]
+)";
+  mechgraph::MemoCache cache;
+  const mechgraph::Graph g = graph_from(yaml, project_registry());
+  const mechgraph::RunResult first = evaluate(g, cache);
+  const mechgraph::RunResult again = evaluate(g, cache);
+  REQUIRE(again.runs.at(0).reused);
+  CHECK(again.runs.at(0).notes == first.runs.at(0).notes);
+  CHECK_THAT(first.runs.at(0).notes.at(0), Contains("1000 samples, seed 7"));
+}

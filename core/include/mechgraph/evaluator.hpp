@@ -40,6 +40,7 @@ struct NodeRun {
   bool reused = false;    // taken from the memo cache, not evaluated
   double seconds = 0.0;
   std::map<std::string, double> work;
+  std::vector<std::string> notes;  // how the node made its results (OutputSet::note)
 };
 
 struct RunResult {

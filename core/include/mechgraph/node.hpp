@@ -143,9 +143,14 @@ class OutputSet {
   void set(std::string port, Value v) { values_[std::move(port)] = std::move(v); }
   void set_scalar(std::string port, double v) { set(std::move(port), Value::scalar(v)); }
   const std::map<std::string, Value, std::less<>>& all() const { return values_; }
+  /// A line that says how the results were made (e.g. "Monte Carlo: 1000000 samples, seed 1"):
+  /// printed with the results and kept with them in the memo cache.
+  void note(std::string text) { notes_.push_back(std::move(text)); }
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   std::map<std::string, Value, std::less<>> values_;
+  std::vector<std::string> notes_;
 };
 
 enum class LogLevel { debug, info, warn };

@@ -29,6 +29,7 @@ struct Series {
   std::vector<double> axis;
   std::vector<double> values;
   Dimension axis_dimension{};
+  std::vector<std::string> labels;  // optional: a name per element (a stack's links, a chain's joints)
 };
 
 /// A curve with several channels over one axis: SVAJ curves (lift, velocity, acceleration, jerk)
