@@ -7,6 +7,8 @@
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -15,14 +17,7 @@ namespace {
 
 using namespace mechgraph;
 
-const PluginRegistry& plugins() {
-  static const PluginRegistry r = [] {
-    PluginRegistry loaded;
-    loaded.load_directory(MECHGRAPH_PLUGIN_DIR);
-    return loaded;
-  }();
-  return r;
-}
+const PluginRegistry& plugins() { return bench::project_plugins(); }
 
 void run_dynamics(benchmark::State& state, const std::string& node, const std::string& integrator, const std::string& tolerance) {
   static const SceneSpec scene = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_dynamics.yaml");

@@ -6,6 +6,8 @@
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -14,14 +16,7 @@ namespace {
 
 using namespace mechgraph;
 
-const PluginRegistry& registry() {
-  static const PluginRegistry r = [] {
-    PluginRegistry loaded;
-    loaded.load_directory(MECHGRAPH_PLUGIN_DIR);
-    return loaded;
-  }();
-  return r;
-}
+const PluginRegistry& registry() { return bench::project_plugins(); }
 
 const SceneSpec& study() {
   static const SceneSpec s = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml");

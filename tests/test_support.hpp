@@ -73,12 +73,21 @@ inline Graph graph_from(const std::string& yaml, const PluginRegistry& registry 
   return build_graph(parse_scene(yaml, "scene.yaml"), registry, overrides);
 }
 
+/// Builds and evaluates an inline scene with a fresh memo cache.
+inline RunResult run_yaml(const std::string& yaml, const PluginRegistry& registry, const std::vector<Override>& overrides = {}) {
+  MemoCache cache;
+  return evaluate(graph_from(yaml, registry, overrides), cache);
+}
+
 /// The value of one requested output of a run.
 inline const Value& output(const RunResult& r, const std::string& label) {
   for (const OutputValue& o : r.outputs)
     if (o.label == label) return o.value;
   throw std::runtime_error("no output " + label);
 }
+
+/// The number at one requested scalar output of a run.
+inline double scalar_output(const RunResult& r, const std::string& label) { return output(r, label).as_scalar(); }
 
 struct CommandResult {
   int exit_code = -1;

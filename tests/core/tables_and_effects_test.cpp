@@ -17,10 +17,7 @@ using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
 
 namespace {
-RunResult run(const std::string& yaml) {
-  MemoCache cache;
-  return evaluate(graph_from(yaml), cache);
-}
+RunResult run(const std::string& yaml) { return run_yaml(yaml, arith_registry()); }
 std::string failure(const std::string& yaml) {
   try {
     run(yaml);

@@ -16,10 +16,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-RunResult run(const std::string& yaml) {
-  MemoCache cache;
-  return evaluate(graph_from(yaml, project_registry()), cache);
-}
+RunResult run(const std::string& yaml) { return run_yaml(yaml, project_registry()); }
 
 std::string cam(const std::string& type, const std::string& extra) {
   return "  c: { type: " + type + ", params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 17 mm" + extra + " } }\n";

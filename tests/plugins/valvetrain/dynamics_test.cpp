@@ -59,11 +59,10 @@ double simulated_residual(double r, const std::string& integrator) {
 }
 
 RunResult run_scene(const std::string& yaml, const std::vector<Override>& overrides = {}) {
-  MemoCache cache;
-  return evaluate(graph_from(yaml, project_registry(), overrides), cache);
+  return run_yaml(yaml, project_registry(), overrides);
 }
 
-double num(const RunResult& r, const std::string& label) { return output(r, label).as_scalar(); }
+double num(const RunResult& r, const std::string& label) { return scalar_output(r, label); }
 
 const NodeRun& node_run(const RunResult& r, const std::string& name) {
   for (const NodeRun& n : r.runs)

@@ -42,12 +42,9 @@ outputs: [ v.motion, v.min_acceleration, train.mass_without_spring, sd.spring, s
 )";
 }
 
-RunResult run(const std::string& yaml) {
-  MemoCache cache;
-  return evaluate(graph_from(yaml, project_registry()), cache);
-}
+RunResult run(const std::string& yaml) { return run_yaml(yaml, project_registry()); }
 
-double num(const RunResult& r, const std::string& label) { return output(r, label).as_scalar(); }
+double num(const RunResult& r, const std::string& label) { return scalar_output(r, label); }
 
 template <class T>
 std::shared_ptr<const T> handle(const RunResult& r, const std::string& label) {
