@@ -49,7 +49,7 @@ TEST_CASE("spring.helical refuses what cannot be built, naming the parameter", "
   const auto model = spring_model("spring.helical");
   SECTION("fewer than two active coils") {
     try {
-      model->size({300.0, 500e3, 10e-3});  // 500 N/mm: a stub of a spring
+      model->size({300.0, 500e3, 10e-3});  // 500 N/mm: too stiff to wind two coils
       FAIL("no error");
     } catch (const NodeError& e) {
       CHECK(e.parameter() == "spring_index");
