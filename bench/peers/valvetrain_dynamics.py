@@ -15,8 +15,7 @@ The model (plugins/valvetrain/chain_model.hpp; the node's setup in dynamics_node
 valve_simulation.cpp), valve side:
     cam angle   phi = -pi + w_k t,  w_k = rpm/2 in rad/s (t = 0 on the base circle, at -pi)
     drive       y = i h(phi) - lash (here lash = 0), y' = w_k i h'(phi)
-    force       N = k_d (y - x) + c (y' - x'),  c = 2 zeta k_d / omega_1, omega_1 = sqrt((k_d + c_s) / M)
-                (stiffness-proportional damping on the drive link, the first mode at zeta)
+    force       N = k_d (y - x) + c (y' - x'),  c = 2 zeta sqrt((k_d + c_s) M)  (the first mode at zeta)
     seated      x = x' = 0 until N - P0 crosses 0 upward (lift-off)
     attached    M x'' = N - P0 - c_s x, until x crosses 0 downward (landing: x' = 0 and seated,
                 or attached on at once if the drive already pushes harder than P0)
@@ -124,7 +123,7 @@ class Model:
 
     def __init__(self, preload, spring_rate, mass):
         self.P0, self.cs, self.M = preload, spring_rate, mass
-        self.c = 2.0 * ZETA * K_D / math.sqrt((K_D + spring_rate) / mass)
+        self.c = 2.0 * ZETA * math.sqrt((K_D + spring_rate) * mass)
         self.jac = np.array([[0.0, 1.0], [-(K_D + spring_rate) / mass, -self.c / mass]])
         P0, cs, M, c = self.P0, self.cs, self.M, self.c
 

@@ -39,6 +39,24 @@ void chain_matrices(const ChainParams& c, Eigen::MatrixXd& K, Eigen::VectorXd& m
   for (std::size_t i = 0; i < P; ++i) m(static_cast<Eigen::Index>(i)) = i < n ? c.mass[i] : c.coil_mass;
 }
 
+// The links' damping b_j = beta k_j (stiffness-proportional, the spring undamped), beta such that
+// the drive's first mode phi_1 (mass-normalised) has the damping ratio zeta:
+//   zeta = phi_1' B phi_1 / (2 omega_1) = beta phi_1' K_links phi_1 / (2 omega_1).
+// For one mass this is b = 2 zeta sqrt((k_d + c_s) M).
+double link_damping_factor(const ChainParams& drive_alone, double zeta) {
+  Eigen::MatrixXd K, K_links;
+  Eigen::VectorXd m;
+  chain_matrices(drive_alone, K, m);
+  ChainParams links_only = drive_alone;
+  links_only.spring_rate = 0.0;
+  chain_matrices(links_only, K_links, m);
+  const Eigen::VectorXd r = m.cwiseSqrt().cwiseInverse();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(r.asDiagonal() * K * r.asDiagonal());
+  const double omega_1 = std::sqrt(std::max(0.0, solver.eigenvalues()(0)));
+  const Eigen::VectorXd phi = r.asDiagonal() * solver.eigenvectors().col(0);  // phi' M phi = 1
+  return 2.0 * zeta * omega_1 / phi.dot(K_links * phi);
+}
+
 }  // namespace
 
 std::vector<double> natural_frequencies(const ChainParams& chain) {
@@ -94,14 +112,14 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
     c.coil_damping = 2.0 * drive.surge_damping_ratio / omega_surge * (drive.coils + 1) * c_s;
   }
   {
-    // Stiffness-proportional (Rayleigh) damping of the drive's links, the spring undamped: the first
-    // mode of the drive at damping_ratio (for one mass: c = 2 zeta k_d / omega_0).
+    // Stiffness-proportional damping of the drive's links, the spring undamped, the drive's first
+    // mode at damping_ratio (link_damping_factor; for one mass b = 2 zeta sqrt((k_d + c_s) M)).
     c.link_damping.assign(c.link_stiffness.size(), 0.0);
     ChainParams drive_alone = c;  // the drive's first mode, not the spring's surge
     drive_alone.coils = 0;
-    const double omega_1 = natural_frequencies(drive_alone).front();
+    const double beta = link_damping_factor(drive_alone, drive.damping_ratio);
     for (std::size_t j = 0; j < c.link_stiffness.size(); ++j)
-      c.link_damping[j] = 2.0 * drive.damping_ratio / omega_1 * c.link_stiffness[j];
+      c.link_damping[j] = beta * c.link_stiffness[j];
   }
   return c;
 }

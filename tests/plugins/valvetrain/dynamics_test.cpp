@@ -436,3 +436,70 @@ TEST_CASE("dynamics regressions found in review", "[valvetrain][dynamics]") {
     CHECK(num(r, "dyn.simulations") < 80);
   }
 }
+
+TEST_CASE("drive damping: the first mode at damping_ratio, for one mass and for four", "[valvetrain][dynamics][chain]") {
+  // A sized spring and masses as the study's.
+  const RunResult r = run_scene(dynamics_scene(kurz, "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design } }",
+                                               "sd.design"));
+  const auto design = std::dynamic_pointer_cast<const valvetrain::SpringDesign>(output(r, "sd.design").as_handle());
+  DriveSettings one;
+  one.stiffness = 4e6;
+  one.damping_ratio = 0.06;
+  const ChainParams single = build_chain(*design, one);
+  const double c_s = design->spring->stiffness(0), M = design->reduced_mass;
+  CHECK_THAT(single.link_damping.at(0), WithinRel(2 * 0.06 * std::sqrt((4e6 + c_s) * M), 1e-12));
+  // Four masses: the modal damping ratio of the first mode, phi' B phi / (2 omega phi' M phi), is 0.06.
+  DriveSettings four = one;
+  four.multi_mass = true;
+  four.stiffnesses = {2e7, 3e7, 1.5e7, 2.5e7};
+  const ChainParams chain = build_chain(*design, four);
+  const double omega = natural_frequencies(chain).at(0);
+  // The first mode by inverse iteration on K - omega^2 M (a second method to Eigen's solver).
+  const std::size_t n = 4;
+  std::vector<double> K(n * n, 0.0), B(n * n, 0.0);
+  auto add = [&](std::vector<double>& A, std::size_t a, long b, double k) {
+    A[a * n + a] += k;
+    if (b >= 0) {
+      A[static_cast<std::size_t>(b) * n + static_cast<std::size_t>(b)] += k;
+      A[a * n + static_cast<std::size_t>(b)] -= k;
+      A[static_cast<std::size_t>(b) * n + a] -= k;
+    }
+  };
+  add(K, 0, -1, chain.link_stiffness[0]);
+  add(B, 0, -1, chain.link_damping[0]);
+  for (std::size_t j = 1; j < n; ++j) {
+    add(K, j, static_cast<long>(j - 1), chain.link_stiffness[j]);
+    add(B, j, static_cast<long>(j - 1), chain.link_damping[j]);
+  }
+  add(K, n - 1, -1, c_s);
+  // (K - w^2 M) phi = 0: solve (K - s M) x = M x_prev repeatedly with s slightly off w^2.
+  std::vector<double> phi(n, 1.0);
+  const double shift = omega * omega * (1 - 1e-6);
+  for (int it = 0; it < 50; ++it) {
+    std::vector<double> A(n * n), rhs(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j) A[i * n + j] = K[i * n + j] - (i == j ? shift * chain.mass[i] : 0.0);
+      rhs[i] = chain.mass[i] * phi[i];
+    }
+    for (std::size_t c = 0; c < n; ++c)  // Gaussian elimination (the matrix is symmetric and small)
+      for (std::size_t i = c + 1; i < n; ++i) {
+        const double f = A[i * n + c] / A[c * n + c];
+        for (std::size_t j = c; j < n; ++j) A[i * n + j] -= f * A[c * n + j];
+        rhs[i] -= f * rhs[c];
+      }
+    for (std::size_t i = n; i-- > 0;) {
+      double s = rhs[i];
+      for (std::size_t j = i + 1; j < n; ++j) s -= A[i * n + j] * phi[j];
+      phi[i] = s / A[i * n + i];
+    }
+    double norm = 0;
+    for (double v : phi) norm = std::max(norm, std::abs(v));
+    for (double& v : phi) v /= norm;
+  }
+  double pMp = 0, pBp = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    pMp += chain.mass[i] * phi[i] * phi[i];
+    for (std::size_t j = 0; j < n; ++j) pBp += phi[i] * B[i * n + j] * phi[j];
+  }
+  CHECK_THAT(pBp / (2 * omega * pMp), WithinRel(0.06, 1e-9));
+}
