@@ -15,6 +15,7 @@
 #include "train_masses.hpp"
 
 #include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
 #include <numbers>
@@ -107,6 +108,8 @@ class PolydyneCamType final : public NodeType {
         PortSpec::scalar("max_lift", dim::length, "tappet lift at the nose", "mm"),
         PortSpec::scalar("take_up", dim::length, "tappet lift at the top of the ramps, (P0 / k_d + lash) / i", "mm"),
         PortSpec::scalar("correction", dim::length, "nose lift of the synthesised cam less the law's (positive: higher)", "mm"),
+        PortSpec::scalar("min_curvature_radius", dim::length, "smallest radius of curvature of the synthesised contour (flat tappet)",
+                         "mm"),
     };
   }
   const NodeInfo& info() const override { return info_; }
@@ -121,14 +124,39 @@ class PolydyneCamType final : public NodeType {
     const double ramp = p.number("ramp_angle");
     if (law->event_end() - law->event_begin() + 2.0 * ramp >= 2.0 * pi)
       throw NodeError("ramp_angle", "the valve law's event plus two ramps exceeds a revolution");
+    const double rocker = p.number("rocker_ratio");
+    if (std::abs(design->masses->rocker_ratio() - rocker) > 1e-9 * rocker) {
+      std::ostringstream msg;
+      msg << "rocker_ratio " << rocker << " and the design's arms l_v / l_p = " << design->masses->rocker_ratio()
+          << " disagree: make them the same rocker";
+      throw NodeError("rocker_ratio", msg.str());
+    }
     SynthesizedCam::Drive drive{design->reduced_mass, p.number("drive_stiffness"), design->spring->preload(),
-                                design->spring->stiffness(0.0), p.number("design_rpm") / 2.0, p.number("rocker_ratio"),
-                                p.number("lash")};
+                                design->spring->stiffness(0.0), p.number("design_rpm") / 2.0, rocker, p.number("lash")};
     auto cam = std::make_shared<const SynthesizedCam>(law, drive, ramp);
+    // The synthesised contour must stay convex enough for the flat tappet: r0 + h + h'' > 0.
+    std::vector<double> knots{cam->event_begin()};
+    for (double b : cam->breakpoints()) knots.push_back(b);
+    knots.push_back(cam->event_end());
+    long evaluations = 0;
+    const auto rho = numerics::minimize_piecewise(
+        [&](double phi) {
+          const LiftDerivatives h = cam->at(phi);
+          return cam->base_radius() + h.lift + h.acceleration;
+        },
+        knots, 200, evaluations);
+    if (!(rho.value > 0.0)) {
+      std::ostringstream msg;
+      msg << "the synthesised cam is undercut: its smallest radius of curvature is " << rho.value * 1e3 << " mm at "
+          << rho.x * 180.0 / pi << " deg (base_radius " << cam->base_radius() * 1e3
+          << " mm of the law): raise the law's base_radius, or the drive_stiffness";
+      throw NodeError("drive_stiffness", msg.str());
+    }
     const double take_up = (drive.preload / drive.stiffness + drive.lash) / drive.rocker;
     out.set_scalar("max_lift", cam->max_lift());
     out.set_scalar("take_up", take_up);
     out.set_scalar("correction", cam->max_lift() - law->max_lift());
+    out.set_scalar("min_curvature_radius", rho.value);
     out.set("law", Value::handle(std::move(cam)));
   }
 

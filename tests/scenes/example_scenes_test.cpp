@@ -253,3 +253,13 @@ outputs: [ s.mc_mean ]
   CHECK(again.runs.at(0).notes == first.runs.at(0).notes);
   CHECK_THAT(first.runs.at(0).notes.at(0), Contains("1000 samples, seed 7"));
 }
+
+TEST_CASE("the polydyne synthesis refuses another rocker than the design's and an undercut cam", "[scenes]") {
+  const auto rocker = run_cli(plugins() + "-q run " + scene("polydyne_synthesis.yaml") + " --set synth.rocker_ratio=1.4");
+  CHECK(rocker.exit_code == 3);
+  CHECK_THAT(rocker.err, Contains("parameter 'rocker_ratio'") && Contains("1.4") && Contains("disagree"));
+  // A soft drive asks for a cam that stretches it by its whole inertia force: its contour undercuts.
+  const auto soft = run_cli(plugins() + "-q run " + scene("polydyne_synthesis.yaml") + " --set drive=300N/mm");
+  CHECK(soft.exit_code == 3);
+  CHECK_THAT(soft.err, Contains("parameter 'drive_stiffness'") && Contains("synthesised cam is undercut"));
+}
