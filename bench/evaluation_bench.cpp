@@ -78,4 +78,18 @@ BENCHMARK(BM_TimeAreaMethod)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
+// A scene of N independent cams, each output requested: graph building must not be quadratic in N.
+void BM_BuildLargeGraph(benchmark::State& state) {
+  std::string yaml = "nodes:\n";
+  std::string outputs = "outputs: [";
+  for (long i = 0; i < state.range(0); ++i) {
+    yaml += "  c" + std::to_string(i) + ": { type: cam.cycloidal, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 40 mm } }\n";
+    outputs += (i ? ", c" : "c") + std::to_string(i) + ".max_lift";
+  }
+  const SceneSpec scene = parse_scene(yaml + outputs + "]\n", "large.yaml");
+  for (auto _ : state) benchmark::DoNotOptimize(build_graph(scene, registry()));
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_BuildLargeGraph)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond)->Complexity();
+
 BENCHMARK_MAIN();

@@ -24,8 +24,7 @@ Override parse_override(std::string_view text) {
 }
 
 std::optional<std::size_t> Graph::find(std::string_view name) const {
-  for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (nodes[i].name == name) return i;
+  if (auto it = index.find(name); it != index.end()) return it->second;
   return std::nullopt;
 }
 
@@ -92,9 +91,8 @@ class GraphBuilder {
   Graph build() {
     graph_.title = scene_.title;
     graph_.file = scene_.file;
-    std::set<std::string> names;
     for (const NodeSpec& n : scene_.nodes) {
-      if (!names.insert(n.name).second) fail(n.where, "node '" + n.name + "' is defined twice");
+      if (!graph_.index.emplace(n.name, graph_.index.size()).second) fail(n.where, "node '" + n.name + "' is defined twice");
     }
     for (const NodeSpec& n : scene_.nodes) graph_.nodes.push_back(resolve_node(n));
     resolve_effects();
@@ -426,10 +424,9 @@ class GraphBuilder {
                       unknown_name_message("output port", ref.port, outs));
     }
     check_effect_on(*node, ref.port, where, "output '" + ref.str() + "'");
-    for (std::size_t i = 0; i < graph_.outputs.size(); ++i)
-      if (graph_.outputs[i].node == *node && graph_.outputs[i].port == ref.port) return i;
-    graph_.outputs.push_back({*node, ref.port, spec, ref.str()});
-    return graph_.outputs.size() - 1;
+    const auto [it, added] = requested_.emplace(std::make_pair(*node, ref.port), graph_.outputs.size());
+    if (added) graph_.outputs.push_back({*node, ref.port, spec, ref.str()});
+    return it->second;
   }
 
   void resolve_report(const ReportSpec& spec) {
@@ -507,6 +504,7 @@ class GraphBuilder {
   std::map<std::string, RawValue> scene_params_;
   std::map<std::string, std::vector<std::pair<std::string, RawValue>>> node_overrides_;
   std::map<std::string, std::string> override_texts_;
+  std::map<std::pair<std::size_t, std::string>, std::size_t> requested_;  // (node, port) -> index in outputs
   Graph graph_;
 };
 

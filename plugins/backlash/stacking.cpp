@@ -84,13 +84,34 @@ double quantile_of_sorted(const std::vector<double>& sorted, double p) {
   return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[lo + 1] - sorted[lo]);
 }
 
+namespace {
+
+// The quantile quantile_of_sorted would give, by selection instead of a full sort (O(n), the
+// order of `v` is changed): nth_element places rank lo, the next rank is the least above it.
+double quantile_by_selection(std::vector<double>& v, double p) {
+  const double h = static_cast<double>(v.size() - 1) * std::clamp(p, 0.0, 1.0);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(lo), v.end());
+  const double a = v[lo];
+  if (lo + 1 >= v.size()) return a;
+  const double b = *std::min_element(v.begin() + static_cast<std::ptrdiff_t>(lo) + 1, v.end());
+  return a + (h - static_cast<double>(lo)) * (b - a);
+}
+
+}  // namespace
+
 SampleSummary summarize(std::vector<double> samples) {
   if (samples.size() < 2) throw std::invalid_argument("Monte Carlo needs at least two samples");
-  std::sort(samples.begin(), samples.end());
   SampleSummary s;
   s.count = samples.size();
   const double n = static_cast<double>(s.count);
   // Two passes about a shift (the median) so that a large common value costs no digits.
+  const auto [low, high] = std::minmax_element(samples.begin(), samples.end());
+  s.min = *low;
+  s.max = *high;
+  s.q_low = quantile_by_selection(samples, probability_minus_3_sigma);
+  s.q_high = quantile_by_selection(samples, probability_plus_3_sigma);
+  std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(s.count / 2), samples.end());
   const double shift = samples[s.count / 2];
   double sum = 0.0;
   for (double x : samples) sum += x - shift;
@@ -102,10 +123,6 @@ SampleSummary summarize(std::vector<double> samples) {
   }
   s.mean = shift + mean_offset;
   s.sigma = std::sqrt(squares / (n - 1.0));
-  s.min = samples.front();
-  s.max = samples.back();
-  s.q_low = quantile_of_sorted(samples, probability_minus_3_sigma);
-  s.q_high = quantile_of_sorted(samples, probability_plus_3_sigma);
   s.mean_error = s.sigma / std::sqrt(n);
   s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
   return s;

@@ -187,29 +187,48 @@ RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double ba
   seat_zone_ = std::min(0.1L, 2.0L / exponents_.back());
 }
 
-long double RealPolydyneLaw::normalized_derivative(int m, long double u) const {
+void RealPolydyneLaw::normalized_derivatives(long double u, int m_max, long double* d) const {
   const long double w = 1.0L - u;
+  for (int m = 0; m <= m_max; ++m) d[m] = 0.0L;
   if (w < seat_zone_) {
-    // d^m/du^m = (-1)^m d^m/dw^m of sum_k a_k (-1)^k w^k.
-    long double sum = 0.0L;
-    for (std::size_t k = seat_series_.size(); k-- > 5;) {
-      if (static_cast<int>(k) < m) break;
-      long double falling = 1.0L;
-      for (int j = 0; j < m; ++j) falling *= static_cast<long double>(k) - j;
-      const long double term = seat_series_[k] * falling * std::pow(w, static_cast<long double>(static_cast<int>(k) - m));
-      sum += (k % 2 == 0 ? term : -term);
+    // d^m/du^m = (-1)^m d^m/dw^m of sum_{k>=5} a_k (-1)^k w^k, each by Horner in w.
+    const int top = static_cast<int>(seat_series_.size()) - 1;
+    for (int m = 0; m <= m_max; ++m) {
+      const int low = std::max(5, m);
+      long double sum = 0.0L;
+      for (int k = top; k >= low; --k) {
+        long double falling = 1.0L;
+        for (int j = 0; j < m; ++j) falling *= static_cast<long double>(k - j);
+        sum = sum * w + (k % 2 == 0 ? 1.0L : -1.0L) * seat_series_[static_cast<std::size_t>(k)] * falling;
+      }
+      for (int k = m; k < low; ++k) sum *= w;  // w^(low - m)
+      d[m] = m % 2 == 0 ? sum : -sum;
     }
-    return m % 2 == 0 ? sum : -sum;
+    return;
   }
-  long double sum = m == 0 ? 1.0L : 0.0L;
+  d[0] = 1.0L;
   for (std::size_t i = 1; i < exponents_.size(); ++i) {
     const long double n = exponents_[i];
-    long double factor = 1.0L;
-    for (int k = 0; k < m; ++k) factor *= n - k;
-    if (factor == 0.0L) continue;  // u^2 differentiated three times or more: nothing (and no 0 * inf at u = 0)
-    sum += coefficients_[i] * factor * (n == m ? 1.0L : std::pow(u, n - m));
+    // One power per term: u^(n - m) = u^(n - m_max) u^(m_max - m); the exponent 2 (n < m_max) by hand.
+    const bool integer_two = n < static_cast<long double>(m_max);
+    const long double base = integer_two ? 0.0L : std::pow(u, n - m_max);
+    long double up = 1.0L;  // u^(m_max - m), built from m = m_max down
+    for (int m = m_max; m >= 0; --m) {
+      long double falling = 1.0L;
+      for (int k = 0; k < m; ++k) falling *= n - k;
+      if (falling != 0.0L) {
+        const long double power = integer_two ? (n - m == 0.0L ? 1.0L : std::pow(u, n - m)) : base * up;
+        d[m] += coefficients_[i] * falling * power;
+      }
+      up *= u;
+    }
   }
-  return sum;
+}
+
+long double RealPolydyneLaw::normalized_derivative(int m, long double u) const {
+  long double d[6];
+  normalized_derivatives(u, m, d);
+  return d[m];
 }
 
 LiftDerivatives RealPolydyneLaw::evaluate_in_event(double phi) const {
@@ -217,18 +236,20 @@ LiftDerivatives RealPolydyneLaw::evaluate_in_event(double phi) const {
   const long double u = std::min(1.0L, std::abs(static_cast<long double>(phi)) / phi_p);
   const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in phi: odd derivatives change sign
   const long double h = max_lift_;
-  return {std::max(0.0, static_cast<double>(h * normalized_derivative(0, u))),
-          sign * static_cast<double>(h * normalized_derivative(1, u) / phi_p),
-          static_cast<double>(h * normalized_derivative(2, u) / (phi_p * phi_p)),
-          sign * static_cast<double>(h * normalized_derivative(3, u) / (phi_p * phi_p * phi_p))};
+  long double d[4];
+  normalized_derivatives(u, 3, d);
+  return {std::max(0.0, static_cast<double>(h * d[0])), sign * static_cast<double>(h * d[1] / phi_p),
+          static_cast<double>(h * d[2] / (phi_p * phi_p)), sign * static_cast<double>(h * d[3] / (phi_p * phi_p * phi_p))};
 }
 
 bool RealPolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
   const long double phi_p = half_action_;
   const long double u = std::min(1.0L, std::abs(static_cast<long double>(phi)) / phi_p);
   const long double scale4 = max_lift_ / (phi_p * phi_p * phi_p * phi_p);
-  d4 = static_cast<double>(scale4 * normalized_derivative(4, u));
-  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * normalized_derivative(5, u));
+  long double d[6];
+  normalized_derivatives(u, 5, d);
+  d4 = static_cast<double>(scale4 * d[4]);
+  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * d[5]);
   return true;
 }
 

@@ -83,6 +83,8 @@ class RealPolydyneLaw final : public CamLaw {
   double base_radius() const override { return base_radius_; }
   /// d^m/du^m of x(u)/h, m = 0..5, at u in [0, 1].
   long double normalized_derivative(int m, long double u) const;
+  /// d^m/du^m of x(u)/h for m = 0..m_max (<= 5) into d[0..m_max], with one power per term.
+  void normalized_derivatives(long double u, int m_max, long double* d) const;
 
  private:
   double max_lift_ = 0.0;

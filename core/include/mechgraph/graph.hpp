@@ -73,6 +73,7 @@ struct Graph {
   std::vector<std::string> effects;
   std::vector<std::size_t> order;        // needed nodes in dependency order
   std::vector<ResolvedReport> reports;
+  std::map<std::string, std::size_t, std::less<>> index;  // node name -> position in `nodes`
 
   std::optional<std::size_t> find(std::string_view name) const;
 };

@@ -240,3 +240,20 @@ outputs: [ stack.mean, stack.worst_case_max, stack.rss_sigma ]
   CHECK(output(r, "stack.rss_sigma").as_scalar() ==
         Approx(std::hypot(0.05e-3 / 3, 0.02e-3 / 3)).epsilon(1e-13).margin(0));
 }
+
+TEST_CASE("summarize: quantiles by selection equal those of the sorted sample", "[backlash][stack]") {
+  // Second method: sort everything and interpolate (quantile_of_sorted).
+  std::vector<double> sample;
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 10007; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    sample.push_back(static_cast<double>(state >> 11) * 0x1.0p-53 * 3.0 - 1.0);
+  }
+  const backlash::SampleSummary s = backlash::summarize(sample);
+  std::vector<double> sorted = sample;
+  std::sort(sorted.begin(), sorted.end());
+  CHECK(s.q_low == backlash::quantile_of_sorted(sorted, backlash::probability_minus_3_sigma));
+  CHECK(s.q_high == backlash::quantile_of_sorted(sorted, backlash::probability_plus_3_sigma));
+  CHECK(s.min == sorted.front());
+  CHECK(s.max == sorted.back());
+}
