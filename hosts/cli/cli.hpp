@@ -9,8 +9,9 @@
 
 namespace mechgraph::cli {
 
-/// Exit codes (README): 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error.
-enum ExitCode : int { ok = 0, usage_error = 2, evaluation_error = 3, plugin_error = 4 };
+/// Exit codes (README): 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
+/// 5 results could not be written.
+enum ExitCode : int { ok = 0, usage_error = 2, evaluation_error = 3, plugin_error = 4, io_error = 5 };
 
 /// Thrown for a bad command line; main() prints it with the subcommand's usage and exits 2.
 struct UsageError : std::runtime_error {

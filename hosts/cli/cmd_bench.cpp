@@ -1,6 +1,7 @@
 // mechgraph bench SCENE: work-precision of every accuracy knob (error against a tight reference
 // and the time it cost), as a table, JSON, or CSV + JSON files.
 #include "cli.hpp"
+#include "results_folder.hpp"
 #include "options.hpp"
 
 #include <mechgraph/json_writer.hpp>
@@ -85,7 +86,9 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       "node", po::value<std::string>(), "only this node")("steps", po::value<int>()->default_value(3),
                                                           "ladder: each knob from x 2^-steps to x 2^steps")(
       "repeats", po::value<int>()->default_value(3), "time = fastest of this many evaluations")(
-      "json", "print JSON on stdout")("out", po::value<std::string>(), "also write bench.csv and bench.json into DIR");
+      "json", "print JSON on stdout")("out", po::value<std::string>(),
+                                       "also write bench.csv and bench.json into DIR (whole or not at all)")(
+      "force", "replace the results in an existing --out DIR");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--json] [--out DIR]"))
     return ok;
@@ -95,6 +98,7 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   options.repeats = vm["repeats"].as<int>();
   if (options.steps < 0 || options.steps > 20) throw UsageError("--steps must be between 0 and 20");
   if (options.repeats < 1) throw UsageError("--repeats must be at least 1");
+  if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
   const std::vector<KnobTrial> trials = bench_knobs(graph, options);
@@ -103,11 +107,16 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   else write_table(std::cout, trials);
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
-    std::filesystem::create_directories(dir);
-    std::ofstream csv(dir / "bench.csv"), json(dir / "bench.json");
-    if (!csv || !json) throw std::runtime_error("cannot write into '" + dir.string() + "'");
-    write_csv(csv, trials);
-    write_json(json, trials);
+    write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
+      std::ofstream csv(staging / "bench.csv"), json(staging / "bench.json");
+      if (!csv || !json) throw IoError("cannot write into '" + staging.string() + "'");
+      write_csv(csv, trials);
+      write_json(json, trials);
+      csv.close();
+      json.close();
+      check_written(csv, dir / "bench.csv");
+      check_written(json, dir / "bench.json");
+    });
   }
   return ok;
 }

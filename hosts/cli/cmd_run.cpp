@@ -1,6 +1,7 @@
 // mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]
 #include "cli.hpp"
 #include "options.hpp"
+#include "results_folder.hpp"
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
@@ -169,7 +170,7 @@ void print_series(std::ostream& os, const OutputValue& o) {
 // One CSV per table: the axis, then each channel; header `name [SI unit]`.
 void write_table_csv(const std::filesystem::path& file, const Table& t) {
   std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
   out << t.axis.name << " [" << t.axis.dimension.si_unit() << "]";
   for (const Table::Column& c : t.channels) out << "," << c.name << " [" << c.dimension.si_unit() << "]";
   out << "\n" << std::setprecision(17);
@@ -178,15 +179,19 @@ void write_table_csv(const std::filesystem::path& file, const Table& t) {
     for (const Table::Column& c : t.channels) out << "," << c.values[i];
     out << "\n";
   }
+  out.close();
+  check_written(out, file);
 }
 
 void write_csv(const std::filesystem::path& file, const OutputValue& o) {
   std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write '" + file.string() + "'");
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
   const Series& s = o.value.as_series();
   out << "axis [" << s.axis_dimension.si_unit() << "]," << o.label << " [" << o.dimension.si_unit() << "]\n";
   out << std::setprecision(17);
   for (std::size_t i = 0; i < s.values.size(); ++i) out << s.axis[i] << "," << s.values[i] << "\n";
+  out.close();
+  check_written(out, file);
 }
 
 }  // namespace
@@ -198,12 +203,15 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       "json", "print one JSON object on stdout")(
       "threads", po::value<unsigned>()->default_value(1),
       "evaluate independent nodes on this many threads (0: one per core)")("out", po::value<std::string>(),
-                                                 "also write results.json and one CSV per series output into DIR");
+                                                 "also write results.json and one CSV per series output into DIR "
+                                                 "(written whole or not at all; an existing DIR needs --force)")(
+      "force", "replace the results in an existing --out DIR");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
                            "mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--threads N] [--out DIR]"))
     return ok;
 
+  if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
   MemoCache cache;
@@ -248,13 +256,16 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   }
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
-    std::filesystem::create_directories(dir);
-    std::ofstream json_file(dir / "results.json");
-    if (!json_file) throw std::runtime_error("cannot write '" + (dir / "results.json").string() + "'");
-    write_json(json_file, graph, result);
-    for (const OutputValue& o : result.outputs)
-      if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o);
-      else if (o.value.kind() == ValueKind::table) write_table_csv(dir / (o.label + ".csv"), o.value.as_table());
+    write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
+      std::ofstream json_file(staging / "results.json");
+      if (!json_file) throw IoError("cannot write '" + (staging / "results.json").string() + "'");
+      write_json(json_file, graph, result);
+      json_file.close();
+      check_written(json_file, dir / "results.json");
+      for (const OutputValue& o : result.outputs)
+        if (o.value.kind() == ValueKind::series) write_csv(staging / (o.label + ".csv"), o);
+        else if (o.value.kind() == ValueKind::table) write_table_csv(staging / (o.label + ".csv"), o.value.as_table());
+    });
     spdlog::info("results written to {}", dir.string());
   }
   return ok;

@@ -37,7 +37,8 @@ global options:
   --version          print the version and the plugin ABI version
   -h, --help         this text; `mechgraph COMMAND --help` for a command
 
-exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error
+exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
+            5 results could not be written
 )";
 
 }  // namespace
@@ -113,6 +114,9 @@ int main(int argc, char** argv) {
   } catch (const PluginError& e) {
     spdlog::error("{}", e.what());
     return cli::plugin_error;
+  } catch (const IoError& e) {
+    spdlog::error("{}", e.what());
+    return cli::io_error;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return cli::evaluation_error;

@@ -129,3 +129,46 @@ TEST_CASE("run --out writes results.json and a CSV per series", "[cli]") {
   CHECK_THAT(header, Contains("s.curve [m]"));
   CHECK(row1 == "0,0");
 }
+
+TEST_CASE("run --out: an existing folder needs --force, I/O failures exit 5, results appear whole or not at all", "[cli][out]") {
+  namespace fs = std::filesystem;
+  const fs::path base = fs::temp_directory_path() / ("mg_atomic_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const std::string scene = write_scene("mg_atomic.yaml", "nodes: { s: { type: test.series, params: { points: 2000 } } }\noutputs: [s.curve]\n");
+  const fs::path dir = base / "results";
+  REQUIRE(run_cli(arith_dir() + " -q run " + scene + " --out '" + dir.string() + "'").exit_code == 0);
+  // Again without --force: refused before anything runs, the old results untouched.
+  const auto again = run_cli(arith_dir() + " run " + scene + " --out '" + dir.string() + "'");
+  CHECK(again.exit_code == 2);
+  CHECK_THAT(again.err, Contains("exists already") && Contains("--force"));
+  CHECK(again.out.empty());
+  CHECK(run_cli(arith_dir() + " -q run " + scene + " --out '" + dir.string() + "' --force").exit_code == 0);
+  // A path that cannot be a folder: exit 5, naming it and the reason.
+  std::ofstream(base / "a_file") << "x";
+  const auto io = run_cli(arith_dir() + " -q run " + scene + " --out '" + (base / "a_file" / "sub").string() + "'");
+  CHECK(io.exit_code == 5);
+  CHECK_THAT(io.err, Contains("a_file") && Contains("Not a directory"));
+  // Killed at random points while replacing: the folder always holds one complete set of results.
+  const std::string command = std::string("'") + MECHGRAPH_CLI + "' " + arith_dir() + " -q run " + scene + " --out '" +
+                              dir.string() + "' --force >/dev/null 2>&1";
+  std::uint64_t state = 42;
+  for (int trial = 0; trial < 25; ++trial) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const int delay_us = static_cast<int>((state >> 33) % 60000);  // 0 .. 60 ms
+    const std::string killer = "( " + command + " & pid=$!; sleep " + std::to_string(delay_us / 1e6) +
+                               "; kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null ) >/dev/null 2>&1";
+    std::system(killer.c_str());
+    INFO("trial " << trial << ", killed after " << delay_us << " us");
+    REQUIRE(fs::exists(dir / "results.json"));
+    std::ifstream json(dir / "results.json");
+    const std::string text((std::istreambuf_iterator<char>(json)), {});
+    REQUIRE(!text.empty());
+    CHECK(text.back() == '\n');  // the JSON writer's last character: the file is whole
+    std::ifstream csv(dir / "s.curve.csv");
+    long lines = 0;
+    for (std::string line; std::getline(csv, line);) ++lines;
+    CHECK(lines == 2001);
+  }
+  fs::remove_all(base);
+}

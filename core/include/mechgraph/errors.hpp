@@ -1,6 +1,6 @@
 #pragma once
 // The error classes a user can tell apart, each mapped to one exit code by the host:
-// 2 scene or usage, 3 evaluation, 4 plugin load.
+// 2 scene or usage, 3 evaluation, 4 plugin load, 5 writing results.
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +32,12 @@ class SceneError : public std::runtime_error {
 
 /// A plugin could not be loaded (exit code 4).
 class PluginError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Results could not be written (exit code 5): the message names the path and the system's reason.
+class IoError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };

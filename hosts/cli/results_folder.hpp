@@ -1,0 +1,25 @@
+#pragma once
+// A folder of result files that appears complete or not at all. The files are written into a
+// fresh staging folder beside it, which then takes the folder's place in one rename; if the folder
+// exists already (and may be replaced), the two are swapped atomically (renameat2 RENAME_EXCHANGE)
+// and the old one is removed afterwards. A run killed at any point leaves the old complete
+// results or the new complete results, and at worst a stale staging folder.
+#include <filesystem>
+#include <functional>
+
+namespace mechgraph::cli {
+
+/// Refuses (UsageError naming --force) an existing, non-empty `dir` unless `replace`: called before
+/// the work, so a run that could not keep its results does not start.
+void check_results_folder(const std::filesystem::path& dir, bool replace);
+
+/// Calls `write(staging)` to fill the staging folder, then puts it in place of `dir`. An existing,
+/// non-empty `dir` is refused (UsageError naming --force) unless `replace`. Throws IoError with
+/// the path and the system's reason when a folder cannot be made, written or renamed.
+void write_results_folder(const std::filesystem::path& dir, bool replace,
+                          const std::function<void(const std::filesystem::path& staging)>& write);
+
+/// Checks that a stream wrote everything (after closing it); throws IoError naming `file` otherwise.
+void check_written(const std::ostream& stream, const std::filesystem::path& file);
+
+}  // namespace mechgraph::cli
