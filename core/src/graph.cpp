@@ -260,7 +260,14 @@ class GraphBuilder {
     node.name = n.name;
     node.where = n.where;
     node.type = registry_.find(n.type);
-    if (!node.type) fail(n.type_where, unknown_name_message("node type", n.type, registry_.type_names()));
+    if (!node.type) {
+      const std::string message = n.type_where.str() + unknown_name_message("node type", n.type, registry_.type_names());
+      if (registry_.skipped().empty()) throw SceneError(message);
+      // It may live in a plugin file that could not be loaded: that is the failure to report.
+      std::string skipped;
+      for (const SkippedPlugin& s : registry_.skipped()) skipped += "\n  " + s.reason;
+      throw PluginError(message + "; plugin files were skipped, one of them may provide it:" + skipped);
+    }
     const NodeInfo& info = node.info();
     const std::string owner = "node '" + n.name + "' (" + n.type + ")";
     std::vector<std::pair<std::string, RawValue>> written = n.params;

@@ -6,8 +6,15 @@
 #include <boost/dll/shared_library.hpp>
 #include <spdlog/spdlog.h>
 
+#include <elf.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -39,6 +46,55 @@ std::shared_ptr<const T> tie_to_library(std::shared_ptr<const T> object, std::sh
   return std::shared_ptr<const T>(holder, object.get());
 }
 
+// Who may have written the file: only its owner, who must be this user or root.
+void check_ownership(const std::filesystem::path& path, const std::string& where, bool folder) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw PluginError(where + ": cannot be read (" + std::strerror(errno) + ")");
+  if (st.st_mode & (S_IWGRP | S_IWOTH))
+    throw PluginError(where + ": the " + (folder ? "folder" : "file") +
+                      " is writable by group or others, so anyone could plant code in it; refused "
+                      "(chmod go-w '" + path.string() + "')");
+  if (st.st_uid != ::geteuid() && st.st_uid != 0)
+    throw PluginError(where + ": owned by user id " + std::to_string(st.st_uid) + ", neither you nor root; refused");
+}
+
+// An ELF sanity check before the dynamic loader maps the file: a truncated library would be
+// mapped past its end and take the process down with SIGBUS.
+void check_elf(const std::filesystem::path& file, const std::string& where) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw PluginError(where + ": cannot be opened");
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(in.tellg());
+  in.seekg(0);
+  Elf64_Ehdr h{};
+  if (size < sizeof h || !in.read(reinterpret_cast<char*>(&h), sizeof h) || std::memcmp(h.e_ident, ELFMAG, SELFMAG) != 0)
+    throw PluginError(where + ": not an ELF shared library (" + std::to_string(size) + " bytes)");
+  if (h.e_ident[EI_CLASS] != ELFCLASS64 || h.e_ident[EI_DATA] != ELFDATA2LSB)
+    throw PluginError(where + ": an ELF file for another word size or byte order than this machine's");
+#if defined(__x86_64__)
+  constexpr unsigned machine = EM_X86_64;
+#elif defined(__aarch64__)
+  constexpr unsigned machine = EM_AARCH64;
+#else
+  const unsigned machine = h.e_machine;
+#endif
+  if (h.e_machine != machine)
+    throw PluginError(where + ": built for another processor (ELF machine " + std::to_string(h.e_machine) + ")");
+  if (h.e_type != ET_DYN) throw PluginError(where + ": an ELF file but not a shared library");
+  auto beyond = [&](std::uint64_t offset, std::uint64_t length) { return offset > size || length > size - offset; };
+  if (beyond(h.e_phoff, std::uint64_t{h.e_phnum} * h.e_phentsize) ||
+      (h.e_shoff != 0 && beyond(h.e_shoff, std::uint64_t{h.e_shnum} * h.e_shentsize)))
+    throw PluginError(where + ": truncated (" + std::to_string(size) + " bytes; its headers reach further)");
+  for (unsigned i = 0; i < h.e_phnum; ++i) {
+    Elf64_Phdr ph{};
+    in.seekg(static_cast<std::streamoff>(h.e_phoff + std::uint64_t{i} * h.e_phentsize));
+    if (!in.read(reinterpret_cast<char*>(&ph), sizeof ph)) throw PluginError(where + ": truncated program headers");
+    if (ph.p_type == PT_LOAD && beyond(ph.p_offset, ph.p_filesz))
+      throw PluginError(where + ": truncated (" + std::to_string(size) + " bytes; a segment reaches byte " +
+                        std::to_string(ph.p_offset + ph.p_filesz) + ")");
+  }
+}
+
 }  // namespace
 
 std::shared_ptr<const DomainObject> RegisteredType::keep_alive(std::shared_ptr<const DomainObject> object) const {
@@ -49,6 +105,8 @@ std::shared_ptr<const DomainObject> RegisteredType::keep_alive(std::shared_ptr<c
 void PluginRegistry::load_file(const std::filesystem::path& file) {
   const std::string where = "plugin '" + file.string() + "'";
   if (!std::filesystem::is_regular_file(file)) throw PluginError(where + ": no such file");
+  check_ownership(file, where, false);
+  check_elf(file, where);
   auto library = std::make_shared<Library>();
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
@@ -102,11 +160,19 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
 void PluginRegistry::load_directory(const std::filesystem::path& folder) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec)) throw PluginError("plugin folder '" + folder.string() + "' does not exist");
+  check_ownership(folder, "plugin folder '" + folder.string() + "'", true);
   std::vector<std::filesystem::path> files;
   for (const auto& entry : std::filesystem::directory_iterator(folder))
     if (entry.is_regular_file() && entry.path().extension() == ".so") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
-  for (const auto& f : files) load_file(f);
+  for (const auto& f : files) {
+    try {
+      load_file(f);
+    } catch (const PluginError& e) {
+      spdlog::warn("skipped: {}", e.what());
+      skipped_.push_back({f, e.what()});
+    }
+  }
 }
 
 std::vector<std::filesystem::path> PluginRegistry::search_path(const std::optional<std::filesystem::path>& plugin_dir) {

@@ -16,8 +16,12 @@ PluginRegistry load_plugins(const GlobalOptions& options) {
     spdlog::debug("loading plugins from {}", folder.string());
     registry.load_directory(folder);
   }
-  if (registry.plugins().empty())
-    throw PluginError("no plugins found; give a folder with --plugin-dir or MECHGRAPH_PLUGIN_PATH");
+  if (registry.plugins().empty()) {
+    std::string why;
+    for (const SkippedPlugin& s : registry.skipped()) why += "\n  " + s.reason;
+    throw PluginError("no plugins found; give a folder with --plugin-dir or MECHGRAPH_PLUGIN_PATH" +
+                      (why.empty() ? std::string() : "; skipped:" + why));
+  }
   return registry;
 }
 

@@ -23,6 +23,9 @@ int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args
       for (const auto& t : p.node_types) write_node_info_json(json, registry.find(t)->type->info());
       json.end_array().end_object();
     }
+    json.end_array().key("skipped").begin_array();
+    for (const SkippedPlugin& s : registry.skipped())
+      json.begin_object().key("path").value(s.path.string()).key("reason").value(s.reason).end_object();
     json.end_array().end_object();
     std::cout << "\n";
     return ok;
@@ -34,6 +37,7 @@ int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args
       std::cout << "  " << t << std::string(t.size() < 30 ? 30 - t.size() : 1, ' ') << info.summary << "\n";
     }
   }
+  for (const SkippedPlugin& s : registry.skipped()) std::cout << "skipped  " << s.reason << "\n";
   return ok;
 }
 

@@ -30,14 +30,26 @@ struct RegisteredType {
   std::shared_ptr<const DomainObject> keep_alive(std::shared_ptr<const DomainObject> object) const;
 };
 
+/// A file of a plugin folder that was not loaded, and why.
+struct SkippedPlugin {
+  std::filesystem::path path;
+  std::string reason;
+};
+
 class PluginRegistry {
  public:
-  /// Loads one plugin file. Throws PluginError naming the file and the reason: unreadable or not
-  /// a shared library, missing entry, ABI version or build fingerprint mismatch, a node type that
-  /// another plugin already provides, a plugin id already loaded.
+  /// Loads one plugin file. Throws PluginError naming the file and the reason: writable by group
+  /// or others or owned by another user, not a whole ELF shared library for this machine
+  /// (truncated, wrong class or architecture: probed before the dynamic loader maps it), missing
+  /// entry, ABI version or build fingerprint mismatch, a node type that another plugin already
+  /// provides, a plugin id already loaded.
   void load_file(const std::filesystem::path& file);
-  /// Loads every shared library (*.so) in the folder, sorted by name.
+  /// Loads every shared library (*.so) in the folder, sorted by name. A file that cannot be loaded
+  /// is skipped (see skipped()) and the rest load; a folder writable by group or others is refused
+  /// whole (PluginError).
   void load_directory(const std::filesystem::path& folder);
+  /// The files load_directory skipped, with their reasons.
+  const std::vector<SkippedPlugin>& skipped() const { return skipped_; }
 
   /// The plugin folders in order of precedence: `plugin_dir` if given, else the folders of
   /// MECHGRAPH_PLUGIN_PATH (':'-separated), else lib/mechgraph/plugins beside the program's bin/
@@ -52,6 +64,7 @@ class PluginRegistry {
 
  private:
   std::vector<PluginInfo> plugins_;
+  std::vector<SkippedPlugin> skipped_;
   std::vector<std::pair<std::string, RegisteredType>> types_;
 };
 

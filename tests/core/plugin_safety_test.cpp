@@ -1,0 +1,88 @@
+// Plugin folders survive bad files: a truncated library, a file that is no library at all, a file
+// or folder others can write. Each is refused with its path and reason before the dynamic loader
+// maps it; load_directory skips it and loads the rest.
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh folder (mode 755) holding a copy of the good test plugin.
+fs::path folder_with_good_plugin(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("mg_safety_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::permissions(dir, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                           fs::perms::others_exec);
+  fs::copy_file(test_plugin("test_arith"), dir / "mechgraph_test_arith.so");
+  return dir;
+}
+
+void write_truncated_copy(const fs::path& to, std::size_t keep) {
+  std::ifstream in(test_plugin("test_arith"), std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  REQUIRE(bytes.size() > keep);
+  std::ofstream(to, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(keep));
+}
+
+}  // namespace
+
+TEST_CASE("a truncated library is refused before it is mapped, and the rest of its folder loads", "[plugins][safety]") {
+  const fs::path dir = folder_with_good_plugin("truncated");
+  const auto full = fs::file_size(dir / "mechgraph_test_arith.so");
+  for (std::size_t keep : {std::size_t{40}, std::size_t{64}, std::size_t{4096}, static_cast<std::size_t>(full / 2),
+                           static_cast<std::size_t>(full - 1)}) {
+    INFO("kept " << keep << " of " << full << " bytes");
+    write_truncated_copy(dir / "mechgraph_broken.so", keep);
+    PluginRegistry r;
+    r.load_directory(dir);  // must not die with SIGBUS
+    REQUIRE(r.plugins().size() == 1);
+    CHECK(r.plugins()[0].id == "test_arith");
+    REQUIRE(r.skipped().size() == 1);
+    CHECK(r.skipped()[0].path == dir / "mechgraph_broken.so");
+    CHECK_THAT(r.skipped()[0].reason, Contains("mechgraph_broken.so") &&
+                                          (Contains("truncated") || Contains("not an ELF") || Contains("cannot be loaded")));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a plugin file or folder that others can write is refused, saying how to fix it", "[plugins][safety]") {
+  const fs::path dir = folder_with_good_plugin("writable");
+  fs::permissions(dir / "mechgraph_test_arith.so", fs::perms::others_write, fs::perm_options::add);
+  PluginRegistry file_check;
+  CHECK_THROWS_WITH(file_check.load_file(dir / "mechgraph_test_arith.so"),
+                    Contains("writable by group or others") && Contains("chmod go-w"));
+  fs::permissions(dir / "mechgraph_test_arith.so", fs::perms::others_write, fs::perm_options::remove);
+  fs::permissions(dir, fs::perms::group_write, fs::perm_options::add);
+  PluginRegistry folder_check;
+  CHECK_THROWS_WITH(folder_check.load_directory(dir), Contains("folder is writable by group or others"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the command line: skipped files are shown, and named when the scene needs a type they may hold", "[plugins][safety][cli]") {
+  const fs::path dir = folder_with_good_plugin("cli");
+  std::ofstream(dir / "mechgraph_notes.so") << "these are not machine instructions";
+  const std::string plugins = "--plugin-dir '" + dir.string() + "' ";
+  const auto listing = run_cli(plugins + "plugins");
+  CHECK(listing.exit_code == 0);
+  CHECK_THAT(listing.out, Contains("test_arith") && Contains("skipped") && Contains("mechgraph_notes.so") &&
+                              Contains("not an ELF"));
+  std::ofstream(dir / "scene.yaml") << "nodes: { a: { type: test.constant, params: { value: 1 mm } } }\noutputs: [a.out]\n";
+  CHECK(run_cli(plugins + "-q run '" + (dir / "scene.yaml").string() + "'").exit_code == 0);
+  std::ofstream(dir / "missing.yaml") << "nodes: { a: { type: other.thing } }\noutputs: [a.out]\n";
+  const auto missing = run_cli(plugins + "-q run '" + (dir / "missing.yaml").string() + "'");
+  CHECK(missing.exit_code == 4);
+  CHECK_THAT(missing.err, Contains("unknown node type 'other.thing'") && Contains("mechgraph_notes.so"));
+  fs::remove_all(dir);
+}
