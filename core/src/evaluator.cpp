@@ -139,8 +139,9 @@ std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const Ou
       throw EvaluationError(where_of(node) + " produced a " + std::string(to_string(value.kind())) + " at output '" + port +
                             "', declared as a " + std::string(to_string(spec->kind)));
     if (!all_finite(value))
-      throw EvaluationError(where_of(node) + " produced a NaN or infinite value at output '" + port +
-                            "' (a bug in the node: infeasible inputs must be reported as errors)");
+      throw EvaluationError(node.where.str() + where_of(node) + " produced a NaN or infinite value at output '" + port +
+                            "': its parameters or inputs are beyond what it can compute, and it did not say which "
+                            "(please report it: a node must refuse such inputs naming the parameter)");
     if (value.kind() == ValueKind::table) check_table_shape(node, port, value.as_table());
     if (value.kind() == ValueKind::handle) {
       if (!value.as_handle() || value.as_handle()->kind() != spec->handle_kind)

@@ -39,12 +39,20 @@ class StackLinearType final : public NodeType {
         ParamSpec::record_list(
             "links",
             {
-                ParamSpec::number("nominal", dim::length, "nominal size of the part", "mm"),
-                ParamSpec::number("upper", dim::length, "upper limit deviation of the part from nominal (es, ES)", "mm"),
-                ParamSpec::number("lower", dim::length, "lower limit deviation of the part from nominal (ei, EI)", "mm"),
+                // Ranges that keep every sum, square and sample of a stack finite (a km-sized part,
+                // tolerances to 100 m, lever ratios to 1e6).
+                ParamSpec::number("nominal", dim::length, "nominal size of the part", "mm").at_least(-1e3).at_most(1e3),
+                ParamSpec::number("upper", dim::length, "upper limit deviation of the part from nominal (es, ES)", "mm")
+                    .at_least(-100.0)
+                    .at_most(100.0),
+                ParamSpec::number("lower", dim::length, "lower limit deviation of the part from nominal (ei, EI)", "mm")
+                    .at_least(-100.0)
+                    .at_most(100.0),
                 ParamSpec::number("sensitivity", dim::none,
                                   "how much of the part reaches the result (+1 opens the gap, -1 closes it; a lever ratio)")
-                    .with_default(1.0),
+                    .with_default(1.0)
+                    .at_least(-1e6)
+                    .at_most(1e6),
                 ParamSpec::choice("distribution", {"normal", "uniform", "triangular"},
                                   "spread over the tolerance: normal with T = 6 sigma, uniform, or symmetric triangular")
                     .with_default("normal"),

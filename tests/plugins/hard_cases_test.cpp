@@ -96,3 +96,23 @@ outputs: [c.rod_total_under_load]
 )"),
                     Contains("parameter 'stiffness'"));
 }
+
+TEST_CASE("stack.linear at the edges of its ranges stays finite; beyond them the scene names the field", "[hard][backlash]") {
+  // 50 links at the largest size, tolerance and lever ratio the ranges allow, with Monte Carlo.
+  std::string links;
+  for (int i = 0; i < 50; ++i)
+    links += std::string(i ? ", " : "") + "{ nominal: 1000 m, upper: 100 m, lower: -100 m, sensitivity: " +
+             (i % 2 ? "-1e6" : "1e6") + ", distribution: " + (i % 3 ? "uniform" : "normal") + " }";
+  const RunResult r = run("nodes: { s: { type: stack.linear, effects: [monte_carlo], params: { samples: 2000, links: [ " + links +
+                          " ] } } }\noutputs: [ s.mean, s.worst_case_max, s.rss_sigma, s.mc_mean, s.mc_sigma, s.mc_q999 ]\n");
+  for (const auto& o : r.outputs) CHECK(std::isfinite(o.value.as_scalar()));
+  CHECK_THAT([] {
+    try {
+      run("nodes: { s: { type: stack.linear, params: { links: [ { nominal: 1e300 mm, upper: 1 mm, lower: 0 mm } ] } } }\n"
+          "outputs: [ s.mean ]\n");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  }(), Contains("scene.yaml:1:") && Contains("'nominal'") && Contains("out of range"));
+}
