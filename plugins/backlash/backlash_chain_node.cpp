@@ -79,18 +79,23 @@ class BacklashChainType final : public NodeType {
         ParamSpec::number_list("transfer_ratios", dim::none,
                                "k_i: how much of joint i's play reaches the rod's line of action (1 on the rod's line), "
                                "one per joint in the order of `joints`")
-            .positive(),
+            .positive()
+            .at_most(1e6),
         ParamSpec::number("actuator_backlash", L, "L_act: mean backlash of the actuator itself (maker's data), peak to peak",
                           "um")
-            .non_negative(),
+            .non_negative()
+            .at_most(1.0),
         ParamSpec::number("actuator_backlash_limit", L,
                           "dL_act: limit deviation of the actuator's backlash (worst case; 3 sigma for RSS and Monte Carlo)",
                           "um")
-            .non_negative(),
+            .non_negative()
+            .at_most(1.0),
         ParamSpec::number("lever_arm", L,
                           "R: moment arm of the rod about the swivel axis (sign = sense of rotation); or give the geometry",
                           "mm")
-            .optional(),
+            .optional()
+            .at_least(-1e3)
+            .at_most(1e3),
         ParamSpec::number_list("rod_attach_fixed", L, "F: the rod's end on the fixed part (x, y, z); with the geometry", "mm")
             .optional(),
         ParamSpec::number_list("rod_attach_moving", L, "P: the rod's end on the nozzle (x, y, z); with the geometry", "mm")

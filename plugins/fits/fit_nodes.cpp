@@ -49,7 +49,9 @@ class FitNodeType final : public NodeType {
       for (const char* part : {"hole", "shaft"})
         for (const char* side : {"upper", "lower"})
           info_.params.push_back(ParamSpec::number(std::string(part) + "_" + side, dim::length,
-                                                   std::string(side) + " limit deviation of the " + part + " (signed)", "um"));
+                                                   std::string(side) + " limit deviation of the " + part + " (signed)", "um")
+                                     .at_least(-1.0)
+                                     .at_most(1.0));  // a metre either way: far past any fit, finite in every sum
     }
     for (const char* part : {"hole", "shaft"})
       info_.params.push_back(ParamSpec::choice(std::string(part) + "_distribution", {"normal", "uniform", "triangular"},

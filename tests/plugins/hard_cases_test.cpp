@@ -116,3 +116,19 @@ TEST_CASE("stack.linear at the edges of its ranges stays finite; beyond them the
     return std::string("no error");
   }(), Contains("scene.yaml:1:") && Contains("'nominal'") && Contains("out of range"));
 }
+
+TEST_CASE("backlash.chain at the edges of its ranges stays finite", "[hard][backlash]") {
+  // Explicit fits of a metre's deviation, the largest transfer ratio and actuator backlash, the
+  // shortest lever arm that is not singular, with Monte Carlo.
+  const RunResult r = run(R"(
+nodes:
+  f: { type: fit.explicit, params: { size: 3150 mm, hole_upper: 1000000 um, hole_lower: -1000000 um,
+                                     shaft_upper: 1000000 um, shaft_lower: -1000000 um } }
+  h: { type: joint.pin, inputs: { fits: [f.fit, f.fit] } }
+  chain: { type: backlash.chain, inputs: { joints: [h.play, h.play] }, effects: [monte_carlo],
+           params: { transfer_ratios: [1e6, 1e6], actuator_backlash: 1 m, actuator_backlash_limit: 1 m,
+                     lever_arm: 1 mm, samples: 2000 } }
+outputs: [ chain.rod_backlash_max, chain.angular_backlash_max, chain.rod_backlash_rss_max, chain.rod_backlash_mc_q999 ]
+)");
+  for (const auto& o : r.outputs) CHECK(std::isfinite(o.value.as_scalar()));
+}
