@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The whole test suite once more, built with AddressSanitizer and UndefinedBehaviorSanitizer
+# (Debug, -O1) in build-asan/: a memory error, a leak or undefined behaviour fails the run.
+# CI runs it after the README's test command (.ci/run); it takes a few minutes more than that.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="$flags -O1" \
+  -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags" >&2
+cmake --build build-asan --parallel "$(nproc)" >&2
+cd build-asan
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --output-on-failure --parallel "$(nproc)" --timeout 900
