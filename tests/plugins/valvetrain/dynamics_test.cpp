@@ -86,6 +86,12 @@ outputs: [ )" + outputs + " ]\n";
 
 const std::string kurz = "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }";
 
+// A second valve motion `fast` of the same cam at another crank speed (the spring stays designed for `v`).
+std::string fast_valve(double rpm) {
+  return "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: " + std::to_string(rpm) +
+         " rpm, rocker_ratio: 1.5, lash: 0.25 mm } }\n";
+}
+
 }  // namespace
 
 TEST_CASE("dynamics: residual vibration after a cycloidal rise matches the closed form, both integrators", "[valvetrain][dynamics]") {
@@ -122,9 +128,7 @@ TEST_CASE("dynamics: the two integrators agree on a valve that floats and bounce
   // Spring designed for 5600 rpm, valve at 7500 rpm: contact lost before the nose, a landing at
   // ~13 m/s and a series of bounces, the last ones hops far shorter than an integration step (a
   // hop that starts and ends inside one explicit step was once missed: the valve fell through).
-  const std::string fast =
-      "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 7500 rpm, rocker_ratio: 1.5, "
-      "lash: 0.25 mm } }\n";
+  const std::string fast = fast_valve(7500);
   const std::string dyn =
       "{ type: valvetrain.dynamics, inputs: { valve: fast.motion, design: sd.design }, "
       "effects: [ elastic_drive, contact_loss, seat_impact ], params: { drive_stiffness: 4000 N/mm, tolerance: 1e-10 } }";
@@ -215,9 +219,7 @@ TEST_CASE("dynamics hard cases: finite results and bounded work", "[valvetrain][
       // The spring is designed for 5600 rpm; the valve runs at 7500 rpm.
       std::string d = dyn("elastic_drive, contact_loss, seat_impact", "drive_stiffness: 4000 N/mm, revolutions: 4" + chosen);
       d.replace(d.find("v.motion"), 8, "fast.motion");
-      const std::string fast =
-          "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 7500 rpm, rocker_ratio: 1.5, "
-          "lash: 0.25 mm } }\n";
+      const std::string fast = fast_valve(7500);
       const RunResult r = run_scene(dynamics_scene(kurz, d, "dyn.curves, dyn.floats, dyn.seating_velocity, dyn.min_contact_force, dyn.bounces",
                                                    "5600 rpm", "0.25 mm", fast));
       finite_curves(r);
@@ -254,8 +256,7 @@ TEST_CASE("float_speed: the bracket it returns holds below and floats above, che
   CHECK(num(r, "dyn.simulations") < 40);
   // Second method: the dynamics node itself, with unilateral contact, at both ends of the bracket.
   auto floats = [&](double speed) {
-    const std::string fast = "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: " +
-                             std::to_string(speed / rpm) + " rpm, rocker_ratio: 1.5, lash: 0.25 mm } }\n";
+    const std::string fast = fast_valve(speed / rpm);
     const std::string dyn =
         "{ type: valvetrain.dynamics, inputs: { valve: fast.motion, design: sd.design }, effects: [ elastic_drive, contact_loss ], "
         "params: { drive_stiffness: 4000 N/mm, revolutions: 3 } }";
@@ -409,9 +410,7 @@ TEST_CASE("dynamics regressions found in review", "[valvetrain][dynamics]") {
     }
   }
   SECTION("a restitution of 0 seats the valve instead of letting it sink through the seat") {
-    const std::string fast =
-        "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 7500 rpm, rocker_ratio: 1.5, "
-        "lash: 0.25 mm } }\n";
+    const std::string fast = fast_valve(7500);
     std::string d = dyn("elastic_drive, contact_loss, seat_impact", "restitution: 0");
     d.replace(d.find("v.motion"), 8, "fast.motion");
     const RunResult r = run_scene(dynamics_scene(kurz, d, "dyn.curves, dyn.bounces", "5600 rpm", "0.25 mm", fast));
