@@ -16,27 +16,6 @@
 
 namespace mechgraph {
 
-std::shared_ptr<const OutputSet> MemoCache::find(std::uint64_t key) const {
-  std::lock_guard lock(mutex_);
-  auto it = entries_.find(key);
-  return it == entries_.end() ? nullptr : it->second;
-}
-
-void MemoCache::store(std::uint64_t key, std::shared_ptr<const OutputSet> outputs) {
-  std::lock_guard lock(mutex_);
-  entries_[key] = std::move(outputs);
-}
-
-void MemoCache::erase(std::uint64_t key) {
-  std::lock_guard lock(mutex_);
-  entries_.erase(key);
-}
-
-std::size_t MemoCache::size() const {
-  std::lock_guard lock(mutex_);
-  return entries_.size();
-}
-
 namespace {
 
 void hash_param(Hasher& h, const ParamValue& v) {

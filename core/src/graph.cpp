@@ -16,11 +16,31 @@
 
 namespace mechgraph {
 
+namespace {
+std::string quantity_text(double si, const ParamSpec& spec);
+}
+
 Override parse_override(std::string_view text) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
     throw SceneError("--set " + std::string(text) + ": expected NAME=VALUE, e.g. --set rpm=6000rpm or --set cam.max_lift=10mm");
   return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), std::string(text)};
+}
+
+std::string param_value_problem(double si, const ParamSpec& spec) {
+  const bool low = spec.min_exclusive ? !(si > spec.min) : !(si >= spec.min);
+  const bool high = spec.max_exclusive ? !(si < spec.max) : !(si <= spec.max);
+  if (low || high) {
+    std::string range;
+    if (std::isfinite(spec.min)) range += (spec.min_exclusive ? "> " : ">= ") + quantity_text(spec.min, spec);
+    if (std::isfinite(spec.max))
+      range += (range.empty() ? "" : " and ") + std::string(spec.max_exclusive ? "< " : "<= ") + quantity_text(spec.max, spec);
+    return "is out of range: it must be " + range;
+  }
+  if (spec.kind == ParamKind::integer && si != std::floor(si)) return "must be a whole number";
+  if (spec.kind == ParamKind::integer && std::abs(si) > 9007199254740992.0)  // 2^53: exact in a double
+    return "is too large for a whole number (at most 2^53)";
+  return {};
 }
 
 std::optional<std::size_t> Graph::find(std::string_view name) const {
@@ -178,19 +198,8 @@ class GraphBuilder {
       fail(written.where, what + ": '" + v.text + "' is " + q.dimension.describe() + ", expected " +
                               spec.dimension.describe() + " (" + example_unit(spec.dimension) + ")" + via);
     }
-    const bool low = spec.min_exclusive ? !(q.value > spec.min) : !(q.value >= spec.min);
-    const bool high = spec.max_exclusive ? !(q.value < spec.max) : !(q.value <= spec.max);
-    if (low || high) {
-      std::string range;
-      if (std::isfinite(spec.min)) range += (spec.min_exclusive ? "> " : ">= ") + quantity_text(spec.min, spec);
-      if (std::isfinite(spec.max))
-        range += (range.empty() ? "" : " and ") + std::string(spec.max_exclusive ? "< " : "<= ") + quantity_text(spec.max, spec);
-      fail(written.where, what + " = '" + v.text + "' is out of range: it must be " + range + via);
-    }
-    if (spec.kind == ParamKind::integer && q.value != std::floor(q.value))
-      fail(written.where, what + " = '" + v.text + "' must be a whole number" + via);
-    if (spec.kind == ParamKind::integer && std::abs(q.value) > 9007199254740992.0)  // 2^53: exact in a double
-      fail(written.where, what + " = '" + v.text + "' is too large for a whole number (at most 2^53)" + via);
+    if (const std::string problem = param_value_problem(q.value, spec); !problem.empty())
+      fail(written.where, what + " = '" + v.text + "' " + problem + via);
     return q.value;
   }
 
@@ -285,6 +294,7 @@ class GraphBuilder {
       const ParamSpec* spec = info.find_param(name);
       if (!spec) fail(value.key_where, owner + ": " + unknown_name_message("parameter", name, valid));
       seen.insert(name);
+      record_scene_param_uses(graph_.nodes.size(), name, value, false);
       node.params.set(name, parse_param(value, *spec, owner));
       node.param_where[name] = value.where;
     }
@@ -294,6 +304,16 @@ class GraphBuilder {
       else if (p.required) fail(n.where, owner + ": parameter '" + p.name + "' is required (" + p.doc + ")");
     }
     return node;
+  }
+
+  // Notes where `$name` values land, so a sweep can set a scene parameter on the built graph.
+  void record_scene_param_uses(std::size_t node, const std::string& param, const RawValue& v, bool nested) {
+    if (v.kind == RawValue::Kind::scalar) {
+      if (!v.text.empty() && v.text[0] == '$') graph_.scene_param_uses[v.text.substr(1)].push_back({node, param, nested});
+      return;
+    }
+    for (const RawValue& item : v.items) record_scene_param_uses(node, param, item, true);
+    for (const auto& [key, field] : v.fields) record_scene_param_uses(node, param, field, true);
   }
 
   // ----- connections

@@ -29,6 +29,9 @@ commands:
   plugins [--json]                                        plugins, node types, ports, params
   describe TYPE [--json]                                  one node type in full
   bench SCENE [--node NAME] [--json] [--out DIR]          accuracy knobs: error against a reference vs time
+  sweep SCENE (--vary N=A:B:K | --cases F.csv | --sample N=A:B --n K) [--threads N] [--out F] [--shard I/N]
+                                                          many designs: one row per case, on all cores
+  merge FILE... [--out FILE]                              shards of one sweep back together, checked
 
 global options:
   --plugin-dir DIR   load plugins from DIR (else MECHGRAPH_PLUGIN_PATH, else the build's folder)
@@ -38,7 +41,7 @@ global options:
   -h, --help         this text; `mechgraph COMMAND --help` for a command
 
 exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
-            5 results could not be written
+            5 results could not be written, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
 )";
 
 }  // namespace
@@ -92,7 +95,8 @@ int main(int argc, char** argv) {
 
   const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
       {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
-      {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command}};
+      {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command},
+      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command}};
   auto it = commands.find(command);
   if (it == commands.end()) {
     std::vector<std::string> names;

@@ -3,6 +3,7 @@
 // memoised under a hash of its type, version, parameters, the effects it reads and the hashes of
 // its inputs. A MemoCache kept across runs (a sweep) re-evaluates only what changed.
 #include <mechgraph/graph.hpp>
+#include <mechgraph/memo_cache.hpp>
 
 #include <cstdint>
 #include <map>
@@ -13,18 +14,6 @@
 #include <vector>
 
 namespace mechgraph {
-
-class MemoCache {
- public:
-  std::shared_ptr<const OutputSet> find(std::uint64_t key) const;
-  void store(std::uint64_t key, std::shared_ptr<const OutputSet> outputs);
-  void erase(std::uint64_t key);
-  std::size_t size() const;
-
- private:
-  mutable std::mutex mutex_;
-  std::unordered_map<std::uint64_t, std::shared_ptr<const OutputSet>> entries_;
-};
 
 struct OutputValue {
   std::string label;  // "node.port"

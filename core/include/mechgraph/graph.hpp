@@ -64,6 +64,14 @@ struct ResolvedReport {
   std::vector<Row> rows;
 };
 
+/// Where a scene parameter went: parameter `param` of node `node`, written as `$name` on its own
+/// (nested = false) or inside a list or record (nested = true).
+struct SceneParamUse {
+  std::size_t node;
+  std::string param;
+  bool nested = false;
+};
+
 struct Graph {
   std::string title;
   std::string file;
@@ -74,9 +82,14 @@ struct Graph {
   std::vector<std::size_t> order;        // needed nodes in dependency order
   std::vector<ResolvedReport> reports;
   std::map<std::string, std::size_t, std::less<>> index;  // node name -> position in `nodes`
+  std::map<std::string, std::vector<SceneParamUse>, std::less<>> scene_param_uses;  // `$name` -> where it went
 
   std::optional<std::size_t> find(std::string_view name) const;
 };
+
+/// Why `si` cannot be the value of parameter `spec` (out of its range, not a whole number), in
+/// words that follow "parameter = 'value' "; empty when it can. Dimension is the caller's check.
+std::string param_value_problem(double si, const ParamSpec& spec);
 
 /// Throws SceneError naming file:line:column for every problem it finds (the first one).
 Graph build_graph(const SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides = {});

@@ -1,0 +1,43 @@
+#pragma once
+// Puts one case's values into a graph that was built once: each sweep variable is resolved to the
+// node parameters it reaches (a scene parameter `rpm` to every `$rpm`, `cam.max_lift` to that
+// one), and each case's value is checked against the parameter's dimension and range before it is
+// written. No YAML is read per case. A variable that reaches into a list or a record (a stack
+// link's field) cannot be written in place: such sweeps build each case's graph anew from the
+// parsed scene, which `rebuilds()` says.
+#include <mechgraph/graph.hpp>
+#include <mechgraph/sweep/case_table.hpp>
+
+#include <string>
+#include <vector>
+
+namespace mechgraph {
+
+class CaseBinder {
+ public:
+  /// Resolves the variables on `base` (built from `scene` with `overrides`); throws SceneError for
+  /// an unknown name, with the valid ones. `scene` and `registry` must outlive the binder.
+  CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRegistry& registry,
+             std::vector<Override> overrides, std::vector<SweepVariable> variables);
+
+  /// Writes one case into `graph`, which holds the base graph or an earlier case of it. Throws
+  /// SceneError naming the variable, the node parameter and the limit it breaks.
+  void apply(Graph& graph, const std::vector<CaseValue>& values) const;
+
+  bool rebuilds() const { return rebuild_; }
+  const std::vector<SweepVariable>& variables() const { return variables_; }
+
+ private:
+  struct Target {
+    std::size_t node;
+    const ParamSpec* spec;
+  };
+  const SceneSpec& scene_;
+  const PluginRegistry& registry_;
+  std::vector<Override> overrides_;
+  std::vector<SweepVariable> variables_;
+  std::vector<std::vector<Target>> targets_;  // per variable
+  bool rebuild_ = false;
+};
+
+}  // namespace mechgraph

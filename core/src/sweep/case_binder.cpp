@@ -1,0 +1,124 @@
+#include <mechgraph/sweep/case_binder.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/units.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace mechgraph {
+namespace {
+
+std::string owner_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
+
+// What `name` could have meant: a node's parameters for "node.x", else the nodes or the scene's.
+std::string unknown_variable(const Graph& graph, const std::string& name) {
+  std::vector<std::string> valid;
+  const auto dot = name.find('.');
+  if (dot != std::string::npos) {
+    if (const auto node = graph.find(name.substr(0, dot))) {
+      for (const ParamSpec& p : graph.nodes[*node].info().params) valid.push_back(p.name);
+      return "sweep: '" + name + "': " + owner_of(graph.nodes[*node]) + ": " + unknown_name_message("parameter", name.substr(dot + 1), valid);
+    }
+    for (const GraphNode& n : graph.nodes) valid.push_back(n.name);
+    return "sweep: '" + name + "': " + unknown_name_message("node", name.substr(0, dot), valid);
+  }
+  for (const auto& [scene_param, uses] : graph.scene_param_uses) valid.push_back(scene_param);
+  return "sweep: " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is varied as node.param)";
+}
+
+}  // namespace
+
+CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRegistry& registry,
+                       std::vector<Override> overrides, std::vector<SweepVariable> variables)
+    : scene_(scene), registry_(registry), overrides_(std::move(overrides)), variables_(std::move(variables)) {
+  for (std::size_t v = 0; v < variables_.size(); ++v) {
+    const std::string& name = variables_[v].name;
+    for (std::size_t w = 0; w < v; ++w)
+      if (variables_[w].name == name) throw SceneError("sweep: '" + name + "' is varied twice");
+    std::vector<Target> targets;
+    bool nested = false;
+    if (const auto dot = name.find('.'); dot == std::string::npos) {
+      auto it = base.scene_param_uses.find(name);
+      if (it == base.scene_param_uses.end()) {
+        const bool defined = std::any_of(scene.params.begin(), scene.params.end(), [&](const auto& p) { return p.first == name; });
+        if (defined) throw SceneError("sweep: scene parameter '" + name + "' is not used by any node: varying it changes nothing");
+        throw SceneError(unknown_variable(base, name));
+      }
+      for (const SceneParamUse& use : it->second) {
+        const GraphNode& node = base.nodes[use.node];
+        nested = nested || use.nested;
+        targets.push_back({use.node, node.info().find_param(use.param)});
+      }
+    } else {
+      const auto node = base.find(name.substr(0, dot));
+      const ParamSpec* spec = node ? base.nodes[*node].info().find_param(name.substr(dot + 1)) : nullptr;
+      if (!spec) throw SceneError(unknown_variable(base, name));
+      // A node parameter written as `$x` in the scene is replaced for this node only.
+      targets.push_back({*node, spec});
+    }
+    for (const Target& t : targets)
+      if (t.spec->kind == ParamKind::number_list || t.spec->kind == ParamKind::record_list) nested = true;
+    if (std::none_of(targets.begin(), targets.end(), [&](const Target& t) { return base.nodes[t.node].needed; }))
+      spdlog::warn("sweep: '{}' only reaches nodes the requested outputs do not need: varying it changes nothing", name);
+    rebuild_ = rebuild_ || nested;
+    targets_.push_back(std::move(targets));
+  }
+  if (rebuild_)
+    spdlog::info("sweep: a varied parameter sits inside a list or record; each case's graph is built anew from the scene");
+}
+
+void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const {
+  if (rebuild_) {
+    std::vector<Override> overrides = overrides_;
+    for (std::size_t v = 0; v < variables_.size(); ++v)
+      overrides.push_back({variables_[v].name, values[v].text, variables_[v].name + "=" + values[v].text});
+    graph = build_graph(scene_, registry_, overrides);
+    return;
+  }
+  for (std::size_t v = 0; v < variables_.size(); ++v) {
+    const CaseValue& value = values[v];
+    const std::string what = variables_[v].name + " = '" + value.text + "'";
+    for (const Target& t : targets_[v]) {
+      GraphNode& node = graph.nodes[t.node];
+      const ParamSpec& spec = *t.spec;
+      const std::string param = "parameter '" + spec.name + "' of " + owner_of(node);
+      ParamValue written;
+      switch (spec.kind) {
+        case ParamKind::number:
+        case ParamKind::integer: {
+          if (!value.si) {
+            std::string why = "not a number with a unit";
+            try {
+              parse_quantity(value.text);
+            } catch (const UnitError& e) {
+              why = e.what();
+            }
+            throw SceneError(what + ": " + param + ": " + why);
+          }
+          if (!(value.dimension == spec.dimension))
+            throw SceneError(what + ": " + param + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
+                             "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
+          if (const std::string problem = param_value_problem(*value.si, spec); !problem.empty())
+            throw SceneError(what + ": " + param + " " + problem);
+          written = spec.kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(*value.si)) : ParamValue::of_number(*value.si);
+          break;
+        }
+        case ParamKind::choice:
+          if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
+            throw SceneError(what + ": " + param + ": " + unknown_name_message("choice", value.text, spec.choices));
+          written = ParamValue::of_choice(value.text);
+          break;
+        case ParamKind::text: written = ParamValue::of_text(value.text); break;
+        case ParamKind::number_list:
+        case ParamKind::record_list: break;  // rebuilt above
+      }
+      node.params.set(spec.name, std::move(written));
+      node.param_where[spec.name] = SourceLocation{"(swept " + variables_[v].name + ")", 0, 0};
+    }
+  }
+}
+
+}  // namespace mechgraph

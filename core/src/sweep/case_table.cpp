@@ -1,0 +1,266 @@
+#include <mechgraph/sweep/case_table.hpp>
+
+#include <mechgraph/csv.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/units.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <numeric>
+
+namespace mechgraph {
+namespace {
+
+std::string trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return std::string(s);
+}
+
+// "5600 rpm" -> "rpm"; "3.5" -> ""; the unit a value was written in, to show the column in it.
+std::string unit_of(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  std::strtod(begin, &end);
+  if (end == begin) return {};
+  return trim(std::string_view(end));
+}
+
+bool bare_number(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  std::strtod(begin, &end);
+  return end != begin && trim(std::string_view(end)).empty();
+}
+
+// A number with its unit if it reads as one, else a word.
+CaseValue read_value(const std::string& text) {
+  CaseValue v{text, std::nullopt, {}};
+  try {
+    const Quantity q = parse_quantity(text);
+    v.si = q.value;
+    v.dimension = q.dimension;
+  } catch (const UnitError&) {
+  }
+  return v;
+}
+
+std::string format_shown(double x) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.15g", x);
+  return buffer;
+}
+
+// A number in SI as text that parses back to the same double.
+std::string exact_text(double x, Dimension d) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return d.dimensionless() ? std::string(buffer) : std::string(buffer) + " " + d.si_unit();
+}
+
+// splitmix64: a small generator whose output is fixed by its definition on every platform.
+struct SplitMix64 {
+  std::uint64_t state;
+  std::uint64_t next() {
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uniform() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }  // [0, 1)
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>(uniform() * static_cast<double>(n)); }
+};
+
+std::pair<std::string, std::string> split_assignment(std::string_view text, const char* flag, const char* example) {
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
+    throw SceneError(std::string(flag) + " " + std::string(text) + ": expected " + example);
+  return {trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
+}
+
+// FROM and TO of a range; one of them may leave its unit to the other.
+std::pair<Quantity, std::string> range_end(const std::string& text, const std::string& other, const std::string& context) {
+  std::string written = text;
+  if (bare_number(text) && !bare_number(other)) written = text + " " + unit_of(other);
+  try {
+    return {parse_quantity(written), unit_of(written)};
+  } catch (const UnitError& e) {
+    throw SceneError(context + ": '" + text + "': " + e.what());
+  }
+}
+
+}  // namespace
+
+std::string CaseTable::shown(std::size_t i, std::size_t v) const {
+  const CaseValue& value = cases[i][v];
+  if (!value.si) return value.text;
+  const std::string& unit = variables[v].unit;
+  if (!unit.empty()) {
+    try {
+      return format_shown(to_unit(*value.si, value.dimension, unit));
+    } catch (const UnitError&) {
+      return value.text;  // a cell in another unit than its column: shown as written
+    }
+  }
+  return format_shown(*value.si);
+}
+
+VarySpec parse_vary(std::string_view text) {
+  const auto [name, rhs] = split_assignment(text, "--vary", "NAME=FROM:TO:N (e.g. rpm=3000rpm:7000rpm:9) or NAME=A,B,C");
+  VarySpec spec{name, {}, {}};
+  const std::string context = "--vary " + std::string(text);
+  if (rhs.find(':') != std::string::npos) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    for (std::size_t colon; (colon = rhs.find(':', start)) != std::string::npos; start = colon + 1)
+      parts.push_back(trim(rhs.substr(start, colon - start)));
+    parts.push_back(trim(rhs.substr(start)));
+    if (parts.size() != 3) throw SceneError(context + ": expected FROM:TO:N, e.g. rpm=3000rpm:7000rpm:9");
+    const auto [from, from_unit] = range_end(parts[0], parts[1], context);
+    const auto [to, to_unit_text] = range_end(parts[1], parts[0], context);
+    if (!(from.dimension == to.dimension))
+      throw SceneError(context + ": FROM is " + from.dimension.describe() + " but TO is " + to.dimension.describe());
+    char* end = nullptr;
+    const long n = std::strtol(parts[2].c_str(), &end, 10);
+    if (end == parts[2].c_str() || *end != '\0' || n < 1 || n > 10000000)
+      throw SceneError(context + ": N = '" + parts[2] + "' must be a whole number of points from 1 to 10^7");
+    if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
+    spec.unit = from_unit.empty() ? to_unit_text : from_unit;
+    for (long k = 0; k < n; ++k) {
+      // Ends exactly as written; the points between evenly spaced in SI.
+      const double x = k == n - 1 ? to.value : from.value + (to.value - from.value) * static_cast<double>(k) / static_cast<double>(n - 1);
+      spec.values.push_back({exact_text(x, from.dimension), x, from.dimension});
+    }
+    return spec;
+  }
+  std::size_t start = 0;
+  for (std::size_t comma;; start = comma + 1) {
+    comma = rhs.find(',', start);
+    const std::string item = trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (item.empty()) throw SceneError(context + ": an empty value in the list");
+    spec.values.push_back(read_value(item));
+    if (spec.unit.empty() && spec.values.back().si) spec.unit = unit_of(item);
+    if (comma == std::string::npos) break;
+  }
+  return spec;
+}
+
+CaseTable make_grid(const std::vector<VarySpec>& specs) {
+  CaseTable table;
+  std::size_t total = 1;
+  for (const VarySpec& s : specs) {
+    table.variables.push_back({s.name, s.unit});
+    table.origin += (table.origin.empty() ? "--vary " : " --vary ") + s.name;
+    if (total > 100000000 / std::max<std::size_t>(s.values.size(), 1))
+      throw SceneError("--vary: the grid would have more than 10^8 cases; sample it instead (--sample NAME=LO:HI --n N)");
+    total *= s.values.size();
+  }
+  table.cases.reserve(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    std::vector<CaseValue> row(specs.size());
+    std::size_t rest = i;
+    for (std::size_t v = specs.size(); v-- > 0;) {
+      row[v] = specs[v].values[rest % specs[v].values.size()];
+      rest /= specs[v].values.size();
+    }
+    table.cases.push_back(std::move(row));
+  }
+  return table;
+}
+
+SampleSpec parse_sample(std::string_view text) {
+  const auto [name, rhs] = split_assignment(text, "--sample", "NAME=LO:HI (e.g. cam.max_lift=8mm:10mm)");
+  const std::string context = "--sample " + std::string(text);
+  const auto colon = rhs.find(':');
+  if (colon == std::string::npos || rhs.find(':', colon + 1) != std::string::npos)
+    throw SceneError(context + ": expected LO:HI, e.g. cam.max_lift=8mm:10mm");
+  const std::string lo_text = trim(rhs.substr(0, colon)), hi_text = trim(rhs.substr(colon + 1));
+  const auto [lo, lo_unit] = range_end(lo_text, hi_text, context);
+  const auto [hi, hi_unit] = range_end(hi_text, lo_text, context);
+  if (!(lo.dimension == hi.dimension))
+    throw SceneError(context + ": LO is " + lo.dimension.describe() + " but HI is " + hi.dimension.describe());
+  if (!(hi.value > lo.value)) throw SceneError(context + ": HI must be greater than LO");
+  return {name, lo.value, hi.value, lo.dimension, lo_unit.empty() ? hi_unit : lo_unit};
+}
+
+CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t n, std::uint64_t seed) {
+  if (n == 0) throw SceneError("--n: a sample needs at least one case");
+  CaseTable table;
+  table.origin = "Latin hypercube, " + std::to_string(n) + " cases, seed " + std::to_string(seed);
+  table.cases.assign(n, std::vector<CaseValue>(specs.size()));
+  SplitMix64 random{seed};
+  for (std::size_t v = 0; v < specs.size(); ++v) {
+    const SampleSpec& s = specs[v];
+    table.variables.push_back({s.name, s.unit});
+    std::vector<std::size_t> stratum(n);
+    std::iota(stratum.begin(), stratum.end(), std::size_t{0});
+    for (std::size_t i = n; i-- > 1;) std::swap(stratum[i], stratum[random.below(i + 1)]);  // Fisher-Yates
+    for (std::size_t i = 0; i < n; ++i) {
+      const double u = (static_cast<double>(stratum[i]) + random.uniform()) / static_cast<double>(n);
+      const double x = s.low + (s.high - s.low) * u;
+      table.cases[i][v] = {exact_text(x, s.dimension), x, s.dimension};
+    }
+  }
+  return table;
+}
+
+CaseTable read_cases_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw SceneError(file.string() + ": cannot read the cases file");
+  CaseTable table;
+  table.origin = file.string();
+  std::string line;
+  int number = 0;
+  bool header = false;
+  std::vector<std::string> header_units;  // a bare number in a cell is in its column's unit
+  while (std::getline(in, line)) {
+    ++number;
+    const std::string trimmed = trim(line);
+    if (trimmed.empty() || trimmed[0] == '#') continue;
+    std::vector<std::string> fields;
+    try {
+      fields = split_csv_line(line);
+    } catch (const std::invalid_argument& e) {
+      throw SceneError(file.string() + ":" + std::to_string(number) + ":1: " + e.what());
+    }
+    if (!header) {
+      header = true;
+      for (const std::string& f : fields) {
+        auto [name, unit] = split_header(f);
+        if (name.empty()) throw SceneError(file.string() + ":" + std::to_string(number) + ":1: a column without a name");
+        for (const SweepVariable& v : table.variables)
+          if (v.name == name) throw SceneError(file.string() + ":" + std::to_string(number) + ":1: column '" + name + "' appears twice");
+        table.variables.push_back({name, unit});
+        header_units.push_back(unit);
+      }
+      continue;
+    }
+    if (fields.size() != table.variables.size())
+      throw SceneError(file.string() + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
+                       " cells, the header has " + std::to_string(table.variables.size()));
+    std::vector<CaseValue> row;
+    int column = 1;
+    for (std::size_t v = 0; v < fields.size(); ++v) {
+      const std::string cell = trim(fields[v]);
+      if (cell.empty())
+        throw SceneError(file.string() + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
+                         table.variables[v].name + "' has no value");
+      const std::string& unit = header_units[v];
+      CaseValue value = read_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell);
+      if (!unit.empty() && !value.si)
+        throw SceneError(file.string() + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" + cell +
+                         "' is not a number in " + unit);
+      if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell);
+      row.push_back(std::move(value));
+      column += static_cast<int>(fields[v].size()) + 1;
+    }
+    table.cases.push_back(std::move(row));
+  }
+  if (!header) throw SceneError(file.string() + ":1:1: no header (a line of parameter names, e.g. rpm,cam.max_lift [mm])");
+  if (table.cases.empty()) throw SceneError(file.string() + ": no cases below the header");
+  return table;
+}
+
+}  // namespace mechgraph

@@ -1,0 +1,91 @@
+#include <mechgraph/sweep/sweep_runner.hpp>
+
+#include <mechgraph/errors.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+namespace mechgraph {
+
+SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTable& table, MemoCache& cache,
+                       const SweepOptions& options, const std::function<void(CaseResult&&)>& emit) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = options.cases.size();
+  const unsigned threads = static_cast<unsigned>(std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(n, 1)));
+  // Fewer cases than threads: the rest go to independent nodes inside each case.
+  const unsigned node_threads = std::max(1u, options.threads / threads);
+  const std::size_t window = options.window ? options.window : 64 * static_cast<std::size_t>(threads);
+
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::condition_variable emitted_more;
+  std::vector<std::optional<CaseResult>> ring(window);
+  std::size_t next_to_emit = 0;
+  std::exception_ptr emit_failure;
+  std::atomic<bool> abort{false};
+  SweepSummary summary;
+
+  auto stopping = [&] { return abort.load() || (options.stop && options.stop->load()); };
+
+  auto worker = [&] {
+    Graph graph = base;
+    while (!stopping()) {
+      const std::size_t k = next.fetch_add(1);
+      if (k >= n) break;
+      {
+        std::unique_lock lock(mutex);
+        emitted_more.wait(lock, [&] { return k < next_to_emit + window; });
+      }
+      CaseResult result;
+      result.index = options.cases[k];
+      try {
+        binder.apply(graph, table.cases[result.index]);
+        RunResult run = evaluate(graph, cache, node_threads);
+        result.outputs = std::move(run.outputs);
+        for (const NodeRun& r : run.runs) ++(r.reused ? result.reused : result.evaluated);
+      } catch (const SceneError& e) {
+        result.failure = CaseFailure::scene;
+        result.error = e.what();
+        if (binder.rebuilds()) graph = base;
+      } catch (const std::exception& e) {
+        result.failure = CaseFailure::evaluation;
+        result.error = e.what();
+      }
+      std::unique_lock lock(mutex);
+      ring[k % window] = std::move(result);
+      // Whoever completes the oldest case hands every finished one in order to `emit`.
+      while (ring[next_to_emit % window]) {
+        CaseResult ready = std::move(*ring[next_to_emit % window]);
+        ring[next_to_emit % window].reset();
+        ++next_to_emit;
+        if (ready.failure != CaseFailure::none) ++summary.failed;
+        ++summary.run;
+        if (!emit_failure) {
+          try {
+            emit(std::move(ready));
+          } catch (...) {
+            emit_failure = std::current_exception();
+            abort = true;
+          }
+        }
+      }
+      emitted_more.notify_all();
+    }
+  };
+
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  if (emit_failure) std::rethrow_exception(emit_failure);
+  summary.stopped = summary.run < n;
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return summary;
+}
+
+}  // namespace mechgraph

@@ -1,0 +1,278 @@
+// mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N --seed S)
+//                 [--threads N] [--out FILE] [--shard I/N|auto] [--resume] [--set ...] [--outputs a.b,c.d]
+//                 [--format csv|jsonl] [--cache-size N] [--force]
+#include "cli.hpp"
+#include "options.hpp"
+#include "sweep_file.hpp"
+#include "sweep_progress.hpp"
+#include "sweep_rows.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/csv.hpp>
+#include <mechgraph/hash.hpp>
+#include <mechgraph/sweep/sweep_runner.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <thread>
+
+namespace mechgraph::cli {
+namespace {
+
+std::atomic<bool> stop_requested{false};
+
+extern "C" void request_stop(int signal) {
+  stop_requested = true;
+  std::signal(signal, SIG_DFL);  // a second Ctrl-C ends the process at once
+}
+
+// Ctrl-C and Slurm's SIGTERM let the started cases finish and their rows land.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    stop_requested = false;
+    previous_int_ = std::signal(SIGINT, request_stop);
+    previous_term_ = std::signal(SIGTERM, request_stop);
+  }
+  ~StopOnSignal() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+struct Shard {
+  std::size_t index = 0, count = 1;
+};
+
+std::size_t parse_count(const std::string& text, const std::string& what) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno || text[0] == '-') throw UsageError(what + ": '" + text + "' is not a whole number");
+  return static_cast<std::size_t>(v);
+}
+
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  if (text == "auto") {
+    const char* id = std::getenv("SLURM_ARRAY_TASK_ID");
+    const char* count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+    const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
+    if (!id || !count)
+      throw UsageError("--shard auto needs SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT (run it as a Slurm job array), or give --shard I/N");
+    const std::size_t first = min ? parse_count(min, "SLURM_ARRAY_TASK_MIN") : 0;
+    shard.index = parse_count(id, "SLURM_ARRAY_TASK_ID") - first;
+    shard.count = parse_count(count, "SLURM_ARRAY_TASK_COUNT");
+  } else {
+    const auto slash = text.find('/');
+    if (slash == std::string::npos) throw UsageError("--shard " + text + ": expected I/N (0 <= I < N) or auto");
+    shard.index = parse_count(text.substr(0, slash), "--shard I");
+    shard.count = parse_count(text.substr(slash + 1), "--shard N");
+  }
+  if (shard.count == 0 || shard.index >= shard.count)
+    throw UsageError("--shard " + text + ": needs 0 <= I < N, got I = " + std::to_string(shard.index) + ", N = " + std::to_string(shard.count));
+  return shard;
+}
+
+CaseTable make_cases(const po::variables_map& vm) {
+  const int ways = static_cast<int>(vm.count("vary") > 0) + static_cast<int>(vm.count("cases") > 0) + static_cast<int>(vm.count("sample") > 0);
+  if (ways != 1) throw UsageError("give the cases one way: --vary NAME=FROM:TO:N ..., --cases FILE.csv, or --sample NAME=LO:HI ... --n N");
+  if (!vm.count("sample") && (vm.count("n") || vm.count("seed"))) throw UsageError("--n and --seed go with --sample");
+  if (vm.count("vary")) {
+    std::vector<VarySpec> specs;
+    for (const std::string& v : vm["vary"].as<std::vector<std::string>>()) specs.push_back(parse_vary(v));
+    return make_grid(specs);
+  }
+  if (vm.count("cases")) return read_cases_csv(vm["cases"].as<std::string>());
+  if (!vm.count("n")) throw UsageError("--sample needs --n N, the number of cases");
+  std::vector<SampleSpec> specs;
+  for (const std::string& s : vm["sample"].as<std::vector<std::string>>()) specs.push_back(parse_sample(s));
+  return make_latin_hypercube(specs, vm["n"].as<std::size_t>(), vm.count("seed") ? vm["seed"].as<std::uint64_t>() : 1);
+}
+
+// Which sweep a file of rows belongs to: the scene's text, the --set values, every case, the columns.
+std::string fingerprint(const std::string& scene_file, const std::vector<std::string>& sets, const CaseTable& table,
+                        const Graph& graph, RowFormat format) {
+  Hasher h;
+  std::ifstream in(scene_file, std::ios::binary);
+  h.add(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  for (const std::string& s : sets) h.add(s);
+  for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
+  for (const auto& row : table.cases)
+    for (const CaseValue& v : row) h.add(v.text);
+  for (const RequestedOutput& o : graph.outputs) h.add(o.label);
+  h.add(static_cast<std::uint64_t>(format));
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value()));
+  return hex;
+}
+
+// Builds the graph to sweep: --outputs replace the scene's outputs and report; tables and
+// handles (not one number per case) are left out of a scene's own outputs with a note.
+Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                        const po::variables_map& vm) {
+  const bool chosen = vm.count("outputs") > 0;
+  if (chosen) {
+    scene.outputs.clear();
+    scene.report.clear();
+    const std::string list = vm["outputs"].as<std::string>();
+    std::size_t start = 0;
+    for (std::size_t comma;; start = comma + 1) {
+      comma = list.find(',', start);
+      const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      scene.outputs.push_back(parse_port_ref(item, {"--outputs " + item, 0, 0}));
+      if (comma == std::string::npos) break;
+    }
+  }
+  Graph graph = build_graph(scene, registry, overrides);
+  std::vector<PortRef> kept;
+  for (std::size_t j = 0; j < graph.scene_output_count; ++j) {
+    const RequestedOutput& o = graph.outputs[j];
+    if (o.spec->kind == ValueKind::scalar || o.spec->kind == ValueKind::series) {
+      kept.push_back(scene.outputs[j]);
+      continue;
+    }
+    if (chosen)
+      throw UsageError("--outputs: '" + o.label + "' is a " + std::string(to_string(o.spec->kind)) +
+                       ", not one value per case; mechgraph run --out writes it for one design");
+    spdlog::info("sweep: '{}' is a {}, not a column; left out (mechgraph run --out writes it)", o.label, to_string(o.spec->kind));
+  }
+  if (kept.size() != graph.scene_output_count) {
+    scene.outputs = kept;
+    graph = build_graph(scene, registry, overrides);
+  }
+  return graph;
+}
+
+}  // namespace
+
+int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("sweep options");
+  add_scene_options(visible);
+  visible.add_options()
+      ("vary", po::value<std::vector<std::string>>()->composing(), "a grid axis: NAME=FROM:TO:N (ends included) or NAME=A,B,C; several make a full grid")
+      ("cases", po::value<std::string>(), "cases from CSV: header of names ('name' or 'name [unit]'), one case per row")
+      ("sample", po::value<std::vector<std::string>>()->composing(), "a Latin hypercube variable: NAME=LO:HI")
+      ("n", po::value<std::size_t>(), "cases to sample (with --sample)")
+      ("seed", po::value<std::uint64_t>(), "seed of the sample (default 1): the same seed, the same cases")
+      ("threads", po::value<unsigned>()->default_value(0), "worker threads (0: one per core)")
+      ("out", po::value<std::string>(), "write rows to FILE (appended as they come, complete under its name at the end; FILE.json says which sweep)")
+      ("format", po::value<std::string>()->default_value("csv"), "csv or jsonl")
+      ("outputs", po::value<std::string>(), "columns: node.port,node.port (default: the scene's outputs and report cells)")
+      ("shard", po::value<std::string>(), "I/N: run every N-th case from I (0-based); auto: from SLURM_ARRAY_TASK_ID/COUNT")
+      ("resume", "go on with the unfinished FILE.part of the same sweep")
+      ("force", "replace an existing FILE or unfinished FILE.part")
+      ("cache-size", po::value<std::size_t>()->default_value(MemoCache::default_capacity), "node results kept in the memo cache (least recently used dropped)");
+  po::variables_map vm;
+  if (!parse_scene_command(args, visible, vm,
+                           "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S])\n"
+                           "                       [--threads N] [--out FILE] [--format csv|jsonl] [--shard I/N|auto] [--resume]\n"
+                           "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--cache-size N] [--force]"))
+    return ok;
+  const std::string format_name = vm["format"].as<std::string>();
+  if (format_name != "csv" && format_name != "jsonl") throw UsageError("--format " + format_name + ": valid formats are csv, jsonl");
+  const RowFormat format = format_name == "csv" ? RowFormat::csv : RowFormat::jsonl;
+  if (vm.count("resume") && !vm.count("out")) throw UsageError("--resume needs --out FILE (rows on stdout cannot be resumed)");
+  if (vm.count("resume") && vm.count("force")) throw UsageError("--resume and --force contradict each other");
+
+  const PluginRegistry registry = load_plugins(g);
+  const std::string scene_file = vm["scene"].as<std::string>();
+  SceneSpec scene = load_scene(scene_file);
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  std::vector<Override> overrides;
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  const Graph graph = build_sweep_graph(scene, registry, overrides, vm);
+  const CaseTable table = make_cases(vm);
+  const CaseBinder binder(graph, scene, registry, overrides, table.variables);
+  const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
+
+  SweepOptions options;
+  for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
+  options.threads = vm["threads"].as<unsigned>();
+  if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
+  options.stop = &stop_requested;
+
+  SweepManifest manifest;
+  manifest.sweep = fingerprint(scene_file, sets, table, graph, format);
+  manifest.cases = table.cases.size();
+  manifest.shard = shard.index;
+  manifest.shards = shard.count;
+  manifest.scene = scene_file;
+  manifest.origin = table.origin;
+  manifest.format = format;
+  SweepFile file(vm.count("out") ? vm["out"].as<std::string>() : std::string(), manifest, vm.count("resume") > 0,
+                 vm.count("force") > 0);
+
+  SweepRows rows(graph, table, format);
+  std::size_t written = 0, failed = 0;
+  if (!file.resumed_cases().empty() || !file.resumed_header().empty()) {
+    const auto& done = file.resumed_cases();
+    for (std::size_t r = 0; r < done.size(); ++r)
+      if (r >= options.cases.size() || done[r] != options.cases[r])
+        throw UsageError(file.path().string() + ".part: row " + std::to_string(r + 1) + " holds case " + std::to_string(done[r]) +
+                         " where this sweep has case " + (r < options.cases.size() ? std::to_string(options.cases[r]) : "none"));
+    if (!file.resumed_header().empty()) rows.adopt(file.resumed_header());
+    written = done.size();
+    failed = file.resumed_failed();
+    options.cases.erase(options.cases.begin(), options.cases.begin() + static_cast<long>(done.size()));
+    spdlog::info("sweep: resuming after {} cases already written; {} to go", written, options.cases.size());
+  }
+
+  const std::size_t total = written + options.cases.size();
+  SweepProgress progress(total, spdlog::get_level() <= spdlog::level::info);
+  std::vector<CaseResult> waiting;  // rows before the header is known
+  auto put = [&](const CaseResult& r) {
+    file.write(rows.line(r, exit_code_of(r.failure)));
+    ++written;
+    if (r.failure != CaseFailure::none) ++failed;
+  };
+  auto settle = [&](const CaseResult* success) {
+    rows.settle(success);
+    if (format == RowFormat::csv) file.write(csv_row(rows.header()) + "\n");
+    for (const CaseResult& r : waiting) put(r);
+    waiting.clear();
+  };
+  MemoCache cache(vm["cache-size"].as<std::size_t>());
+  SweepSummary summary;
+  {
+    StopOnSignal on_signal;
+    summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
+      if (!rows.settled()) {
+        if (r.failure != CaseFailure::none) {
+          waiting.push_back(std::move(r));
+          return;
+        }
+        settle(&r);
+      }
+      put(r);
+      progress.update(written, failed);
+    });
+  }
+  if (!rows.settled()) settle(nullptr);
+  progress.finish(written, failed);
+  const bool complete = written == total;
+  file.finish(complete, written, failed);
+  spdlog::info("sweep: {} cases in {:.3g} s ({:.4g}/s on {} threads), {} failed; memo cache {} hits, {} misses, {} dropped",
+               summary.run, summary.seconds, summary.seconds > 0 ? summary.run / summary.seconds : 0.0, options.threads,
+               failed, cache.hits(), cache.misses(), cache.evictions());
+  if (!complete) {
+    spdlog::warn("sweep stopped: {} of {} cases written{}", written, total,
+                 file.to_stdout() ? "" : "; 'mechgraph sweep ... --resume' goes on from there");
+    return interrupted;
+  }
+  if (failed) spdlog::warn("sweep: {} of {} cases failed; their rows give the error and its exit class", failed, total);
+  if (!file.to_stdout()) spdlog::info("sweep: rows in {}", file.path().string());
+  return ok;
+}
+
+}  // namespace mechgraph::cli
