@@ -4,7 +4,9 @@
 #include <mechgraph/plugin_abi.hpp>
 
 #include <cmath>
+#include <chrono>
 #include <limits>
+#include <thread>
 
 namespace {
 
@@ -19,7 +21,7 @@ class Box final : public DomainObject {
 
 class Arith final : public NodeType {
  public:
-  enum class Op { constant, add, box, unbox, nan, fail, series, effectful, table };
+  enum class Op { constant, add, box, unbox, nan, fail, series, effectful, table, slow };
   Arith(Op op, std::string type) : op_(op) {
     info_.type = std::move(type);
     info_.summary = "test node";
@@ -68,6 +70,11 @@ class Arith final : public NodeType {
         info_.outputs = {PortSpec::table("curves", "x^2 [m] and 2x [m/s] over x [s]"),
                          PortSpec::scalar("extra", dim::length, "only with test_extra")};
         info_.effects = {{"test_extra", "brings the output extra", {"extra"}, {"extra_gain"}}};
+        break;
+      case Op::slow:
+        info_.params = {ParamSpec::number("value", dim::length, "the value", "mm"),
+                        ParamSpec::number("delay", dim::time, "how long it takes", "ms").with_default(0.01)};
+        info_.outputs = {PortSpec::scalar("out", dim::length, "the value, after the delay")};
         break;
     }
   }
@@ -121,6 +128,10 @@ class Arith final : public NodeType {
         if (ctx.effect("test_extra")) out.set_scalar("extra", p.number("extra_gain"));
         break;
       }
+      case Op::slow:
+        std::this_thread::sleep_for(std::chrono::duration<double>(p.number("delay")));
+        out.set_scalar("out", p.number("value"));
+        break;
     }
   }
 
@@ -135,7 +146,7 @@ NodeTypeList make_types() {
           std::make_shared<Arith>(Op::box, "test.box"),           std::make_shared<Arith>(Op::unbox, "test.unbox"),
           std::make_shared<Arith>(Op::nan, "test.nan"),           std::make_shared<Arith>(Op::fail, "test.fail"),
           std::make_shared<Arith>(Op::series, "test.series"),     std::make_shared<Arith>(Op::effectful, "test.effectful"),
-          std::make_shared<Arith>(Op::table, "test.table")};
+          std::make_shared<Arith>(Op::table, "test.table"),           std::make_shared<Arith>(Op::slow, "test.slow")};
 }
 
 }  // namespace

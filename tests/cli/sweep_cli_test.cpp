@@ -1,0 +1,252 @@
+// `mechgraph sweep` and `mechgraph merge` end to end: the rows a user gets, a sweep killed with
+// kill -9 and resumed (no case lost or doubled), Ctrl-C, shards merged back and checked.
+#include "test_support.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+using Catch::Matchers::StartsWith;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string arith_dir() { return "--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
+
+fs::path work_dir() {
+  const auto dir = fs::temp_directory_path() / ("mechgraph_sweep_cli_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const auto file = work_dir() / name;
+  std::ofstream(file) << text;
+  return file.string();
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+const char* scene_text = R"(title: sweep
+params: { len: 2 mm }
+nodes:
+  a: { type: test.constant, params: { value: $len } }
+  s: { type: test.add, inputs: { a: a.out, b: a.out }, params: { gain: 1.5 } }
+  c: { type: test.series, params: { points: 3 } }
+outputs: [ s.sum, c.curve ]
+)";
+
+// A sweep slow enough to be caught mid-way: each case waits `delay` in a node.
+const char* slow_scene = R"(title: slow
+params: { x: 1 mm }
+nodes:
+  slow: { type: test.slow, params: { value: $x, delay: 15 ms } }
+outputs: [ slow.out ]
+)";
+
+// Starts the command in the background; returns its process id. Its exit status lands in
+// `status_file` when it ends.
+pid_t start_cli(const std::string& args, const fs::path& status_file) {
+  const fs::path pid_file = work_dir() / "pid";
+  fs::remove(pid_file);
+  fs::remove(status_file);
+  const std::string command = "( '" + std::string(MECHGRAPH_CLI) + "' " + args + " >/dev/null 2>&1 & echo $! > '" +
+                              pid_file.string() + "'; wait $!; echo $? > '" + status_file.string() + "' ) >/dev/null 2>&1 &";
+  REQUIRE(std::system(command.c_str()) == 0);
+  pid_t pid = 0;
+  for (int i = 0; i < 500 && pid == 0; ++i) {
+    std::ifstream(pid_file) >> pid;
+    if (pid == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  REQUIRE(pid > 0);
+  return pid;
+}
+
+// Waits until `file` has at least `lines` lines (or 20 s pass).
+void wait_for_lines(const fs::path& file, std::size_t lines) {
+  for (int i = 0; i < 2000; ++i) {
+    if (fs::exists(file) && lines_of(slurp(file)).size() >= lines) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  FAIL("no rows appeared in " << file);
+}
+
+// Waits for the status a command started by start_cli leaves, and returns it.
+std::string wait_status(const fs::path& status_file) {
+  for (int i = 0; i < 3000; ++i) {
+    const std::string s = slurp(status_file);
+    if (!s.empty() && s.back() == '\n') return s;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return "(still running)";
+}
+
+}  // namespace
+
+TEST_CASE("sweep: one tidy CSV row per case with inputs, outputs in display units, exit and error", "[cli][sweep]") {
+  const std::string scene = write_file("scene.yaml", scene_text);
+  const auto r = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:3mm:3 --vary s.gain=1,-2 --threads 2");
+  REQUIRE(r.exit_code == 0);
+  const auto rows = lines_of(r.out);
+  REQUIRE(rows.size() == 7);
+  CHECK(rows[0] == "case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error");
+  CHECK(rows[1] == "0,1,1,0.002,0,0.25,1,0,");
+  // A case out of range fails alone, with its exit class and the reason.
+  CHECK_THAT(rows[2], StartsWith("1,1,-2,,,,,2,") && Contains("out of range: it must be > 0"));
+  CHECK_THAT(rows[5], StartsWith("4,3,1,0.0060000000000000001,"));
+  CHECK_THAT(r.err, Contains("3 of 6 cases failed"));
+  // The same value as a single run with --set: the second method.
+  const auto one = run_cli(arith_dir() + " run '" + scene + "' --set len=3mm --set s.gain=1 --json");
+  REQUIRE(one.exit_code == 0);
+  CHECK(YAML::Load(one.out)["outputs"]["s.sum"]["value"].as<double>() == 0.0060000000000000001);
+}
+
+TEST_CASE("sweep --format jsonl: one JSON object per case, keys as the CSV's columns", "[cli][sweep]") {
+  const std::string scene = write_file("scene.yaml", scene_text);
+  const auto r = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm,2mm --outputs s.sum --format jsonl");
+  REQUIRE(r.exit_code == 0);
+  const auto rows = lines_of(r.out);
+  REQUIRE(rows.size() == 2);
+  const YAML::Node second = YAML::Load(rows[1]);
+  CHECK(second["case"].as<int>() == 1);
+  CHECK(second["len [mm]"].as<double>() == 2.0);
+  CHECK(second["s.sum [m]"].as<double>() == 0.006);
+  CHECK(second["exit"].as<int>() == 0);
+  CHECK(second["error"].IsNull());
+}
+
+TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {
+  const std::string scene = write_file("scene.yaml", scene_text);
+  CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "'").err, Contains("give the cases one way"));
+  CHECK(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --cases x.csv").exit_code == 2);
+  CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --sample len=1mm:2mm").err, Contains("--sample needs --n"));
+  CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --outputs c.curv").err, Contains("did you mean 'curve'"));
+  CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --shard 3/3").err, Contains("needs 0 <= I < N"));
+  CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --resume").err, Contains("--resume needs --out"));
+  const auto shard = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --shard auto");
+  CHECK_THAT(shard.err, Contains("SLURM_ARRAY_TASK_ID"));
+}
+
+TEST_CASE("sweep --out: complete under its name at the end, refused when it exists, manifest beside it", "[cli][sweep]") {
+  const std::string scene = write_file("scene.yaml", scene_text);
+  const fs::path out = work_dir() / "rows.csv";
+  fs::remove(out);
+  const std::string args = arith_dir() + " sweep '" + scene + "' --vary len=1mm:5mm:5 --out '" + out.string() + "'";
+  REQUIRE(run_cli(args).exit_code == 0);
+  CHECK(lines_of(slurp(out)).size() == 6);
+  CHECK_FALSE(fs::exists(out.string() + ".part"));
+  const YAML::Node manifest = YAML::LoadFile(out.string() + ".json");
+  CHECK(manifest["complete"].as<bool>());
+  CHECK(manifest["cases"].as<int>() == 5);
+  CHECK(manifest["rows"].as<int>() == 5);
+  const auto again = run_cli(args);
+  CHECK(again.exit_code == 2);
+  CHECK_THAT(again.err, Contains("exists; use --force"));
+  CHECK(run_cli(args + " --force").exit_code == 0);
+}
+
+TEST_CASE("sweep killed with kill -9, then --resume: no case lost or written twice", "[cli][sweep][slow]") {
+  const std::string scene = write_file("slow.yaml", slow_scene);
+  const fs::path out = work_dir() / "killed.csv", reference = work_dir() / "reference.csv";
+  for (const fs::path& p : {out, reference}) {
+    fs::remove(p);
+    fs::remove(p.string() + ".part");
+  }
+  const std::string sweep = arith_dir() + " sweep '" + scene + "' --vary x=1mm:60mm:60 --threads 2 -q --out ";
+  REQUIRE(run_cli(sweep + "'" + reference.string() + "'").exit_code == 0);
+
+  const fs::path status = work_dir() / "killed-status";
+  const pid_t pid = start_cli(sweep + "'" + out.string() + "'", status);
+  wait_for_lines(out.string() + ".part", 8);
+  ::kill(pid, SIGKILL);
+  CHECK(wait_status(status) == "137\n");
+  REQUIRE(fs::exists(out.string() + ".part"));
+  CHECK_FALSE(fs::exists(out));
+  const std::size_t before = lines_of(slurp(out.string() + ".part")).size();
+  CHECK(before < 61);
+  // A half-written last line (the kill may land mid-write) is cut on resume.
+  std::ofstream(out.string() + ".part", std::ios::app) << "57,57";
+  const auto fresh = run_cli(sweep + "'" + out.string() + "'");
+  CHECK(fresh.exit_code == 2);
+  CHECK_THAT(fresh.err, Contains("--resume goes on with it"));
+  const auto resumed = run_cli(sweep + "'" + out.string() + "' --resume");
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(slurp(out) == slurp(reference));
+  // Resuming with other cases is refused: the rows belong to another sweep.
+  std::ofstream(out.string() + ".part") << "case\n";
+  const auto other = run_cli(arith_dir() + " sweep '" + scene + "' --vary x=1mm:61mm:61 -q --out '" + out.string() + "' --resume");
+  CHECK(other.exit_code == 2);
+  CHECK_THAT(other.err, Contains("another sweep"));
+}
+
+TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130; --resume completes it", "[cli][sweep][slow]") {
+  const std::string scene = write_file("slow.yaml", slow_scene);
+  const fs::path out = work_dir() / "interrupted.csv";
+  fs::remove(out);
+  fs::remove(out.string() + ".part");
+  const std::string sweep = arith_dir() + " sweep '" + scene + "' --vary x=1mm:60mm:60 --threads 2 -q --out '" + out.string() + "'";
+  const fs::path status = work_dir() / "interrupted-status";
+  const pid_t pid = start_cli(sweep, status);
+  wait_for_lines(out.string() + ".part", 6);
+  ::kill(pid, SIGINT);
+  CHECK(wait_status(status) == "130\n");
+  const auto rows = lines_of(slurp(out.string() + ".part"));
+  REQUIRE(rows.size() >= 6);
+  for (std::size_t r = 1; r < rows.size(); ++r) CHECK_THAT(rows[r], StartsWith(std::to_string(r - 1) + ","));
+  REQUIRE(run_cli(sweep + " --resume").exit_code == 0);
+  CHECK(lines_of(slurp(out)).size() == 61);
+}
+
+TEST_CASE("shards merged back equal the single-process sweep; gaps and overlaps are refused", "[cli][sweep]") {
+  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string base = arith_dir() + " sweep '" + scene + "' --vary len=1mm:9mm:9 --vary s.gain=1,2 -q";
+  std::string parts;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path part = work_dir() / ("part-" + std::to_string(i) + ".csv");
+    fs::remove(part);
+    REQUIRE(run_cli(base + " --shard " + std::to_string(i) + "/3 --out '" + part.string() + "'").exit_code == 0);
+    parts += " '" + part.string() + "'";
+  }
+  const auto merged = run_cli("merge" + parts);
+  REQUIRE(merged.exit_code == 0);
+  CHECK(merged.out == run_cli(base).out);
+  const std::string first_two = " '" + (work_dir() / "part-0.csv").string() + "' '" + (work_dir() / "part-1.csv").string() + "'";
+  const auto gap = run_cli("merge" + first_two);
+  CHECK(gap.exit_code == 2);
+  CHECK_THAT(gap.err, Contains("12 of the sweep's 18 cases; missing: 2, 5, 8"));
+  const auto twice = run_cli("merge" + parts + " '" + (work_dir() / "part-1.csv").string() + "'");
+  CHECK(twice.exit_code == 2);
+  CHECK_THAT(twice.err, Contains("case 1 is in both"));
+  // Slurm's array variables pick the shard.
+  const fs::path auto_part = work_dir() / "auto.csv";
+  fs::remove(auto_part);
+  ::setenv("SLURM_ARRAY_TASK_ID", "3", 1);
+  ::setenv("SLURM_ARRAY_TASK_MIN", "1", 1);
+  ::setenv("SLURM_ARRAY_TASK_COUNT", "3", 1);
+  const auto by_slurm = run_cli(base + " --shard auto --out '" + auto_part.string() + "'");
+  ::unsetenv("SLURM_ARRAY_TASK_ID");
+  ::unsetenv("SLURM_ARRAY_TASK_MIN");
+  ::unsetenv("SLURM_ARRAY_TASK_COUNT");
+  REQUIRE(by_slurm.exit_code == 0);
+  CHECK(slurp(auto_part) == slurp(work_dir() / "part-2.csv"));  // task 3 of 1..3 is shard 2/3
+}

@@ -1,0 +1,281 @@
+// Sweeps in process: cases made by grid, CSV and Latin hypercube; case values written into a built
+// graph (checked against building the graph with --set, the second method); the bounded memo
+// cache; rows in case order and bit-identical for any thread count; failed cases and stopping.
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/memo_cache.hpp>
+#include <mechgraph/units.hpp>
+#include <mechgraph/sweep/sweep_runner.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <set>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+const char* two_constants = R"(title: sweep
+params: { len: 2 mm, other: 1 mm }
+nodes:
+  a: { type: test.constant, params: { value: $len } }
+  b: { type: test.constant, params: { value: 5 mm } }
+  s: { type: test.add, inputs: { a: a.out, b: b.out }, params: { gain: 2 } }
+outputs: [ s.sum, a.out ]
+)";
+
+struct Prepared {
+  SceneSpec scene;
+  Graph graph;
+  CaseTable table;
+  std::unique_ptr<CaseBinder> binder;
+};
+
+Prepared prepare(const std::string& yaml, CaseTable table, const PluginRegistry& registry = arith_registry()) {
+  Prepared p{parse_scene(yaml, "sweep.yaml"), {}, std::move(table), nullptr};
+  p.graph = build_graph(p.scene, registry);
+  p.binder = std::make_unique<CaseBinder>(p.graph, p.scene, registry, std::vector<Override>{}, p.table.variables);
+  return p;
+}
+
+std::vector<CaseResult> sweep_all(const Prepared& p, unsigned threads, MemoCache& cache) {
+  SweepOptions options;
+  options.threads = threads;
+  for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
+  std::vector<CaseResult> rows;
+  run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) { rows.push_back(std::move(r)); });
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("--vary: FROM:TO:N includes both ends exactly, units in either end, lists of words", "[sweep]") {
+  const VarySpec v = parse_vary("rpm=3000rpm:7000:5");
+  REQUIRE(v.values.size() == 5);
+  const double rpm = 2 * M_PI / 60;
+  CHECK(*v.values.front().si == 3000 * rpm);
+  CHECK(*v.values.back().si == 7000 * rpm);
+  CHECK_THAT(*v.values[1].si, WithinRel(4000 * rpm, 1e-15));
+  CHECK(v.unit == "rpm");
+  CHECK(v.values[2].dimension == dim::angular_speed);
+  const VarySpec words = parse_vary("integrator=cvode,dopri5");
+  REQUIRE(words.values.size() == 2);
+  CHECK_FALSE(words.values[0].si);
+  CHECK(words.values[1].text == "dopri5");
+  CHECK_THROWS_WITH(parse_vary("rpm=3000rpm:7000mm:3"), Contains("FROM is angle/time but TO is length"));
+  CHECK_THROWS_WITH(parse_vary("rpm=3000rpm:7000rpm:0"), Contains("whole number of points"));
+  CHECK_THROWS_WITH(parse_vary("rpm"), Contains("expected NAME=FROM:TO:N"));
+}
+
+TEST_CASE("a grid runs every combination, the last axis fastest", "[sweep]") {
+  const CaseTable t = make_grid({parse_vary("a=1mm:3mm:3"), parse_vary("b=x,y")});
+  REQUIRE(t.cases.size() == 6);
+  CHECK(t.shown(0, 0) == "1");
+  CHECK(t.shown(1, 1) == "y");
+  CHECK(t.shown(5, 0) == "3");
+  CHECK(t.variables[0].unit == "mm");
+}
+
+TEST_CASE("Latin hypercube: one point per stratum of every variable, reproducible from the seed", "[sweep]") {
+  const std::vector<SampleSpec> specs = {parse_sample("lift=8mm:10mm"), parse_sample("rpm=3000rpm:6000rpm")};
+  const std::size_t n = 50;
+  const CaseTable t = make_latin_hypercube(specs, n, 7);
+  REQUIRE(t.cases.size() == n);
+  for (std::size_t v = 0; v < specs.size(); ++v) {
+    std::set<std::size_t> strata;
+    for (const auto& row : t.cases) {
+      const double u = (*row[v].si - specs[v].low) / (specs[v].high - specs[v].low);
+      REQUIRE(u >= 0.0);
+      REQUIRE(u < 1.0);
+      strata.insert(static_cast<std::size_t>(u * n));
+    }
+    CHECK(strata.size() == n);  // each of the n strata holds exactly one case
+  }
+  const CaseTable again = make_latin_hypercube(specs, n, 7);
+  const CaseTable other = make_latin_hypercube(specs, n, 8);
+  bool same = true, differs = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    same = same && again.cases[i][0].si == t.cases[i][0].si && again.cases[i][1].si == t.cases[i][1].si;
+    differs = differs || other.cases[i][0].si != t.cases[i][0].si;
+  }
+  CHECK(same);
+  CHECK(differs);
+  // Values written as text read back to the same doubles (a rebuilt graph sees the same case).
+  CHECK(parse_quantity(t.cases[3][1].text).value == *t.cases[3][1].si);
+  CHECK_THROWS_WITH(parse_sample("lift=10mm:8mm"), Contains("HI must be greater than LO"));
+}
+
+TEST_CASE("--cases: header units, units in cells, words, and located errors", "[sweep]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_sweep_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "cases.csv";
+  std::ofstream(file) << "# designs to try\nlift [mm],rpm,integrator\n8,5000 rpm,cvode\n\n9.5,6000rpm,\"dopri5\"\n";
+  const CaseTable t = read_cases_csv(file);
+  REQUIRE(t.cases.size() == 2);
+  CHECK_THAT(*t.cases[1][0].si, WithinRel(9.5e-3, 1e-15));
+  CHECK(t.variables[0].unit == "mm");
+  CHECK(t.variables[1].unit == "rpm");
+  CHECK(t.shown(1, 1) == "6000");
+  CHECK(t.cases[1][2].text == "dopri5");
+  std::ofstream(file) << "lift [mm],rpm\n8,5000 rpm\n9\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 1 cells, the header has 2"));
+  std::ofstream(file) << "lift [mm],rpm\n8,\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:2:3: 'rpm' has no value"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("case values set on the built graph equal a graph built with --set (second method)", "[sweep]") {
+  Prepared p = prepare(two_constants, make_grid({parse_vary("len=1mm:4mm:4"), parse_vary("s.gain=1,3")}));
+  MemoCache cache;
+  const auto rows = sweep_all(p, 1, cache);
+  REQUIRE(rows.size() == 8);
+  for (const CaseResult& r : rows) {
+    REQUIRE(r.failure == CaseFailure::none);
+    const auto& c = p.table.cases[r.index];
+    const RunResult direct = run_yaml(two_constants, arith_registry(), {parse_override("len=" + c[0].text), parse_override("s.gain=" + c[1].text)});
+    CHECK(r.outputs[0].value.as_scalar() == scalar_output(direct, "s.sum"));
+    CHECK(r.outputs[1].value.as_scalar() == scalar_output(direct, "a.out"));
+  }
+  CHECK_THAT(rows[7].outputs[0].value.as_scalar(), WithinRel(3 * (4e-3 + 5e-3), 1e-15));
+  // b never changes: evaluated once, then reused by every case.
+  CHECK(cache.hits() >= 7);
+}
+
+TEST_CASE("a case outside a parameter's range, of the wrong dimension or an unknown choice fails alone", "[sweep]") {
+  Prepared p = prepare(two_constants, make_grid({parse_vary("s.gain=2,-1,3 mm,abc")}));
+  MemoCache cache;
+  const auto rows = sweep_all(p, 2, cache);
+  REQUIRE(rows.size() == 4);
+  CHECK(rows[0].failure == CaseFailure::none);
+  CHECK(rows[1].failure == CaseFailure::scene);
+  CHECK_THAT(rows[1].error, Contains("s.gain = '-1'") && Contains("parameter 'gain' of node 's' (test.add) is out of range: it must be > 0"));
+  CHECK_THAT(rows[2].error, Contains("is dimensionless (1), the value is length"));
+  CHECK_THAT(rows[3].error, Contains("s.gain = 'abc'"));
+  CHECK(rows[3].failure == CaseFailure::scene);
+  CHECK_THAT(rows[3].outputs.size() == 0 ? std::string("none") : std::string("some"), Contains("none"));
+}
+
+TEST_CASE("an evaluation error in one case is its row's error; the sweep goes on", "[sweep]") {
+  const char* yaml = R"(title: failing
+nodes:
+  f: { type: test.fail, params: { limit: 1 mm } }
+  a: { type: test.constant, params: { value: 1 mm } }
+outputs: [ a.out, f.out ]
+)";
+  Prepared p = prepare(yaml, make_grid({parse_vary("a.value=1mm:2mm:3")}));
+  MemoCache cache;
+  const auto rows = sweep_all(p, 2, cache);
+  REQUIRE(rows.size() == 3);
+  for (const CaseResult& r : rows) {
+    CHECK(r.failure == CaseFailure::evaluation);
+    CHECK_THAT(r.error, Contains("node 'f' (test.fail), parameter 'limit'"));
+  }
+}
+
+TEST_CASE("unknown sweep variables name the valid ones", "[sweep]") {
+  const SceneSpec scene = parse_scene(two_constants, "sweep.yaml");
+  const Graph g = build_graph(scene, arith_registry());
+  auto bind = [&](const std::string& name) { CaseBinder(g, scene, arith_registry(), {}, {{name, ""}}); };
+  CHECK_THROWS_WITH(bind("lne"), Contains("unknown scene parameter 'lne'; did you mean 'len'?"));
+  CHECK_THROWS_WITH(bind("other"), Contains("'other' is not used by any node"));
+  CHECK_THROWS_WITH(bind("s.gian"), Contains("node 's' (test.add): unknown parameter 'gian'; did you mean 'gain'?"));
+  CHECK_THROWS_WITH(bind("q.gain"), Contains("unknown node 'q'"));
+}
+
+TEST_CASE("a variable inside a list is swept by building each case anew, with the same results", "[sweep]") {
+  const char* yaml = R"(title: nested
+params: { w: 2 mm }
+nodes:
+  stack: { type: stack.linear, params: { links: [ { label: a, nominal: $w, upper: 0.1 mm, lower: 0 mm, sensitivity: 1 },
+                                                  { label: b, nominal: 10 mm, upper: 0 mm, lower: -0.1 mm, sensitivity: -1 } ] } }
+outputs: [ stack.mean ]
+)";
+  Prepared p = prepare(yaml, make_grid({parse_vary("w=11mm:13mm:3")}), project_registry());
+  CHECK(p.binder->rebuilds());
+  MemoCache cache;
+  const auto rows = sweep_all(p, 2, cache);
+  REQUIRE(rows.size() == 3);
+  for (const CaseResult& r : rows) {
+    REQUIRE(r.failure == CaseFailure::none);
+    // mean = (w + 0.05 mm) - (10 mm - 0.05 mm)
+    CHECK_THAT(r.outputs[0].value.as_scalar(), WithinAbs(*p.table.cases[r.index][0].si + 0.1e-3 - 10e-3, 1e-15));
+  }
+}
+
+TEST_CASE("rows come in case order and are bit-identical for 1, 2 and 4 threads", "[sweep]") {
+  const std::string yaml = R"(title: valve
+params: { rpm: 5600 rpm }
+nodes:
+  cam:   { type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  valve: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: $rpm, rocker_ratio: 1.5, lash: 0.25 mm } }
+  ta:    { type: valvetrain.time_area, inputs: { valve: valve.motion }, params: { seat_diameter: 34 mm, seat_angle: 45 deg } }
+outputs: [ ta.time_area, valve.max_acceleration ]
+)";
+  Prepared p = prepare(yaml, make_grid({parse_vary("rpm=3000rpm:7000rpm:7"), parse_vary("cam.max_lift=7mm:9mm:3")}), project_registry());
+  std::vector<std::vector<CaseResult>> runs;
+  for (unsigned threads : {1u, 2u, 4u}) {
+    MemoCache cache;
+    runs.push_back(sweep_all(p, threads, cache));
+  }
+  for (const auto& rows : runs) {
+    REQUIRE(rows.size() == 21);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      REQUIRE(rows[i].index == i);
+      REQUIRE(rows[i].failure == CaseFailure::none);
+      for (std::size_t j = 0; j < 2; ++j) CHECK(rows[i].outputs[j].value.as_scalar() == runs[0][i].outputs[j].value.as_scalar());
+    }
+  }
+  // Time-area scales as 1/rpm for one cam: a check that each case really got its speed.
+  CHECK_THAT(runs[0][0].outputs[0].value.as_scalar() * 3000, WithinRel(runs[0][18].outputs[0].value.as_scalar() * 7000, 1e-12));
+}
+
+TEST_CASE("stopping: started cases finish and every finished row is handed over, in order", "[sweep]") {
+  Prepared p = prepare(two_constants, make_grid({parse_vary("len=1mm:100mm:100")}));
+  MemoCache cache;
+  std::atomic<bool> stop{false};
+  SweepOptions options;
+  options.threads = 2;
+  options.stop = &stop;
+  for (std::size_t i = 0; i < 100; ++i) options.cases.push_back(i);
+  std::vector<std::size_t> seen;
+  const SweepSummary s = run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) {
+    seen.push_back(r.index);
+    if (seen.size() == 10) stop = true;
+  });
+  CHECK(s.stopped);
+  CHECK(s.run == seen.size());
+  REQUIRE(seen.size() >= 10);
+  CHECK(seen.size() < 100);
+  for (std::size_t i = 0; i < seen.size(); ++i) CHECK(seen[i] == i);
+}
+
+TEST_CASE("memo cache: bounded, least recently used dropped first", "[sweep][memo]") {
+  MemoCache cache(3);
+  auto entry = [] { return std::make_shared<const OutputSet>(); };
+  cache.store(1, entry());
+  cache.store(2, entry());
+  cache.store(3, entry());
+  CHECK(cache.find(1));  // 1 is now the most recent; 2 the least
+  cache.store(4, entry());
+  CHECK(cache.size() == 3);
+  CHECK_FALSE(cache.find(2));
+  CHECK(cache.find(3));
+  CHECK(cache.find(4));
+  CHECK(cache.evictions() == 1);
+  CHECK(cache.hits() == 3);
+  CHECK(cache.misses() == 1);
+  cache.erase(3);
+  CHECK(cache.size() == 2);
+  MemoCache one(0);  // a capacity of zero still holds one entry
+  one.store(1, entry());
+  CHECK(one.size() == 1);
+}
