@@ -100,25 +100,40 @@ Measured measure(Graph g, std::size_t node, MemoCache& upstream, int repeats) {
   return m;
 }
 
-// Largest relative difference over all numeric outputs (series element by element).
-void compare(const Measured& trial, const Measured& reference, KnobTrial& out) {
+// Largest relative difference over all numeric outputs (series element by element). A value
+// near zero is measured against a thousandth of the scale of its kind: the largest reference value among the
+// node's scalars of the same dimension (a margin that is zero by construction against the forces
+// beside it), or the largest element of its own series. Outputs that count the node's work
+// (named like one of its work counters) are not results and are not compared.
+void compare(const Measured& trial, const Measured& reference, const std::vector<std::string>& work_counters, KnobTrial& out) {
+  auto scale_of = [&](const Dimension& d) {
+    double scale = 0.0;
+    for (const OutputValue& o : reference.outputs)
+      if (o.value.kind() == ValueKind::scalar && o.dimension == d) scale = std::max(scale, std::abs(o.value.as_scalar()));
+    return scale;
+  };
   for (std::size_t i = 0; i < trial.outputs.size() && i < reference.outputs.size(); ++i) {
+    const std::string& label = trial.outputs[i].label;
+    const std::string port = label.substr(label.find('.') + 1);
+    if (std::find(work_counters.begin(), work_counters.end(), port) != work_counters.end()) continue;
     const Value& a = trial.outputs[i].value;
     const Value& b = reference.outputs[i].value;
-    auto consider = [&](double x, double ref) {
-      const double e = std::abs(x - ref) / std::max(std::abs(ref), 1e-300);
+    auto consider = [&](double x, double ref, double floor) {
+      const double e = std::abs(x - ref) / std::max({std::abs(ref), floor, 1e-300});
       if (e > out.max_relative_error) {
         out.max_relative_error = e;
-        out.worst_output = trial.outputs[i].label;
+        out.worst_output = label;
       }
     };
     if (a.kind() == ValueKind::scalar) {
-      consider(a.as_scalar(), b.as_scalar());
+      consider(a.as_scalar(), b.as_scalar(), 1e-3 * scale_of(trial.outputs[i].dimension));
     } else if (a.kind() == ValueKind::series) {
       const auto& va = a.as_series().values;
       const auto& vb = b.as_series().values;
       if (va.size() != vb.size()) continue;  // a knob that sets the number of points: not comparable
-      for (std::size_t j = 0; j < va.size(); ++j) consider(va[j], vb[j]);
+      double scale = 0.0;
+      for (double v : vb) scale = std::max(scale, std::abs(v));
+      for (std::size_t j = 0; j < va.size(); ++j) consider(va[j], vb[j], scale);
     } else if (a.kind() == ValueKind::table) {
       const Table& ta = a.as_table();
       const Table& tb = b.as_table();
@@ -207,7 +222,7 @@ std::vector<KnobTrial> bench_knobs(const Graph& graph, const KnobBenchOptions& o
         if (m.failure.empty()) {
           t.seconds = m.run.seconds;
           t.work = m.run.work;
-          compare(m, reference, t);
+          compare(m, reference, n.info().work_counters, t);
         }
         trials.push_back(std::move(t));
       }

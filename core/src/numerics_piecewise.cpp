@@ -4,6 +4,7 @@
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -57,6 +58,60 @@ Extremum maximize(const Function1D& f, std::span<const double> knots, int n, lon
 }
 
 }  // namespace
+
+void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::span<const double> knots, int n,
+                                 long& evaluations, Extremum* maxima) {
+  check_knots(knots, n);
+  struct Candidate {
+    std::size_t piece;
+    int index;        // best sample in the piece
+    double value;     // its value
+    double drop;      // how far the neighbouring samples fall below it (0 at a piece's end)
+  };
+  std::vector<std::vector<Candidate>> candidates(count);
+  std::vector<double> values(count * static_cast<std::size_t>(n));
+  std::vector<double> overall(count, -std::numeric_limits<double>::infinity());
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a = knots[p], b = knots[p + 1];
+    if (!(b > a)) continue;
+    for (int i = 0; i < n; ++i) sample(sample_point(a, b, i, n), &values[static_cast<std::size_t>(i) * count]);
+    evaluations += n;
+    for (std::size_t j = 0; j < count; ++j) {
+      int best = 0;
+      for (int i = 1; i < n; ++i)
+        if (values[static_cast<std::size_t>(i) * count + j] > values[static_cast<std::size_t>(best) * count + j]) best = i;
+      const double v = values[static_cast<std::size_t>(best) * count + j];
+      double drop = 0.0;
+      for (int i : {best - 1, best + 1})
+        if (i >= 0 && i < n) drop = std::max(drop, v - values[static_cast<std::size_t>(i) * count + j]);
+      candidates[j].push_back({p, best, v, drop});
+      overall[j] = std::max(overall[j], v);
+    }
+  }
+  std::vector<double> one(count);
+  for (std::size_t j = 0; j < count; ++j) {
+    Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
+    for (const Candidate& c : candidates[j]) {
+      if (c.value > best.value) best = {sample_point(knots[c.piece], knots[c.piece + 1], c.index, n), c.value};
+      // Between samples a smooth function rises at most about its drop to a neighbour above the
+      // best sample; twice that is the margin.
+      if (c.value + 2.0 * c.drop < overall[j] && c.value < overall[j]) continue;
+      const double a = knots[c.piece], b = knots[c.piece + 1];
+      const double lo = sample_point(a, b, std::max(c.index - 1, 0), n);
+      const double hi = sample_point(a, b, std::min(c.index + 1, n - 1), n);
+      std::uintmax_t iterations = 100;
+      auto r = boost::math::tools::brent_find_minima(
+          [&](double x) {
+            sample(x, one.data());
+            return -one[j];
+          },
+          lo, hi, std::numeric_limits<double>::digits / 2, iterations);
+      evaluations += static_cast<long>(iterations);
+      if (-r.second > best.value) best = {r.first, -r.second};
+    }
+    maxima[j] = best;
+  }
+}
 
 Extremum maximize_piecewise(const Function1D& f, std::span<const double> knots, int samples, long& evaluations) {
   return maximize(f, knots, samples, evaluations);

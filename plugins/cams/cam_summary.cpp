@@ -36,8 +36,9 @@ double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluat
   return 0.0;
 }
 
-double contour_curvature_radius(const CamLaw& law, double phi) {
-  const LiftDerivatives d = law.at(phi);
+double contour_curvature_radius(const CamLaw& law, double phi) { return contour_curvature_radius(law, phi, law.at(phi)); }
+
+double contour_curvature_radius(const CamLaw& law, double, const LiftDerivatives& d) {
   const double rr = law.roller_radius();
   if (rr <= 0.0) return law.base_radius() + d.lift + d.acceleration;
   const double R = law.base_radius() + rr + d.lift;
@@ -50,16 +51,24 @@ CamSummary summarize(const CamLaw& law, int samples) {
   CamSummary s;
   const std::vector<double> knots = knots_of(law);
   const std::span<const double> k(knots);
-  auto velocity = [&](double x) { return std::abs(law.at(x).velocity); };
-  auto acceleration = [&](double x) { return law.at(x).acceleration; };
-  s.max_velocity = numerics::maximize_piecewise(velocity, k, samples, s.evaluations).value;
-  s.max_acceleration = numerics::maximize_piecewise(acceleration, k, samples, s.evaluations).value;
-  s.min_acceleration = numerics::minimize_piecewise(acceleration, k, samples, s.evaluations).value;
+  // |velocity|, both acceleration extremes and the contour's curvature from one sampling pass.
+  numerics::Extremum peaks[4];
+  numerics::maximize_piecewise_together(
+      [&](double x, double* v) {
+        const LiftDerivatives d = law.at(x);
+        v[0] = std::abs(d.velocity);
+        v[1] = d.acceleration;
+        v[2] = -d.acceleration;
+        v[3] = -contour_curvature_radius(law, x, d);
+      },
+      4, k, samples, s.evaluations, peaks);
+  s.max_velocity = peaks[0].value;
+  s.max_acceleration = peaks[1].value;
+  s.min_acceleration = -peaks[2].value;
   s.accel_angle = positive_acceleration_phase(law, samples, s.evaluations);
   // The contour's curvature is checked around the whole cam: on the base circle it is r0 (flat)
   // or r0 (roller contour) and inside the event it varies.
-  auto rho = [&](double x) { return contour_curvature_radius(law, x); };
-  s.min_curvature_radius = numerics::minimize_piecewise(rho, k, samples, s.evaluations).value;
+  s.min_curvature_radius = -peaks[3].value;
   s.min_curvature_radius = std::min(s.min_curvature_radius, law.base_radius());
   return s;
 }

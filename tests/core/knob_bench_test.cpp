@@ -52,13 +52,23 @@ TEST_CASE("bench: knobs that do not matter show no error; every needed node with
   KnobBenchOptions options;
   options.repeats = 1;
   options.steps = 1;
-  const auto trials = bench_knobs(study({}), options);
+  const Graph graph = study({});
+  const auto trials = bench_knobs(graph, options);
   std::set<std::string> nodes;
   for (const KnobTrial& t : trials) {
     nodes.insert(t.node);
-    if (t.knob == "tolerance") CHECK(t.max_relative_error < 1e-12);
+    // The exact time-area integrates piece by piece: its tolerance barely moves the result.
+    if (t.knob == "tolerance" && t.type == "valvetrain.time_area") CHECK(t.max_relative_error < 1e-12);
   }
-  CHECK(nodes.size() == 9);
+  std::size_t with_knobs = 0;
+  for (std::size_t i : graph.order)
+    for (const ParamSpec& p : graph.nodes[i].info().params)
+      if (p.knob && graph.nodes[i].params.has(p.name)) {
+        ++with_knobs;
+        break;
+      }
+  CHECK(with_knobs == 21);
+  CHECK(nodes.size() == with_knobs);
 }
 
 TEST_CASE("bench: unknown nodes and nodes without knobs are errors", "[bench]") {

@@ -77,14 +77,16 @@ TEST_CASE("hard case: the valve open for a sliver still reports its (negative) a
 
 TEST_CASE("hard case: stacks of huge sizes keep finite RSS shares; compliance overflow is an error", "[hard][backlash]") {
   const RunResult r = run(R"(nodes:
-  s: { type: stack.linear, params: { links: [ { nominal: 1e300 mm, upper: 1e300 mm, lower: 0 mm },
-                                              { nominal: 1 mm, upper: 1 mm, lower: 0 mm } ] } }
+  s: { type: stack.linear, params: { links: [ { nominal: 1000 m, upper: 100 m, lower: 0 mm },
+                                              { nominal: 1 mm, upper: 1 um, lower: 0 mm } ] } }
 outputs: [s.rss_sigma, s.contribution_rss]
 )");
+  // The largest link the ranges allow beside a micrometre one: shares 1 - 1e-16 and 1e-16.
   const auto& shares = output(r, "s.contribution_rss").as_series().values;
   REQUIRE(shares.size() == 2);
   CHECK(shares[0] == Approx(1.0).epsilon(1e-12).margin(0));
-  CHECK(output(r, "s.rss_sigma").as_scalar() == Approx(1e297 / 6).epsilon(1e-12).margin(0));
+  CHECK(shares[1] == Approx(1e-16).epsilon(1e-9).margin(0));
+  CHECK(output(r, "s.rss_sigma").as_scalar() == Approx(100.0 / 6).epsilon(1e-12).margin(0));
   CHECK_THROWS_WITH(run(R"(nodes:
   f: { type: fit.iso286, params: { size: 20 mm, hole: H11, shaft: h11 } }
   h: { type: joint.pin, inputs: { fits: [f.fit] } }

@@ -24,6 +24,18 @@ Extremum maximize_piecewise(const Function1D& f, std::span<const double> knots, 
 Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, int samples_per_piece,
                             long& evaluations);
 
+/// Several functions of one sample: `sample(x, values)` writes `count` values at x (the lift,
+/// velocity and acceleration a law gives in one call, say).
+using Sampler = std::function<void(double x, double* values)>;
+
+/// The global maximum of each of the `count` functions: every piece sampled once for all of them
+/// (`samples_per_piece` points, ends one-sided), then each function refined by Brent in the
+/// bracket of its best sample, in every piece whose samples come close enough to the best that it
+/// may hold the maximum (its best sample plus twice its drop to the neighbouring samples reaches
+/// the overall best sample). To minimise, negate the value. `maxima` receives `count` results.
+void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::span<const double> knots,
+                                 int samples_per_piece, long& evaluations, Extremum* maxima);
+
 /// First x where f changes sign going from knots.front() to knots.back() (a bracket found by
 /// sampling, then TOMS 748 to machine precision). A knot where f jumps across zero counts as a
 /// root; a function that only touches zero (or stays at zero) does not change sign there.
