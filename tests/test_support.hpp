@@ -30,6 +30,7 @@ class RecordingContext final : public EvalContext {
   }
   void log(LogLevel, std::string_view message) override { logs.emplace_back(message); }
   void report_work(std::string_view counter, double amount) override { work[std::string(counter)] += amount; }
+  bool wanted(std::string_view) const override { return true; }  // a direct call reads every output
   std::map<std::string, double> work;
   std::vector<std::string> logs;
 

@@ -65,6 +65,9 @@ class NodeContext final : public EvalContext {
     }
   }
   void report_work(std::string_view counter, double amount) override { run_.work[std::string(counter)] += amount; }
+  bool wanted(std::string_view output) const override {
+    return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
+  }
 
  private:
   const GraphNode& node_;
@@ -149,6 +152,8 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph) {
       if (const ParamSpec* spec = node.info().find_param(name); spec && spec->is_path) hash_file(h, value.text);
     }
     for (const std::string& e : node.effects_read) h.add(e);
+    // What is read of it: a node may leave out outputs nobody reads, so its results depend on it.
+    for (const std::string& w : node.wanted) h.add(w);
     for (const GraphNode::Input& in : node.inputs) {
       h.add(in.port);
       for (const GraphNode::Source& s : in.sources) h.add(hashes[s.node]).add(s.port);

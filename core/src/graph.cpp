@@ -43,6 +43,21 @@ std::string param_value_problem(double si, const ParamSpec& spec) {
   return {};
 }
 
+void mark_wanted_outputs(Graph& graph) {
+  for (GraphNode& n : graph.nodes) n.wanted.clear();
+  auto want = [&](std::size_t node, const std::string& port) {
+    auto& w = graph.nodes[node].wanted;
+    if (std::find(w.begin(), w.end(), port) == w.end()) w.push_back(port);
+  };
+  for (const GraphNode& n : graph.nodes) {
+    if (!n.needed) continue;
+    for (const GraphNode::Input& in : n.inputs)
+      for (const GraphNode::Source& src : in.sources) want(src.node, src.port);
+  }
+  for (const RequestedOutput& o : graph.outputs) want(o.node, o.port);
+  for (GraphNode& n : graph.nodes) std::sort(n.wanted.begin(), n.wanted.end());
+}
+
 std::optional<std::size_t> Graph::find(std::string_view name) const {
   if (auto it = index.find(name); it != index.end()) return it->second;
   return std::nullopt;
@@ -124,6 +139,7 @@ class GraphBuilder {
     if (graph_.outputs.empty())
       fail({scene_.file, 1, 1}, "the scene requests no outputs: add 'outputs: [node.port, ...]' (or a report)");
     cull_and_order();
+    mark_wanted_outputs(graph_);
     return std::move(graph_);
   }
 

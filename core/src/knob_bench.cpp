@@ -44,6 +44,7 @@ Graph focus_on(const Graph& graph, std::size_t node) {
   }
   g.order = std::move(order);
   for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
+  mark_wanted_outputs(g);
   return g;
 }
 

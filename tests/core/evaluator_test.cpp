@@ -127,3 +127,24 @@ TEST_CASE("a node's error points at the parameter's value in the scene, else at 
   CHECK_THROWS_WITH(evaluate(graph_from("nodes:\n  f: { type: test.fail }\noutputs: [f.out]\n"), cache),
                     Catch::Matchers::StartsWith("scene.yaml:2:3: node 'f' (test.fail), parameter 'limit'"));
 }
+
+TEST_CASE("a node learns which of its outputs are read, and may skip the others", "[evaluator]") {
+  // valvetrain.valve_motion draws its lift curve (curve_points evaluations) only when it is read.
+  const std::string nodes = R"(nodes:
+  cam: { type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  v:   { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 5600 rpm, curve_points: 1001 } }
+)";
+  const Graph scalars = graph_from(nodes + "outputs: [v.max_lift]\n", project_registry());
+  const Graph curve = graph_from(nodes + "outputs: [v.max_lift, v.lift_curve]\n", project_registry());
+  CHECK(scalars.nodes[*scalars.find("v")].wanted == std::vector<std::string>{"max_lift"});
+  CHECK(scalars.nodes[*scalars.find("cam")].wanted == std::vector<std::string>{"law"});
+  MemoCache cache;  // shared: the two graphs must not take each other's results
+  const RunResult a = evaluate(scalars, cache), b = evaluate(curve, cache);
+  const double work_a = a.runs.back().work.at("evaluations"), work_b = b.runs.back().work.at("evaluations");
+  CHECK_FALSE(b.runs.back().reused);
+  CHECK(work_b - work_a == 1001);
+  CHECK(output(b, "v.lift_curve").as_series().values.size() == 1001);
+  CHECK(scalar_output(a, "v.max_lift") == scalar_output(b, "v.max_lift"));
+  CHECK(node_hashes(scalars)[*scalars.find("v")] != node_hashes(curve)[*curve.find("v")]);
+  CHECK(node_hashes(scalars)[*scalars.find("cam")] == node_hashes(curve)[*curve.find("cam")]);
+}

@@ -38,6 +38,7 @@ struct GraphNode {
   std::vector<Input> inputs;
   std::vector<std::size_t> upstream;       // distinct producer nodes
   std::vector<std::string> effects_read;   // scene effects this node implements
+  std::vector<std::string> wanted;         // its outputs read downstream (mark_wanted_outputs)
   bool needed = false;
   const NodeInfo& info() const { return type->type->info(); }
 };
@@ -86,6 +87,10 @@ struct Graph {
 
   std::optional<std::size_t> find(std::string_view name) const;
 };
+
+/// Fills each node's `wanted` from the connections of needed nodes and from `outputs`; build_graph
+/// calls it, and so must code that changes which outputs a built graph requests.
+void mark_wanted_outputs(Graph& graph);
 
 /// Why `si` cannot be the value of parameter `spec` (out of its range, not a whole number), in
 /// words that follow "parameter = 'value' "; empty when it can. Dimension is the caller's check.

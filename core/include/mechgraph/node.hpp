@@ -164,6 +164,10 @@ class MECHGRAPH_INTERFACE EvalContext {
   virtual void log(LogLevel level, std::string_view message) = 0;
   /// Adds `amount` to the named work counter (samples, steps, iterations, evaluations).
   virtual void report_work(std::string_view counter, double amount) = 0;
+  /// Whether anything downstream (another node's input, a requested output, a report cell) reads
+  /// this output. A node may skip an output nobody reads when it costs real work (a curve of a
+  /// few hundred points, a table); cheap outputs are simply always set.
+  virtual bool wanted(std::string_view output) const = 0;
 };
 
 /// A node type. Implementations are `final`, stateless and const.
