@@ -18,9 +18,10 @@ double one_minus_cos(double x) {
   return 2.0 * s * s;
 }
 
-// x - sin x, by its series below 1 (where the subtraction would lose digits), directly above.
-double x_minus_sin(double x) {
-  if (std::abs(x) >= 1.0) return x - std::sin(x);
+// x - sin x, by its series below 1 (where the subtraction would lose digits), directly above
+// (sin x given when the caller has it).
+double x_minus_sin(double x, double sin_x) {
+  if (std::abs(x) >= 1.0) return x - sin_x;
   const double x2 = x * x;
   double term = x * x2 / 6.0;  // x^3/3!
   double sum = term;
@@ -39,7 +40,18 @@ double x_minus_sin(double x) {
 double QuarterSineRise::value(double tau) const { return std::sin(0.5 * pi * tau); }
 double QuarterSineRise::slope(double tau) const { return 0.5 * pi * std::cos(0.5 * pi * tau); }
 double QuarterSineRise::integral(double tau) const { return two_over_pi * one_minus_cos(0.5 * pi * tau); }
-double QuarterSineRise::integral2(double tau) const { return two_over_pi * two_over_pi * x_minus_sin(0.5 * pi * tau); }
+double QuarterSineRise::integral2(double tau) const {
+  const double theta = 0.5 * pi * tau;
+  return two_over_pi * two_over_pi * x_minus_sin(theta, std::abs(theta) >= 1.0 ? std::sin(theta) : 0.0);
+}
+// One sine and cosine for all four: on theta in [0, pi/2], 1 - cos = sin^2 / (1 + cos) has no
+// cancellation (1 + cos >= 1).
+ShapeValues QuarterSineRise::all(double tau) const {
+  const double theta = 0.5 * pi * tau;
+  double s, c;
+  ::sincos(theta, &s, &c);
+  return {s, 0.5 * pi * c, two_over_pi * s * s / (1.0 + c), two_over_pi * two_over_pi * x_minus_sin(theta, s)};
+}
 
 // Quarter cosine: a = cos theta, I1 = (2/pi) sin theta, I2 = (2/pi)^2 (1 - cos theta).
 double QuarterCosineFall::value(double tau) const { return std::cos(0.5 * pi * tau); }
@@ -47,6 +59,11 @@ double QuarterCosineFall::slope(double tau) const { return -0.5 * pi * std::sin(
 double QuarterCosineFall::integral(double tau) const { return two_over_pi * std::sin(0.5 * pi * tau); }
 double QuarterCosineFall::integral2(double tau) const {
   return two_over_pi * two_over_pi * one_minus_cos(0.5 * pi * tau);
+}
+ShapeValues QuarterCosineFall::all(double tau) const {
+  double s, c;
+  ::sincos(0.5 * pi * tau, &s, &c);
+  return {c, -0.5 * pi * s, two_over_pi * s, two_over_pi * two_over_pi * s * s / (1.0 + c)};
 }
 
 // Parabola a = tau (2 - tau): I1 = tau^2 (1 - tau/3), I2 = tau^3 (4 - tau) / 12.
@@ -147,10 +164,11 @@ LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
   const double y = x - p.start;
   const double tau = std::clamp(y / p.length, 0.0, 1.0);
   const double A = p.amplitude, L = p.length;
-  const double H = p.lift0 + p.velocity0 * y + A * L * L * p.shape->integral2(tau);
-  const double H1 = p.velocity0 + A * L * p.shape->integral(tau);
-  const double H2 = A * p.shape->value(tau);
-  const double H3 = A * p.shape->slope(tau) / L;
+  const ShapeValues v = p.shape->all(tau);
+  const double H = p.lift0 + p.velocity0 * y + A * L * L * v.integral2;
+  const double H1 = p.velocity0 + A * L * v.integral;
+  const double H2 = A * v.value;
+  const double H3 = A * v.slope / L;
   return {H, sign * H1, H2, sign * H3};
 }
 

@@ -20,6 +20,10 @@
 
 namespace mechgraph::cams {
 
+struct ShapeValues {
+  double value, slope, integral, integral2;
+};
+
 /// One piece of an acceleration diagram on tau in [0, 1], with exact derivative and integrals.
 class AccelShape {
  public:
@@ -28,11 +32,14 @@ class AccelShape {
   virtual double slope(double tau) const = 0;      // da/dtau
   virtual double integral(double tau) const = 0;   // I1(tau) = int_0^tau a
   virtual double integral2(double tau) const = 0;  // I2(tau) = int_0^tau I1
+  /// All four at once (the trigonometric shapes share one sine and cosine).
+  virtual ShapeValues all(double tau) const { return {value(tau), slope(tau), integral(tau), integral2(tau)}; }
 };
 
 /// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
 class QuarterSineRise final : public AccelShape {
  public:
+  ShapeValues all(double tau) const override;
   double value(double tau) const override;
   double slope(double tau) const override;
   double integral(double tau) const override;
@@ -42,6 +49,7 @@ class QuarterSineRise final : public AccelShape {
 /// a = cos(pi tau / 2): a quarter cosine falling from 1 to 0 (zero jerk at its start).
 class QuarterCosineFall final : public AccelShape {
  public:
+  ShapeValues all(double tau) const override;
   double value(double tau) const override;
   double slope(double tau) const override;
   double integral(double tau) const override;

@@ -24,12 +24,6 @@ std::string mm(double m) {
   return s.str();
 }
 
-// 1 - cos x without cancellation near x = 0.
-double one_minus_cos(double x) {
-  const double s = std::sin(0.5 * x);
-  return 2.0 * s * s;
-}
-
 // The roller centre on an offset arc of radius R whose centre is c from the cam centre, at angle
 // t: s = +-c cos t + g, g = sqrt(q), q = R^2 - c^2 sin^2 t. Returns R - g = c^2 sin^2 t / (R + g)
 // (no cancellation) and the first three derivatives of g over t, from those of q:
@@ -181,10 +175,12 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
   double H = 0.0, H1 = 0.0, H2 = 0.0, H3 = 0.0;  // derivatives over psi
   if (psi <= switch_angle_) {
     const double t = psi;
-    const double st = std::sin(t), ct = std::cos(t);
+    double st, ct;
+    ::sincos(t, &st, &ct);
+    const double omc = ct >= 0.0 ? st * st / (1.0 + ct) : 1.0 - ct;  // 1 - cos t without cancellation
     if (rr <= 0.0) {
       // Flat tappet on the nose arc: h = a cos t - (r0 - r2) = h_max - a (1 - cos t).
-      H = g_.max_lift - a * one_minus_cos(t);
+      H = g_.max_lift - a * omc;
       H1 = -a * st;
       H2 = -a * ct;
       H3 = a * st;
@@ -193,7 +189,7 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
       // s = a cos t + sqrt(R2^2 - a^2 sin^2 t); h = s - (r0 + rr), and a + R2 = r0 + rr + h_max, so
       // h = h_max - a (1 - cos t) - a^2 sin^2 t / (R2 + sqrt(...)).
       const ArcRoot r = arc_root(a, g_.nose_radius + rr, t);
-      H = g_.max_lift - a * one_minus_cos(t) - r.excess;
+      H = g_.max_lift - a * omc - r.excess;
       H1 = -a * st + r.d1;
       H2 = -a * ct + r.d2;
       H3 = a * st + r.d3;
@@ -201,11 +197,13 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
   } else {
     // Flank, x = phi_p - psi from the start of lift: d/dpsi = -d/dx.
     const double x = g_.half_action - psi;
-    const double sx = std::sin(x), cx = std::cos(x);
+    double sx, cx;
+    ::sincos(x, &sx, &cx);
+    const double omc = cx >= 0.0 ? sx * sx / (1.0 + cx) : 1.0 - cx;  // 1 - cos x without cancellation
     double F = 0.0, F1 = 0.0, F2 = 0.0, F3 = 0.0;  // derivatives over x
     if (rr <= 0.0) {
       // Flat tappet on the flank arc: h = e (1 - cos x).
-      F = e * one_minus_cos(x);
+      F = e * omc;
       F1 = e * sx;
       F2 = e * cx;
       F3 = -e * sx;
@@ -214,7 +212,7 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
       // opposite the follower: theta = pi + x): s = -e cos x + sqrt(R1^2 - e^2 sin^2 x), and
       // R1 - e = r0 + rr, so h = e (1 - cos x) - e^2 sin^2 x / (R1 + sqrt(...)).
       const ArcRoot r = arc_root(e, g_.flank_radius + rr, x);
-      F = e * one_minus_cos(x) - r.excess;
+      F = e * omc - r.excess;
       F1 = e * sx + r.d1;
       F2 = e * cx + r.d2;
       F3 = -e * sx + r.d3;
