@@ -1,6 +1,7 @@
 // How fast the framework evaluates the valve-train study, cold and through the memo cache, and
 // what a sweep over engine speed costs when only the speed-dependent nodes re-run.
 //   build/bench/mechgraph_bench --benchmark_min_time=0.2
+#include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/plugin_registry.hpp>
@@ -128,3 +129,31 @@ void BM_BuildLargeGraph(benchmark::State& state) {
 BENCHMARK(BM_BuildLargeGraph)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond)->Complexity();
 
 BENCHMARK_MAIN();
+
+namespace {
+using namespace mechgraph;
+
+// One law evaluation (lift and three derivatives) of each example cam, at 1000 angles across the
+// event: the unit cost everything in stages 1-3 is made of.
+void BM_LawEvaluation(benchmark::State& state) {
+  static const char* cams[] = {"arc", "kurz", "poly"};
+  const std::string cam = cams[state.range(0)];
+  SceneSpec scene = study();
+  scene.report.clear();
+  scene.outputs = {parse_port_ref(cam + ".max_lift", {})};
+  const Graph g = build_graph(scene, registry());
+  MemoCache cache;
+  evaluate(g, cache);
+  const auto outputs = cache.find(node_hashes(g)[*g.find(cam)]);
+  const auto law = std::dynamic_pointer_cast<const CamLaw>(outputs->all().at("law").as_handle());
+  std::vector<double> angles(1000);
+  for (std::size_t i = 0; i < angles.size(); ++i)
+    angles[i] = law->event_begin() + (law->event_end() - law->event_begin()) * (static_cast<double>(i) + 0.5) / angles.size();
+  for (auto _ : state)
+    for (double phi : angles) benchmark::DoNotOptimize(law->at(phi));
+  state.SetItemsProcessed(state.iterations() * static_cast<long>(angles.size()));
+  state.SetLabel(cam);
+}
+BENCHMARK(BM_LawEvaluation)->DenseRange(0, 2);
+
+}  // namespace
