@@ -69,12 +69,13 @@ void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::
     double drop;      // how far the neighbouring samples fall below it (0 at a piece's end)
   };
   std::vector<std::vector<Candidate>> candidates(count);
-  std::vector<double> values(count * static_cast<std::size_t>(n));
+  std::vector<double> values(count * static_cast<std::size_t>(n)), slopes(count * static_cast<std::size_t>(n));
   std::vector<double> overall(count, -std::numeric_limits<double>::infinity());
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a = knots[p], b = knots[p + 1];
     if (!(b > a)) continue;
-    for (int i = 0; i < n; ++i) sample(sample_point(a, b, i, n), &values[static_cast<std::size_t>(i) * count]);
+    for (int i = 0; i < n; ++i)
+      sample(sample_point(a, b, i, n), &values[static_cast<std::size_t>(i) * count], &slopes[static_cast<std::size_t>(i) * count]);
     evaluations += n;
     for (std::size_t j = 0; j < count; ++j) {
       int best = 0;
@@ -88,25 +89,46 @@ void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::
       overall[j] = std::max(overall[j], v);
     }
   }
-  std::vector<double> one(count);
+  std::vector<double> one(count), one_slope(count);
   for (std::size_t j = 0; j < count; ++j) {
     Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
     for (const Candidate& c : candidates[j]) {
-      if (c.value > best.value) best = {sample_point(knots[c.piece], knots[c.piece + 1], c.index, n), c.value};
+      const double a = knots[c.piece], b = knots[c.piece + 1];
+      if (c.value > best.value) best = {sample_point(a, b, c.index, n), c.value};
       // Between samples a smooth function rises at most about its drop to a neighbour above the
       // best sample; twice that is the margin.
       if (c.value + 2.0 * c.drop < overall[j] && c.value < overall[j]) continue;
-      const double a = knots[c.piece], b = knots[c.piece + 1];
-      const double lo = sample_point(a, b, std::max(c.index - 1, 0), n);
-      const double hi = sample_point(a, b, std::min(c.index + 1, n - 1), n);
+      const int i_lo = std::max(c.index - 1, 0), i_hi = std::min(c.index + 1, n - 1);
+      const double lo = sample_point(a, b, i_lo, n), hi = sample_point(a, b, i_hi, n);
+      auto at = [&](double x) {
+        sample(x, one.data(), one_slope.data());
+        ++evaluations;
+        return one[j];
+      };
+      at(lo);
+      const double slope_lo = one_slope[j];
+      at(hi);
+      const double slope_hi = one_slope[j];
+      if (slope_lo > 0.0 && slope_hi < 0.0) {
+        // Rising into the bracket and falling out of it: the maximum is where the slope is zero.
+        std::uintmax_t iterations = 100;
+        const auto root = boost::math::tools::toms748_solve(
+            [&](double x) {
+              at(x);
+              return one_slope[j];
+            },
+            lo, hi, slope_lo, slope_hi, boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 3),
+            iterations);
+        const double x = 0.5 * (root.first + root.second);
+        const double v = at(x);
+        if (v > best.value) best = {x, v};
+        continue;
+      }
+      if (slope_lo >= 0.0 && slope_hi >= 0.0 && c.index == n - 1) continue;  // rising to the piece's end
+      if (slope_lo <= 0.0 && slope_hi <= 0.0 && c.index == 0) continue;      // falling from its start
       std::uintmax_t iterations = 100;
-      auto r = boost::math::tools::brent_find_minima(
-          [&](double x) {
-            sample(x, one.data());
-            return -one[j];
-          },
-          lo, hi, std::numeric_limits<double>::digits / 2, iterations);
-      evaluations += static_cast<long>(iterations);
+      auto r = boost::math::tools::brent_find_minima([&](double x) { return -at(x); }, lo, hi,
+                                                     std::numeric_limits<double>::digits / 2, iterations);
       if (-r.second > best.value) best = {r.first, -r.second};
     }
     maxima[j] = best;

@@ -3,6 +3,7 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace mechgraph::cams {
@@ -54,12 +55,17 @@ CamSummary summarize(const CamLaw& law, int samples) {
   // |velocity|, both acceleration extremes and the contour's curvature from one sampling pass.
   numerics::Extremum peaks[4];
   numerics::maximize_piecewise_together(
-      [&](double x, double* v) {
+      [&](double x, double* v, double* slope) {
         const LiftDerivatives d = law.at(x);
-        v[0] = std::abs(d.velocity);
+        const double sign = d.velocity < 0.0 ? -1.0 : 1.0;
+        v[0] = sign * d.velocity;
+        slope[0] = sign * d.acceleration;
         v[1] = d.acceleration;
+        slope[1] = d.jerk;
         v[2] = -d.acceleration;
+        slope[2] = -d.jerk;
         v[3] = -contour_curvature_radius(law, x, d);
+        slope[3] = std::numeric_limits<double>::quiet_NaN();  // would need the 4th derivative: Brent
       },
       4, k, samples, s.evaluations, peaks);
   s.max_velocity = peaks[0].value;

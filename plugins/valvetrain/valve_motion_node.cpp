@@ -60,12 +60,17 @@ class ValveMotionType final : public NodeType {
     // Lift, |velocity| and both acceleration extremes from one sampling pass over the open period.
     numerics::Extremum peaks[4];
     numerics::maximize_piecewise_together(
-        [&](double x, double* v) {
+        [&](double x, double* v, double* slope) {
           const LiftDerivatives d = motion->at(x);
+          const double sign = d.velocity < 0.0 ? -1.0 : 1.0;
           v[0] = d.lift;
-          v[1] = std::abs(d.velocity);
+          slope[0] = d.velocity;
+          v[1] = sign * d.velocity;
+          slope[1] = sign * d.acceleration;
           v[2] = d.acceleration;
+          slope[2] = d.jerk;
           v[3] = -d.acceleration;
+          slope[3] = -d.jerk;
         },
         4, knots, samples, evaluations, peaks);
     const numerics::Extremum lift = peaks[0], velocity = peaks[1], acc_max = peaks[2], acc_min{peaks[3].x, -peaks[3].value};

@@ -24,15 +24,18 @@ Extremum maximize_piecewise(const Function1D& f, std::span<const double> knots, 
 Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, int samples_per_piece,
                             long& evaluations);
 
-/// Several functions of one sample: `sample(x, values)` writes `count` values at x (the lift,
-/// velocity and acceleration a law gives in one call, say).
-using Sampler = std::function<void(double x, double* values)>;
+/// Several functions of one sample: `sample(x, values, slopes)` writes `count` values at x and,
+/// where it knows them, their derivatives (NaN where it does not): the lift, velocity and
+/// acceleration a law gives in one call, say, with the next derivative as slope.
+using Sampler = std::function<void(double x, double* values, double* slopes)>;
 
 /// The global maximum of each of the `count` functions: every piece sampled once for all of them
-/// (`samples_per_piece` points, ends one-sided), then each function refined by Brent in the
-/// bracket of its best sample, in every piece whose samples come close enough to the best that it
-/// may hold the maximum (its best sample plus twice its drop to the neighbouring samples reaches
-/// the overall best sample). To minimise, negate the value. `maxima` receives `count` results.
+/// (`samples_per_piece` points, ends one-sided), then each function refined in the bracket of its
+/// best sample, in every piece whose samples come close enough to the best that it may hold the
+/// maximum (its best sample plus twice its drop to the neighbouring samples reaches the overall
+/// best sample). The refinement finds the root of the slope by TOMS 748 where the slope is known
+/// and changes sign in the bracket (the maximum of a smooth function), else runs Brent's method
+/// on the values. To minimise, negate the value and the slope. `maxima` receives `count` results.
 void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::span<const double> knots,
                                  int samples_per_piece, long& evaluations, Extremum* maxima);
 
