@@ -90,6 +90,7 @@ void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::
     }
   }
   std::vector<double> one(count), one_slope(count);
+  const double x_tolerance = 0x1.0p-26 * (knots.back() - knots.front());
   for (std::size_t j = 0; j < count; ++j) {
     Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
     for (const Candidate& c : candidates[j]) {
@@ -117,8 +118,10 @@ void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::
               at(x);
               return one_slope[j];
             },
-            lo, hi, slope_lo, slope_hi, boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 3),
-            iterations);
+            // Half the digits in x are all the value needs: near a maximum it moves as dx^2. The
+            // tolerance is absolute, on the scale of the whole interval, so a maximum at x = 0
+            // (a cam's nose) converges too.
+            lo, hi, slope_lo, slope_hi, [&](double x0, double x1) { return std::abs(x1 - x0) <= x_tolerance; }, iterations);
         const double x = 0.5 * (root.first + root.second);
         const double v = at(x);
         if (v > best.value) best = {x, v};
