@@ -1,9 +1,6 @@
 #include "stacking.hpp"
 
-#include <boost/random/mersenne_twister.hpp>
-#include <boost/random/normal_distribution.hpp>
-#include <boost/random/triangle_distribution.hpp>
-#include <boost/random/uniform_real_distribution.hpp>
+#include "variates.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,28 +9,40 @@
 namespace mechgraph::backlash {
 namespace {
 
-// Draws of standardized variates: a link's value is m + h z, z from the link's distribution
-// scaled to the half-range 1 (normal: N(0, 1/3); uniform: U(-1, 1); triangular: Tri(-1, 0, 1)).
-// Drawing standardized variates keeps the distributions' parameters valid for h = 0 too.
-class VariateSource {
- public:
-  explicit VariateSource(std::uint64_t seed) : engine_(seed) {}
+// A sum s_j X_j prepared for sampling, as deviations from its mean (the digits of the variation
+// are kept). Its normal links are drawn as one: a sum of independent normals is normal, with
+// sigma = sqrt(sum (s_j h_j / 3)^2), so a term of a hole and a shaft costs one normal draw. Each
+// uniform or triangular link keeps its own draw, scaled to its half-range.
+struct CompiledSum {
+  double mean = 0.0;
+  double normal_sigma = 0.0;
+  std::vector<double> uniform, triangular;  // s_j h_j of those links
 
-  double unit(Distribution d) {
-    switch (d) {
-      case Distribution::normal: return normal_(engine_) / 3.0;
-      case Distribution::uniform: return uniform_(engine_);
-      case Distribution::triangular: return triangle_(engine_);
+  explicit CompiledSum(const std::vector<ToleranceLink>& links) {
+    double variance = 0.0, scale = 0.0;
+    for (const ToleranceLink& l : links) scale = std::max(scale, std::abs(l.sensitivity * l.half_range));
+    for (const ToleranceLink& l : links) {
+      mean += l.sensitivity * l.mean;
+      const double c = l.sensitivity * l.half_range;
+      switch (l.distribution) {
+        case Distribution::normal: {
+          const double r = scale > 0.0 ? c / (3.0 * scale) : 0.0;  // scaled: no overflow when squared
+          variance += r * r;
+          break;
+        }
+        case Distribution::uniform: uniform.push_back(c); break;
+        case Distribution::triangular: triangular.push_back(c); break;
+      }
     }
-    return 0.0;
+    normal_sigma = scale * std::sqrt(variance);
   }
-  double standard_normal() { return normal_(engine_); }
 
- private:
-  boost::random::mt19937_64 engine_;
-  boost::random::normal_distribution<double> normal_{0.0, 1.0};
-  boost::random::uniform_real_distribution<double> uniform_{-1.0, 1.0};
-  boost::random::triangle_distribution<double> triangle_{-1.0, 0.0, 1.0};
+  double deviation(Variates& v) const {
+    double d = normal_sigma > 0.0 ? normal_sigma * v.normal() : 0.0;
+    for (double c : uniform) d += c * v.uniform();
+    for (double c : triangular) d += c * v.triangular();
+    return d;
+  }
 };
 
 double link_sigma(const ToleranceLink& l) { return standard_deviation(l.distribution, l.half_range); }
@@ -98,6 +107,30 @@ double quantile_by_selection(std::vector<double>& v, double p) {
   return a + (h - static_cast<double>(lo)) * (b - a);
 }
 
+// The same quantile by selection among the samples beyond `threshold` only: one pass copies the
+// tail (the samples above it for p > 1/2, below it otherwise) and, when the tail holds both order
+// statistics the interpolation needs, nth_element runs on the tail alone. Otherwise (a tail
+// thinner than assumed) the whole vector is selected in.
+double tail_quantile(std::vector<double>& v, double p, double threshold) {
+  const double h = static_cast<double>(v.size() - 1) * std::clamp(p, 0.0, 1.0);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  const bool upper = p > 0.5;
+  std::vector<double> tail;
+  for (double x : v)
+    if (upper ? x > threshold : x < threshold) tail.push_back(x);
+  // Ranks (ascending) the tail holds: the top tail.size() for the upper tail, the bottom ones else.
+  const std::size_t first = upper ? v.size() - tail.size() : 0;
+  const std::size_t last = upper ? v.size() - 1 : tail.size() - (tail.empty() ? 0 : 1);
+  const std::size_t need_high = std::min(lo + 1, v.size() - 1);
+  if (tail.empty() || lo < first || need_high > last) return quantile_by_selection(v, p);
+  const std::size_t k = lo - first;
+  std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(k), tail.end());
+  const double a = tail[k];
+  if (lo + 1 >= v.size()) return a;
+  const double b = *std::min_element(tail.begin() + static_cast<std::ptrdiff_t>(k) + 1, tail.end());
+  return a + (h - static_cast<double>(lo)) * (b - a);
+}
+
 }  // namespace
 
 SampleSummary summarize(std::vector<double> samples) {
@@ -105,56 +138,50 @@ SampleSummary summarize(std::vector<double> samples) {
   SampleSummary s;
   s.count = samples.size();
   const double n = static_cast<double>(s.count);
-  // Two passes about a shift (the median) so that a large common value costs no digits.
-  const auto [low, high] = std::minmax_element(samples.begin(), samples.end());
-  s.min = *low;
-  s.max = *high;
-  s.q_low = quantile_by_selection(samples, probability_minus_3_sigma);
-  s.q_high = quantile_by_selection(samples, probability_plus_3_sigma);
-  std::nth_element(samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(s.count / 2), samples.end());
-  const double shift = samples[s.count / 2];
+  // Two passes about a shift (the first sample, inside the spread) so that a large common value
+  // costs no digits.
+  const double shift = samples.front();
   double sum = 0.0;
   for (double x : samples) sum += x - shift;
   const double mean_offset = sum / n;
-  double squares = 0.0;
+  double squares = 0.0, low = samples.front(), high = samples.front();
   for (double x : samples) {
     const double d = x - shift - mean_offset;
     squares += d * d;
+    low = std::min(low, x);
+    high = std::max(high, x);
   }
+  s.min = low;
+  s.max = high;
   s.mean = shift + mean_offset;
   s.sigma = std::sqrt(squares / (n - 1.0));
   s.mean_error = s.sigma / std::sqrt(n);
   s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
+  s.q_low = tail_quantile(samples, probability_minus_3_sigma, s.mean - 2.0 * s.sigma);
+  s.q_high = tail_quantile(samples, probability_plus_3_sigma, s.mean + 2.0 * s.sigma);
   return s;
 }
 
 std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
-  VariateSource source(seed);
-  double mean = 0.0;
-  for (const ToleranceLink& l : links) mean += l.sensitivity * l.mean;
+  Variates variates(seed);
+  const CompiledSum sum(links);
   std::vector<double> out(count);
-  for (double& y : out) {
-    // Sum the deviations from the means first: the digits of the variation are kept.
-    double deviation = 0.0;
-    for (const ToleranceLink& l : links) deviation += l.sensitivity * l.half_range * source.unit(l.distribution);
-    y = mean + deviation;
-  }
+  for (double& y : out) y = sum.mean + sum.deviation(variates);
   return out;
 }
 
 std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed) {
-  VariateSource source(seed);
-  std::vector<double> term_means;
-  for (const WeightedTerm& t : stack.terms) term_means.push_back(t.term.mean());
+  Variates variates(seed);
+  std::vector<CompiledSum> terms;
+  std::vector<double> weights;
+  for (const WeightedTerm& t : stack.terms) {
+    terms.emplace_back(t.term.links);
+    weights.push_back(t.weight);
+  }
   std::vector<double> out(count);
   for (double& y : out) {
-    double play = std::max(0.0, stack.own_mean + stack.own_sigma * source.standard_normal());
-    for (std::size_t k = 0; k < stack.terms.size(); ++k) {
-      double deviation = 0.0;
-      for (const ToleranceLink& l : stack.terms[k].term.links)
-        deviation += l.sensitivity * l.half_range * source.unit(l.distribution);
-      play += stack.terms[k].weight * std::max(0.0, term_means[k] + deviation);
-    }
+    double play = std::max(0.0, stack.own_mean + (stack.own_sigma > 0.0 ? stack.own_sigma * variates.normal() : 0.0));
+    for (std::size_t k = 0; k < terms.size(); ++k) play += weights[k] * std::max(0.0, terms[k].mean + terms[k].deviation(variates));
     y = play;
   }
   return out;

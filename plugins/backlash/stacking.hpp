@@ -52,7 +52,7 @@ struct SampleSummary {
   double sigma_error = 0.0;  // standard error of sigma, sigma / sqrt(2 (N - 1)) (exact for normal samples)
 };
 
-/// Sorts the samples (N >= 2) and summarises them.
+/// Summarises N >= 2 samples (moments in two passes, the 3-sigma quantiles by selection in the tails).
 SampleSummary summarize(std::vector<double> samples);
 
 /// Quantile p of sorted samples, linear between order statistics (Hyndman-Fan type 7):
@@ -61,8 +61,9 @@ double quantile_of_sorted(const std::vector<double>& sorted, double p);
 
 /// N draws of the linear stack sum s_i X_i, each X_i drawn independently from its distribution
 /// (normal N(m, h/3), unbounded; uniform U(m - h, m + h); triangular Tri(m - h, m, m + h)).
-/// Reproducible on every platform for a given seed: Boost.Random mt19937_64 and Boost's
-/// distributions, whose algorithms are fixed (the standard library's are implementation-defined).
+/// Reproducible on every platform for a given seed: the engine and distributions of variates.hpp,
+/// whose algorithms are fixed (the standard library's are implementation-defined). The normal
+/// links of a sum are drawn as one normal of their combined variance (exact in distribution).
 std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed);
 
 /// A play term with the weight (transfer ratio) that carries it to the result.
