@@ -88,7 +88,9 @@ TEST_CASE("the backlash study: per-hinge play, totals by three methods, hinge sh
   CHECK_THAT(value(json, "chain.angular_backlash_max"), WithinRel((50e-6 + hinges) / 0.5, 1e-12));
   // Statistics are tighter than the worst case; RSS and Monte Carlo agree within a few %.
   CHECK(value(json, "chain.rod_backlash_rss_max") < value(json, "chain.rod_backlash_max"));
-  CHECK_THAT(value(json, "chain.rod_backlash_mc_q999"), WithinRel(value(json, "chain.rod_backlash_rss_max"), 1e-3));
+  // The 99.865 % quantile of 2e5 samples has a standard error of about 0.2 % here
+  // (sqrt(p (1 - p) / n) / density at the quantile): 1 % is five of them.
+  CHECK_THAT(value(json, "chain.rod_backlash_mc_q999"), WithinRel(value(json, "chain.rod_backlash_rss_max"), 1e-2));
   // Seeded: the same run gives the same Monte Carlo numbers.
   const auto again = run_cli(plugins() + "-q run " + scene("backlash_chain.yaml") + " --json");
   CHECK(value(YAML::Load(again.out), "chain.rod_backlash_mc_mean") == value(json, "chain.rod_backlash_mc_mean"));
