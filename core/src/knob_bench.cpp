@@ -3,6 +3,7 @@
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
+#include <mechgraph/units.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -18,13 +19,6 @@ Graph focus_on(const Graph& graph, std::size_t node) {
   Graph g = graph;
   g.reports.clear();
   g.outputs.clear();
-  const GraphNode& n = g.nodes[node];
-  for (const PortSpec& p : n.info().outputs) {
-    if (p.kind == ValueKind::handle) continue;
-    const EffectSpec* effect = n.info().effect_of_output(p.name);
-    if (effect && std::find(n.effects_read.begin(), n.effects_read.end(), effect->name) == n.effects_read.end()) continue;
-    g.outputs.push_back({node, p.name, &p, n.name + "." + p.name});
-  }
   std::vector<bool> keep(g.nodes.size(), false);
   std::vector<std::size_t> stack{node};
   while (!stack.empty()) {
@@ -45,15 +39,27 @@ Graph focus_on(const Graph& graph, std::size_t node) {
   g.order = std::move(order);
   for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
   mark_wanted_outputs(g);
+  // The node is asked for every output it has; what it produces (some need an effect or a
+  // parameter) is what the bench compares.
+  GraphNode& n = g.nodes[node];
+  n.wanted.clear();
+  for (const PortSpec& p : n.info().outputs) n.wanted.push_back(p.name);
+  std::sort(n.wanted.begin(), n.wanted.end());
   return g;
 }
 
+// The setting as the user writes it: in the knob's display unit when it has one.
 std::string text_of(const ParamSpec& spec, const ParamValue& v) {
   if (spec.kind == ParamKind::choice || spec.kind == ParamKind::text) return v.text;
   char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v.number);
-  const std::string unit = spec.dimension.si_unit();
-  return unit == "1" ? std::string(buffer) : std::string(buffer) + " " + unit;
+  double shown = v.number;
+  std::string unit = spec.dimension.si_unit();
+  if (!spec.display_unit.empty()) {
+    shown = to_unit(v.number, spec.dimension, spec.display_unit);
+    unit = spec.display_unit;
+  }
+  std::snprintf(buffer, sizeof buffer, "%.6g", shown);
+  return unit == "1" || unit.empty() ? std::string(buffer) : std::string(buffer) + " " + unit;
 }
 
 bool in_range(const ParamSpec& s, double v) {
@@ -92,7 +98,14 @@ Measured measure(Graph g, std::size_t node, MemoCache& upstream, int repeats) {
       RunResult result = evaluate(g, upstream);
       for (const NodeRun& run : result.runs)
         if (run.node == g.nodes[node].name && run.seconds < m.run.seconds) m.run = run;
-      m.outputs = std::move(result.outputs);
+      m.outputs.clear();
+      if (const auto produced = upstream.find(key)) {
+        for (const PortSpec& p : g.nodes[node].info().outputs) {
+          if (p.kind == ValueKind::handle) continue;
+          auto it = produced->all().find(p.name);
+          if (it != produced->all().end()) m.outputs.push_back({g.nodes[node].name + "." + p.name, it->second, p.dimension, p.display_unit});
+        }
+      }
     } catch (const EvaluationError& e) {
       m.failure = e.what();
       return m;
@@ -113,14 +126,20 @@ void compare(const Measured& trial, const Measured& reference, const std::vector
       if (o.value.kind() == ValueKind::scalar && o.dimension == d) scale = std::max(scale, std::abs(o.value.as_scalar()));
     return scale;
   };
-  for (std::size_t i = 0; i < trial.outputs.size() && i < reference.outputs.size(); ++i) {
+  for (std::size_t i = 0; i < trial.outputs.size(); ++i) {
     const std::string& label = trial.outputs[i].label;
     const std::string port = label.substr(label.find('.') + 1);
     if (std::find(work_counters.begin(), work_counters.end(), port) != work_counters.end()) continue;
+    if (port.size() > 6 && port.compare(port.size() - 6, 6, "_error") == 0) continue;  // an uncertainty, not a result
+    const auto match = std::find_if(reference.outputs.begin(), reference.outputs.end(),
+                                    [&](const OutputValue& o) { return o.label == label; });
+    if (match == reference.outputs.end()) continue;
     const Value& a = trial.outputs[i].value;
-    const Value& b = reference.outputs[i].value;
+    const Value& b = match->value;
     auto consider = [&](double x, double ref, double floor) {
       const double e = std::abs(x - ref) / std::max({std::abs(ref), floor, 1e-300});
+      double& per_output = out.errors[label];
+      per_output = std::max(per_output, e);
       if (e > out.max_relative_error) {
         out.max_relative_error = e;
         out.worst_output = label;
@@ -148,6 +167,8 @@ void compare(const Measured& trial, const Measured& reference, const std::vector
         for (double v : cb->values) scale = std::max(scale, std::abs(v));
         for (std::size_t j = 0; j < ca.values.size(); ++j) {
           const double e = std::abs(ca.values[j] - cb->values[j]) / std::max(scale, 1e-300);
+          double& per_output = out.errors[trial.outputs[i].label + ":" + ca.name];
+          per_output = std::max(per_output, e);
           if (e > out.max_relative_error) {
             out.max_relative_error = e;
             out.worst_output = trial.outputs[i].label + ":" + ca.name;
@@ -174,8 +195,10 @@ std::vector<KnobTrial> bench_knobs(const Graph& graph, const KnobBenchOptions& o
     nodes = graph.order;
   }
   std::vector<KnobTrial> trials;
+  std::size_t done = 0;
   for (std::size_t node : nodes) {
     const GraphNode& n = graph.nodes[node];
+    if (options.progress) options.progress(done++, nodes.size(), n.name);
     std::vector<const ParamSpec*> knobs;
     for (const ParamSpec& p : n.info().params)
       if (p.knob && n.params.has(p.name)) knobs.push_back(&p);
@@ -230,6 +253,60 @@ std::vector<KnobTrial> bench_knobs(const Graph& graph, const KnobBenchOptions& o
     }
   }
   return trials;
+}
+
+std::vector<KnobAdvice> advise_knobs(std::vector<KnobTrial>& trials, double tolerance) {
+  std::vector<KnobAdvice> advice;
+  for (std::size_t begin = 0; begin < trials.size();) {
+    std::size_t end = begin;
+    while (end < trials.size() && trials[end].node == trials[begin].node && trials[end].knob == trials[begin].knob) ++end;
+    KnobAdvice a{trials[begin].node, trials[begin].knob, std::nullopt, std::nullopt, false, {}};
+    // On the front: no other setting is both faster and more accurate.
+    for (std::size_t i = begin; i < end; ++i) {
+      KnobTrial& t = trials[i];
+      if (t.is_default) a.current = i;
+      if (!t.failure.empty()) continue;
+      t.on_front = true;
+      for (std::size_t j = begin; j < end; ++j) {
+        const KnobTrial& o = trials[j];
+        if (j == i || !o.failure.empty()) continue;
+        const bool no_worse = o.seconds <= t.seconds && o.max_relative_error <= t.max_relative_error;
+        const bool better = o.seconds < t.seconds || o.max_relative_error < t.max_relative_error;
+        if (no_worse && better) t.on_front = false;
+      }
+      if (t.max_relative_error <= tolerance && (!a.recommended || t.seconds < trials[*a.recommended].seconds)) a.recommended = i;
+    }
+    char line[320];
+    auto describe = [&](std::size_t i) {
+      char b[160];
+      std::snprintf(b, sizeof b, "%s = %s (error %.2g, %.3g s)", trials[i].knob.c_str(), trials[i].setting.c_str(),
+                    trials[i].max_relative_error, trials[i].seconds);
+      return std::string(b);
+    };
+    if (a.recommended) {
+      std::snprintf(line, sizeof line, "within %.0e: %s", tolerance, describe(*a.recommended).c_str());
+    } else {
+      std::size_t best = begin;
+      for (std::size_t i = begin; i < end; ++i)
+        if (trials[i].failure.empty() && (!trials[best].failure.empty() || trials[i].max_relative_error < trials[best].max_relative_error)) best = i;
+      std::snprintf(line, sizeof line, "no setting reaches %.0e; the most accurate is %s", tolerance, describe(best).c_str());
+    }
+    a.text = line;
+    if (a.current && trials[*a.current].failure.empty()) {
+      const KnobTrial& d = trials[*a.current];
+      for (std::size_t i = begin; i < end; ++i) {
+        const KnobTrial& t = trials[i];
+        if (i == *a.current || !t.on_front) continue;
+        const bool good_enough = t.max_relative_error <= std::max(d.max_relative_error, tolerance);
+        if (good_enough && t.seconds <= 0.5 * d.seconds) a.current_off_front = true;
+      }
+      if (a.current_off_front) a.text += "; the scene's setting (" + d.setting + ") is far off the front";
+      else if (a.recommended && *a.recommended == *a.current) a.text += " (the scene's setting)";
+    }
+    advice.push_back(std::move(a));
+    begin = end;
+  }
+  return advice;
 }
 
 }  // namespace mechgraph

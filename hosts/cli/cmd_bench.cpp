@@ -9,7 +9,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -17,16 +19,28 @@
 namespace mechgraph::cli {
 namespace {
 
-void write_json(std::ostream& os, const std::vector<KnobTrial>& trials) {
+void write_json(std::ostream& os, const std::vector<KnobTrial>& trials, const std::vector<KnobAdvice>& advice) {
   JsonWriter json(os);
-  json.begin_object().key("trials").begin_array();
+  json.begin_object().key("advice").begin_array();
+  for (const KnobAdvice& a : advice) {
+    json.begin_object().key("node").value(a.node).key("knob").value(a.knob);
+    json.key("recommended");
+    if (a.recommended) json.value(trials[*a.recommended].setting);
+    else json.null();
+    json.key("default_off_front").value(a.current_off_front).key("text").value(a.text).end_object();
+  }
+  json.end_array();
+  json.key("trials").begin_array();
   for (const KnobTrial& t : trials) {
     json.begin_object();
     json.key("node").value(t.node).key("type").value(t.type).key("knob").value(t.knob).key("setting").value(t.setting);
     json.key("default").value(t.is_default);
     if (t.failure.empty()) {
       json.key("seconds").value(t.seconds).key("max_relative_error").value(t.max_relative_error);
-      json.key("worst_output").value(t.worst_output);
+      json.key("worst_output").value(t.worst_output).key("on_front").value(t.on_front);
+      json.key("errors").begin_object();
+      for (const auto& [output, error] : t.errors) json.key(output).value(error);
+      json.end_object();
       json.key("work").begin_object();
       for (const auto& [counter, amount] : t.work) json.key(counter).value(amount);
       json.end_object();
@@ -40,27 +54,33 @@ void write_json(std::ostream& os, const std::vector<KnobTrial>& trials) {
 }
 
 void write_csv(std::ostream& os, const std::vector<KnobTrial>& trials) {
-  os << "node,type,knob,setting,default,seconds,max_relative_error,worst_output,work,failure\n";
+  os << "node,type,knob,setting,default,on_front,seconds,max_relative_error,worst_output,work,failure\n";
   for (const KnobTrial& t : trials) {
     std::string work;
     for (const auto& [counter, amount] : t.work) work += (work.empty() ? "" : ";") + counter + "=" + std::to_string(amount);
     os << t.node << "," << t.type << "," << t.knob << ",\"" << t.setting << "\"," << (t.is_default ? 1 : 0) << ","
+       << (t.on_front ? 1 : 0) << ","
        << t.seconds << "," << t.max_relative_error << "," << t.worst_output << "," << work << ",\"" << t.failure << "\"\n";
   }
 }
 
-void write_table(std::ostream& os, const std::vector<KnobTrial>& trials) {
+void write_table(std::ostream& os, const std::vector<KnobTrial>& trials, const std::vector<KnobAdvice>& advice) {
   std::string last;
+  std::size_t group_index = 0;
+  auto close_group = [&] {
+    if (!last.empty() && group_index < advice.size()) os << "  -> " << advice[group_index++].text << "\n";
+  };
   for (const KnobTrial& t : trials) {
     const std::string group = t.node + " (" + t.type + ") knob " + t.knob;
     if (group != last) {
+      close_group();
       os << (last.empty() ? "" : "\n") << group << "\n";
-      os << "  setting                   time [s]   max rel. error   work\n";
+      os << "  setting                     time [s]   max rel. error   work\n";
       last = group;
     }
-    char line[160];
+    char line[200];
     if (!t.failure.empty()) {
-      std::snprintf(line, sizeof line, "  %-22s %s  failed: ", t.setting.c_str(), t.is_default ? "*" : " ");
+      std::snprintf(line, sizeof line, "  %-22s %s    failed: ", t.setting.c_str(), t.is_default ? "*" : " ");
       os << line << t.failure << "\n";
       continue;
     }
@@ -70,11 +90,52 @@ void write_table(std::ostream& os, const std::vector<KnobTrial>& trials) {
       std::snprintf(w, sizeof w, "%s%s=%.0f", work.empty() ? "" : " ", counter.c_str(), amount);
       work += w;
     }
-    std::snprintf(line, sizeof line, "  %-22s %s %10.3g   %14.3g   ", t.setting.c_str(), t.is_default ? "*" : " ", t.seconds,
-                  t.max_relative_error);
+    std::snprintf(line, sizeof line, "  %-22s %s%s %10.3g   %14.3g   ", t.setting.c_str(), t.is_default ? "*" : " ",
+                  t.on_front ? "P" : " ", t.seconds, t.max_relative_error);
     os << line << work << "\n";
   }
-  os << "\n* the scene's setting; error against every numeric knob tightened past the ladder\n";
+  close_group();
+  os << "\n* the scene's setting; P on the Pareto front (no other setting both faster and more accurate);\n"
+        "  error against every numeric knob tightened past the ladder (Monte Carlo: 2^(steps+2) times the samples)\n";
+}
+
+// The work-precision plot: log error over log time, one line per node and knob, drawn by gnuplot
+// (Debian's gnuplot-nox) as SVG. Errors of exactly zero sit at 1e-17, below double precision.
+void write_plot(const std::filesystem::path& dir, const std::vector<KnobTrial>& trials) {
+  std::ofstream data(dir / "bench.dat");
+  std::vector<std::string> titles;
+  std::string last;
+  for (const KnobTrial& t : trials) {
+    if (!t.failure.empty() || !(t.seconds > 0)) continue;
+    const std::string group = t.node + "." + t.knob;
+    if (group != last) {
+      if (!last.empty()) data << "\n\n";
+      titles.push_back(group);
+      last = group;
+    }
+    data << t.seconds << " " << std::max(t.max_relative_error, 1e-17) << " " << (t.is_default ? 1 : 0) << "\n";
+  }
+  data.close();
+  std::ofstream script(dir / "bench.gp");
+  script << "set terminal svg size 900,600 dynamic enhanced font 'sans,11'\n"
+         << "set output 'bench.svg'\n"
+         << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
+         << "set xlabel 'time of the node [s]'\nset ylabel 'max. relative error'\n"
+         << "set title 'Work-precision of the accuracy knobs (filled: the scene setting)'\n"
+         << "set key outside right\nset grid\n"
+         << "plot";
+  for (std::size_t i = 0; i < titles.size(); ++i)
+    script << (i ? ", \\\n    " : " ") << "'bench.dat' index " << i << " using 1:2 with linespoints lc " << i + 1
+           << " pt 6 title '" << titles[i] << "', '' index " << i << " using 1:($3 > 0 ? $2 : 1/0) with points lc " << i + 1
+           << " pt 7 ps 1.5 notitle";
+  script << "\n";
+  script.close();
+  const std::string command = "cd '" + dir.string() + "' && gnuplot bench.gp 2>&1";
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    spdlog::warn("bench: gnuplot is not installed (apt-get install gnuplot-nox): no bench.svg, its data is in bench.dat");
+    return;
+  }
+  if (std::system(command.c_str()) != 0) spdlog::warn("bench: gnuplot failed; bench.gp and bench.dat are in the folder");
 }
 
 }  // namespace
@@ -88,9 +149,10 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       "repeats", po::value<int>()->default_value(3), "time = fastest of this many evaluations")(
       "json", "print JSON on stdout")("out", po::value<std::string>(),
                                        "also write bench.csv and bench.json into DIR (whole or not at all)")(
-      "force", "replace the results in an existing --out DIR");
+      "force", "replace the results in an existing --out DIR")(
+      "tol", po::value<double>()->default_value(1e-9), "recommend the cheapest setting within this relative error");
   po::variables_map vm;
-  if (!parse_scene_command(args, visible, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--json] [--out DIR]"))
+  if (!parse_scene_command(args, visible, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--tol 1e-9] [--json] [--out DIR]"))
     return ok;
   KnobBenchOptions options;
   if (vm.count("node")) options.node = vm["node"].as<std::string>();
@@ -101,21 +163,28 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
-  const std::vector<KnobTrial> trials = bench_knobs(graph, options);
+  const double tolerance = vm["tol"].as<double>();
+  if (!(tolerance > 0.0)) throw UsageError("--tol must be > 0");
+  options.progress = [](std::size_t done, std::size_t total, const std::string& node) {
+    spdlog::info("bench: node {} of {}: {}", done + 1, total, node);
+  };
+  std::vector<KnobTrial> trials = bench_knobs(graph, options);
+  const std::vector<KnobAdvice> advice = advise_knobs(trials, tolerance);
   spdlog::info("{} knob settings measured", trials.size());
-  if (vm.count("json")) write_json(std::cout, trials);
-  else write_table(std::cout, trials);
+  if (vm.count("json")) write_json(std::cout, trials, advice);
+  else write_table(std::cout, trials, advice);
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
       std::ofstream csv(staging / "bench.csv"), json(staging / "bench.json");
       if (!csv || !json) throw IoError("cannot write into '" + staging.string() + "'");
       write_csv(csv, trials);
-      write_json(json, trials);
+      write_json(json, trials, advice);
       csv.close();
       json.close();
       check_written(csv, dir / "bench.csv");
       check_written(json, dir / "bench.json");
+      write_plot(staging, trials);
     });
   }
   return ok;

@@ -93,3 +93,64 @@ TEST_CASE("mechgraph bench prints a table and JSON", "[bench][cli]") {
   CHECK(parsed["trials"].size() > 5);
   CHECK(run_cli(plugins + "bench " + scene + " --node nope").exit_code == 2);
 }
+
+TEST_CASE("bench advice: Pareto front, the cheapest setting within the tolerance, a default far off the front", "[bench]") {
+  auto trial = [](const std::string& setting, double seconds, double error, bool is_default = false) {
+    KnobTrial t;
+    t.node = "n";
+    t.type = "t";
+    t.knob = "samples";
+    t.setting = setting;
+    t.seconds = seconds;
+    t.max_relative_error = error;
+    t.is_default = is_default;
+    return t;
+  };
+  std::vector<KnobTrial> trials = {trial("8", 1.0, 1e-6), trial("16", 2.0, 1e-10), trial("32", 4.0, 1e-10, true),
+                                   trial("64", 8.0, 1e-14), trial("128", 9.0, 1e-12)};
+  trials.push_back(trial("256", 0.0, 0.0));
+  trials.back().failure = "did not converge";
+  const auto advice = advise_knobs(trials, 1e-9);
+  REQUIRE(advice.size() == 1);
+  CHECK(trials[0].on_front);
+  CHECK(trials[1].on_front);
+  CHECK_FALSE(trials[2].on_front);  // as accurate as 16 and slower
+  CHECK(trials[3].on_front);
+  CHECK_FALSE(trials[4].on_front);  // 64 is faster and more accurate
+  CHECK_FALSE(trials[5].on_front);  // failed
+  REQUIRE(advice[0].recommended);
+  CHECK(*advice[0].recommended == 1);
+  CHECK(advice[0].current_off_front);  // 16 is as accurate in half the time
+  CHECK_THAT(advice[0].text, Contains("within 1e-09: samples = 16") && Contains("far off the front"));
+  const auto strict = advise_knobs(trials, 1e-15);
+  CHECK_FALSE(strict[0].recommended);
+  CHECK_THAT(strict[0].text, Contains("no setting reaches 1e-15; the most accurate is samples = 64"));
+}
+
+TEST_CASE("mechgraph bench on a Monte Carlo scene: error of the estimate, advice, SVG plot", "[bench][cli]") {
+  const std::string scene = "'" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/backlash_chain.yaml'";
+  const std::string plugins = "--plugin-dir '" + std::string(MECHGRAPH_PLUGIN_DIR) + "' ";
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_bench_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const auto r = run_cli(plugins + "bench " + scene + " --steps 1 --repeats 1 --set chain.samples=20000 --out '" + dir.string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("knob samples") && Contains("-> "));
+  CHECK_THAT(r.err, Contains("bench: node 1 of"));
+  const YAML::Node json = YAML::LoadFile((dir / "bench.json").string());
+  bool chain_seen = false;
+  for (const auto& t : json["trials"]) {
+    if (t["node"].as<std::string>() != "chain") continue;
+    chain_seen = true;
+    // The estimate against 8x the samples: a few standard errors of 2e4 samples, not a ratio of them.
+    CHECK(t["max_relative_error"].as<double>() < 0.05);
+    CHECK_FALSE(t["errors"]["chain.mc_mean_error"]);
+  }
+  CHECK(chain_seen);
+  CHECK(json["advice"].size() > 0);
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    std::ifstream svg(dir / "bench.svg");
+    const std::string text((std::istreambuf_iterator<char>(svg)), {});
+    CHECK_THAT(text, Contains("<svg") && Contains("chain.samples"));
+  }
+  std::filesystem::remove_all(dir);
+}
