@@ -198,7 +198,7 @@ class GraphBuilder {
     if (v.kind != RawValue::Kind::scalar)
       fail(written.where, what + ": expected one number with its unit, " + example_unit(spec.dimension) + ", got " +
                               (v.kind == RawValue::Kind::list ? "the list " : "the map ") + written_text(v) + via +
-                              (v.kind == RawValue::Kind::list ? "; a run takes one value: run once per value to compare several" : ""));
+                              (v.kind == RawValue::Kind::list ? "; a run takes one value: to compare several, sweep them (mechgraph sweep SCENE --vary NAME=A,B,C or --vary NAME=FROM:TO:N)" : ""));
     Quantity q;
     try {
       q = parse_quantity(v.text);

@@ -190,6 +190,6 @@ TEST_CASE("a list given where one number is expected: the message shows what was
   } catch (const SceneError& e) {
     CHECK_THAT(e.what(), Catch::Matchers::Contains("expected one number with its unit, e.g. '9 mm', got the list [1mm, 2mm]") &&
                              Catch::Matchers::Contains("$len = '[1mm, 2mm]'") &&
-                             Catch::Matchers::Contains("run once per value"));
+                             Catch::Matchers::Contains("sweep them (mechgraph sweep SCENE --vary"));
   }
 }
