@@ -37,13 +37,26 @@ struct CompiledSum {
     normal_sigma = scale * std::sqrt(variance);
   }
 
-  double deviation(Variates& v) const {
-    double d = normal_sigma > 0.0 ? normal_sigma * v.normal() : 0.0;
-    for (double c : uniform) d += c * v.uniform();
-    for (double c : triangular) d += c * v.triangular();
-    return d;
+  // Adds the deviations of n samples to `out`, a block at a time (scratch: n doubles).
+  void add_deviations(Variates& v, double* out, double* scratch, std::size_t n) const {
+    if (normal_sigma > 0.0) {
+      v.normals(scratch, n);
+      for (std::size_t i = 0; i < n; ++i) out[i] += normal_sigma * scratch[i];
+    }
+    for (double c : uniform) {
+      v.uniforms(scratch, n);
+      for (std::size_t i = 0; i < n; ++i) out[i] += c * scratch[i];
+    }
+    for (double c : triangular) {
+      v.triangulars(scratch, n);
+      for (std::size_t i = 0; i < n; ++i) out[i] += c * scratch[i];
+    }
   }
 };
+
+// Samples are made a block at a time: each variate kind is drawn for the whole block, then the
+// arithmetic runs over arrays (no branch on a link's distribution per sample).
+constexpr std::size_t block = 2048;
 
 double link_sigma(const ToleranceLink& l) { return standard_deviation(l.distribution, l.half_range); }
 
@@ -165,8 +178,13 @@ SampleSummary summarize(std::vector<double> samples) {
 std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
   Variates variates(seed);
   const CompiledSum sum(links);
-  std::vector<double> out(count);
-  for (double& y : out) y = sum.mean + sum.deviation(variates);
+  std::vector<double> out(count), deviation(block), scratch(block);
+  for (std::size_t start = 0; start < count; start += block) {
+    const std::size_t n = std::min(block, count - start);
+    std::fill_n(deviation.begin(), n, 0.0);
+    sum.add_deviations(variates, deviation.data(), scratch.data(), n);
+    for (std::size_t i = 0; i < n; ++i) out[start + i] = sum.mean + deviation[i];
+  }
   return out;
 }
 
@@ -178,11 +196,22 @@ std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count,
     terms.emplace_back(t.term.links);
     weights.push_back(t.weight);
   }
-  std::vector<double> out(count);
-  for (double& y : out) {
-    double play = std::max(0.0, stack.own_mean + (stack.own_sigma > 0.0 ? stack.own_sigma * variates.normal() : 0.0));
-    for (std::size_t k = 0; k < terms.size(); ++k) play += weights[k] * std::max(0.0, terms[k].mean + terms[k].deviation(variates));
-    y = play;
+  std::vector<double> out(count), deviation(block), scratch(block);
+  for (std::size_t start = 0; start < count; start += block) {
+    const std::size_t n = std::min(block, count - start);
+    double* y = out.data() + start;
+    if (stack.own_sigma > 0.0) {
+      variates.normals(scratch.data(), n);
+      for (std::size_t i = 0; i < n; ++i) y[i] = std::max(0.0, stack.own_mean + stack.own_sigma * scratch[i]);
+    } else {
+      std::fill_n(y, n, std::max(0.0, stack.own_mean));
+    }
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      std::fill_n(deviation.begin(), n, 0.0);
+      terms[k].add_deviations(variates, deviation.data(), scratch.data(), n);
+      const double m = terms[k].mean, w = weights[k];
+      for (std::size_t i = 0; i < n; ++i) y[i] += w * std::max(0.0, m + deviation[i]);
+    }
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace mechgraph::backlash {
 
@@ -73,39 +74,86 @@ struct ZigguratTable {
 
 inline const ZigguratTable ziggurat_table;
 
-/// Standard normal, uniform and triangular variates from one engine.
+/// Standard normal, uniform and triangular variates, one at a time or a block at a time.
 class Variates {
  public:
-  explicit Variates(std::uint64_t seed) : engine_(seed) {}
+  explicit Variates(std::uint64_t seed) : engine_(seed), second_(seed ^ 0xD1B54A32D192ED03ull) {}
+
+  /// n standard normals. Two engines take turns so that their updates overlap, and a strip's core
+  /// (about 99 % of the draws) is taken without a branch; the rest follow normal()'s wedge and
+  /// tail, which keeps the distribution exact.
+  void normals(double* out, std::size_t n) {
+    std::size_t got = 0;
+    while (got + 1 < n) {
+      double x0, x1;
+      const std::uint64_t b0 = engine_(), b1 = second_();
+      const bool in0 = core(b0, x0), in1 = core(b1, x1);
+      if (in0 && in1) {
+        out[got] = x0;
+        out[got + 1] = x1;
+        got += 2;
+        continue;
+      }
+      out[got++] = in0 ? x0 : outside_core(b0);
+      out[got++] = in1 ? x1 : outside_core(b1);
+    }
+    if (got < n) out[got] = normal();
+  }
+  /// n uniforms on [-1, 1) and n triangular Tri(-1, 0, 1) variates.
+  void uniforms(double* out, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = engine_.symmetric_uniform();
+  }
+  void triangulars(double* out, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = 0.5 * (engine_.symmetric_uniform() - second_.symmetric_uniform());
+  }
 
   double normal() {
     while (true) {
       const std::uint64_t bits = engine_();
-      const int i = static_cast<int>(bits & 0xFF);                          // the strip
-      const double u = Xoshiro256::top53(bits) * 0x1.0p-52 - 1.0;            // (-1, 1), from other bits
-      if (std::abs(u) < ziggurat_table.ratio[i]) return u * ziggurat_table.x[i];               // inside the strip's core
-      if (i == 0) {
-        // The tail beyond r (Marsaglia 1964): x = -ln(U1) / r, accepted when -2 ln(U2) > x^2.
-        double t, y;
-        do {
-          t = -std::log(unit_open()) / ZigguratTable::r;
-          y = -std::log(unit_open());
-        } while (y + y < t * t);
-        return u > 0.0 ? ZigguratTable::r + t : -(ZigguratTable::r + t);
-      }
-      // In the wedge between the core and the density: accept under the curve.
-      const double x = u * ziggurat_table.x[i];
-      const double f0 = std::exp(-0.5 * (ziggurat_table.x[i] * ziggurat_table.x[i] - x * x));
-      const double f1 = std::exp(-0.5 * (ziggurat_table.x[i + 1] * ziggurat_table.x[i + 1] - x * x));
-      if (f1 + unit_open() * (f0 - f1) < 1.0) return x;
+      double x;
+      if (core(bits, x)) return x;
+      if (const auto v = wedge_or_tail(bits)) return *v;
     }
   }
   double uniform() { return engine_.symmetric_uniform(); }                                   // U(-1, 1)
   double triangular() { return 0.5 * (engine_.symmetric_uniform() - engine_.symmetric_uniform()); }  // Tri(-1, 0, 1)
 
  private:
+  // The strip (low 8 bits) and a uniform u in (-1, 1) (top 53 bits) of one draw; x = u x[i] is
+  // taken at once when |u| is inside the strip's core.
+  static bool core(std::uint64_t bits, double& x) {
+    const int i = static_cast<int>(bits & 0xFF);
+    const double u = Xoshiro256::top53(bits) * 0x1.0p-52 - 1.0;
+    x = u * ziggurat_table.x[i];
+    return std::abs(u) < ziggurat_table.ratio[i];
+  }
+  // A draw outside its strip's core: the wedge or tail test, else a fresh normal (a restart of the
+  // algorithm, so the distribution stays exact).
+  double outside_core(std::uint64_t bits) {
+    if (const auto v = wedge_or_tail(bits)) return *v;
+    return normal();
+  }
+  std::optional<double> wedge_or_tail(std::uint64_t bits) {
+    const int i = static_cast<int>(bits & 0xFF);
+    const double u = Xoshiro256::top53(bits) * 0x1.0p-52 - 1.0;
+    if (i == 0) {
+      // The tail beyond r (Marsaglia 1964): x = -ln(U1) / r, accepted when -2 ln(U2) > x^2.
+      double t, y;
+      do {
+        t = -std::log(unit_open()) / ZigguratTable::r;
+        y = -std::log(unit_open());
+      } while (y + y < t * t);
+      return u > 0.0 ? ZigguratTable::r + t : -(ZigguratTable::r + t);
+    }
+    // In the wedge between the core and the density: accept under the curve.
+    const double x = u * ziggurat_table.x[i];
+    const double f0 = std::exp(-0.5 * (ziggurat_table.x[i] * ziggurat_table.x[i] - x * x));
+    const double f1 = std::exp(-0.5 * (ziggurat_table.x[i + 1] * ziggurat_table.x[i + 1] - x * x));
+    if (f1 + unit_open() * (f0 - f1) < 1.0) return x;
+    return std::nullopt;
+  }
   double unit_open() { return (Xoshiro256::top53(engine_()) + 0.5) * 0x1.0p-53; }  // (0, 1)
-  Xoshiro256 engine_;
+  Xoshiro256 engine_, second_;
 };
 
 }  // namespace mechgraph::backlash

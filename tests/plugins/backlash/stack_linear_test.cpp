@@ -280,16 +280,35 @@ TEST_CASE("Monte Carlo variates: normal, uniform and triangular pass a Kolmogoro
   const double uniform = ks([&] { return v.uniform(); }, [](double x) { return std::clamp(0.5 * (x + 1.0), 0.0, 1.0); });
   const double triangular = ks([&] { return v.triangular(); },
                                [](double x) { return x < 0 ? 0.5 * (1 + x) * (1 + x) : 1 - 0.5 * (1 - x) * (1 - x); });
+  std::vector<double> block(n);
+  std::size_t next = n;
+  const double normal_block = ks(
+      [&] {
+        if (next == n) {
+          v.normals(block.data(), n);
+          next = 0;
+        }
+        return block[next++];
+      },
+      [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); });
+  std::vector<double> tri(n);
+  v.triangulars(tri.data(), n);
+  std::size_t t_next = 0;
+  const double triangular_block = ks([&] { return tri[t_next++]; },
+                                     [](double x) { return x < 0 ? 0.5 * (1 + x) * (1 + x) : 1 - 0.5 * (1 - x) * (1 - x); });
   CHECK(normal < 1.95);
+  CHECK(normal_block < 1.95);
   CHECK(uniform < 1.95);
   CHECK(triangular < 1.95);
+  CHECK(triangular_block < 1.95);
   // The ziggurat's tail beyond r = 3.654 and its wedges: the fraction beyond 3 and 4 sigma.
   std::size_t beyond3 = 0, beyond4 = 0;
   const std::size_t m = 4000000;
-  for (std::size_t i = 0; i < m; ++i) {
-    const double z = std::abs(v.normal());
-    beyond3 += z > 3.0;
-    beyond4 += z > 4.0;
+  std::vector<double> z(m);
+  v.normals(z.data(), m);  // the block path: its strips' cores, wedges and tail
+  for (double x : z) {
+    beyond3 += std::abs(x) > 3.0;
+    beyond4 += std::abs(x) > 4.0;
   }
   const double p3 = std::erfc(3.0 / std::sqrt(2.0)), p4 = std::erfc(4.0 / std::sqrt(2.0));
   CHECK(std::abs(static_cast<double>(beyond3) / m - p3) < 4.0 * std::sqrt(p3 / m));
