@@ -118,8 +118,8 @@ class CamNodeType final : public NodeType {
                                .with_default(0.0)
                                .non_negative()
                                .below(2.0 * std::numbers::pi));
-    info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each then refined by Brent to full precision; 32 agree with 3200 to 1e-13 on the example cams, mechgraph bench shows it)")
-                               .with_default(32.0)
+    info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
+                               .with_default(16.0)
                                .at_least(8)
                                .at_most(1e6)
                                .as_knob());

@@ -26,8 +26,8 @@ class ValveMotionType final : public NodeType {
         ParamSpec::number("lash", dim::length, "valve lash (cold clearance), taken up before the valve moves", "mm")
             .with_default(0.0)
             .non_negative(),
-        ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each then refined by Brent to full precision; 32 agree with 3200 to 1e-13 on the example cams, mechgraph bench shows it)")
-            .with_default(32.0)
+        ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
+            .with_default(16.0)
             .at_least(8)
             .at_most(1e6)
             .as_knob(),
