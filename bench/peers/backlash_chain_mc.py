@@ -23,7 +23,8 @@ on the rod's line (transfer ratios 1) and the actuator's own backlash; every pla
     at zero: 40-82 um for bores 12 < d <= 20 mm (h2, 20 mm), 50-100 um for 20 < d <= 35 mm (h5,
     25 mm).
   * the actuator: normal, mean 25 um, limit 25 um = 3 sigma, clipped at zero.
-  * rod backlash = actuator + sum of the ten... i.e. of all play terms (ratios 1).
+  * rod backlash = the actuator's term + every hinge's play terms (seven: five fits, two
+    bearings), each term clipped at zero on its own, transfer ratios 1.
 The script derives these from the two small tables above and checks them against mechgraph's own
 h*.play_min / play_mean / play_max (`mechgraph run --json`) before sampling.
 Reported as mechgraph does: mean, standard deviation (divisor N - 1) and the quantile at

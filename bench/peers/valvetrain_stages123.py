@@ -25,27 +25,36 @@ One design = one cam through stages 1-3 (docs/methods/valvetrain.md), on both si
 The study: a Latin hypercube of lift in [7, 9] mm and base radius in [15, 19] mm, three cams per
 case (mechgraph's benchmark BM_SweepStages123), designs/s = 3 x cases/s.
 
-How the numpy side computes (the obvious engineer's way, vectorised over angle):
+How the numpy side computes (the obvious engineer's way, vectorised over angle; `design`):
   * the law is sampled every 0.1 cam degree over the whole event, plus the law's own knots (where
     the formula changes: the three-arc flank/nose switch, the Kurz shape junctions) taken from
     both sides, so that a jump of h'' (three-arc) is seen with both its one-sided values; each
     smooth piece is evaluated with its own formula on its own samples;
-  * peaks are the largest/smallest samples; the acceleration phase and the opening and closing
-    angles are linear interpolations between the two samples around the sign change;
+  * peaks are the largest/smallest samples (exact where the peak sits on a knot or the nose, else
+    off by the grid: ~1e-6 relative, up to ~1e-5 for the polydyne's least curvature radius);
+  * the end of the acceleration phase and the opening and closing angles: linear interpolation
+    between the two samples around the sign change, then one Newton step on the law's exact
+    derivatives (a sign change across a knot's two one-sided samples is exact as it is);
   * the valve arrays run from the opening angle to the closing angle (the law evaluated there
-    too), the time-area is np.trapz over them (the trapezoid rule, 0.1 deg).
+    too), the time-area is np.trapz over them: the trapezoid rule, 0.1 deg, ~2e-7 relative.
 mechgraph finds peaks and roots by sampling and refining (Brent, TOMS 748) to full precision and
-integrates by adaptive Gauss-Kronrod (tolerance 1e-10): it is the reference. The numpy side's
-error is that of a 0.1 deg grid: ~1e-6 relative for smooth peaks and roots, ~1e-7 for the
-trapezoid.
+integrates by adaptive Gauss-Kronrod (tolerance 1e-10): it is the reference.
 Design cases where a law cannot be built (three-arc radius r2 <= 0) or the contour is undercut
 (rho < 0: mechgraph stops the case with an error; Kurz at high lift on a small base circle) are
 counted; numpy still computes them.
 
+A second numpy variant, for context (`study_batched`): the same samples, formulas and refinements
+with the designs of one cam batched into 2-D arrays (row = design, --batch rows at a time, 50 by
+default: larger batches fall out of the cache and are slower). It gives the same figures to
+rounding (checked) and shows how much of the gap is Python's per-design overhead. For it the
+script raises glibc's malloc thresholds (keep_freed_memory; --default-malloc leaves them), since
+by default every numpy temporary above 128 KiB is mapped and unmapped afresh.
+
 Timing. mechgraph: `mechgraph sweep ... --threads 1`, its own log line "sweep: N cases in S s"
 (evaluation and CSV rows, no process start or scene loading), and the whole process's wall clock.
 numpy: time.perf_counter around the design loop (results kept in an array). Each side: the best
-of --repeats runs. Both on one core (numpy does not thread these element-wise operations).
+of --repeats runs, taken in rounds over the sides so that a burst of load elsewhere spoils no
+single side. All on one core (numpy does not thread these element-wise operations).
 """
 
 import argparse
@@ -595,9 +604,9 @@ def main():
     print()
     print(f"stages 1-3, designs per second on one core (3 designs per case, {n} cases; fastest of {args.repeats} runs); "
           "errors: relative, nominal design, against mechgraph (mechgraph's time-area: tolerance 1e-10 against 1e-13)")
-    print(f"{'side':46s} {'designs/s':>10s} {'time-area err':>14s} {'largest err':>12s} {'mechgraph log / side':>21s}")
+    print(f"{'side':50s} {'designs/s':>10s} {'time-area err':>14s} {'largest err':>12s} {'mechgraph log / side':>21s}")
     for name, rate, e_ta, e_all in rows:
-        print(f"{name:46s} {rate:10.0f} {e_ta:>14s} {e_all:>12s} {d_mech / rate:20.2f}x")
+        print(f"{name:50s} {rate:10.0f} {e_ta:>14s} {e_all:>12s} {d_mech / rate:20.2f}x")
     print()
     print(f"ratio stages 1-3, mechgraph / numpy (designs/s): {d_mech / d_loop:.1f}x against the one-design-at-a-time "
           f"script ({d_wall / d_loop:.1f}x counting mechgraph's whole process); {d_mech / d_batch:.1f}x against numpy "

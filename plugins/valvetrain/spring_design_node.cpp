@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace mechgraph::valvetrain {
@@ -232,7 +233,11 @@ class SpringDesignType final : public NodeType {
     out.set_scalar("surge_frequency", spring->surge_frequency());
     out.set_scalar("max_stress", spring->stress(h_max));
     out.set_scalar("iterations", iterations);
-    out.set_scalar("envelope_margin", least_margin.value);
+    // The free-length rule makes the line touch the requirement: its least margin is zero up to
+    // the rounding of the forces it is the difference of, reported as the zero it is (a
+    // "-1e-13 N" would read as a violated requirement).
+    const double rounding = 64.0 * std::numeric_limits<double>::epsilon() * line.max_force();
+    out.set_scalar("envelope_margin", std::abs(least_margin.value) <= rounding ? 0.0 : least_margin.value);
     out.set_scalar("min_safety_factor", least_safety.value);
     auto design = std::make_shared<SpringDesign>();
     design->spring = spring;
