@@ -163,7 +163,7 @@ class GraphBuilder {
       }
     }
     for (const auto& [node, list] : node_overrides_) {
-      const bool exists = std::any_of(scene_.nodes.begin(), scene_.nodes.end(), [&](const NodeSpec& n) { return n.name == node; });
+      const bool exists = std::any_of(scene_.nodes.begin(), scene_.nodes.end(), [&wanted = node](const NodeSpec& n) { return n.name == wanted; });
       if (!exists) throw SceneError("--set " + override_texts_[node] + ": " + unknown_name_message("node", node, node_names()));
     }
   }
@@ -268,7 +268,7 @@ class GraphBuilder {
     std::vector<std::string> valid;
     for (const ParamSpec& f : fields) valid.push_back(f.name);
     for (const auto& [key, value] : map.fields) {
-      auto it = std::find_if(fields.begin(), fields.end(), [&](const ParamSpec& f) { return f.name == key; });
+      auto it = std::find_if(fields.begin(), fields.end(), [&wanted = key](const ParamSpec& f) { return f.name == wanted; });
       if (it == fields.end()) fail(value.key_where, owner + ": " + unknown_name_message("field", key, valid));
       record[key] = parse_param(value, *it, owner);
     }
@@ -298,7 +298,7 @@ class GraphBuilder {
     std::vector<std::pair<std::string, RawValue>> written = n.params;
     if (auto it = node_overrides_.find(n.name); it != node_overrides_.end()) {
       for (const auto& [name, value] : it->second) {
-        auto w = std::find_if(written.begin(), written.end(), [&](const auto& p) { return p.first == name; });
+        auto w = std::find_if(written.begin(), written.end(), [&wanted = name](const auto& p) { return p.first == wanted; });
         if (w != written.end()) w->second = value;
         else written.emplace_back(name, value);
       }

@@ -61,6 +61,8 @@ const UnitSymbol* find_symbol(std::string_view s) {
   return nullptr;
 }
 
+constexpr int max_power = 16;
+
 bool is_symbol_char(char c) { return c != '*' && c != '/' && c != '^' && c != ' ' && c != '\t'; }
 
 std::string trim_copy(std::string_view s) {
@@ -122,14 +124,24 @@ UnitScale parse_unit(std::string_view text) {
       const char* last = text.data() + text.size();
       auto [ptr, ec] = std::from_chars(first, last, power);
       if (ec != std::errc() || power == 0) throw UnitError("expected a non-zero integer power after '^'", i);
+      if (std::abs(power) > max_power) throw UnitError("a power of a unit must lie within -16..16", i);
       i += static_cast<std::size_t>(ptr - first);
     }
     power *= sign;
     result.scale *= std::pow(u->scale, power);
-    result.dimension = result.dimension * u->dimension.pow(power);
+    // Each base exponent is kept in 8 bits: refuse a product that would leave +-16 (no physical
+    // quantity comes near it) before it could wrap.
+    const Dimension d = u->dimension.pow(power);
+    for (const auto [have, add] : {std::pair{result.dimension.length, d.length}, {result.dimension.mass, d.mass},
+                                   {result.dimension.time, d.time}, {result.dimension.angle, d.angle},
+                                   {result.dimension.temperature, d.temperature}})
+      if (std::abs(have + add) > max_power) throw UnitError("the unit's dimension has an exponent beyond -16..16", start);
+    result.dimension = result.dimension * d;
     expect_symbol = false;
   }
   if (expect_symbol) throw UnitError("unit ends with an operator", text.size());
+  if (!std::isfinite(result.scale) || !(result.scale > 0.0))
+    throw UnitError("the unit's size in SI is beyond the range of a double", 0);
   return result;
 }
 
@@ -151,7 +163,9 @@ Quantity parse_quantity(std::string_view text) {
   } catch (const UnitError& e) {
     throw UnitError(e.what(), unit_start + e.column());
   }
-  return {(value + unit.offset) * unit.scale, unit.dimension};
+  const double si = (value + unit.offset) * unit.scale;
+  if (!std::isfinite(si)) throw UnitError("the value in SI units is beyond the range of a double", i);
+  return {si, unit.dimension};
 }
 
 double to_unit(double value_in_si, Dimension dimension, std::string_view unit) {

@@ -66,3 +66,14 @@ TEST_CASE("dimensions print as SI units", "[units]") {
   CHECK(dim::none.si_unit() == "1");
   CHECK(dim::velocity.describe() == "length/time");
 }
+
+TEST_CASE("units found by fuzzing: huge powers, dimension overflow, values beyond a double", "[units][fuzz]") {
+  // tests/fuzz found "g*g*mm^222": 1e-666 underflowed the scale to 0 and 222 wrapped the 8-bit
+  // length exponent. Each is now a UnitError with its column.
+  CHECK_THROWS_WITH(mechgraph::parse_unit("g*g*mm^222"), Catch::Matchers::Contains("power of a unit must lie within -16..16"));
+  CHECK_THROWS_WITH(mechgraph::parse_unit("m^16*m^16"), Catch::Matchers::Contains("exponent beyond -16..16"));
+  CHECK_THROWS_WITH(mechgraph::parse_unit("cm^16*cm^16/mm^16"), Catch::Matchers::Contains("exponent beyond"));
+  CHECK_THROWS_WITH(mechgraph::parse_quantity("1e308 GPa"), Catch::Matchers::Contains("beyond the range of a double"));
+  CHECK(mechgraph::parse_unit("mm^16").scale == Approx(1e-48).epsilon(1e-14).margin(0));
+  CHECK(mechgraph::parse_quantity("1e300 mm").value == Approx(1e297).epsilon(1e-14).margin(0));
+}

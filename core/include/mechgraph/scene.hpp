@@ -18,14 +18,25 @@ struct SourceLocation {
   std::string str() const;  // "file:line:column: " or the origin label
 };
 
+struct RawField;
+
 /// A YAML value as written: a scalar's text, a list or a map, with its location.
 struct RawValue {
   enum class Kind { scalar, list, map } kind = Kind::scalar;
   std::string text;
   std::vector<RawValue> items;
-  std::vector<std::pair<std::string, RawValue>> fields;
+  std::vector<RawField> fields;  // of a map, in the order written
   SourceLocation where;
   SourceLocation key_where;  // where the key that holds this value stands
+};
+
+/// One key of a map and its value (a pair, spelled out: a std::pair of a type still being defined
+/// is not allowed, and clang says so).
+struct RawField {
+  std::string first;
+  RawValue second;
+  RawField() = default;
+  RawField(std::string key, RawValue value) : first(std::move(key)), second(std::move(value)) {}
 };
 
 /// "node.port" as written in `inputs:` or `outputs:`.

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Fuzzes the scene boundary with libFuzzer (clang from Debian): the scene loader, the unit
+# parser, --set overrides and cam.table's CSV reader, each under AddressSanitizer + UBSan.
+#   scripts/run-fuzzers.sh            every target for 60 s (what CI runs)
+#   scripts/run-fuzzers.sh 3600       every target for an hour (a long run)
+#   scripts/run-fuzzers.sh 600 fuzz_scene
+# The seed corpus is tests/fuzz/corpus/<target> (and scenes/ for the loader); what the fuzzer
+# adds goes to build-fuzz/corpus/<target>, never into the repository. A crash leaves its input in
+# build-fuzz/artifacts/ and fails the run: turn it into a regression test (tests/core/...) and
+# add the input to the seed corpus.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds=${1:-60}
+shift || true
+targets=("$@")
+((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table)
+
+scripts/install-deps.sh
+missing=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+fi
+
+flags="-fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g -O1"
+link="-fsanitize=address,undefined"
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ \
+  -DMECHGRAPH_FUZZ=ON -DMECHGRAPH_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS="$flags" \
+  -DCMAKE_EXE_LINKER_FLAGS="$link" -DCMAKE_SHARED_LINKER_FLAGS="$link" -DCMAKE_MODULE_LINKER_FLAGS="$link" >&2
+cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]}" >&2
+
+mkdir -p build-fuzz/artifacts
+status=0
+for t in "${targets[@]}"; do
+  name=${t#fuzz_}
+  corpus=build-fuzz/corpus/$name
+  mkdir -p "$corpus"
+  seeds=(tests/fuzz/corpus/$name)
+  [ "$t" = fuzz_scene ] && seeds+=(scenes)
+  echo "== $t for ${seconds} s" >&2
+  if ! ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+      build-fuzz/fuzz/"$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+      -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/"$name"- "$corpus" "${seeds[@]}" 2> build-fuzz/"$t".log; then
+    echo "!! $t found a problem; its input is in build-fuzz/artifacts/, the log in build-fuzz/$t.log:" >&2
+    tail -40 build-fuzz/"$t".log >&2
+    status=1
+  else
+    grep -E "stat::number_of_executed_units|stat::peak_rss_mb" build-fuzz/"$t".log >&2 || true
+  fi
+done
+exit $status
