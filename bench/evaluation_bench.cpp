@@ -178,6 +178,6 @@ void BM_MonteCarloChain(benchmark::State& state) {
   }
   state.counters["samples/s"] = benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_MonteCarloChain)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MonteCarloChain)->Arg(1000000)->Arg(10000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace

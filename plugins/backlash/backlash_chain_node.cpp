@@ -236,7 +236,7 @@ class BacklashChainType final : public NodeType {
         for (const PlayTerm& t : joints[i]->terms()) stack.terms.push_back({k[i], t});
       const std::size_t samples = read_samples(p);
       const std::uint64_t seed = read_seed(p);
-      const SampleSummary mc = summarize(sample_play_stack(stack, samples, seed));
+      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed);
       ctx.report_work("samples", static_cast<double>(samples));
       out.note(monte_carlo_note(samples, seed, mc.mean_error));
       out.set_scalar("rod_backlash_mc_mean", mc.mean);

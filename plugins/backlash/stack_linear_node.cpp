@@ -110,7 +110,7 @@ class StackLinearType final : public NodeType {
     if (!ctx.effect(monte_carlo_effect)) return;
     const std::size_t n = read_samples(p);
     const std::uint64_t seed = read_seed(p);
-    const SampleSummary mc = summarize(sample_linear_stack(links, n, seed));
+    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed);
     ctx.report_work("samples", static_cast<double>(n));
     out.note(monte_carlo_note(n, seed, mc.mean_error));
     out.set_scalar("mc_mean", mc.mean);

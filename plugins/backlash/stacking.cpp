@@ -175,45 +175,145 @@ SampleSummary summarize(std::vector<double> samples) {
   return s;
 }
 
-std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
-  Variates variates(seed);
-  const CompiledSum sum(links);
-  std::vector<double> out(count), deviation(block), scratch(block);
-  for (std::size_t start = 0; start < count; start += block) {
-    const std::size_t n = std::min(block, count - start);
-    std::fill_n(deviation.begin(), n, 0.0);
-    sum.add_deviations(variates, deviation.data(), scratch.data(), n);
-    for (std::size_t i = 0; i < n; ++i) out[start + i] = sum.mean + deviation[i];
+namespace {
+
+// A stack's samples in sequence, a block at a time: each block draws every variate kind for the
+// whole block, then the arithmetic runs over arrays. The same seed gives the same sequence.
+class LinearStackSampler {
+ public:
+  LinearStackSampler(const std::vector<ToleranceLink>& links, std::uint64_t seed) : variates_(seed), sum_(links) {}
+  void fill(double* out, std::size_t n) {  // n <= block
+    std::fill_n(deviation_.begin(), n, 0.0);
+    sum_.add_deviations(variates_, deviation_.data(), scratch_.data(), n);
+    for (std::size_t i = 0; i < n; ++i) out[i] = sum_.mean + deviation_[i];
   }
+
+ private:
+  Variates variates_;
+  CompiledSum sum_;
+  std::vector<double> deviation_ = std::vector<double>(block), scratch_ = std::vector<double>(block);
+};
+
+class PlayStackSampler {
+ public:
+  PlayStackSampler(const PlayStack& stack, std::uint64_t seed)
+      : variates_(seed), own_mean_(stack.own_mean), own_sigma_(stack.own_sigma) {
+    for (const WeightedTerm& t : stack.terms) {
+      terms_.emplace_back(t.term.links);
+      weights_.push_back(t.weight);
+    }
+  }
+  void fill(double* y, std::size_t n) {  // n <= block
+    if (own_sigma_ > 0.0) {
+      variates_.normals(scratch_.data(), n);
+      for (std::size_t i = 0; i < n; ++i) y[i] = std::max(0.0, own_mean_ + own_sigma_ * scratch_[i]);
+    } else {
+      std::fill_n(y, n, std::max(0.0, own_mean_));
+    }
+    for (std::size_t k = 0; k < terms_.size(); ++k) {
+      std::fill_n(deviation_.begin(), n, 0.0);
+      terms_[k].add_deviations(variates_, deviation_.data(), scratch_.data(), n);
+      const double m = terms_[k].mean, w = weights_[k];
+      for (std::size_t i = 0; i < n; ++i) y[i] += w * std::max(0.0, m + deviation_[i]);
+    }
+  }
+
+ private:
+  Variates variates_;
+  double own_mean_, own_sigma_;
+  std::vector<CompiledSum> terms_;
+  std::vector<double> weights_;
+  std::vector<double> deviation_ = std::vector<double>(block), scratch_ = std::vector<double>(block);
+};
+
+template <class Sampler>
+std::vector<double> all_samples(Sampler sampler, std::size_t count) {
+  std::vector<double> out(count);
+  for (std::size_t start = 0; start < count; start += block) sampler.fill(out.data() + start, std::min(block, count - start));
   return out;
 }
 
+// The summary of `count` samples without keeping them: one pass sums about a shift and keeps the
+// extremes and the samples beyond two thresholds; the 3-sigma quantiles are then selected among
+// those tails (the order statistics of the whole are the tails' when the tails hold their ranks).
+// The thresholds come from a pilot of the stream's first samples (mean -+ 2 sigma); should a tail
+// be too thin to hold its rank (a heavy tail), the stream is run again from its seed with the
+// thresholds twice as far in. Memory: the tails, a few percent of the samples.
+template <class MakeSampler>
+SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
+  constexpr std::size_t pilot_count = 1u << 16;
+  if (count <= 2 * pilot_count) return summarize(all_samples(make(), count));
+  const SampleSummary pilot = summarize(all_samples(make(), pilot_count));
+  const double n = static_cast<double>(count);
+  for (double reach = 2.0; reach >= 0.25; reach /= 2.0) {
+    const double t_low = pilot.mean - reach * pilot.sigma, t_high = pilot.mean + reach * pilot.sigma;
+    auto sampler = make();
+    std::vector<double> buffer(block), low_tail, high_tail;
+    double shift = 0.0, sum = 0.0, squares = 0.0, low = 0.0, high = 0.0;
+    for (std::size_t start = 0; start < count; start += block) {
+      const std::size_t m = std::min(block, count - start);
+      sampler.fill(buffer.data(), m);
+      if (start == 0) shift = low = high = buffer[0];
+      double block_sum = 0.0, block_squares = 0.0;  // per block, then added: the sums keep their digits
+      for (std::size_t i = 0; i < m; ++i) {
+        const double x = buffer[i], d = x - shift;
+        block_sum += d;
+        block_squares += d * d;
+        low = std::min(low, x);
+        high = std::max(high, x);
+        if (x < t_low) low_tail.push_back(x);
+        if (x > t_high) high_tail.push_back(x);
+      }
+      sum += block_sum;
+      squares += block_squares;
+    }
+    // The ranks a quantile interpolates between, and whether the tails hold them.
+    auto ranks = [&](double p) {
+      const double h = (n - 1.0) * p;
+      const auto lo = static_cast<std::size_t>(std::floor(h));
+      return std::pair{lo, h - static_cast<double>(lo)};
+    };
+    const auto [low_rank, low_frac] = ranks(probability_minus_3_sigma);
+    const auto [high_rank, high_frac] = ranks(probability_plus_3_sigma);
+    const std::size_t high_first = count - high_tail.size();
+    if (low_rank + 1 >= low_tail.size() || high_rank < high_first || high_rank + 1 >= count) continue;
+    SampleSummary s;
+    s.count = count;
+    s.min = low;
+    s.max = high;
+    s.mean = shift + sum / n;
+    s.sigma = std::sqrt(std::max(0.0, (squares - sum * sum / n) / (n - 1.0)));
+    s.mean_error = s.sigma / std::sqrt(n);
+    s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
+    auto select = [](std::vector<double>& tail, std::size_t k, double frac) {
+      std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(k), tail.end());
+      const double a = tail[k];
+      const double b = *std::min_element(tail.begin() + static_cast<std::ptrdiff_t>(k) + 1, tail.end());
+      return a + frac * (b - a);
+    };
+    s.q_low = select(low_tail, low_rank, low_frac);
+    s.q_high = select(high_tail, high_rank - high_first, high_frac);
+    return s;
+  }
+  return summarize(all_samples(make(), count));  // tails never thin enough to hold the ranks
+}
+
+}  // namespace
+
+std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
+  return all_samples(LinearStackSampler(links, seed), count);
+}
+
 std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed) {
-  Variates variates(seed);
-  std::vector<CompiledSum> terms;
-  std::vector<double> weights;
-  for (const WeightedTerm& t : stack.terms) {
-    terms.emplace_back(t.term.links);
-    weights.push_back(t.weight);
-  }
-  std::vector<double> out(count), deviation(block), scratch(block);
-  for (std::size_t start = 0; start < count; start += block) {
-    const std::size_t n = std::min(block, count - start);
-    double* y = out.data() + start;
-    if (stack.own_sigma > 0.0) {
-      variates.normals(scratch.data(), n);
-      for (std::size_t i = 0; i < n; ++i) y[i] = std::max(0.0, stack.own_mean + stack.own_sigma * scratch[i]);
-    } else {
-      std::fill_n(y, n, std::max(0.0, stack.own_mean));
-    }
-    for (std::size_t k = 0; k < terms.size(); ++k) {
-      std::fill_n(deviation.begin(), n, 0.0);
-      terms[k].add_deviations(variates, deviation.data(), scratch.data(), n);
-      const double m = terms[k].mean, w = weights[k];
-      for (std::size_t i = 0; i < n; ++i) y[i] += w * std::max(0.0, m + deviation[i]);
-    }
-  }
-  return out;
+  return all_samples(PlayStackSampler(stack, seed), count);
+}
+
+SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
+  return summarize_stream([&] { return LinearStackSampler(links, seed); }, count);
+}
+
+SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed) {
+  return summarize_stream([&] { return PlayStackSampler(stack, seed); }, count);
 }
 
 }  // namespace mechgraph::backlash

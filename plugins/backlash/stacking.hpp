@@ -84,4 +84,10 @@ struct PlayStack {
 /// and distributions as sample_linear_stack.
 std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed);
 
+/// summarize(sample_linear_stack(...)) and summarize(sample_play_stack(...)) without keeping the
+/// samples: the same order statistics, moments summed in one pass about the first sample (equal
+/// to the two-pass ones to rounding); memory for a few percent of them. For many samples.
+SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed);
+SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed);
+
 }  // namespace mechgraph::backlash

@@ -324,3 +324,31 @@ TEST_CASE("summarize: the tail selection of a normal sample equals sorting it", 
   CHECK(s.q_low == backlash::quantile_of_sorted(sample, backlash::probability_minus_3_sigma));
   CHECK(s.q_high == backlash::quantile_of_sorted(sample, backlash::probability_plus_3_sigma));
 }
+
+TEST_CASE("Monte Carlo streamed: the same quantiles as all the samples kept, the moments to rounding", "[backlash][stack]") {
+  // Second method: summarize() over every sample kept. A normal stack (tails found at once) and a
+  // uniform one (no sample beyond mean + 2 sigma: the stream is run again with nearer thresholds).
+  for (const auto distribution : {Distribution::normal, Distribution::uniform}) {
+    INFO("distribution " << static_cast<int>(distribution));
+    std::vector<ToleranceLink> links = {{"a", 0.010, 1e-4, 1.0, distribution}};
+    backlash::PlayStack stack;
+    stack.own_mean = 25e-6;
+    stack.own_sigma = 25e-6 / 3;
+    stack.terms.push_back({1.0, {"fit", {{"hole", 0.02005, 6.5e-5, 1.0, distribution}, {"shaft", 0.01994, 6.5e-5, -1.0, distribution}}}});
+    const std::size_t n = 300001;
+    const auto stream = backlash::monte_carlo_linear_stack(links, n, 3);
+    const auto kept = backlash::summarize(backlash::sample_linear_stack(links, n, 3));
+    CHECK(stream.q_low == kept.q_low);
+    CHECK(stream.q_high == kept.q_high);
+    CHECK(stream.min == kept.min);
+    CHECK(stream.max == kept.max);
+    CHECK_THAT(stream.mean, Catch::Matchers::WithinRel(kept.mean, 1e-14));
+    CHECK_THAT(stream.sigma, Catch::Matchers::WithinRel(kept.sigma, 1e-10));
+    const auto play_stream = backlash::monte_carlo_play_stack(stack, n, 9);
+    const auto play_kept = backlash::summarize(backlash::sample_play_stack(stack, n, 9));
+    CHECK(play_stream.q_high == play_kept.q_high);
+    CHECK(play_stream.q_low == play_kept.q_low);
+    CHECK_THAT(play_stream.mean, Catch::Matchers::WithinRel(play_kept.mean, 1e-13));
+    CHECK_THAT(play_stream.sigma, Catch::Matchers::WithinRel(play_kept.sigma, 1e-10));
+  }
+}
