@@ -6,6 +6,7 @@
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/units.hpp>
 
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -17,19 +18,16 @@ std::string with_unit(const std::string& name, const std::string& unit) {
   return unit.empty() || unit == "1" ? name : name + " [" + unit + "]";
 }
 
+// The shortest text that reads back to the same double (std::to_chars: exact, and fast).
 std::string exact(double x) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, end);
 }
 
 // The unit a port's values are shown in: its display unit, else SI.
 std::string unit_of(const RequestedOutput& o) {
   return o.spec->display_unit.empty() ? o.spec->dimension.si_unit() : o.spec->display_unit;
-}
-
-double shown(double si, const RequestedOutput& o) {
-  return o.spec->display_unit.empty() ? si : to_unit(si, o.spec->dimension, o.spec->display_unit);
 }
 
 }  // namespace
@@ -46,19 +44,30 @@ int exit_code_of(CaseFailure failure) {
 SweepRows::SweepRows(const Graph& graph, const CaseTable& table, RowFormat format)
     : graph_(graph), table_(table), format_(format) {}
 
+SweepRows::Column SweepRows::column(std::size_t output, std::optional<std::size_t> element) const {
+  Column c{output, element};
+  const RequestedOutput& o = graph_.outputs[output];
+  if (!o.spec->display_unit.empty()) {
+    const UnitScale u = parse_unit(o.spec->display_unit);
+    c.scale = u.scale;
+    c.offset = u.offset;
+  }
+  return c;
+}
+
 std::vector<std::string> SweepRows::output_headers(const CaseResult* success, std::vector<Column>& columns) const {
   std::vector<std::string> names;
   for (std::size_t j = 0; j < graph_.outputs.size(); ++j) {
     const RequestedOutput& o = graph_.outputs[j];
     if (o.spec->kind == ValueKind::scalar) {
       names.push_back(with_unit(o.label, unit_of(o)));
-      columns.push_back({j, std::nullopt});
+      columns.push_back(column(j, std::nullopt));
     } else if (o.spec->kind == ValueKind::series && success) {
       const Series& s = success->outputs[j].value.as_series();
       for (std::size_t e = 0; e < s.values.size(); ++e) {
         const std::string element = e < s.labels.size() ? s.labels[e] : std::to_string(e);
         names.push_back(with_unit(o.label + "[" + element + "]", unit_of(o)));
-        columns.push_back({j, e});
+        columns.push_back(column(j, e));
       }
     }
   }
@@ -90,10 +99,10 @@ void SweepRows::adopt(const std::vector<std::string>& header) {
     if (o.spec->kind == ValueKind::scalar) {
       if (h >= header.size() - 2 || header[h] != with_unit(o.label, unit_of(o)))
         throw UsageError("the file being resumed has no column for '" + o.label + "' where this sweep writes it");
-      columns.push_back({j, std::nullopt});
+      columns.push_back(column(j, std::nullopt));
       ++h;
     } else if (o.spec->kind == ValueKind::series) {
-      for (std::size_t e = 0; h < header.size() - 2 && header[h].rfind(o.label + "[", 0) == 0; ++e, ++h) columns.push_back({j, e});
+      for (std::size_t e = 0; h < header.size() - 2 && header[h].rfind(o.label + "[", 0) == 0; ++e, ++h) columns.push_back(column(j, e));
     }
   }
   if (fixed + columns.size() + 2 != header.size())
@@ -133,9 +142,9 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
       const Value& value = result.outputs[c.output].value;
       const RequestedOutput& o = graph_.outputs[c.output];
       if (!c.element) {
-        values.push_back(exact(shown(value.as_scalar(), o)));
+        values.push_back(exact(shown(value.as_scalar(), c)));
       } else if (*c.element < value.as_series().values.size()) {
-        values.push_back(exact(shown(value.as_series().values[*c.element], o)));
+        values.push_back(exact(shown(value.as_series().values[*c.element], c)));
       } else {
         error = "output '" + o.label + "' has " + std::to_string(value.as_series().values.size()) +
                 " elements in this case, fewer than the sweep's columns";

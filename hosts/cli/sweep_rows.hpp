@@ -2,7 +2,7 @@
 // The rows of `mechgraph sweep`: one per case, `case`, the varied inputs, the requested outputs
 // (a scalar is one column, a series one column per element), then `exit` and `error`. Headers
 // read `name [unit]`; values are in the column's unit, written with 17 significant digits so a
-// row reads back to the same doubles. The columns of a series are known once a case has produced
+// row reads back to the same doubles (the shortest such text). The columns of a series are known once a case has produced
 // it, so rows wait until the first case succeeds (or the sweep ends) to fix the header.
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
@@ -39,7 +39,10 @@ class SweepRows {
   struct Column {
     std::size_t output;                  // index into Graph::outputs
     std::optional<std::size_t> element;  // element of a series
+    double scale = 1.0, offset = 0.0;    // shown = si / scale - offset (the display unit, parsed once)
   };
+  static double shown(double si, const Column& c) { return si / c.scale - c.offset; }
+  Column column(std::size_t output, std::optional<std::size_t> element) const;
   std::vector<std::string> output_headers(const CaseResult* success, std::vector<Column>& columns) const;
   std::string format(const std::vector<std::string>& cells, const std::vector<bool>& numeric) const;
 
