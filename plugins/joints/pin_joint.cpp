@@ -25,9 +25,10 @@ class PinJointType final : public NodeType {
     info_.params = {
         ParamSpec::number("play_factor", dim::none,
                           "share of each fit's diametral clearance that appears as play along the line of action "
-                          "(1: the line of action is radial to the pin)")
+                          "(1: the line of action is radial to the pin; at most 100)")
             .with_default(1.0)
-            .positive(),
+            .positive()
+            .at_most(100.0),
         joint_label_param(),
     };
     info_.inputs = {PortSpec::handle("fits", std::string(Fit::kind_name),

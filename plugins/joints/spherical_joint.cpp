@@ -89,9 +89,10 @@ class SphericalJointType final : public NodeType {
             .positive(),
         ParamSpec::number("axial_play_factor", dim::none,
                           "axial internal clearance / radial internal clearance, if the maker gives it "
-                          "(instead of ball_diameter and outer_ring_width)")
+                          "(instead of ball_diameter and outer_ring_width; at most 100)")
             .optional()
-            .positive(),
+            .positive()
+            .at_most(100.0),
         joint_label_param(),
     };
     info_.inputs = {PortSpec::handle("fits", std::string(Fit::kind_name),

@@ -26,10 +26,12 @@ class DynamicsType final : public NodeType {
     info_.summary = "valve motion on an elastic drive (single mass), cam contact and seat as located events; rigid when "
                     "elastic_drive is off";
     info_.params = {
-        ParamSpec::number("drive_stiffness", dim::stiffness, "k_d: the drive's stiffness reduced to the valve (elastic_drive)",
+        ParamSpec::number("drive_stiffness", dim::stiffness,
+                          "k_d: the drive's stiffness reduced to the valve (elastic_drive; from 1 N/mm: softer, the "
+                          "valve no longer follows the cam at all)",
                           "N/mm")
             .optional()
-            .positive()
+            .at_least(1e3)
             .at_most(1e13),
         ParamSpec::number("damping_ratio", dim::none,
                           "damping of the drive's first mode, share of critical (stiffness-proportional on the drive's "

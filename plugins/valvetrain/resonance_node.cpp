@@ -34,9 +34,12 @@ class ResonanceType final : public NodeType {
             .at_least(16)
             .at_most(1e8)
             .as_knob(),
-        ParamSpec::number("damping_coefficient", dim::mass / dim::time, "xi, N*s/m; default 0.107 M_red omega0", "N*s/m")
+        ParamSpec::number("damping_coefficient", dim::mass / dim::time,
+                          "xi, N*s/m; default 0.107 M_red omega0 (from 1e-3 N*s/m: undamped, the resonant amplitude "
+                          "F_k / (xi omega0) has no bound)",
+                          "N*s/m")
             .optional()
-            .positive()
+            .at_least(1e-3)
             .at_most(1e9),
     };
     info_.inputs = {
