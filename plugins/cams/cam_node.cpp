@@ -85,10 +85,10 @@ class CamNodeType final : public NodeType {
                           "mm")
             .positive(),
         ParamSpec::number("action_angle", dim::angle,
-                          "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 1 deg, "
+                          "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
                           "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
                           "deg")
-            .at_least(std::numbers::pi / 180.0)
+            .at_least(0.1 * std::numbers::pi / 180.0)
             .below(2.0 * std::numbers::pi),
         ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive(),
     };
