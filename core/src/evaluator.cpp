@@ -200,8 +200,12 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
     throw EvaluationError(where.str() + where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
   } catch (const EvaluationError&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw EvaluationError(where_of(node) + ": ran out of memory (an allocation failed)");
   } catch (const std::exception& e) {
     throw EvaluationError(where_of(node) + ": " + e.what());
+  } catch (...) {
+    throw EvaluationError(where_of(node) + " threw something that is not a std::exception (a defect of its plugin)");
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   produced[i] = checked_outputs(node, outputs);

@@ -20,7 +20,7 @@ TEST_CASE("a good plugin loads with its descriptor and node types", "[plugins]")
   CHECK(r.plugins()[0].fingerprint == build_fingerprint_for_tests());
   CHECK(r.find("test.add") != nullptr);
   CHECK(r.find("test.nope") == nullptr);
-  CHECK(r.type_names().size() == 10);
+  CHECK(r.type_names().size() == 11);
   CHECK(r.effect_names() == std::vector<std::string>{"test_effect", "test_extra"});
 }
 

@@ -4,6 +4,8 @@
 #include <mechgraph/plugin_abi.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <new>
 #include <chrono>
 #include <limits>
 #include <thread>
@@ -21,7 +23,7 @@ class Box final : public DomainObject {
 
 class Arith final : public NodeType {
  public:
-  enum class Op { constant, add, box, unbox, nan, fail, series, effectful, table, slow };
+  enum class Op { constant, add, box, unbox, nan, fail, series, effectful, table, slow, chaos };
   Arith(Op op, std::string type) : op_(op) {
     info_.type = std::move(type);
     info_.summary = "test node";
@@ -70,6 +72,12 @@ class Arith final : public NodeType {
         info_.outputs = {PortSpec::table("curves", "x^2 [m] and 2x [m/s] over x [s]"),
                          PortSpec::scalar("extra", dim::length, "only with test_extra")};
         info_.effects = {{"test_extra", "brings the output extra", {"extra"}, {"extra_gain"}}};
+        break;
+      case Op::chaos:
+        info_.params = {ParamSpec::choice("mode", {"ok", "throw", "nan", "sleep", "allocate", "throw_other"},
+                                          "how this node misbehaves").with_default("ok")};
+        info_.inputs = {PortSpec::scalar("in", dim::length, "summed").many().optional_port()};
+        info_.outputs = {PortSpec::scalar("out", dim::length, "the sum of the inputs, or mischief")};
         break;
       case Op::slow:
         info_.params = {ParamSpec::number("value", dim::length, "the value", "mm"),
@@ -128,6 +136,22 @@ class Arith final : public NodeType {
         if (ctx.effect("test_extra")) out.set_scalar("extra", p.number("extra_gain"));
         break;
       }
+      case Op::chaos: {
+        double sum = 0.0;
+        for (std::size_t i = 0; i < in.count("in"); ++i) sum += in.scalar("in", i);
+        const std::string& mode = p.text("mode");
+        if (mode == "throw") throw NodeError("mode", "chaos: thrown on purpose");
+        if (mode == "nan") sum = std::numeric_limits<double>::quiet_NaN();
+        if (mode == "sleep") std::this_thread::sleep_for(std::chrono::milliseconds(30));
+        if (mode == "allocate") {  // far beyond any machine: the allocation fails, as std::vector's would
+          void* block = std::malloc(std::size_t{1} << 62);
+          if (!block) throw std::bad_alloc();
+          std::free(block);
+        }
+        if (mode == "throw_other") throw 42;  // not even a std::exception
+        out.set_scalar("out", sum);
+        break;
+      }
       case Op::slow:
         std::this_thread::sleep_for(std::chrono::duration<double>(p.number("delay")));
         out.set_scalar("out", p.number("value"));
@@ -146,7 +170,8 @@ NodeTypeList make_types() {
           std::make_shared<Arith>(Op::box, "test.box"),           std::make_shared<Arith>(Op::unbox, "test.unbox"),
           std::make_shared<Arith>(Op::nan, "test.nan"),           std::make_shared<Arith>(Op::fail, "test.fail"),
           std::make_shared<Arith>(Op::series, "test.series"),     std::make_shared<Arith>(Op::effectful, "test.effectful"),
-          std::make_shared<Arith>(Op::table, "test.table"),           std::make_shared<Arith>(Op::slow, "test.slow")};
+          std::make_shared<Arith>(Op::table, "test.table"),           std::make_shared<Arith>(Op::slow, "test.slow"),
+          std::make_shared<Arith>(Op::chaos, "test.chaos")};
 }
 
 }  // namespace
