@@ -58,7 +58,7 @@ std::vector<CaseResult> sweep_all(const Prepared& p, unsigned threads, MemoCache
 
 }  // namespace
 
-TEST_CASE("--vary: FROM:TO:N includes both ends exactly, units in either end, lists of words", "[sweep]") {
+TEST_CASE("sweep --vary: FROM:TO:N includes both ends exactly, units in either end, lists of words", "[sweep]") {
   const VarySpec v = parse_vary("rpm=3000rpm:7000:5");
   REQUIRE(v.values.size() == 5);
   const double rpm = 2 * M_PI / 60;
@@ -114,7 +114,7 @@ TEST_CASE("Latin hypercube: one point per stratum of every variable, reproducibl
   CHECK_THROWS_WITH(parse_sample("lift=10mm:8mm"), Contains("HI must be greater than LO"));
 }
 
-TEST_CASE("--cases: header units, units in cells, words, and located errors", "[sweep]") {
+TEST_CASE("sweep --cases: header units, units in cells, words, and located errors", "[sweep]") {
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_sweep_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto file = dir / "cases.csv";
