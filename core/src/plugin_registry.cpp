@@ -6,7 +6,10 @@
 #include <boost/dll/shared_library.hpp>
 #include <spdlog/spdlog.h>
 
+#include <dlfcn.h>
 #include <elf.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -95,6 +98,83 @@ void check_elf(const std::filesystem::path& file, const std::string& where) {
   }
 }
 
+// Loads the file in a child process before this one maps it (GStreamer's plugin scanner is the
+// model): the child dlopens it, which runs its static constructors, and calls its entry. A library
+// that crashes, aborts or hangs there takes only the child down; the parent reads how it ended and
+// refuses the file with the reason. Anything else (a missing entry, a version mismatch) is left to
+// the real load, which explains it better.
+// Files that loaded cleanly in a child before, by path, size, change time and inode, so that a
+// process start does not fork once per plugin every time: $XDG_CACHE_HOME/mechgraph/plugin-probes
+// (else ~/.cache/...), one line per file, appended. A file that changes is probed again.
+std::filesystem::path probe_cache_file() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "mechgraph" / "plugin-probes";
+  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "mechgraph" / "plugin-probes";
+  return {};
+}
+
+std::string probe_key(const std::filesystem::path& file) {
+  struct stat st {};
+  if (::stat(file.c_str(), &st) != 0) return {};
+  return file.string() + " " + std::to_string(st.st_size) + " " + std::to_string(st.st_ctim.tv_sec) + "." +
+         std::to_string(st.st_ctim.tv_nsec) + " " + std::to_string(st.st_ino);
+}
+
+bool probed_before(const std::string& key) {
+  const std::filesystem::path cache = probe_cache_file();
+  if (key.empty() || cache.empty()) return false;
+  std::ifstream in(cache);
+  for (std::string line; std::getline(in, line);)
+    if (line == key) return true;
+  return false;
+}
+
+void remember_probe(const std::string& key) {
+  const std::filesystem::path cache = probe_cache_file();
+  if (key.empty() || cache.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(cache.parent_path(), ec);
+  if (std::filesystem::exists(cache, ec) && std::filesystem::file_size(cache, ec) > (1u << 20)) std::filesystem::remove(cache, ec);
+  std::ofstream(cache, std::ios::app) << key + "\n";  // one short append: whole lines even with several writers
+}
+
+void probe_in_child(const std::filesystem::path& file, const std::string& where) {
+  const std::string key = probe_key(file);
+  if (probed_before(key)) return;
+  const pid_t child = ::fork();
+  if (child < 0) return;  // no process to spare: load without the probe
+  if (child == 0) {
+    void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle) {
+      if (void* entry = ::dlsym(handle, std::string(plugin_entry_name).c_str())) {
+        // BOOST_DLL_ALIAS exports a pointer to the function.
+        auto* function = *reinterpret_cast<PluginEntry**>(entry);
+        if (function) (void)function();
+      }
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  for (int waited_ms = 0;; waited_ms += 10) {
+    const pid_t done = ::waitpid(child, &status, WNOHANG);
+    if (done == child) break;
+    if (done < 0) return;
+    if (waited_ms >= 30000) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      throw PluginError(where + ": loading it did not finish within 30 s (a hang in its static constructors or "
+                                "its entry); refused");
+    }
+    ::usleep(10000);
+  }
+  if (WIFSIGNALED(status))
+    throw PluginError(where + ": loading it crashed (signal " + std::to_string(WTERMSIG(status)) + ", " +
+                      ::strsignal(WTERMSIG(status)) + ") in its static constructors or its entry; refused");
+  if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
+    throw PluginError(where + ": loading it ended the process with exit code " + std::to_string(WEXITSTATUS(status)) +
+                      " (in its static constructors or its entry); refused");
+  remember_probe(key);
+}
+
 }  // namespace
 
 std::shared_ptr<const DomainObject> RegisteredType::keep_alive(std::shared_ptr<const DomainObject> object) const {
@@ -107,6 +187,7 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file)) throw PluginError(where + ": no such file");
   check_ownership(file, where, false);
   check_elf(file, where);
+  probe_in_child(file, where);
   auto library = std::make_shared<Library>();
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);

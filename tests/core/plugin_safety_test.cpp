@@ -1,4 +1,5 @@
-// Plugin folders survive bad files: a truncated library, a file that is no library at all, a file
+// Plugin folders survive bad files: a truncated library, a file that is no library at all, a library
+// that crashes while it loads, a file
 // or folder others can write. Each is refused with its path and reason before the dynamic loader
 // maps it; load_directory skips it and loads the rest.
 #include "test_support.hpp"
@@ -84,5 +85,20 @@ TEST_CASE("the command line: skipped files are shown, and named when the scene n
   const auto missing = run_cli(plugins + "-q run '" + (dir / "missing.yaml").string() + "'");
   CHECK(missing.exit_code == 4);
   CHECK_THAT(missing.err, Contains("unknown node type 'other.thing'") && Contains("mechgraph_notes.so"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a library that crashes in its static constructors is refused; the host and the rest survive", "[plugins][safety]") {
+  // The probe loads each file in a child process first: the crash takes the child down only.
+  const fs::path dir = folder_with_good_plugin("crash");
+  fs::copy_file(test_plugin("test_crash_ctor"), dir / "mechgraph_test_crash_ctor.so");
+  PluginRegistry r;
+  r.load_directory(dir);
+  CHECK(r.find("test.add"));
+  REQUIRE(r.skipped().size() == 1);
+  CHECK_THAT(r.skipped()[0].reason, Contains("mechgraph_test_crash_ctor.so") && Contains("crashed") &&
+                                        Contains("static constructors"));
+  // Loading it alone is a PluginError naming it, not the end of this process.
+  CHECK_THROWS_WITH(PluginRegistry().load_file(dir / "mechgraph_test_crash_ctor.so"), Contains("crashed"));
   fs::remove_all(dir);
 }
