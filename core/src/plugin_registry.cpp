@@ -232,7 +232,7 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
     info.node_types.push_back(name);
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id});
   }
-  all_libraries().push_back(library);
+  if (lifetime_ == Lifetime::process) all_libraries().push_back(library);
   for (auto& a : added) types_.push_back(std::move(a));
   spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
   plugins_.push_back(std::move(info));

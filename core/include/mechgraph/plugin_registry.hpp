@@ -38,6 +38,14 @@ struct SkippedPlugin {
 
 class PluginRegistry {
  public:
+  /// How long a library stays loaded. `process` (the host's choice): until the process ends, so
+  /// no object a plugin made can outlive its code. `objects`: while the registry or any object it
+  /// made (node types, their outputs, through keep_alive) holds it; with the last one gone the
+  /// library is closed and, unless the loader pins it, unmapped. The loader tests use `objects`
+  /// with a plugin built with -fno-gnu-unique, so a lifetime bug shows as a crash, not never.
+  enum class Lifetime { process, objects };
+  explicit PluginRegistry(Lifetime lifetime = Lifetime::process) : lifetime_(lifetime) {}
+
   /// Loads one plugin file. Throws PluginError naming the file and the reason: writable by group
   /// or others or owned by another user, not a whole ELF shared library for this machine
   /// (truncated, wrong class or architecture: probed before the dynamic loader maps it), missing
@@ -66,6 +74,7 @@ class PluginRegistry {
   std::vector<PluginInfo> plugins_;
   std::vector<SkippedPlugin> skipped_;
   std::vector<std::pair<std::string, RegisteredType>> types_;
+  Lifetime lifetime_ = Lifetime::process;
 };
 
 }  // namespace mechgraph
