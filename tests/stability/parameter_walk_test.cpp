@@ -1,4 +1,5 @@
-// Property walk: every numeric parameter of every node of the example scenes, set to the ends of
+// Property walk: every numeric parameter of every node of the example scenes (and of
+// tests/stability/walk_scenes/, which holds the node types no example uses), set to the ends of
 // its declared range and beyond them into the huge and the tiny, must give finite results or an
 // error that names the node — never a NaN or infinity caught only by the evaluator's guard, never
 // another kind of failure. Accuracy knobs are left out: at their ends they cost time, not
@@ -45,8 +46,12 @@ std::string text_of(double si, const ParamSpec& p) {
 std::set<std::string> walk(bool (*include)(const std::string& type)) {
   std::set<std::string> covered;
   std::size_t runs = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes")) {
-    if (entry.path().extension() != ".yaml") continue;
+  std::vector<std::filesystem::path> files;
+  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes"})  // the examples, then the types they lack
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + folder))
+      if (entry.path().extension() == ".yaml") files.push_back(entry.path());
+  for (const std::filesystem::path& file : files) {
+    const auto entry = std::filesystem::directory_entry(file);
     const SceneSpec scene = load_scene(entry.path());
     const Graph base = build_graph(scene, project_registry());
     for (std::size_t i : base.order) {
@@ -91,4 +96,16 @@ TEST_CASE("property walk: every numeric parameter at its range's ends gives fini
 // The simulations apart: each run integrates, so this walk takes most of a minute.
 TEST_CASE("property walk of the simulating nodes (dynamics, float speed)", "[stability][walk]") {
   CHECK(walk([](const std::string& type) { return simulates(type); }).size() > 10);
+}
+
+TEST_CASE("property walk covers every node type of the project's plugins", "[stability][walk]") {
+  std::set<std::string> used;
+  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes"})
+    for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + folder))
+      if (entry.path().extension() == ".yaml")
+        for (const NodeSpec& n : load_scene(entry.path()).nodes) used.insert(n.type);
+  for (const std::string& type : project_registry().type_names()) {
+    INFO(type << " is in no example scene and not in tests/stability/walk_scenes/: add it there");
+    CHECK(used.count(type) == 1);
+  }
 }
