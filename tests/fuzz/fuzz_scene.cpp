@@ -1,6 +1,8 @@
 // Fuzz target: a scene file's text, loaded and built against the project's plugins. The loader
 // may refuse it only with SceneError (file:line:column) or PluginError; it must never crash, hang
 // or throw anything else.
+#include "fuzz_support.hpp"
+
 #include <mechgraph/errors.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/scene.hpp>
@@ -11,14 +13,7 @@
 #include <string_view>
 
 namespace {
-const mechgraph::PluginRegistry& registry() {
-  static const mechgraph::PluginRegistry r = [] {
-    mechgraph::PluginRegistry loaded;
-    loaded.load_directory(MECHGRAPH_PLUGIN_DIR);
-    return loaded;
-  }();
-  return r;
-}
+const mechgraph::PluginRegistry& registry() { return mechgraph::fuzz::project_plugins(); }
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {

@@ -1,5 +1,7 @@
 // Fuzz target: a `--set NAME=VALUE` override applied to the valve-train study. It may be refused
 // only with SceneError or PluginError, naming what was wrong.
+#include "fuzz_support.hpp"
+
 #include <mechgraph/errors.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/scene.hpp>
@@ -10,14 +12,7 @@
 #include <string>
 
 namespace {
-const mechgraph::PluginRegistry& registry() {
-  static const mechgraph::PluginRegistry r = [] {
-    mechgraph::PluginRegistry loaded;
-    loaded.load_directory(MECHGRAPH_PLUGIN_DIR);
-    return loaded;
-  }();
-  return r;
-}
+const mechgraph::PluginRegistry& registry() { return mechgraph::fuzz::project_plugins(); }
 const mechgraph::SceneSpec& study() {
   static const mechgraph::SceneSpec s = mechgraph::load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml");
   return s;
