@@ -161,7 +161,7 @@ TEST_CASE("a case outside a parameter's range, of the wrong dimension or an unkn
   CHECK_THAT(rows[2].error, Contains("is dimensionless (1), the value is length"));
   CHECK_THAT(rows[3].error, Contains("s.gain = 'abc'"));
   CHECK(rows[3].failure == CaseFailure::scene);
-  CHECK_THAT(rows[3].outputs.size() == 0 ? std::string("none") : std::string("some"), Contains("none"));
+  for (std::size_t i = 1; i < rows.size(); ++i) CHECK(rows[i].outputs.empty());  // a refused case has no values
 }
 
 TEST_CASE("an evaluation error in one case is its row's error; the sweep goes on", "[sweep]") {
