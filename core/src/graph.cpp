@@ -1,4 +1,5 @@
 #include <mechgraph/graph.hpp>
+#include <mechgraph/semantic_version.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
@@ -124,6 +125,7 @@ class GraphBuilder {
   }
 
   Graph build() {
+    check_requirements();
     graph_.title = scene_.title;
     graph_.file = scene_.file;
     for (const NodeSpec& n : scene_.nodes) {
@@ -144,6 +146,31 @@ class GraphBuilder {
   }
 
  private:
+  // ----- requires: { plugin: "requirement" }
+  void check_requirements() const {
+    for (const PluginRequirement& r : scene_.requirements) {
+      VersionRequirement wanted;
+      try {
+        wanted = VersionRequirement::parse(r.requirement);
+      } catch (const std::invalid_argument& e) {
+        fail(r.where, "requires " + r.plugin + ": " + e.what());
+      }
+      const PluginInfo* loaded = nullptr;
+      std::vector<std::string> ids;
+      for (const PluginInfo& p : registry_.plugins()) {
+        ids.push_back(p.id);
+        if (p.id == r.plugin) loaded = &p;
+      }
+      if (!loaded)
+        fail(r.where, "the scene requires plugin '" + r.plugin + "' " + r.requirement + ", which is not loaded; " +
+                          unknown_name_message("plugin", r.plugin, ids));
+      const auto version = SemanticVersion::parse(loaded->version);
+      if (!version || !wanted.satisfied_by(*version))
+        fail(r.where, "the scene requires plugin '" + r.plugin + "' " + r.requirement + ", but the loaded one is " +
+                          loaded->version + " (" + loaded->path.string() + "); load a matching build with --plugin-dir");
+    }
+  }
+
   // ----- overrides
   void apply_overrides(const std::vector<Override>& overrides) {
     for (const Override& o : overrides) {

@@ -1,6 +1,7 @@
 #include <mechgraph/plugin_registry.hpp>
 
 #include <mechgraph/plugin_abi.hpp>
+#include <mechgraph/semantic_version.hpp>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
@@ -18,12 +19,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
-
-#ifndef MECHGRAPH_DEFAULT_PLUGIN_DIR
-#define MECHGRAPH_DEFAULT_PLUGIN_DIR ""
-#endif
 
 namespace mechgraph {
 namespace {
@@ -47,6 +45,55 @@ std::shared_ptr<const T> tie_to_library(std::shared_ptr<const T> object, std::sh
   };
   auto holder = std::make_shared<Holder>(Holder{std::move(library), object});
   return std::shared_ptr<const T>(holder, object.get());
+}
+
+// "abi4;gcc-12;cxx202002;glibcxx-abi1" -> {"abi": "4", "compiler": "gcc-12", "cxx": "202002", ...}
+std::map<std::string, std::string> fingerprint_fields(const std::string& fingerprint) {
+  std::map<std::string, std::string> out;
+  std::stringstream ss(fingerprint);
+  for (std::string item; std::getline(ss, item, ';');) {
+    if (item.rfind("abi", 0) == 0) out["abi"] = item.substr(3);
+    else if (item.rfind("cxx", 0) == 0) out["cxx"] = item.substr(3);
+    else if (item.rfind("glibcxx-abi", 0) == 0) out["glibcxx-abi"] = item.substr(11);
+    else out["compiler"] = item;
+  }
+  return out;
+}
+
+std::string cxx_standard_name(const std::string& cplusplus) {
+  static const std::map<std::string, std::string> names{{"201402", "C++14"}, {"201703", "C++17"}, {"202002", "C++20"},
+                                                        {"202100", "C++23"}, {"202302", "C++23"}};
+  const auto it = names.find(cplusplus.substr(0, 6));
+  return it == names.end() ? "__cplusplus " + cplusplus : it->second + " (__cplusplus " + cplusplus + ")";
+}
+
+// Names each field of the build fingerprint that differs and what to rebuild with.
+std::string explain_fingerprint_mismatch(const std::string& plugin, const std::string& host) {
+  const auto p = fingerprint_fields(plugin);
+  const auto h = fingerprint_fields(host);
+  auto field = [](const std::map<std::string, std::string>& m, const char* key) {
+    const auto it = m.find(key);
+    return it == m.end() ? std::string("unknown") : it->second;
+  };
+  std::vector<std::string> differences;
+  if (field(p, "compiler") != field(h, "compiler"))
+    differences.push_back("compiler: plugin " + field(p, "compiler") + ", mechgraph " + field(h, "compiler") +
+                          " (build the plugin with the compiler that built mechgraph: CMAKE_CXX_COMPILER)");
+  if (field(p, "cxx") != field(h, "cxx"))
+    differences.push_back("C++ standard: plugin " + cxx_standard_name(field(p, "cxx")) + ", mechgraph " +
+                          cxx_standard_name(field(h, "cxx")) + " (rebuild the plugin with " +
+                          (h.count("cxx") && h.at("cxx").substr(0, 6) == "202002" ? "-std=c++20" : "mechgraph's standard") +
+                          "; mechgraph_add_plugin() sets it unless CMAKE_CXX_STANDARD or a target property overrides it)");
+  if (field(p, "glibcxx-abi") != field(h, "glibcxx-abi"))
+    differences.push_back("libstdc++ string ABI: plugin _GLIBCXX_USE_CXX11_ABI=" + field(p, "glibcxx-abi") +
+                          ", mechgraph " + field(h, "glibcxx-abi") + " (do not set _GLIBCXX_USE_CXX11_ABI)");
+  if (field(p, "abi") != field(h, "abi"))
+    differences.push_back("plugin ABI: plugin " + field(p, "abi") + ", mechgraph " + field(h, "abi"));
+  std::string out = "was built with a toolchain this mechgraph cannot share C++ objects with (plugin '" + plugin +
+                    "', mechgraph '" + host + "'); what differs:";
+  for (const std::string& d : differences) out += "\n    " + d;
+  if (differences.empty()) out += " the fingerprints' text; rebuild the plugin with the same toolchain";
+  return out;
 }
 
 // Who may have written the file: only its owner, who must be this user or root.
@@ -143,12 +190,13 @@ void probe_in_child(const std::filesystem::path& file, const std::string& where)
   const pid_t child = ::fork();
   if (child < 0) return;  // no process to spare: load without the probe
   if (child == 0) {
+    // The parent's crash handlers (a test framework's, a host's) must not report the child's crash.
+    for (int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) ::signal(sig, SIG_DFL);
     void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle) {
-      if (void* entry = ::dlsym(handle, std::string(plugin_entry_name).c_str())) {
-        // BOOST_DLL_ALIAS exports a pointer to the function.
-        auto* function = *reinterpret_cast<PluginEntry**>(entry);
-        if (function) (void)function();
+      if (void* entry = ::dlsym(handle, plugin_entry_name)) {
+        auto* function = reinterpret_cast<PluginEntry*>(entry);
+        (void)function();
       }
     }
     ::_exit(0);
@@ -193,29 +241,41 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
   if (ec || !library->is_loaded())
     throw PluginError(where + ": cannot be loaded as a shared library (" + ec.message() + ")");
-  if (!library->has(plugin_entry_name))
+  if (!library->has(plugin_entry_name)) {
+    if (library->has(legacy_plugin_entry_name))
+      throw PluginError(where + ": was built for mechgraph plugin ABI 3 or older (its entry is the old '" +
+                        std::string(legacy_plugin_entry_name) + "' alias); this mechgraph " MECHGRAPH_SDK_VERSION
+                        " uses ABI version " + std::to_string(plugin_abi_version) +
+                        "; rebuild the plugin against this mechgraph's SDK (find_package(mechgraph " MECHGRAPH_SDK_VERSION
+                        " CONFIG) and mechgraph_add_plugin)");
     throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
                       "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
-  auto entry = library->get_alias<PluginEntry>(plugin_entry_name);
+  }
+  auto* entry = library->get<PluginEntry>(plugin_entry_name);
   const PluginDescriptor* d = entry();
   if (!d) throw PluginError(where + ": its entry returned no descriptor");
   if (d->abi_version != plugin_abi_version)
     throw PluginError(where + " was built for plugin ABI version " + std::to_string(d->abi_version) +
-                      ", this mechgraph uses ABI version " + std::to_string(plugin_abi_version) +
-                      "; rebuild the plugin against this mechgraph");
+                      ", this mechgraph " MECHGRAPH_SDK_VERSION " uses ABI version " + std::to_string(plugin_abi_version) +
+                      "; rebuild the plugin against this mechgraph's SDK (find_package(mechgraph " MECHGRAPH_SDK_VERSION
+                      " CONFIG) and mechgraph_add_plugin)");
   const std::string id = d->plugin_id ? d->plugin_id : "";
   if (!d->build_fingerprint || std::string(d->build_fingerprint) != build_fingerprint)
-    throw PluginError(where + " ('" + id + "') was built with '" + (d->build_fingerprint ? d->build_fingerprint : "?") +
-                      "', this mechgraph with '" + build_fingerprint + "'; rebuild it with the same toolchain");
+    throw PluginError(where + " ('" + id + "') " +
+                      explain_fingerprint_mismatch(d->build_fingerprint ? d->build_fingerprint : "", build_fingerprint));
   if (id.empty()) throw PluginError(where + ": its descriptor has an empty plugin id");
   for (const PluginInfo& p : plugins_)
     if (p.id == id) throw PluginError(where + ": plugin id '" + id + "' is already loaded from '" + p.path.string() + "'");
   if (!d->make_node_types) throw PluginError(where + ": its descriptor has no node type factory");
+  const std::string version = d->plugin_version ? d->plugin_version : "";
+  if (!SemanticVersion::parse(version))
+    throw PluginError(where + " ('" + id + "'): its version '" + version +
+                      "' is not a semantic version MAJOR.MINOR.PATCH (e.g. \"0.1.0\"); fix the MECHGRAPH_PLUGIN line");
 
   NodeTypeList types = d->make_node_types();
   std::shared_ptr<const void> keep = library;
   std::set<std::string> own;
-  PluginInfo info{id, d->plugin_version ? d->plugin_version : "", d->build_fingerprint, file, {}};
+  PluginInfo info{id, version, d->build_fingerprint, file, {}, d->sdk_version ? d->sdk_version : ""};
   std::vector<std::pair<std::string, RegisteredType>> added;
   for (auto& t : types) {
     if (!t) throw PluginError(where + ": returned an empty node type");
@@ -256,30 +316,31 @@ void PluginRegistry::load_directory(const std::filesystem::path& folder) {
   }
 }
 
-std::vector<std::filesystem::path> PluginRegistry::search_path(const std::optional<std::filesystem::path>& plugin_dir) {
-  if (plugin_dir) return {*plugin_dir};
-  std::vector<std::filesystem::path> out;
-  if (const char* env = std::getenv("MECHGRAPH_PLUGIN_PATH"); env && *env) {
-    std::stringstream ss(env);
-    std::string item;
-    while (std::getline(ss, item, ':'))
-      if (!item.empty()) out.emplace_back(item);
-    if (!out.empty()) return out;
-  }
-  // Beside the program: <prefix>/bin/mechgraph finds <prefix>/lib/mechgraph/plugins, in the build
-  // tree as after `cmake --install`. The build's own folder is the last resort.
+std::filesystem::path PluginRegistry::builtin_plugin_dir() {
   boost::dll::fs::error_code ec;
-  const auto program = boost::dll::program_location(ec);
-  if (!ec) {
-    const std::filesystem::path beside =
-        std::filesystem::path(program.string()).parent_path().parent_path() / "lib" / "mechgraph" / "plugins";
-    std::error_code exists_error;
-    if (std::filesystem::is_directory(beside, exists_error)) {
-      out.push_back(beside.lexically_normal());
-      return out;
+  const auto library = boost::dll::this_line_location(ec);  // this very libmechgraph.so
+  if (ec) return {};
+  return (std::filesystem::path(library.string()).parent_path() / "mechgraph" / "plugins").lexically_normal();
+}
+
+std::vector<std::filesystem::path> PluginRegistry::search_path(const std::vector<std::filesystem::path>& extra, bool only) {
+  std::vector<std::filesystem::path> candidates(extra.begin(), extra.end());
+  if (!only) {
+    if (const char* env = std::getenv("MECHGRAPH_PLUGIN_PATH"); env && *env) {
+      std::stringstream ss(env);
+      for (std::string item; std::getline(ss, item, ':');)
+        if (!item.empty()) candidates.emplace_back(item);
     }
+    if (auto builtin = builtin_plugin_dir(); !builtin.empty()) candidates.push_back(builtin);
   }
-  out.emplace_back(MECHGRAPH_DEFAULT_PLUGIN_DIR);
+  std::vector<std::filesystem::path> out;
+  std::set<std::filesystem::path> seen;
+  for (const auto& folder : candidates) {
+    std::error_code ec;
+    auto key = std::filesystem::weakly_canonical(folder, ec);
+    if (ec) key = folder.lexically_normal();
+    if (seen.insert(key).second) out.push_back(folder);
+  }
   return out;
 }
 

@@ -81,9 +81,14 @@ class SceneReader {
   SceneSpec read(const YAML::Node& root) {
     SceneSpec scene;
     scene.file = file_;
-    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, params, nodes, effects, outputs, report");
-    check_keys(root, {"title", "params", "nodes", "effects", "outputs", "report"}, "scene key");
+    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, nodes, effects, outputs, report");
+    check_keys(root, {"title", "requires", "params", "nodes", "effects", "outputs", "report"}, "scene key");
     if (root["title"]) scene.title = scalar(root["title"], "a title");
+    if (const YAML::Node r = root["requires"]; r && !r.IsNull()) {
+      if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { cams: \">=0.2\" }");
+      for (const auto& kv : r)
+        scene.requirements.push_back({scalar(kv.first, "a plugin id"), scalar(kv.second, "a version requirement"), at(kv.second)});
+    }
     if (const YAML::Node p = root["params"]; p && !p.IsNull()) {
       expect_map(p, "params");
       for (const auto& kv : p) {

@@ -19,10 +19,11 @@ struct UsageError : std::runtime_error {
 };
 
 struct GlobalOptions {
-  std::optional<std::string> plugin_dir;
+  std::vector<std::string> plugin_dirs;  // --plugin-dir / --only-plugin-dir, in the order given
+  bool only_plugin_dirs = false;          // --only-plugin-dir: no MECHGRAPH_PLUGIN_PATH, no built-ins
 };
 
-/// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, build folder).
+/// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, the built-in folder).
 PluginRegistry load_plugins(const GlobalOptions& options);
 
 /// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.

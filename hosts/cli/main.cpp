@@ -20,7 +20,7 @@ namespace {
 
 constexpr const char* usage = R"(mechgraph - calculation graphs for mechanism design
 
-usage: mechgraph [--plugin-dir DIR] [-v|-q] COMMAND [ARGS...]
+usage: mechgraph [--plugin-dir DIR | --only-plugin-dir DIR] [-v|-q] COMMAND [ARGS...]
 
 commands:
   run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]   evaluate the requested outputs
@@ -34,7 +34,10 @@ commands:
   merge FILE... [--out FILE]                              shards of one sweep back together, checked
 
 global options:
-  --plugin-dir DIR   load plugins from DIR (else MECHGRAPH_PLUGIN_PATH, else the build's folder)
+  --plugin-dir DIR   also load the plugins in DIR (repeatable; searched first), then those of
+                     MECHGRAPH_PLUGIN_PATH (':'-separated), then the built-in ones (lib/mechgraph/plugins)
+  --only-plugin-dir DIR
+                     load the plugins in DIR only (repeatable): no MECHGRAPH_PLUGIN_PATH, no built-ins
   -v, --verbose      debug logging on stderr
   -q, --quiet        only errors on stderr
   --version          print the version and the plugin ABI version
@@ -68,14 +71,18 @@ int main(int argc, char** argv) {
       spdlog::set_level(spdlog::level::debug);
     } else if (a == "-q" || a == "--quiet") {
       spdlog::set_level(spdlog::level::err);
-    } else if (a == "--plugin-dir") {
+    } else if (a == "--plugin-dir" || a == "--only-plugin-dir") {
       if (i + 1 >= args.size()) {
-        std::cerr << "mechgraph: --plugin-dir needs a folder\n";
+        std::cerr << "mechgraph: " << a << " needs a folder\n";
         return cli::usage_error;
       }
-      global.plugin_dir = args[++i];
+      global.plugin_dirs.push_back(args[++i]);
+      if (a == "--only-plugin-dir") global.only_plugin_dirs = true;
     } else if (a.rfind("--plugin-dir=", 0) == 0) {
-      global.plugin_dir = a.substr(std::strlen("--plugin-dir="));
+      global.plugin_dirs.push_back(a.substr(std::strlen("--plugin-dir=")));
+    } else if (a.rfind("--only-plugin-dir=", 0) == 0) {
+      global.plugin_dirs.push_back(a.substr(std::strlen("--only-plugin-dir=")));
+      global.only_plugin_dirs = true;
     } else {
       break;
     }

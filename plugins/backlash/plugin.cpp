@@ -11,4 +11,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("backlash", "0.1.0", &make_node_types)
+MECHGRAPH_PLUGIN("backlash", MECHGRAPH_SDK_VERSION, &make_node_types)

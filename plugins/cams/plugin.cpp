@@ -12,4 +12,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("cams", "0.1.0", &make_node_types)
+MECHGRAPH_PLUGIN("cams", MECHGRAPH_SDK_VERSION, &make_node_types)

@@ -11,4 +11,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("joints", "0.1.0", &make_node_types)
+MECHGRAPH_PLUGIN("joints", MECHGRAPH_SDK_VERSION, &make_node_types)

@@ -9,4 +9,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("springs", "0.1.0", &make_node_types)
+MECHGRAPH_PLUGIN("springs", MECHGRAPH_SDK_VERSION, &make_node_types)

@@ -11,7 +11,7 @@ using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
 
 namespace {
-std::string arith_dir() { return "--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
+std::string arith_dir() { return "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
 
 // Each test process writes into its own folder: ctest runs test cases in parallel processes.
 std::string write_scene(const std::string& name, const std::string& yaml) {
@@ -71,11 +71,12 @@ TEST_CASE("exit codes: 2 scene, 3 evaluation, 4 plugins", "[cli]") {
   const auto eval_error = run_cli(arith_dir() + " run " + write_scene("mg_nan.yaml", "nodes: { n: { type: test.nan } }\noutputs: [n.out]\n"));
   CHECK(eval_error.exit_code == 3);
   CHECK_THAT(eval_error.err, Contains("node 'n' (test.nan)"));
-  const auto plugin_error = run_cli("--plugin-dir '" + test_plugin("test_abi_mismatch").parent_path().string() + "' plugins");
+  const auto plugin_error = run_cli("--only-plugin-dir '" + test_plugin("test_abi_mismatch").parent_path().string() + "' plugins");
   CHECK(plugin_error.exit_code == 4);
   CHECK_THAT(plugin_error.err, Contains("ABI version"));
   const auto no_plugins = run_cli("--plugin-dir /nonexistent plugins");
   CHECK(no_plugins.exit_code == 4);
+  CHECK_THAT(no_plugins.err, Contains("/nonexistent") && Contains("does not exist"));
   const auto usage = run_cli(arith_dir() + " run");
   CHECK(usage.exit_code == 2);
   const auto bad_set = run_cli(arith_dir() + " run " + write_scene("mg_cull.yaml", culling_scene) + " --set nope=1mm");

@@ -21,7 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string arith_dir() { return "--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
+std::string arith_dir() { return "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
 
 fs::path work_dir() {
   const auto dir = fs::temp_directory_path() / ("mechgraph_sweep_cli_" + std::to_string(::getpid()));

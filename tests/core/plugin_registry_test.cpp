@@ -1,6 +1,7 @@
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/version.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -40,18 +41,30 @@ TEST_CASE("broken plugins are refused with a precise reason", "[plugins]") {
   SECTION("no entry") {
     PluginRegistry r;
     CHECK_THROWS_WITH(r.load_file(test_plugin("test_no_entry")),
-                      Contains("has no entry 'mechgraph_plugin'") && Contains("not a mechgraph plugin"));
+                      Contains("has no entry 'mechgraph_plugin_entry'") && Contains("not a mechgraph plugin"));
+  }
+  SECTION("the entry of ABI 3 and older: says it was built for an older mechgraph") {
+    PluginRegistry r;
+    CHECK_THROWS_WITH(r.load_file(test_plugin("test_legacy_entry")),
+                      Contains("built for mechgraph plugin ABI 3 or older") && Contains("rebuild the plugin against") &&
+                          Contains("find_package(mechgraph"));
   }
   SECTION("ABI mismatch names both versions") {
     PluginRegistry r;
     const std::string expected = "built for plugin ABI version " + std::to_string(plugin_abi_version_for_tests() + 1) +
-                                 ", this mechgraph uses ABI version " + std::to_string(plugin_abi_version_for_tests());
+                                 ", this mechgraph " MECHGRAPH_SDK_VERSION " uses ABI version " + std::to_string(plugin_abi_version_for_tests());
     CHECK_THROWS_WITH(r.load_file(test_plugin("test_abi_mismatch")), Contains(expected));
   }
-  SECTION("fingerprint mismatch") {
+  SECTION("built with another C++ standard: names the standard and what to rebuild with") {
     PluginRegistry r;
     CHECK_THROWS_WITH(r.load_file(test_plugin("test_fingerprint")),
-                      Contains("was built with 'abi1;othercc-1;cxx1'") && Contains("same toolchain"));
+                      Contains("('foreign')") && Contains("C++ standard: plugin C++23") &&
+                          Contains("mechgraph C++20") && Contains("rebuild the plugin with -std=c++20"));
+  }
+  SECTION("a version that is not MAJOR.MINOR.PATCH") {
+    PluginRegistry r;
+    CHECK_THROWS_WITH(r.load_file(test_plugin("test_bad_version")),
+                      Contains("('sloppy')") && Contains("'v2-beta' is not a semantic version MAJOR.MINOR.PATCH"));
   }
   SECTION("duplicate node type names both plugins") {
     PluginRegistry r;
@@ -89,16 +102,22 @@ TEST_CASE("node types and the objects they make stay usable after their registry
   CHECK(ctx.work.at("calls") == 1.0);
 }
 
-TEST_CASE("plugin search path: --plugin-dir, then MECHGRAPH_PLUGIN_PATH, never the current folder", "[plugins]") {
-  CHECK(PluginRegistry::search_path(std::filesystem::path("/x")) == std::vector<std::filesystem::path>{"/x"});
-  ::setenv("MECHGRAPH_PLUGIN_PATH", "/a:/b", 1);
-  CHECK(PluginRegistry::search_path(std::nullopt) == std::vector<std::filesystem::path>{"/a", "/b"});
+TEST_CASE("plugin search path: --plugin-dir adds to MECHGRAPH_PLUGIN_PATH and the built-ins, --only-plugin-dir replaces", "[plugins]") {
+  const auto builtin = PluginRegistry::builtin_plugin_dir();
+  REQUIRE(builtin.is_absolute());
+  // Found relative to libmechgraph (build/lib/libmechgraph.so -> build/lib/mechgraph/plugins), as an
+  // installed lib/libmechgraph.so finds lib/mechgraph/plugins: no build path is baked in.
+  CHECK(std::filesystem::equivalent(builtin, MECHGRAPH_PLUGIN_DIR));
   ::unsetenv("MECHGRAPH_PLUGIN_PATH");
-  const auto fallback = PluginRegistry::search_path(std::nullopt);
-  REQUIRE(fallback.size() == 1);
-  CHECK(fallback[0] != ".");
-  CHECK(fallback[0].is_absolute());
-  // build/tests/mechgraph_tests finds build/lib/mechgraph/plugins beside its bin-like folder,
-  // as an installed bin/mechgraph finds lib/mechgraph/plugins.
-  CHECK(std::filesystem::equivalent(fallback[0], MECHGRAPH_PLUGIN_DIR));
+  using Paths = std::vector<std::filesystem::path>;
+  CHECK(PluginRegistry::search_path({"/x"}, false) == Paths{"/x", builtin});
+  CHECK(PluginRegistry::search_path({"/x", "/y"}, true) == Paths{"/x", "/y"});
+  ::setenv("MECHGRAPH_PLUGIN_PATH", "/a:/b", 1);
+  CHECK(PluginRegistry::search_path({"/x"}, false) == Paths{"/x", "/a", "/b", builtin});
+  CHECK(PluginRegistry::search_path({}, true).empty());
+  ::unsetenv("MECHGRAPH_PLUGIN_PATH");
+  // A folder named twice is searched once; "." is never added.
+  const auto twice = PluginRegistry::search_path({builtin}, false);
+  CHECK(twice == Paths{builtin});
+  for (const auto& p : PluginRegistry::search_path({}, false)) CHECK(p != ".");
 }

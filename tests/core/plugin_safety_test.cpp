@@ -74,7 +74,7 @@ TEST_CASE("a plugin file or folder that others can write is refused, saying how 
 TEST_CASE("the command line: skipped files are shown, and named when the scene needs a type they may hold", "[plugins][safety][cli]") {
   const fs::path dir = folder_with_good_plugin("cli");
   std::ofstream(dir / "mechgraph_notes.so") << "these are not machine instructions";
-  const std::string plugins = "--plugin-dir '" + dir.string() + "' ";
+  const std::string plugins = "--only-plugin-dir '" + dir.string() + "' ";
   const auto listing = run_cli(plugins + "plugins");
   CHECK(listing.exit_code == 0);
   CHECK_THAT(listing.out, Contains("test_arith") && Contains("skipped") && Contains("mechgraph_notes.so") &&

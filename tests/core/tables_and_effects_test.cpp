@@ -61,7 +61,7 @@ TEST_CASE("run --out writes a table as one CSV with name [unit] headers; --json 
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_table_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "t.yaml") << "nodes: { t: { type: test.table, params: { points: 3 } } }\noutputs: [t.curves]\n";
-  const std::string plugins = "--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "' ";
+  const std::string plugins = "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "' ";
   const auto r = run_cli(plugins + "-q run '" + (dir / "t.yaml").string() + "' --out '" + (dir / "out").string() + "'");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.out, Contains("t.curves = table of 2 curves over 3 points"));
@@ -134,7 +134,7 @@ TEST_CASE("a parameter of an effect that is off is reported as unused", "[core][
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_effects_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "t.yaml") << "nodes: { t: { type: test.table, params: { extra_gain: 3 } } }\noutputs: [t.curves]\n";
-  const auto r = run_cli("--plugin-dir '" + test_plugin("test_arith").parent_path().string() + "' validate '" +
+  const auto r = run_cli("--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "' validate '" +
                          (dir / "t.yaml").string() + "'");
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.err, Contains("t.yaml:1:55") && Contains("parameter 'extra_gain' is unused") && Contains("effect 'test_extra'"));

@@ -3,10 +3,9 @@
 
 namespace {
 mechgraph::NodeTypeList no_types() { return {}; }
-const mechgraph::PluginDescriptor* descriptor() {
-  static const mechgraph::PluginDescriptor d{mechgraph::plugin_abi_version + 1, "future", "9.9", mechgraph::build_fingerprint,
-                                             &no_types};
+}  // namespace
+extern "C" MECHGRAPH_EXPORT const mechgraph::PluginDescriptor* mechgraph_plugin_entry() {
+  static const mechgraph::PluginDescriptor d{mechgraph::plugin_abi_version + 1, "future", "9.9.0",
+                                             mechgraph::build_fingerprint, &no_types, "9.9.0"};
   return &d;
 }
-}  // namespace
-BOOST_DLL_ALIAS(descriptor, mechgraph_plugin)

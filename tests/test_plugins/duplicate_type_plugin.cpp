@@ -15,4 +15,4 @@ class Clash final : public mechgraph::NodeType {
 mechgraph::NodeTypeList make_types() { return {std::make_shared<Clash>()}; }
 }  // namespace
 
-MECHGRAPH_PLUGIN("clash", "0.1", &make_types)
+MECHGRAPH_PLUGIN("clash", "0.1.0", &make_types)

@@ -1,11 +1,8 @@
-// A plugin whose build fingerprint differs (as if built by another compiler): refused.
+// A plugin built with another C++ standard than the host (tests/CMakeLists.txt compiles this file
+// with C++23): refused with a message that names the standard and what to rebuild with.
 #include <mechgraph/plugin_abi.hpp>
 
 namespace {
 mechgraph::NodeTypeList no_types() { return {}; }
-const mechgraph::PluginDescriptor* descriptor() {
-  static const mechgraph::PluginDescriptor d{mechgraph::plugin_abi_version, "foreign", "1.0", "abi1;othercc-1;cxx1", &no_types};
-  return &d;
-}
 }  // namespace
-BOOST_DLL_ALIAS(descriptor, mechgraph_plugin)
+MECHGRAPH_PLUGIN("foreign", "1.0.0", &no_types)

@@ -18,6 +18,7 @@ struct PluginInfo {
   std::string fingerprint;
   std::filesystem::path path;
   std::vector<std::string> node_types;
+  std::string sdk_version;  // the mechgraph SDK it was compiled against
 };
 
 /// A node type as the host sees it: the plugin's object plus what keeps its code loaded.
@@ -59,10 +60,14 @@ class PluginRegistry {
   /// The files load_directory skipped, with their reasons.
   const std::vector<SkippedPlugin>& skipped() const { return skipped_; }
 
-  /// The plugin folders in order of precedence: `plugin_dir` if given, else the folders of
-  /// MECHGRAPH_PLUGIN_PATH (':'-separated), else lib/mechgraph/plugins beside the program's bin/
-  /// folder (build tree and install tree alike), else the build's plugin folder. Never ".".
-  static std::vector<std::filesystem::path> search_path(const std::optional<std::filesystem::path>& plugin_dir);
+  /// The built-in plugin folder, found relative to libmechgraph itself: <libdir>/mechgraph/plugins
+  /// beside lib/libmechgraph.so (the same layout in the build tree and after `cmake --install`, so no
+  /// build path is baked into the library).
+  static std::filesystem::path builtin_plugin_dir();
+  /// The plugin folders in order of precedence: `extra` (--plugin-dir, in the order given), then the
+  /// folders of MECHGRAPH_PLUGIN_PATH (':'-separated), then builtin_plugin_dir(). With `only`, just
+  /// `extra` (--only-plugin-dir). A folder listed twice is kept once. Never ".".
+  static std::vector<std::filesystem::path> search_path(const std::vector<std::filesystem::path>& extra, bool only);
 
   const RegisteredType* find(std::string_view type) const;
   std::vector<std::string> type_names() const;

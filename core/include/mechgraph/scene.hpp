@@ -93,9 +93,17 @@ struct ReportSpec {
   SourceLocation where;
 };
 
+/// `requires: { cams: ">=0.2" }`: the plugin versions a scene needs (semantic_version.hpp).
+struct PluginRequirement {
+  std::string plugin;       // plugin id
+  std::string requirement;  // ">=0.2, <1"
+  SourceLocation where;     // the requirement's text
+};
+
 struct SceneSpec {
   std::string file;
   std::string title;
+  std::vector<PluginRequirement> requirements;
   std::vector<std::pair<std::string, RawValue>> params;
   std::vector<NodeSpec> nodes;
   std::vector<std::pair<std::string, SourceLocation>> effects;

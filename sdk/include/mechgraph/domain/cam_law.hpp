@@ -13,11 +13,27 @@
 //  - higher_derivatives(phi) gives d4h/dphi4 [m/rad^4] and d5h/dphi5 [m/rad^5] inside the event for
 //    laws that have them in closed form (returns false otherwise, the default). Cam synthesis
 //    against an elastic drive needs them (valvetrain.polydyne_cam).
+//  - max_lift() > 0 and base_radius() > 0, finite; roller_radius() >= 0.
+//  - The lift is never negative and every value is finite.
 //  - Implementations are immutable and thread-safe.
+//
+// Who checks what
+//  - The host: every cam_law a node outputs goes through contract_problem() (final, below): event
+//    inside (-pi, pi) and not empty, breakpoints sorted and strictly inside the event, the declared
+//    radii and lift, and the law sampled at 16 angles and at each piece's midpoint (finite, lift not
+//    below -1e-9 * max_lift). A law that breaks it is refused with the node type's name; nothing is
+//    wrapped or truncated.
+//  - The conformance kit (mechgraph/testing/cam_law_conformance.hpp, `mechgraph plugin-test`): the
+//    deeper checks a host cannot afford per evaluation: zero at the event's ends, continuity at the
+//    breakpoints, derivatives against Richardson differences, max_lift against dense sampling.
+//  - The law's node: its own parameters (ParamSpec ranges) and the geometry that depends on them.
+//    An undercut contour or a too small radius of curvature is the cam node's to refuse
+//    (mechgraph/domain/cam_geometry.hpp gives the curvature); the host cannot know the limits.
 #include <mechgraph/value.hpp>
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -45,6 +61,9 @@ class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
   virtual double roller_radius() const { return 0.0; }
   /// d4h/dphi4 and d5h/dphi5 at event_begin() < phi < event_end(); false if the law cannot give them.
   virtual bool higher_derivatives(double /*phi*/, double& /*d4*/, double& /*d5*/) const { return false; }
+
+  /// The checks of the contract above that the host runs on every law a node outputs (sdk/src/cam_law.cpp).
+  std::string contract_problem() const final;
 
   /// Lift and derivatives at any angle: reduced to [-pi, pi), zero outside the event.
   LiftDerivatives at(double phi) const {

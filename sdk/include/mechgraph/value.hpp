@@ -3,15 +3,13 @@
 // several named channels), or a handle to a domain object (a cam law, a valve motion, a fit ...). Values are immutable once produced and
 // shared between consumers, so evaluation can run on many threads.
 #include <mechgraph/dimension.hpp>
+#include <mechgraph/export.hpp>
 
 #include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
-/// Interfaces shared between the host and plugins keep default visibility so that their RTTI
-/// (dynamic_cast of domain objects) is one and the same across libraries.
-#define MECHGRAPH_INTERFACE __attribute__((visibility("default")))
 
 namespace mechgraph {
 
@@ -21,6 +19,11 @@ class MECHGRAPH_INTERFACE DomainObject {
  public:
   virtual ~DomainObject() = default;
   virtual std::string_view kind() const = 0;
+  /// Empty when the object keeps its interface's contract, else what it breaks (with the values).
+  /// Interfaces implement it `final` in the SDK (CamLaw checks its event, breakpoints and samples),
+  /// so an implementation cannot opt out; the host calls it on every domain object a node outputs
+  /// and refuses the output with the node type's name and this text.
+  virtual std::string contract_problem() const { return {}; }
 };
 
 /// Samples of a quantity over an axis (e.g. valve lift over cam angle). Dimensions are those

@@ -1,0 +1,12 @@
+#pragma once
+// The plugin ABI version. CMake reads the number from the #define below. What bumps it is written
+// down in docs/writing-plugins.md ("When the ABI changes"): in short, any change to a class, struct,
+// enum or inline function in sdk/include that a compiled plugin relies on (layout, virtual functions,
+// members, the descriptor, the entry). Additions that a plugin cannot see (a new free function in
+// libmechgraph, a new header) do not.
+// 2: table values, effects with their outputs and parameters, ValveMotion and Spring interfaces,
+//    CamLaw::higher_derivatives.
+// 3: EvalContext::wanted (which outputs are read downstream).
+// 4: the entry is a plain C function `mechgraph_plugin_entry` (no Boost.DLL alias); the descriptor
+//    carries the SDK version; DomainObject::contract_problem (the host checks interface contracts).
+#define MECHGRAPH_PLUGIN_ABI_VERSION 4
