@@ -36,8 +36,12 @@ function(mechgraph_add_plugin name)
     VISIBILITY_INLINES_HIDDEN ON
     INSTALL_RPATH "$ORIGIN/../..")
   # Every symbol resolved at link time (a missing one is a build error, not a load error), and no
-  # symbols of static libraries re-exported.
-  target_link_options(${name} PRIVATE "LINKER:--no-undefined" "LINKER:--exclude-libs,ALL")
+  # symbols of static libraries re-exported. Sanitizer builds leave the runtime's symbols to the
+  # program (clang links it into executables only), so they skip --no-undefined.
+  target_link_options(${name} PRIVATE "LINKER:--exclude-libs,ALL")
+  if(NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize")
+    target_link_options(${name} PRIVATE "LINKER:--no-undefined")
+  endif()
   if(NOT ARG_NO_INSTALL)
     install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mechgraph/plugins)
   endif()

@@ -17,10 +17,6 @@
 
 namespace mechgraph {
 
-namespace {
-std::string quantity_text(double si, const ParamSpec& spec);
-}
-
 Override parse_override(std::string_view text) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
@@ -28,21 +24,6 @@ Override parse_override(std::string_view text) {
   return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), std::string(text)};
 }
 
-std::string param_value_problem(double si, const ParamSpec& spec) {
-  const bool low = spec.min_exclusive ? !(si > spec.min) : !(si >= spec.min);
-  const bool high = spec.max_exclusive ? !(si < spec.max) : !(si <= spec.max);
-  if (low || high) {
-    std::string range;
-    if (std::isfinite(spec.min)) range += (spec.min_exclusive ? "> " : ">= ") + quantity_text(spec.min, spec);
-    if (std::isfinite(spec.max))
-      range += (range.empty() ? "" : " and ") + std::string(spec.max_exclusive ? "< " : "<= ") + quantity_text(spec.max, spec);
-    return "is out of range: it must be " + range;
-  }
-  if (spec.kind == ParamKind::integer && si != std::floor(si)) return "must be a whole number";
-  if (spec.kind == ParamKind::integer && std::abs(si) > 9007199254740992.0)  // 2^53: exact in a double
-    return "is too large for a whole number (at most 2^53)";
-  return {};
-}
 
 void mark_wanted_outputs(Graph& graph) {
   for (GraphNode& n : graph.nodes) n.wanted.clear();
@@ -68,23 +49,7 @@ namespace {
 
 [[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw SceneError(where.str() + message); }
 
-std::string format_number(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
-std::string quantity_text(double si, const ParamSpec& spec) {
-  if (!spec.display_unit.empty()) {
-    try {
-      return format_number(to_unit(si, spec.dimension, spec.display_unit)) + " " + spec.display_unit;
-    } catch (const UnitError&) {
-    }
-  }
-  const std::string unit = spec.dimension.si_unit();
-  return format_number(si) + (unit == "1" ? "" : " " + unit);
-}
 
 // A raw value as it was written, for messages: "5 mm", "[5000rpm, 6000rpm]", "{a: 1}".
 std::string written_text(const RawValue& v) {
@@ -241,7 +206,7 @@ class GraphBuilder {
       fail(written.where, what + ": '" + v.text + "' is " + q.dimension.describe() + ", expected " +
                               spec.dimension.describe() + " (" + example_unit(spec.dimension) + ")" + via);
     }
-    if (const std::string problem = param_value_problem(q.value, spec); !problem.empty())
+    if (const std::string problem = spec.value_problem(q.value); !problem.empty())
       fail(written.where, what + " = '" + v.text + "' " + problem + via);
     return q.value;
   }

@@ -62,11 +62,6 @@ std::string text_of(const ParamSpec& spec, const ParamValue& v) {
   return unit == "1" || unit.empty() ? std::string(buffer) : std::string(buffer) + " " + unit;
 }
 
-bool in_range(const ParamSpec& s, double v) {
-  if (s.min_exclusive ? !(v > s.min) : !(v >= s.min)) return false;
-  if (s.max_exclusive ? !(v < s.max) : !(v <= s.max)) return false;
-  return true;
-}
 
 // The knob's value `k` steps tighter than `base` (k < 0: looser).
 std::optional<ParamValue> tighter(const ParamSpec& spec, const ParamValue& base, int k) {
@@ -78,7 +73,7 @@ std::optional<ParamValue> tighter(const ParamSpec& spec, const ParamValue& base,
   } else {
     return std::nullopt;
   }
-  if (!in_range(spec, v.number)) return std::nullopt;
+  if (!spec.admits(v.number)) return std::nullopt;
   return v;
 }
 

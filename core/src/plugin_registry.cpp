@@ -83,7 +83,7 @@ std::string explain_fingerprint_mismatch(const std::string& plugin, const std::s
     differences.push_back("C++ standard: plugin " + cxx_standard_name(field(p, "cxx")) + ", mechgraph " +
                           cxx_standard_name(field(h, "cxx")) + " (rebuild the plugin with " +
                           (h.count("cxx") && h.at("cxx").substr(0, 6) == "202002" ? "-std=c++20" : "mechgraph's standard") +
-                          "; mechgraph_add_plugin() sets it unless CMAKE_CXX_STANDARD or a target property overrides it)");
+                          "; mechgraph_add_plugin() sets it unless a -std= compile option overrides it)");
   if (field(p, "glibcxx-abi") != field(h, "glibcxx-abi"))
     differences.push_back("libstdc++ string ABI: plugin _GLIBCXX_USE_CXX11_ABI=" + field(p, "glibcxx-abi") +
                           ", mechgraph " + field(h, "glibcxx-abi") + " (do not set _GLIBCXX_USE_CXX11_ABI)");

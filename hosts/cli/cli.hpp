@@ -11,7 +11,8 @@ namespace mechgraph::cli {
 
 /// Exit codes (README): 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
 /// 5 results could not be written, 130 stopped by Ctrl-C or SIGTERM (a sweep: its rows so far kept).
-enum ExitCode : int { ok = 0, usage_error = 2, evaluation_error = 3, plugin_error = 4, io_error = 5, interrupted = 130 };
+enum ExitCode : int { ok = 0, usage_error = 2, evaluation_error = 3, plugin_error = 4, io_error = 5, conformance_failed = 6,
+                     interrupted = 130 };
 
 /// Thrown for a bad command line; main() prints it with the subcommand's usage and exits 2.
 struct UsageError : std::runtime_error {
@@ -40,5 +41,6 @@ int describe_command(const GlobalOptions& g, const std::vector<std::string>& arg
 int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int merge_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int bench_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& args);
 
 }  // namespace mechgraph::cli

@@ -32,6 +32,8 @@ commands:
   sweep SCENE (--vary N=A:B:K | --cases F.csv | --sample N=A:B --n K) [--threads N] [--out F] [--shard I/N]
                                                           many designs: one row per case, on all cores
   merge FILE... [--out FILE]                              shards of one sweep back together, checked
+  plugin-test (LIB.so | TYPE)... [--set TYPE.P=V] [--json]
+                                                          conformance suites against a plugin's node types
 
 global options:
   --plugin-dir DIR   also load the plugins in DIR (repeatable; searched first), then those of
@@ -44,7 +46,7 @@ global options:
   -h, --help         this text; `mechgraph COMMAND --help` for a command
 
 exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
-            5 results could not be written, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
+            5 results could not be written, 6 a plugin-test check failed, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
 )";
 
 }  // namespace
@@ -103,7 +105,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
       {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
       {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command},
-      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command}};
+      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command},       {"plugin-test", &cli::plugin_test_command}};
   auto it = commands.find(command);
   if (it == commands.end()) {
     std::vector<std::string> names;

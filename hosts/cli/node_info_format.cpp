@@ -28,7 +28,13 @@ std::string shown(double si, const ParamSpec& p) {
 }
 
 std::string default_text(const ParamSpec& p) {
-  if (!p.default_value) return p.required ? "required" : "optional";
+  if (!p.default_value) {
+    std::string out = p.required ? "required" : "optional";
+    if (p.example_value && (p.kind == ParamKind::number || p.kind == ParamKind::integer))
+      out += ", e.g. " + shown(p.example_value->number, p);
+    else if (p.example_value) out += ", e.g. " + p.example_value->text;
+    return out;
+  }
   const ParamValue& v = *p.default_value;
   switch (v.kind) {
     case ParamKind::number:

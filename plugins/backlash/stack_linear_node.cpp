@@ -15,12 +15,6 @@
 namespace mechgraph::backlash {
 namespace {
 
-std::optional<Distribution> distribution_named(const std::string& name) {
-  for (Distribution d : {Distribution::normal, Distribution::uniform, Distribution::triangular})
-    if (name == to_string(d)) return d;
-  return std::nullopt;
-}
-
 Series indexed_series(std::vector<double> values, std::vector<std::string> labels = {}) {
   Series s;
   for (std::size_t i = 0; i < values.size(); ++i) s.axis.push_back(static_cast<double>(i));
@@ -53,9 +47,8 @@ class StackLinearType final : public NodeType {
                     .with_default(1.0)
                     .at_least(-1e6)
                     .at_most(1e6),
-                ParamSpec::choice("distribution", {"normal", "uniform", "triangular"},
-                                  "spread over the tolerance: normal with T = 6 sigma, uniform, or symmetric triangular")
-                    .with_default("normal"),
+                distribution_param("distribution",
+                                   "spread over the tolerance: normal with T = 6 sigma, uniform, or symmetric triangular"),
                 ParamSpec::text("label", "name of the link in reports").optional(),
             },
             "the parts of the stack, each { nominal, upper, lower, sensitivity, distribution, label }"),
@@ -146,13 +139,8 @@ class StackLinearType final : public NodeType {
       const double lower = number("lower", std::nullopt);
       l.sensitivity = number("sensitivity", 1.0);
       if (const auto it = r.find("label"); it != r.end()) l.label = it->second.text;
-      if (const auto it = r.find("distribution"); it != r.end()) {
-        const auto d = distribution_named(it->second.text);
-        if (!d)
-          throw NodeError("links", entry + ": distribution '" + it->second.text +
-                                       "' is not one of normal, uniform, triangular");
-        l.distribution = *d;
-      }
+      if (const auto it = r.find("distribution"); it != r.end())
+        l.distribution = distribution_from(it->second.text, "links", entry);
       if (upper < lower)
         throw NodeError("links", entry + (l.label.empty() ? "" : " ('" + l.label + "')") + ": upper deviation " +
                                      mm_text(upper) + " is below the lower deviation " + mm_text(lower) +

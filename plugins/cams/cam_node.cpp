@@ -1,6 +1,6 @@
 #include "cam_node.hpp"
 
-#include "cam_summary.hpp"
+#include <mechgraph/domain/cam_geometry.hpp>
 #include "ramps.hpp"
 
 #include <mechgraph/numerics/piecewise.hpp>
@@ -83,14 +83,16 @@ class CamNodeType final : public NodeType {
                           "maximum follower lift at the nose; with a ramp the total lift: the ramp's share "
                           "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
                           "mm")
-            .positive(),
+            .positive()
+            .with_example(9e-3),
         ParamSpec::number("action_angle", dim::angle,
                           "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
                           "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
                           "deg")
             .at_least(0.1 * std::numbers::pi / 180.0)
-            .below(2.0 * std::numbers::pi),
-        ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive(),
+            .below(2.0 * std::numbers::pi)
+            .with_example(130.0 * std::numbers::pi / 180.0),
+        ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().with_example(60e-3),
     };
     if (derived_) {
       for (std::size_t i = 0; i < 2; ++i) {
@@ -153,15 +155,7 @@ class CamNodeType final : public NodeType {
     const int samples = static_cast<int>(params.integer("samples"));
     CamSummary s = summarize(*law, samples);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
-    if (!(s.min_curvature_radius > 0.0)) {
-      std::ostringstream msg;
-      msg << "the cam contour is undercut: its smallest radius of curvature is " << s.min_curvature_radius * 1e3
-          << " mm (must be > 0); ";
-      const auto r_min = smallest_base_radius(params, ramp, basics, samples);
-      if (r_min) msg << "base_radius must be at least " << *r_min * 1e3 << " mm for this law and follower, or soften the law";
-      else msg << "no base_radius up to " << basics.base_radius * 1e6 << " mm removes it: soften the law";
-      throw NodeError("base_radius", msg.str());
-    }
+    refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
     out.set_scalar("max_velocity", s.max_velocity);
@@ -172,34 +166,15 @@ class CamNodeType final : public NodeType {
   }
 
  private:
-  // The smallest base radius at which the same request gives a contour without undercut. The law
-  // is rebuilt for each trial radius (a three-arc cam's arcs depend on it) and its smallest radius
-  // of curvature found again; that grows with the base radius, so the limit is bracketed by
-  // growing the radius and bisected to 0.001 mm. None within 1000 x the radius asked: nullopt.
-  std::optional<double> smallest_base_radius(const ParamSet& params, const RampSpec& ramp, const CamBasics& basics,
-                                             int samples) const {
-    auto feasible = [&](double r0) {
-      try {
-        OutputSet scratch;
-        std::shared_ptr<const CamLaw> law =
-            make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle}, params, scratch);
-        if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
-        return summarize(*law, samples).min_curvature_radius > 0.0;
-      } catch (const NodeError&) {
-        return false;  // this radius does not give a law at all (e.g. a three-arc without solution)
-      }
-    };
-    double low = basics.base_radius, high = basics.base_radius;
-    while (!feasible(high)) {
-      low = high;
-      high *= 1.5;
-      if (high > 1000.0 * basics.base_radius) return std::nullopt;
-    }
-    while (high - low > 1e-6) {
-      const double mid = 0.5 * (low + high);
-      (feasible(mid) ? high : low) = mid;
-    }
-    return high;
+  // The same request with another base radius (a three-arc cam's arcs depend on it), for the
+  // undercut message's smallest base radius.
+  std::shared_ptr<const CamLaw> law_for_base_radius(const ParamSet& params, const RampSpec& ramp, const CamBasics& basics,
+                                                    double r0) const {
+    OutputSet scratch;
+    std::shared_ptr<const CamLaw> law =
+        make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle}, params, scratch);
+    if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
+    return law;
   }
 
   NodeInfo info_;

@@ -80,7 +80,8 @@ CamLawDefinition kurz_definition() {
                         "positive-acceleration phase phi_y from the start of lift; must be below half the action "
                         "angle",
                         "deg")
-          .positive(),
+          .positive()
+          .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number(
           "rise_split", dim::none,
           "share of the positive phase taken by the quarter sine (the rest is the quarter cosine). Default: the "

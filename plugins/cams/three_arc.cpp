@@ -239,7 +239,8 @@ CamLawDefinition three_arc_definition() {
                         "output); the radii follow in closed form. Give exactly one of accel_angle and nose_radius",
                         "deg")
           .optional()
-          .positive(),
+          .positive()
+          .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number("nose_radius", dim::length,
                         "nose-arc radius r2 of the contour; the flank radius and angle follow in closed form. Give "
                         "exactly one of accel_angle and nose_radius",

@@ -18,12 +18,6 @@
 namespace mechgraph::fits {
 namespace {
 
-Distribution distribution_of(const std::string& name) {
-  if (name == "uniform") return Distribution::uniform;
-  if (name == "triangular") return Distribution::triangular;
-  return Distribution::normal;
-}
-
 std::string millimetres(double m) {
   std::ostringstream os;
   os.precision(6);
@@ -37,10 +31,10 @@ class FitNodeType final : public NodeType {
     info_.type = iso ? "fit.iso286" : "fit.explicit";
     info_.summary = iso ? "hole/shaft fit from ISO 286 designations (e.g. 20 mm H11/d11): deviations and clearances"
                         : "hole/shaft fit from explicit limit deviations (the source's dB/dH): deviations and clearances";
-    info_.params.push_back(ParamSpec::number("size", dim::length, "nominal diameter", "mm").positive().at_most(3.15));
+    info_.params.push_back(ParamSpec::number("size", dim::length, "nominal diameter", "mm").positive().at_most(3.15).with_example(20e-3));
     if (iso) {
-      info_.params.push_back(ParamSpec::text("hole", "hole tolerance class, upper case: fundamental deviation + grade, e.g. H11, JS7, K6"));
-      info_.params.push_back(ParamSpec::text("shaft", "shaft tolerance class, lower case, e.g. d11, h9, js6, k6"));
+      info_.params.push_back(ParamSpec::text("hole", "hole tolerance class, upper case: fundamental deviation + grade, e.g. H11, JS7, K6").with_example("H7"));
+      info_.params.push_back(ParamSpec::text("shaft", "shaft tolerance class, lower case, e.g. d11, h9, js6, k6").with_example("g6"));
       info_.params.push_back(ParamSpec::choice("js_rounding", {"exact", "whole_micrometre"},
                                                "js7..js11 with an odd IT in um: exact +-IT/2 (ISO 286-2 tables) or rounded "
                                                "down to whole micrometres (permitted by ISO 286-1)")
@@ -54,10 +48,9 @@ class FitNodeType final : public NodeType {
                                      .at_most(1.0));  // a metre either way: far past any fit, finite in every sum
     }
     for (const char* part : {"hole", "shaft"})
-      info_.params.push_back(ParamSpec::choice(std::string(part) + "_distribution", {"normal", "uniform", "triangular"},
+      info_.params.push_back(distribution_param(std::string(part) + "_distribution",
                                                std::string("spread of the ") + part +
-                                                   " size over its tolerance (normal: tolerance = 6 sigma)")
-                                 .with_default("normal"));
+                                                   " size over its tolerance (normal: tolerance = 6 sigma)"));
     info_.params.push_back(ParamSpec::number("hole_expansion", dim::per_kelvin, "thermal expansion coefficient of the hole's part (thermal)", "1/K")
                                .with_default(11.5e-6));
     info_.params.push_back(ParamSpec::number("shaft_expansion", dim::per_kelvin, "thermal expansion coefficient of the shaft (thermal)", "1/K")
@@ -112,8 +105,8 @@ class FitNodeType final : public NodeType {
       note << designation << " at " << p.number("operating_temperature") - 273.15 << " degC";
       designation = note.str();
     }
-    auto fit = std::make_shared<const Fit>(designation, size, hole, shaft, distribution_of(p.text("hole_distribution")),
-                                           distribution_of(p.text("shaft_distribution")));
+    auto fit = std::make_shared<const Fit>(designation, size, hole, shaft, distribution_from(p.text("hole_distribution"), "hole_distribution"),
+                                           distribution_from(p.text("shaft_distribution"), "shaft_distribution"));
     out.set_scalar("hole_upper", hole.upper);
     out.set_scalar("hole_lower", hole.lower);
     out.set_scalar("shaft_upper", shaft.upper);

@@ -37,13 +37,6 @@ std::string number_text(double v) {
   return s.str();
 }
 
-Distribution distribution_from(const std::string& name) {
-  if (name == "uniform") return Distribution::uniform;
-  if (name == "triangular") return Distribution::triangular;
-  if (name == "normal") return Distribution::normal;
-  throw NodeError("clearance_distribution", "unknown distribution '" + name + "'; valid: normal, uniform, triangular");
-}
-
 class SphericalJointType final : public NodeType {
  public:
   SphericalJointType() {
@@ -54,7 +47,8 @@ class SphericalJointType final : public NodeType {
     info_.params = {
         ParamSpec::number("bore", dim::length, "bore d of the bearing; selects the row of the clearance table", "mm")
             .optional()
-            .positive(),
+            .positive()
+            .with_example(20e-3),
         ParamSpec::choice("clearance_group", {"C2", "normal", "C3"},
                           "ISO 12240-1 radial internal clearance group (overridden by radial_clearance_min/_max)")
             .with_default("normal"),
@@ -68,9 +62,8 @@ class SphericalJointType final : public NodeType {
                           "greatest radial internal clearance (with radial_clearance_min)", "um")
             .optional()
             .non_negative(),
-        ParamSpec::choice("clearance_distribution", {"normal", "uniform", "triangular"},
-                          "how the internal clearance is spread over its range (normal: range = 6 sigma)")
-            .with_default("normal"),
+        distribution_param("clearance_distribution",
+                          "how the internal clearance is spread over its range (normal: range = 6 sigma)"),
         ParamSpec::number("tilt_limit", dim::angle,
                           "permissible tilt angle alpha of the bearing (catalogue); default: the source's 6 deg", "deg")
             .with_default(6.0 * deg)
@@ -148,7 +141,7 @@ class SphericalJointType final : public NodeType {
     std::vector<PlayTerm> terms;
     terms.push_back({source,
                      {{source, 0.5 * (cr.min + cr.max), 0.5 * (cr.max - cr.min), 1.0,
-                       distribution_from(p.text("clearance_distribution"))}}});
+                       distribution_from(p.text("clearance_distribution"), "clearance_distribution")}}});
     for (const auto& fit : fits) terms.push_back(fit->clearance_term());
 
     std::string joint = p.has("label") ? p.text("label") : "spherical plain bearing (" + source + ")";

@@ -18,7 +18,8 @@ class ValveMotionType final : public NodeType {
     info_.params = {
         ParamSpec::number("rpm", dim::angular_speed, "crank speed; the camshaft turns at half of it (four-stroke)", "rpm")
             .at_least(2.0 * std::numbers::pi / 60.0)       // 1 rpm
-            .at_most(1e6 * 2.0 * std::numbers::pi / 60.0),  // 1e6 rpm
+            .at_most(1e6 * 2.0 * std::numbers::pi / 60.0)  // 1e6 rpm
+            .with_example(6000.0 * 2.0 * std::numbers::pi / 60.0),
         ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p")
             .with_default(1.0)
             .at_least(0.01)

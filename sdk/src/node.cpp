@@ -1,8 +1,55 @@
 #include <mechgraph/node.hpp>
 
+#include <mechgraph/units.hpp>
+
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 namespace mechgraph {
+
+namespace {
+
+std::string format_number(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// A limit in the parameter's display unit if it has one ("0.1 deg"), else in SI.
+std::string quantity_text(double si, const ParamSpec& spec) {
+  if (!spec.display_unit.empty()) {
+    try {
+      return format_number(to_unit(si, spec.dimension, spec.display_unit)) + " " + spec.display_unit;
+    } catch (const UnitError&) {
+    }
+  }
+  const std::string unit = spec.dimension.si_unit();
+  return format_number(si) + (unit == "1" ? "" : " " + unit);
+}
+
+}  // namespace
+
+bool ParamSpec::admits(double si) const {
+  const bool low = min_exclusive ? !(si > min) : !(si >= min);
+  const bool high = max_exclusive ? !(si < max) : !(si <= max);
+  return !low && !high;
+}
+
+std::string ParamSpec::value_problem(double si) const {
+  if (!admits(si)) {
+    std::string range;
+    if (std::isfinite(min)) range += (min_exclusive ? "> " : ">= ") + quantity_text(min, *this);
+    if (std::isfinite(max))
+      range += (range.empty() ? "" : " and ") + std::string(max_exclusive ? "< " : "<= ") + quantity_text(max, *this);
+    return "is out of range: it must be " + range;
+  }
+  if (kind == ParamKind::integer && si != std::floor(si)) return "must be a whole number";
+  if (kind == ParamKind::integer && std::abs(si) > 9007199254740992.0)  // 2^53: exact in a double
+    return "is too large for a whole number (at most 2^53)";
+  return {};
+}
 
 const ParamValue& ParamSet::get(std::string_view name) const {
   auto it = values_.find(name);
@@ -92,6 +139,14 @@ ParamSpec& ParamSpec::at_most(double v) {
 ParamSpec& ParamSpec::below(double v) {
   max = v;
   max_exclusive = true;
+  return *this;
+}
+ParamSpec& ParamSpec::with_example(double v) {
+  example_value = kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(v)) : ParamValue::of_number(v);
+  return *this;
+}
+ParamSpec& ParamSpec::with_example(std::string v) {
+  example_value = kind == ParamKind::choice ? ParamValue::of_choice(std::move(v)) : ParamValue::of_text(std::move(v));
   return *this;
 }
 ParamSpec& ParamSpec::as_knob() {

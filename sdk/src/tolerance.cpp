@@ -14,6 +14,29 @@ std::string_view to_string(Distribution d) {
   return "?";
 }
 
+const std::vector<std::string>& distribution_names() {
+  static const std::vector<std::string> names{"normal", "uniform", "triangular"};
+  return names;
+}
+
+std::optional<Distribution> parse_distribution(std::string_view name) {
+  for (Distribution d : {Distribution::normal, Distribution::uniform, Distribution::triangular})
+    if (name == to_string(d)) return d;
+  return std::nullopt;
+}
+
+Distribution distribution_from(std::string_view text, const std::string& parameter, const std::string& context) {
+  if (const auto d = parse_distribution(text)) return *d;
+  std::string valid;
+  for (const std::string& n : distribution_names()) valid += (valid.empty() ? "" : ", ") + n;
+  throw NodeError(parameter, (context.empty() ? parameter : context) + ": distribution '" + std::string(text) +
+                                 "' is not one of " + valid);
+}
+
+ParamSpec distribution_param(std::string name, std::string doc) {
+  return ParamSpec::choice(std::move(name), distribution_names(), std::move(doc)).with_default("normal");
+}
+
 double standard_deviation(Distribution d, double half_range) {
   switch (d) {
     case Distribution::normal: return half_range / 3.0;

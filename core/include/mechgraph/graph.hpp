@@ -92,9 +92,6 @@ struct Graph {
 /// calls it, and so must code that changes which outputs a built graph requests.
 void mark_wanted_outputs(Graph& graph);
 
-/// Why `si` cannot be the value of parameter `spec` (out of its range, not a whole number), in
-/// words that follow "parameter = 'value' "; empty when it can. Dimension is the caller's check.
-std::string param_value_problem(double si, const ParamSpec& spec);
 
 /// Throws SceneError naming file:line:column for every problem it finds (the first one).
 Graph build_graph(const SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides = {});

@@ -101,7 +101,7 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
           if (!(value.dimension == spec.dimension))
             throw SceneError(what + ": " + param + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
-          if (const std::string problem = param_value_problem(*value.si, spec); !problem.empty())
+          if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
             throw SceneError(what + ": " + param + " " + problem);
           written = spec.kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(*value.si)) : ParamValue::of_number(*value.si);
           break;

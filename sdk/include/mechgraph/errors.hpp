@@ -12,6 +12,7 @@ namespace mechgraph {
 /// The evaluator adds the node's name.
 class MECHGRAPH_INTERFACE NodeError : public std::runtime_error {
  public:
+  ~NodeError() override;
   NodeError(std::string parameter, const std::string& message)
       : std::runtime_error(message), parameter_(std::move(parameter)) {}
   const std::string& parameter() const { return parameter_; }
@@ -23,24 +24,28 @@ class MECHGRAPH_INTERFACE NodeError : public std::runtime_error {
 /// Evaluation failed in a named node (exit code 3).
 class MECHGRAPH_INTERFACE EvaluationError : public std::runtime_error {
  public:
+  ~EvaluationError() override;
   using std::runtime_error::runtime_error;
 };
 
 /// Scene could not be loaded or validated (exit code 2). The message begins with file:line:column.
 class MECHGRAPH_INTERFACE SceneError : public std::runtime_error {
  public:
+  ~SceneError() override;
   using std::runtime_error::runtime_error;
 };
 
 /// A plugin could not be loaded (exit code 4).
 class MECHGRAPH_INTERFACE PluginError : public std::runtime_error {
  public:
+  ~PluginError() override;
   using std::runtime_error::runtime_error;
 };
 
 /// Results could not be written (exit code 5): the message names the path and the system's reason.
 class MECHGRAPH_INTERFACE IoError : public std::runtime_error {
  public:
+  ~IoError() override;
   using std::runtime_error::runtime_error;
 };
 

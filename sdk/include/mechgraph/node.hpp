@@ -30,6 +30,9 @@ struct ParamSpec {
   Dimension dimension{};
   std::string doc;
   std::optional<ParamValue> default_value;  // absent and not required: the node sees has()==false
+  /// A typical value for a parameter without a default (a design size a scene must state): the
+  /// conformance kit and `mechgraph plugin-test` evaluate the type with its defaults and these.
+  std::optional<ParamValue> example_value;
   bool required = true;
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
@@ -52,6 +55,8 @@ struct ParamSpec {
   ParamSpec& with_default(double v);
   ParamSpec& with_default(std::string v);
   ParamSpec& with_default(std::vector<double> v);
+  ParamSpec& with_example(double v);
+  ParamSpec& with_example(std::string v);
   ParamSpec& optional();            // may be absent, no default
   ParamSpec& positive();            // > 0
   ParamSpec& non_negative();        // >= 0
@@ -61,6 +66,14 @@ struct ParamSpec {
   ParamSpec& below(double v);
   ParamSpec& as_knob();
   ParamSpec& as_path();             // a text parameter that names a file
+
+  /// The one range check (scene loading, sweeps, the knob bench and the conformance kit use it):
+  /// whether `si` lies in [min, max] with the exclusive ends excluded (NaN never does).
+  bool admits(double si) const;
+  /// Why `si` cannot be this parameter's value (out of range, with the range in the display unit;
+  /// not a whole number for an integer), in words that follow "parameter = 'value' "; empty when it
+  /// can. The dimension is the caller's check.
+  std::string value_problem(double si) const;
 };
 
 /// A typed port. Inputs marked `multiple` accept a list of connections (`fits: [a.fit, b.fit]`).
@@ -159,7 +172,7 @@ enum class LogLevel { debug, info, warn };
 /// work counters. Nodes log through this, never through a global logger.
 class MECHGRAPH_INTERFACE EvalContext {
  public:
-  virtual ~EvalContext() = default;
+  virtual ~EvalContext();  // out of line: the key function, so the RTTI lives in libmechgraph once
   virtual bool effect(std::string_view name) const = 0;
   virtual void log(LogLevel level, std::string_view message) = 0;
   /// Adds `amount` to the named work counter (samples, steps, iterations, evaluations).
@@ -173,7 +186,7 @@ class MECHGRAPH_INTERFACE EvalContext {
 /// A node type. Implementations are `final`, stateless and const.
 class MECHGRAPH_INTERFACE NodeType {
  public:
-  virtual ~NodeType() = default;
+  virtual ~NodeType();  // out of line (key function)
   virtual const NodeInfo& info() const = 0;
   virtual void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs,
                         EvalContext& context) const = 0;

@@ -17,7 +17,7 @@ namespace mechgraph {
 /// ("cam_law", "valve_motion", ...) and must equal the handle kind of the port carrying it.
 class MECHGRAPH_INTERFACE DomainObject {
  public:
-  virtual ~DomainObject() = default;
+  virtual ~DomainObject();  // out of line (key function): one RTTI for host and plugins
   virtual std::string_view kind() const = 0;
   /// Empty when the object keeps its interface's contract, else what it breaks (with the values).
   /// Interfaces implement it `final` in the SDK (CamLaw checks its event, breakpoints and samples),

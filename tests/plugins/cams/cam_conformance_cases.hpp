@@ -57,11 +57,10 @@ inline ParamSet make_params(const NodeInfo& info, const std::map<std::string, st
         const Quantity q = parse_quantity(text);
         if (!(q.dimension == spec->dimension))
           throw std::invalid_argument(info.type + "." + name + ": '" + text + "' has the wrong dimension");
-        const bool low = spec->min_exclusive ? !(q.value > spec->min) : !(q.value >= spec->min);
-        const bool high = spec->max_exclusive ? !(q.value < spec->max) : !(q.value <= spec->max);
-        if (low || high) throw std::invalid_argument(info.type + "." + name + ": '" + text + "' is out of range");
+        // The host's one range check (also whole numbers for integers).
+        if (const std::string problem = spec->value_problem(q.value); !problem.empty())
+          throw std::invalid_argument(info.type + "." + name + ": '" + text + "' " + problem);
         if (spec->kind == ParamKind::integer) {
-          if (q.value != std::floor(q.value)) throw std::invalid_argument(info.type + "." + name + " must be an integer");
           out.set(name, ParamValue::of_integer(static_cast<long>(q.value)));
         } else {
           out.set(name, ParamValue::of_number(q.value));

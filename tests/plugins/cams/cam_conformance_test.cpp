@@ -1,6 +1,8 @@
 // The cam conformance suite: every cam node type of the plugin (source profiles and standard laws)
 // is evaluated over the design scenarios of cam_conformance_cases.hpp and its law checked against
-// the CamLaw contract (core/include/mechgraph/domain/cam_law.hpp):
+// the CamLaw contract (sdk/include/mechgraph/domain/cam_law.hpp), with the scenario's own knowledge
+// (where the event must be, symmetry, the summary outputs) on top of the SDK's conformance kit
+// (mechgraph/testing/cam_law_conformance.hpp, which it also runs):
 //  - zero lift and derivatives outside the event; the event where the scenario puts it;
 //  - breakpoints sorted and strictly inside the event;
 //  - max_lift at the nose (max over the event), law.max_lift() consistent;
@@ -14,6 +16,8 @@
 //    allows it; infeasible scenarios: a NodeError for every law; never NaN or Inf.
 #include "cam_conformance_cases.hpp"
 #include "registration.hpp"
+
+#include <mechgraph/testing/cam_law_conformance.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -282,6 +286,13 @@ void run(const NodeType& type, const ConformanceCase& c, const Scenario& s) {
   }
   CHECK(result.context.work["evaluations"] > 0.0);
   check_law(*result.law, result.outputs, c, s);
+  // The SDK's kit (what `mechgraph plugin-test` and plugin authors run) agrees on every scenario.
+  mechgraph::testing::CamLawCheckOptions kit;
+  kit.continuity = promised_continuity(c, s);
+  kit.samples_per_piece = 400;
+  const mechgraph::testing::Report report = mechgraph::testing::check_cam_law(*result.law, "cam_law", kit);
+  INFO(report.str());
+  CHECK(report.passed());
 }
 
 }  // namespace

@@ -48,6 +48,7 @@ struct LiftDerivatives {
 
 class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
  public:
+  ~CamLaw() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "cam_law";
   std::string_view kind() const override { return kind_name; }
 

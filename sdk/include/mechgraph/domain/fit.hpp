@@ -2,6 +2,9 @@
 // A fit between a hole and a shaft of one nominal size (docs/methods/backlash.md, steps 1-2):
 // each part's limit deviations; the clearance S = hole - shaft, its limits and mean; and the
 // clearance as a PlayTerm for stacking (hole +1, shaft -1, each with its distribution).
+// Preconditions: nominal > 0; each part's upper deviation >= its lower one, all finite. The fit's
+// node checks them (a table look-up, an explicit pair); the conformance kit checks them and the
+// clearance term's consistency on any fit a plugin makes.
 #include <mechgraph/domain/tolerance.hpp>
 
 #include <string>
@@ -17,6 +20,7 @@ struct LimitPair {
 
 class MECHGRAPH_INTERFACE Fit final : public DomainObject {
  public:
+  ~Fit() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "fit";
   std::string_view kind() const override { return kind_name; }
 

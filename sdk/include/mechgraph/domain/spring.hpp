@@ -15,6 +15,11 @@
 //    resonance) frequency in Hz, the highest corrected shear stress over its coils at a deflection,
 //    and the geometry of each coil (one for a plain spring, more for nested ones).
 //  - Implementations are immutable and thread-safe.
+//
+// Who checks what: the model refuses what it cannot make (NodeError, above); the host checks the
+// handle's kind; the conformance kit (mechgraph/testing/domain_conformance.hpp) checks that a sized
+// spring reproduces its line, that stiffness is the force's derivative, that the stress stays within
+// the allowable over the stroke and that the coil geometry is consistent.
 #include <mechgraph/value.hpp>
 
 #include <memory>
@@ -44,6 +49,7 @@ struct CoilGeometry {
 
 class MECHGRAPH_INTERFACE Spring : public DomainObject {
  public:
+  ~Spring() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "spring";
   std::string_view kind() const override { return kind_name; }
 
@@ -63,6 +69,7 @@ class MECHGRAPH_INTERFACE Spring : public DomainObject {
 
 class MECHGRAPH_INTERFACE SpringModel : public DomainObject {
  public:
+  ~SpringModel() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "spring_model";
   std::string_view kind() const override { return kind_name; }
 

@@ -9,8 +9,13 @@
 //    from link j. A fit's clearance is [hole +1, shaft -1]; a bearing's internal clearance is one
 //    link. Truncation at zero is why statistical stacking of play is not linear.
 //  - JointPlay is what a joint passes on: its play terms along the joint's line of action.
+// Preconditions: links finite, half ranges >= 0, at least one term. The joint's node makes them so;
+// the conformance kit (check_joint_play) checks them; distributions are named and parsed in one place
+// (distribution_param, distribution_from below).
+#include <mechgraph/node.hpp>
 #include <mechgraph/value.hpp>
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +27,15 @@ namespace mechgraph {
 enum class Distribution { normal, uniform, triangular };
 
 std::string_view to_string(Distribution d);
+/// The one place distributions are named, in the order scenes list them: normal, uniform, triangular.
+const std::vector<std::string>& distribution_names();
+/// "normal", "uniform" or "triangular"; nullopt for anything else (names are exact, lower case).
+std::optional<Distribution> parse_distribution(std::string_view name);
+/// The parser every node uses: the distribution named `text`, else NodeError(parameter, "<context>:
+/// distribution 'x' is not one of normal, uniform, triangular").
+Distribution distribution_from(std::string_view text, const std::string& parameter, const std::string& context = {});
+/// A choice parameter (or record field) naming a distribution, default normal.
+ParamSpec distribution_param(std::string name, std::string doc);
 /// The standard deviation of a link of half-range `half_range` under distribution `d`:
 /// normal T/6 = half/3; uniform half/sqrt(3); triangular half/sqrt(6).
 double standard_deviation(Distribution d, double half_range);
@@ -51,6 +65,7 @@ struct PlayTerm {
 /// A joint's free play along its line of action.
 class MECHGRAPH_INTERFACE JointPlay final : public DomainObject {
  public:
+  ~JointPlay() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "joint_play";
   std::string_view kind() const override { return kind_name; }
 

@@ -24,6 +24,7 @@ namespace mechgraph {
 
 class MECHGRAPH_INTERFACE ValveMotion : public DomainObject {
  public:
+  ~ValveMotion() override;  // out of line (key function, sdk/src/interfaces.cpp)
   static constexpr std::string_view kind_name = "valve_motion";
   std::string_view kind() const override { return kind_name; }
 

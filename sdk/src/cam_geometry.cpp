@@ -1,12 +1,15 @@
-#include "cam_summary.hpp"
+#include <mechgraph/domain/cam_geometry.hpp>
+
+#include <mechgraph/errors.hpp>
 
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
+#include <sstream>
 #include <limits>
 #include <vector>
 
-namespace mechgraph::cams {
+namespace mechgraph {
 namespace {
 
 std::vector<double> knots_of(const CamLaw& law) {
@@ -77,6 +80,48 @@ CamSummary summarize(const CamLaw& law, int samples) {
   s.min_curvature_radius = -peaks[3].value;
   s.min_curvature_radius = std::min(s.min_curvature_radius, law.base_radius());
   return s;
+}
+
+std::optional<double> smallest_undercut_free_base_radius(
+    const std::function<std::shared_ptr<const CamLaw>(double base_radius)>& law_for_base_radius, double base_radius,
+    int samples) {
+  // The smallest radius of curvature grows with the base radius, so the limit is bracketed and bisected.
+  auto feasible = [&](double r0) {
+    try {
+      const auto law = law_for_base_radius(r0);
+      return law && summarize(*law, samples).min_curvature_radius > 0.0;
+    } catch (const NodeError&) {
+      return false;
+    }
+  };
+  double low = base_radius, high = base_radius;
+  while (!feasible(high)) {
+    low = high;
+    high *= 1.5;
+    if (high > 1000.0 * base_radius) return std::nullopt;
+  }
+  while (high - low > 1e-6) {
+    const double mid = 0.5 * (low + high);
+    (feasible(mid) ? high : low) = mid;
+  }
+  return high;
+}
+
+void refuse_undercut(const CamSummary& summary, double base_radius,
+                     const std::function<std::shared_ptr<const CamLaw>(double base_radius)>& law_for_base_radius,
+                     int samples) {
+  if (summary.min_curvature_radius > 0.0) return;
+  std::ostringstream msg;
+  msg << "the cam contour is undercut: its smallest radius of curvature is " << summary.min_curvature_radius * 1e3
+      << " mm (must be > 0); ";
+  if (!law_for_base_radius) {
+    msg << "raise base_radius or soften the law";
+  } else if (const auto r_min = smallest_undercut_free_base_radius(law_for_base_radius, base_radius, samples)) {
+    msg << "base_radius must be at least " << *r_min * 1e3 << " mm for this law and follower, or soften the law";
+  } else {
+    msg << "no base_radius up to " << base_radius * 1e6 << " mm removes it: soften the law";
+  }
+  throw NodeError("base_radius", msg.str());
 }
 
 }  // namespace mechgraph::cams

@@ -1,0 +1,165 @@
+// mechgraph plugin-test (LIB.so | TYPE)... [--set TYPE.PARAM=VALUE ...] [--continuity TYPE=N] [--json]:
+// the conformance suites (sdk/include/mechgraph/testing/) against every node type of a plugin file,
+// or against named types, each evaluated with its own declared defaults. Handle inputs (a cam_law
+// for a valve-motion node) come from another loaded type that makes one from its defaults alone.
+#include "cli.hpp"
+#include "options.hpp"
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/testing/node_conformance.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <filesystem>
+#include <iostream>
+#include <map>
+
+namespace mechgraph::cli {
+namespace {
+
+using testing::Check;
+
+// A value for a handle input: the first loaded type (by name) without required inputs that makes
+// an object of that kind from its defaults. Made once per kind.
+class InputProvider {
+ public:
+  explicit InputProvider(const PluginRegistry& registry) : registry_(registry) {}
+  std::optional<Value> operator()(const PortSpec& port) {
+    if (port.kind != ValueKind::handle) return std::nullopt;
+    if (auto it = made_.find(port.handle_kind); it != made_.end()) return it->second;
+    std::optional<Value> found;
+    for (const std::string& name : registry_.type_names()) {
+      const NodeType& type = *registry_.find(name)->type;
+      const NodeInfo& info = type.info();
+      bool free_standing = true;
+      for (const PortSpec& in : info.inputs) free_standing = free_standing && in.optional;
+      const PortSpec* out = nullptr;
+      for (const PortSpec& o : info.outputs)
+        if (o.kind == ValueKind::handle && o.handle_kind == port.handle_kind && !info.effect_of_output(o.name)) out = &o;
+      if (!free_standing || !out) continue;
+      try {
+        const auto run = testing::run_node(type, testing::params_with_defaults(info), InputSet{});
+        if (auto it = run.outputs.all().find(out->name); it != run.outputs.all().end()) {
+          spdlog::info("input '{}' ({}) from {} with its defaults", port.name, port.handle_kind, name);
+          found = it->second;
+          break;
+        }
+      } catch (const std::exception&) {
+        continue;  // this one cannot make it from its defaults: try the next
+      }
+    }
+    made_[port.handle_kind] = found;
+    return found;
+  }
+
+ private:
+  const PluginRegistry& registry_;
+  std::map<std::string, std::optional<Value>> made_;
+};
+
+const char* status_name(Check::Status s) {
+  return s == Check::Status::passed ? "passed" : s == Check::Status::failed ? "failed" : "skipped";
+}
+
+}  // namespace
+
+int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  constexpr const char* synopsis =
+      "mechgraph plugin-test (LIB.so | TYPE)... [--set TYPE.PARAM=VALUE ...] [--continuity TYPE=N] [--json]";
+  po::options_description visible("plugin-test options");
+  visible.add_options()("help,h", "this text")
+      ("set", po::value<std::vector<std::string>>()->composing(),
+       "a parameter of one type for the test, as in a scene: --set cam.example_parabolic.max_lift=8mm")
+      ("continuity", po::value<std::vector<std::string>>()->composing(),
+       "cam laws of TYPE must be continuous up to derivative N at breakpoints (0 lift, 1 velocity, 2 acceleration, 3 jerk;"
+       " default 0): --continuity cam.cycloidal=2")
+      ("threads", po::value<int>()->default_value(4), "evaluations at once in the thread-safety check (0: skip it)")
+      ("json", "the checks as JSON");
+  po::options_description all;
+  all.add(visible).add_options()("target", po::value<std::vector<std::string>>()->required(), "plugin file or node type");
+  po::positional_options_description positional;
+  positional.add("target", -1);
+  po::variables_map vm;
+  if (!parse_options(args, visible, all, positional, vm, synopsis)) return ok;
+
+  PluginRegistry registry = load_plugins(g);
+  std::vector<std::string> types;
+  for (const std::string& target : vm["target"].as<std::vector<std::string>>()) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(target, ec)) {
+      const PluginInfo* plugin = nullptr;
+      for (const PluginInfo& p : registry.plugins())
+        if (std::filesystem::equivalent(p.path, target, ec)) plugin = &p;
+      if (!plugin) {
+        registry.load_file(target);  // a refusal is a PluginError (exit 4) naming what to change
+        plugin = &registry.plugins().back();
+      }
+      spdlog::info("plugin '{}' {} from {}: {} node types", plugin->id, plugin->version, plugin->path.string(),
+                   plugin->node_types.size());
+      types.insert(types.end(), plugin->node_types.begin(), plugin->node_types.end());
+    } else if (registry.find(target)) {
+      types.push_back(target);
+    } else {
+      throw UsageError("'" + target + "' is neither a plugin file nor a loaded node type; " +
+                       unknown_name_message("node type", target, registry.type_names()));
+    }
+  }
+
+  std::map<std::string, testing::NodeCheckOptions> options;
+  for (const std::string& t : types) options[t].threads = vm["threads"].as<int>();
+  if (vm.count("set"))
+    for (const std::string& s : vm["set"].as<std::vector<std::string>>()) {
+      const auto eq = s.find('=');
+      const auto dot = s.rfind('.', eq);
+      if (eq == std::string::npos || dot == std::string::npos || dot == 0)
+        throw UsageError("--set " + s + ": expected TYPE.PARAM=VALUE, e.g. --set cam.polynomial_345.max_lift=8mm");
+      const std::string type = s.substr(0, dot);
+      if (!options.count(type)) throw UsageError("--set " + s + ": " + unknown_name_message("node type under test", type, types));
+      options[type].values[s.substr(dot + 1, eq - dot - 1)] = s.substr(eq + 1);
+    }
+  if (vm.count("continuity"))
+    for (const std::string& s : vm["continuity"].as<std::vector<std::string>>()) {
+      const auto eq = s.find('=');
+      const std::string type = s.substr(0, eq);
+      int order = -1;
+      try {
+        order = eq == std::string::npos ? -1 : std::stoi(s.substr(eq + 1));
+      } catch (const std::exception&) {
+      }
+      if (order < 0 || order > 3) throw UsageError("--continuity " + s + ": expected TYPE=N with N from 0 to 3");
+      if (!options.count(type)) throw UsageError("--continuity " + s + ": " + unknown_name_message("node type under test", type, types));
+      options[type].cam_law.continuity = order;
+    }
+
+  InputProvider provider(registry);
+  int failed = 0;
+  JsonWriter json(std::cout);
+  const bool as_json = vm.count("json") > 0;
+  if (as_json) json.begin_object().key("types").begin_array();
+  for (const std::string& t : types) {
+    testing::NodeCheckOptions& o = options[t];
+    o.input_for = [&provider](const PortSpec& p) { return provider(p); };
+    const testing::Report report = testing::check_node_type(*registry.find(t)->type, o);
+    failed += report.failed();
+    if (as_json) {
+      json.begin_object().key("type").value(t).key("passed").value(report.passed()).key("checks").begin_array();
+      for (const Check& c : report.checks())
+        json.begin_object().key("suite").value(c.suite).key("check").value(c.name).key("status").value(status_name(c.status))
+            .key("detail").value(c.detail).end_object();
+      json.end_array().end_object();
+    } else {
+      std::cout << report.str();
+      std::cout << t << ": " << report.count(Check::Status::passed) << " passed, " << report.failed() << " failed, "
+                << report.count(Check::Status::skipped) << " skipped\n\n";
+    }
+  }
+  if (as_json) {
+    json.end_array().key("failed").value(static_cast<double>(failed)).end_object();
+    std::cout << "\n";
+  }
+  if (failed > 0) spdlog::error("{} conformance check(s) failed", failed);
+  return failed > 0 ? conformance_failed : ok;
+}
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,222 @@
+#pragma once
+// The CamLaw conformance suite (the contract of mechgraph/domain/cam_law.hpp), for any law: the
+// host's own contract check, event bounds, breakpoints, zero outside the event, no NaN and no
+// negative lift under dense sampling, max_lift() against the sampled maximum, continuity at the
+// breakpoints and event ends, and each derivative against Richardson-extrapolated central
+// differences of the one below. `mechgraph plugin-test` runs it on every cam_law a type outputs.
+#include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/testing/report.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mechgraph::testing {
+
+struct CamLawCheckOptions {
+  int samples_per_piece = 2000;  // dense sampling of each smooth piece
+  /// Derivatives that must be continuous at the breakpoints and the event ends: 0 = the lift only
+  /// (every law), 1 = also the velocity, ... (a constant-velocity ramp steps the velocity at the
+  /// event's ends; a cycloidal law is continuous up to the acceleration).
+  int continuity = 0;
+  double derivative_tolerance = 1e-6;  // relative, and times the derivative's scale as the floor
+  double max_lift_tolerance = 1e-6;    // relative, law.max_lift() against the sampled maximum
+};
+
+namespace detail {
+inline double component(const LiftDerivatives& d, int k) {
+  return k == 0 ? d.lift : k == 1 ? d.velocity : k == 2 ? d.acceleration : d.jerk;
+}
+inline const char* derivative_name(int k) {
+  static const char* names[] = {"lift", "velocity", "acceleration", "jerk", "4th derivative"};
+  return names[k];
+}
+inline std::string deg(double rad) {
+  std::ostringstream o;
+  o.precision(6);
+  o << rad * 180.0 / std::numbers::pi << " deg";
+  return o.str();
+}
+inline std::string num(double v) {
+  std::ostringstream o;
+  o.precision(6);
+  o << v;
+  return o.str();
+}
+}  // namespace detail
+
+inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_law", const CamLawCheckOptions& options = {}) {
+  using detail::component;
+  using detail::deg;
+  using detail::num;
+  constexpr double pi = std::numbers::pi;
+  Report r;
+  const std::string contract = law.contract_problem();
+  r.add(suite, "the host's contract check", contract.empty(), contract);
+  const double b = law.event_begin(), e = law.event_end();
+  r.add(suite, "event inside (-180, 180) deg and not empty", std::isfinite(b) && std::isfinite(e) && b > -pi && e < pi && b < e,
+        "event " + deg(b) + " to " + deg(e));
+  if (!(std::isfinite(b) && std::isfinite(e) && b > -pi && e < pi && b < e)) return r;
+
+  const std::vector<double> bps = law.breakpoints();
+  {
+    std::string bad;
+    for (std::size_t i = 0; i < bps.size() && bad.empty(); ++i) {
+      if (!(bps[i] > b && bps[i] < e)) bad = "breakpoint " + deg(bps[i]) + " outside the event";
+      else if (i > 0 && !(bps[i] > bps[i - 1])) bad = "breakpoint " + deg(bps[i]) + " not after " + deg(bps[i - 1]);
+    }
+    r.add(suite, "breakpoints sorted and strictly inside the event", bad.empty(),
+          bad.empty() ? std::to_string(bps.size()) + " breakpoints" : bad);
+    if (!bad.empty()) return r;
+  }
+  std::vector<double> knots{b};
+  knots.insert(knots.end(), bps.begin(), bps.end());
+  knots.push_back(e);
+
+  {
+    std::string bad;
+    for (double phi : {b, e, b - 1e-9, e + 1e-9, 0.5 * (b - pi), 0.5 * (e + pi), -pi, pi, 0.5 * (b - pi) - 2.0 * pi,
+                       0.5 * (e + pi) + 4.0 * pi}) {
+      const LiftDerivatives d = law.at(phi);
+      if (d.lift != 0.0 || d.velocity != 0.0 || d.acceleration != 0.0 || d.jerk != 0.0) {
+        bad = "non-zero at " + deg(phi);
+        break;
+      }
+    }
+    const double inside = 0.5 * (b + e) + 0.1 * (e - b);
+    // at() reduces the angle by a multiple of 2 pi, which rounds: equal to 1e-9 of the lift.
+    if (bad.empty() && std::abs(law.at(inside + 2.0 * pi).lift - law.at(inside).lift) > 1e-9 * std::abs(law.max_lift()))
+      bad = "at() does not repeat every 360 deg";
+    r.add(suite, "zero outside the event, repeats every 360 deg", bad.empty(), bad);
+  }
+
+  // Dense sampling of each piece, including the one-sided values at every knot.
+  const int n = std::max(options.samples_per_piece, 8);
+  double S[4] = {0, 0, 0, 0};
+  double sampled_max = -std::numeric_limits<double>::infinity(), at_max = 0.0;
+  double most_negative = 0.0, at_negative = 0.0;
+  std::string nan_at;
+  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+    const double a0 = knots[p], a1 = knots[p + 1];
+    for (int i = -1; i <= n; ++i) {
+      const double phi = i < 0 ? a0 + 1e-12 * (a1 - a0) : i == n ? a1 - 1e-12 * (a1 - a0) : a0 + (a1 - a0) * (i + 0.5) / n;
+      const LiftDerivatives d = law.at(phi);
+      for (int k = 0; k < 4; ++k) {
+        if (!std::isfinite(component(d, k))) {
+          if (nan_at.empty()) nan_at = std::string(detail::derivative_name(k)) + " at " + deg(phi);
+        } else {
+          S[k] = std::max(S[k], std::abs(component(d, k)));
+        }
+      }
+      if (d.lift > sampled_max) sampled_max = d.lift, at_max = phi;
+      if (d.lift < most_negative) most_negative = d.lift, at_negative = phi;
+    }
+  }
+  r.add(suite, "no NaN or Inf in " + std::to_string((knots.size() - 1) * (n + 2)) + " samples", nan_at.empty(),
+        nan_at.empty() ? "" : "not finite: " + nan_at);
+  if (!nan_at.empty()) return r;
+  r.add(suite, "lift never negative", most_negative >= -1e-9 * S[0],
+        most_negative < 0.0 ? "least " + num(most_negative) + " m at " + deg(at_negative) : "");
+
+  // The maximum: best sample refined by golden-section search between its neighbours.
+  {
+    const double step = (e - b) / n;
+    double lo = std::max(b, at_max - step), hi = std::min(e, at_max + step);
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 80; ++it) {
+      const double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+      if (law.at(x1).lift > law.at(x2).lift) hi = x2;
+      else lo = x1;
+    }
+    sampled_max = std::max(sampled_max, law.at(0.5 * (lo + hi)).lift);
+    const double declared = law.max_lift();
+    r.add(suite, "max_lift() is the sampled maximum", std::abs(declared - sampled_max) <= options.max_lift_tolerance * sampled_max,
+          "declared " + num(declared) + " m, sampled " + num(sampled_max) + " m at " + deg(at_max));
+  }
+
+  // Continuity at the knots: the lift always, the derivatives up to options.continuity.
+  {
+    const double dk = 1e-9 * (e - b);
+    int continuous_to = 3;  // the highest order continuous at every knot (measured, reported)
+    std::string bad;
+    for (double k : knots) {
+      const LiftDerivatives left = law.at(k - dk), right = law.at(k + dk);
+      for (int o = 0; o < 4; ++o) {
+        const bool jump = std::abs(component(right, o) - component(left, o)) > 1e-6 * S[o] + 1e-300;
+        if (jump) {
+          continuous_to = std::min(continuous_to, o - 1);
+          if (o <= options.continuity && bad.empty())
+            bad = std::string(detail::derivative_name(o)) + " jumps at " + deg(k) + " from " + num(component(left, o)) +
+                  " to " + num(component(right, o));
+        }
+      }
+    }
+    r.add(suite, "continuous at breakpoints and event ends up to the " + std::string(detail::derivative_name(options.continuity)),
+          bad.empty(),
+          bad.empty() ? (continuous_to < 0 ? std::string("lift steps")
+                                           : "continuous up to the " + std::string(detail::derivative_name(continuous_to)))
+                      : bad);
+  }
+
+  // Exact derivatives against Richardson-extrapolated central differences inside each piece. Three
+  // steps (1e-3, 1e-4, 1e-5 of the piece): the closest must agree (large steps for laws whose
+  // internal magnitudes leave rounding noise, small ones for laws smooth only to C4).
+  for (int o = 0; o < 3; ++o) {
+    std::string bad;
+    double worst = 0.0;
+    for (std::size_t p = 0; p + 1 < knots.size() && bad.empty(); ++p) {
+      const double a0 = knots[p], a1 = knots[p + 1];
+      for (int i = 0; i <= 24; ++i) {
+        const double phi = a0 + (a1 - a0) * (0.05 + 0.9 * i / 24.0);
+        const double exact = component(law.at(phi), o + 1);
+        auto central = [&](double h) { return (component(law.at(phi + h), o) - component(law.at(phi - h), o)) / (2.0 * h); };
+        double best = std::numeric_limits<double>::infinity(), numeric = 0.0;
+        for (double fraction : {1e-3, 1e-4, 1e-5}) {
+          const double h = fraction * (a1 - a0);
+          const double v = (4.0 * central(0.5 * h) - central(h)) / 3.0;
+          if (std::abs(v - exact) < best) best = std::abs(v - exact), numeric = v;
+        }
+        const double allowed = options.derivative_tolerance * std::abs(numeric) + options.derivative_tolerance * S[o + 1];
+        worst = std::max(worst, best / std::max(S[o + 1], 1e-300));
+        if (best > allowed) {
+          bad = "at " + deg(phi) + ": exact " + num(exact) + ", differences " + num(numeric);
+          break;
+        }
+      }
+    }
+    r.add(suite, std::string(detail::derivative_name(o + 1)) + " is the derivative of the " + detail::derivative_name(o),
+          bad.empty(), bad.empty() ? "largest difference " + num(worst) + " of its scale" : bad);
+  }
+
+  // Higher derivatives, where the law gives them.
+  {
+    double d4 = 0.0, d5 = 0.0;
+    const double probe = 0.5 * (knots[0] + knots[1]);
+    if (law.higher_derivatives(probe, d4, d5)) {
+      std::string bad;
+      for (std::size_t p = 0; p + 1 < knots.size() && bad.empty(); ++p) {
+        const double a0 = knots[p], a1 = knots[p + 1];
+        for (int i = 0; i <= 12; ++i) {
+          const double phi = a0 + (a1 - a0) * (0.1 + 0.8 * i / 12.0);
+          if (!law.higher_derivatives(phi, d4, d5)) continue;
+          const double h = 1e-4 * (a1 - a0);
+          const double numeric = (law.at(phi + h).jerk - law.at(phi - h).jerk) / (2.0 * h);
+          if (!std::isfinite(d4) || !std::isfinite(d5) || std::abs(numeric - d4) > 1e-4 * (std::abs(d4) + S[3] / (e - b))) {
+            bad = "at " + deg(phi) + ": d4 " + num(d4) + ", differences of the jerk " + num(numeric);
+            break;
+          }
+        }
+      }
+      r.add(suite, "4th derivative (higher_derivatives) is the derivative of the jerk", bad.empty(), bad);
+    } else {
+      r.skip(suite, "4th derivative (higher_derivatives)", "the law does not give it");
+    }
+  }
+  return r;
+}
+
+}  // namespace mechgraph::testing
