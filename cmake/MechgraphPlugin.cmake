@@ -5,7 +5,8 @@
 # hidden visibility, so it exports its entry (MECHGRAPH_PLUGIN) and nothing else.
 #  - OUTPUT_DIRECTORY: where the built plugin lands; default ${CMAKE_BINARY_DIR}/mechgraph-plugins
 #    (or MECHGRAPH_PLUGIN_OUTPUT_DIR if set), the folder to give `mechgraph --plugin-dir`.
-#  - `cmake --install` puts it in ${CMAKE_INSTALL_LIBDIR}/mechgraph/plugins of the install prefix:
+#  - `cmake --install` puts it in lib/mechgraph/plugins of the install prefix (mechgraph's own
+#    library folder, MECHGRAPH_PLUGIN_INSTALL_DIR, e.g. lib/x86_64-linux-gnu/... under /usr):
 #    with mechgraph's own prefix it becomes a built-in plugin, else add that folder to
 #    MECHGRAPH_PLUGIN_PATH. NO_INSTALL leaves it out.
 include_guard(GLOBAL)
@@ -43,6 +44,10 @@ function(mechgraph_add_plugin name)
     target_link_options(${name} PRIVATE "LINKER:--no-undefined")
   endif()
   if(NOT ARG_NO_INSTALL)
-    install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mechgraph/plugins)
+    if(MECHGRAPH_PLUGIN_INSTALL_DIR)  # mechgraph's own layout (set by find_package or the tree)
+      install(TARGETS ${name} LIBRARY DESTINATION ${MECHGRAPH_PLUGIN_INSTALL_DIR})
+    else()
+      install(TARGETS ${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/mechgraph/plugins)
+    endif()
   endif()
 endfunction()

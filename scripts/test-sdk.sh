@@ -41,16 +41,27 @@ plugin=$WORK/my-plugin/build/mechgraph-plugins/mechgraph_example.so
 # mechgraph's interfaces have their RTTI in libmechgraph).
 exported=$(nm -DC --defined-only "$plugin" | cut -d' ' -f3- | grep -v -E '^((typeinfo|typeinfo name|vtable) for )?std::' || true)
 [ "$exported" = "mechgraph_plugin_entry" ] || fail "the plugin exports more than its entry: $exported"
-# No build path in what was installed.
+# No build path in what was installed: package files, headers, and the data the library, program
+# and plugins read at run time (debug information may name the sources; it is not read).
 if grep -rlF "$MECHGRAPH_BUILD" "$PREFIX/lib/cmake" "$PREFIX/include" >/dev/null 2>&1; then
   fail "the installed package names the build folder $MECHGRAPH_BUILD"
 fi
+for f in "$PREFIX"/lib/libmechgraph.so.* "$PREFIX/bin/mechgraph" "$PREFIX"/lib/mechgraph/plugins/*.so; do
+  if readelf -p .rodata -p .dynstr "$f" 2>/dev/null | grep -qF "$MECHGRAPH_BUILD"; then
+    fail "$f carries the build folder $MECHGRAPH_BUILD"
+  fi
+done
 # The scene's four outputs, the example's beside the built-ins'.
 for out in parabolic.max_acceleration cycloidal.max_acceleration valve.max_acceleration slot.play_max; do
   grep -q "$out" "$WORK/tutorial.out" || fail "the example scene did not print $out"
 done
 grep -q "example.parabolic_cam: .* 0 failed" "$WORK/tutorial.out" || fail "plugin-test did not pass the cam"
 grep -q "example.slot_joint: .* 0 failed" "$WORK/tutorial.out" || fail "plugin-test did not pass the joint"
+for t in example.parabolic_cam example.slot_joint; do
+  grep -q "PASS  node $t: evaluates with its defaults" "$WORK/tutorial.out" || fail "plugin-test did not evaluate $t"
+done
+grep -q "PASS  cam_law example.parabolic_cam.law: output max_acceleration is the law's extremum" "$WORK/tutorial.out" ||
+  fail "plugin-test did not check the cam's peaks"
 # Installed into mechgraph's prefix it is a built-in plugin: listed without --plugin-dir.
 "$PREFIX/bin/mechgraph" plugins | grep -q "^example 1.0.0" || fail "the installed example is not among the built-in plugins"
 # A scene asking for a newer example than installed is refused at load (exit 2), naming both.

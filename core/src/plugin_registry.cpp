@@ -239,8 +239,16 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
   auto library = std::make_shared<Library>();
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
-  if (ec || !library->is_loaded())
-    throw PluginError(where + ": cannot be loaded as a shared library (" + ec.message() + ")");
+  if (ec || !library->is_loaded()) {
+    // The dynamic loader's own words say what is missing (a library, a symbol).
+    std::string reason = ec.message();
+    if (void* h = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL)) ::dlclose(h);
+    else if (const char* e = ::dlerror()) reason = e;
+    if (reason.find("libmechgraph.so") != std::string::npos)
+      throw PluginError(where + ": cannot be loaded (" + reason + "): it was built against another mechgraph SDK; rebuild it "
+                        "against this mechgraph " MECHGRAPH_SDK_VERSION " (find_package(mechgraph CONFIG) of this install)");
+    throw PluginError(where + ": cannot be loaded as a shared library (" + reason + ")");
+  }
   if (!library->has(plugin_entry_name)) {
     if (library->has(legacy_plugin_entry_name))
       throw PluginError(where + ": was built for mechgraph plugin ABI 3 or older (its entry is the old '" +

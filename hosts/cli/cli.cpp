@@ -8,8 +8,9 @@
 
 namespace mechgraph::cli {
 
-PluginRegistry load_plugins(const GlobalOptions& options) {
+PluginRegistry load_plugins(const GlobalOptions& options, const std::vector<std::filesystem::path>& first) {
   PluginRegistry registry;
+  for (const auto& file : first) registry.load_file(file);
   const std::vector<std::filesystem::path> given(options.plugin_dirs.begin(), options.plugin_dirs.end());
   for (const auto& folder : PluginRegistry::search_path(given, options.only_plugin_dirs)) {
     std::error_code ec;

@@ -1,5 +1,6 @@
 #pragma once
-// Shared pieces of the `mechgraph` subcommands: global options, plugin loading, exit codes.
+// Shared pieces of the `mechgraph` subcommands: global options, plugin loading, exit codes
+// (0 ok, 2 usage or scene, 3 evaluation, 4 plugin load, 5 writing, 6 a plugin-test check, 130 stopped).
 #include <mechgraph/graph.hpp>
 #include <mechgraph/plugin_registry.hpp>
 
@@ -25,7 +26,9 @@ struct GlobalOptions {
 };
 
 /// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, the built-in folder).
-PluginRegistry load_plugins(const GlobalOptions& options);
+/// `first` are plugin files loaded before the search path (plugin-test LIB.so): a copy of the same
+/// plugin found later (an installed one) is then the one skipped. A refused `first` file throws.
+PluginRegistry load_plugins(const GlobalOptions& options, const std::vector<std::filesystem::path>& first = {});
 
 /// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
 Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);

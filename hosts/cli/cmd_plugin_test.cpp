@@ -66,7 +66,7 @@ const char* status_name(Check::Status s) {
 
 int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   constexpr const char* synopsis =
-      "mechgraph plugin-test (LIB.so | TYPE)... [--set TYPE.PARAM=VALUE ...] [--continuity TYPE=N] [--json]";
+      "mechgraph plugin-test (LIB.so | TYPE)... [--set TYPE.PARAM=VALUE ...] [--continuity TYPE=N] [--strict] [--threads N] [--json]";
   po::options_description visible("plugin-test options");
   visible.add_options()("help,h", "this text")
       ("set", po::value<std::vector<std::string>>()->composing(),
@@ -75,6 +75,7 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
        "cam laws of TYPE must be continuous up to derivative N at breakpoints (0 lift, 1 velocity, 2 acceleration, 3 jerk;"
        " default 0): --continuity cam.cycloidal=2")
       ("threads", po::value<int>()->default_value(4), "evaluations at once in the thread-safety check (0: skip it)")
+      ("strict", "a type that cannot be evaluated with its defaults and examples fails (else it is skipped)")
       ("json", "the checks as JSON");
   po::options_description all;
   all.add(visible).add_options()("target", po::value<std::vector<std::string>>()->required(), "plugin file or node type");
@@ -83,18 +84,23 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
   po::variables_map vm;
   if (!parse_options(args, visible, all, positional, vm, synopsis)) return ok;
 
-  PluginRegistry registry = load_plugins(g);
+  // Plugin files named on the command line load first, so the file under test wins over an
+  // installed copy of the same plugin (that one is skipped); a refused file is a PluginError (exit 4).
+  const auto targets = vm["target"].as<std::vector<std::string>>();
+  std::vector<std::filesystem::path> files;
+  for (const std::string& target : targets) {
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(target, ec)) files.emplace_back(target);
+  }
+  PluginRegistry registry = load_plugins(g, files);
   std::vector<std::string> types;
-  for (const std::string& target : vm["target"].as<std::vector<std::string>>()) {
+  for (const std::string& target : targets) {
     std::error_code ec;
     if (std::filesystem::is_regular_file(target, ec)) {
       const PluginInfo* plugin = nullptr;
       for (const PluginInfo& p : registry.plugins())
         if (std::filesystem::equivalent(p.path, target, ec)) plugin = &p;
-      if (!plugin) {
-        registry.load_file(target);  // a refusal is a PluginError (exit 4) naming what to change
-        plugin = &registry.plugins().back();
-      }
+      if (!plugin) throw PluginError("plugin '" + target + "' was not loaded");
       spdlog::info("plugin '{}' {} from {}: {} node types", plugin->id, plugin->version, plugin->path.string(),
                    plugin->node_types.size());
       types.insert(types.end(), plugin->node_types.begin(), plugin->node_types.end());
@@ -142,6 +148,13 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
     o.input_for = [&provider](const PortSpec& p) { return provider(p); };
     const testing::Report report = testing::check_node_type(*registry.find(t)->type, o);
     failed += report.failed();
+    // --strict: a type the suites could not evaluate counts as a failure.
+    bool evaluated = false;
+    for (const Check& c : report.checks()) evaluated = evaluated || (c.name == "evaluates with its defaults");
+    if (vm.count("strict") && !evaluated) {
+      ++failed;
+      spdlog::error("{}: not evaluated (--strict): give its required parameters defaults or examples", t);
+    }
     if (as_json) {
       json.begin_object().key("type").value(t).key("passed").value(report.passed()).key("checks").begin_array();
       for (const Check& c : report.checks())

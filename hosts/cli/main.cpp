@@ -32,7 +32,7 @@ commands:
   sweep SCENE (--vary N=A:B:K | --cases F.csv | --sample N=A:B --n K) [--threads N] [--out F] [--shard I/N]
                                                           many designs: one row per case, on all cores
   merge FILE... [--out FILE]                              shards of one sweep back together, checked
-  plugin-test (LIB.so | TYPE)... [--set TYPE.P=V] [--json]
+  plugin-test (LIB.so | TYPE)... [--set TYPE.P=V] [--continuity TYPE=N] [--strict] [--threads N] [--json]
                                                           conformance suites against a plugin's node types
 
 global options:

@@ -94,6 +94,7 @@ std::optional<double> smallest_undercut_free_base_radius(
       return false;
     }
   };
+  if (!(base_radius > 0.0) || !std::isfinite(base_radius)) return std::nullopt;
   double low = base_radius, high = base_radius;
   while (!feasible(high)) {
     low = high;
@@ -124,4 +125,4 @@ void refuse_undercut(const CamSummary& summary, double base_radius,
   throw NodeError("base_radius", msg.str());
 }
 
-}  // namespace mechgraph::cams
+}  // namespace mechgraph

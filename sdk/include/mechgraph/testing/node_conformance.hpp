@@ -25,6 +25,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <latch>
 #include <map>
 #include <optional>
 #include <set>
@@ -108,6 +109,9 @@ inline Report check_node_info(const NodeInfo& info) {
       bool known = false;
       for (const auto& c : p.choices) known = known || c == p.default_value->text;
       if (!known) bad = at + ": its default '" + p.default_value->text + "' is not one of its choices";
+    }
+    if (p.example_value && (p.kind == ParamKind::number || p.kind == ParamKind::integer)) {
+      if (const std::string problem = p.value_problem(p.example_value->number); !problem.empty()) bad = at + ": its example " + problem;
     }
     if (p.knob && !(p.kind == ParamKind::number || p.kind == ParamKind::integer || p.kind == ParamKind::choice))
       bad = at + ": a knob must be a number, an integer or a choice";
@@ -211,22 +215,34 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
   if (!info.work_counters.empty() && first.context.work.empty()) bad = "declares work counters but reported none";
   r.add(suite, "reports its work on declared counters", bad.empty(), bad.empty() ? counted : bad);
 
-  {
+  try {
     std::string where;
     const NodeRun again = run_node(type, params, inputs);
     r.add(suite, "deterministic: the same inputs give the same bits", detail::same_outputs(first.outputs, again.outputs, where),
           where.empty() ? "" : "differs at " + where);
+  } catch (const std::exception& e) {
+    r.add(suite, "deterministic: the same inputs give the same bits", false, std::string("the second evaluation threw: ") + e.what());
   }
   if (options.threads > 1) {
+    // All threads start together (a latch) and evaluate several times each, so the evaluations overlap.
+    constexpr int rounds = 8;
     std::vector<std::optional<NodeRun>> runs(static_cast<std::size_t>(options.threads));
     std::vector<std::string> errors(runs.size());
     std::vector<std::thread> pool;
+    std::latch start(options.threads);
     for (std::size_t i = 0; i < runs.size(); ++i)
       pool.emplace_back([&, i] {
+        start.arrive_and_wait();
         try {
-          runs[i] = run_node(type, params, inputs);
+          std::string where;
+          for (int k = 0; k < rounds; ++k) {
+            runs[i] = run_node(type, params, inputs);
+            if (!detail::same_outputs(first.outputs, runs[i]->outputs, where)) break;
+          }
         } catch (const std::exception& e) {
           errors[i] = e.what();
+        } catch (...) {
+          errors[i] = "a non-standard exception";
         }
       });
     for (auto& t : pool) t.join();
@@ -235,12 +251,21 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
       if (!errors[i].empty()) where = "thread " + std::to_string(i) + " threw: " + errors[i];
       else if (!detail::same_outputs(first.outputs, runs[i]->outputs, where)) where = "thread " + std::to_string(i) + " differs at " + where;
     }
-    r.add(suite, "thread-safe: " + std::to_string(options.threads) + " evaluations at once agree", where.empty(), where);
+    r.add(suite, "thread-safe: " + std::to_string(options.threads) + " threads x " + std::to_string(rounds) +
+                     " evaluations at once agree", where.empty(), where);
   }
 
-  for (const auto& [port, v] : first.outputs.all())
-    if (v.kind() == ValueKind::handle && v.as_handle())
-      r.append(check_domain_object(*v.as_handle(), std::string(v.as_handle()->kind()) + " " + info.type + "." + port, options));
+  for (const auto& [port, v] : first.outputs.all()) {
+    if (v.kind() != ValueKind::handle || !v.as_handle()) continue;
+    const std::string domain_suite = std::string(v.as_handle()->kind()) + " " + info.type + "." + port;
+    try {
+      r.append(check_domain_object(*v.as_handle(), domain_suite, options));
+      // The cam node convention: peak outputs beside the law agree with the law sampled densely.
+      if (const auto* law = dynamic_cast<const CamLaw*>(v.as_handle().get())) r.append(check_cam_peaks(*law, first.outputs, domain_suite));
+    } catch (const std::exception& e) {
+      r.add(domain_suite, "interface suite", false, std::string("the object threw while checked: ") + e.what());
+    }
+  }
   return r;
 }
 
