@@ -14,32 +14,45 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <set>
 
 namespace mechgraph::cli {
 namespace {
 
 using testing::Check;
 
-// A value for a handle input: the first loaded type (by name) without required inputs that makes
-// an object of that kind from its defaults. Made once per kind.
+// A value for a handle input: the first loaded type (by name) that makes an object of that kind from
+// its defaults and examples, its own handle inputs made the same way (a valve motion from a cam law,
+// a spring design from a valve motion, ...), to a depth of four. Made once per kind.
 class InputProvider {
  public:
   explicit InputProvider(const PluginRegistry& registry) : registry_(registry) {}
-  std::optional<Value> operator()(const PortSpec& port) {
-    if (port.kind != ValueKind::handle) return std::nullopt;
+  std::optional<Value> operator()(const PortSpec& port) { return make(port, 0); }
+
+ private:
+  std::optional<Value> make(const PortSpec& port, int depth) {
+    if (port.kind != ValueKind::handle || depth > 4) return std::nullopt;
     if (auto it = made_.find(port.handle_kind); it != made_.end()) return it->second;
+    if (!in_progress_.insert(port.handle_kind).second) return std::nullopt;  // a cycle of kinds
     std::optional<Value> found;
     for (const std::string& name : registry_.type_names()) {
       const NodeType& type = *registry_.find(name)->type;
       const NodeInfo& info = type.info();
-      bool free_standing = true;
-      for (const PortSpec& in : info.inputs) free_standing = free_standing && in.optional;
       const PortSpec* out = nullptr;
       for (const PortSpec& o : info.outputs)
         if (o.kind == ValueKind::handle && o.handle_kind == port.handle_kind && !info.effect_of_output(o.name)) out = &o;
-      if (!free_standing || !out) continue;
+      if (!out) continue;
       try {
-        const auto run = testing::run_node(type, testing::params_with_defaults(info), InputSet{});
+        InputSet inputs;
+        bool complete = true;
+        for (const PortSpec& in : info.inputs) {
+          if (in.optional) continue;
+          const auto v = make(in, depth + 1);
+          if (!v) complete = false;
+          else inputs.add(in.name, *v);
+        }
+        if (!complete) continue;
+        const auto run = testing::run_node(type, testing::params_with_defaults(info), inputs);
         if (auto it = run.outputs.all().find(out->name); it != run.outputs.all().end()) {
           spdlog::info("input '{}' ({}) from {} with its defaults", port.name, port.handle_kind, name);
           found = it->second;
@@ -49,13 +62,14 @@ class InputProvider {
         continue;  // this one cannot make it from its defaults: try the next
       }
     }
+    in_progress_.erase(port.handle_kind);
     made_[port.handle_kind] = found;
     return found;
   }
 
- private:
   const PluginRegistry& registry_;
   std::map<std::string, std::optional<Value>> made_;
+  std::set<std::string> in_progress_;
 };
 
 const char* status_name(Check::Status s) {

@@ -14,9 +14,16 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 namespace mechgraph::fits {
 namespace {
+
+// 20 H7/g6 (ISO 286-2): hole +21/0 um, shaft -7/-20 um, the explicit fit's example deviations.
+double explicit_example(std::string_view part, std::string_view side) {
+  if (part == "hole") return side == "upper" ? 21e-6 : 0.0;
+  return side == "upper" ? -7e-6 : -20e-6;
+}
 
 std::string millimetres(double m) {
   std::ostringstream os;
@@ -45,7 +52,8 @@ class FitNodeType final : public NodeType {
           info_.params.push_back(ParamSpec::number(std::string(part) + "_" + side, dim::length,
                                                    std::string(side) + " limit deviation of the " + part + " (signed)", "um")
                                      .at_least(-1.0)
-                                     .at_most(1.0));  // a metre either way: far past any fit, finite in every sum
+                                     .at_most(1.0)  // a metre either way: far past any fit, finite in every sum
+                                     .with_example(explicit_example(part, side)));
     }
     for (const char* part : {"hole", "shaft"})
       info_.params.push_back(distribution_param(std::string(part) + "_distribution",

@@ -33,11 +33,13 @@ class CardanJointType final : public NodeType {
     info_.summary =
         "cardan (universal) joint: trunnion clearances and end float; output angle and speed ratio at a bend angle";
     info_.params = {
-        ParamSpec::number("input_angle", dim::angle, "input yoke angle t1, measured from the plane of the bend", "deg"),
+        ParamSpec::number("input_angle", dim::angle, "input yoke angle t1, measured from the plane of the bend", "deg")
+            .with_example(30.0 * deg),
         ParamSpec::number("bend_angle", dim::angle,
                           "bend angle b between the shafts, 0 <= b < 90 deg (evaluated up to 1/cos b = 1e6)", "deg")
             .non_negative()
-            .at_most(90.0 * deg),
+            .at_most(90.0 * deg)
+            .with_example(20.0 * deg),
         ParamSpec::number("end_float", dim::length, "axial end float of the trunnions, added as one play term", "um")
             .with_default(0.0)
             .non_negative(),

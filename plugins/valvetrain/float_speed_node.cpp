@@ -23,11 +23,12 @@ class FloatSpeedType final : public NodeType {
     info_.type = "valvetrain.float_speed";
     info_.summary = "lowest crank speed in a range at which the valve loses cam contact (valve float)";
     info_.params = {
-        ParamSpec::number("rpm_min", dim::angular_speed, "lowest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm),
-        ParamSpec::number("rpm_max", dim::angular_speed, "highest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm),
+        ParamSpec::number("rpm_min", dim::angular_speed, "lowest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).with_example(3000 * rpm),
+        ParamSpec::number("rpm_max", dim::angular_speed, "highest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).with_example(9000 * rpm),
         ParamSpec::number("drive_stiffness", dim::stiffness, "k_d: the drive's stiffness reduced to the valve", "N/mm")
             .positive()
-            .at_most(1e13),
+            .at_most(1e13)
+            .with_example(4e6),
         ParamSpec::number("damping_ratio", dim::none, "damping of the drive's first mode, share of critical")
             .with_default(0.06)
             .non_negative()

@@ -17,7 +17,7 @@ class MassesType final : public NodeType {
       return ParamSpec::number(name, dim::length, doc, "mm").with_default(1.0).at_least(1e-4).at_most(10.0);
     };
     info_.params = {
-        ParamSpec::number("valve_mass", dim::mass, "mass of the valve", "g").positive().at_most(100.0),
+        ParamSpec::number("valve_mass", dim::mass, "mass of the valve", "g").positive().at_most(100.0).with_example(0.06),
         mass("retainer_mass", "spring retainer (plate) and keepers"),
         mass("tappet_mass", "tappet (lifter)"),
         mass("pushrod_mass", "pushrod"),

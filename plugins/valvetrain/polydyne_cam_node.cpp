@@ -87,13 +87,15 @@ class PolydyneCamType final : public NodeType {
     info_.params = {
         ParamSpec::number("design_rpm", dim::angular_speed, "crank speed the cam is made for (camshaft at half)", "rpm")
             .at_least(2.0 * pi / 60.0)
-            .at_most(1e6 * 2.0 * pi / 60.0),
+            .at_most(1e6 * 2.0 * pi / 60.0)
+            .with_example(6000.0 * 2.0 * pi / 60.0),
         ParamSpec::number("drive_stiffness", dim::stiffness,
                           "k_d: the drive's stiffness reduced to the valve (from 1 N/mm: softer, the synthesised "
                           "correction M a / k_d leaves any cam)",
                           "N/mm")
             .at_least(1e3)
-            .at_most(1e13),
+            .at_most(1e13)
+            .with_example(4e6),
         ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p").with_default(1.0).at_least(0.01).at_most(100.0),
         ParamSpec::number("lash", dim::length, "valve lash, taken up by the ramps", "mm").with_default(0.0).non_negative().at_most(0.1),
         ParamSpec::number("ramp_angle", dim::angle, "cam angle of each take-up ramp", "deg")

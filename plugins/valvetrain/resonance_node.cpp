@@ -28,7 +28,8 @@ class ResonanceType final : public NodeType {
         ParamSpec::number("drive_stiffness", dim::stiffness, "c_d: stiffness of the drive (tappet, pushrod, rocker) reduced to the valve",
                           "N/mm")
             .positive()
-            .at_most(1e12),
+            .at_most(1e12)
+            .with_example(4e6),
         ParamSpec::integer("samples", "samples of the lift over one cam revolution (N)")
             .with_default(3600.0)
             .at_least(16)

@@ -25,7 +25,7 @@ class TimeAreaType final : public NodeType {
     info_.type = "valvetrain.time_area";
     info_.summary = "time-area, angle-area and mean flow area of the valve over its open period";
     info_.params = {
-        ParamSpec::number("seat_diameter", dim::length, "inner seat diameter d0", "mm").positive(),
+        ParamSpec::number("seat_diameter", dim::length, "inner seat diameter d0", "mm").positive().with_example(35e-3),
         ParamSpec::number("seat_angle", dim::angle, "seat cone angle a (45 deg usual)", "deg")
             .with_default(std::numbers::pi / 4.0)
             .positive()
