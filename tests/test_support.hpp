@@ -5,6 +5,7 @@
 #include <mechgraph/graph.hpp>
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
+#include <mechgraph/testing/node_harness.hpp>
 
 #include <cstdio>
 #include <map>
@@ -19,24 +20,9 @@ namespace mechgraph::testing {
 std::string build_fingerprint_for_tests();
 std::uint32_t plugin_abi_version_for_tests();
 
-/// An EvalContext for calling node types directly: effects by name, work summed, logs kept.
-class RecordingContext final : public EvalContext {
- public:
-  explicit RecordingContext(std::vector<std::string> effects = {}) : effects_(std::move(effects)) {}
-  bool effect(std::string_view name) const override {
-    for (const auto& e : effects_)
-      if (e == name) return true;
-    return false;
-  }
-  void log(LogLevel, std::string_view message) override { logs.emplace_back(message); }
-  void report_work(std::string_view counter, double amount) override { work[std::string(counter)] += amount; }
-  bool wanted(std::string_view) const override { return true; }  // a direct call reads every output
-  std::map<std::string, double> work;
-  std::vector<std::string> logs;
-
- private:
-  std::vector<std::string> effects_;
-};
+/// An EvalContext for calling node types directly: effects by name, work summed, logs kept (the
+/// SDK kit's own).
+using RecordingContext = HarnessContext;
 
 /// A node type's parameters with its defaults filled in, then `values` (SI) on top.
 inline ParamSet defaults_of(const NodeInfo& info, const std::map<std::string, ParamValue>& values = {}) {

@@ -76,23 +76,6 @@ class NodeContext final : public EvalContext {
 
 std::string where_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
 
-bool all_finite(const Value& v) {
-  if (v.kind() == ValueKind::scalar) return std::isfinite(v.as_scalar());
-  if (v.kind() == ValueKind::series) {
-    for (double x : v.as_series().values)
-      if (!std::isfinite(x)) return false;
-    for (double x : v.as_series().axis)
-      if (!std::isfinite(x)) return false;
-  }
-  if (v.kind() == ValueKind::table) {
-    for (double x : v.as_table().axis.values)
-      if (!std::isfinite(x)) return false;
-    for (const Table::Column& c : v.as_table().channels)
-      for (double x : c.values)
-        if (!std::isfinite(x)) return false;
-  }
-  return true;
-}
 
 // A table's channels are as long as its axis and named once each.
 void check_table_shape(const GraphNode& node, const std::string& port, const Table& t) {

@@ -1,6 +1,27 @@
 #include <mechgraph/value.hpp>
 
+#include <cmath>
+
 namespace mechgraph {
+
+bool all_finite(const Value& v) {
+  auto finite = [](const std::vector<double>& xs) {
+    for (double x : xs)
+      if (!std::isfinite(x)) return false;
+    return true;
+  };
+  switch (v.kind()) {
+    case ValueKind::scalar: return std::isfinite(v.as_scalar());
+    case ValueKind::series: return finite(v.as_series().values) && finite(v.as_series().axis);
+    case ValueKind::table:
+      if (!finite(v.as_table().axis.values)) return false;
+      for (const Table::Column& c : v.as_table().channels)
+        if (!finite(c.values)) return false;
+      return true;
+    case ValueKind::handle: return true;
+  }
+  return true;
+}
 
 std::string_view to_string(ValueKind kind) {
   switch (kind) {

@@ -108,4 +108,9 @@ class Value {
   std::shared_ptr<const DomainObject> handle_;
 };
 
+/// Every number a value carries is finite (scalar, series values and axis, table axis and
+/// channels; handles carry none). The evaluator refuses an output that is not; the conformance kit
+/// checks the same.
+bool all_finite(const Value& v);
+
 }  // namespace mechgraph

@@ -43,47 +43,12 @@ inline std::string si(double value, const char* unit) {
   return buffer;
 }
 
-/// Parameters as the scene would give them (text), turned into a ParamSet the way the host does:
-/// numbers parsed with their unit and dimension-checked, choices checked, ranges checked, defaults
-/// filled in. A mistake in the test setup throws std::invalid_argument (not NodeError).
+/// Parameters as the scene would give them (text), turned into a ParamSet the way the host does
+/// (the SDK kit's harness: units, dimension, choices and the host's range check; defaults filled in,
+/// examples not, since the cases state every design value). A mistake in the test setup throws
+/// std::invalid_argument (not NodeError).
 inline ParamSet make_params(const NodeInfo& info, const std::map<std::string, std::string>& values) {
-  ParamSet out;
-  for (const auto& [name, text] : values) {
-    const ParamSpec* spec = info.find_param(name);
-    if (!spec) throw std::invalid_argument(info.type + " has no parameter '" + name + "'");
-    switch (spec->kind) {
-      case ParamKind::number:
-      case ParamKind::integer: {
-        const Quantity q = parse_quantity(text);
-        if (!(q.dimension == spec->dimension))
-          throw std::invalid_argument(info.type + "." + name + ": '" + text + "' has the wrong dimension");
-        // The host's one range check (also whole numbers for integers).
-        if (const std::string problem = spec->value_problem(q.value); !problem.empty())
-          throw std::invalid_argument(info.type + "." + name + ": '" + text + "' " + problem);
-        if (spec->kind == ParamKind::integer) {
-          out.set(name, ParamValue::of_integer(static_cast<long>(q.value)));
-        } else {
-          out.set(name, ParamValue::of_number(q.value));
-        }
-        break;
-      }
-      case ParamKind::choice: {
-        bool known = false;
-        for (const auto& c : spec->choices) known = known || c == text;
-        if (!known) throw std::invalid_argument(info.type + "." + name + ": '" + text + "' is not a valid choice");
-        out.set(name, ParamValue::of_choice(text));
-        break;
-      }
-      case ParamKind::text: out.set(name, ParamValue::of_text(text)); break;
-      default: throw std::invalid_argument(info.type + "." + name + ": list parameters are not used by cam tests");
-    }
-  }
-  for (const ParamSpec& spec : info.params) {
-    if (out.has(spec.name)) continue;
-    if (spec.default_value) out.set(spec.name, *spec.default_value);
-    else if (spec.required) throw std::invalid_argument(info.type + ": required parameter '" + spec.name + "' not given");
-  }
-  return out;
+  return mechgraph::testing::params_with_defaults(info, values, /*fill_examples=*/false);
 }
 
 /// A file the test writes into the temporary folder, removed when the object goes.

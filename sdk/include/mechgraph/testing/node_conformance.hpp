@@ -35,6 +35,10 @@
 
 namespace mechgraph::testing {
 
+/// The name of the check that a type evaluated with its defaults and examples (present, passed or
+/// failed, exactly when an evaluation was tried; `plugin-test --strict` looks for it).
+inline constexpr const char* evaluation_check = "evaluates with its defaults";
+
 struct NodeCheckOptions {
   std::map<std::string, std::string> values;  // parameters as scene text; the rest from the defaults
   /// A value for an input port (a cam_law from another type, a scalar); nullopt: none. Optional
@@ -46,25 +50,6 @@ struct NodeCheckOptions {
 
 namespace detail {
 
-inline bool finite_value(const Value& v) {
-  switch (v.kind()) {
-    case ValueKind::scalar: return std::isfinite(v.as_scalar());
-    case ValueKind::series:
-      for (double x : v.as_series().values)
-        if (!std::isfinite(x)) return false;
-      for (double x : v.as_series().axis)
-        if (!std::isfinite(x)) return false;
-      return true;
-    case ValueKind::table:
-      for (double x : v.as_table().axis.values)
-        if (!std::isfinite(x)) return false;
-      for (const auto& c : v.as_table().channels)
-        for (double x : c.values)
-          if (!std::isfinite(x)) return false;
-      return true;
-    default: return true;
-  }
-}
 
 // Two evaluations agree bit for bit (numbers) and in the objects' kinds (handles).
 inline bool same_outputs(const OutputSet& a, const OutputSet& b, std::string& where) {
@@ -170,7 +155,7 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     }
   }
 
-  NodeRun first;
+  HarnessRun first;
   try {
     first = run_node(type, params, inputs);
   } catch (const NodeError& e) {
@@ -180,13 +165,16 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
       r.skip(suite, "evaluation with its defaults", "it refused the input '" + e.parameter() + "' it was given: " + e.what());
       return r;
     }
-    r.add(suite, "evaluates with its defaults", false, "NodeError on '" + e.parameter() + "': " + e.what());
+    r.add(suite, evaluation_check, false, "NodeError on '" + e.parameter() + "': " + e.what());
     return r;
   } catch (const std::exception& e) {
-    r.add(suite, "evaluates with its defaults", false, std::string("threw ") + e.what() + " (a node throws NodeError naming the parameter)");
+    r.add(suite, evaluation_check, false, std::string("threw ") + e.what() + " (a node throws NodeError naming the parameter)");
+    return r;
+  } catch (...) {
+    r.add(suite, evaluation_check, false, "threw something that is not a std::exception");
     return r;
   }
-  r.add(suite, "evaluates with its defaults", true);
+  r.add(suite, evaluation_check, true);
 
   std::string bad;
   for (const auto& [port, v] : first.outputs.all()) {
@@ -206,7 +194,7 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
 
   bad.clear();
   for (const auto& [port, v] : first.outputs.all())
-    if (!detail::finite_value(v)) bad = "output '" + port + "'";
+    if (!all_finite(v)) bad = "output '" + port + "'";
   r.add(suite, "no NaN or Inf in any output", bad.empty(), bad.empty() ? "" : "not finite: " + bad);
 
   bad.clear();
@@ -223,7 +211,7 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
 
   try {
     std::string where;
-    const NodeRun again = run_node(type, params, inputs);
+    const HarnessRun again = run_node(type, params, inputs);
     r.add(suite, "deterministic: the same inputs give the same bits", detail::same_outputs(first.outputs, again.outputs, where),
           where.empty() ? "" : "differs at " + where);
   } catch (const std::exception& e) {
@@ -232,7 +220,7 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
   if (options.threads > 1) {
     // All threads start together (a latch) and evaluate several times each, so the evaluations overlap.
     constexpr int rounds = 8;
-    std::vector<std::optional<NodeRun>> runs(static_cast<std::size_t>(options.threads));
+    std::vector<std::optional<HarnessRun>> runs(static_cast<std::size_t>(options.threads));
     std::vector<std::string> errors(runs.size());
     std::vector<std::thread> pool;
     std::latch start(options.threads);

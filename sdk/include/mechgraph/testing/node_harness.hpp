@@ -19,7 +19,7 @@ namespace mechgraph::testing {
 /// logs are kept.
 class HarnessContext final : public EvalContext {
  public:
-  explicit HarnessContext(std::set<std::string, std::less<>> effects = {}) : effects_(std::move(effects)) {}
+  explicit HarnessContext(const std::vector<std::string>& effects = {}) : effects_(effects.begin(), effects.end()) {}
   bool effect(std::string_view name) const override { return effects_.find(name) != effects_.end(); }
   void log(LogLevel, std::string_view message) override { logs.emplace_back(message); }
   void report_work(std::string_view counter, double amount) override { work[std::string(counter)] += amount; }
@@ -39,10 +39,11 @@ inline std::string si_text(double value, const char* si_unit) {
 }
 
 /// The type's parameters: `values` (scene text, numbers with their unit) parsed and checked, then
-/// the declared defaults, then the declared examples (ParamSpec::example_value). Throws std::invalid_argument naming the type and parameter for an unknown
+/// the declared defaults, then (with `fill_examples`) the declared examples (ParamSpec::example_value). Throws std::invalid_argument naming the type and parameter for an unknown
 /// name, a wrong dimension, a value out of range, an unknown choice, or a required parameter that has
 /// neither a value nor a default.
-inline ParamSet params_with_defaults(const NodeInfo& info, const std::map<std::string, std::string>& values = {}) {
+inline ParamSet params_with_defaults(const NodeInfo& info, const std::map<std::string, std::string>& values = {},
+                                     bool fill_examples = true) {
   ParamSet out;
   for (const auto& [name, text] : values) {
     const ParamSpec* spec = info.find_param(name);
@@ -79,7 +80,7 @@ inline ParamSet params_with_defaults(const NodeInfo& info, const std::map<std::s
   for (const ParamSpec& spec : info.params) {
     if (out.has(spec.name)) continue;
     if (spec.default_value) out.set(spec.name, *spec.default_value);
-    else if (spec.example_value) out.set(spec.name, *spec.example_value);
+    else if (fill_examples && spec.example_value) out.set(spec.name, *spec.example_value);
     else if (spec.required)
       throw std::invalid_argument(info.type + ": required parameter '" + spec.name +
                                   "' has neither a default nor an example (ParamSpec::with_example); give it a value");
@@ -88,15 +89,15 @@ inline ParamSet params_with_defaults(const NodeInfo& info, const std::map<std::s
 }
 
 /// What one evaluation produced.
-struct NodeRun {
+struct HarnessRun {
   OutputSet outputs;
   HarnessContext context;
 };
 
 /// Evaluates `type` once with `params` and `inputs`; exceptions (NodeError) pass through.
-inline NodeRun run_node(const NodeType& type, const ParamSet& params, const InputSet& inputs = {},
-                        std::set<std::string, std::less<>> effects = {}) {
-  NodeRun run{{}, HarnessContext(std::move(effects))};
+inline HarnessRun run_node(const NodeType& type, const ParamSet& params, const InputSet& inputs = {},
+                        const std::vector<std::string>& effects = {}) {
+  HarnessRun run{{}, HarnessContext(effects)};
   type.evaluate(params, inputs, run.outputs, run.context);
   return run;
 }
