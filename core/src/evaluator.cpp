@@ -275,7 +275,8 @@ RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
       throw EvaluationError(where_of(graph.nodes[o.node]) + " did not produce the requested output '" + o.label +
                             "': that output needs an effect or parameters this node was not given (see 'mechgraph "
                             "describe " + graph.nodes[o.node].info().type + "')");
-    result.outputs.push_back({o.label, it->second, o.spec->dimension, o.spec->display_unit});
+    result.outputs.push_back(
+        {o.label, it->second, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
   }
   return result;
 }

@@ -93,6 +93,7 @@ class GraphBuilder {
     check_requirements();
     graph_.title = scene_.title;
     graph_.file = scene_.file;
+    graph_.display_units = DisplayUnits::from_scene(scene_.units);
     for (const NodeSpec& n : scene_.nodes) {
       if (!graph_.index.emplace(n.name, graph_.index.size()).second) fail(n.where, "node '" + n.name + "' is defined twice");
     }

@@ -81,8 +81,8 @@ class SceneReader {
   SceneSpec read(const YAML::Node& root) {
     SceneSpec scene;
     scene.file = file_;
-    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, nodes, effects, outputs, report");
-    check_keys(root, {"title", "requires", "params", "nodes", "effects", "outputs", "report"}, "scene key");
+    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, units, nodes, effects, outputs, report");
+    check_keys(root, {"title", "requires", "params", "units", "nodes", "effects", "outputs", "report"}, "scene key");
     if (root["title"]) scene.title = scalar(root["title"], "a title");
     if (const YAML::Node r = root["requires"]; r && !r.IsNull()) {
       if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { cams: \">=0.2\" }");
@@ -95,6 +95,14 @@ class SceneReader {
         RawValue v = raw(kv.second);
         v.key_where = at(kv.first);
         scene.params.emplace_back(scalar(kv.first, "a parameter name"), std::move(v));
+      }
+    }
+    if (const YAML::Node u = root["units"]; u && !u.IsNull()) {
+      if (!u.IsMap()) fail(at(u), "expected units as a map of quantity: unit, e.g. units: { length: mm, angle: deg }");
+      for (const auto& kv : u) {
+        RawValue v = raw(kv.second);
+        v.key_where = at(kv.first);
+        scene.units.emplace_back(scalar(kv.first, "a quantity name"), std::move(v));
       }
     }
     const YAML::Node nodes = root["nodes"];

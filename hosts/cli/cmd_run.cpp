@@ -93,7 +93,7 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
   os << "\n";
 }
 
-void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result) {
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units) {
   std::vector<std::string> header{"", "unit"};
   for (const std::string& c : report.columns) header.push_back(c);
   std::vector<std::vector<std::string>> rows;
@@ -115,8 +115,9 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
       } else {
         value = o.value.as_scalar();
       }
-      if (cells[1].empty() && o.dimension.si_unit() != "1") cells[1] = o.dimension.si_unit();
-      const double shown = row.unit.empty() ? value : to_unit(value, o.dimension, row.unit);
+      const std::string unit = row.unit.empty() ? units.unit_for(o.dimension) : row.unit;
+      if (cells[1].empty() && o.dimension.si_unit() != "1") cells[1] = unit.empty() ? o.dimension.si_unit() : unit;
+      const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
       char buffer[32];
       std::snprintf(buffer, sizeof buffer, "%.6g", shown);
       cells.push_back(buffer);
@@ -167,29 +168,41 @@ void print_series(std::ostream& os, const OutputValue& o) {
   os << "]" << (unit == "1" ? "" : " " + unit);
 }
 
-// One CSV per table: the axis, then each channel; header `name [SI unit]`.
-void write_table_csv(const std::filesystem::path& file, const Table& t) {
+// One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
+// units (SI where the scene names none).
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units) {
   std::ofstream out(file);
   if (!out) throw IoError("cannot write '" + file.string() + "'");
-  out << t.axis.name << " [" << t.axis.dimension.si_unit() << "]";
-  for (const Table::Column& c : t.channels) out << "," << c.name << " [" << c.dimension.si_unit() << "]";
+  std::vector<const Table::Column*> columns{&t.axis};
+  for (const Table::Column& c : t.channels) columns.push_back(&c);
+  std::vector<std::string> unit(columns.size());
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    unit[k] = units.unit_for(columns[k]->dimension);
+    out << (k ? "," : "") << columns[k]->name << " [" << (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) << "]";
+  }
   out << "\n" << std::setprecision(17);
   for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
-    out << t.axis.values[i];
-    for (const Table::Column& c : t.channels) out << "," << c.values[i];
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const double v = columns[k]->values[i];
+      out << (k ? "," : "") << (unit[k].empty() ? v : to_unit(v, columns[k]->dimension, unit[k]));
+    }
     out << "\n";
   }
   out.close();
   check_written(out, file);
 }
 
-void write_csv(const std::filesystem::path& file, const OutputValue& o) {
+void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units) {
   std::ofstream out(file);
   if (!out) throw IoError("cannot write '" + file.string() + "'");
   const Series& s = o.value.as_series();
-  out << "axis [" << s.axis_dimension.si_unit() << "]," << o.label << " [" << o.dimension.si_unit() << "]\n";
+  const std::string axis_unit = units.unit_for(s.axis_dimension), value_unit = units.unit_for(o.dimension);
+  out << "axis [" << (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) << "]," << o.label << " ["
+      << (value_unit.empty() ? o.dimension.si_unit() : value_unit) << "]\n";
   out << std::setprecision(17);
-  for (std::size_t i = 0; i < s.values.size(); ++i) out << s.axis[i] << "," << s.values[i] << "\n";
+  for (std::size_t i = 0; i < s.values.size(); ++i)
+    out << (axis_unit.empty() ? s.axis[i] : to_unit(s.axis[i], s.axis_dimension, axis_unit)) << ","
+        << (value_unit.empty() ? s.values[i] : to_unit(s.values[i], o.dimension, value_unit)) << "\n";
   out.close();
   check_written(out, file);
 }
@@ -228,7 +241,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   } else {
     for (std::size_t t = 0; t < graph.reports.size(); ++t) {
       if (t) std::cout << "\n";
-      print_report(std::cout, graph.reports[t], result);
+      print_report(std::cout, graph.reports[t], result, graph.display_units);
     }
     if (!graph.reports.empty() && graph.scene_output_count) std::cout << "\n";
     if (graph.reports.empty() && !graph.title.empty()) {
@@ -263,8 +276,8 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       json_file.close();
       check_written(json_file, dir / "results.json");
       for (const OutputValue& o : result.outputs)
-        if (o.value.kind() == ValueKind::series) write_csv(staging / (o.label + ".csv"), o);
-        else if (o.value.kind() == ValueKind::table) write_table_csv(staging / (o.label + ".csv"), o.value.as_table());
+        if (o.value.kind() == ValueKind::series) write_csv(staging / (o.label + ".csv"), o, graph.display_units);
+        else if (o.value.kind() == ValueKind::table) write_table_csv(staging / (o.label + ".csv"), o.value.as_table(), graph.display_units);
     });
     spdlog::info("results written to {}", dir.string());
   }

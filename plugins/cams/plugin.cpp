@@ -8,6 +8,7 @@ mechgraph::NodeTypeList make_node_types() {
   mechgraph::NodeTypeList types;
   mechgraph::cams::add_source_profile_types(types);
   mechgraph::cams::add_standard_law_types(types);
+  mechgraph::cams::add_contour_type(types);
   return types;
 }
 }  // namespace

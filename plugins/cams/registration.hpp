@@ -9,5 +9,7 @@ void add_source_profile_types(NodeTypeList& out);
 /// The textbook laws, ramps and tabulated lift: cam.cycloidal, cam.harmonic, cam.poly345,
 /// cam.poly4567, cam.modified_trapezoid, cam.modified_sine, cam.table.
 void add_standard_law_types(NodeTypeList& out);
+/// cam.contour: the contour, pressure angle and contact stress for any cam law.
+void add_contour_type(NodeTypeList& out);
 
 }  // namespace mechgraph::cams

@@ -3,6 +3,7 @@
 // every connection checked for kind and dimension, cycles refused, and the nodes the requested
 // outputs need put in dependency order. Everything here happens before evaluation, so a scene
 // that builds is a scene whose only remaining failures are numerical.
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 
@@ -82,6 +83,7 @@ struct Graph {
   std::vector<std::string> effects;
   std::vector<std::size_t> order;        // needed nodes in dependency order
   std::vector<ResolvedReport> reports;
+  DisplayUnits display_units;            // the scene's `units:` (empty: SI everywhere)
   std::map<std::string, std::size_t, std::less<>> index;  // node name -> position in `nodes`
   std::map<std::string, std::vector<SceneParamUse>, std::less<>> scene_param_uses;  // `$name` -> where it went
 

@@ -105,6 +105,7 @@ struct SceneSpec {
   std::string title;
   std::vector<PluginRequirement> requirements;
   std::vector<std::pair<std::string, RawValue>> params;
+  std::vector<std::pair<std::string, RawValue>> units;  // `units: { length: mm }`: display units (display_units.hpp)
   std::vector<NodeSpec> nodes;
   std::vector<std::pair<std::string, SourceLocation>> effects;
   std::vector<PortRef> outputs;

@@ -47,6 +47,9 @@ struct Table {
   };
   Column axis;
   std::vector<Column> channels;
+  /// The channels x, y (and any pair prefix_x, prefix_y) trace closed plane curves in the axis'
+  /// order (a cam contour and its pitch curve): writers also give them as DXF polylines.
+  bool closed_curve = false;
 
   /// The channel called `name`, or nullptr.
   const Column* find(std::string_view name) const {

@@ -113,7 +113,9 @@ struct Scenario {
 inline std::map<std::string, std::string> common_params(const Scenario& s) {
   std::map<std::string, std::string> p{{"max_lift", si(s.max_lift, "m")},
                                        {"action_angle", si(s.action_angle, "rad")},
-                                       {"base_radius", si(s.base_radius, "m")}};
+                                       {"base_radius", si(s.base_radius, "m")},
+                                       // the events are measured at a lift every scenario reaches
+                                       {"checking_lift", si(0.1 * s.max_lift, "m")}};
   if (s.ramp.type != RampType::none) {
     p["ramp"] = std::string(ramp_type_name(s.ramp.type));
     p["ramp_height"] = si(s.ramp.height, "m");

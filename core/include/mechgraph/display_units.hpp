@@ -1,0 +1,37 @@
+#pragma once
+// The units a scene asks results to be shown in (`units: { length: mm, angle: deg }`): files and
+// text a person reads (CSV columns, printed outputs, reports) use them; JSON stays SI. A quantity
+// named in `units:` is used for exactly its dimension; a dimension made only of base quantities the
+// scene names is composed from them (length: mm and angle: deg show a cam's acceleration in
+// mm/deg^2); anything else stays SI.
+#include <mechgraph/dimension.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace mechgraph {
+
+class DisplayUnits {
+ public:
+  DisplayUnits() = default;
+  /// Reads a scene's `units:`; throws SceneError at the key or value that is wrong (an unknown
+  /// quantity with the valid names, a unit that does not parse or is of another dimension).
+  static DisplayUnits from_scene(const std::vector<std::pair<std::string, RawValue>>& units);
+
+  /// The unit to show a value of dimension `d` in; "" means SI.
+  std::string unit_for(Dimension d) const;
+  /// `unit_for(d)`, or `fallback` when that is SI (a column's own display unit, a report row's).
+  std::string unit_for(Dimension d, const std::string& fallback) const;
+  bool empty() const { return named_.empty(); }
+
+  /// The quantity names `units:` accepts, with their dimensions.
+  static const std::vector<std::pair<std::string, Dimension>>& quantities();
+
+ private:
+  std::vector<std::pair<Dimension, std::string>> named_;  // dimension -> unit, as written
+};
+
+}  // namespace mechgraph

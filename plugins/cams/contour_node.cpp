@@ -1,0 +1,335 @@
+// cam.contour: the contour a follower needs from any cam law, for manufacturing (points with a
+// chord-error knob, written as CSV and DXF by the host), and what the follower sees at the contact:
+// pressure angle, radius of curvature, Hertz line-contact stress under a load, the face a flat
+// tappet needs (docs/methods/valvetrain.md, "The cam contour" and "Contact stress").
+#include "contour.hpp"
+#include "registration.hpp"
+
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <sstream>
+
+namespace mechgraph::cams {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+std::string mm(double m) {
+  std::ostringstream s;
+  s << m * 1e3 << " mm";
+  return s.str();
+}
+
+// The load at the contact over cam angle: a constant, or a connected table's contact_force channel
+// (linear between its points) times load_ratio.
+class ContactLoad {
+ public:
+  ContactLoad() = default;
+  explicit ContactLoad(double constant) : constant_(constant), given_(true) {}
+  ContactLoad(const Table& t, double ratio) : ratio_(ratio), given_(true) {
+    const Table::Column* force = t.find("contact_force");
+    if (!force) {
+      std::string names;
+      for (const auto& c : t.channels) names += (names.empty() ? "" : " ") + c.name;
+      throw NodeError("forces", "the connected table has no channel 'contact_force' (it has: " + names + ")");
+    }
+    if (!(t.axis.dimension == dim::angle) || !(force->dimension == dim::force))
+      throw NodeError("forces", "contact_force must be a force over cam angle");
+    if (t.axis.values.size() < 2 || !std::is_sorted(t.axis.values.begin(), t.axis.values.end()))
+      throw NodeError("forces", "the forces table needs at least two cam angles in ascending order");
+    angle_ = t.axis.values;
+    force_ = force->values;
+  }
+  bool given() const { return given_; }
+  double at(double phi) const {
+    if (angle_.empty()) return constant_;
+    // The table spans one revolution at most: wrap phi into [first, first + 2 pi).
+    const double first = angle_.front();
+    phi = first + std::fmod(std::fmod(phi - first, 2.0 * pi) + 2.0 * pi, 2.0 * pi);
+    if (phi >= angle_.back()) return ratio_ * force_.back();
+    const auto it = std::upper_bound(angle_.begin(), angle_.end(), phi);
+    const std::size_t j = static_cast<std::size_t>(it - angle_.begin());
+    const double w = (phi - angle_[j - 1]) / (angle_[j] - angle_[j - 1]);
+    return ratio_ * (force_[j - 1] + w * (force_[j] - force_[j - 1]));
+  }
+
+ private:
+  double constant_ = 0.0, ratio_ = 1.0;
+  bool given_ = false;
+  std::vector<double> angle_, force_;
+};
+
+// Hertz line contact of two cylinders along `length` (Johnson, Contact Mechanics, 4.3):
+// 1/R = 1/rho_cam + 1/rho_follower (a flat face: 1/rho_follower = 0), p0 = sqrt(F E* / (pi L R)).
+double hertz_line_stress(double load, double inv_radius, double length, double e_star) {
+  if (!(load > 0.0) || !(inv_radius > 0.0)) return 0.0;
+  return std::sqrt(load / (pi * length)) * std::sqrt(e_star * inv_radius);
+}
+
+class ContourNodeType final : public NodeType {
+ public:
+  ContourNodeType() {
+    info_.type = "cam.contour";
+    info_.version = 1;
+    info_.summary =
+        "cam contour (x, y) in the cam frame for a flat or roller follower, with its pitch curve, pressure angle, "
+        "Hertz contact stress and the face a flat tappet needs";
+    info_.inputs = {
+        PortSpec::handle("cam", std::string(CamLaw::kind_name), "the lift law to cut (a cam node's law)"),
+        PortSpec::table("forces", "a table with a contact_force channel over cam_angle (e.g. valvetrain.dynamics' "
+                                  "curves), times load_ratio, as the load on the cam; instead of load")
+            .optional_port(),
+    };
+    info_.params = {
+        ParamSpec::choice("follower", {"flat", "roller"},
+                          "flat-faced tappet or roller; default: the law's own follower (roller when the law was "
+                          "made for one)")
+            .optional(),
+        ParamSpec::number("roller_radius", dim::length, "roller radius (roller; default the law's)", "mm")
+            .optional()
+            .at_least(1e-6)
+            .at_most(1.0),
+        ParamSpec::number("offset", dim::length,
+                          "roller axis offset from the cam centre, positive to the side that lowers the pressure "
+                          "angle on the rise",
+                          "mm")
+            .with_default(0.0),
+        ParamSpec::choice("rotation", {"ccw", "cw"}, "direction the cam turns, seen from the front; cw mirrors the contour")
+            .with_default("ccw"),
+        ParamSpec::number("chord_error", dim::length,
+                          "largest distance between the contour (and pitch curve) and the chords between its points",
+                          "mm")
+            .with_default(1e-6)
+            .at_least(1e-9)
+            .at_most(1e-3)
+            .as_knob(),
+        ParamSpec::integer("samples", "samples per smooth piece for the peak searches (then refined by Brent)")
+            .with_default(16.0)
+            .at_least(8)
+            .at_most(1e6)
+            .as_knob(),
+        ParamSpec::integer("curve_points", "points of the contact table over the event").with_default(361.0).at_least(3).at_most(1e6),
+        ParamSpec::number("load", dim::force, "contact load on the cam, constant over the event (or connect forces)", "N")
+            .optional()
+            .non_negative()
+            .at_most(1e9),
+        ParamSpec::number("load_ratio", dim::none,
+                          "multiplies the connected forces' contact_force (e.g. the rocker ratio, valve to cam side)")
+            .with_default(1.0)
+            .positive(),
+        ParamSpec::number("contact_length", dim::length, "length of the contact line (cam width under the follower); needed for the stress", "mm")
+            .optional()
+            .at_least(1e-6)
+            .at_most(10.0),
+        ParamSpec::number("youngs_modulus", dim::stress, "cam material", "GPa").with_default(206e9).at_least(1e6).at_most(1e13),
+        ParamSpec::number("poisson_ratio", dim::none, "cam material").with_default(0.3).at_least(0.0).below(0.5),
+        ParamSpec::number("follower_youngs_modulus", dim::stress, "follower material (default the cam's)", "GPa")
+            .optional()
+            .at_least(1e6)
+            .at_most(1e13),
+        ParamSpec::number("follower_poisson_ratio", dim::none, "follower material (default the cam's)")
+            .optional()
+            .at_least(0.0)
+            .below(0.5),
+    };
+    info_.outputs = {
+        PortSpec::table("contour", "closed contour: x, y (and pitch_x, pitch_y for a roller) in the cam frame over "
+                                   "cam_angle, within chord_error; written as CSV and DXF"),
+        PortSpec::table("contact", "over the event: pressure_angle, curvature_radius (of the contour), face_offset "
+                                   "(flat), load and contact_stress (with a load)"),
+        PortSpec::scalar("points", dim::none, "points of the contour"),
+        PortSpec::scalar("max_pressure_angle", dim::angle, "largest |pressure angle| (0 for a flat face)", "deg"),
+        PortSpec::scalar("min_face_width", dim::length,
+                         "flat face: travel of the contact across the face, max h' - min h' (add a margin)", "mm"),
+        PortSpec::scalar("min_face_diameter", dim::length,
+                         "flat face: a round face centred on the follower axis needs 2 max |h'| (add a margin)", "mm"),
+        PortSpec::scalar("max_contact_stress", dim::stress, "largest Hertz contact pressure p0 (with a load)", "MPa"),
+        PortSpec::scalar("max_stress_angle", dim::angle, "cam angle of the largest contact pressure", "deg"),
+    };
+    info_.work_counters = {"evaluations"};
+  }
+
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
+    const auto law = in.handle<CamLaw>("cam");
+    const Follower f = follower_of(*law, p);
+    long evaluations = 0;
+    std::vector<double> knots{-pi, law->event_begin()};
+    for (double b : law->breakpoints()) knots.push_back(b);
+    knots.push_back(law->event_end());
+    knots.push_back(pi);
+    const int samples = static_cast<int>(p.integer("samples"));
+    refuse_undercut(*law, f, knots, samples, evaluations);
+
+    ContactLoad load;
+    if (in.count("forces")) {
+      if (p.has("load")) throw NodeError("load", "give load or connect forces, not both");
+      load = ContactLoad(in.value("forces").as_table(), p.number("load_ratio"));
+    } else if (p.has("load")) {
+      load = ContactLoad(p.number("load"));
+    }
+    if (load.given() && !p.has("contact_length"))
+      throw NodeError("contact_length", "the contact stress needs contact_length (the cam width under the follower)");
+    const double e_cam = p.number("youngs_modulus"), nu_cam = p.number("poisson_ratio");
+    const double e_fol = p.has("follower_youngs_modulus") ? p.number("follower_youngs_modulus") : e_cam;
+    const double nu_fol = p.has("follower_poisson_ratio") ? p.number("follower_poisson_ratio") : nu_cam;
+    const double e_star = 1.0 / ((1.0 - nu_cam * nu_cam) / e_cam + (1.0 - nu_fol * nu_fol) / e_fol);
+    const double length = p.has("contact_length") ? p.number("contact_length") : 1.0;
+    auto stress = [&](double phi, const ContactGeometry& g) {
+      const double inv_r = 1.0 / g.curvature_radius + (f.kind == Follower::Kind::roller ? 1.0 / f.roller_radius : 0.0);
+      return hertz_line_stress(load.at(phi), inv_r, length, e_star);
+    };
+
+    if (ctx.wanted("contour") || ctx.wanted("points")) {
+      const ContourPoints c = trace_contour(*law, f, p.number("chord_error"), evaluations);
+      Table t;
+      t.closed_curve = true;
+      t.axis = {"cam_angle", dim::angle, c.phi, "deg"};
+      auto& x = t.add_channel("x", dim::length, "mm").values;
+      x.reserve(c.points.size());
+      for (const auto& g : c.points) x.push_back(g.x);
+      auto& y = t.add_channel("y", dim::length, "mm").values;
+      for (const auto& g : c.points) y.push_back(g.y);
+      if (f.kind == Follower::Kind::roller) {
+        auto& px = t.add_channel("pitch_x", dim::length, "mm").values;
+        for (const auto& g : c.points) px.push_back(g.pitch_x);
+        auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
+        for (const auto& g : c.points) py.push_back(g.pitch_y);
+      }
+      out.set_scalar("points", static_cast<double>(c.points.size()));
+      out.set("contour", Value::table(std::move(t)));
+    }
+
+    // Peaks over the whole turn: |pressure angle|, contact pressure, and h' both ways (face).
+    numerics::Extremum peaks[4];
+    numerics::maximize_piecewise_together(
+        [&](double phi, double* v, double* slope) {
+          const LiftDerivatives d = law->at(phi);
+          const ContactGeometry g = contact_at(f, phi, d);
+          v[0] = std::abs(g.pressure_angle);
+          v[1] = load.given() ? stress(phi, g) : 0.0;
+          v[2] = d.velocity;
+          v[3] = -d.velocity;
+          slope[0] = slope[1] = std::numeric_limits<double>::quiet_NaN();
+          slope[2] = d.acceleration;
+          slope[3] = -d.acceleration;
+        },
+        4, knots, samples, evaluations, peaks);
+    out.set_scalar("max_pressure_angle", peaks[0].value);
+    if (f.kind == Follower::Kind::flat) {
+      out.set_scalar("min_face_width", peaks[2].value + peaks[3].value);
+      out.set_scalar("min_face_diameter", 2.0 * std::max(peaks[2].value, peaks[3].value));
+    }
+    if (load.given()) {
+      out.set_scalar("max_contact_stress", peaks[1].value);
+      out.set_scalar("max_stress_angle", peaks[1].x);
+    }
+
+    if (ctx.wanted("contact")) {
+      const double width = law->event_end() - law->event_begin();
+      const double from = std::max(-pi, law->event_begin() - 0.1 * width), to = std::min(pi, law->event_end() + 0.1 * width);
+      const auto n = static_cast<std::size_t>(p.integer("curve_points"));
+      Table t;
+      t.axis = {"cam_angle", dim::angle, std::vector<double>(n), "deg"};
+      t.add_channel("pressure_angle", dim::angle, "deg");
+      t.add_channel("curvature_radius", dim::length, "mm");
+      if (f.kind == Follower::Kind::flat) t.add_channel("face_offset", dim::length, "mm");
+      if (load.given()) {
+        t.add_channel("load", dim::force, "N");
+        t.add_channel("contact_stress", dim::stress, "MPa");
+      }
+      for (auto& c : t.channels) c.values.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double phi = i + 1 == n ? to : from + (to - from) * static_cast<double>(i) / static_cast<double>(n - 1);
+        const ContactGeometry g = contact_at(f, phi, law->at(phi));
+        ++evaluations;
+        t.axis.values[i] = phi;
+        std::size_t k = 0;
+        t.channels[k++].values[i] = g.pressure_angle;
+        t.channels[k++].values[i] = g.curvature_radius;
+        if (f.kind == Follower::Kind::flat) t.channels[k++].values[i] = g.face_offset;
+        if (load.given()) {
+          t.channels[k++].values[i] = load.at(phi);
+          t.channels[k++].values[i] = stress(phi, g);
+        }
+      }
+      out.set("contact", Value::table(std::move(t)));
+    }
+    ctx.report_work("evaluations", static_cast<double>(evaluations));
+  }
+
+ private:
+  static Follower follower_of(const CamLaw& law, const ParamSet& p) {
+    Follower f;
+    f.base_radius = law.base_radius();
+    f.clockwise = p.text("rotation") == "cw";
+    const double law_roller = law.roller_radius();
+    const std::string kind = p.has("follower") ? p.text("follower") : (law_roller > 0.0 ? "roller" : "flat");
+    if (kind == "flat") {
+      if (law_roller > 0.0)
+        throw NodeError("follower", "the law's lift is that of a roller of radius " + mm(law_roller) +
+                                        " (its cam node's follower); cut it for that roller, or make the law for a flat face");
+      if (p.has("roller_radius")) throw NodeError("roller_radius", "roller_radius is set but follower is flat");
+      return f;
+    }
+    f.kind = Follower::Kind::roller;
+    if (p.has("roller_radius")) {
+      f.roller_radius = p.number("roller_radius");
+      if (law_roller > 0.0 && std::abs(f.roller_radius - law_roller) > 1e-9 * law_roller)
+        throw NodeError("roller_radius", "roller_radius " + mm(f.roller_radius) + " differs from the " + mm(law_roller) +
+                                             " the law was made for");
+    } else if (law_roller > 0.0) {
+      f.roller_radius = law_roller;
+    } else {
+      throw NodeError("roller_radius", "follower roller needs roller_radius");
+    }
+    f.offset = p.number("offset");
+    if (!(std::abs(f.offset) < f.base_radius + f.roller_radius))
+      throw NodeError("offset", "|offset| " + mm(std::abs(f.offset)) + " must stay below base radius + roller radius " +
+                                    mm(f.base_radius + f.roller_radius));
+    return f;
+  }
+
+  // Undercut: a flat face needs rho > 0 everywhere; a roller needs its pitch curve's convex radius
+  // above the roller's (rho_p > rr), and at a concave stretch |rho| above it too, or it cannot follow.
+  static void refuse_undercut(const CamLaw& law, const Follower& f, const std::vector<double>& knots, int samples,
+                              long& evaluations) {
+    numerics::Extremum worst[1];
+    numerics::maximize_piecewise_together(
+        [&](double phi, double* v, double* slope) {
+          const ContactGeometry g = contact_at(f, phi, law.at(phi));
+          // Flat: -rho (>= 0 is an undercut). Roller: pitch curvature 1/(rho + rr) - 1/rr, >= 0
+          // where the convex pitch radius is not above the roller's (a concave pitch curve is
+          // always followed: its contour is concave by |rho_p| + rr > rr).
+          v[0] = f.kind == Follower::Kind::flat ? -g.curvature_radius
+                                                : 1.0 / (g.curvature_radius + f.roller_radius) - 1.0 / f.roller_radius;
+          slope[0] = std::numeric_limits<double>::quiet_NaN();
+        },
+        1, knots, samples, evaluations, worst);
+    if (!(worst[0].value >= 0.0)) return;
+    std::ostringstream m;
+    const ContactGeometry g = contact_at(f, worst[0].x, law.at(worst[0].x));
+    m << "the " << (f.kind == Follower::Kind::flat ? "flat face" : "roller") << " cannot follow this law: at cam angle "
+      << worst[0].x * 180.0 / pi << " deg the contour's radius of curvature is " << mm(g.curvature_radius);
+    if (f.kind == Follower::Kind::flat) {
+      m << " (undercut); raise the base radius or soften the law";
+      throw NodeError("follower", m.str());
+    }
+    m << " (the pitch curve's radius there is not above the roller's: undercut); use a smaller roller or a larger base radius";
+    throw NodeError("roller_radius", m.str());
+  }
+
+  NodeInfo info_;
+};
+
+}  // namespace
+
+void add_contour_type(NodeTypeList& out) { out.push_back(std::make_shared<const ContourNodeType>()); }
+
+}  // namespace mechgraph::cams

@@ -1,0 +1,220 @@
+// cam.contour: the contour against properties a second method gives independently (the support
+// function of a flat-faced follower's cam, the roller's clearance from the contour, curvature from
+// three neighbouring points, the pressure angle from the contour's own tangent), the chord-error
+// knob, Hertz stress against the cam node's own radius of curvature, and the refusals.
+#include "cam_test_support.hpp"
+#include "contour.hpp"
+#include "rise_law.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mechgraph::cams {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180.0;
+
+const NodeType& contour_type() {
+  static const NodeTypeList types = [] {
+    NodeTypeList list;
+    add_contour_type(list);
+    return list;
+  }();
+  return *types.front();
+}
+
+OutputSet run_contour(std::shared_ptr<const CamLaw> law, const std::map<std::string, ParamValue>& given,
+                      const Table* forces = nullptr) {
+  InputSet in;
+  in.add("cam", Value::handle(std::move(law)));
+  if (forces) in.add("forces", Value::table(*forces));
+  OutputSet out;
+  mechgraph::testing::RecordingContext ctx;
+  contour_type().evaluate(mechgraph::testing::defaults_of(contour_type().info(), given), in, out, ctx);
+  CHECK(ctx.work.at("evaluations") > 0);
+  return out;
+}
+
+std::shared_ptr<const CamLaw> cycloidal(double roller = 0.0, double base_radius = 40e-3) {
+  return std::make_shared<const SymmetricRiseReturnLaw>(RiseShape::cycloidal, 8e-3, 130 * deg, base_radius, roller);
+}
+
+double scalar(const OutputSet& out, const char* name) { return out.all().at(name).as_scalar(); }
+
+TEST_CASE("flat-face contour: base circle at r0, and its support function is r0 + h (the envelope property)") {
+  const auto law = cycloidal();
+  const double tol = 1e-6;
+  const OutputSet out = run_contour(law, {{"chord_error", ParamValue::of_number(tol)}});
+  const Table& c = out.all().at("contour").as_table();
+  CHECK(c.closed_curve);
+  const auto& x = c.find("x")->values;
+  const auto& y = c.find("y")->values;
+  REQUIRE(x.size() == c.axis.values.size());
+  CHECK(scalar(out, "points") == static_cast<double>(x.size()));
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (std::abs(c.axis.values[i]) > 65.0 * deg) CHECK_THAT(std::hypot(x[i], y[i]), Catch::Matchers::WithinAbs(40e-3, 1e-12));
+  // The face at angle phi touches the cam: max over the contour of P.u(phi) = r0 + h(phi), to the
+  // chord error (the polyline lies inside the convex contour by at most tol).
+  for (double phi = -pi; phi < pi; phi += 0.7 * deg) {
+    const double ux = -std::sin(phi), uy = std::cos(phi);
+    double support = -1.0;
+    for (std::size_t i = 0; i < x.size(); ++i) support = std::max(support, x[i] * ux + y[i] * uy);
+    const double expected = 40e-3 + law->at(phi).lift;
+    CHECK(support <= expected + 1e-12);
+    CHECK(support >= expected - tol - 1e-12);
+  }
+}
+
+TEST_CASE("the chord error holds between every pair of points, and the point count follows tol^-1/2") {
+  const auto law = cycloidal(10e-3);
+  Follower f;
+  f.kind = Follower::Kind::roller;
+  f.base_radius = 40e-3;
+  f.roller_radius = 10e-3;
+  f.offset = 3e-3;
+  std::size_t previous = 0;
+  for (double tol : {1e-4, 1e-5, 1e-6}) {
+    long evaluations = 0;
+    const ContourPoints c = trace_contour(*law, f, tol, evaluations);
+    double worst = 0.0;
+    for (std::size_t i = 0; i < c.phi.size(); ++i) {
+      const std::size_t j = (i + 1) % c.phi.size();
+      const double b = j == 0 ? c.phi[0] + 2.0 * pi : c.phi[j];
+      for (int k = 1; k < 16; ++k) {
+        const double phi = c.phi[i] + (b - c.phi[i]) * k / 16.0;
+        const ContactGeometry g = contact_at(f, phi, law->at(phi));
+        worst = std::max(worst, distance_to_segment(g.x, g.y, c.points[i].x, c.points[i].y, c.points[j].x, c.points[j].y));
+        worst = std::max(worst, distance_to_segment(g.pitch_x, g.pitch_y, c.points[i].pitch_x, c.points[i].pitch_y,
+                                                    c.points[j].pitch_x, c.points[j].pitch_y));
+      }
+    }
+    CHECK(worst <= tol * (1.0 + 1e-9));
+    if (previous) {
+      // Sagitta ~ L^2 / (8 rho): ten times finer needs about sqrt(10) = 3.2 times the points.
+      const double ratio = static_cast<double>(c.phi.size()) / static_cast<double>(previous);
+      CHECK(ratio > 2.0);
+      CHECK(ratio < 4.5);
+    }
+    previous = c.phi.size();
+  }
+}
+
+TEST_CASE("roller contour: the roller centred on the pitch curve touches the contour and never cuts it") {
+  const auto law = cycloidal();
+  const double rr = 8e-3, tol = 1e-6;
+  const OutputSet out = run_contour(law, {{"follower", ParamValue::of_choice("roller")},
+                                          {"roller_radius", ParamValue::of_number(rr)},
+                                          {"offset", ParamValue::of_number(4e-3)},
+                                          {"chord_error", ParamValue::of_number(tol)}});
+  const Table& c = out.all().at("contour").as_table();
+  const auto& x = c.find("x")->values;
+  const auto& y = c.find("y")->values;
+  const auto& px = c.find("pitch_x")->values;
+  const auto& py = c.find("pitch_y")->values;
+  for (std::size_t i = 0; i < px.size(); i += 7) {
+    double nearest = 1.0;
+    for (std::size_t j = 0; j < x.size(); ++j) {
+      const std::size_t k = (j + 1) % x.size();
+      nearest = std::min(nearest, distance_to_segment(px[i], py[i], x[j], y[j], x[k], y[k]));
+    }
+    CHECK_THAT(nearest, Catch::Matchers::WithinAbs(rr, tol + 1e-12));
+    // The pitch circle radius on the base circle: sqrt((r0 + rr)^2 - e^2) along the axis, e across.
+    if (std::abs(c.axis.values[i]) > 65.0 * deg)
+      CHECK_THAT(std::hypot(px[i], py[i]), Catch::Matchers::WithinAbs(40e-3 + rr, 1e-12));
+  }
+}
+
+TEST_CASE("pressure angle and radius of curvature agree with the contour's own geometry (offset roller)") {
+  const auto law = cycloidal();
+  Follower f;
+  f.kind = Follower::Kind::roller;
+  f.base_radius = 40e-3;
+  f.roller_radius = 9e-3;
+  f.offset = -2.5e-3;
+  const double h = 1e-5;
+  for (double phi = -60 * deg; phi <= 60 * deg; phi += 7 * deg) {
+    const ContactGeometry g = contact_at(f, phi, law->at(phi));
+    const ContactGeometry a = contact_at(f, phi - h, law->at(phi - h)), b = contact_at(f, phi + h, law->at(phi + h));
+    // The contact normal is perpendicular to the pitch curve's tangent; the pressure angle is the
+    // angle between that normal and the follower axis u = (-sin phi, cos phi).
+    const double tx = b.pitch_x - a.pitch_x, ty = b.pitch_y - a.pitch_y;
+    const double nx = ty, ny = -tx;  // the tangent turned clockwise: outward for a ccw curve
+    const double cos_alpha = (nx * -std::sin(phi) + ny * std::cos(phi)) / std::hypot(nx, ny);
+    CHECK_THAT(std::abs(g.pressure_angle), Catch::Matchers::WithinAbs(std::acos(std::min(1.0, cos_alpha)), 1e-6));
+    // Circumradius of three contour points.
+    const double ab = std::hypot(b.x - a.x, b.y - a.y), ag = std::hypot(g.x - a.x, g.y - a.y), gb = std::hypot(b.x - g.x, b.y - g.y);
+    const double area2 = std::abs((g.x - a.x) * (b.y - a.y) - (g.y - a.y) * (b.x - a.x));
+    const double R = ab * ag * gb / (2.0 * area2);
+    CHECK_THAT(std::abs(g.curvature_radius), Catch::Matchers::WithinRel(R, 1e-4));
+  }
+  // Norton's formula by hand at one angle: tan(alpha) = (h' - e)/(s0 + h).
+  const LiftDerivatives d = law->at(-30 * deg);
+  const double s0 = std::sqrt(49e-3 * 49e-3 - 2.5e-3 * 2.5e-3);
+  CHECK_THAT(contact_at(f, -30 * deg, d).pressure_angle,
+             Catch::Matchers::WithinAbs(std::atan((d.velocity + 2.5e-3) / (s0 + d.lift)), 1e-15));
+}
+
+TEST_CASE("flat face: width from the velocity's extremes; Hertz stress at the cam node's smallest radius") {
+  const OutputSet cam = testing::run_cam("cam.cycloidal", {{"max_lift", ParamValue::of_number(8e-3)},
+                                                           {"action_angle", ParamValue::of_number(130 * deg)},
+                                                           {"base_radius", ParamValue::of_number(40e-3)}});
+  const auto law = std::dynamic_pointer_cast<const CamLaw>(cam.all().at("law").as_handle());
+  const double F = 1200.0, L = 12e-3;
+  const OutputSet out = run_contour(law, {{"load", ParamValue::of_number(F)}, {"contact_length", ParamValue::of_number(L)}});
+  const double vmax = cam.all().at("max_velocity").as_scalar();
+  CHECK_THAT(scalar(out, "min_face_width"), Catch::Matchers::WithinRel(2.0 * vmax, 1e-10));
+  CHECK_THAT(scalar(out, "min_face_diameter"), Catch::Matchers::WithinRel(2.0 * vmax, 1e-10));
+  CHECK(scalar(out, "max_pressure_angle") == 0.0);
+  // p0 = sqrt(F E* / (pi L R)), E* = E / (2 (1 - nu^2)) for two equal steels (Johnson 4.3).
+  const double e_star = 206e9 / (2.0 * (1.0 - 0.09));
+  const double rho = cam.all().at("min_curvature_radius").as_scalar();
+  CHECK_THAT(scalar(out, "max_contact_stress"), Catch::Matchers::WithinRel(std::sqrt(F * e_star / (pi * L * rho)), 1e-8));
+  // A worked number: F = 1200 N, L = 12 mm, R = 5 mm, E* = 113.19 GPa -> p0 = 848.8 MPa.
+  CHECK_THAT(std::sqrt(1200.0 * e_star / (pi * 12e-3 * 5e-3)), Catch::Matchers::WithinRel(848.8e6, 1e-4));
+
+  // The same load as a table over cam angle (times load_ratio) gives the same stress.
+  Table forces;
+  forces.axis = {"cam_angle", dim::angle, {-pi, 0.0, pi}, "deg"};
+  forces.add_channel("contact_force", dim::force, "N").values = {F / 1.5, F / 1.5, F / 1.5};
+  const OutputSet via_table = run_contour(law, {{"load_ratio", ParamValue::of_number(1.5)}, {"contact_length", ParamValue::of_number(L)}}, &forces);
+  CHECK_THAT(scalar(via_table, "max_contact_stress"), Catch::Matchers::WithinRel(scalar(out, "max_contact_stress"), 1e-12));
+  const Table& contact = via_table.all().at("contact").as_table();
+  CHECK(contact.find("load")->values[100] == Approx(F).epsilon(1e-12).margin(1e-9));
+}
+
+TEST_CASE("cw mirrors the contour; refusals name the parameter") {
+  const auto law = cycloidal();
+  const OutputSet ccw = run_contour(law, {});
+  const OutputSet cw = run_contour(law, {{"rotation", ParamValue::of_choice("cw")}});
+  const Table& a = ccw.all().at("contour").as_table();
+  const Table& b = cw.all().at("contour").as_table();
+  REQUIRE(a.axis.values.size() == b.axis.values.size());
+  for (std::size_t i = 0; i < a.axis.values.size(); i += 11) CHECK(b.find("x")->values[i] == -a.find("x")->values[i]);
+
+  auto fails = [&](const std::shared_ptr<const CamLaw>& l, const std::map<std::string, ParamValue>& p) {
+    try {
+      run_contour(l, p);
+    } catch (const NodeError& e) {
+      return e.parameter() + ": " + e.what();
+    }
+    return std::string("no error");
+  };
+  // A roller larger than the nose's pitch radius cannot follow it: on r0 = 5 mm the pitch radius
+  // at the nose is R^2 / (R - h'') = 33^2 / (33 + 39) = 15 mm (R = r0 + rr + H, all in mm).
+  CHECK_THAT(fails(cycloidal(0.0, 5e-3), {{"follower", ParamValue::of_choice("roller")}, {"roller_radius", ParamValue::of_number(20e-3)}}),
+             Catch::Contains("roller_radius: ") && Catch::Contains("undercut"));
+  CHECK_THAT(fails(law, {{"follower", ParamValue::of_choice("roller")}}), Catch::Contains("roller_radius: follower roller needs roller_radius"));
+  CHECK_THAT(fails(cycloidal(10e-3), {{"follower", ParamValue::of_choice("flat")}}), Catch::Contains("follower: the law's lift is that of a roller"));
+  CHECK_THAT(fails(cycloidal(10e-3), {{"roller_radius", ParamValue::of_number(12e-3)}}), Catch::Contains("differs from the 10 mm"));
+  CHECK_THAT(fails(law, {{"load", ParamValue::of_number(100.0)}}), Catch::Contains("contact_length: "));
+  CHECK_THAT(fails(law, {{"follower", ParamValue::of_choice("roller")}, {"roller_radius", ParamValue::of_number(5e-3)},
+                         {"offset", ParamValue::of_number(50e-3)}}),
+             Catch::Contains("offset: "));
+}
+
+}  // namespace
+}  // namespace mechgraph::cams
