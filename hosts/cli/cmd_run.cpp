@@ -1,6 +1,7 @@
 // mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]
 #include "cli.hpp"
 #include "options.hpp"
+#include "provenance.hpp"
 #include "results_folder.hpp"
 
 #include <mechgraph/errors.hpp>
@@ -22,7 +23,8 @@
 namespace mechgraph::cli {
 namespace {
 
-void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
+void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
+                const RunInputs& inputs) {
   JsonWriter json(os);
   json.begin_object();
   json.key("title").value(graph.title);
@@ -39,6 +41,16 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
           json.key("labels").begin_array();
           for (const std::string& l : o.value.as_series().labels) json.value(l);
           json.end_array();
+          // Named elements (a chain's contributions) also by name, in the display unit (percent).
+          if (o.value.as_series().labels.size() == o.value.as_series().values.size()) {
+            json.key("by_label").begin_object();
+            for (std::size_t i = 0; i < o.value.as_series().values.size(); ++i) {
+              const double v = o.value.as_series().values[i];
+              json.key(o.value.as_series().labels[i]).value(o.display_unit.empty() ? v : to_unit(v, o.dimension, o.display_unit));
+            }
+            json.end_object();
+            json.key("by_label_unit").value(o.display_unit.empty() ? o.dimension.si_unit() : o.display_unit);
+          }
         }
         break;
       case ValueKind::handle: json.key("value").null().key("handle").value(o.value.as_handle()->kind()); break;
@@ -89,6 +101,7 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result) {
     json.end_array();
   }
   json.end_object();
+  write_provenance(json, graph, registry, inputs);
   json.end_object();
   os << "\n";
 }
@@ -236,8 +249,10 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   spdlog::info("evaluated {} of {} nodes ({} reused from an identical node, {} culled)", evaluated, graph.nodes.size(),
                result.runs.size() - evaluated, graph.nodes.size() - graph.order.size());
 
+  const RunInputs inputs{vm["scene"].as<std::string>(),
+                         vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};
   if (vm.count("json")) {
-    write_json(std::cout, graph, result);
+    write_json(std::cout, graph, result, registry, inputs);
   } else {
     for (std::size_t t = 0; t < graph.reports.size(); ++t) {
       if (t) std::cout << "\n";
@@ -272,7 +287,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
       std::ofstream json_file(staging / "results.json");
       if (!json_file) throw IoError("cannot write '" + (staging / "results.json").string() + "'");
-      write_json(json_file, graph, result);
+      write_json(json_file, graph, result, registry, inputs);
       json_file.close();
       check_written(json_file, dir / "results.json");
       for (const OutputValue& o : result.outputs)
