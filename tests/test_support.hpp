@@ -82,14 +82,13 @@ struct CommandResult {
   std::string err;
 };
 
-/// Runs the mechgraph command with `args` (a shell fragment), capturing stdout and stderr.
-inline CommandResult run_cli(const std::string& args) {
+/// Runs a shell command, capturing stdout and stderr.
+inline CommandResult run_command(const std::string& shell_command) {
   static int counter = 0;
   const auto dir = std::filesystem::temp_directory_path();
   const auto out_file = dir / ("mechgraph_test_out_" + std::to_string(::getpid()) + "_" + std::to_string(counter));
   const auto err_file = dir / ("mechgraph_test_err_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string command = std::string("'") + MECHGRAPH_CLI + "' " + args + " >'" + out_file.string() + "' 2>'" +
-                              err_file.string() + "'";
+  const std::string command = shell_command + " >'" + out_file.string() + "' 2>'" + err_file.string() + "'";
   const int status = std::system(command.c_str());
   auto slurp = [](const std::filesystem::path& p) {
     std::ifstream in(p);
@@ -100,5 +99,8 @@ inline CommandResult run_cli(const std::string& args) {
   std::filesystem::remove(err_file);
   return r;
 }
+
+/// Runs the mechgraph command with `args` (a shell fragment), capturing stdout and stderr.
+inline CommandResult run_cli(const std::string& args) { return run_command(std::string("'") + MECHGRAPH_CLI + "' " + args); }
 
 }  // namespace mechgraph::testing

@@ -1,5 +1,6 @@
 // mechgraph run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]
 #include "cli.hpp"
+#include "dxf_writer.hpp"
 #include "options.hpp"
 #include "provenance.hpp"
 #include "results_folder.hpp"
@@ -292,7 +293,10 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       check_written(json_file, dir / "results.json");
       for (const OutputValue& o : result.outputs)
         if (o.value.kind() == ValueKind::series) write_csv(staging / (o.label + ".csv"), o, graph.display_units);
-        else if (o.value.kind() == ValueKind::table) write_table_csv(staging / (o.label + ".csv"), o.value.as_table(), graph.display_units);
+        else if (o.value.kind() == ValueKind::table) {
+          write_table_csv(staging / (o.label + ".csv"), o.value.as_table(), graph.display_units);
+          if (is_drawable_curve(o.value.as_table())) write_dxf(staging / (o.label + ".dxf"), o.value.as_table());
+        }
     });
     spdlog::info("results written to {}", dir.string());
   }

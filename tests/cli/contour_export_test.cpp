@@ -1,0 +1,33 @@
+// Contours for manufacturing, end to end: `run --out` writes each contour as CSV and DXF, and an
+// independent reader (ezdxf, Debian's python3-ezdxf) opens the DXF and finds the CSV's points.
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+
+#include <unistd.h>
+
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+
+TEST_CASE("contours go out as CSV and DXF; ezdxf reads the DXF back with the CSV's points", "[cli][contour]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("mg_contour_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto r = run_cli("-q run '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/cam_contour.yaml' --out '" + dir.string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("largest Hertz contact pressure"));
+  for (const char* f : {"flat.contour.dxf", "roller.contour.dxf", "flat.contour.csv", "kurz.svaj.csv", "kurz.events.csv"})
+    CHECK(fs::exists(dir / f));
+  CHECK_FALSE(fs::exists(dir / "kurz.svaj.dxf"));  // only closed curves are drawings
+  const std::string reader = "/usr/bin/python3 '" + std::string(MECHGRAPH_SOURCE_DIR) + "/tests/cli/read_dxf.py' ";
+  const auto flat = run_command(reader + "'" + (dir / "flat.contour.dxf").string() + "' '" + (dir / "flat.contour.csv").string() + "' CONTOUR");
+  INFO(flat.out << flat.err);
+  CHECK(flat.exit_code == 0);
+  const auto roller = run_command(reader + "'" + (dir / "roller.contour.dxf").string() + "' '" +
+                                  (dir / "roller.contour.csv").string() + "' CONTOUR PITCH");
+  INFO(roller.out << roller.err);
+  CHECK(roller.exit_code == 0);
+  CHECK_THAT(roller.out, Contains("PITCH: 571 points, closed"));
+}
