@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
+
+#include <mechgraph/errors.hpp>
 
 namespace mechgraph::cams {
 
@@ -75,13 +79,21 @@ struct Tracer {
   void refine(double pa, const ContactGeometry& a, double pb, const ContactGeometry& b, int depth) {
     const double pm = 0.5 * (pa + pb);
     const ContactGeometry m = at(pm);
-    bool fine = depth >= 40 || stray(a, b, m) <= tol;
+    const double e = stray(a, b, m);
+    if (!std::isfinite(e)) throw NodeError("chord_error", "the contour is not finite near cam angle " + std::to_string(pm * 180.0 / std::numbers::pi) + " deg");
+    bool fine = depth >= 40 || e <= tol;
     if (fine && depth < 40) {
       // The midpoint alone can sit on the chord of an S-shaped stretch: look at the quarters too.
       const ContactGeometry q1 = at(0.5 * (pa + pm)), q3 = at(0.5 * (pm + pb));
       fine = stray(a, b, q1) <= tol && stray(a, b, q3) <= tol;
     }
     if (fine) {
+      if (out.phi.size() >= max_contour_points) {
+        std::ostringstream m;
+        m << "the contour needs more than " << max_contour_points << " points for a chord error of " << tol * 1e3
+          << " mm on a cam " << 2.0 * std::hypot(b.x, b.y) * 1e3 << " mm across: raise chord_error";
+        throw NodeError("chord_error", m.str());
+      }
       out.phi.push_back(pb);
       out.points.push_back(b);
       return;

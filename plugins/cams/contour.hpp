@@ -39,10 +39,13 @@ ContactGeometry contact_at(const Follower& f, double phi, const LiftDerivatives&
 /// every knot of the law, then each interval halved until the chord between neighbours strays from
 /// the curve (checked at the interval's midpoint and quarter points) by at most `chord_error`, on
 /// the contour and, for a roller, the pitch curve. `evaluations` counts the law's evaluations.
+/// Throws NodeError("chord_error") past max_contour_points or where the contour is not finite.
 struct ContourPoints {
   std::vector<double> phi;
   std::vector<ContactGeometry> points;
 };
+/// More points than this is an error naming chord_error (a chord error far below the cam's size).
+inline constexpr std::size_t max_contour_points = 1'000'000;
 ContourPoints trace_contour(const CamLaw& law, const Follower& f, double chord_error, long& evaluations);
 
 /// Distance from p to the segment a-b (for the chord error).

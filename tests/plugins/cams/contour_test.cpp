@@ -211,6 +211,10 @@ TEST_CASE("cw mirrors the contour; refusals name the parameter") {
   CHECK_THAT(fails(cycloidal(10e-3), {{"follower", ParamValue::of_choice("flat")}}), Catch::Contains("follower: the law's lift is that of a roller"));
   CHECK_THAT(fails(cycloidal(10e-3), {{"roller_radius", ParamValue::of_number(12e-3)}}), Catch::Contains("differs from the 10 mm"));
   CHECK_THAT(fails(law, {{"load", ParamValue::of_number(100.0)}}), Catch::Contains("contact_length: "));
+  // A chord error a hundred-millionth of the cam's size would need millions of points.
+  CHECK_THAT(fails(std::make_shared<const SymmetricRiseReturnLaw>(RiseShape::cycloidal, 8e-3, 130 * deg, 100.0),
+                   {{"chord_error", ParamValue::of_number(1e-9)}}),
+             Catch::Contains("chord_error: the contour needs more than 1000000 points"));
   CHECK_THAT(fails(law, {{"follower", ParamValue::of_choice("roller")}, {"roller_radius", ParamValue::of_number(5e-3)},
                          {"offset", ParamValue::of_number(50e-3)}}),
              Catch::Contains("offset: "));
