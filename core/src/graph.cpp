@@ -241,11 +241,15 @@ class GraphBuilder {
         return ParamValue::of_list(std::move(out));
       }
       case ParamKind::record_list: {
-        if (v.kind != RawValue::Kind::list) fail(written.where, what + ": expected a list of records" + via);
+        // A single map is a list of one record (`spec: { upper: 0.5 mm }`).
+        if (v.kind != RawValue::Kind::list && v.kind != RawValue::Kind::map)
+          fail(written.where, what + ": expected a list of records (or one record { field: value, ... })" + via);
+        const std::vector<RawValue> one{v};
+        const std::vector<RawValue>& items = v.kind == RawValue::Kind::map ? one : v.items;
         ParamValue out;
         out.kind = ParamKind::record_list;
         std::size_t index = 0;
-        for (const RawValue& item : v.items) {
+        for (const RawValue& item : items) {
           if (item.kind != RawValue::Kind::map) fail(item.where, what + ": each entry is a map { field: value, ... }");
           const std::string item_owner = owner + ", entry " + std::to_string(index++);
           out.records.push_back(parse_record(item, spec.fields, item_owner));

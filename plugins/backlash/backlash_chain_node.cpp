@@ -18,6 +18,7 @@
 // Compliance: measured play = clearance + load/stiffness, the elastic part reported apart.
 #include "chain_geometry.hpp"
 #include "node_types.hpp"
+#include "spec_limits.hpp"
 #include "stacking.hpp"
 
 #include <mechgraph/domain/tolerance.hpp>
@@ -115,6 +116,7 @@ class BacklashChainType final : public NodeType {
             .positive(),
         samples_param(),
         seed_param(),
+        spec_param(dim::angle, "arcmin", "the angular backlash"),
     };
     info_.inputs = {PortSpec::handle("joints", std::string(JointPlay::kind_name), "the hinges' plays, in chain order")
                         .many()};
@@ -153,12 +155,13 @@ class BacklashChainType final : public NodeType {
                          "measured play = clearance + load/stiffness: (L + dL) + load/stiffness (with compliance)", "um"),
         PortSpec::scalar("angular_total_under_load", A, "rod_total_under_load/|R| (with compliance)", "arcmin"),
     };
+    for (PortSpec& port : spec_outputs(true)) info_.outputs.push_back(std::move(port));
     info_.effects = {
         {monte_carlo_effect, "sample every fit's hole and shaft (samples, seed), each play term truncated at zero, and "
                              "the actuator's backlash as normal with dL_act = 3 sigma, clipped at zero: the statistics "
                              "of the free play without linearisation",
          {"rod_backlash_mc_mean", "rod_backlash_mc_sigma", "rod_backlash_mc_q999", "angular_backlash_mc_mean",
-          "angular_backlash_mc_q999", "mc_mean_error"},
+          "angular_backlash_mc_q999", "mc_mean_error", "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk"},
          {"samples", "seed"}},
         {compliance_effect, "elastic deflection load/stiffness of the chain under the measuring load, reported apart "
                             "from the free play: measured play = clearance + load/stiffness",
@@ -228,6 +231,9 @@ class BacklashChainType final : public NodeType {
     out.set_scalar("rod_backlash_rss_max", mean + 3.0 * sigma);
     out.set_scalar("angular_backlash_rss_max", (mean + 3.0 * sigma) / arm);
 
+    // Against the spec (an angle): the RSS model of the play, and the samples scaled to the rod.
+    const SpecLimits spec = read_spec(p);
+    if (!ctx.effect(monte_carlo_effect)) set_spec_outputs(out, spec, mean / arm, sigma / arm, nullptr);
     if (ctx.effect(monte_carlo_effect)) {
       PlayStack stack;
       stack.own_mean = act_mean;
@@ -236,9 +242,11 @@ class BacklashChainType final : public NodeType {
         for (const PlayTerm& t : joints[i]->terms()) stack.terms.push_back({k[i], t});
       const std::size_t samples = read_samples(p);
       const std::uint64_t seed = read_seed(p);
-      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed);
+      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed, spec.sample_limits(arm));
       ctx.report_work("samples", static_cast<double>(samples));
       out.note(monte_carlo_note(samples, seed, mc.mean_error));
+      if (spec.given()) out.note(spec_note(mc));
+      set_spec_outputs(out, spec, mean / arm, sigma / arm, &mc, arm);
       out.set_scalar("rod_backlash_mc_mean", mc.mean);
       out.set_scalar("rod_backlash_mc_sigma", mc.sigma);
       out.set_scalar("rod_backlash_mc_q999", mc.q_high);

@@ -5,6 +5,7 @@
 // m = nominal + (upper + lower)/2 and its half tolerance h = (upper - lower)/2 (the source's
 // A = A_nom + (dB + dH)/2, dA = (dB - dH)/2).
 #include "node_types.hpp"
+#include "spec_limits.hpp"
 #include "stacking.hpp"
 
 #include <mechgraph/domain/tolerance.hpp>
@@ -54,6 +55,7 @@ class StackLinearType final : public NodeType {
             "the parts of the stack, each { nominal, upper, lower, sensitivity, distribution, label }"),
         samples_param(),
         seed_param(),
+        spec_param(dim::length, "mm", "the stack's result"),
     };
     const auto L = dim::length;
     info_.outputs = {
@@ -77,9 +79,11 @@ class StackLinearType final : public NodeType {
         PortSpec::scalar("mc_mean_error", L, "standard error of mc_mean, mc_sigma/sqrt(N) (with monte_carlo)", "mm"),
         PortSpec::scalar("mc_sigma_error", L, "standard error of mc_sigma, mc_sigma/sqrt(2(N-1)) (with monte_carlo)", "mm"),
     };
+    for (PortSpec& port : spec_outputs(true)) info_.outputs.push_back(std::move(port));
     info_.effects = {{monte_carlo_effect, "sample every link from its distribution (samples, seed) and report the "
                                           "sample statistics with their standard errors",
-                      {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999", "mc_mean_error", "mc_sigma_error"},
+                      {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999", "mc_mean_error", "mc_sigma_error",
+                       "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk"},
                       {"samples", "seed"}}};
     info_.work_counters = {"samples"};
   }
@@ -100,12 +104,18 @@ class StackLinearType final : public NodeType {
     out.set("contribution_worst_case", Value::series(indexed_series(s.contribution_worst_case, names)));
     out.set("contribution_rss", Value::series(indexed_series(s.contribution_rss, names)));
 
-    if (!ctx.effect(monte_carlo_effect)) return;
+    const SpecLimits spec = read_spec(p);
+    if (!ctx.effect(monte_carlo_effect)) {
+      set_spec_outputs(out, spec, s.mean, s.rss_sigma, nullptr);
+      return;
+    }
     const std::size_t n = read_samples(p);
     const std::uint64_t seed = read_seed(p);
-    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed);
+    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed, spec.sample_limits());
     ctx.report_work("samples", static_cast<double>(n));
     out.note(monte_carlo_note(n, seed, mc.mean_error));
+    if (spec.given()) out.note(spec_note(mc));
+    set_spec_outputs(out, spec, s.mean, s.rss_sigma, &mc);
     out.set_scalar("mc_mean", mc.mean);
     out.set_scalar("mc_sigma", mc.sigma);
     out.set_scalar("mc_min", mc.min);

@@ -146,7 +146,7 @@ double tail_quantile(std::vector<double>& v, double p, double threshold) {
 
 }  // namespace
 
-SampleSummary summarize(std::vector<double> samples) {
+SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits) {
   if (samples.size() < 2) throw std::invalid_argument("Monte Carlo needs at least two samples");
   SampleSummary s;
   s.count = samples.size();
@@ -163,6 +163,8 @@ SampleSummary summarize(std::vector<double> samples) {
     squares += d * d;
     low = std::min(low, x);
     high = std::max(high, x);
+    s.below += x < limits.lower;
+    s.above += x > limits.upper;
   }
   s.min = low;
   s.max = high;
@@ -240,9 +242,9 @@ std::vector<double> all_samples(Sampler sampler, std::size_t count) {
 // be too thin to hold its rank (a heavy tail), the stream is run again from its seed with the
 // thresholds twice as far in. Memory: the tails, a few percent of the samples.
 template <class MakeSampler>
-SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
+SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const SampleLimits& limits) {
   constexpr std::size_t pilot_count = 1u << 16;
-  if (count <= 2 * pilot_count) return summarize(all_samples(make(), count));
+  if (count <= 2 * pilot_count) return summarize(all_samples(make(), count), limits);
   const SampleSummary pilot = summarize(all_samples(make(), pilot_count));
   const double n = static_cast<double>(count);
   for (double reach = 2.0; reach >= 0.25; reach /= 2.0) {
@@ -250,6 +252,7 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
     auto sampler = make();
     std::vector<double> buffer(block), low_tail, high_tail;
     double shift = 0.0, sum = 0.0, squares = 0.0, low = 0.0, high = 0.0;
+    std::size_t below = 0, above = 0;
     for (std::size_t start = 0; start < count; start += block) {
       const std::size_t m = std::min(block, count - start);
       sampler.fill(buffer.data(), m);
@@ -263,6 +266,8 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
         high = std::max(high, x);
         if (x < t_low) low_tail.push_back(x);
         if (x > t_high) high_tail.push_back(x);
+        below += x < limits.lower;
+        above += x > limits.upper;
       }
       sum += block_sum;
       squares += block_squares;
@@ -285,6 +290,8 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
     s.sigma = std::sqrt(std::max(0.0, (squares - sum * sum / n) / (n - 1.0)));
     s.mean_error = s.sigma / std::sqrt(n);
     s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
+    s.below = below;
+    s.above = above;
     auto select = [](std::vector<double>& tail, std::size_t k, double frac) {
       std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(k), tail.end());
       const double a = tail[k];
@@ -295,7 +302,7 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count) {
     s.q_high = select(high_tail, high_rank - high_first, high_frac);
     return s;
   }
-  return summarize(all_samples(make(), count));  // tails never thin enough to hold the ranks
+  return summarize(all_samples(make(), count), limits);  // tails never thin enough to hold the ranks
 }
 
 }  // namespace
@@ -308,12 +315,14 @@ std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count,
   return all_samples(PlayStackSampler(stack, seed), count);
 }
 
-SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed) {
-  return summarize_stream([&] { return LinearStackSampler(links, seed); }, count);
+SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed,
+                                       const SampleLimits& limits) {
+  return summarize_stream([&] { return LinearStackSampler(links, seed); }, count, limits);
 }
 
-SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed) {
-  return summarize_stream([&] { return PlayStackSampler(stack, seed); }, count);
+SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
+                                     const SampleLimits& limits) {
+  return summarize_stream([&] { return PlayStackSampler(stack, seed); }, count, limits);
 }
 
 }  // namespace mechgraph::backlash

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace mechgraph::backlash {
@@ -50,10 +51,18 @@ struct SampleSummary {
   double q_high = 0.0;       // quantile at Phi(+3)
   double mean_error = 0.0;   // standard error of the mean, sigma / sqrt(N)
   double sigma_error = 0.0;  // standard error of sigma, sigma / sqrt(2 (N - 1)) (exact for normal samples)
+  std::size_t below = 0;     // samples below SampleLimits::lower
+  std::size_t above = 0;     // samples above SampleLimits::upper
+};
+
+/// Limits to count samples outside of (a specification); infinite by default (none counted).
+struct SampleLimits {
+  double lower = -std::numeric_limits<double>::infinity();
+  double upper = std::numeric_limits<double>::infinity();
 };
 
 /// Summarises N >= 2 samples (moments in two passes, the 3-sigma quantiles by selection in the tails).
-SampleSummary summarize(std::vector<double> samples);
+SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits = {});
 
 /// Quantile p of sorted samples, linear between order statistics (Hyndman-Fan type 7):
 /// h = (N - 1) p, x_(floor h) + (h - floor h)(x_(floor h + 1) - x_(floor h)).
@@ -87,7 +96,9 @@ std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count,
 /// summarize(sample_linear_stack(...)) and summarize(sample_play_stack(...)) without keeping the
 /// samples: the same order statistics, moments summed in one pass about the first sample (equal
 /// to the two-pass ones to rounding); memory for a few percent of them. For many samples.
-SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed);
-SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed);
+SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed,
+                                       const SampleLimits& limits = {});
+SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
+                                     const SampleLimits& limits = {});
 
 }  // namespace mechgraph::backlash

@@ -52,6 +52,7 @@ const UnitSymbol unit_table[] = {
     {"J", 1.0, dim::force * dim::length},
     {"K", 1.0, dim::temperature},
     {"%", 1e-2, dim::none},
+    {"ppm", 1e-6, dim::none},
     {"1", 1.0, dim::none},
 };
 

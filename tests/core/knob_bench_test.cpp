@@ -141,8 +141,14 @@ TEST_CASE("mechgraph bench on a Monte Carlo scene: error of the estimate, advice
   for (const auto& t : json["trials"]) {
     if (t["node"].as<std::string>() != "chain") continue;
     chain_seen = true;
-    // The estimate against 8x the samples: a few standard errors of 2e4 samples, not a ratio of them.
-    CHECK(t["max_relative_error"].as<double>() < 0.05);
+    // The estimates against 8x the samples: a few standard errors of 2e4 samples, not a ratio of
+    // them (the share out of spec, a rare event, has a larger relative error: 1/sqrt(k) for k hits).
+    for (const auto& e : t["errors"]) {
+      const std::string output = e.first.as<std::string>();
+      INFO(output);
+      if (output.find("out_of_spec") == std::string::npos) CHECK(e.second.as<double>() < 0.05);
+      else CHECK(e.second.as<double>() < 0.3);
+    }
     CHECK_FALSE(t["errors"]["chain.mc_mean_error"]);
   }
   CHECK(chain_seen);
