@@ -45,5 +45,6 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int merge_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int bench_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int report_command(const GlobalOptions& g, const std::vector<std::string>& args);
 
 }  // namespace mechgraph::cli

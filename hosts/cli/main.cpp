@@ -25,6 +25,7 @@ usage: mechgraph [--plugin-dir DIR | --only-plugin-dir DIR] [-v|-q] COMMAND [ARG
 commands:
   run SCENE [--set NAME=VALUE ...] [--json] [--out DIR]   evaluate the requested outputs
   validate SCENE [--set NAME=VALUE ...]                   load and check, evaluate nothing
+  report SCENE [--set NAME=VALUE ...] [--out DIR]         one HTML page: report tables, every curve plotted, CSVs
   graph SCENE [--set NAME=VALUE ...]                      Graphviz DOT; culled nodes shown apart
   plugins [--json]                                        plugins, node types, ports, params
   describe TYPE [--json]                                  one node type in full
@@ -105,7 +106,8 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
       {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
       {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command},
-      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command},       {"plugin-test", &cli::plugin_test_command}};
+      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command},       {"plugin-test", &cli::plugin_test_command},
+      {"report", &cli::report_command}};
   auto it = commands.find(command);
   if (it == commands.end()) {
     std::vector<std::string> names;

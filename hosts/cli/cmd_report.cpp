@@ -1,0 +1,75 @@
+// mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N]
+#include "cli.hpp"
+#include "options.hpp"
+#include "report_page.hpp"
+#include "results_folder.hpp"
+
+#include <mechgraph/evaluator.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <iostream>
+#include <thread>
+
+namespace mechgraph::cli {
+namespace {
+
+// The scene as written plus, as outputs, every table and series output of every node (the curves
+// and shares a report plots), leaving out those of an effect the node does not run with.
+SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry) {
+  std::vector<std::string> scene_effects;
+  for (const auto& [name, where] : scene.effects) scene_effects.push_back(name);
+  for (const NodeSpec& n : scene.nodes) {
+    const RegisteredType* type = registry.find(n.type);
+    if (!type) continue;  // build_graph names it
+    const NodeInfo& info = type->type->info();
+    for (const PortSpec& port : info.outputs) {
+      if (port.kind != ValueKind::table && port.kind != ValueKind::series) continue;
+      if (const EffectSpec* e = info.effect_of_output(port.name)) {
+        const bool on = std::find(scene_effects.begin(), scene_effects.end(), e->name) != scene_effects.end() ||
+                        std::any_of(n.effects.begin(), n.effects.end(), [&](const auto& ne) { return ne.first == e->name; });
+        if (!on) continue;
+      }
+      const bool listed = std::any_of(scene.outputs.begin(), scene.outputs.end(),
+                                      [&](const PortRef& r) { return r.node == n.name && r.port == port.name; });
+      if (!listed) scene.outputs.push_back(PortRef{n.name, port.name, n.where});
+    }
+  }
+  return scene;
+}
+
+}  // namespace
+
+int report_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("report options");
+  add_scene_options(visible);
+  visible.add_options()("out", po::value<std::string>()->default_value("report"),
+                        "write report.html, results.json and the CSV of every plot and table into DIR "
+                        "(whole or not at all; an existing DIR needs --force)")(
+      "force", "replace the report in an existing --out DIR")(
+      "threads", po::value<unsigned>()->default_value(1), "evaluate independent nodes on this many threads (0: one per core)");
+  po::variables_map vm;
+  if (!parse_scene_command(args, visible, vm, "mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N]"))
+    return ok;
+  const std::filesystem::path dir = vm["out"].as<std::string>();
+  check_results_folder(dir, vm.count("force") > 0);
+  const PluginRegistry registry = load_plugins(g);
+  const RunInputs inputs{vm["scene"].as<std::string>(),
+                         vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};
+  std::vector<Override> overrides;
+  for (const std::string& s : inputs.overrides) overrides.push_back(parse_override(s));
+  const Graph graph = build_graph(with_every_curve(load_scene(inputs.scene_file), registry), registry, overrides);
+  unsigned threads = vm["threads"].as<unsigned>();
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  MemoCache cache;
+  const RunResult result = evaluate(graph, cache, threads);
+  write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
+    write_report_page(staging, graph, result, registry, inputs);
+  });
+  std::cout << (dir / "report.html").string() << "\n";
+  spdlog::info("report written to {}", (dir / "report.html").string());
+  return ok;
+}
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,380 @@
+#include "report_page.hpp"
+
+#include "result_files.hpp"
+#include "results_folder.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/units.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+
+#ifndef MECHGRAPH_VERSION
+#define MECHGRAPH_VERSION "0"
+#endif
+
+namespace mechgraph::cli {
+namespace {
+
+// Tables with at most this many rows are shown as tables, not plotted (a cam's events).
+constexpr std::size_t table_rows_shown = 12;
+
+std::string html_escape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// gnuplot strings in single quotes (the terminal is noenhanced: no markup): a quote is doubled.
+std::string gp(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out;
+}
+
+std::string file_safe(std::string text) {
+  for (char& c : text)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_')) c = '_';
+  return text;
+}
+
+// A column to plot: values converted to the unit shown.
+struct Column {
+  std::string name;   // CSV header: "kurz lift [mm]"
+  std::string unit;
+  std::vector<double> values;
+};
+
+Column shown(const std::string& title, const Dimension& d, const std::vector<double>& si, const std::string& own_unit,
+             const DisplayUnits& units) {
+  Column c;
+  c.unit = units.unit_for(d, own_unit);
+  if (c.unit.empty()) c.unit = d.si_unit() == "1" ? std::string() : d.si_unit();
+  c.values.reserve(si.size());
+  const bool convert = !units.unit_for(d, own_unit).empty();
+  for (double v : si) c.values.push_back(convert ? to_unit(v, d, c.unit) : v);
+  c.name = title + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
+  return c;
+}
+
+struct Figure {
+  enum class Kind { lines, bars, to_scale } kind = Kind::lines;
+  std::string name;  // file stem
+  std::string title, xlabel, ylabel;
+  std::vector<std::pair<Column, Column>> curves;  // (x, y) per curve; bars: x unused, labels below
+  std::vector<std::string> curve_titles;
+  std::vector<std::string> labels;  // bars
+};
+
+// Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
+void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
+  std::ofstream out(file);
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  out << std::setprecision(12);
+  if (f.kind == Figure::Kind::bars) {
+    out << "label," << f.curves.front().second.name << "\n";
+    for (std::size_t i = 0; i < f.labels.size(); ++i) out << "\"" << f.labels[i] << "\"," << f.curves.front().second.values[i] << "\n";
+  } else {
+    std::size_t rows = 0;
+    for (std::size_t k = 0; k < f.curves.size(); ++k) {
+      const std::string prefix = f.curves.size() > 1 ? f.curve_titles[k] + " " : "";
+      out << (k ? "," : "") << "\"" << prefix << f.curves[k].first.name << "\",\"" << prefix << f.curves[k].second.name << "\"";
+      rows = std::max(rows, f.curves[k].first.values.size());
+    }
+    out << "\n";
+    for (std::size_t i = 0; i < rows; ++i) {
+      for (std::size_t k = 0; k < f.curves.size(); ++k) {
+        if (k) out << ",";
+        if (i < f.curves[k].first.values.size()) out << f.curves[k].first.values[i] << "," << f.curves[k].second.values[i];
+        else out << ",";
+      }
+      out << "\n";
+    }
+  }
+  out.close();
+  check_written(out, file);
+}
+
+std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
+  const std::string csv = f.name + ".csv", svg = f.name + ".svg", script_file = f.name + ".gp";
+  {
+    std::ofstream s(dir / script_file);
+    s << "set terminal svg size 860,420 dynamic noenhanced font 'sans,11' background rgb 'white'\n"
+      << "set output '" << svg << "'\n"
+      << "set datafile separator ','\nset datafile missing ''\n"
+      << "set title '" << gp(f.title) << "'\nset xlabel '" << gp(f.xlabel) << "'\nset ylabel '" << gp(f.ylabel) << "'\n"
+      << "set grid\nset key outside right top\n";
+    if (f.kind == Figure::Kind::bars) {
+      s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
+        << "plot '" << csv << "' skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
+    } else {
+      if (f.kind == Figure::Kind::to_scale) s << "set size ratio -1\n";
+      s << "plot";
+      for (std::size_t k = 0; k < f.curves.size(); ++k)
+        s << (k ? ", \\\n    " : " ") << "'" << csv << "' skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2
+          << " with lines lw 1.5 title '" << gp(f.curve_titles[k]) << "'";
+      s << "\n";
+    }
+  }
+  const std::string command = "cd '" + dir.string() + "' && gnuplot '" + script_file + "' 2>'" + f.name + ".log'";
+  if (std::system(command.c_str()) != 0) {
+    std::ifstream log(dir / (f.name + ".log"));
+    const std::string why((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    throw IoError("gnuplot failed on the plot '" + f.title + "': " + why);
+  }
+  std::ifstream in(dir / svg);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Inline: drop the XML declaration and the DOCTYPE, keep <svg ...> ... </svg>.
+  const auto begin = text.find("<svg");
+  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot '" + f.title + "'");
+  std::filesystem::remove(dir / svg);
+  std::filesystem::remove(dir / script_file);
+  std::filesystem::remove(dir / (f.name + ".log"));
+  return text.substr(begin);
+}
+
+// The figures a run's outputs call for.
+std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, std::vector<const OutputValue*>& small) {
+  const DisplayUnits& units = graph.display_units;
+  std::vector<Figure> figures;
+  std::map<std::string, std::vector<const OutputValue*>> by_port, series_by_port;  // grouped by port name
+  std::vector<std::string> port_order, series_order;
+  for (const OutputValue& o : result.outputs) {
+    const std::string port = o.label.substr(o.label.find('.') + 1);
+    const std::string node = o.label.substr(0, o.label.find('.'));
+    if (o.value.kind() == ValueKind::table) {
+      const Table& t = o.value.as_table();
+      if (t.closed_curve) {
+        Figure f;
+        f.kind = Figure::Kind::to_scale;
+        f.name = file_safe(o.label);
+        f.title = o.label + " (to scale)";
+        for (const Table::Column& c : t.channels) {
+          if (c.name.size() < 1 || c.name.back() != 'x' || (c.name != "x" && c.name.size() > 2 && c.name.substr(c.name.size() - 2) != "_x")) continue;
+          const std::string prefix = c.name == "x" ? "" : c.name.substr(0, c.name.size() - 2);
+          const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
+          if (!y) continue;
+          Column cx = shown("x", c.dimension, c.values, c.display_unit, units), cy = shown("y", y->dimension, y->values, y->display_unit, units);
+          // Close the drawing: the first point again at the end.
+          cx.values.push_back(cx.values.front());
+          cy.values.push_back(cy.values.front());
+          f.xlabel = cx.name;
+          f.ylabel = cy.name;
+          f.curve_titles.push_back(prefix.empty() ? "contour" : prefix + " curve");
+          f.curves.emplace_back(std::move(cx), std::move(cy));
+        }
+        if (!f.curves.empty()) figures.push_back(std::move(f));
+        continue;
+      }
+      if (t.axis.values.size() <= table_rows_shown) {
+        small.push_back(&o);
+        continue;
+      }
+      if (!by_port.count(port)) port_order.push_back(port);
+      by_port[port].push_back(&o);
+    } else if (o.value.kind() == ValueKind::series) {
+      const Series& s = o.value.as_series();
+      if (s.labels.size() == s.values.size() && !s.values.empty()) {
+        Figure f;
+        f.kind = Figure::Kind::bars;
+        f.name = file_safe(o.label);
+        f.title = o.label;
+        Column v = shown(port, o.dimension, s.values, o.display_unit, units);
+        f.ylabel = v.name;
+        f.labels = s.labels;
+        f.curves.emplace_back(Column{}, std::move(v));
+        f.curve_titles.push_back(o.label);
+        figures.push_back(std::move(f));
+      } else if (s.values.size() > table_rows_shown) {
+        if (!series_by_port.count(port)) series_order.push_back(port);
+        series_by_port[port].push_back(&o);
+      }
+    }
+  }
+  // Series of one port name (every valve's lift curve): one plot, a curve per node.
+  for (const std::string& port : series_order) {
+    Figure f;
+    f.name = file_safe(port);
+    f.title = port;
+    for (const OutputValue* o : series_by_port[port]) {
+      const Series& s = o->value.as_series();
+      Column x = shown("axis", s.axis_dimension, s.axis, "", units), y = shown(port, o->dimension, s.values, o->display_unit, units);
+      f.xlabel = x.name;
+      f.ylabel = y.name;
+      f.curve_titles.push_back(o->label.substr(0, o->label.find('.')));
+      f.curves.emplace_back(std::move(x), std::move(y));
+    }
+    figures.push_back(std::move(f));
+  }
+  for (const std::string& port : port_order) {
+    const auto& outs = by_port[port];
+    const Table& first = outs.front()->value.as_table();
+    if (outs.size() > 1) {
+      // Several nodes' tables: a plot per channel, a curve per node.
+      for (const Table::Column& channel : first.channels) {
+        if (channel.name == "crank_angle") continue;  // the axis again, doubled
+        Figure f;
+        f.name = file_safe(port + "_" + channel.name);
+        f.title = port + ": " + channel.name;
+        for (const OutputValue* o : outs) {
+          const Table& t = o->value.as_table();
+          const Table::Column* c = t.find(channel.name);
+          if (!c) continue;
+          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units);
+          Column y = shown(channel.name, c->dimension, c->values, c->display_unit, units);
+          f.xlabel = x.name;
+          f.ylabel = y.name;
+          f.curve_titles.push_back(o->label.substr(0, o->label.find('.')));
+          f.curves.emplace_back(std::move(x), std::move(y));
+        }
+        figures.push_back(std::move(f));
+      }
+      continue;
+    }
+    // One table: its channels grouped by dimension, a plot per group.
+    std::vector<Dimension> dims;
+    for (const Table::Column& c : first.channels)
+      if (c.name != "crank_angle" && std::find(dims.begin(), dims.end(), c.dimension) == dims.end()) dims.push_back(c.dimension);
+    for (const Dimension& d : dims) {
+      Figure f;
+      f.title = outs.front()->label;
+      std::string names;
+      for (const Table::Column& c : first.channels) {
+        if (c.name == "crank_angle" || !(c.dimension == d)) continue;
+        Column x = shown(first.axis.name, first.axis.dimension, first.axis.values, first.axis.display_unit, units);
+        Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
+        f.xlabel = x.name;
+        f.ylabel = y.unit.empty() ? d.describe() : d.describe() + " [" + y.unit + "]";
+        f.curve_titles.push_back(c.name);
+        names += (names.empty() ? "" : ", ") + c.name;
+        f.curves.emplace_back(std::move(x), std::move(y));
+      }
+      f.title += ": " + names;
+      f.name = file_safe(outs.front()->label + "_" + f.curve_titles.front());
+      figures.push_back(std::move(f));
+    }
+  }
+  return figures;
+}
+
+void html_table(std::ostream& html, const std::vector<std::vector<std::string>>& rows, const std::string& csv) {
+  html << "<table>\n<tr>";
+  for (const std::string& h : rows.front()) html << "<th>" << html_escape(h) << "</th>";
+  html << "</tr>\n";
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    html << "<tr>";
+    for (std::size_t i = 0; i < rows[r].size(); ++i) html << (i < 2 ? "<td>" : "<td class=\"n\">") << html_escape(rows[r][i]) << "</td>";
+    html << "</tr>\n";
+  }
+  html << "</table>\n<p class=\"csv\">data: " << html_escape(csv) << "</p>\n";
+}
+
+}  // namespace
+
+void write_report_page(const std::filesystem::path& dir, const Graph& graph, const RunResult& result,
+                       const PluginRegistry& registry, const RunInputs& inputs) {
+  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+    throw IoError("mechgraph report draws its plots with gnuplot, which is not installed (apt-get install gnuplot-nox)");
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << html_escape(graph.title)
+       << "</title>\n<style>\nbody{font-family:sans-serif;margin:2em auto;max-width:960px;color:#222}\n"
+          "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px 8px}"
+          "th{background:#eef}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
+          ".csv{color:#666;font-size:90%}figure{margin:1em 0}svg{max-width:100%;height:auto}\n</style></head><body>\n"
+       << "<h1>" << html_escape(graph.title.empty() ? inputs.scene_file : graph.title) << "</h1>\n";
+  html << "<p>mechgraph " << MECHGRAPH_VERSION << ", scene <code>" << html_escape(inputs.scene_file) << "</code> (SHA-1 "
+       << file_sha1(inputs.scene_file) << ")";
+  if (!inputs.overrides.empty()) {
+    html << ", with";
+    for (const std::string& o : inputs.overrides) html << " <code>--set " << html_escape(o) << "</code>";
+  }
+  html << ". Plugins:";
+  for (const PluginInfo& p : registry.plugins()) html << " " << html_escape(p.id) << " " << html_escape(p.version) << ";";
+  html << " everything in <code>results.json</code>.</p>\n";
+
+  // The scene's report tables.
+  for (std::size_t t = 0; t < graph.reports.size(); ++t) {
+    const ResolvedReport& r = graph.reports[t];
+    const std::string csv = "table_" + std::to_string(t + 1) + ".csv";
+    write_report_csv(dir / csv, r, result, graph.display_units);
+    html << "<h2>" << html_escape(r.title.empty() ? "Table " + std::to_string(t + 1) : r.title) << "</h2>\n";
+    html_table(html, report_cells(r, result, graph.display_units), csv);
+  }
+
+  std::vector<const OutputValue*> small;
+  const std::vector<Figure> figures = plan_figures(graph, result, small);
+  if (!figures.empty()) html << "<h2>Plots</h2>\n";
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    Figure f = figures[i];
+    f.name = "plot_" + std::to_string(i + 1) + "_" + f.name;
+    write_figure_csv(dir / (f.name + ".csv"), f);
+    html << "<figure>" << run_gnuplot(dir, f) << "<figcaption class=\"csv\">data: " << html_escape(f.name) << ".csv</figcaption></figure>\n";
+  }
+  for (const OutputValue* o : small) {
+    const std::string csv = file_safe(o->label) + ".csv";
+    write_table_csv(dir / csv, o->value.as_table(), graph.display_units);
+    const Table& t = o->value.as_table();
+    std::vector<std::vector<std::string>> rows(1);
+    std::vector<const Table::Column*> cols{&t.axis};
+    for (const Table::Column& c : t.channels) cols.push_back(&c);
+    std::vector<std::string> unit;
+    for (const Table::Column* c : cols) {
+      unit.push_back(graph.display_units.unit_for(c->dimension, c->display_unit));
+      rows[0].push_back(c->name + " [" + (unit.back().empty() ? c->dimension.si_unit() : unit.back()) + "]");
+    }
+    for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
+      std::vector<std::string> row;
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        const double v = unit[k].empty() ? cols[k]->values[i] : to_unit(cols[k]->values[i], cols[k]->dimension, unit[k]);
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.6g", v);
+        row.push_back(buffer);
+      }
+      rows.push_back(std::move(row));
+    }
+    html << "<h2>" << html_escape(o->label) << "</h2>\n<table>\n<tr>";
+    for (const std::string& h : rows[0]) html << "<th>" << html_escape(h) << "</th>";
+    html << "</tr>\n";
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+      html << "<tr>";
+      for (const std::string& c : rows[r]) html << "<td class=\"n\">" << c << "</td>";
+      html << "</tr>\n";
+    }
+    html << "</table>\n<p class=\"csv\">data: " << html_escape(csv) << "</p>\n";
+  }
+  // How the results were made.
+  bool first = true;
+  for (const NodeRun& r : result.runs)
+    for (const std::string& n : r.notes) {
+      if (first) html << "<h2>Notes</h2>\n<ul>\n";
+      first = false;
+      html << "<li>" << html_escape(r.node) << ": " << html_escape(n) << "</li>\n";
+    }
+  if (!first) html << "</ul>\n";
+  html << "</body></html>\n";
+
+  std::ofstream page(dir / "report.html");
+  page << html.str();
+  page.close();
+  check_written(page, dir / "report.html");
+  std::ofstream json(dir / "results.json");
+  write_json(json, graph, result, registry, inputs);
+  json.close();
+  check_written(json, dir / "results.json");
+  spdlog::info("report: {} plots, {} tables", figures.size(), graph.reports.size() + small.size());
+}
+
+}  // namespace mechgraph::cli

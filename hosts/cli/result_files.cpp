@@ -1,0 +1,257 @@
+#include "result_files.hpp"
+
+#include "cli.hpp"
+#include "dxf_writer.hpp"
+#include "results_folder.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/units.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+
+namespace mechgraph::cli {
+
+void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
+                const RunInputs& inputs) {
+  JsonWriter json(os);
+  json.begin_object();
+  json.key("title").value(graph.title);
+  json.key("outputs").begin_object();
+  for (const OutputValue& o : result.outputs) {
+    json.key(o.label).begin_object();
+    switch (o.value.kind()) {
+      case ValueKind::scalar: json.key("value").value(o.value.as_scalar()); break;
+      case ValueKind::series:
+        json.key("value").numbers(o.value.as_series().values);
+        json.key("axis").numbers(o.value.as_series().axis);
+        json.key("axis_unit").value(o.value.as_series().axis_dimension.si_unit());
+        if (!o.value.as_series().labels.empty()) {
+          json.key("labels").begin_array();
+          for (const std::string& l : o.value.as_series().labels) json.value(l);
+          json.end_array();
+          // Named elements (a chain's contributions) also by name, in the display unit (percent).
+          if (o.value.as_series().labels.size() == o.value.as_series().values.size()) {
+            json.key("by_label").begin_object();
+            for (std::size_t i = 0; i < o.value.as_series().values.size(); ++i) {
+              const double v = o.value.as_series().values[i];
+              json.key(o.value.as_series().labels[i]).value(o.display_unit.empty() ? v : to_unit(v, o.dimension, o.display_unit));
+            }
+            json.end_object();
+            json.key("by_label_unit").value(o.display_unit.empty() ? o.dimension.si_unit() : o.display_unit);
+          }
+        }
+        break;
+      case ValueKind::handle: json.key("value").null().key("handle").value(o.value.as_handle()->kind()); break;
+      case ValueKind::table: {
+        // {"axis": name, "columns": {name: {"unit": SI unit, "values": [...]}, ...}}, axis first.
+        const Table& t = o.value.as_table();
+        json.key("value").begin_object().key("axis").value(t.axis.name).key("columns").begin_object();
+        auto column = [&](const Table::Column& c) {
+          json.key(c.name).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values).end_object();
+        };
+        column(t.axis);
+        for (const Table::Column& c : t.channels) column(c);
+        json.end_object().end_object();
+        break;
+      }
+    }
+    json.key("unit").value(o.value.kind() == ValueKind::table ? std::string("table") : o.dimension.si_unit());
+    json.end_object();
+  }
+  json.end_object();
+  json.key("evaluated").begin_array();
+  for (const NodeRun& r : result.runs)
+    if (!r.reused) json.value(r.node);
+  json.end_array();
+  json.key("reused").begin_array();
+  for (const NodeRun& r : result.runs)
+    if (r.reused) json.value(r.node);
+  json.end_array();
+  json.key("nodes").begin_object();
+  for (const NodeRun& r : result.runs) {
+    json.key(r.node).begin_object();
+    json.key("type").value(r.type);
+    json.key("seconds").value(r.seconds);
+    json.key("work").begin_object();
+    for (const auto& [counter, amount] : r.work) json.key(counter).value(amount);
+    json.end_object();
+    json.end_object();
+  }
+  json.end_object();
+  json.key("effects").begin_array();
+  for (const std::string& e : graph.effects) json.value(e);
+  json.end_array();
+  json.key("notes").begin_object();
+  for (const NodeRun& r : result.runs) {
+    if (r.notes.empty()) continue;
+    json.key(r.node).begin_array();
+    for (const std::string& n : r.notes) json.value(n);
+    json.end_array();
+  }
+  json.end_object();
+  write_provenance(json, graph, registry, inputs);
+  json.end_object();
+  os << "\n";
+}
+
+std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result,
+                                                   const DisplayUnits& units) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> header{"", "unit"};
+  for (const std::string& c : report.columns) header.push_back(c);
+  rows.push_back(std::move(header));
+  for (const auto& row : report.rows) {
+    std::vector<std::string> cells{row.label, row.unit};
+    for (const auto& cell : row.cells) {
+      if (!cell) {
+        cells.push_back("-");
+        continue;
+      }
+      const OutputValue& o = result.outputs[cell->output];
+      double value = 0.0;
+      if (cell->element) {
+        const auto& values = o.value.as_series().values;
+        if (*cell->element >= values.size())
+          throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
+                                " elements, the row asks for element " + std::to_string(*cell->element));
+        value = values[*cell->element];
+      } else {
+        value = o.value.as_scalar();
+      }
+      const std::string unit = row.unit.empty() ? units.unit_for(o.dimension) : row.unit;
+      if (cells[1].empty() && o.dimension.si_unit() != "1") cells[1] = unit.empty() ? o.dimension.si_unit() : unit;
+      const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.6g", shown);
+      cells.push_back(buffer);
+    }
+    rows.push_back(std::move(cells));
+  }
+  return rows;
+}
+
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units) {
+  const auto rows = report_cells(report, result, units);
+  std::vector<std::size_t> width(rows.front().size(), 0);
+  for (const auto& r : rows)
+    for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
+  auto print_row = [&](const std::vector<std::string>& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      if (i == 0) os << std::left << std::setw(static_cast<int>(width[i])) << r[i];
+      else os << "  " << std::right << std::setw(static_cast<int>(width[i])) << r[i];
+    }
+    os << "\n";
+  };
+  if (!report.title.empty()) os << report.title << "\n\n";
+  print_row(rows.front());
+  std::size_t total = 0;
+  for (std::size_t w : width) total += w + 2;
+  os << std::string(total - 2, '-') << "\n";
+  for (std::size_t r = 1; r < rows.size(); ++r) print_row(rows[r]);
+}
+
+// A CSV cell: quoted when it holds a comma, a quote or a line break.
+std::string csv_cell(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+void write_report_csv(const std::filesystem::path& file, const ResolvedReport& report, const RunResult& result,
+                      const DisplayUnits& units) {
+  auto rows = report_cells(report, result, units);
+  rows.front()[0] = "quantity";
+  std::ofstream out(file);
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  for (const auto& r : rows) {
+    for (std::size_t i = 0; i < r.size(); ++i) out << (i ? "," : "") << csv_cell(r[i]);
+    out << "\n";
+  }
+  out.close();
+  check_written(out, file);
+}
+
+// Short series inline ([a, b, c] unit), long ones as a count (their CSV is in --out).
+void print_series(std::ostream& os, const OutputValue& o) {
+  const auto& values = o.value.as_series().values;
+  const auto& labels = o.value.as_series().labels;
+  if (labels.size() == values.size() && !values.empty()) {
+    // Named elements: "shaft 9.4 %, retaining ring 7.8 %, ...".
+    for (std::size_t i = 0; i < values.size(); ++i)
+      os << (i ? ", " : "") << labels[i] << " " << format_value(values[i], o.dimension, o.display_unit);
+    return;
+  }
+  if (values.size() > 12) {
+    os << "series of " << values.size() << " points (see --out for the CSV)";
+    return;
+  }
+  os << "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const std::string text = format_value(values[i], o.dimension, o.display_unit);
+    os << (i ? ", " : "") << text.substr(0, text.find(' '));
+  }
+  const std::string unit = o.display_unit.empty() ? o.dimension.si_unit() : o.display_unit;
+  os << "]" << (unit == "1" ? "" : " " + unit);
+}
+
+// One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
+// units (SI where the scene names none).
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units) {
+  std::ofstream out(file);
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  std::vector<const Table::Column*> columns{&t.axis};
+  for (const Table::Column& c : t.channels) columns.push_back(&c);
+  std::vector<std::string> unit(columns.size());
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    unit[k] = units.unit_for(columns[k]->dimension);
+    out << (k ? "," : "") << columns[k]->name << " [" << (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) << "]";
+  }
+  out << "\n" << std::setprecision(17);
+  for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const double v = columns[k]->values[i];
+      out << (k ? "," : "") << (unit[k].empty() ? v : to_unit(v, columns[k]->dimension, unit[k]));
+    }
+    out << "\n";
+  }
+  out.close();
+  check_written(out, file);
+}
+
+void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units) {
+  std::ofstream out(file);
+  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  const Series& s = o.value.as_series();
+  const std::string axis_unit = units.unit_for(s.axis_dimension), value_unit = units.unit_for(o.dimension);
+  out << "axis [" << (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) << "]," << o.label << " ["
+      << (value_unit.empty() ? o.dimension.si_unit() : value_unit) << "]\n";
+  out << std::setprecision(17);
+  for (std::size_t i = 0; i < s.values.size(); ++i)
+    out << (axis_unit.empty() ? s.axis[i] : to_unit(s.axis[i], s.axis_dimension, axis_unit)) << ","
+        << (value_unit.empty() ? s.values[i] : to_unit(s.values[i], o.dimension, value_unit)) << "\n";
+  out.close();
+  check_written(out, file);
+}
+
+
+void write_result_files(const std::filesystem::path& dir, const Graph& graph, const RunResult& result,
+                        const PluginRegistry& registry, const RunInputs& inputs) {
+  std::ofstream json_file(dir / "results.json");
+  if (!json_file) throw IoError("cannot write '" + (dir / "results.json").string() + "'");
+  write_json(json_file, graph, result, registry, inputs);
+  json_file.close();
+  check_written(json_file, dir / "results.json");
+  for (const OutputValue& o : result.outputs)
+    if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units);
+    else if (o.value.kind() == ValueKind::table) {
+      write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units);
+      if (is_drawable_curve(o.value.as_table())) write_dxf(dir / (o.label + ".dxf"), o.value.as_table());
+    }
+}
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,44 @@
+#pragma once
+// The files and text a run leaves: results.json (outputs, work, notes, provenance), one CSV per
+// series or table (in the scene's display units; closed curves also as DXF), and the report tables
+// as text or as cells (for CSV and HTML). `run`, `report` and `sweep` share them.
+#include "provenance.hpp"
+
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/graph.hpp>
+
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace mechgraph::cli {
+
+/// The whole result as one JSON object: outputs (SI), evaluated and reused nodes, work, notes,
+/// effects and provenance.
+void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
+                const RunInputs& inputs);
+
+/// A report table as cells: the header row (label, unit, the columns), then a row per report row,
+/// values formatted with 6 significant digits in the row's unit (or the scene's display unit).
+std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result,
+                                                   const DisplayUnits& units);
+/// The same as aligned text under its title.
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units);
+/// The same as CSV: "name [unit]" is not used here, the unit is its own column.
+void write_report_csv(const std::filesystem::path& file, const ResolvedReport& report, const RunResult& result,
+                      const DisplayUnits& units);
+
+/// Short series inline ([a, b, c] unit), labelled ones by name, long ones as a count.
+void print_series(std::ostream& os, const OutputValue& o);
+
+/// One CSV per table / series output; header `name [unit]` in the scene's display units.
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units);
+void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units);
+
+/// Every file of `run --out` into `dir`: results.json, a CSV per series/table output, a DXF per
+/// closed curve.
+void write_result_files(const std::filesystem::path& dir, const Graph& graph, const RunResult& result,
+                        const PluginRegistry& registry, const RunInputs& inputs);
+
+}  // namespace mechgraph::cli
