@@ -37,11 +37,24 @@ TEST_CASE("mechgraph --version and --help", "[cli]") {
   const auto v = run_cli("--version");
   CHECK(v.exit_code == 0);
   CHECK_THAT(v.out, Contains("mechgraph") && Contains("plugin ABI"));
-  CHECK(run_cli("--help").exit_code == 0);
-  for (const char* cmd : {"run", "validate", "graph", "plugins", "describe"}) {
+  const auto top = run_cli("--help");
+  CHECK(top.exit_code == 0);
+  // Every subcommand's --help in one style: the synopsis, then "CMD options:" listing every option
+  // the synopsis names; the top-level help lists every subcommand.
+  for (const std::string cmd : {"run", "validate", "graph", "plugins", "describe", "bench", "sweep", "merge", "plugin-test", "report"}) {
+    INFO(cmd);
+    CHECK_THAT(top.out, Contains("  " + cmd + " "));
     const auto h = run_cli(arith_dir() + " " + cmd + " --help");
     CHECK(h.exit_code == 0);
-    CHECK_THAT(h.out, Contains("usage: mechgraph"));
+    CHECK_THAT(h.out, Contains("usage: mechgraph " + cmd) && Contains(cmd + " options:") && Contains("-h [ --help ]"));
+    const std::string synopsis = h.out.substr(0, h.out.find("\n\n"));
+    const std::string options = h.out.substr(h.out.find("\n\n"));
+    for (std::size_t at = synopsis.find("--"); at != std::string::npos; at = synopsis.find("--", at + 2)) {
+      std::size_t end = at + 2;
+      while (end < synopsis.size() && (std::isalnum(static_cast<unsigned char>(synopsis[end])) || synopsis[end] == '-')) ++end;
+      const std::string option = synopsis.substr(at, end - at);
+      if (option.size() > 2) CHECK_THAT(options, Contains("--" + option.substr(2) + " "));
+    }
   }
   const auto bad = run_cli("frobnicate");
   CHECK(bad.exit_code == 2);
