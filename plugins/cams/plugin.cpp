@@ -9,6 +9,7 @@ mechgraph::NodeTypeList make_node_types() {
   mechgraph::cams::add_source_profile_types(types);
   mechgraph::cams::add_standard_law_types(types);
   mechgraph::cams::add_contour_type(types);
+  mechgraph::cams::add_program_type(types);
   return types;
 }
 }  // namespace

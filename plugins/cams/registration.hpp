@@ -11,5 +11,7 @@ void add_source_profile_types(NodeTypeList& out);
 void add_standard_law_types(NodeTypeList& out);
 /// cam.contour: the contour, pressure angle and contact stress for any cam law.
 void add_contour_type(NodeTypeList& out);
+/// cam.program: a cam from rise, dwell and return segments (tests/plugins/cams/program_law_test.cpp).
+void add_program_type(NodeTypeList& out);
 
 }  // namespace mechgraph::cams

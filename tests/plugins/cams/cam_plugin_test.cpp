@@ -10,6 +10,7 @@ TEST_CASE("the cams plugin exports exactly the types of the registration lists",
   std::vector<std::string> registered;
   for (const auto& t : mechgraph::cams::testing::all_cam_types()) registered.push_back(t->info().type);
   registered.push_back("cam.contour");
+  registered.push_back("cam.program");  // tests/plugins/cams/program_law_test.cpp
   std::vector<std::string> loaded;
   for (const auto& p : mechgraph::testing::project_registry().plugins())
     if (p.id == "cams") loaded = p.node_types;
