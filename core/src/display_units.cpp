@@ -28,7 +28,7 @@ DisplayUnits DisplayUnits::from_scene(const std::vector<std::pair<std::string, R
   std::vector<std::string> names;
   for (const auto& q : quantities()) names.push_back(q.first);
   for (const auto& [name, value] : units) {
-    const auto q = std::find_if(quantities().begin(), quantities().end(), [&](const auto& e) { return e.first == name; });
+    const auto q = std::find_if(quantities().begin(), quantities().end(), [&wanted = name](const auto& e) { return e.first == wanted; });
     if (q == quantities().end()) throw SceneError(value.key_where.str() + "units: " + unknown_name_message("quantity", name, names));
     if (value.kind != RawValue::Kind::scalar)
       throw SceneError(value.where.str() + "units: " + name + " takes one unit, e.g. " + name + ": mm");
@@ -66,7 +66,7 @@ std::string DisplayUnits::unit_for(Dimension d) const {
   std::string numerator, denominator;
   for (const auto& [power, base] : bases) {
     if (power == 0) continue;
-    const auto it = std::find_if(named_.begin(), named_.end(), [&](const auto& e) { return e.first == base; });
+    const auto it = std::find_if(named_.begin(), named_.end(), [&wanted = base](const auto& e) { return e.first == wanted; });
     if (it == named_.end()) return {};
     const int n = std::abs(power);
     const std::string term = it->second + (n == 1 ? std::string() : "^" + std::to_string(n));
@@ -78,7 +78,7 @@ std::string DisplayUnits::unit_for(Dimension d) const {
     std::string out;
     for (const auto& [power, base] : bases) {
       if (power == 0) continue;
-      const auto it = std::find_if(named_.begin(), named_.end(), [&](const auto& e) { return e.first == base; });
+      const auto it = std::find_if(named_.begin(), named_.end(), [&wanted = base](const auto& e) { return e.first == wanted; });
       out += (out.empty() ? "" : "*") + it->second + "^" + std::to_string(power);
     }
     return out;
