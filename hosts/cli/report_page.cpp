@@ -8,6 +8,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -52,6 +54,20 @@ std::string file_safe(std::string text) {
 }
 
 // A column to plot: values converted to the unit shown.
+// A plot's axis title for a dimension: the quantity's name where it has one ("force", not
+// "mass*length/time^2"), else the dimension in base quantities.
+std::string quantity(const Dimension& d) {
+  static const std::pair<Dimension, const char*> named[] = {
+      {dim::force, "force"},           {dim::stress, "stress"},
+      {dim::velocity, "velocity"},     {dim::acceleration, "acceleration"},
+      {dim::stiffness, "stiffness"},   {dim::length / dim::time.pow(3), "jerk"},
+      {dim::frequency, "frequency"},   {dim::angular_speed, "angular speed"},
+      {dim::force * dim::length, "moment"}};
+  for (const auto& [known, name] : named)
+    if (known == d) return name;
+  return d.describe();
+}
+
 struct Column {
   std::string name;   // CSV header: "kurz lift [mm]"
   std::string unit;
@@ -71,12 +87,13 @@ Column shown(const std::string& title, const Dimension& d, const std::vector<dou
 }
 
 struct Figure {
-  enum class Kind { lines, bars, to_scale } kind = Kind::lines;
+  enum class Kind { lines, bars, to_scale, histogram } kind = Kind::lines;
   std::string name;  // file stem
   std::string title, xlabel, ylabel;
   std::vector<std::pair<Column, Column>> curves;  // (x, y) per curve; bars: x unused, labels below
   std::vector<std::string> curve_titles;
   std::vector<std::string> labels;  // bars
+  std::vector<std::pair<std::string, double>> marks;  // vertical lines at x (histogram: spec limits), in x's unit
 };
 
 // Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
@@ -120,6 +137,22 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
     if (f.kind == Figure::Kind::bars) {
       s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
         << "plot '" << csv << "' skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
+    } else if (f.kind == Figure::Kind::histogram) {
+      // Bars that touch, one per bin, and the marks as dashed vertical lines; the x range holds both.
+      const std::vector<double>& x = f.curves.front().first.values;
+      const double width = x.size() > 1 ? x[1] - x[0] : std::max(1e-12, std::abs(x.front()) * 1e-3);
+      double lo = x.front() - 0.5 * width, hi = x.back() + 0.5 * width;
+      for (const auto& [label, at] : f.marks) {
+        lo = std::min(lo, at);
+        hi = std::max(hi, at);
+      }
+      const double pad = 0.04 * (hi - lo);
+      s << std::setprecision(12) << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
+        << " absolute\nset yrange [0:*]\nset xrange [" << lo - pad << ":" << hi + pad << "]\nunset key\n";
+      for (const auto& [label, at] : f.marks)
+        s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 2 dt 2 lc rgb '#c03030'\n"
+          << "set label '" << gp(label) << "' at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
+      s << "plot '" << csv << "' skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
     } else {
       if (f.kind == Figure::Kind::to_scale) s << "set size ratio -1\n";
       s << "plot";
@@ -152,6 +185,8 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
   std::vector<Figure> figures;
   std::map<std::string, std::vector<const OutputValue*>> by_port, series_by_port;  // grouped by port name
   std::vector<std::string> port_order, series_order;
+  std::map<std::string, std::string> port_of, first_node_of;  // table group -> port name, its first node
+  std::map<std::string, int> groups_of_port;
   for (const OutputValue& o : result.outputs) {
     const std::string port = o.label.substr(o.label.find('.') + 1);
     const std::string node = o.label.substr(0, o.label.find('.'));
@@ -179,12 +214,40 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         if (!f.curves.empty()) figures.push_back(std::move(f));
         continue;
       }
+      if (t.histogram && !t.channels.empty() && !t.axis.values.empty()) {
+        Figure f;
+        f.kind = Figure::Kind::histogram;
+        f.name = file_safe(o.label);
+        f.title = o.label + (t.axis_marks.empty() ? std::string() : " against the spec limits");
+        Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units);
+        Column y = shown(t.channels.front().name, t.channels.front().dimension, t.channels.front().values,
+                         t.channels.front().display_unit, units);
+        std::vector<double> at;
+        for (const Table::Mark& m : t.axis_marks) at.push_back(m.value);
+        const Column marks = shown("", t.axis.dimension, at, t.axis.display_unit, units);
+        for (std::size_t k = 0; k < at.size(); ++k) f.marks.emplace_back(t.axis_marks[k].label, marks.values[k]);
+        f.xlabel = x.name;
+        f.ylabel = y.name;
+        f.curve_titles.push_back(o.label);
+        f.curves.emplace_back(std::move(x), std::move(y));
+        figures.push_back(std::move(f));
+        continue;
+      }
       if (t.axis.values.size() <= table_rows_shown) {
         small.push_back(&o);
         continue;
       }
-      if (!by_port.count(port)) port_order.push_back(port);
-      by_port[port].push_back(&o);
+      // Tables of one port are compared when their channels agree (a cam's svaj over cam angle, a
+      // valve's in time are two groups).
+      std::string group = port;
+      for (const Table::Column& c : t.channels) group += "\x1f" + c.name + ":" + c.dimension.describe();
+      if (!by_port.count(group)) {
+        port_order.push_back(group);
+        port_of[group] = port;
+        first_node_of[group] = node;
+        ++groups_of_port[port];
+      }
+      by_port[group].push_back(&o);
     } else if (o.value.kind() == ValueKind::series) {
       const Series& s = o.value.as_series();
       if (s.labels.size() == s.values.size() && !s.values.empty()) {
@@ -219,16 +282,40 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     }
     figures.push_back(std::move(f));
   }
-  for (const std::string& port : port_order) {
-    const auto& outs = by_port[port];
+  for (const std::string& group : port_order) {
+    const auto& outs = by_port[group];
+    const std::string& port = port_of[group];
+    // Names and titles say which nodes when one port has several groups.
+    const bool named = groups_of_port[port] > 1;
+    const std::string stem = named ? port + "_" + first_node_of[group] : port;
     const Table& first = outs.front()->value.as_table();
+    // Channels that share a dimension with another channel of the table are compared within one
+    // node's table (a spring line against its requirement, dynamic against kinematic lift); a
+    // channel with a dimension of its own is compared across nodes (every cam's acceleration).
+    std::vector<Dimension> dims;
+    std::map<std::size_t, int> channels_of;  // index in dims -> channels of that dimension
+    for (const Table::Column& c : first.channels) {
+      if (c.name == "crank_angle") continue;  // the axis again, doubled
+      auto it = std::find(dims.begin(), dims.end(), c.dimension);
+      if (it == dims.end()) it = dims.insert(dims.end(), c.dimension);
+      ++channels_of[static_cast<std::size_t>(it - dims.begin())];
+    }
+    auto shared_dimension = [&](const Table::Column& c) {
+      const auto it = std::find(dims.begin(), dims.end(), c.dimension);
+      return it != dims.end() && channels_of[static_cast<std::size_t>(it - dims.begin())] > 1;
+    };
     if (outs.size() > 1) {
-      // Several nodes' tables: a plot per channel, a curve per node.
+      // Several nodes' tables: a plot per lone channel, a curve per node.
       for (const Table::Column& channel : first.channels) {
-        if (channel.name == "crank_angle") continue;  // the axis again, doubled
+        if (channel.name == "crank_angle" || shared_dimension(channel)) continue;
         Figure f;
-        f.name = file_safe(port + "_" + channel.name);
+        f.name = file_safe(stem + "_" + channel.name);
         f.title = port + ": " + channel.name;
+        if (named) {
+          f.title = port + " of ";
+          for (std::size_t k = 0; k < outs.size(); ++k) f.title += (k ? ", " : "") + outs[k]->label.substr(0, outs[k]->label.find('.'));
+          f.title += ": " + channel.name;
+        }
         for (const OutputValue* o : outs) {
           const Table& t = o->value.as_table();
           const Table::Column* c = t.find(channel.name);
@@ -242,29 +329,31 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         }
         figures.push_back(std::move(f));
       }
-      continue;
     }
-    // One table: its channels grouped by dimension, a plot per group.
-    std::vector<Dimension> dims;
-    for (const Table::Column& c : first.channels)
-      if (c.name != "crank_angle" && std::find(dims.begin(), dims.end(), c.dimension) == dims.end()) dims.push_back(c.dimension);
-    for (const Dimension& d : dims) {
-      Figure f;
-      f.title = outs.front()->label;
-      std::string names;
-      for (const Table::Column& c : first.channels) {
-        if (c.name == "crank_angle" || !(c.dimension == d)) continue;
-        Column x = shown(first.axis.name, first.axis.dimension, first.axis.values, first.axis.display_unit, units);
-        Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
-        f.xlabel = x.name;
-        f.ylabel = y.unit.empty() ? d.describe() : d.describe() + " [" + y.unit + "]";
-        f.curve_titles.push_back(c.name);
-        names += (names.empty() ? "" : ", ") + c.name;
-        f.curves.emplace_back(std::move(x), std::move(y));
+    // Each node's table: its channels grouped by dimension, a plot per group (with several nodes,
+    // only the groups of more than one channel: the lone ones were overlaid above).
+    for (const OutputValue* o : outs) {
+      const Table& t = o->value.as_table();
+      for (std::size_t g = 0; g < dims.size(); ++g) {
+        if (outs.size() > 1 && channels_of[g] < 2) continue;
+        Figure f;
+        f.title = o->label;
+        std::string names;
+        for (const Table::Column& c : t.channels) {
+          if (c.name == "crank_angle" || !(c.dimension == dims[g])) continue;
+          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units);
+          Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
+          f.xlabel = x.name;
+          f.ylabel = y.unit.empty() ? quantity(dims[g]) : quantity(dims[g]) + " [" + y.unit + "]";
+          f.curve_titles.push_back(c.name);
+          names += (names.empty() ? "" : ", ") + c.name;
+          f.curves.emplace_back(std::move(x), std::move(y));
+        }
+        if (f.curves.empty()) continue;
+        f.title += ": " + names;
+        f.name = file_safe(o->label + "_" + f.curve_titles.front());
+        figures.push_back(std::move(f));
       }
-      f.title += ": " + names;
-      f.name = file_safe(outs.front()->label + "_" + f.curve_titles.front());
-      figures.push_back(std::move(f));
     }
   }
   return figures;

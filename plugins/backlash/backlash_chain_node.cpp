@@ -18,6 +18,7 @@
 // Compliance: measured play = clearance + load/stiffness, the elastic part reported apart.
 #include "chain_geometry.hpp"
 #include "node_types.hpp"
+#include "mc_histogram.hpp"
 #include "spec_limits.hpp"
 #include "stacking.hpp"
 
@@ -117,6 +118,7 @@ class BacklashChainType final : public NodeType {
         samples_param(),
         seed_param(),
         spec_param(dim::angle, "arcmin", "the angular backlash"),
+        histogram_bins_param(),
     };
     info_.inputs = {PortSpec::handle("joints", std::string(JointPlay::kind_name), "the hinges' plays, in chain order")
                         .many()};
@@ -156,13 +158,15 @@ class BacklashChainType final : public NodeType {
         PortSpec::scalar("angular_total_under_load", A, "rod_total_under_load/|R| (with compliance)", "arcmin"),
     };
     for (PortSpec& port : spec_outputs(true)) info_.outputs.push_back(std::move(port));
+    info_.outputs.push_back(mc_histogram_port("the angular backlash"));
     info_.effects = {
         {monte_carlo_effect, "sample every fit's hole and shaft (samples, seed), each play term truncated at zero, and "
                              "the actuator's backlash as normal with dL_act = 3 sigma, clipped at zero: the statistics "
                              "of the free play without linearisation",
          {"rod_backlash_mc_mean", "rod_backlash_mc_sigma", "rod_backlash_mc_q999", "angular_backlash_mc_mean",
-          "angular_backlash_mc_q999", "mc_mean_error", "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk"},
-         {"samples", "seed"}},
+          "angular_backlash_mc_q999", "mc_mean_error", "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk",
+          "mc_histogram"},
+         {"samples", "seed", "histogram_bins"}},
         {compliance_effect, "elastic deflection load/stiffness of the chain under the measuring load, reported apart "
                             "from the free play: measured play = clearance + load/stiffness",
          {"rod_elastic_deflection", "rod_total_under_load", "angular_total_under_load"},
@@ -242,7 +246,11 @@ class BacklashChainType final : public NodeType {
         for (const PlayTerm& t : joints[i]->terms()) stack.terms.push_back({k[i], t});
       const std::size_t samples = read_samples(p);
       const std::uint64_t seed = read_seed(p);
-      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed, spec.sample_limits(arm));
+      const std::size_t bins = ctx.wanted("mc_histogram") ? static_cast<std::size_t>(p.integer("histogram_bins")) : 0;
+      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed, spec.sample_limits(arm), bins);
+      if (bins)
+        out.set("mc_histogram", Value::table(mc_histogram_table(mc.histogram, "angular_backlash", dim::angle, "arcmin", spec,
+                                                                out, arm)));
       ctx.report_work("samples", static_cast<double>(samples));
       out.note(monte_carlo_note(samples, seed, mc.mean_error));
       if (spec.given()) out.note(spec_note(mc));

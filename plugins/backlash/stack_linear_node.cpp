@@ -5,6 +5,7 @@
 // m = nominal + (upper + lower)/2 and its half tolerance h = (upper - lower)/2 (the source's
 // A = A_nom + (dB + dH)/2, dA = (dB - dH)/2).
 #include "node_types.hpp"
+#include "mc_histogram.hpp"
 #include "spec_limits.hpp"
 #include "stacking.hpp"
 
@@ -56,6 +57,7 @@ class StackLinearType final : public NodeType {
         samples_param(),
         seed_param(),
         spec_param(dim::length, "mm", "the stack's result"),
+        histogram_bins_param(),
     };
     const auto L = dim::length;
     info_.outputs = {
@@ -80,11 +82,12 @@ class StackLinearType final : public NodeType {
         PortSpec::scalar("mc_sigma_error", L, "standard error of mc_sigma, mc_sigma/sqrt(2(N-1)) (with monte_carlo)", "mm"),
     };
     for (PortSpec& port : spec_outputs(true)) info_.outputs.push_back(std::move(port));
+    info_.outputs.push_back(mc_histogram_port("the stack"));
     info_.effects = {{monte_carlo_effect, "sample every link from its distribution (samples, seed) and report the "
-                                          "sample statistics with their standard errors",
+                                          "sample statistics with their standard errors and histogram",
                       {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999", "mc_mean_error", "mc_sigma_error",
-                       "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk"},
-                      {"samples", "seed"}}};
+                       "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk", "mc_histogram"},
+                      {"samples", "seed", "histogram_bins"}}};
     info_.work_counters = {"samples"};
   }
   const NodeInfo& info() const override { return info_; }
@@ -111,7 +114,9 @@ class StackLinearType final : public NodeType {
     }
     const std::size_t n = read_samples(p);
     const std::uint64_t seed = read_seed(p);
-    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed, spec.sample_limits());
+    const std::size_t bins = ctx.wanted("mc_histogram") ? static_cast<std::size_t>(p.integer("histogram_bins")) : 0;
+    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed, spec.sample_limits(), bins);
+    if (bins) out.set("mc_histogram", Value::table(mc_histogram_table(mc.histogram, "stack", dim::length, "mm", spec, out)));
     ctx.report_work("samples", static_cast<double>(n));
     out.note(monte_carlo_note(n, seed, mc.mean_error));
     if (spec.given()) out.note(spec_note(mc));

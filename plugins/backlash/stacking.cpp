@@ -146,7 +146,44 @@ double tail_quantile(std::vector<double>& v, double p, double threshold) {
 
 }  // namespace
 
-SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits) {
+void Histogram::add(const double* x, std::size_t n) {
+  const double inv = 1.0 / width, bins = static_cast<double>(counts.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = (x[i] - low) * inv;  // bin k holds k <= u < k + 1
+    if (u < 0.0) ++under;
+    else if (u < bins) ++counts[static_cast<std::size_t>(u)];
+    else if (x[i] <= top) ++counts.back();  // the top edge itself, when it belongs to the last bin
+    else ++over;
+  }
+}
+
+void Histogram::trim() {
+  std::size_t first = 0, last = counts.size();
+  while (first + 1 < last && counts[first] == 0) ++first;
+  while (last > first + 1 && counts[last - 1] == 0) --last;
+  if (last < counts.size()) top = low + static_cast<double>(last) * width;
+  low += static_cast<double>(first) * width;
+  counts = std::vector<std::size_t>(counts.begin() + static_cast<std::ptrdiff_t>(first), counts.begin() + static_cast<std::ptrdiff_t>(last));
+}
+
+Histogram histogram_over(double low, double high, std::size_t bins) {
+  Histogram h;
+  if (!(high > low)) {
+    const double w = low != 0.0 ? 1e-9 * std::abs(low) : 1e-30;
+    h.low = low - 0.5 * w;
+    h.width = w;
+    h.top = h.low + w;
+    h.counts.assign(1, 0);
+    return h;
+  }
+  h.low = low;
+  h.width = (high - low) / static_cast<double>(bins);
+  h.top = high;
+  h.counts.assign(bins, 0);
+  return h;
+}
+
+SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits, std::size_t bins) {
   if (samples.size() < 2) throw std::invalid_argument("Monte Carlo needs at least two samples");
   SampleSummary s;
   s.count = samples.size();
@@ -172,6 +209,10 @@ SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits)
   s.sigma = std::sqrt(squares / (n - 1.0));
   s.mean_error = s.sigma / std::sqrt(n);
   s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
+  if (bins > 0) {
+    s.histogram = histogram_over(low, high, bins);
+    s.histogram.add(samples.data(), samples.size());
+  }
   s.q_low = tail_quantile(samples, probability_minus_3_sigma, s.mean - 2.0 * s.sigma);
   s.q_high = tail_quantile(samples, probability_plus_3_sigma, s.mean + 2.0 * s.sigma);
   return s;
@@ -242,15 +283,26 @@ std::vector<double> all_samples(Sampler sampler, std::size_t count) {
 // be too thin to hold its rank (a heavy tail), the stream is run again from its seed with the
 // thresholds twice as far in. Memory: the tails, a few percent of the samples.
 template <class MakeSampler>
-SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const SampleLimits& limits) {
+SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const SampleLimits& limits, std::size_t bins) {
   constexpr std::size_t pilot_count = 1u << 16;
-  if (count <= 2 * pilot_count) return summarize(all_samples(make(), count), limits);
+  if (count <= 2 * pilot_count) return summarize(all_samples(make(), count), limits, bins);
   const SampleSummary pilot = summarize(all_samples(make(), pilot_count));
+  // The histogram's bins: `bins` across the pilot's range, as many again as a quarter of them each side.
+  Histogram bins_laid;
+  if (bins > 0) {
+    const Histogram across = histogram_over(pilot.min, pilot.max, bins);
+    const std::size_t margin = (bins + 3) / 4;
+    bins_laid.width = across.width;
+    bins_laid.low = across.low - static_cast<double>(margin) * across.width;
+    bins_laid.counts.assign(across.counts.size() + 2 * margin, 0);
+    bins_laid.top = bins_laid.low + static_cast<double>(bins_laid.counts.size()) * across.width;
+  }
   const double n = static_cast<double>(count);
   for (double reach = 2.0; reach >= 0.25; reach /= 2.0) {
     const double t_low = pilot.mean - reach * pilot.sigma, t_high = pilot.mean + reach * pilot.sigma;
     auto sampler = make();
     std::vector<double> buffer(block), low_tail, high_tail;
+    Histogram histogram = bins_laid;
     double shift = 0.0, sum = 0.0, squares = 0.0, low = 0.0, high = 0.0;
     std::size_t below = 0, above = 0;
     for (std::size_t start = 0; start < count; start += block) {
@@ -271,6 +323,7 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const
       }
       sum += block_sum;
       squares += block_squares;
+      if (!histogram.empty()) histogram.add(buffer.data(), m);
     }
     // The ranks a quantile interpolates between, and whether the tails hold them.
     auto ranks = [&](double p) {
@@ -292,6 +345,10 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const
     s.sigma_error = s.sigma / std::sqrt(2.0 * (n - 1.0));
     s.below = below;
     s.above = above;
+    if (!histogram.empty()) {
+      histogram.trim();
+      s.histogram = std::move(histogram);
+    }
     auto select = [](std::vector<double>& tail, std::size_t k, double frac) {
       std::nth_element(tail.begin(), tail.begin() + static_cast<std::ptrdiff_t>(k), tail.end());
       const double a = tail[k];
@@ -302,7 +359,7 @@ SampleSummary summarize_stream(const MakeSampler& make, std::size_t count, const
     s.q_high = select(high_tail, high_rank - high_first, high_frac);
     return s;
   }
-  return summarize(all_samples(make(), count), limits);  // tails never thin enough to hold the ranks
+  return summarize(all_samples(make(), count), limits, bins);  // tails never thin enough to hold the ranks
 }
 
 }  // namespace
@@ -316,13 +373,13 @@ std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count,
 }
 
 SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed,
-                                       const SampleLimits& limits) {
-  return summarize_stream([&] { return LinearStackSampler(links, seed); }, count, limits);
+                                       const SampleLimits& limits, std::size_t bins) {
+  return summarize_stream([&] { return LinearStackSampler(links, seed); }, count, limits, bins);
 }
 
 SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
-                                     const SampleLimits& limits) {
-  return summarize_stream([&] { return PlayStackSampler(stack, seed); }, count, limits);
+                                     const SampleLimits& limits, std::size_t bins) {
+  return summarize_stream([&] { return PlayStackSampler(stack, seed); }, count, limits, bins);
 }
 
 }  // namespace mechgraph::backlash

@@ -40,6 +40,26 @@ double term_sigma(const PlayTerm& term);
 inline constexpr double probability_minus_3_sigma = 0.0013498980316300946;
 inline constexpr double probability_plus_3_sigma = 1.0 - probability_minus_3_sigma;
 
+/// Counts of samples in equal bins [low + k width, low + (k + 1) width), k < counts.size(); the
+/// samples outside them counted apart.
+struct Histogram {
+  double low = 0.0;
+  double width = 0.0;
+  std::vector<std::size_t> counts;
+  double top = 0.0;       // the last bin holds samples up to here (its upper edge, or the largest sample)
+  std::size_t under = 0;  // below low
+  std::size_t over = 0;   // above top
+  bool empty() const { return counts.empty(); }
+  /// Adds n samples.
+  void add(const double* x, std::size_t n);
+  /// Drops the empty bins at both ends (keeps at least one bin).
+  void trim();
+};
+
+/// Bins spanning [low, high]: `bins` of width (high - low)/bins; when high == low, one bin around
+/// that value (width 1e-9 |low|, or 1e-30 at zero). A sample at `high` counts in the last bin.
+Histogram histogram_over(double low, double high, std::size_t bins);
+
 /// What Monte Carlo reports about its N samples.
 struct SampleSummary {
   std::size_t count = 0;
@@ -53,6 +73,7 @@ struct SampleSummary {
   double sigma_error = 0.0;  // standard error of sigma, sigma / sqrt(2 (N - 1)) (exact for normal samples)
   std::size_t below = 0;     // samples below SampleLimits::lower
   std::size_t above = 0;     // samples above SampleLimits::upper
+  Histogram histogram;       // when bins were asked for
 };
 
 /// Limits to count samples outside of (a specification); infinite by default (none counted).
@@ -61,8 +82,9 @@ struct SampleLimits {
   double upper = std::numeric_limits<double>::infinity();
 };
 
-/// Summarises N >= 2 samples (moments in two passes, the 3-sigma quantiles by selection in the tails).
-SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits = {});
+/// Summarises N >= 2 samples (moments in two passes, the 3-sigma quantiles by selection in the tails);
+/// with bins > 0 also a histogram of that many bins from the smallest sample to the largest.
+SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits = {}, std::size_t bins = 0);
 
 /// Quantile p of sorted samples, linear between order statistics (Hyndman-Fan type 7):
 /// h = (N - 1) p, x_(floor h) + (h - floor h)(x_(floor h + 1) - x_(floor h)).
@@ -96,9 +118,12 @@ std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count,
 /// summarize(sample_linear_stack(...)) and summarize(sample_play_stack(...)) without keeping the
 /// samples: the same order statistics, moments summed in one pass about the first sample (equal
 /// to the two-pass ones to rounding); memory for a few percent of them. For many samples.
+/// A histogram (bins > 0) streamed this way cannot wait for the extremes: its bins are laid over
+/// the range of a pilot of the first samples, `bins` across it and a quarter of it more on each
+/// side, the empty end bins then dropped; samples beyond are counted in under and over.
 SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed,
-                                       const SampleLimits& limits = {});
+                                       const SampleLimits& limits = {}, std::size_t bins = 0);
 SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
-                                     const SampleLimits& limits = {});
+                                     const SampleLimits& limits = {}, std::size_t bins = 0);
 
 }  // namespace mechgraph::backlash

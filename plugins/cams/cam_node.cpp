@@ -128,12 +128,8 @@ class CamNodeType final : public NodeType {
                                .at_least(8)
                                .at_most(1e6)
                                .as_knob());
-    info_.params.push_back(ParamSpec::number("checking_lift", dim::length,
-                                             "lift at which the events (opening, closing, duration, centreline) are "
-                                             "measured; the events table adds 0.050 in and the seat (zero lift)",
-                                             "mm")
-                               .with_default(1e-3)
-                               .positive());
+    info_.params.push_back(checking_lift_param("cam"));
+    info_.params.push_back(nose_timing_param());
     info_.params.push_back(ParamSpec::integer("curve_points", "points of the svaj table, evenly spaced over the event "
                                                               "widened by a tenth of its width each side")
                                .with_default(361.0)
@@ -150,14 +146,7 @@ class CamNodeType final : public NodeType {
     };
     info_.outputs.push_back(PortSpec::table(
         "svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
-    info_.outputs.push_back(PortSpec::table(
-        "events", "opening, closing, duration and centreline in cam and crank angle at checking_lift, 0.050 in and "
-                  "the seat, a row per checking lift the cam reaches"));
-    info_.outputs.push_back(PortSpec::scalar("opening_angle", dim::angle, "cam angle where the lift rises through checking_lift", "deg"));
-    info_.outputs.push_back(PortSpec::scalar("closing_angle", dim::angle, "cam angle where the lift falls through checking_lift", "deg"));
-    info_.outputs.push_back(PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg"));
-    info_.outputs.push_back(PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg"));
-    info_.outputs.push_back(PortSpec::scalar("centreline", dim::angle, "lobe centreline, halfway between opening and closing (cam angle)", "deg"));
+    for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
     for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
     info_.work_counters = {"evaluations"};
   }
@@ -190,9 +179,12 @@ class CamNodeType final : public NodeType {
       out.set("svaj", Value::table(svaj_table(*law, static_cast<int>(params.integer("curve_points")))));
       ctx.report_work("evaluations", static_cast<double>(params.integer("curve_points")));
     }
-    const bool events_wanted = ctx.wanted("events") || ctx.wanted("opening_angle") || ctx.wanted("closing_angle") ||
-                               ctx.wanted("duration") || ctx.wanted("crank_duration") || ctx.wanted("centreline");
-    if (events_wanted) set_events(*law, params.number("checking_lift"), samples, out, ctx);
+    if (lift_events_wanted(ctx)) {
+      long evaluations = 0;
+      set_lift_events(out, params, [&](double phi) { return law->at(phi).lift; }, law->knots(), law->max_lift(), "cam", samples,
+                      evaluations);
+      ctx.report_work("evaluations", static_cast<double>(evaluations));
+    }
   }
 
  private:
@@ -205,29 +197,6 @@ class CamNodeType final : public NodeType {
         make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle}, params, scratch);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     return law;
-  }
-
-  static void set_events(const CamLaw& law, double checking_lift, int samples, OutputSet& out, EvalContext& ctx) {
-    long evaluations = 0;
-    const auto e = events_at_lift(law, checking_lift, samples, evaluations);
-    if (!e) {
-      std::ostringstream m;
-      m << "checking_lift " << checking_lift * 1e3 << " mm is not below the cam's lift " << law.max_lift() * 1e3
-        << " mm: the events need a checking lift the cam reaches";
-      throw NodeError("checking_lift", m.str());
-    }
-    out.set_scalar("opening_angle", e->opening);
-    out.set_scalar("closing_angle", e->closing);
-    out.set_scalar("duration", e->duration);
-    out.set_scalar("crank_duration", 2.0 * e->duration);
-    out.set_scalar("centreline", e->centreline);
-    std::vector<double> knots{law.event_begin()};
-    for (double b : law.breakpoints()) knots.push_back(b);
-    knots.push_back(law.event_end());
-    // The last row (0) is seat to seat: the event's ends.
-    const std::vector<double> lifts{checking_lift, checking_lift_0050_in, 0.0};
-    out.set("events", Value::table(events_table([&](double phi) { return law.at(phi).lift; }, knots, lifts, samples, evaluations)));
-    ctx.report_work("evaluations", static_cast<double>(evaluations));
   }
 
   NodeInfo info_;

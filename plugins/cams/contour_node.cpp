@@ -160,9 +160,8 @@ class ContourNodeType final : public NodeType {
     const auto law = in.handle<CamLaw>("cam");
     const Follower f = follower_of(*law, p);
     long evaluations = 0;
-    std::vector<double> knots{-pi, law->event_begin()};
-    for (double b : law->breakpoints()) knots.push_back(b);
-    knots.push_back(law->event_end());
+    std::vector<double> knots = law->knots();
+    knots.insert(knots.begin(), -pi);
     knots.push_back(pi);
     const int samples = static_cast<int>(p.integer("samples"));
     refuse_undercut(*law, f, knots, samples, evaluations);

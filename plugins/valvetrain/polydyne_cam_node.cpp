@@ -38,12 +38,7 @@ class SynthesizedCam final : public CamLaw {
   }
   double event_begin() const override { return law_->event_begin() - ramp_; }
   double event_end() const override { return law_->event_end() + ramp_; }
-  std::vector<double> breakpoints() const override {
-    std::vector<double> b{law_->event_begin()};
-    for (double k : law_->breakpoints()) b.push_back(k);
-    b.push_back(law_->event_end());
-    return b;
-  }
+  std::vector<double> breakpoints() const override { return law_->knots(); }  // the ramps' ends too
   double max_lift() const override { return top_; }
   double base_radius() const override { return law_->base_radius(); }
   double roller_radius() const override { return law_->roller_radius(); }
@@ -140,9 +135,7 @@ class PolydyneCamType final : public NodeType {
                                 design->spring->stiffness(0.0), p.number("design_rpm") / 2.0, rocker, p.number("lash")};
     auto cam = std::make_shared<const SynthesizedCam>(law, drive, ramp);
     // The synthesised contour must stay convex enough for the flat tappet: r0 + h + h'' > 0.
-    std::vector<double> knots{cam->event_begin()};
-    for (double b : cam->breakpoints()) knots.push_back(b);
-    knots.push_back(cam->event_end());
+    const std::vector<double> knots = cam->knots();
     long evaluations = 0;
     const auto rho = numerics::minimize_piecewise(
         [&](double phi) {

@@ -67,6 +67,10 @@ class SpringDesignType final : public NodeType {
             .at_least(8)
             .at_most(1e6)
             .as_knob(),
+        ParamSpec::integer("curve_points", "points of the force_curve table, evenly spaced over the open period")
+            .with_default(361.0)
+            .at_least(3)
+            .at_most(1e6),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion at the design speed"),
@@ -94,6 +98,8 @@ class SpringDesignType final : public NodeType {
                          "least P0 + c h - K M_red |a(h)| over the negative-acceleration phase (negative: the line "
                          "dips below the requirement)", "N"),
         PortSpec::scalar("min_safety_factor", dim::none, "least (P0 + c h) / (M_red |a(h)|) over the negative phase"),
+        PortSpec::table("force_curve", "over cam angle through the open period: valve lift, the spring line P0 + c h, the "
+                                       "inertia force M_red a and the requirement K M_red |a| where the valve decelerates"),
     };
     info_.work_counters = {"iterations", "evaluations"};
   }
@@ -244,6 +250,28 @@ class SpringDesignType final : public NodeType {
     design->masses = masses;
     design->reduced_mass = M;
     design->safety_factor = K;
+    if (ctx.wanted("force_curve")) {
+      const auto n = static_cast<std::size_t>(p.integer("curve_points"));
+      Table t;
+      t.axis = {"cam_angle", dim::angle, std::vector<double>(n), "deg"};
+      t.add_channel("crank_angle", dim::angle, "deg");
+      t.add_channel("valve_lift", dim::length, "mm");
+      for (const char* name : {"spring_force", "inertia_force", "required_force"}) t.add_channel(name, dim::force, "N");
+      for (auto& c : t.channels) c.values.resize(n);
+      const double from = motion->open_begin(), to = motion->open_end();
+      for (std::size_t i = 0; i < n; ++i) {
+        const double phi = i + 1 == n ? to : from + (to - from) * static_cast<double>(i) / static_cast<double>(n - 1);
+        const LiftDerivatives x = motion->at(phi);
+        t.axis.values[i] = phi;
+        t.channels[0].values[i] = 2.0 * phi;
+        t.channels[1].values[i] = x.lift;
+        t.channels[2].values[i] = line.preload + line.rate * x.lift;
+        t.channels[3].values[i] = M * w * w * x.acceleration;
+        t.channels[4].values[i] = K * M * std::max(0.0, -w * w * x.acceleration);
+      }
+      ctx.report_work("evaluations", static_cast<double>(n));
+      out.set("force_curve", Value::table(std::move(t)));
+    }
     out.set("spring", Value::handle(spring));
     out.set("design", Value::handle(std::shared_ptr<const SpringDesign>(std::move(design))));
   }

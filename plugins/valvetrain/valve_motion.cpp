@@ -15,9 +15,7 @@ namespace mechgraph::valvetrain {
 CamValveMotion::CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash,
                          int samples, long& evaluations)
     : cam_(std::move(cam)), camshaft_speed_(camshaft_speed), rocker_ratio_(rocker_ratio), lash_(lash) {
-  std::vector<double> cam_knots{cam_->event_begin()};
-  for (double b : cam_->breakpoints()) cam_knots.push_back(b);
-  cam_knots.push_back(cam_->event_end());
+  const std::vector<double> cam_knots = cam_->knots();
   if (lash_ <= 0.0) {
     open_begin_ = cam_->event_begin();
     open_end_ = cam_->event_end();

@@ -1,7 +1,10 @@
-// valvetrain.valve_motion: valve kinematics at one engine speed (methods/valvetrain.md, stage 2).
+// valvetrain.valve_motion: valve kinematics at one engine speed (methods/valvetrain.md, stage 2),
+// with the curves and events at the valve ("Cam curves and events"): lift, velocity, acceleration
+// and jerk in time (w_k^k times the derivatives over cam angle), events at a checking valve lift.
 #include "node_types.hpp"
 #include "valve_motion.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
@@ -32,10 +35,13 @@ class ValveMotionType final : public NodeType {
             .at_least(8)
             .at_most(1e6)
             .as_knob(),
-        ParamSpec::integer("curve_points", "points of the lift_curve series over the open period")
+        ParamSpec::integer("curve_points", "points of the lift_curve series over the open period, and of the svaj "
+                                           "table over it widened by a tenth of its width each side")
             .with_default(361.0)
-            .at_least(2)
+            .at_least(3)
             .at_most(1e6),
+        checking_lift_param("valve"),
+        nose_timing_param(),
     };
     info_.inputs = {PortSpec::handle("cam", std::string(CamLaw::kind_name), "the cam's follower lift law")};
     info_.outputs = {
@@ -46,7 +52,10 @@ class ValveMotionType final : public NodeType {
         PortSpec::scalar("min_acceleration", dim::acceleration, "most negative valve acceleration (j_min)", "m/s^2"),
         PortSpec::scalar("open_angle", dim::angle, "cam angle over which the valve is open", "deg"),
         PortSpec::series("lift_curve", dim::length, "valve lift over cam angle (axis: rad from the nose)", "mm"),
+        PortSpec::table("svaj", "valve lift, velocity, acceleration and jerk in time over cam angle (and crank angle), "
+                                "curve_points rows"),
     };
+    for (PortSpec& port : lift_event_ports("valve")) info_.outputs.push_back(std::move(port));
     info_.work_counters = {"evaluations"};
   }
   const NodeInfo& info() const override { return info_; }
@@ -88,6 +97,28 @@ class ValveMotionType final : public NodeType {
       evaluations += n;
       out.set("lift_curve", Value::series(std::move(curve)));
     }
+    if (ctx.wanted("svaj")) {
+      const auto n = static_cast<int>(p.integer("curve_points"));
+      Table t = svaj_table([&](double phi) { return motion->at(phi); }, motion->open_begin(), motion->open_end(), n);
+      // Over cam angle to over time: d/dt = w_k d/dphi.
+      const char* names[3] = {"velocity", "acceleration", "jerk"};
+      const Dimension dims[3] = {dim::velocity, dim::acceleration, dim::length / dim::time.pow(3)};
+      const char* units[3] = {"m/s", "m/s^2", "m/s^3"};
+      double scale = 1.0;
+      for (int k = 0; k < 3; ++k) {
+        scale *= w;
+        Table::Column& c = t.channels[static_cast<std::size_t>(k + 2)];
+        if (c.name != names[k]) throw std::logic_error("svaj_table's channel order changed");
+        c.dimension = dims[k];
+        c.display_unit = units[k];
+        for (double& v : c.values) v *= scale;
+      }
+      evaluations += n;
+      out.set("svaj", Value::table(std::move(t)));
+    }
+    if (lift_events_wanted(ctx))
+      set_lift_events(out, p, [&](double phi) { return motion->at(phi).lift; }, knots, lift.value, "valve", samples,
+                      evaluations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     out.set_scalar("max_lift", lift.value);
     out.set_scalar("max_velocity", w * velocity.value);

@@ -1,17 +1,23 @@
 #include <mechgraph/domain/cam_curves.hpp>
 
+#include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace mechgraph {
 
 Table svaj_table(const CamLaw& law, int points) {
-  const double width = law.event_end() - law.event_begin();
-  const double from = std::max(-std::numbers::pi, law.event_begin() - 0.1 * width);
-  const double to = std::min(std::numbers::pi, law.event_end() + 0.1 * width);
+  return svaj_table([&](double phi) { return law.at(phi); }, law.event_begin(), law.event_end(), points);
+}
+
+Table svaj_table(const std::function<LiftDerivatives(double)>& at, double begin, double end, int points) {
+  const double width = end - begin;
+  const double from = std::max(-std::numbers::pi, begin - 0.1 * width);
+  const double to = std::min(std::numbers::pi, end + 0.1 * width);
   const auto n = static_cast<std::size_t>(std::max(points, 2));
   Table t;
   t.axis = {"cam_angle", dim::angle, std::vector<double>(n), "deg"};
@@ -26,7 +32,7 @@ Table svaj_table(const CamLaw& law, int points) {
   for (std::size_t i = 0; i < n; ++i) {
     // The last point exactly at `to`: no rounding past +-pi.
     const double phi = i + 1 == n ? to : from + (to - from) * static_cast<double>(i) / static_cast<double>(n - 1);
-    const LiftDerivatives d = law.at(phi);
+    const LiftDerivatives d = at(phi);
     t.axis.values[i] = phi;
     (*column[0])[i] = 2.0 * phi;
     (*column[1])[i] = d.lift;
@@ -51,19 +57,19 @@ std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& li
 }
 
 std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift, int samples, long& evaluations) {
-  std::vector<double> knots{law.event_begin()};
-  for (double b : law.breakpoints()) knots.push_back(b);
-  knots.push_back(law.event_end());
-  return events_at_lift([&](double phi) { return law.at(phi).lift; }, knots, checking_lift, samples, evaluations);
+  return events_at_lift([&](double phi) { return law.at(phi).lift; }, law.knots(), checking_lift, samples, evaluations);
 }
 
 Table events_table(const std::function<double(double)>& lift, std::span<const double> knots,
-                   const std::vector<double>& checking_lifts, int samples, long& evaluations) {
+                   const std::vector<double>& checking_lifts, int samples, long& evaluations,
+                   std::optional<double> nose_timing) {
   Table t;
   t.axis = {"checking_lift", dim::length, {}, "mm"};
   const char* names[8] = {"opening",       "closing",       "duration",       "centreline",
                           "crank_opening", "crank_closing", "crank_duration", "crank_centreline"};
   for (const char* n : names) t.add_channel(n, dim::angle, "deg");
+  if (nose_timing)
+    for (const char* n : {"opening_atdc", "closing_atdc", "centreline_atdc"}) t.add_channel(n, dim::angle, "deg");
   for (double h : checking_lifts) {
     std::optional<LiftEvents> e;
     if (h == 0.0) e = LiftEvents{knots.front(), knots.back(), knots.back() - knots.front(), 0.5 * (knots.front() + knots.back())};
@@ -71,12 +77,110 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
     if (!e) continue;
     t.axis.values.push_back(h);
     const double cam[4] = {e->opening, e->closing, e->duration, e->centreline};
-    for (int k = 0; k < 4; ++k) {
-      t.channels[static_cast<std::size_t>(k)].values.push_back(cam[k]);
-      t.channels[static_cast<std::size_t>(k + 4)].values.push_back(2.0 * cam[k]);
+    for (std::size_t k = 0; k < 4; ++k) {
+      t.channels[k].values.push_back(cam[k]);
+      t.channels[k + 4].values.push_back(2.0 * cam[k]);
+    }
+    if (nose_timing) {
+      // Crank angle after the overlap TDC: the nose's, plus twice the cam angle from the nose.
+      t.channels[8].values.push_back(*nose_timing + 2.0 * e->opening);
+      t.channels[9].values.push_back(*nose_timing + 2.0 * e->closing);
+      t.channels[10].values.push_back(*nose_timing + 2.0 * e->centreline);
     }
   }
   return t;
+}
+
+namespace {
+
+std::string degrees(double rad) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f deg", std::abs(rad) * 180.0 / std::numbers::pi);
+  return text;
+}
+
+// An angle after the overlap TDC as "x deg BTDC/ATDC" about `dead_centre` (0 for TDC, +-pi for BDC).
+std::string about(double after_tdc, double dead_centre, const char* centre) {
+  const double from = after_tdc - dead_centre;
+  return degrees(from) + (from < 0.0 ? " B" : " A") + centre;
+}
+
+}  // namespace
+
+std::string quote_events(const LiftEvents& e, double nose_timing) {
+  const double pi = std::numbers::pi;
+  const double opening = nose_timing + 2.0 * e.opening, closing = nose_timing + 2.0 * e.closing;
+  // An intake opens about the overlap TDC and closes about the BDC after it; an exhaust opens about
+  // the BDC before that TDC and closes about the TDC.
+  if (nose_timing >= 0.0) return "intake: opens " + about(opening, 0.0, "TDC") + ", closes " + about(closing, pi, "BDC");
+  return "exhaust: opens " + about(opening, -pi, "BDC") + ", closes " + about(closing, 0.0, "TDC");
+}
+
+ParamSpec checking_lift_param(const std::string& whose) {
+  return ParamSpec::number("checking_lift", dim::length,
+                           "lift of the " + whose + " at which the events (opening, closing, duration, centreline) are "
+                           "measured; the events table adds 0.050 in and the seat (zero lift)",
+                           "mm")
+      .with_default(1e-3)
+      .positive();
+}
+
+ParamSpec nose_timing_param() {
+  return ParamSpec::number("nose_timing", dim::angle,
+                           "installed lobe: crank angle of the nose after the overlap TDC (intake positive, about 100 "
+                           "to 115 deg; exhaust negative); the events table then adds opening_atdc, closing_atdc, "
+                           "centreline_atdc and a note quotes the events from TDC and BDC",
+                           "deg")
+      .optional()
+      .at_least(-2.0 * std::numbers::pi)
+      .at_most(2.0 * std::numbers::pi);
+}
+
+std::vector<PortSpec> lift_event_ports(const std::string& whose) {
+  return {
+      PortSpec::table("events", "opening, closing, duration and centreline of the " + whose +
+                                    " in cam and crank angle at checking_lift, 0.050 in and the seat, a row per "
+                                    "checking lift reached (with nose_timing also from the overlap TDC)"),
+      PortSpec::scalar("opening_angle", dim::angle, "cam angle where the " + whose + " lift rises through checking_lift", "deg"),
+      PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg"),
+      PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg"),
+      PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg"),
+      PortSpec::scalar("centreline", dim::angle, "halfway between opening and closing (cam angle from the nose)", "deg"),
+  };
+}
+
+bool lift_events_wanted(const EvalContext& ctx) {
+  for (const char* port : {"events", "opening_angle", "closing_angle", "duration", "crank_duration", "centreline"})
+    if (ctx.wanted(port)) return true;
+  return false;
+}
+
+void set_lift_events(OutputSet& out, const ParamSet& p, const std::function<double(double)>& lift,
+                     std::span<const double> knots, double max_lift, const std::string& whose, int samples,
+                     long& evaluations) {
+  const double checking_lift = p.number("checking_lift");
+  const auto e = events_at_lift(lift, knots, checking_lift, samples, evaluations);
+  if (!e) {
+    char m[200];
+    std::snprintf(m, sizeof m, "checking_lift %g mm is not below the %s's lift %g mm: the events need a checking lift the %s reaches",
+                  checking_lift * 1e3, whose.c_str(), max_lift * 1e3, whose.c_str());
+    throw NodeError("checking_lift", m);
+  }
+  out.set_scalar("opening_angle", e->opening);
+  out.set_scalar("closing_angle", e->closing);
+  out.set_scalar("duration", e->duration);
+  out.set_scalar("crank_duration", 2.0 * e->duration);
+  out.set_scalar("centreline", e->centreline);
+  std::optional<double> nose_timing;
+  if (p.has("nose_timing")) nose_timing = p.number("nose_timing");
+  // The last row (0) is seat to seat: the event's ends.
+  const std::vector<double> lifts{checking_lift, checking_lift_0050_in, 0.0};
+  out.set("events", Value::table(events_table(lift, knots, lifts, samples, evaluations, nose_timing)));
+  if (nose_timing) {
+    char at[64];
+    std::snprintf(at, sizeof at, " at %g mm %s lift", checking_lift * 1e3, whose.c_str());
+    out.note(quote_events(*e, *nose_timing) + at);
+  }
 }
 
 }  // namespace mechgraph

@@ -10,19 +10,8 @@
 #include <vector>
 
 namespace mechgraph {
-namespace {
-
-std::vector<double> knots_of(const CamLaw& law) {
-  std::vector<double> knots{law.event_begin()};
-  for (double b : law.breakpoints()) knots.push_back(b);
-  knots.push_back(law.event_end());
-  return knots;
-}
-
-}  // namespace
-
 double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluations) {
-  const std::vector<double> knots = knots_of(law);
+  const std::vector<double> knots = law.knots();
   auto acceleration = [&](double x) { return law.at(x).acceleration; };
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a = knots[p], b = knots[p + 1];
@@ -53,7 +42,7 @@ double contour_curvature_radius(const CamLaw& law, double, const LiftDerivatives
 
 CamSummary summarize(const CamLaw& law, int samples) {
   CamSummary s;
-  const std::vector<double> knots = knots_of(law);
+  const std::vector<double> knots = law.knots();
   const std::span<const double> k(knots);
   // |velocity|, both acceleration extremes and the contour's curvature from one sampling pass.
   numerics::Extremum peaks[4];

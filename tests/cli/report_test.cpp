@@ -34,8 +34,13 @@ TEST_CASE("mechgraph report: a self-contained page with every curve plotted, ren
     std::vector<const char*> expected;  // in the page
   };
   const std::vector<Case> cases{
-      {"valvetrain_cams.yaml", "cams", 5, {"svaj: acceleration", "Stage 4 by the source", "kurz.events"}},
-      {"backlash_chain.yaml", "chain", 2, {"chain.joint_contribution_rss", "Against the specification", "samples outside spec"}},
+      {"valvetrain_cams.yaml", "cams", 5,
+       {"svaj of arc, kurz, poly: acceleration", "svaj of v_arc, v_kurz, v_poly: acceleration", "Stage 4 by the source",
+        "kurz.events", "v_kurz.events", "sd_kurz.force_curve: spring_force, inertia_force, required_force",
+        "intake: opens"}},
+      {"backlash_chain.yaml", "chain", 3,
+       {"chain.joint_contribution_rss", "Against the specification", "samples outside spec",
+        "chain.mc_histogram against the spec limits", ">USL<"}},
       {"cam_contour.yaml", "contour", 4, {"flat.contour (to scale)", "roller.contour (to scale)", "pitch curve"}},
   };
   for (const Case& c : cases) {

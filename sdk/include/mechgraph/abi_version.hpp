@@ -10,4 +10,4 @@
 // 4: the entry is a plain C function `mechgraph_plugin_entry` (no Boost.DLL alias); the descriptor
 //    carries the SDK version; DomainObject::contract_problem (the host checks interface contracts);
 //    ParamSpec::example_value; out-of-line destructors (key functions) for every shared interface.
-#define MECHGRAPH_PLUGIN_ABI_VERSION 5
+#define MECHGRAPH_PLUGIN_ABI_VERSION 6

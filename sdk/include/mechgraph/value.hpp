@@ -50,6 +50,15 @@ struct Table {
   /// The channels x, y (and any pair prefix_x, prefix_y) trace closed plane curves in the axis'
   /// order (a cam contour and its pitch curve): writers also give them as DXF polylines.
   bool closed_curve = false;
+  /// A histogram: the axis holds the centres of equal bins, each channel the counts in them.
+  /// Writers draw bars that touch; the CSV keeps the centres and counts.
+  bool histogram = false;
+  /// Reference values on the axis (a specification's limits): plots draw them as vertical lines.
+  struct Mark {
+    std::string label;
+    double value = 0.0;  // SI, of the axis' dimension
+  };
+  std::vector<Mark> axis_marks;
 
   /// The channel called `name`, or nullptr.
   const Column* find(std::string_view name) const {

@@ -36,7 +36,7 @@ nodes:
   res:    { type: valvetrain.resonance, inputs: { valve: v.motion, design: sd.design }, params: { drive_stiffness: 4000 N/mm } }
 )" + extra + R"(
 outputs: [ v.motion, v.min_acceleration, train.mass_without_spring, sd.spring, sd.design, sd.max_force, sd.preload,
-           sd.stiffness, sd.reduced_mass, sd.spring_mass, sd.envelope_margin, sd.min_safety_factor, sd.iterations,
+           sd.stiffness, sd.reduced_mass, sd.force_curve, sd.spring_mass, sd.envelope_margin, sd.min_safety_factor, sd.iterations,
            res.omega0, res.harmonic, res.force_amplitude, res.next_force_amplitude, res.vibration_amplitude,
            res.distortion_percent, res.lift_rms, res.damping_coefficient, res.worst_distortion_percent ]
 )";
@@ -134,6 +134,42 @@ TEST_CASE("spring_design, source rule: P_max = K M_red |a_min|, the margin away 
     return a < 0 ? -(p0 + c * v->at(phi).lift) / (M * -a) : -1e300;
   });
   CHECK_THAT(num(r, "sd.min_safety_factor"), WithinRel(least_sf, 1e-7));
+}
+
+TEST_CASE("spring_design force_curve: the spring line against K times the inertia force over the open period", "[valvetrain][stage4]") {
+  // The curve the report plots: the line from the node's own preload and rate, the inertia force
+  // from the valve's acceleration in time (read through the motion handle: a second path), the
+  // requirement never above the free-length line and touching it near the tangent point.
+  for (const char* rule : {"", ", rule: source, preload_ratio: 0.45"}) {
+    INFO("rule" << rule);
+    const RunResult r = run(stage4_scene(rule));
+    const auto v = handle<ValveMotion>(r, "v.motion");
+    const Table& t = output(r, "sd.force_curve").as_table();
+    const double K = 1.5, M = num(r, "sd.reduced_mass"), p0 = num(r, "sd.preload"), c = num(r, "sd.stiffness");
+    REQUIRE(t.axis.values.size() == 361);
+    CHECK(t.axis.values.front() == v->open_begin());
+    CHECK(t.axis.values.back() == v->open_end());
+    const auto& lift = t.find("valve_lift")->values;
+    const auto& spring = t.find("spring_force")->values;
+    const auto& inertia = t.find("inertia_force")->values;
+    const auto& required = t.find("required_force")->values;
+    CHECK(t.find("spring_force")->dimension == dim::force);
+    double least_gap = 1e300, most_required = 0.0;
+    for (std::size_t i = 0; i < lift.size(); ++i) {
+      const double phi = t.axis.values[i];
+      CHECK_THAT(lift[i], WithinAbs(v->at(phi).lift, 1e-15));
+      CHECK_THAT(spring[i], WithinRel(p0 + c * lift[i], 1e-13));
+      CHECK_THAT(inertia[i], WithinAbs(M * v->acceleration_in_time(phi), 1e-9 * num(r, "sd.max_force")));
+      CHECK_THAT(required[i], WithinAbs(K * std::max(0.0, -inertia[i]), 1e-9 * num(r, "sd.max_force")));
+      least_gap = std::min(least_gap, spring[i] - required[i]);
+      most_required = std::max(most_required, required[i]);
+    }
+    // The curve's least gap is the node's envelope margin, up to the grid missing the exact extremum.
+    CHECK(least_gap >= num(r, "sd.envelope_margin") - 1e-9 * num(r, "sd.max_force"));
+    CHECK(least_gap <= num(r, "sd.envelope_margin") + 2e-3 * num(r, "sd.max_force"));
+    CHECK(most_required <= K * M * std::abs(num(r, "v.min_acceleration")) * (1 + 1e-12));
+    CHECK_THAT(most_required, WithinRel(K * M * std::abs(num(r, "v.min_acceleration")), 1e-3));
+  }
 }
 
 TEST_CASE("resonance: omega0, the harmonic, F_k against quadrature, A_el and distortion", "[valvetrain][stage4]") {

@@ -1,10 +1,12 @@
-// Valve motion and time-area against closed forms (methods/valvetrain.md, stages 2-3).
+// Valve motion and time-area against closed forms (methods/valvetrain.md, stages 2-3); the valve's
+// SVAJ curves in time and its events at a checking valve lift ("Cam curves and events").
 #include "test_support.hpp"
 
 #include "flow_area.hpp"
 #include "node_types.hpp"
 #include "valve_motion.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/errors.hpp>
 
@@ -48,16 +50,16 @@ struct Study {
 };
 
 
-OutputSet run_motion(const Study& s, double rocker, double lash) {
+OutputSet run_motion(const Study& s, double rocker, double lash, std::map<std::string, ParamValue> more = {}) {
   auto type = valvetrain::make_valve_motion_type();
   InputSet in;
   in.add("cam", Value::handle(std::make_shared<const CosineBump>(s.H, s.phi_d)));
   OutputSet out;
   RecordingContext ctx;
-  type->evaluate(defaults_of(type->info(), {{"rpm", ParamValue::of_number(s.rpm)},
-                                            {"rocker_ratio", ParamValue::of_number(rocker)},
-                                            {"lash", ParamValue::of_number(lash)}}),
-                 in, out, ctx);
+  more["rpm"] = ParamValue::of_number(s.rpm);
+  more["rocker_ratio"] = ParamValue::of_number(rocker);
+  more["lash"] = ParamValue::of_number(lash);
+  type->evaluate(defaults_of(type->info(), more), in, out, ctx);
   CHECK(ctx.work.at("evaluations") > 0);
   return out;
 }
@@ -102,6 +104,73 @@ TEST_CASE("valve lash shortens the open period where i h = lash", "[valvetrain]"
   CHECK_THROWS_MATCHES(run_motion(s, 1.0, 10e-3), NodeError, Catch::Matchers::Predicate<NodeError>([](const NodeError& e) {
                          return e.parameter() == "lash" && std::string(e.what()).find("never opens") != std::string::npos;
                        }));
+}
+
+TEST_CASE("valve events at a checking valve lift: rocker ratio and lash in the closed form", "[valvetrain][events]") {
+  // x = i H/2 (1 + cos k phi) - lash reaches c at phi = -+acos(2 (c + lash)/(i H) - 1)/k.
+  const Study s;
+  const double i = 1.5, lash = 0.25e-3, k = 2 * pi / s.phi_d, deg = pi / 180;
+  auto at = [&](double c) { return std::acos(2 * (c + lash) / (i * s.H) - 1) / k; };
+  const OutputSet m = run_motion(s, i, lash);
+  CHECK_THAT(scalar(m, "opening_angle"), WithinAbs(-at(1e-3), 1e-12));
+  CHECK_THAT(scalar(m, "closing_angle"), WithinAbs(at(1e-3), 1e-12));
+  CHECK_THAT(scalar(m, "duration"), WithinAbs(2 * at(1e-3), 1e-12));
+  CHECK_THAT(scalar(m, "crank_duration"), WithinAbs(4 * at(1e-3), 1e-12));
+  CHECK_THAT(scalar(m, "centreline"), WithinAbs(0.0, 1e-12));
+  const Table& e = m.all().at("events").as_table();
+  REQUIRE(e.axis.values.size() == 3);  // 1 mm, 0.050 in, the seat
+  CHECK_THAT(e.find("crank_opening")->values[1], WithinAbs(-2 * at(0.050 * 25.4e-3), 1e-12));
+  // Seat to seat: the open period, which the lash shortens.
+  CHECK_THAT(e.find("duration")->values[2], WithinAbs(scalar(m, "open_angle"), 1e-14));
+  CHECK(e.find("opening_atdc") == nullptr);  // no installed timing given
+  CHECK(m.all().at("events").as_table().channels.size() == 8);
+
+  // Installed: the nose 105 deg after the overlap TDC (an intake); events from TDC, quoted in a note.
+  const OutputSet timed = run_motion(s, i, lash, {{"nose_timing", ParamValue::of_number(105 * deg)}});
+  const Table& t = timed.all().at("events").as_table();
+  CHECK_THAT(t.find("opening_atdc")->values[0], WithinAbs(105 * deg - 2 * at(1e-3), 1e-12));
+  CHECK_THAT(t.find("closing_atdc")->values[0], WithinAbs(105 * deg + 2 * at(1e-3), 1e-12));
+  CHECK_THAT(t.find("centreline_atdc")->values[0], WithinAbs(105 * deg, 1e-12));
+
+  // A checking lift the valve never reaches names the parameter and the valve's lift.
+  CHECK_THROWS_MATCHES(run_motion(s, i, lash, {{"checking_lift", ParamValue::of_number(20e-3)}}), NodeError,
+                       Catch::Matchers::Predicate<NodeError>([](const NodeError& e) {
+                         return e.parameter() == "checking_lift" && std::string(e.what()).find("valve's lift 13.25 mm") != std::string::npos;
+                       }));
+}
+
+TEST_CASE("events quoted the engine way from the installed nose", "[valvetrain][events]") {
+  const double deg = pi / 180;
+  // 250 deg crank at the checking lift, centred on the nose: +-62.5 deg cam.
+  const LiftEvents e{-62.5 * deg, 62.5 * deg, 125 * deg, 0.0};
+  // Intake nose at 110 ATDC: opens 110 - 125 = -15 (15 BTDC), closes 235 (55 ABDC).
+  CHECK(quote_events(e, 110 * deg) == "intake: opens 15.0 deg BTDC, closes 55.0 deg ABDC");
+  // Exhaust nose at 112 BTDC: opens -237 (57 BBDC), closes 13 ATDC.
+  CHECK(quote_events(e, -112 * deg) == "exhaust: opens 57.0 deg BBDC, closes 13.0 deg ATDC");
+  // An intake opening late: after TDC.
+  CHECK(quote_events(e, 130 * deg) == "intake: opens 5.0 deg ATDC, closes 75.0 deg ABDC");
+}
+
+TEST_CASE("valve svaj: lift and its derivatives in time, against the closed form", "[valvetrain][events]") {
+  const Study s;
+  const double i = 1.4, k = 2 * pi / s.phi_d, w = s.rpm / 2;
+  const OutputSet m = run_motion(s, i, 0.0, {{"curve_points", ParamValue::of_integer(101)}});
+  const Table& t = m.all().at("svaj").as_table();
+  REQUIRE(t.axis.values.size() == 101);
+  CHECK_THAT(t.axis.values.front(), WithinAbs(-0.6 * s.phi_d, 1e-15));  // the open period widened a tenth each side
+  CHECK(t.find("velocity")->dimension == dim::velocity);
+  CHECK(t.find("acceleration")->dimension == dim::acceleration);
+  CHECK(t.find("jerk")->display_unit == "m/s^3");
+  const double A = i * s.H / 2;
+  for (std::size_t r = 0; r < t.axis.values.size(); ++r) {
+    const double phi = t.axis.values[r];
+    const bool open = std::abs(phi) < s.phi_d / 2;
+    CHECK_THAT(t.find("crank_angle")->values[r], WithinAbs(2 * phi, 1e-15));
+    CHECK_THAT(t.find("lift")->values[r], WithinAbs(open ? A * (1 + std::cos(k * phi)) : 0.0, 1e-15));
+    CHECK_THAT(t.find("velocity")->values[r], WithinAbs(open ? -w * A * k * std::sin(k * phi) : 0.0, 1e-11));
+    CHECK_THAT(t.find("acceleration")->values[r], WithinAbs(open ? -w * w * A * k * k * std::cos(k * phi) : 0.0, 1e-7));
+    CHECK_THAT(t.find("jerk")->values[r], WithinAbs(open ? w * w * w * A * k * k * k * std::sin(k * phi) : 0.0, 1e-3));
+  }
 }
 
 TEST_CASE("time-area: exact quadrature against the closed form, rectangle sum converges", "[valvetrain]") {

@@ -6,10 +6,12 @@
 // per cam turn). Angles are the law's (radians from its zero, the nose of a symmetric lobe); see
 // docs/methods/valvetrain.md, "Cam curves and events". Built-in cam nodes output exactly these.
 #include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/node.hpp>
 
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace mechgraph {
@@ -19,6 +21,8 @@ namespace mechgraph {
 /// the base circle. Table: axis cam_angle [rad]; channels crank_angle [rad] (= 2 cam_angle), lift
 /// [m], velocity [m/rad], acceleration [m/rad^2], jerk [m/rad^3].
 Table svaj_table(const CamLaw& law, int points);
+/// The same for any lift with derivatives over cam angle `at(phi)` whose event is [begin, end].
+Table svaj_table(const std::function<LiftDerivatives(double)>& at, double begin, double end, int points);
 
 /// Events at one checking lift, cam angles in radians.
 struct LiftEvents {
@@ -39,8 +43,31 @@ std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift
 /// One row per checking lift the lift reaches (in the order given; lifts it never reaches are
 /// left out; 0 stands for the seat: the ends of the knots, i.e. of the event): axis checking_lift [m]; channels opening, closing, duration, centreline (cam angle,
 /// rad) and crank_opening, crank_closing, crank_duration, crank_centreline (crank angle, rad).
+/// With `nose_timing` (the installed lobe: the crank angle of its nose after the overlap TDC),
+/// also opening_atdc, closing_atdc, centreline_atdc: crank angle after that TDC, nose_timing + 2 phi.
 Table events_table(const std::function<double(double)>& lift, std::span<const double> knots,
-                   const std::vector<double>& checking_lifts, int samples, long& evaluations);
+                   const std::vector<double>& checking_lifts, int samples, long& evaluations,
+                   std::optional<double> nose_timing = std::nullopt);
+
+/// Events quoted the engine way from the installed lobe's crank angles after the overlap TDC:
+/// a lobe whose nose stands after that TDC (nose_timing > 0) is an intake: "opens 12.0 deg BTDC,
+/// closes 52.0 deg ABDC"; one before it an exhaust: "opens 52.0 deg BBDC, closes 12.0 deg ATDC".
+std::string quote_events(const LiftEvents& e, double nose_timing);
+
+// The events every node with a lift curve gives (built-in cams, valve motion): a `checking_lift`
+// parameter (default 1 mm), an optional `nose_timing` parameter, and the ports below.
+ParamSpec checking_lift_param(const std::string& whose);
+ParamSpec nose_timing_param();
+/// The events table and the scalars opening_angle, closing_angle, duration, crank_duration, centreline.
+std::vector<PortSpec> lift_event_ports(const std::string& whose);
+/// Whether anything reads one of lift_event_ports (they cost a root search each: skipped otherwise).
+bool lift_events_wanted(const EvalContext& ctx);
+/// Sets lift_event_ports from `lift` (smooth between `knots`, which span the event) at the
+/// parameters' checking lift, 0.050 in and the seat; with nose_timing a note quotes them from TDC.
+/// Throws NodeError("checking_lift") when the lift (at most `max_lift`) never reaches it.
+void set_lift_events(OutputSet& out, const ParamSet& p, const std::function<double(double)>& lift,
+                     std::span<const double> knots, double max_lift, const std::string& whose, int samples,
+                     long& evaluations);
 
 /// 0.050 in in metres: the American checking lift, beside the European 1 mm.
 inline constexpr double checking_lift_0050_in = 0.050 * 25.4e-3;

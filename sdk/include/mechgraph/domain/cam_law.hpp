@@ -73,6 +73,14 @@ class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
     if (phi <= event_begin() || phi >= event_end()) return {};
     return evaluate_in_event(phi);
   }
+  /// event_begin(), the breakpoints, event_end(): the ends of the smooth pieces of the event, for
+  /// the searches and integrals that split there.
+  std::vector<double> knots() const {
+    std::vector<double> k{event_begin()};
+    for (double b : breakpoints()) k.push_back(b);
+    k.push_back(event_end());
+    return k;
+  }
 };
 
 }  // namespace mechgraph

@@ -203,9 +203,7 @@ inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_l
 inline Report check_cam_peaks(const CamLaw& law, const OutputSet& outputs, const std::string& suite, int samples_per_piece = 4000) {
   using detail::num;
   Report r;
-  std::vector<double> knots{law.event_begin()};
-  for (double x : law.breakpoints()) knots.push_back(x);
-  knots.push_back(law.event_end());
+  const std::vector<double> knots = law.knots();
   double v = 0.0, a_max = -std::numeric_limits<double>::infinity(), a_min = std::numeric_limits<double>::infinity(), scale = 0.0;
   for (std::size_t p = 0; p + 1 < knots.size(); ++p)
     for (int i = -1; i <= samples_per_piece; ++i) {
