@@ -32,7 +32,7 @@ std::string default_text(const ParamSpec& p) {
     std::string out = p.required ? "required" : "optional";
     if (p.example_value && (p.kind == ParamKind::number || p.kind == ParamKind::integer))
       out += ", e.g. " + shown(p.example_value->number, p);
-    else if (p.example_value) out += ", e.g. " + p.example_value->text;
+    else if (p.example_value && !p.example_value->text.empty()) out += ", e.g. " + p.example_value->text;
     return out;
   }
   const ParamValue& v = *p.default_value;

@@ -181,7 +181,7 @@ class CamNodeType final : public NodeType {
     }
     if (lift_events_wanted(ctx)) {
       long evaluations = 0;
-      set_lift_events(out, params, [&](double phi) { return law->at(phi).lift; }, law->knots(), law->max_lift(), "cam", samples,
+      set_lift_events(out, ctx, params, [&](double phi) { return law->at(phi).lift; }, law->knots(), law->max_lift(), "cam", samples,
                       evaluations);
       ctx.report_work("evaluations", static_cast<double>(evaluations));
     }

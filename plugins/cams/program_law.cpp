@@ -150,7 +150,12 @@ CamLawDefinition program_law_definition() {
                    ParamSpec::choice("law", laws, "normalised law of a rise or return").with_default("cycloidal")},
                   "the segments from the start of lift, e.g. [{type: rise, angle: 60 deg, lift: 9 mm, law: poly345}, "
                   "{type: dwell, angle: 10 deg}, {type: return, angle: 80 deg, lift: 9 mm}]; the lift must end at 0")
-                  };
+                  .with_example(std::vector<Record>{
+                      {{"type", ParamValue::of_choice("rise")}, {"angle", ParamValue::of_number(55.0 * pi / 180.0)},
+                       {"lift", ParamValue::of_number(9e-3)}, {"law", ParamValue::of_choice("poly345")}},
+                      {{"type", ParamValue::of_choice("dwell")}, {"angle", ParamValue::of_number(10.0 * pi / 180.0)}},
+                      {{"type", ParamValue::of_choice("return")}, {"angle", ParamValue::of_number(65.0 * pi / 180.0)},
+                       {"lift", ParamValue::of_number(9e-3)}, {"law", ParamValue::of_choice("cycloidal")}}})};
   d.extra_outputs = {
       PortSpec::table("joints", "a row per joint (the event's ends included) at its cam angle: the jumps of lift, velocity, "
                                 "acceleration and jerk (right minus left) and first_jump, the lowest derivative that "

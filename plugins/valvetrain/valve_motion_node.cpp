@@ -117,7 +117,7 @@ class ValveMotionType final : public NodeType {
       out.set("svaj", Value::table(std::move(t)));
     }
     if (lift_events_wanted(ctx))
-      set_lift_events(out, p, [&](double phi) { return motion->at(phi).lift; }, knots, lift.value, "valve", samples,
+      set_lift_events(out, ctx, p, [&](double phi) { return motion->at(phi).lift; }, knots, lift.value, "valve", samples,
                       evaluations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     out.set_scalar("max_lift", lift.value);

@@ -149,6 +149,13 @@ ParamSpec& ParamSpec::with_example(std::string v) {
   example_value = kind == ParamKind::choice ? ParamValue::of_choice(std::move(v)) : ParamValue::of_text(std::move(v));
   return *this;
 }
+ParamSpec& ParamSpec::with_example(std::vector<Record> v) {
+  ParamValue value;
+  value.kind = ParamKind::record_list;
+  value.records = std::move(v);
+  example_value = std::move(value);
+  return *this;
+}
 ParamSpec& ParamSpec::as_knob() {
   knob = true;
   return *this;

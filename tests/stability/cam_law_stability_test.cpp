@@ -110,7 +110,7 @@ TEST_CASE("stability: the default extremum sampling agrees with 200x denser samp
   scene.report.clear();
   scene.outputs.clear();
   for (const std::string c : {"arc", "kurz", "poly"})
-    for (const std::string port : {c + ".accel_angle", c + ".min_curvature_radius", c + ".max_velocity", "v_" + c + ".max_velocity",
+    for (const std::string& port : {c + ".accel_angle", c + ".min_curvature_radius", c + ".max_velocity", "v_" + c + ".max_velocity",
                                    "v_" + c + ".max_acceleration", "v_" + c + ".min_acceleration", "v_" + c + ".open_angle",
                                    "ta_" + c + ".time_area"})
       scene.outputs.push_back(parse_port_ref(port, {}));

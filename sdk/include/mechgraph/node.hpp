@@ -57,6 +57,7 @@ struct ParamSpec {
   ParamSpec& with_default(std::vector<double> v);
   ParamSpec& with_example(double v);
   ParamSpec& with_example(std::string v);
+  ParamSpec& with_example(std::vector<Record> v);  // a record list's example
   ParamSpec& optional();            // may be absent, no default
   ParamSpec& positive();            // > 0
   ParamSpec& non_negative();        // >= 0

@@ -139,6 +139,34 @@ TEST_CASE("valve events at a checking valve lift: rocker ratio and lash in the c
                        }));
 }
 
+TEST_CASE("a valve below its checking lift: the events table keeps the seat row, a wanted scalar is an error", "[valvetrain][events]") {
+  // The report reads tables only: it must not fail on a valve that never reaches 1 mm.
+  struct TablesOnly final : EvalContext {
+    bool effect(std::string_view) const override { return false; }
+    void log(LogLevel, std::string_view) override {}
+    void report_work(std::string_view, double) override {}
+    bool wanted(std::string_view output) const override { return output == "events" || output == "svaj"; }
+  };
+  const Study s;
+  auto type = valvetrain::make_valve_motion_type();
+  InputSet in;
+  in.add("cam", Value::handle(std::make_shared<const CosineBump>(0.8e-3, s.phi_d)));  // 0.8 mm of lift
+  const ParamSet p = defaults_of(type->info(), {{"rpm", ParamValue::of_number(s.rpm)}});
+  OutputSet out;
+  TablesOnly tables;
+  type->evaluate(p, in, out, tables);
+  const Table& e = out.all().at("events").as_table();
+  REQUIRE(e.axis.values.size() == 1);  // neither 1 mm nor 0.050 in is reached: the seat only
+  CHECK(e.axis.values[0] == 0.0);
+  CHECK_THAT(e.find("duration")->values[0], WithinAbs(s.phi_d, 1e-14));
+  CHECK(out.all().count("opening_angle") == 0);
+  REQUIRE(out.notes().size() == 1);
+  CHECK_THAT(out.notes()[0], Contains("checking_lift 1 mm is not below the valve's lift 0.8 mm"));
+  OutputSet all;
+  RecordingContext everything;
+  CHECK_THROWS_AS(type->evaluate(p, in, all, everything), NodeError);
+}
+
 TEST_CASE("events quoted the engine way from the installed nose", "[valvetrain][events]") {
   const double deg = pi / 180;
   // 250 deg crank at the checking lift, centred on the nose: +-62.5 deg cam.
@@ -244,7 +272,10 @@ TEST_CASE("time-area with three stages integrates across the stage changes", "[v
 TEST_CASE("hard case: lash just below the valve's full lift leaves a tiny, finite open period", "[valvetrain]") {
   const Study s;
   const double lash = s.H * (1 - 1e-6);  // the valve opens by 9 nm
-  const OutputSet m = run_motion(s, 1.0, lash);
+  // Events at half of that: the test context reads every output, the events' scalars too.
+  const OutputSet m = run_motion(s, 1.0, lash, {{"checking_lift", ParamValue::of_number(4.5e-9)}});
+  CHECK(scalar(m, "duration") > 0.0);
+  CHECK(scalar(m, "duration") < scalar(m, "open_angle"));
   // H/2 (1 + cos k phi) = lash  =>  open angle = 2 acos(2 lash/H - 1) / k
   const double open = 2 * std::acos(2 * lash / s.H - 1) * s.phi_d / (2 * pi);
   CHECK_THAT(scalar(m, "open_angle"), WithinRel(open, 1e-6));

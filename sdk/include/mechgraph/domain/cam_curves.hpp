@@ -64,8 +64,9 @@ std::vector<PortSpec> lift_event_ports(const std::string& whose);
 bool lift_events_wanted(const EvalContext& ctx);
 /// Sets lift_event_ports from `lift` (smooth between `knots`, which span the event) at the
 /// parameters' checking lift, 0.050 in and the seat; with nose_timing a note quotes them from TDC.
-/// Throws NodeError("checking_lift") when the lift (at most `max_lift`) never reaches it.
-void set_lift_events(OutputSet& out, const ParamSet& p, const std::function<double(double)>& lift,
+/// When the lift (at most `max_lift`) never reaches the checking lift: throws NodeError("checking_lift")
+/// if a scalar event is wanted, else gives the table the rows it can (the seat's) and says so in a note.
+void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, const std::function<double(double)>& lift,
                      std::span<const double> knots, double max_lift, const std::string& whose, int samples,
                      long& evaluations);
 
