@@ -26,7 +26,9 @@ std::string mm(double m) {
 }
 
 // The load at the contact over cam angle: a constant, or a connected table's contact_force channel
-// (linear between its points) times load_ratio.
+// (linear between its points) times load_ratio. A table over the whole revolution (its gap from the
+// last angle round to the first no wider than two of its steps) wraps; one over less (a valve's open
+// period) gives no load outside it: the valve sits on its seat and the cam turns free.
 class ContactLoad {
  public:
   ContactLoad() = default;
@@ -44,6 +46,9 @@ class ContactLoad {
       throw NodeError("forces", "the forces table needs at least two cam angles in ascending order");
     angle_ = t.axis.values;
     force_ = force->values;
+    double widest = 0.0;
+    for (std::size_t j = 1; j < angle_.size(); ++j) widest = std::max(widest, angle_[j] - angle_[j - 1]);
+    whole_revolution_ = angle_.front() + 2.0 * pi - angle_.back() <= 2.0 * widest;
   }
   bool given() const { return given_; }
   double at(double phi) const {
@@ -51,7 +56,7 @@ class ContactLoad {
     // The table spans one revolution at most: wrap phi into [first, first + 2 pi).
     const double first = angle_.front();
     phi = first + std::fmod(std::fmod(phi - first, 2.0 * pi) + 2.0 * pi, 2.0 * pi);
-    if (phi >= angle_.back()) return ratio_ * force_.back();
+    if (phi >= angle_.back()) return phi == angle_.back() || whole_revolution_ ? ratio_ * force_.back() : 0.0;
     const auto it = std::upper_bound(angle_.begin(), angle_.end(), phi);
     const std::size_t j = static_cast<std::size_t>(it - angle_.begin());
     const double w = (phi - angle_[j - 1]) / (angle_[j] - angle_[j - 1]);
@@ -61,6 +66,7 @@ class ContactLoad {
  private:
   double constant_ = 0.0, ratio_ = 1.0;
   bool given_ = false;
+  bool whole_revolution_ = true;
   std::vector<double> angle_, force_;
 };
 
@@ -75,14 +81,15 @@ class ContourNodeType final : public NodeType {
  public:
   ContourNodeType() {
     info_.type = "cam.contour";
-    info_.version = 1;
+    info_.version = 2;  // 2: a forces table over less than a revolution loads only its span
     info_.summary =
         "cam contour (x, y) in the cam frame for a flat or roller follower, with its pitch curve, pressure angle, "
         "Hertz contact stress and the face a flat tappet needs";
     info_.inputs = {
         PortSpec::handle("cam", std::string(CamLaw::kind_name), "the lift law to cut (a cam node's law)"),
-        PortSpec::table("forces", "a table with a contact_force channel over cam_angle (e.g. valvetrain.dynamics' "
-                                  "curves), times load_ratio, as the load on the cam; instead of load")
+        PortSpec::table("forces", "a table with a contact_force channel over cam_angle (valvetrain.dynamics' curves, "
+                                  "or spring_design's force_curve: no load outside its open period), times load_ratio, "
+                                  "as the load on the cam; instead of load")
             .optional_port(),
     };
     info_.params = {

@@ -36,6 +36,7 @@ class SpringDesignType final : public NodeType {
  public:
   SpringDesignType() {
     info_.type = "valvetrain.spring_design";
+    info_.version = 2;  // 2: force_curve
     info_.summary = "valve spring line against K times the inertia force, sized by a spring model; reduced mass to a fixed point";
     info_.params = {
         ParamSpec::number("safety_factor", dim::none, "K: spring force over inertia force (1.3-2.0 usual)")
@@ -99,7 +100,8 @@ class SpringDesignType final : public NodeType {
                          "dips below the requirement)", "N"),
         PortSpec::scalar("min_safety_factor", dim::none, "least (P0 + c h) / (M_red |a(h)|) over the negative phase"),
         PortSpec::table("force_curve", "over cam angle through the open period: valve lift, the spring line P0 + c h, the "
-                                       "inertia force M_red a and the requirement K M_red |a| where the valve decelerates"),
+                                       "inertia force M_red a, the requirement K M_red |a| where the valve decelerates, and "
+                                       "the contact force P0 + c h + M_red a the drive carries (valve side; for cam.contour)"),
     };
     info_.work_counters = {"iterations", "evaluations"};
   }
@@ -256,7 +258,7 @@ class SpringDesignType final : public NodeType {
       t.axis = {"cam_angle", dim::angle, std::vector<double>(n), "deg"};
       t.add_channel("crank_angle", dim::angle, "deg");
       t.add_channel("valve_lift", dim::length, "mm");
-      for (const char* name : {"spring_force", "inertia_force", "required_force"}) t.add_channel(name, dim::force, "N");
+      for (const char* name : {"spring_force", "inertia_force", "required_force", "contact_force"}) t.add_channel(name, dim::force, "N");
       for (auto& c : t.channels) c.values.resize(n);
       const double from = motion->open_begin(), to = motion->open_end();
       for (std::size_t i = 0; i < n; ++i) {
@@ -268,6 +270,7 @@ class SpringDesignType final : public NodeType {
         t.channels[2].values[i] = line.preload + line.rate * x.lift;
         t.channels[3].values[i] = M * w * w * x.acceleration;
         t.channels[4].values[i] = K * M * std::max(0.0, -w * w * x.acceleration);
+        t.channels[5].values[i] = t.channels[2].values[i] + t.channels[3].values[i];  // what the cam carries, valve side
       }
       ctx.report_work("evaluations", static_cast<double>(n));
       out.set("force_curve", Value::table(std::move(t)));

@@ -133,7 +133,7 @@ UnitScale parse_unit(std::string_view text) {
     // Each base exponent is kept in 8 bits: refuse a product that would leave +-16 (no physical
     // quantity comes near it) before it could wrap.
     const Dimension d = u->dimension.pow(power);
-    for (const auto [have, add] : {std::pair{result.dimension.length, d.length}, {result.dimension.mass, d.mass},
+    for (const auto& [have, add] : {std::pair{result.dimension.length, d.length}, {result.dimension.mass, d.mass},
                                    {result.dimension.time, d.time}, {result.dimension.angle, d.angle},
                                    {result.dimension.temperature, d.temperature}})
       if (std::abs(have + add) > max_power) throw UnitError("the unit's dimension has an exponent beyond -16..16", start);

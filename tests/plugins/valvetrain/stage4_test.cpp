@@ -172,6 +172,36 @@ TEST_CASE("spring_design force_curve: the spring line against K times the inerti
   }
 }
 
+TEST_CASE("cam.contour loaded by spring_design's force_curve: the contact force where the valve is open, none on its seat", "[valvetrain][stage4]") {
+  // The cam carries i (P0 + c x + M_red a) while the valve is open (x, a at the valve, i = 1.5 the
+  // rocker ratio as load_ratio), nothing while it sits on its seat (the lash open).
+  std::string yaml = stage4_scene("", R"(
+  cut: { type: cam.contour, inputs: { cam: cam.law, forces: sd.force_curve },
+         params: { follower: flat, load_ratio: 1.5, contact_length: 12 mm } })");
+  yaml.replace(yaml.find("outputs: [ "), 11, "outputs: [ cut.contact, cut.max_contact_stress, ");
+  const RunResult r = run(yaml);
+  const auto v = handle<ValveMotion>(r, "v.motion");
+  const double M = num(r, "sd.reduced_mass"), p0 = num(r, "sd.preload"), c = num(r, "sd.stiffness");
+  const Table& t = output(r, "cut.contact").as_table();
+  const auto& load = t.find("load")->values;
+  int open = 0, closed = 0;
+  for (std::size_t i = 0; i < load.size(); ++i) {
+    const double phi = t.axis.values[i];
+    if (phi <= v->open_begin() || phi >= v->open_end()) {
+      ++closed;
+      CHECK(load[i] == 0.0);
+      continue;
+    }
+    ++open;
+    // The force curve is linear between its 361 points: within the curvature of P0 + c x + M a.
+    const double expected = 1.5 * (p0 + c * v->at(phi).lift + M * v->acceleration_in_time(phi));
+    CHECK_THAT(load[i], WithinAbs(expected, 2e-3 * num(r, "sd.max_force")));
+  }
+  CHECK(open > 100);
+  CHECK(closed > 10);
+  CHECK(num(r, "cut.max_contact_stress") > 0.0);
+}
+
 TEST_CASE("resonance: omega0, the harmonic, F_k against quadrature, A_el and distortion", "[valvetrain][stage4]") {
   const RunResult r = run(stage4_scene());
   const auto v = handle<ValveMotion>(r, "v.motion");
