@@ -138,18 +138,34 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
       s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
         << "plot '" << csv << "' skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
     } else if (f.kind == Figure::Kind::histogram) {
-      // Bars that touch, one per bin, and the marks as dashed vertical lines; the x range holds both.
+      // Bars that touch, one per bin, and the marks as dashed vertical lines. The x range holds the
+      // bars and the marks within two data spans of them; a mark further out (a spec far from the
+      // samples) is named in the title instead of squeezing the bars into a sliver.
       const std::vector<double>& x = f.curves.front().first.values;
-      const double width = x.size() > 1 ? x[1] - x[0] : std::max(1e-12, std::abs(x.front()) * 1e-3);
-      double lo = x.front() - 0.5 * width, hi = x.back() + 0.5 * width;
+      const double data_lo = x.front(), data_hi = x.back();
+      const double scale = std::max({std::abs(data_lo), std::abs(data_hi), 1e-300});
+      double span = data_hi - data_lo;
+      if (!(span > 1e-9 * scale)) span = 1e-3 * scale;  // one bin (or bins too close to tell apart)
+      const double width = x.size() > 1 ? span / static_cast<double>(x.size() - 1) : span;
+      double lo = data_lo - 0.5 * width, hi = data_hi + 0.5 * width;
+      std::string off_plot;
+      std::vector<std::pair<std::string, double>> drawn;
       for (const auto& [label, at] : f.marks) {
-        lo = std::min(lo, at);
-        hi = std::max(hi, at);
+        if (std::isfinite(at) && at >= data_lo - 2.0 * span - width && at <= data_hi + 2.0 * span + width) {
+          drawn.emplace_back(label, at);
+          lo = std::min(lo, at);
+          hi = std::max(hi, at);
+        } else {
+          std::ostringstream m;
+          m << std::setprecision(6) << label << " = " << at << (f.curves.front().first.unit.empty() ? "" : " " + f.curves.front().first.unit);
+          off_plot += (off_plot.empty() ? "" : ", ") + m.str();
+        }
       }
       const double pad = 0.04 * (hi - lo);
-      s << std::setprecision(12) << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
+      if (!off_plot.empty()) s << "set title '" << gp(f.title + " (off the plot: " + off_plot + ")") << "'\n";
+      s << std::setprecision(17) << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
         << " absolute\nset yrange [0:*]\nset xrange [" << lo - pad << ":" << hi + pad << "]\nunset key\n";
-      for (const auto& [label, at] : f.marks)
+      for (const auto& [label, at] : drawn)
         s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 2 dt 2 lc rgb '#c03030'\n"
           << "set label '" << gp(label) << "' at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
       s << "plot '" << csv << "' skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
@@ -239,7 +255,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       }
       // Tables of one port are compared when their channels agree (a cam's svaj over cam angle, a
       // valve's in time are two groups).
-      std::string group = port;
+      std::string group = port + "\x1f" + t.axis.name + ":" + t.axis.dimension.describe();
       for (const Table::Column& c : t.channels) group += "\x1f" + c.name + ":" + c.dimension.describe();
       if (!by_port.count(group)) {
         port_order.push_back(group);

@@ -3,7 +3,8 @@
 namespace mechgraph::backlash {
 
 ParamSpec histogram_bins_param() {
-  return ParamSpec::integer("histogram_bins", "bins of the Monte Carlo histogram (mc_histogram) across the samples' range")
+  return ParamSpec::integer("histogram_bins", "bins of the Monte Carlo histogram (mc_histogram) across the samples' range (a streamed run of "
+                            "more than 131072 samples lays them across a pilot's range: up to half as many again)")
       .with_default(40.0)
       .at_least(2)
       .at_most(1e5);

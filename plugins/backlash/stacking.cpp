@@ -168,8 +168,8 @@ void Histogram::trim() {
 
 Histogram histogram_over(double low, double high, std::size_t bins) {
   Histogram h;
-  if (!(high > low)) {
-    const double w = low != 0.0 ? 1e-9 * std::abs(low) : 1e-30;
+  if (!(high > low)) {  // equal samples: one bin about them, wide enough to be a number apart
+    const double w = std::max(1e-9 * std::abs(low), 1e-30);
     h.low = low - 0.5 * w;
     h.width = w;
     h.top = h.low + w;

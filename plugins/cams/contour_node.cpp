@@ -27,8 +27,9 @@ std::string mm(double m) {
 
 // The load at the contact over cam angle: a constant, or a connected table's contact_force channel
 // (linear between its points) times load_ratio. A table over the whole revolution (its gap from the
-// last angle round to the first no wider than two of its steps) wraps; one over less (a valve's open
-// period) gives no load outside it: the valve sits on its seat and the cam turns free.
+// last angle round to the first no wider than two of its steps, nor than 10 deg) wraps; one over
+// less (a valve's open period) gives no load outside it: the valve sits on its seat and the cam
+// turns free.
 class ContactLoad {
  public:
   ContactLoad() = default;
@@ -48,14 +49,21 @@ class ContactLoad {
     force_ = force->values;
     double widest = 0.0;
     for (std::size_t j = 1; j < angle_.size(); ++j) widest = std::max(widest, angle_[j] - angle_[j - 1]);
-    whole_revolution_ = angle_.front() + 2.0 * pi - angle_.back() <= 2.0 * widest;
+    const double gap = angle_.front() + 2.0 * pi - angle_.back();
+    whole_revolution_ = gap <= 2.0 * widest && gap <= 10.0 * pi / 180.0;
+  }
+  /// Where a table over less than a revolution starts and ends (the load steps there), else none.
+  std::vector<double> steps() const {
+    if (angle_.empty() || whole_revolution_) return {};
+    return {angle_.front(), angle_.back()};
   }
   bool given() const { return given_; }
   double at(double phi) const {
     if (angle_.empty()) return constant_;
-    // The table spans one revolution at most: wrap phi into [first, first + 2 pi).
+    // The table spans one revolution at most: wrap phi into [first, first + 2 pi) (an angle inside
+    // the table is taken as it is: the wrap could round it past the ends).
     const double first = angle_.front();
-    phi = first + std::fmod(std::fmod(phi - first, 2.0 * pi) + 2.0 * pi, 2.0 * pi);
+    if (phi < first || phi > angle_.back()) phi = first + std::fmod(std::fmod(phi - first, 2.0 * pi) + 2.0 * pi, 2.0 * pi);
     if (phi >= angle_.back()) return phi == angle_.back() || whole_revolution_ ? ratio_ * force_.back() : 0.0;
     const auto it = std::upper_bound(angle_.begin(), angle_.end(), phi);
     const std::size_t j = static_cast<std::size_t>(it - angle_.begin());
@@ -212,7 +220,12 @@ class ContourNodeType final : public NodeType {
       out.set("contour", Value::table(std::move(t)));
     }
 
-    // Peaks over the whole turn: |pressure angle|, contact pressure, and h' both ways (face).
+    // Peaks over the whole turn: |pressure angle|, contact pressure, and h' both ways (face). The
+    // load steps where a table over part of the turn starts and ends: pieces split there too.
+    for (double step : load.steps())
+      if (step > -pi && step < pi) knots.push_back(step);
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
     numerics::Extremum peaks[4];
     numerics::maximize_piecewise_together(
         [&](double phi, double* v, double* slope) {

@@ -56,6 +56,36 @@ TEST_CASE("mechgraph report: a self-contained page with every curve plotted, ren
     INFO(check.out << check.err);
     CHECK(check.exit_code == 0);
   }
+  // Histograms the plot must survive: a spec limit far from the samples (named in the title, not
+  // stretching the axis), and samples all equal (one bin: a stack without spread).
+  {
+    const fs::path scene = base / "histograms.yaml";
+    std::ofstream(scene) << R"(title: Histograms at the edges
+effects: [ monte_carlo ]
+nodes:
+  far:
+    type: stack.linear
+    params:
+      samples: 20000
+      spec: { upper: 1000 mm }
+      links: [ { nominal: 10 mm, upper: 0.02 mm, lower: -0.02 mm }, { nominal: 5 mm, upper: 0.01 mm, lower: -0.01 mm } ]
+  exact:
+    type: stack.linear
+    params:
+      samples: 20000
+      links: [ { nominal: 10 mm, upper: 0 mm, lower: 0 mm } ]
+)";
+    const fs::path dir = base / "histograms";
+    const auto r = run_cli("-q report '" + scene.string() + "' --out '" + dir.string() + "'");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::string page = read(dir / "report.html");
+    CHECK_THAT(page, Contains("off the plot: USL = 1000 mm"));
+    CHECK_THAT(page, Contains("exact.mc_histogram"));
+    const auto check = run_command(checker + "'" + dir.string() + "' 2");
+    INFO(check.out << check.err);
+    CHECK(check.exit_code == 0);
+  }
   // An existing folder needs --force, as for run --out.
   const auto again = run_cli("-q report '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/cam_contour.yaml' --out '" + (base / "contour").string() + "'");
   CHECK(again.exit_code == 2);

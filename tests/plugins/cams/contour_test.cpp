@@ -186,6 +186,49 @@ TEST_CASE("flat face: width from the velocity's extremes; Hertz stress at the ca
   CHECK(contact.find("load")->values[100] == Approx(F).epsilon(1e-12).margin(1e-9));
 }
 
+TEST_CASE("a forces table over part of the turn loads the cam only there, its ends included") {
+  // A constant F over [-40, 30] deg (a valve open there): the contact table carries F inside, 0
+  // outside; the largest stress lies inside; a sparse table over 250 deg is part of a turn too.
+  const auto law = cycloidal();
+  const double F = 900.0, L = 10e-3, a = -40 * deg, b = 30 * deg;
+  Table forces;
+  forces.axis = {"cam_angle", dim::angle, {a, 0.0, b}, "deg"};
+  forces.add_channel("contact_force", dim::force, "N").values = {F, F, F};
+  const OutputSet out = run_contour(law, {{"contact_length", ParamValue::of_number(L)}, {"curve_points", ParamValue::of_integer(2001)}}, &forces);
+  const Table& contact = out.all().at("contact").as_table();
+  int inside = 0, outside = 0;
+  for (std::size_t i = 0; i < contact.axis.values.size(); ++i) {
+    const double phi = contact.axis.values[i], load = contact.find("load")->values[i];
+    if (phi >= a && phi <= b) {
+      ++inside;
+      CHECK(load == F);
+    } else {
+      ++outside;
+      CHECK(load == 0.0);
+    }
+  }
+  CHECK(inside > 500);
+  CHECK(outside > 500);
+  const double at = scalar(out, "max_stress_angle");
+  CHECK(at >= a - 1e-12);
+  CHECK(at <= b + 1e-12);
+  // A table ending exactly on contact rows is loaded there, at both ends (an angle inside the
+  // table is not wrapped, which could round it past the end).
+  for (std::size_t first : {std::size_t{300}, std::size_t{777}}) {
+    const std::size_t last = first + 613;
+    Table ends;
+    ends.axis = {"cam_angle", dim::angle, {contact.axis.values[first], contact.axis.values[last]}, "deg"};
+    ends.add_channel("contact_force", dim::force, "N").values = {F, F};
+    const OutputSet on_rows =
+        run_contour(law, {{"contact_length", ParamValue::of_number(L)}, {"curve_points", ParamValue::of_integer(2001)}}, &ends);
+    const auto& load = on_rows.all().at("contact").as_table().find("load")->values;
+    CHECK(load[first] == F);
+    CHECK(load[last] == F);
+    CHECK(load[first - 1] == 0.0);
+    CHECK(load[last + 1] == 0.0);
+  }
+}
+
 TEST_CASE("cw mirrors the contour; refusals name the parameter") {
   const auto law = cycloidal();
   const OutputSet ccw = run_contour(law, {});
