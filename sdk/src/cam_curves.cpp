@@ -159,12 +159,17 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
                      std::span<const double> knots, double max_lift, const std::string& whose, int samples,
                      long& evaluations) {
   const double checking_lift = p.number("checking_lift");
-  const auto e = events_at_lift(lift, knots, checking_lift, samples, evaluations);
   std::optional<double> nose_timing;
   if (p.has("nose_timing")) nose_timing = p.number("nose_timing");
-  // The last row (0) is seat to seat: the event's ends.
+  // The last row (0) is seat to seat: the event's ends. The first, when reached, is the checking
+  // lift's: the scalars are read from it (one root search each, not two).
   const std::vector<double> lifts{checking_lift, checking_lift_0050_in, 0.0};
-  if (ctx.wanted("events")) out.set("events", Value::table(events_table(lift, knots, lifts, samples, evaluations, nose_timing)));
+  Table table = events_table(lift, knots, lifts, samples, evaluations, nose_timing);
+  std::optional<LiftEvents> e;
+  if (!table.axis.values.empty() && table.axis.values.front() == checking_lift)
+    e = LiftEvents{table.channels[0].values[0], table.channels[1].values[0], table.channels[2].values[0],
+                   table.channels[3].values[0]};
+  if (ctx.wanted("events")) out.set("events", Value::table(std::move(table)));
   if (!e) {
     char m[240];
     std::snprintf(m, sizeof m, "checking_lift %g mm is not below the %s's lift %g mm: the events need a checking lift the %s reaches",
