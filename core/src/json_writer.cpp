@@ -1,4 +1,5 @@
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/text_escape.hpp>
 
 #include <charconv>
 #include <cmath>
@@ -48,7 +49,9 @@ JsonWriter& JsonWriter::key(std::string_view name) {
 JsonWriter& JsonWriter::value(std::string_view text) {
   separate();
   out_ << '"';
-  for (char c : text) {
+  // Ill-formed UTF-8 (a plugin's message, bytes from a file) becomes U+FFFD: the output stays JSON.
+  const std::string clean = utf8_sanitized(text);
+  for (char c : clean) {
     switch (c) {
       case '"': out_ << "\\\""; break;
       case '\\': out_ << "\\\\"; break;

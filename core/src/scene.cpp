@@ -1,7 +1,11 @@
 #include <mechgraph/scene.hpp>
 
+#include "yaml_bounds.hpp"
+
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/text_escape.hpp>
 
 #include <yaml-cpp/yaml.h>
 
@@ -41,7 +45,7 @@ class SceneReader {
     if (n.IsMap()) return "a map";
     if (n.IsSequence()) return "a list";
     if (n.IsNull()) return "nothing";
-    return "'" + n.Scalar() + "'";
+    return quoted_excerpt(n.Scalar());
   }
 
   RawValue raw(const YAML::Node& n) const {
@@ -94,7 +98,9 @@ class SceneReader {
       for (const auto& kv : p) {
         RawValue v = raw(kv.second);
         v.key_where = at(kv.first);
-        scene.params.emplace_back(scalar(kv.first, "a parameter name"), std::move(v));
+        const std::string name = scalar(kv.first, "a parameter name");
+        if (const std::string why = name_problem(name); !why.empty()) fail(at(kv.first), "scene parameter name " + why);
+        scene.params.emplace_back(name, std::move(v));
       }
     }
     if (const YAML::Node u = root["units"]; u && !u.IsNull()) {
@@ -130,8 +136,7 @@ class SceneReader {
     NodeSpec node;
     node.name = scalar(key, "a node name");
     node.where = at(key);
-    if (node.name.find('.') != std::string::npos || node.name.find('$') != std::string::npos)
-      fail(node.where, "node name '" + node.name + "' may not contain '.' or '$'");
+    if (const std::string why = name_problem(node.name); !why.empty()) fail(node.where, "node name " + why);
     expect_map(body, "node '" + node.name + "'");
     check_keys(body, {"type", "params", "inputs", "effects", "doc"}, "node key");
     if (!body["type"]) fail(at(body), "node '" + node.name + "' has no 'type'");
@@ -243,12 +248,17 @@ PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
 }
 
 RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
+  constexpr std::size_t max_value_bytes = 1 << 20;
+  if (text.size() > max_value_bytes)
+    throw SceneError(where.str() + "a value of " + std::to_string(text.size()) + " bytes is more than the limit of 1 MiB");
+  detail::check_utf8(text, where.file);
   YAML::Node node;
   try {
     node = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
-    throw SceneError(where.str() + "cannot read '" + std::string(text) + "': " + e.msg);
+    throw SceneError(where.str() + "cannot read " + quoted_excerpt(text) + ": " + e.msg);
   }
+  detail::check_yaml_bounds(node, where.file, {16, 100'000});
   RawValue v = SceneReader(where.file).raw(node);
   std::function<void(RawValue&)> relocate = [&](RawValue& r) {
     r.where = where;
@@ -261,21 +271,38 @@ RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
 }
 
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label) {
+  detail::check_utf8(yaml_text, file_label);
   YAML::Node root;
   try {
     root = YAML::Load(std::string(yaml_text));
   } catch (const YAML::Exception& e) {
     throw SceneError(SourceLocation{file_label, e.mark.line + 1, e.mark.column + 1}.str() + "YAML syntax: " + e.msg);
   }
+  detail::check_yaml_bounds(root, file_label);
   return SceneReader(file_label).read(root);
 }
 
 SceneSpec load_scene(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SceneError(file.string() + ": cannot open the scene file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_scene(ss.str(), file.string());
+  std::string text;
+  try {
+    text = read_bounded(file, max_scene_bytes);
+  } catch (const BoundedReadError& e) {
+    throw SceneError(file.string() + ": the scene file " + e.what());
+  }
+  return parse_scene(text, file.string());
+}
+
+std::string name_problem(std::string_view name) {
+  constexpr std::size_t max_name = 64;
+  const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (name.empty()) return "is empty";
+  if (name.size() > max_name) return quoted_excerpt(name, 40) + " is longer than " + std::to_string(max_name) + " characters";
+  bool ok = letter(name.front());
+  for (char c : name) ok = ok && (letter(c) || digit(c) || c == '-');
+  if (!ok)
+    return quoted_excerpt(name) + " is not a name: it starts with a letter or '_' and holds only ASCII letters, digits, '_' and '-'";
+  return {};
 }
 
 }  // namespace mechgraph

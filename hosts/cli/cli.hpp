@@ -20,6 +20,9 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The most worker threads a command accepts (--threads); 0 means one per core.
+constexpr unsigned max_threads = 1024;
+
 struct GlobalOptions {
   std::vector<std::string> plugin_dirs;  // --plugin-dir / --only-plugin-dir, in the order given
   bool only_plugin_dirs = false;          // --only-plugin-dir: no MECHGRAPH_PLUGIN_PATH, no built-ins

@@ -2,10 +2,13 @@
 // and the time it cost), as a table, JSON, or CSV + JSON files.
 #include "cli.hpp"
 #include "results_folder.hpp"
+#include "spawn.hpp"
 #include "options.hpp"
 
+#include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/knob_bench.hpp>
+#include <mechgraph/text_escape.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -116,6 +119,7 @@ void write_plot(const std::filesystem::path& dir, const std::vector<KnobTrial>& 
     data << t.seconds << " " << std::max(t.max_relative_error, 1e-17) << " " << (t.is_default ? 1 : 0) << "\n";
   }
   data.close();
+  check_written(data, dir / "bench.dat");
   std::ofstream script(dir / "bench.gp");
   script << "set terminal svg size 900,600 dynamic enhanced font 'sans,11'\n"
          << "set output 'bench.svg'\n"
@@ -126,16 +130,20 @@ void write_plot(const std::filesystem::path& dir, const std::vector<KnobTrial>& 
          << "plot";
   for (std::size_t i = 0; i < titles.size(); ++i)
     script << (i ? ", \\\n    " : " ") << "'bench.dat' index " << i << " using 1:2 with linespoints lc " << i + 1
-           << " pt 6 title '" << titles[i] << "', '' index " << i << " using 1:($3 > 0 ? $2 : 1/0) with points lc " << i + 1
+           << " pt 6 title " << gnuplot_string(titles[i]) << " noenhanced, '' index " << i << " using 1:($3 > 0 ? $2 : 1/0) with points lc " << i + 1
            << " pt 7 ps 1.5 notitle";
   script << "\n";
   script.close();
-  const std::string command = "cd '" + dir.string() + "' && gnuplot bench.gp 2>&1";
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+  if (!script) throw IoError("cannot write '" + (dir / "bench.gp").string() + "'");
+  const std::optional<std::filesystem::path> gnuplot = find_program("gnuplot");
+  if (!gnuplot) {
     spdlog::warn("bench: gnuplot is not installed (apt-get install gnuplot-nox): no bench.svg, its data is in bench.dat");
     return;
   }
-  if (std::system(command.c_str()) != 0) spdlog::warn("bench: gnuplot failed; bench.gp and bench.dat are in the folder");
+  // From an argument vector in the results folder: no shell reads the folder's name.
+  const SpawnOutcome run = run_program(*gnuplot, {"bench.gp"}, dir, dir / "gnuplot.log", std::chrono::minutes(2));
+  if (!run.succeeded()) spdlog::warn("bench: gnuplot failed ({}); bench.gp, bench.dat and gnuplot.log are in the folder", run.describe());
+  else std::filesystem::remove(dir / "gnuplot.log");
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include "cli.hpp"
 #include "options.hpp"
 
+#include <mechgraph/text_escape.hpp>
+
 #include <iostream>
 #include <map>
 #include <set>
@@ -10,24 +12,14 @@
 namespace mechgraph::cli {
 namespace {
 
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
-}
-
 void write_dot(std::ostream& os, const Graph& graph) {
   std::set<std::size_t> requested;
   for (const RequestedOutput& o : graph.outputs) requested.insert(o.node);
   os << "digraph mechgraph {\n  rankdir=LR;\n  node [shape=box, fontname=\"Helvetica\"];\n";
-  if (!graph.title.empty()) os << "  label=" << quoted(graph.title) << ";\n  labelloc=t;\n";
+  if (!graph.title.empty()) os << "  label=" << dot_string(graph.title) << ";\n  labelloc=t;\n";
   auto node_line = [&](std::size_t i) {
     const GraphNode& n = graph.nodes[i];
-    std::string label = n.name + "\\n" + n.info().type;
-    os << "    " << quoted(n.name) << " [label=\"" << label << "\"";
+    os << "    " << dot_string(n.name) << " [label=" << dot_string(n.name + "\n" + n.info().type);
     if (requested.count(i)) os << ", penwidth=2";
     os << "];\n";
   };
@@ -47,8 +39,8 @@ void write_dot(std::ostream& os, const Graph& graph) {
   for (const GraphNode& n : graph.nodes)
     for (const GraphNode::Input& in : n.inputs)
       for (const GraphNode::Source& s : in.sources) {
-        os << "  " << quoted(graph.nodes[s.node].name) << " -> " << quoted(n.name) << " [label="
-           << quoted(s.port + " -> " + in.port);
+        os << "  " << dot_string(graph.nodes[s.node].name) << " -> " << dot_string(n.name) << " [label="
+           << dot_string(s.port + " -> " + in.port);
         if (!n.needed) os << ", style=dashed, color=grey, fontcolor=grey";
         os << "];\n";
       }
@@ -56,12 +48,12 @@ void write_dot(std::ostream& os, const Graph& graph) {
   std::map<std::size_t, std::string> requested_ports;
   for (const RequestedOutput& o : graph.outputs) {
     std::string& ports = requested_ports[o.node];
-    ports += (ports.empty() ? "" : "\\n") + o.port;
+    ports += (ports.empty() ? "" : "\n") + o.port;
   }
   for (const auto& [node, ports] : requested_ports) {
     const std::string id = "out:" + graph.nodes[node].name;
-    os << "  " << quoted(id) << " [shape=note, fontsize=10, label=\"" << ports << "\"];\n";
-    os << "  " << quoted(graph.nodes[node].name) << " -> " << quoted(id) << " [style=bold, arrowhead=none];\n";
+    os << "  " << dot_string(id) << " [shape=note, fontsize=10, label=" << dot_string(ports) << "];\n";
+    os << "  " << dot_string(graph.nodes[node].name) << " -> " << dot_string(id) << " [style=bold, arrowhead=none];\n";
   }
   os << "}\n";
 }

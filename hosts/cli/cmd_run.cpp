@@ -42,6 +42,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   const Graph graph = load_scene_graph(vm, registry);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();
+  if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   const RunResult result = evaluate(graph, cache, threads);
   std::size_t evaluated = 0;
@@ -52,7 +53,11 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   const RunInputs inputs{vm["scene"].as<std::string>(),
                          vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};
   if (vm.count("json")) {
-    write_json(std::cout, graph, result, registry, inputs);
+    // Built whole first: an error while writing (a value JSON cannot hold) leaves stdout empty,
+    // not a truncated object.
+    std::ostringstream json;
+    write_json(json, graph, result, registry, inputs);
+    std::cout << json.str();
   } else {
     for (std::size_t t = 0; t < graph.reports.size(); ++t) {
       if (t) std::cout << "\n";

@@ -4,10 +4,12 @@
 #include <mechgraph/abi_version.hpp>
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/text_escape.hpp>
 
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -49,6 +51,15 @@ global options:
 exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load error,
             5 results could not be written, 6 a plugin-test check failed, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
 )";
+
+// An error message as printed: valid UTF-8 (a message may quote bytes a user gave), and at most
+// 4000 bytes (a 1 MB value must not become a 1 MB message).
+std::string bounded(std::string_view message) {
+  constexpr std::size_t limit = 4000;
+  std::string text = mechgraph::utf8_sanitized(message.substr(0, std::min(message.size(), limit)));
+  if (message.size() > limit) text += "... (message cut: " + std::to_string(message.size() - limit) + " more bytes)";
+  return text;
+}
 
 }  // namespace
 
@@ -115,25 +126,34 @@ int main(int argc, char** argv) {
     spdlog::error("{}", unknown_name_message("command", command, names));
     return cli::usage_error;
   }
+  int code = cli::ok;
   try {
-    return it->second(global, rest);
+    code = it->second(global, rest);
   } catch (const cli::UsageError& e) {
-    spdlog::error("{}: {} (see 'mechgraph {} --help')", command, e.what(), command);
-    return cli::usage_error;
+    spdlog::error("{}: {} (see 'mechgraph {} --help')", command, bounded(e.what()), command);
+    code = cli::usage_error;
   } catch (const SceneError& e) {
-    spdlog::error("{}", e.what());
-    return cli::usage_error;
+    spdlog::error("{}", bounded(e.what()));
+    code = cli::usage_error;
   } catch (const EvaluationError& e) {
-    spdlog::error("{}", e.what());
-    return cli::evaluation_error;
+    spdlog::error("{}", bounded(e.what()));
+    code = cli::evaluation_error;
   } catch (const PluginError& e) {
-    spdlog::error("{}", e.what());
-    return cli::plugin_error;
+    spdlog::error("{}", bounded(e.what()));
+    code = cli::plugin_error;
   } catch (const IoError& e) {
-    spdlog::error("{}", e.what());
-    return cli::io_error;
+    spdlog::error("{}", bounded(e.what()));
+    code = cli::io_error;
   } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return cli::evaluation_error;
+    spdlog::error("{}", bounded(e.what()));
+    code = cli::evaluation_error;
   }
+  // Standard output is a result file like any other: a write that failed (a full disk, a closed
+  // terminal) is exit 5, never a silent 0.
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    spdlog::error("cannot write the results to standard output (disk full, or the reader went away?)");
+    if (code == cli::ok) code = cli::io_error;
+  }
+  return code;
 }

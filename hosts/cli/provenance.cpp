@@ -1,5 +1,6 @@
 #include "provenance.hpp"
 
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/scene.hpp>
 
@@ -64,9 +65,12 @@ void write_used(JsonWriter& json, const ParamValue& v) {
 }  // namespace
 
 std::string file_sha1(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw IoError("cannot read '" + file + "' to hash it");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  try {
+    bytes = read_bounded(file, max_scene_bytes);
+  } catch (const BoundedReadError& e) {
+    throw IoError("cannot hash the scene '" + file + "': it " + e.what());
+  }
   boost::uuids::detail::sha1 sha;
   sha.process_bytes(bytes.data(), bytes.size());
   boost::uuids::detail::sha1::digest_type digest;

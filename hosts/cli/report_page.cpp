@@ -2,8 +2,11 @@
 
 #include "result_files.hpp"
 #include "results_folder.hpp"
+#include "spawn.hpp"
 
+#include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
@@ -25,27 +28,6 @@ namespace {
 
 // Tables with at most this many rows are shown as tables, not plotted (a cam's events).
 constexpr std::size_t table_rows_shown = 12;
-
-std::string html_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-// gnuplot strings in single quotes (the terminal is noenhanced: no markup): a quote is doubled.
-std::string gp(const std::string& text) {
-  std::string out;
-  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out;
-}
 
 std::string file_safe(std::string text) {
   for (char& c : text)
@@ -97,25 +79,29 @@ struct Figure {
 };
 
 // Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
+// Headers and labels are user text: through csv_field, the one CSV quoting.
 void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
   std::ofstream out(file);
   if (!out) throw IoError("cannot write '" + file.string() + "'");
   out << std::setprecision(12);
   if (f.kind == Figure::Kind::bars) {
-    out << "label," << f.curves.front().second.name << "\n";
-    for (std::size_t i = 0; i < f.labels.size(); ++i) out << "\"" << f.labels[i] << "\"," << f.curves.front().second.values[i] << "\n";
+    const std::vector<double>& v = f.curves.front().second.values;
+    out << "label," << csv_field(f.curves.front().second.name) << "\n";
+    for (std::size_t i = 0; i < std::min(f.labels.size(), v.size()); ++i) out << csv_field(f.labels[i]) << "," << v[i] << "\n";
   } else {
     std::size_t rows = 0;
     for (std::size_t k = 0; k < f.curves.size(); ++k) {
       const std::string prefix = f.curves.size() > 1 ? f.curve_titles[k] + " " : "";
-      out << (k ? "," : "") << "\"" << prefix << f.curves[k].first.name << "\",\"" << prefix << f.curves[k].second.name << "\"";
-      rows = std::max(rows, f.curves[k].first.values.size());
+      out << (k ? "," : "") << csv_field(prefix + f.curves[k].first.name) << "," << csv_field(prefix + f.curves[k].second.name);
+      rows = std::max(rows, std::min(f.curves[k].first.values.size(), f.curves[k].second.values.size()));
     }
     out << "\n";
     for (std::size_t i = 0; i < rows; ++i) {
       for (std::size_t k = 0; k < f.curves.size(); ++k) {
         if (k) out << ",";
-        if (i < f.curves[k].first.values.size()) out << f.curves[k].first.values[i] << "," << f.curves[k].second.values[i];
+        const Column& x = f.curves[k].first;
+        const Column& y = f.curves[k].second;
+        if (i < x.values.size() && i < y.values.size()) out << x.values[i] << "," << y.values[i];
         else out << ",";
       }
       out << "\n";
@@ -130,13 +116,14 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
   {
     std::ofstream s(dir / script_file);
     s << "set terminal svg size 860,420 dynamic noenhanced font 'sans,11' background rgb 'white'\n"
-      << "set output '" << svg << "'\n"
+      << "set output " << gnuplot_string(svg) << "\n"
       << "set datafile separator ','\nset datafile missing ''\n"
-      << "set title '" << gp(f.title) << "'\nset xlabel '" << gp(f.xlabel) << "'\nset ylabel '" << gp(f.ylabel) << "'\n"
+      << "set title " << gnuplot_string(f.title) << "\nset xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel "
+      << gnuplot_string(f.ylabel) << "\n"
       << "set grid\nset key outside right top\n";
     if (f.kind == Figure::Kind::bars) {
       s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
-        << "plot '" << csv << "' skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
+        << "plot " << gnuplot_string(csv) << " skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
     } else if (f.kind == Figure::Kind::histogram) {
       // Bars that touch, one per bin, and the marks as dashed vertical lines. The x range holds the
       // bars and the marks within two data spans of them; a mark further out (a spec far from the
@@ -162,33 +149,40 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
         }
       }
       const double pad = 0.04 * (hi - lo);
-      if (!off_plot.empty()) s << "set title '" << gp(f.title + " (off the plot: " + off_plot + ")") << "'\n";
+      if (!off_plot.empty()) s << "set title " << gnuplot_string(f.title + " (off the plot: " + off_plot + ")") << "\n";
       s << std::setprecision(17) << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
         << " absolute\nset yrange [0:*]\nset xrange [" << lo - pad << ":" << hi + pad << "]\nunset key\n";
       for (const auto& [label, at] : drawn)
         s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 2 dt 2 lc rgb '#c03030'\n"
-          << "set label '" << gp(label) << "' at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
-      s << "plot '" << csv << "' skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
+          << "set label " << gnuplot_string(label) << " at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
+      s << "plot " << gnuplot_string(csv) << " skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
     } else {
       if (f.kind == Figure::Kind::to_scale) s << "set size ratio -1\n";
       s << "plot";
       for (std::size_t k = 0; k < f.curves.size(); ++k)
-        s << (k ? ", \\\n    " : " ") << "'" << csv << "' skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2
-          << " with lines lw 1.5 title '" << gp(f.curve_titles[k]) << "'";
+        s << (k ? ", \\\n    " : " ") << gnuplot_string(csv) << " skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2
+          << " with lines lw 1.5 title " << gnuplot_string(f.curve_titles[k]);
       s << "\n";
     }
+    s.close();
+    check_written(s, dir / script_file);
   }
-  const std::string command = "cd '" + dir.string() + "' && gnuplot '" + script_file + "' 2>'" + f.name + ".log'";
-  if (std::system(command.c_str()) != 0) {
+  // gnuplot runs from an argument vector in the report's folder: no shell reads any name.
+  const std::optional<std::filesystem::path> gnuplot = find_program("gnuplot");
+  if (!gnuplot) throw IoError("mechgraph report draws its plots with gnuplot, which is not installed (apt-get install gnuplot-nox)");
+  const SpawnOutcome run = run_program(*gnuplot, {script_file}, dir, dir / (f.name + ".log"), std::chrono::minutes(2));
+  if (!run.succeeded()) {
     std::ifstream log(dir / (f.name + ".log"));
-    const std::string why((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
-    throw IoError("gnuplot failed on the plot '" + f.title + "': " + why);
+    std::string why(4096, '\0');
+    log.read(why.data(), static_cast<std::streamsize>(why.size()));
+    why.resize(static_cast<std::size_t>(log.gcount()));
+    throw IoError("gnuplot failed on the plot " + quoted_excerpt(f.title) + " (" + run.describe() + "): " + utf8_sanitized(why));
   }
   std::ifstream in(dir / svg);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // Inline: drop the XML declaration and the DOCTYPE, keep <svg ...> ... </svg>.
   const auto begin = text.find("<svg");
-  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot '" + f.title + "'");
+  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot " + quoted_excerpt(f.title));
   std::filesystem::remove(dir / svg);
   std::filesystem::remove(dir / script_file);
   std::filesystem::remove(dir / (f.name + ".log"));
@@ -377,37 +371,37 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
 
 void html_table(std::ostream& html, const std::vector<std::vector<std::string>>& rows, const std::string& csv) {
   html << "<table>\n<tr>";
-  for (const std::string& h : rows.front()) html << "<th>" << html_escape(h) << "</th>";
+  for (const std::string& h : rows.front()) html << "<th>" << html_text(h) << "</th>";
   html << "</tr>\n";
   for (std::size_t r = 1; r < rows.size(); ++r) {
     html << "<tr>";
-    for (std::size_t i = 0; i < rows[r].size(); ++i) html << (i < 2 ? "<td>" : "<td class=\"n\">") << html_escape(rows[r][i]) << "</td>";
+    for (std::size_t i = 0; i < rows[r].size(); ++i) html << (i < 2 ? "<td>" : "<td class=\"n\">") << html_text(rows[r][i]) << "</td>";
     html << "</tr>\n";
   }
-  html << "</table>\n<p class=\"csv\">data: " << html_escape(csv) << "</p>\n";
+  html << "</table>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
 }
 
 }  // namespace
 
 void write_report_page(const std::filesystem::path& dir, const Graph& graph, const RunResult& result,
                        const PluginRegistry& registry, const RunInputs& inputs) {
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
+  if (!find_program("gnuplot"))
     throw IoError("mechgraph report draws its plots with gnuplot, which is not installed (apt-get install gnuplot-nox)");
   std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << html_escape(graph.title)
+  html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << html_text(graph.title)
        << "</title>\n<style>\nbody{font-family:sans-serif;margin:2em auto;max-width:960px;color:#222}\n"
           "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px 8px}"
           "th{background:#eef}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
           ".csv{color:#666;font-size:90%}figure{margin:1em 0}svg{max-width:100%;height:auto}\n</style></head><body>\n"
-       << "<h1>" << html_escape(graph.title.empty() ? inputs.scene_file : graph.title) << "</h1>\n";
-  html << "<p>mechgraph " << MECHGRAPH_VERSION << ", scene <code>" << html_escape(inputs.scene_file) << "</code> (SHA-1 "
+       << "<h1>" << html_text(graph.title.empty() ? inputs.scene_file : graph.title) << "</h1>\n";
+  html << "<p>mechgraph " << MECHGRAPH_VERSION << ", scene <code>" << html_text(inputs.scene_file) << "</code> (SHA-1 "
        << file_sha1(inputs.scene_file) << ")";
   if (!inputs.overrides.empty()) {
     html << ", with";
-    for (const std::string& o : inputs.overrides) html << " <code>--set " << html_escape(o) << "</code>";
+    for (const std::string& o : inputs.overrides) html << " <code>--set " << html_text(o) << "</code>";
   }
   html << ". Plugins:";
-  for (const PluginInfo& p : registry.plugins()) html << " " << html_escape(p.id) << " " << html_escape(p.version) << ";";
+  for (const PluginInfo& p : registry.plugins()) html << " " << html_text(p.id) << " " << html_text(p.version) << ";";
   html << " everything in <code>results.json</code>.</p>\n";
 
   // The scene's report tables.
@@ -415,7 +409,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     const ResolvedReport& r = graph.reports[t];
     const std::string csv = "table_" + std::to_string(t + 1) + ".csv";
     write_report_csv(dir / csv, r, result, graph.display_units);
-    html << "<h2>" << html_escape(r.title.empty() ? "Table " + std::to_string(t + 1) : r.title) << "</h2>\n";
+    html << "<h2>" << html_text(r.title.empty() ? "Table " + std::to_string(t + 1) : r.title) << "</h2>\n";
     html_table(html, report_cells(r, result, graph.display_units), csv);
   }
 
@@ -426,7 +420,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     Figure f = figures[i];
     f.name = "plot_" + std::to_string(i + 1) + "_" + f.name;
     write_figure_csv(dir / (f.name + ".csv"), f);
-    html << "<figure>" << run_gnuplot(dir, f) << "<figcaption class=\"csv\">data: " << html_escape(f.name) << ".csv</figcaption></figure>\n";
+    html << "<figure>" << run_gnuplot(dir, f) << "<figcaption class=\"csv\">data: " << html_text(f.name) << ".csv</figcaption></figure>\n";
   }
   for (const OutputValue* o : small) {
     const std::string csv = file_safe(o->label) + ".csv";
@@ -450,15 +444,15 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
       }
       rows.push_back(std::move(row));
     }
-    html << "<h2>" << html_escape(o->label) << "</h2>\n<table>\n<tr>";
-    for (const std::string& h : rows[0]) html << "<th>" << html_escape(h) << "</th>";
+    html << "<h2>" << html_text(o->label) << "</h2>\n<table>\n<tr>";
+    for (const std::string& h : rows[0]) html << "<th>" << html_text(h) << "</th>";
     html << "</tr>\n";
     for (std::size_t r = 1; r < rows.size(); ++r) {
       html << "<tr>";
       for (const std::string& c : rows[r]) html << "<td class=\"n\">" << c << "</td>";
       html << "</tr>\n";
     }
-    html << "</table>\n<p class=\"csv\">data: " << html_escape(csv) << "</p>\n";
+    html << "</table>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
   }
   // How the results were made.
   bool first = true;
@@ -466,7 +460,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     for (const std::string& n : r.notes) {
       if (first) html << "<h2>Notes</h2>\n<ul>\n";
       first = false;
-      html << "<li>" << html_escape(r.node) << ": " << html_escape(n) << "</li>\n";
+      html << "<li>" << html_text(r.node) << ": " << html_text(n) << "</li>\n";
     }
   if (!first) html << "</ul>\n";
   html << "</body></html>\n";

@@ -1,0 +1,41 @@
+#pragma once
+// One escaping function per output format. Every piece of text that came from a user (a scene, a
+// file it names, the command line) or from a plugin passes through the function of the format it
+// is written into, and through nothing else: no writer builds its own quoting. CSV has its own
+// header (csv.hpp: csv_field), JSON its writer (json_writer.hpp, which calls utf8_sanitized).
+//
+// The functions never fail: text that cannot be represented (control characters where the format
+// has no escape for them, bytes that are not UTF-8) is replaced, not passed through.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace mechgraph {
+
+/// The offset of the first byte that does not belong to a well-formed UTF-8 sequence (overlong
+/// forms, surrogates and code points above U+10FFFF are ill-formed), or nullopt when all are.
+std::optional<std::size_t> first_invalid_utf8(std::string_view text);
+
+/// `text` with every ill-formed UTF-8 byte replaced by U+FFFD.
+std::string utf8_sanitized(std::string_view text);
+
+/// HTML text or a double-quoted attribute value: & < > " ' as entities, ill-formed UTF-8 replaced,
+/// C0 controls other than tab and line feed (and DEL) dropped.
+std::string html_text(std::string_view text);
+
+/// A gnuplot string constant, quotes included: single-quoted (gnuplot performs no backslash,
+/// backquote or macro processing inside single quotes), a quote doubled, line breaks and other
+/// controls as spaces (a line break would end the command), backquotes and '@' replaced by look-
+/// alikes so that no later edit to double quotes can turn them into command substitution.
+std::string gnuplot_string(std::string_view text);
+
+/// A Graphviz DOT ID, quotes included: a double-quoted string with '"' and '\' escaped, line breaks
+/// as "\n" (DOT's own line break in labels), other controls dropped, ill-formed UTF-8 replaced.
+std::string dot_string(std::string_view text);
+
+/// User text quoted inside an error message: at most `max_bytes` of it (cut at a character
+/// boundary, "... (N more bytes)" appended), controls shown as '?', in single quotes.
+std::string quoted_excerpt(std::string_view text, std::size_t max_bytes = 120);
+
+}  // namespace mechgraph

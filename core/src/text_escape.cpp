@@ -1,0 +1,139 @@
+#include <mechgraph/text_escape.hpp>
+
+namespace mechgraph {
+namespace {
+
+constexpr std::string_view replacement = "\xEF\xBF\xBD";  // U+FFFD
+
+// Length of the well-formed UTF-8 sequence at text[i], or 0 when the byte there starts none
+// (Unicode 15, table 3-7: the second byte's range depends on the first).
+std::size_t sequence_length(std::string_view text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+  const unsigned char b0 = byte(i);
+  if (b0 < 0x80) return 1;
+  std::size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;
+  if (b0 >= 0xC2 && b0 <= 0xDF) n = 2;
+  else if (b0 == 0xE0) { n = 3; lo = 0xA0; }
+  else if ((b0 >= 0xE1 && b0 <= 0xEC) || b0 == 0xEE || b0 == 0xEF) n = 3;
+  else if (b0 == 0xED) { n = 3; hi = 0x9F; }  // no surrogates
+  else if (b0 == 0xF0) { n = 4; lo = 0x90; }
+  else if (b0 >= 0xF1 && b0 <= 0xF3) n = 4;
+  else if (b0 == 0xF4) { n = 4; hi = 0x8F; }  // nothing above U+10FFFF
+  else return 0;
+  if (i + n > text.size()) return 0;
+  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  return n;
+}
+
+bool is_control(unsigned char c) { return c < 0x20 || c == 0x7F; }
+
+// Calls emit(piece) for each character of `text`, ill-formed bytes as U+FFFD.
+template <class Emit>
+void for_each_character(std::string_view text, Emit emit) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = sequence_length(text, i);
+    if (n == 0) {
+      emit(replacement);
+      ++i;
+    } else {
+      emit(text.substr(i, n));
+      i += n;
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<std::size_t> first_invalid_utf8(std::string_view text) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = sequence_length(text, i);
+    if (n == 0) return i;
+    i += n;
+  }
+  return std::nullopt;
+}
+
+std::string utf8_sanitized(std::string_view text) {
+  if (!first_invalid_utf8(text)) return std::string(text);
+  std::string out;
+  for_each_character(text, [&](std::string_view c) { out += c; });
+  return out;
+}
+
+std::string html_text(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      switch (c[0]) {
+        case '&': out += "&amp;"; return;
+        case '<': out += "&lt;"; return;
+        case '>': out += "&gt;"; return;
+        case '"': out += "&quot;"; return;
+        case '\'': out += "&#39;"; return;
+        case '\t': case '\n': out += c; return;
+        default:
+          if (is_control(static_cast<unsigned char>(c[0]))) return;
+      }
+    }
+    out += c;
+  });
+  return out;
+}
+
+std::string gnuplot_string(std::string_view text) {
+  std::string out = "'";
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      const char ch = c[0];
+      if (ch == '\'') { out += "''"; return; }
+      if (ch == '`') { out += "\xCA\xBB"; return; }   // U+02BB, a turned comma: not a backquote
+      if (ch == '@') { out += "\xEF\xBC\xA0"; return; }  // U+FF20, the full-width commercial at
+      if (is_control(static_cast<unsigned char>(ch))) { out += ' '; return; }
+    }
+    out += c;
+  });
+  return out + "'";
+}
+
+std::string dot_string(std::string_view text) {
+  std::string out = "\"";
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      const char ch = c[0];
+      if (ch == '"' || ch == '\\') { out += '\\'; out += ch; return; }
+      if (ch == '\n') { out += "\\n"; return; }
+      if (is_control(static_cast<unsigned char>(ch))) return;
+    }
+    out += c;
+  });
+  return out + "\"";
+}
+
+std::string quoted_excerpt(std::string_view text, std::size_t max_bytes) {
+  std::string out = "'";
+  std::size_t taken = 0;
+  for (std::size_t i = 0; i < text.size();) {
+    std::size_t n = sequence_length(text, i);
+    if (taken + std::max<std::size_t>(n, 1) > max_bytes) {
+      out += "'... (" + std::to_string(text.size() - i) + " more bytes)";
+      return out;
+    }
+    if (n == 0) {
+      out += '?';
+      n = 1;
+    } else if (n == 1 && is_control(static_cast<unsigned char>(text[i]))) {
+      out += '?';
+    } else {
+      out += text.substr(i, n);
+    }
+    taken += n;
+    i += n;
+  }
+  return out + "'";
+}
+
+}  // namespace mechgraph

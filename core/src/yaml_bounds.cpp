@@ -1,0 +1,84 @@
+#include "yaml_bounds.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/scene.hpp>
+#include <mechgraph/text_escape.hpp>
+
+#include <cstdio>
+#include <map>
+#include <vector>
+
+namespace mechgraph::detail {
+namespace {
+
+class BoundsWalk {
+ public:
+  BoundsWalk(std::string file, const YamlLimits& limits) : file_(std::move(file)), limits_(limits) {}
+
+  void visit(const YAML::Node& n) {
+    if (++visited_ > limits_.max_nodes)
+      fail(n, "the scene expands to more than " + std::to_string(limits_.max_nodes) +
+                  " YAML nodes (an alias counts each time it is used): too large to be a scene");
+    if (!n.IsMap() && !n.IsSequence()) return;
+    for (const YAML::Node& above : path_)
+      if (above.is(n)) fail(n, "an alias refers to a node that contains it (a cycle): a scene is a tree");
+    if (path_.size() >= limits_.max_depth)
+      fail(n, "the scene nests maps and lists more than " + std::to_string(limits_.max_depth) + " levels deep");
+    path_.push_back(n);
+    if (n.IsMap()) {
+      std::map<std::string, YAML::Mark> seen;
+      for (const auto& kv : n) {
+        if (kv.first.IsScalar()) {
+          const auto [it, fresh] = seen.emplace(kv.first.Scalar(), kv.first.Mark());
+          if (!fresh)
+            fail(kv.first, "the key " + quoted_excerpt(kv.first.Scalar()) + " is given twice in one map (first at line " +
+                               std::to_string(it->second.line + 1) + ", column " + std::to_string(it->second.column + 1) +
+                               "): say it once");
+        }
+        visit(kv.first);
+        visit(kv.second);
+      }
+    } else {
+      for (const auto& item : n) visit(item);
+    }
+    path_.pop_back();
+  }
+
+ private:
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& message) const {
+    const YAML::Mark m = n.Mark();
+    const SourceLocation where = m.is_null() ? SourceLocation{file_, 0, 0} : SourceLocation{file_, m.line + 1, m.column + 1};
+    throw SceneError(where.str() + message);
+  }
+
+  std::string file_;
+  YamlLimits limits_;
+  std::size_t visited_ = 0;
+  std::vector<YAML::Node> path_;
+};
+
+}  // namespace
+
+void check_yaml_bounds(const YAML::Node& root, const std::string& file, const YamlLimits& limits) {
+  BoundsWalk(file, limits).visit(root);
+}
+
+void check_utf8(std::string_view text, const std::string& file) {
+  const std::optional<std::size_t> bad = first_invalid_utf8(text);
+  if (!bad) return;
+  int line = 1, column = 1;
+  for (std::size_t i = 0; i < *bad; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  char hex[8];
+  std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
+  throw SceneError(SourceLocation{file, line, column}.str() + "byte " + hex +
+                   " is not UTF-8: save the scene as UTF-8 text");
+}
+
+}  // namespace mechgraph::detail
