@@ -60,7 +60,9 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
   std::vector<Override> overrides;
   for (const std::string& s : inputs.overrides) overrides.push_back(parse_override(s));
   const Graph graph = build_graph(with_every_curve(load_scene(inputs.scene_file), registry), registry, overrides);
+  check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, true);
   unsigned threads = vm["threads"].as<unsigned>();
+  if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   MemoCache cache;
   const RunResult result = evaluate(graph, cache, threads);
