@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(cmake g++ ninja-build ccache pkg-config
           libboost-dev libboost-program-options-dev libboost-filesystem-dev
           libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2 libbenchmark-dev
-          libsundials-dev gnuplot-nox libdxflib-dev python3-ezdxf chromium python3-pil)
+          libsundials-dev gnuplot-nox libdxflib-dev python3-ezdxf chromium python3-pil graphviz)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,78 @@
+// The one escaping function per output format (text_escape.hpp), against hand-worked cases and, on
+// random bytes, against the property that matters: what comes out is valid in its format and holds
+// nothing that format would execute or read as markup.
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/text_escape.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <sstream>
+
+using namespace mechgraph;
+
+TEST_CASE("UTF-8 validation follows Unicode's table of well-formed sequences", "[escape]") {
+  CHECK_FALSE(first_invalid_utf8("plain ascii"));
+  CHECK_FALSE(first_invalid_utf8("caf\xC3\xA9 \xE2\x82\xAC \xF0\x9F\x98\x80"));  // é € 😀
+  CHECK(first_invalid_utf8("ab\xFF") == 2u);
+  CHECK(first_invalid_utf8("\xC0\xAF") == 0u);          // overlong '/'
+  CHECK(first_invalid_utf8("x\xED\xA0\x80") == 1u);     // a surrogate
+  CHECK(first_invalid_utf8("\xF4\x90\x80\x80") == 0u);  // above U+10FFFF
+  CHECK(first_invalid_utf8("\xE2\x82") == 0u);          // cut short
+  CHECK(utf8_sanitized("a\xFF" "b") == "a\xEF\xBF\xBD" "b");
+}
+
+TEST_CASE("HTML text: markup characters as entities, controls dropped", "[escape]") {
+  CHECK(html_text("<script>alert('x') & \"y\"</script>") == "&lt;script&gt;alert(&#39;x&#39;) &amp; &quot;y&quot;&lt;/script&gt;");
+  CHECK(html_text("a\x01\x7f" "b\n") == "ab\n");
+  CHECK(html_text("\xFF") == "\xEF\xBF\xBD");
+}
+
+TEST_CASE("gnuplot strings: single-quoted, quote doubled, nothing that ends or substitutes a command", "[escape]") {
+  CHECK(gnuplot_string("it's") == "'it''s'");
+  CHECK(gnuplot_string("a\nsystem(\"id\")\n#") == "'a system(\"id\") #'");
+  CHECK(gnuplot_string("`id` @m") == "'\xCA\xBBid\xCA\xBB \xEF\xBC\xA0m'");
+}
+
+TEST_CASE("DOT strings: double-quoted, quote and backslash escaped, line breaks as \\n", "[escape]") {
+  CHECK(dot_string("k\" shape=box URL=\"javascript:alert(1)") == "\"k\\\" shape=box URL=\\\"javascript:alert(1)\"");
+  CHECK(dot_string("a\\N\nb") == "\"a\\\\N\\nb\"");
+}
+
+TEST_CASE("error excerpts are bounded and show controls as '?'", "[escape]") {
+  CHECK(quoted_excerpt("ab\ncd") == "'ab?cd'");
+  const std::string long_text(1000, 'x');
+  const std::string e = quoted_excerpt(long_text, 10);
+  CHECK(e == "'xxxxxxxxxx'... (990 more bytes)");
+  CHECK(quoted_excerpt("\xC3\xA9\xC3\xA9", 3) == "'\xC3\xA9'... (2 more bytes)");  // never half a character
+}
+
+TEST_CASE("escaping random bytes always gives valid text of the format", "[escape]") {
+  std::mt19937 rng(20261125);
+  std::uniform_int_distribution<int> byte(0, 255), length(0, 40);
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::string text;
+    for (int i = length(rng); i > 0; --i) text += static_cast<char>(byte(rng));
+    CAPTURE(text);
+    const std::string h = html_text(text);
+    CHECK_FALSE(first_invalid_utf8(h));
+    CHECK(h.find_first_of("<>\"'") == std::string::npos);
+    const std::string g = gnuplot_string(text);
+    CHECK_FALSE(first_invalid_utf8(g));
+    REQUIRE(g.size() >= 2);
+    const std::string inner = g.substr(1, g.size() - 2);
+    CHECK(inner.find_first_of("`@\n\r") == std::string::npos);
+    // Quotes inside come in pairs: the string cannot be closed early.
+    for (std::size_t q = inner.find('\''); q != std::string::npos; q = inner.find('\'', q + 2)) CHECK(inner[q + 1] == '\'');
+    const std::string d = dot_string(text);
+    CHECK_FALSE(first_invalid_utf8(d));
+    for (std::size_t i = 1; i + 1 < d.size(); ++i) {
+      if (d[i] == '\\') { ++i; continue; }
+      CHECK(d[i] != '"');
+    }
+    std::ostringstream json;
+    JsonWriter(json).value(text);
+    CHECK_FALSE(first_invalid_utf8(json.str()));
+    CHECK(quoted_excerpt(text).size() < 160);
+  }
+}
