@@ -1,0 +1,61 @@
+// The writers' escaping (text_escape.hpp, the JSON writer) on arbitrary bytes: the result must be
+// well-formed UTF-8 and hold nothing its format would read as markup, the end of a string or a
+// command. A violation aborts (a find).
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/text_escape.hpp>
+
+#include <cstdint>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+
+namespace {
+
+void require(bool ok) {
+  if (!ok) std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  using namespace mechgraph;
+
+  const std::string h = html_text(text);
+  require(!first_invalid_utf8(h));
+  require(h.find_first_of("<>\"'") == std::string::npos);
+
+  const std::string g = gnuplot_string(text);
+  require(!first_invalid_utf8(g) && g.size() >= 2 && g.front() == '\'' && g.back() == '\'');
+  const std::string inner = g.substr(1, g.size() - 2);
+  require(inner.find_first_of("`@\n\r") == std::string::npos);
+  for (std::size_t q = inner.find('\''); q != std::string::npos; q = inner.find('\'', q + 2))
+    require(q + 1 < inner.size() && inner[q + 1] == '\'');
+
+  const std::string d = dot_string(text);
+  require(!first_invalid_utf8(d) && d.size() >= 2 && d.front() == '"' && d.back() == '"');
+  for (std::size_t i = 1; i + 1 < d.size(); ++i) {
+    if (d[i] == '\\') {
+      ++i;
+      require(i + 1 < d.size());  // an escape never swallows the closing quote
+      continue;
+    }
+    require(d[i] != '"' && d[i] != '\n');
+  }
+
+  std::ostringstream json;
+  JsonWriter(json).value(text);
+  const std::string j = json.str();
+  require(!first_invalid_utf8(j) && j.front() == '"' && j.back() == '"');
+  for (std::size_t i = 1; i + 1 < j.size(); ++i) {
+    if (j[i] == '\\') {
+      ++i;
+      continue;
+    }
+    require(j[i] != '"' && static_cast<unsigned char>(j[i]) >= 0x20);
+  }
+
+  const std::string e = quoted_excerpt(text);
+  require(!first_invalid_utf8(e) && e.size() < 160);
+  return 0;
+}
