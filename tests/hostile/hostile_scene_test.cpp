@@ -208,3 +208,20 @@ TEST_CASE("hostile: a megabyte value in a scene gives a short error message", "[
   CHECK_THAT(o.err, Contains("mega.yaml:2:"));
   CHECK(o.err.size() < 5000);
 }
+
+TEST_CASE("hostile: contours with a hostile title are written as DXF that ezdxf reads and audits clean", "[hostile]") {
+  Scratch s("dxf");
+  std::string scene = slurp(source_file("scenes/cam_contour.yaml"));
+  const std::string title = "title: Kurz cam for a flat tappet and an offset roller";
+  REQUIRE(scene.find(title) != std::string::npos);
+  scene.replace(scene.find(title), title.size(), "title: \"0\\nSECTION\\n2\\nENTITIES <x> 'q' \\\"d\\\" `id`\"");
+  const auto file = s.write("contour.yaml", scene);
+  const Outcome r = run_mechgraph({"run", file.string(), "--out", (s.dir / "cam").string()});
+  REQUIRE(r.exit_code == 0);
+  std::size_t dxf = 0;
+  for (const auto& e : std::filesystem::directory_iterator(s.dir / "cam")) dxf += e.path().extension() == ".dxf";
+  CHECK(dxf == 2);
+  const Outcome check = run_argv("/usr/bin/python3", {source_file("tests/hostile/check_outputs.py"), (s.dir / "cam").string()});
+  CHECK(check.exit_code == 0);
+  CHECK(check.err.empty());
+}
