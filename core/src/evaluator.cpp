@@ -12,6 +12,8 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <mutex>
 #include <sstream>
 
 namespace mechgraph {
@@ -214,6 +216,16 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
       ++waiting[i];
       consumers[u].push_back(i);
     }
+  // A node identical to an earlier one (same memo hash) waits for it and is then reused from the
+  // cache, as it is on one thread: which nodes run and which are reused does not depend on --threads.
+  std::map<std::uint64_t, std::size_t> first_with_hash;
+  for (std::size_t i : graph.order) {
+    const auto [it, fresh] = first_with_hash.emplace(hashes[i], i);
+    if (!fresh) {
+      ++waiting[i];
+      consumers[it->second].push_back(i);
+    }
+  }
   std::vector<std::size_t> ready;
   for (std::size_t i : graph.order)
     if (waiting[i] == 0) ready.push_back(i);

@@ -225,3 +225,32 @@ TEST_CASE("hostile: contours with a hostile title are written as DXF that ezdxf 
   CHECK(check.exit_code == 0);
   CHECK(check.err.empty());
 }
+
+TEST_CASE("hostile: which nodes are evaluated and which reused does not depend on --threads", "[hostile]") {
+  Scratch s("threads");
+  std::string text = "nodes:\n";
+  for (const char* k : {"a", "b", "c", "d"})
+    text += std::string("  ") + k + ": { type: cam.kurz, params: " + kurz_params + " }\n";
+  text += "  e: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }\n";
+  for (const char* k : {"a", "b", "c", "d", "e"})
+    text += std::string("  v") + k + ": { type: valvetrain.valve_motion, inputs: { cam: " + k + ".law }, params: { rpm: 5600 rpm } }\n";
+  text += "outputs: [ va.max_velocity, vb.max_velocity, vc.max_velocity, vd.max_velocity, ve.max_velocity ]\n";
+  const auto scene = s.write("same.yaml", text);
+  const Outcome one = run_mechgraph({"run", scene.string(), "--json", "--threads", "1"});
+  REQUIRE(one.exit_code == 0);
+  const auto lists = [](const std::string& json) {
+    const auto from = json.find("\"evaluated\"");
+    return json.substr(from, json.find(']', json.find("\"reused\"")) + 1 - from);
+  };
+  CHECK(lists(one.out) == R"("evaluated":["a","e","va","ve"],"reused":["b","c","d","vb","vc","vd"])");
+  for (int repeat = 0; repeat < 5; ++repeat)
+    for (const char* threads : {"2", "4", "16"}) {
+      const Outcome many = run_mechgraph({"run", scene.string(), "--json", "--threads", threads});
+      REQUIRE(many.exit_code == 0);
+      CHECK(lists(many.out) == lists(one.out));
+    }
+  for (const char* threads : {"-1", "5000"}) {
+    const Outcome bad = run_mechgraph({"run", scene.string(), "--threads", threads});
+    CHECK(bad.exit_code == 2);
+  }
+}
