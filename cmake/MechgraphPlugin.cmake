@@ -12,6 +12,12 @@
 include_guard(GLOBAL)
 include(GNUInstallDirs)
 
+# A plugin has an INSTALL_RPATH ($ORIGIN/../..), so CMake's built-in ELF editor would pad its
+# build-tree RUNPATH with an empty entry (':' at the end), which the dynamic loader takes for the
+# current folder. Relinking at install time needs no padding. Set for the directory that includes
+# this file (find_package(mechgraph) or mechgraph's own tree) and those below it.
+set(CMAKE_NO_BUILTIN_CHRPATH ON)
+
 function(mechgraph_add_plugin name)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES")
   set(sources ${ARG_SOURCES} ${ARG_UNPARSED_ARGUMENTS})
