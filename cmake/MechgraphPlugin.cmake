@@ -12,12 +12,6 @@
 include_guard(GLOBAL)
 include(GNUInstallDirs)
 
-# A plugin has an INSTALL_RPATH ($ORIGIN/../..), so CMake's built-in ELF editor would pad its
-# build-tree RUNPATH with an empty entry (':' at the end), which the dynamic loader takes for the
-# current folder. Relinking at install time needs no padding. Set for the directory that includes
-# this file (find_package(mechgraph) or mechgraph's own tree) and those below it.
-set(CMAKE_NO_BUILTIN_CHRPATH ON)
-
 function(mechgraph_add_plugin name)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "NO_INSTALL" "OUTPUT_DIRECTORY" "SOURCES")
   set(sources ${ARG_SOURCES} ${ARG_UNPARSED_ARGUMENTS})
@@ -41,7 +35,12 @@ function(mechgraph_add_plugin name)
     CXX_EXTENSIONS OFF
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
-    INSTALL_RPATH "$ORIGIN/../..")
+    INSTALL_RPATH "$ORIGIN/../.."
+    # The same RUNPATH in the build tree: a build RUNPATH that differs from the install one gets a
+    # trailing ':' from CMake (room to rewrite it at install), an empty entry the dynamic loader
+    # reads as the current folder. In mechgraph's tree $ORIGIN/../.. is build/lib, as installed;
+    # elsewhere the host has loaded libmechgraph before any plugin, so it is not searched for.
+    BUILD_WITH_INSTALL_RPATH ON)
   # Every symbol resolved at link time (a missing one is a build error, not a load error), and no
   # symbols of static libraries re-exported. Sanitizer builds leave the runtime's symbols to the
   # program (clang links it into executables only), so they skip --no-undefined.
