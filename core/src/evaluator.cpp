@@ -228,7 +228,18 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
       throw EvaluationError(node.where.str() + where_of(node) + " reported work counter '" + counter + "' as " +
                             (std::isnan(amount) ? "NaN" : "infinite") +
                             " (a work counter is a finite count; a defect of its plugin)");
-  produced[i] = checked_outputs(node, outputs);
+  // The checks call plugin code too (a domain object's kind() and contract_problem()): whatever
+  // it throws is this node's evaluation error, never the end of the host.
+  try {
+    produced[i] = checked_outputs(node, outputs);
+  } catch (const EvaluationError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw EvaluationError(where_of(node) + ": checking its outputs: " + e.what());
+  } catch (...) {
+    throw EvaluationError(where_of(node) + ": checking its outputs, its plugin threw something that is not a "
+                                           "std::exception (a defect of its plugin)");
+  }
   run.notes = produced[i]->notes();
   cache.store(hashes[i], produced[i]);
   spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);

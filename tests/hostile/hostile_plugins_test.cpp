@@ -199,6 +199,11 @@ TEST_CASE("a node whose evaluation throws 7 while making its object is an evalua
   CHECK_THAT(r.err, Contains("node 't'") && Contains("not a std::exception"));
 }
 
+TEST_CASE("a domain object whose contract check throws 7 is an evaluation error naming the node", "[hostile][values]") {
+  CHECK_THROWS_WITH(run_yaml("nodes: { l: { type: hostile.bad_contract } }\noutputs: [l.liar]\n", hostile_registry()),
+                    Contains("node 'l'") && Contains("not a std::exception"));
+}
+
 // ---- 4. cam.table reads only a bounded regular file ---------------------------------------------
 
 namespace {

@@ -6,6 +6,7 @@
 //     hostile.series { defect: short_axis | long_axis | labels | none }  a series of 4 values
 //     hostile.nan_work                a good scalar, but a NaN work counter
 //     hostile.throw_int               evaluate() throws 7 while making its domain object
+//     hostile.bad_contract            a domain object whose contract_problem() throws 7
 #include <mechgraph/plugin_abi.hpp>
 
 #include <limits>
@@ -21,9 +22,15 @@ class Thing final : public DomainObject {
   std::string_view kind() const override { return "hostile_thing"; }
 };
 
+class Liar final : public DomainObject {
+ public:
+  std::string_view kind() const override { return "hostile_liar"; }
+  std::string contract_problem() const override { throw 7; }
+};
+
 class Hostile final : public NodeType {
  public:
-  enum class Kind { series, nan_work, throw_int };
+  enum class Kind { series, nan_work, throw_int, bad_contract };
   Hostile(Kind kind, std::string type) : kind_(kind) {
     info_.type = std::move(type);
     info_.summary = "a deliberately broken node (host tests)";
@@ -36,6 +43,7 @@ class Hostile final : public NodeType {
         break;
       case Kind::nan_work: info_.outputs = {PortSpec::scalar("out", dim::length, "1 mm")}; break;
       case Kind::throw_int: info_.outputs = {PortSpec::handle("thing", "hostile_thing", "never made")}; break;
+      case Kind::bad_contract: info_.outputs = {PortSpec::handle("liar", "hostile_liar", "cannot say if it is sound")}; break;
     }
   }
   const NodeInfo& info() const override { return info_; }
@@ -57,6 +65,7 @@ class Hostile final : public NodeType {
         out.set_scalar("out", 1e-3);
         break;
       case Kind::throw_int: out.set("thing", Value::handle(std::make_shared<const Thing>())); break;
+      case Kind::bad_contract: out.set("liar", Value::handle(std::make_shared<const Liar>())); break;
     }
   }
 
@@ -73,7 +82,8 @@ NodeTypeList make_types() {
 #else
   using Kind = Hostile::Kind;
   return {std::make_shared<Hostile>(Kind::series, "hostile.series"), std::make_shared<Hostile>(Kind::nan_work, "hostile.nan_work"),
-          std::make_shared<Hostile>(Kind::throw_int, "hostile.throw_int")};
+          std::make_shared<Hostile>(Kind::throw_int, "hostile.throw_int"),
+          std::make_shared<Hostile>(Kind::bad_contract, "hostile.bad_contract")};
 #endif
 }
 
