@@ -15,6 +15,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -26,6 +27,27 @@ struct Curve {
   const std::vector<double>* x = nullptr;
   const std::vector<double>* y = nullptr;
 };
+
+// Every text of the drawing goes through here: a DXF file is a list of group-code/value lines, so
+// a line break in a plugin's channel name would start groups of its own (a forged entity). Control
+// characters become '_'.
+std::string dxf_text(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
+  return out;
+}
+
+// A layer name from a channel prefix: capitals, and '_' for what DXF symbol table names may not
+// hold (< > / \ " : ; ? * | = ' and control characters).
+std::string dxf_layer_name(std::string_view prefix) {
+  std::string layer = dxf_text(prefix);
+  for (char& c : layer) {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (std::string_view("<>/\\\":;?*|='").find(c) != std::string_view::npos) c = '_';
+  }
+  return layer.substr(0, 255);
+}
 
 // The x/y channel pairs of a table: "x"/"y" on CONTOUR, "p_x"/"p_y" on layer P (capitals).
 std::vector<Curve> curves_of(const Table& t) {
@@ -39,9 +61,7 @@ std::vector<Curve> curves_of(const Table& t) {
     else continue;
     const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
     if (!y || y->dimension != dim::length) continue;
-    std::string layer = prefix.empty() ? "CONTOUR" : prefix;
-    std::transform(layer.begin(), layer.end(), layer.begin(), [](unsigned char ch) { return std::toupper(ch); });
-    out.push_back({layer, &c.values, &y->values});
+    out.push_back({prefix.empty() ? std::string("CONTOUR") : dxf_layer_name(prefix), &c.values, &y->values});
   }
   return out;
 }
@@ -79,7 +99,7 @@ class BufferWriter final : public DL_WriterA {
     if (code.size() < 3) text_.append(3 - code.size(), ' ');
     text_ += code;
     text_ += '\n';
-    text_ += value;
+    text_ += dxf_text(value);
     text_ += '\n';
   }
 

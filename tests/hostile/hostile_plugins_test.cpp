@@ -301,6 +301,20 @@ TEST_CASE("a DXF that does not fit on the disk is an I/O error (exit 5), never a
   ::umount2(mount_point.c_str(), MNT_DETACH);
 }
 
+TEST_CASE("a channel name cannot forge DXF groups: control characters become '_' in the drawing", "[hostile][dxf][cli]") {
+  const TempFolder dir("dxf_text");
+  const fs::path scene = dir.write("scene.yaml", "nodes: { e: { type: hostile.evil_curve } }\noutputs: [e.curve]\n");
+  const auto r = run_cli("-q --plugin-dir " + quoted(test_plugin("test_hostile_values").parent_path()) + " run " + quoted(scene) +
+                         " --out " + quoted(dir.path / "out"));
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string dxf = slurp(dir.path / "out" / "e.curve.dxf");
+  CHECK(dxf.find("\nLINE\n") == std::string::npos);  // no entity of the channel name's making
+  CHECK(dxf.find("\nEVIL\n") == std::string::npos);
+  CHECK_THAT(dxf, Contains("E_  0_LINE_  8_EVIL"));     // the layer, named with '_' for each line break
+  CHECK_THAT(dxf, Contains("\nEOF\n"));
+}
+
 // ---- 6. RUNPATH ---------------------------------------------------------------------------------
 
 TEST_CASE("no program or library of the build tree has an empty, relative or '.' RUNPATH entry", "[hostile][runpath]") {

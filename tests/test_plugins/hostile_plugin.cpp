@@ -7,6 +7,7 @@
 //     hostile.nan_work                a good scalar, but a NaN work counter
 //     hostile.throw_int               evaluate() throws 7 while making its domain object
 //     hostile.bad_contract            a domain object whose contract_problem() throws 7
+//     hostile.evil_curve              a closed curve whose channel names hold DXF group lines
 #include <mechgraph/plugin_abi.hpp>
 
 #include <limits>
@@ -30,7 +31,7 @@ class Liar final : public DomainObject {
 
 class Hostile final : public NodeType {
  public:
-  enum class Kind { series, nan_work, throw_int, bad_contract };
+  enum class Kind { series, nan_work, throw_int, bad_contract, evil_curve };
   Hostile(Kind kind, std::string type) : kind_(kind) {
     info_.type = std::move(type);
     info_.summary = "a deliberately broken node (host tests)";
@@ -44,6 +45,7 @@ class Hostile final : public NodeType {
       case Kind::nan_work: info_.outputs = {PortSpec::scalar("out", dim::length, "1 mm")}; break;
       case Kind::throw_int: info_.outputs = {PortSpec::handle("thing", "hostile_thing", "never made")}; break;
       case Kind::bad_contract: info_.outputs = {PortSpec::handle("liar", "hostile_liar", "cannot say if it is sound")}; break;
+      case Kind::evil_curve: info_.outputs = {PortSpec::table("curve", "a square, channels named to forge DXF entities")}; break;
     }
   }
   const NodeInfo& info() const override { return info_; }
@@ -66,6 +68,16 @@ class Hostile final : public NodeType {
         break;
       case Kind::throw_int: out.set("thing", Value::handle(std::make_shared<const Thing>())); break;
       case Kind::bad_contract: out.set("liar", Value::handle(std::make_shared<const Liar>())); break;
+      case Kind::evil_curve: {
+        Table t;
+        t.axis = {"i", dim::none, {0.0, 1.0, 2.0, 3.0}, ""};
+        t.closed_curve = true;
+        const std::string evil = "e\n  0\nLINE\n  8\nEVIL";
+        t.add_channel(evil + "_x", dim::length).values = {0.0, 1e-3, 1e-3, 0.0};
+        t.add_channel(evil + "_y", dim::length).values = {0.0, 0.0, 1e-3, 1e-3};
+        out.set("curve", Value::table(std::move(t)));
+        break;
+      }
     }
   }
 
@@ -83,7 +95,8 @@ NodeTypeList make_types() {
   using Kind = Hostile::Kind;
   return {std::make_shared<Hostile>(Kind::series, "hostile.series"), std::make_shared<Hostile>(Kind::nan_work, "hostile.nan_work"),
           std::make_shared<Hostile>(Kind::throw_int, "hostile.throw_int"),
-          std::make_shared<Hostile>(Kind::bad_contract, "hostile.bad_contract")};
+          std::make_shared<Hostile>(Kind::bad_contract, "hostile.bad_contract"),
+          std::make_shared<Hostile>(Kind::evil_curve, "hostile.evil_curve")};
 #endif
 }
 
