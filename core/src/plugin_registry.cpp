@@ -251,10 +251,15 @@ constexpr char probe_threw = 'x';         // the entry or the factory threw: the
 void probe_in_child(const std::filesystem::path& file, const std::string& where) {
   const std::string key = probe_key(file);
   if (probed_before(key)) return;
+  // Non-blocking: a process the plugin started may hold the write end open after the child ends.
   int report[2];
-  if (::pipe2(report, O_CLOEXEC) != 0) return;  // no descriptors to spare: load without the probe
+  if (::pipe2(report, O_CLOEXEC | O_NONBLOCK) != 0) {
+    spdlog::warn("{}: no pipe for the crash probe ({}); loaded without it", where, std::strerror(errno));
+    return;
+  }
   const pid_t child = ::fork();
-  if (child < 0) {  // no process to spare: load without the probe
+  if (child < 0) {
+    spdlog::warn("{}: no process for the crash probe ({}); loaded without it", where, std::strerror(errno));
     ::close(report[0]);
     ::close(report[1]);
     return;
@@ -268,7 +273,9 @@ void probe_in_child(const std::filesystem::path& file, const std::string& where)
   for (int waited_ms = 0;; waited_ms += 10) {
     const pid_t done = ::waitpid(child, &status, WNOHANG);
     if (done == child) break;
-    if (done < 0) {
+    if (done < 0) {  // someone else reaped it (a SIGCHLD handler set to SIG_IGN): no verdict
+      spdlog::warn("{}: the crash probe's process could not be waited for ({}); loaded without its verdict", where,
+                   std::strerror(errno));
       ::close(report[0]);
       return;
     }
