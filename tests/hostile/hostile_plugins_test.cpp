@@ -361,6 +361,16 @@ TEST_CASE("no program or library of the build tree has an empty, relative or '.'
   CHECK(with_runpath > 0);
 }
 
+TEST_CASE("a libdxflib.so.3 in the current folder is not loaded by mechgraph", "[hostile][runpath][cli]") {
+  // A library that crashes when loaded, under the name of one mechgraph needs: an empty RUNPATH
+  // entry (the current folder) would load it before the system's.
+  const TempFolder dir("cwd_library");
+  fs::copy_file(test_plugin("test_crash_ctor"), dir.path / "libdxflib.so.3");
+  const auto r = run_command("cd " + quoted(dir.path) + " && '" + std::string(MECHGRAPH_CLI) + "' --version");
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("mechgraph"));
+}
+
 // ---- 7. exit 0 with nonsense --------------------------------------------------------------------
 
 TEST_CASE("a thermal fit keeps hole_upper above hole_lower; absurd expansion is a range error or names the coefficient",
