@@ -35,7 +35,12 @@ function(mechgraph_add_plugin name)
     CXX_EXTENSIONS OFF
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON
-    INSTALL_RPATH "$ORIGIN/../..")
+    INSTALL_RPATH "$ORIGIN/../.."
+    # The same RUNPATH in the build tree: a build RUNPATH that differs from the install one gets a
+    # trailing ':' from CMake (room to rewrite it at install), an empty entry the dynamic loader
+    # reads as the current folder. In mechgraph's tree $ORIGIN/../.. is build/lib, as installed;
+    # elsewhere the host has loaded libmechgraph before any plugin, so it is not searched for.
+    BUILD_WITH_INSTALL_RPATH ON)
   # Every symbol resolved at link time (a missing one is a build error, not a load error), and no
   # symbols of static libraries re-exported. Sanitizer builds leave the runtime's symbols to the
   # program (clang links it into executables only), so they skip --no-undefined.

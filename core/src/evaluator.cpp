@@ -1,6 +1,8 @@
 #include <mechgraph/evaluator.hpp>
 
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/hash.hpp>
+#include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -45,10 +47,13 @@ void hash_param(Hasher& h, const ParamValue& v) {
 }
 
 void hash_file(Hasher& h, const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return;  // the node reports the missing file when it runs
-  std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  h.add(contents);
+  // Bounded like every read of a file a scene names: a FIFO, a device or a huge file is not read
+  // here (the node refuses it by name when it runs).
+  try {
+    h.add(read_bounded_file(path));
+  } catch (const FileReadError&) {
+    h.add(std::string_view("unreadable"));
+  }
 }
 
 class NodeContext final : public EvalContext {
@@ -76,6 +81,13 @@ class NodeContext final : public EvalContext {
   NodeRun& run_;
 };
 
+std::string format_double(double x) {
+  std::ostringstream os;
+  os.precision(6);
+  os << x;
+  return os.str();
+}
+
 std::string where_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
 
 
@@ -95,6 +107,19 @@ void check_table_shape(const GraphNode& node, const std::string& port, const Tab
   }
 }
 
+// A series' axis, values and (when present) labels have one entry per element: a shorter axis
+// would be read past its end by every writer.
+void check_series_shape(const GraphNode& node, const std::string& port, const Series& s) {
+  if (s.axis.size() != s.values.size())
+    throw EvaluationError(node.where.str() + where_of(node) + " produced series '" + port + "' with " +
+                          std::to_string(s.values.size()) + " values over an axis of " + std::to_string(s.axis.size()) +
+                          " (they must be as long; a defect of its plugin)");
+  if (!s.labels.empty() && s.labels.size() != s.values.size())
+    throw EvaluationError(node.where.str() + where_of(node) + " produced series '" + port + "' with " +
+                          std::to_string(s.labels.size()) + " labels for " + std::to_string(s.values.size()) +
+                          " values (labels are one per value, or none; a defect of its plugin)");
+}
+
 // Checks what a node produced against what it declared, and ties handles to the plugin's library.
 std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const OutputSet& produced) {
   auto checked = std::make_shared<OutputSet>();
@@ -105,11 +130,13 @@ std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const Ou
     if (value.kind() != spec->kind)
       throw EvaluationError(where_of(node) + " produced a " + std::string(to_string(value.kind())) + " at output '" + port +
                             "', declared as a " + std::string(to_string(spec->kind)));
+    // Shapes first: the finiteness check below and every writer index the arrays together.
+    if (value.kind() == ValueKind::series) check_series_shape(node, port, value.as_series());
+    if (value.kind() == ValueKind::table) check_table_shape(node, port, value.as_table());
     if (!all_finite(value))
       throw EvaluationError(node.where.str() + where_of(node) + " produced a NaN or infinite value at output '" + port +
                             "': its parameters or inputs are beyond what it can compute, and it did not say which "
                             "(please report it: a node must refuse such inputs naming the parameter)");
-    if (value.kind() == ValueKind::table) check_table_shape(node, port, value.as_table());
     if (value.kind() == ValueKind::handle) {
       if (!value.as_handle() || value.as_handle()->kind() != spec->handle_kind)
         throw EvaluationError(where_of(node) + " produced no " + spec->handle_kind + " at output '" + port + "'");
@@ -197,7 +224,24 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
     throw EvaluationError(where_of(node) + " threw something that is not a std::exception (a defect of its plugin)");
   }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  produced[i] = checked_outputs(node, outputs);
+  // Work counters are numbers like the outputs: a NaN one would reach the JSON writer mid-print.
+  for (const auto& [counter, amount] : run.work)
+    if (!std::isfinite(amount))
+      throw EvaluationError(node.where.str() + where_of(node) + " reported work counter '" + counter + "' as " +
+                            (std::isnan(amount) ? "NaN" : "infinite") +
+                            " (a work counter is a finite count; a defect of its plugin)");
+  // The checks call plugin code too (a domain object's kind() and contract_problem()): whatever
+  // it throws is this node's evaluation error, never the end of the host.
+  try {
+    produced[i] = checked_outputs(node, outputs);
+  } catch (const EvaluationError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw EvaluationError(where_of(node) + ": checking its outputs: " + e.what());
+  } catch (...) {
+    throw EvaluationError(where_of(node) + ": checking its outputs, its plugin threw something that is not a "
+                                           "std::exception (a defect of its plugin)");
+  }
   run.notes = produced[i]->notes();
   cache.store(hashes[i], produced[i]);
   spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
@@ -268,6 +312,42 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
   for (std::size_t i : graph.order) runs.push_back(std::move(by_node[i]));
 }
 
+// Every number of a requested output must stay finite in the unit it is shown in: 1e300 m is
+// finite in metres but not in nanometres (units: {length: nm}), and a writer would print "inf".
+// Refused here, naming the output and the unit, before anything is printed.
+void check_displayable(const GraphNode& node, const OutputValue& o, const DisplayUnits& units) {
+  auto check = [&](const std::vector<double>& xs, Dimension d, const std::string& own_unit, const std::string& what) {
+    const std::string unit = units.unit_for(d, own_unit);
+    if (unit.empty() || xs.empty()) return;
+    UnitScale u;
+    try {
+      u = parse_unit(unit);
+    } catch (const UnitError&) {
+      return;  // the writers refuse a unit they cannot read; nothing to check against here
+    }
+    double largest = 0.0;
+    for (double x : xs) largest = std::max(largest, std::abs(x));
+    if (!std::isfinite(largest / u.scale - u.offset) || !std::isfinite(-largest / u.scale - u.offset))
+      throw EvaluationError(node.where.str() + where_of(node) + " output '" + o.label + "'" + what + ": " +
+                            format_double(largest) + " " + d.si_unit() + " is beyond the range of a double in " + unit +
+                            " (the display unit); show it in a larger unit (the scene's units:) or check the inputs");
+  };
+  switch (o.value.kind()) {
+    case ValueKind::scalar: check({o.value.as_scalar()}, o.dimension, o.display_unit, ""); break;
+    case ValueKind::series:
+      check(o.value.as_series().values, o.dimension, o.display_unit, "");
+      check(o.value.as_series().axis, o.value.as_series().axis_dimension, "", ", its axis");
+      break;
+    case ValueKind::table: {
+      const Table& t = o.value.as_table();
+      check(t.axis.values, t.axis.dimension, t.axis.display_unit, ", axis '" + t.axis.name + "'");
+      for (const Table::Column& c : t.channels) check(c.values, c.dimension, c.display_unit, ", channel '" + c.name + "'");
+      break;
+    }
+    case ValueKind::handle: break;
+  }
+}
+
 }  // namespace
 
 RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
@@ -289,6 +369,7 @@ RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
                             "describe " + graph.nodes[o.node].info().type + "')");
     result.outputs.push_back(
         {o.label, it->second, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
+    check_displayable(graph.nodes[o.node], result.outputs.back(), graph.display_units);
   }
   return result;
 }

@@ -1,5 +1,6 @@
 #include <mechgraph/plugin_registry.hpp>
 
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/plugin_abi.hpp>
 #include <mechgraph/semantic_version.hpp>
 
@@ -9,6 +10,7 @@
 
 #include <dlfcn.h>
 #include <elf.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <sys/stat.h>
@@ -166,61 +168,156 @@ std::string probe_key(const std::filesystem::path& file) {
          std::to_string(st.st_ctim.tv_nsec) + " " + std::to_string(st.st_ino);
 }
 
+// The cache is only a shortcut: whatever is wrong with it (a FIFO or a folder in its place, a
+// huge or garbled file) costs a probe, never a hang or a crash. Read with a bound, like any file
+// this process does not control.
+constexpr std::size_t probe_cache_limit = std::size_t{1} << 20;
+
 bool probed_before(const std::string& key) {
   const std::filesystem::path cache = probe_cache_file();
   if (key.empty() || cache.empty()) return false;
-  std::ifstream in(cache);
-  for (std::string line; std::getline(in, line);)
-    if (line == key) return true;
+  std::string text;
+  try {
+    text = read_bounded_file(cache, probe_cache_limit);
+  } catch (const FileReadError& e) {
+    spdlog::debug("plugin probe cache ignored: {}", e.what());
+    return false;
+  }
+  std::string_view rest(text);
+  while (!rest.empty()) {
+    const std::size_t end = std::min(rest.find('\n'), rest.size());
+    if (rest.substr(0, end) == key) return true;
+    rest.remove_prefix(std::min(end + 1, rest.size()));
+  }
   return false;
 }
 
 void remember_probe(const std::string& key) {
   const std::filesystem::path cache = probe_cache_file();
-  if (key.empty() || cache.empty()) return;
+  if (key.empty() || cache.empty() || key.find('\n') != std::string::npos) return;
   std::error_code ec;
   std::filesystem::create_directories(cache.parent_path(), ec);
-  if (std::filesystem::exists(cache, ec) && std::filesystem::file_size(cache, ec) > (1u << 20)) std::filesystem::remove(cache, ec);
-  std::ofstream(cache, std::ios::app) << key + "\n";  // one short append: whole lines even with several writers
+  // Only a regular file (or none) is appended to: a FIFO there would block the open, a device or
+  // a folder is not ours to write. Too big: start again.
+  struct stat st {};
+  if (::lstat(cache.c_str(), &st) == 0) {
+    if (!S_ISREG(st.st_mode)) return;
+    if (static_cast<std::uintmax_t>(st.st_size) > probe_cache_limit / 2) std::filesystem::remove(cache, ec);
+  }
+  const int fd = ::open(cache.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY, 0644);
+  if (fd < 0) return;
+  struct stat opened {};
+  const std::string line = key + "\n";
+  // One short append: whole lines even with several writers.
+  if (::fstat(fd, &opened) == 0 && S_ISREG(opened.st_mode)) (void)!::write(fd, line.data(), line.size());
+  ::close(fd);
 }
 
+// What the probe child reports through its pipe just before it ends. Nothing written (the plugin
+// ended the child itself) is a refusal like a crash.
+constexpr char probe_loaded = 'k';        // loaded, entry and node type factory ran: may be cached
+constexpr char probe_not_plugin = 'n';    // no library, no entry, another ABI: the real load explains
+constexpr char probe_threw = 'x';         // the entry or the factory threw: the real load explains
+
+// In the child: load, call the entry and, when the handshake matches, the node type factory and
+// every type's info(), so a crash in any of them takes only the child down.
+[[noreturn]] void probe_child_main(const std::filesystem::path& file, int report) {
+  // The parent's crash handlers (a test framework's, a host's) must not report the child's crash.
+  for (int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) ::signal(sig, SIG_DFL);
+  char outcome = probe_not_plugin;
+  if (void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+    if (void* entry = ::dlsym(handle, plugin_entry_name)) {
+      try {
+        const PluginDescriptor* d = reinterpret_cast<PluginEntry*>(entry)();
+        // Only a plugin of this ABI and toolchain shares our NodeTypeList layout.
+        if (d && d->abi_version == plugin_abi_version && d->build_fingerprint &&
+            std::string(d->build_fingerprint) == build_fingerprint && d->make_node_types) {
+          const NodeTypeList types = d->make_node_types();
+          for (const auto& t : types)
+            if (t) (void)t->info();
+          outcome = probe_loaded;
+        }
+      } catch (...) {
+        outcome = probe_threw;
+      }
+    }
+  }
+  (void)!::write(report, &outcome, 1);
+  ::_exit(0);
+}
+
+// Returns normally when the file may be loaded in this process (cached as good only when the
+// child loaded it completely); throws PluginError when loading it crashed, hung or ended the child.
 void probe_in_child(const std::filesystem::path& file, const std::string& where) {
   const std::string key = probe_key(file);
   if (probed_before(key)) return;
-  const pid_t child = ::fork();
-  if (child < 0) return;  // no process to spare: load without the probe
-  if (child == 0) {
-    // The parent's crash handlers (a test framework's, a host's) must not report the child's crash.
-    for (int sig : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) ::signal(sig, SIG_DFL);
-    void* handle = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (handle) {
-      if (void* entry = ::dlsym(handle, plugin_entry_name)) {
-        auto* function = reinterpret_cast<PluginEntry*>(entry);
-        (void)function();
-      }
-    }
-    ::_exit(0);
+  // Non-blocking: a process the plugin started may hold the write end open after the child ends.
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC | O_NONBLOCK) != 0) {
+    spdlog::warn("{}: no pipe for the crash probe ({}); loaded without it", where, std::strerror(errno));
+    return;
   }
+  const pid_t child = ::fork();
+  if (child < 0) {
+    spdlog::warn("{}: no process for the crash probe ({}); loaded without it", where, std::strerror(errno));
+    ::close(report[0]);
+    ::close(report[1]);
+    return;
+  }
+  if (child == 0) {
+    ::close(report[0]);
+    probe_child_main(file, report[1]);
+  }
+  ::close(report[1]);
   int status = 0;
   for (int waited_ms = 0;; waited_ms += 10) {
     const pid_t done = ::waitpid(child, &status, WNOHANG);
     if (done == child) break;
-    if (done < 0) return;
+    if (done < 0) {  // someone else reaped it (a SIGCHLD handler set to SIG_IGN): no verdict
+      spdlog::warn("{}: the crash probe's process could not be waited for ({}); loaded without its verdict", where,
+                   std::strerror(errno));
+      ::close(report[0]);
+      return;
+    }
     if (waited_ms >= 30000) {
       ::kill(child, SIGKILL);
       ::waitpid(child, &status, 0);
-      throw PluginError(where + ": loading it did not finish within 30 s (a hang in its static constructors or "
-                                "its entry); refused");
+      ::close(report[0]);
+      throw PluginError(where + ": loading it did not finish within 30 s (a hang in its static constructors, its "
+                                "entry or its node type factory); refused");
     }
     ::usleep(10000);
   }
+  char outcome = 0;
+  ssize_t got = 0;
+  do got = ::read(report[0], &outcome, 1);
+  while (got < 0 && errno == EINTR);
+  ::close(report[0]);
   if (WIFSIGNALED(status))
     throw PluginError(where + ": loading it crashed (signal " + std::to_string(WTERMSIG(status)) + ", " +
-                      ::strsignal(WTERMSIG(status)) + ") in its static constructors or its entry; refused");
-  if (WIFEXITED(status) && WEXITSTATUS(status) != 0)
-    throw PluginError(where + ": loading it ended the process with exit code " + std::to_string(WEXITSTATUS(status)) +
-                      " (in its static constructors or its entry); refused");
-  remember_probe(key);
+                      ::strsignal(WTERMSIG(status)) + ") in its static constructors, its entry or its node type "
+                      "factory; refused");
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || got != 1)
+    throw PluginError(where + ": loading it ended the process" +
+                      (WIFEXITED(status) ? " with exit code " + std::to_string(WEXITSTATUS(status)) : std::string()) +
+                      " (in its static constructors, its entry or its node type factory); refused");
+  // Only a file that loaded completely is remembered; anything else is probed again next time.
+  if (outcome == probe_loaded) remember_probe(key);
+}
+
+// Calls into a plugin (its entry, its node type factory, a type's info()) and turns whatever it
+// throws into a PluginError naming the plugin: a throw of a non-std type must not end the host.
+template <class F>
+auto call_plugin(const std::string& where, const char* what, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const PluginError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw PluginError(where + ": " + what + " threw an exception (" + quoted_text_excerpt(e.what(), 200) + "); refused");
+  } catch (...) {
+    throw PluginError(where + ": " + what + " threw something that is not a std::exception (a defect of the plugin); refused");
+  }
 }
 
 }  // namespace
@@ -230,9 +327,15 @@ std::shared_ptr<const DomainObject> RegisteredType::keep_alive(std::shared_ptr<c
   return tie_to_library(std::move(object), library);
 }
 
-void PluginRegistry::load_file(const std::filesystem::path& file) {
+void PluginRegistry::load_file(const std::filesystem::path& given) {
+  // One absolute, canonical name for the probe, its cache and the loader: dlopen("crash.so")
+  // without a slash searches the library path, not the folder the name was given in, so a
+  // relative name would probe one file (or none) and load another.
+  std::error_code ec_path;
+  const std::filesystem::path file = std::filesystem::canonical(given, ec_path);
+  if (ec_path || !std::filesystem::is_regular_file(file, ec_path))
+    throw PluginError("plugin '" + given.string() + "': no such file");
   const std::string where = "plugin '" + file.string() + "'";
-  if (!std::filesystem::is_regular_file(file)) throw PluginError(where + ": no such file");
   check_ownership(file, where, false);
   check_elf(file, where);
   probe_in_child(file, where);
@@ -259,8 +362,11 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
     throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
                       "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
   }
+  // From here on the plugin's code runs in this process: it stays mapped even when it is refused
+  // (an object it threw, a static it registered, may still point into it).
+  if (lifetime_ == Lifetime::process) all_libraries().push_back(library);
   auto* entry = library->get<PluginEntry>(plugin_entry_name);
-  const PluginDescriptor* d = entry();
+  const PluginDescriptor* d = call_plugin(where, "its entry", [&] { return entry(); });
   if (!d) throw PluginError(where + ": its entry returned no descriptor");
   if (d->abi_version != plugin_abi_version)
     throw PluginError(where + " was built for plugin ABI version " + std::to_string(d->abi_version) +
@@ -280,14 +386,14 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
     throw PluginError(where + " ('" + id + "'): its version '" + version +
                       "' is not a semantic version MAJOR.MINOR.PATCH (e.g. \"0.1.0\"); fix the MECHGRAPH_PLUGIN line");
 
-  NodeTypeList types = d->make_node_types();
+  NodeTypeList types = call_plugin(where + " ('" + id + "')", "its node type factory", [&] { return d->make_node_types(); });
   std::shared_ptr<const void> keep = library;
   std::set<std::string> own;
   PluginInfo info{id, version, d->build_fingerprint, file, {}, d->sdk_version ? d->sdk_version : ""};
   std::vector<std::pair<std::string, RegisteredType>> added;
   for (auto& t : types) {
     if (!t) throw PluginError(where + ": returned an empty node type");
-    const std::string& name = t->info().type;
+    const std::string name = call_plugin(where + " ('" + id + "')", "a node type's info()", [&] { return t->info().type; });
     if (name.empty()) throw PluginError(where + ": a node type has an empty name");
     if (const RegisteredType* other = find(name)) {
       std::string other_path;
@@ -300,7 +406,6 @@ void PluginRegistry::load_file(const std::filesystem::path& file) {
     info.node_types.push_back(name);
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id});
   }
-  if (lifetime_ == Lifetime::process) all_libraries().push_back(library);
   for (auto& a : added) types_.push_back(std::move(a));
   spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
   plugins_.push_back(std::move(info));

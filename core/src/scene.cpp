@@ -45,7 +45,7 @@ class SceneReader {
     if (n.IsMap()) return "a map";
     if (n.IsSequence()) return "a list";
     if (n.IsNull()) return "nothing";
-    return quoted_excerpt(n.Scalar());
+    return quoted_text_excerpt(n.Scalar());
   }
 
   RawValue raw(const YAML::Node& n) const {
@@ -256,7 +256,7 @@ RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
   try {
     node = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
-    throw SceneError(where.str() + "cannot read " + quoted_excerpt(text) + ": " + e.msg);
+    throw SceneError(where.str() + "cannot read " + quoted_text_excerpt(text) + ": " + e.msg);
   }
   detail::check_yaml_bounds(node, where.file, {16, 100'000});
   RawValue v = SceneReader(where.file).raw(node);
@@ -285,9 +285,9 @@ SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label)
 SceneSpec load_scene(const std::filesystem::path& file) {
   std::string text;
   try {
-    text = read_bounded(file, max_scene_bytes);
-  } catch (const BoundedReadError& e) {
-    throw SceneError(file.string() + ": the scene file " + e.what());
+    text = read_bounded_file(file, max_scene_bytes);
+  } catch (const FileReadError& e) {
+    throw SceneError(std::string("the scene: ") + e.what());
   }
   return parse_scene(text, file.string());
 }
@@ -297,11 +297,11 @@ std::string name_problem(std::string_view name) {
   const auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; };
   const auto digit = [](char c) { return c >= '0' && c <= '9'; };
   if (name.empty()) return "is empty";
-  if (name.size() > max_name) return quoted_excerpt(name, 40) + " is longer than " + std::to_string(max_name) + " characters";
+  if (name.size() > max_name) return quoted_text_excerpt(name, 40) + " is longer than " + std::to_string(max_name) + " characters";
   bool ok = letter(name.front());
   for (char c : name) ok = ok && (letter(c) || digit(c) || c == '-');
   if (!ok)
-    return quoted_excerpt(name) + " is not a name: it starts with a letter or '_' and holds only ASCII letters, digits, '_' and '-'";
+    return quoted_text_excerpt(name) + " is not a name: it starts with a letter or '_' and holds only ASCII letters, digits, '_' and '-'";
   return {};
 }
 

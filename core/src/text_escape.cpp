@@ -113,27 +113,4 @@ std::string dot_string(std::string_view text) {
   return out + "\"";
 }
 
-std::string quoted_excerpt(std::string_view text, std::size_t max_bytes) {
-  std::string out = "'";
-  std::size_t taken = 0;
-  for (std::size_t i = 0; i < text.size();) {
-    std::size_t n = sequence_length(text, i);
-    if (taken + std::max<std::size_t>(n, 1) > max_bytes) {
-      out += "'... (" + std::to_string(text.size() - i) + " more bytes)";
-      return out;
-    }
-    if (n == 0) {
-      out += '?';
-      n = 1;
-    } else if (n == 1 && is_control(static_cast<unsigned char>(text[i]))) {
-      out += '?';
-    } else {
-      out += text.substr(i, n);
-    }
-    taken += n;
-    i += n;
-  }
-  return out + "'";
-}
-
 }  // namespace mechgraph

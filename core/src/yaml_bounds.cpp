@@ -2,6 +2,7 @@
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/scene.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/text_escape.hpp>
 
 #include <cstdio>
@@ -31,7 +32,7 @@ class BoundsWalk {
         if (kv.first.IsScalar()) {
           const auto [it, fresh] = seen.emplace(kv.first.Scalar(), kv.first.Mark());
           if (!fresh)
-            fail(kv.first, "the key " + quoted_excerpt(kv.first.Scalar()) + " is given twice in one map (first at line " +
+            fail(kv.first, "the key " + quoted_text_excerpt(kv.first.Scalar()) + " is given twice in one map (first at line " +
                                std::to_string(it->second.line + 1) + ", column " + std::to_string(it->second.column + 1) +
                                "): say it once");
         }

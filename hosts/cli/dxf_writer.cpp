@@ -3,11 +3,19 @@
 #include <mechgraph/errors.hpp>
 
 #include <dxflib/dl_dxf.h>
+#include <dxflib/dl_writer_ascii.h>
+
+#include <fcntl.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -19,6 +27,27 @@ struct Curve {
   const std::vector<double>* x = nullptr;
   const std::vector<double>* y = nullptr;
 };
+
+// Every text of the drawing goes through here: a DXF file is a list of group-code/value lines, so
+// a line break in a plugin's channel name would start groups of its own (a forged entity). Control
+// characters become '_'.
+std::string dxf_text(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
+  return out;
+}
+
+// A layer name from a channel prefix: capitals, and '_' for what DXF symbol table names may not
+// hold (< > / \ " : ; ? * | = ' and control characters).
+std::string dxf_layer_name(std::string_view prefix) {
+  std::string layer = dxf_text(prefix);
+  for (char& c : layer) {
+    c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (std::string_view("<>/\\\":;?*|='").find(c) != std::string_view::npos) c = '_';
+  }
+  return layer.substr(0, 255);
+}
 
 // The x/y channel pairs of a table: "x"/"y" on CONTOUR, "p_x"/"p_y" on layer P (capitals).
 std::vector<Curve> curves_of(const Table& t) {
@@ -32,11 +61,80 @@ std::vector<Curve> curves_of(const Table& t) {
     else continue;
     const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
     if (!y || y->dimension != dim::length) continue;
-    std::string layer = prefix.empty() ? "CONTOUR" : prefix;
-    std::transform(layer.begin(), layer.end(), layer.begin(), [](unsigned char ch) { return std::toupper(ch); });
-    out.push_back({layer, &c.values, &y->values});
+    out.push_back({prefix.empty() ? std::string("CONTOUR") : dxf_layer_name(prefix), &c.values, &y->values});
   }
   return out;
+}
+
+// dxflib's own writer streams to a file it opens and keeps the stream to itself, so a full disk
+// goes unnoticed. This one keeps dxflib's group-code layout but collects the text in memory; the
+// caller writes it with every write checked. (DL_Dxf takes a DL_WriterA, hence the base: given no
+// file name its stream opens nothing and is never used, every output call is overridden here.)
+class BufferWriter final : public DL_WriterA {
+ public:
+  BufferWriter() : DL_WriterA("", DL_Codes::AC1015) {}
+  const std::string& text() const { return text_; }
+
+  void dxfReal(int gc, double value) const override {
+    // Plain decimal notation (CAD readers do not all take exponents), shortest digits that keep
+    // the value, without trailing zeros.
+    char buffer[400];
+    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
+    std::string digits = ec == std::errc() ? std::string(buffer, end) : std::string("0");
+    if (digits.find('.') == std::string::npos) digits += ".0";
+    dxfString(gc, digits);
+  }
+  void dxfInt(int gc, int value) const override { dxfString(gc, std::to_string(value)); }
+  void dxfHex(int gc, int value) const override {
+    char buffer[16];
+    auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, static_cast<unsigned>(value), 16);
+    std::string hex(buffer, ec == std::errc() ? end : buffer);
+    std::transform(hex.begin(), hex.end(), hex.begin(), [](unsigned char c) { return std::toupper(c); });
+    dxfString(gc, hex);
+  }
+  void dxfString(int gc, const char* value) const override { dxfString(gc, std::string(value ? value : "")); }
+  void dxfString(int gc, const std::string& value) const override {
+    // The group code right-aligned in three columns, then the value, each on its own line.
+    const std::string code = std::to_string(gc);
+    if (code.size() < 3) text_.append(3 - code.size(), ' ');
+    text_ += code;
+    text_ += '\n';
+    text_ += dxf_text(value);
+    text_ += '\n';
+  }
+
+ private:
+  mutable std::string text_;
+};
+
+// Writes `bytes` to the new file `file` (O_EXCL: never over another file), each write checked,
+// the data flushed to the disk and the close checked; on any failure the partial file is removed
+// and IoError names the file and the system's reason (a full disk: "No space left on device").
+void write_new_file(const std::filesystem::path& file, std::string_view bytes) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOCTTY, 0644);
+  if (fd < 0) throw IoError("cannot write '" + file.string() + "': " + std::strerror(errno));
+  auto fail = [&](const char* what, int error) {
+    ::close(fd);
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    throw IoError(std::string("cannot ") + what + " '" + file.string() + "' (" + std::to_string(bytes.size()) +
+                  " bytes of DXF): " + std::strerror(error));
+  };
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail("write", n < 0 ? errno : ENOSPC);
+    done += static_cast<std::size_t>(n);
+  }
+  // tmpfs and NFS may report a full disk only here.
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("flush", errno);
+  if (::close(fd) != 0) {
+    const int error = errno;
+    std::error_code ignored;
+    std::filesystem::remove(file, ignored);
+    throw IoError("cannot write '" + file.string() + "': " + std::strerror(error));
+  }
 }
 
 }  // namespace
@@ -46,8 +144,7 @@ bool is_drawable_curve(const Table& t) { return t.closed_curve && !curves_of(t).
 void write_dxf(const std::filesystem::path& file, const Table& t) {
   const std::vector<Curve> curves = curves_of(t);
   DL_Dxf dxf;
-  std::unique_ptr<DL_WriterA> dw(dxf.out(file.c_str(), DL_Codes::AC1015));
-  if (!dw || dw->openFailed()) throw IoError("cannot write '" + file.string() + "'");
+  auto dw = std::make_unique<BufferWriter>();
 
   dxf.writeHeader(*dw);
   dw->dxfString(9, "$INSUNITS");
@@ -98,10 +195,7 @@ void write_dxf(const std::filesystem::path& file, const Table& t) {
   dxf.writeObjects(*dw);
   dxf.writeObjectsEnd(*dw);
   dw->dxfEOF();
-  dw->close();
-  std::error_code ec;
-  if (!std::filesystem::exists(file, ec) || std::filesystem::file_size(file, ec) == 0)
-    throw IoError("cannot write '" + file.string() + "'");
+  write_new_file(file, dw->text());
 }
 
 }  // namespace mechgraph::cli

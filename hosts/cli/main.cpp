@@ -147,6 +147,9 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     spdlog::error("{}", bounded(e.what()));
     code = cli::evaluation_error;
+  } catch (...) {
+    spdlog::error("{}: failed with an exception that is not a std::exception (a defect; please report it)", command);
+    code = cli::evaluation_error;
   }
   // Standard output is a result file like any other: a write that failed (a full disk, a closed
   // terminal) is exit 5, never a silent 0.

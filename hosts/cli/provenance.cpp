@@ -67,9 +67,9 @@ void write_used(JsonWriter& json, const ParamValue& v) {
 std::string file_sha1(const std::string& file) {
   std::string bytes;
   try {
-    bytes = read_bounded(file, max_scene_bytes);
-  } catch (const BoundedReadError& e) {
-    throw IoError("cannot hash the scene '" + file + "': it " + e.what());
+    bytes = read_bounded_file(file, max_scene_bytes);
+  } catch (const FileReadError& e) {
+    throw IoError(std::string("cannot hash the scene: ") + e.what());
   }
   boost::uuids::detail::sha1 sha;
   sha.process_bytes(bytes.data(), bytes.size());

@@ -6,6 +6,7 @@
 
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
@@ -176,13 +177,13 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
     std::string why(4096, '\0');
     log.read(why.data(), static_cast<std::streamsize>(why.size()));
     why.resize(static_cast<std::size_t>(log.gcount()));
-    throw IoError("gnuplot failed on the plot " + quoted_excerpt(f.title) + " (" + run.describe() + "): " + utf8_sanitized(why));
+    throw IoError("gnuplot failed on the plot " + quoted_text_excerpt(f.title) + " (" + run.describe() + "): " + utf8_sanitized(why));
   }
   std::ifstream in(dir / svg);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // Inline: drop the XML declaration and the DOCTYPE, keep <svg ...> ... </svg>.
   const auto begin = text.find("<svg");
-  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot " + quoted_excerpt(f.title));
+  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot " + quoted_text_excerpt(f.title));
   std::filesystem::remove(dir / svg);
   std::filesystem::remove(dir / script_file);
   std::filesystem::remove(dir / (f.name + ".log"));

@@ -1,5 +1,6 @@
 #include "chain_geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -32,15 +33,35 @@ std::array<double, 2> singular_values(const Matrix2& m) {
   return {largest, std::abs(determinant(m)) / largest};
 }
 
+namespace {
+
+// The largest |entry|: the condition number and the inverse are computed on m / scale, whose
+// entries lie in [-1, 1], so neither the determinant (1e160^2) nor the singular values overflow
+// or underflow for any finite matrix.
+double entry_scale(const Matrix2& m) {
+  return std::max(std::max(std::abs(m[0]), std::abs(m[1])), std::max(std::abs(m[2]), std::abs(m[3])));
+}
+
+Matrix2 scaled(const Matrix2& m, double scale) { return {m[0] / scale, m[1] / scale, m[2] / scale, m[3] / scale}; }
+
+}  // namespace
+
 double condition_number(const Matrix2& m) {
-  const auto s = singular_values(m);
+  const double scale = entry_scale(m);
+  if (!(scale > 0.0) || !std::isfinite(scale)) return std::numeric_limits<double>::infinity();
+  // kappa(m) = kappa(m / scale): the ratio of singular values does not change with a common factor.
+  const auto s = singular_values(scaled(m, scale));
   if (s[1] == 0.0) return std::numeric_limits<double>::infinity();
   return s[0] / s[1];
 }
 
 Matrix2 inverse(const Matrix2& m) {
-  const double det = determinant(m);
-  return {m[3] / det, -m[1] / det, -m[2] / det, m[0] / det};
+  // inv(m) = inv(m / scale) / scale; the caller checks the result is finite (a scale near the
+  // smallest double overflows it).
+  const double scale = entry_scale(m);
+  const Matrix2 n = scaled(m, scale);
+  const double det = determinant(n);
+  return {n[3] / det / scale, -n[1] / det / scale, -n[2] / det / scale, n[0] / det / scale};
 }
 
 }  // namespace mechgraph::backlash

@@ -8,6 +8,7 @@
 #include "chain_geometry.hpp"
 #include "node_types.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace mechgraph::backlash {
@@ -66,8 +67,17 @@ class TwoAxisType final : public NodeType {
     if (!(b1 >= 0.0) || !std::isfinite(b1)) throw NodeError("rod_backlash_1", "rod_backlash_1 must be >= 0 and finite");
     if (!(b2 >= 0.0) || !std::isfinite(b2)) throw NodeError("rod_backlash_2", "rod_backlash_2 must be >= 0 and finite");
     const Matrix2 inv = inverse(J);
-    out.set_scalar("angular_backlash_pitch", std::abs(inv[0]) * b1 + std::abs(inv[1]) * b2);
-    out.set_scalar("angular_backlash_yaw", std::abs(inv[2]) * b1 + std::abs(inv[3]) * b2);
+    const double pitch = std::abs(inv[0]) * b1 + std::abs(inv[1]) * b2;
+    const double yaw = std::abs(inv[2]) * b1 + std::abs(inv[3]) * b2;
+    // A well-conditioned J can still be so small (entries near 1e-308 m/rad) that its inverse
+    // overflows: refused with the size, not passed on as infinity.
+    if (!std::isfinite(pitch) || !std::isfinite(yaw))
+      throw NodeError("jacobian", "jacobian is too small to invert in double precision (largest entry " +
+                                      number_text(std::max(std::max(std::abs(j[0]), std::abs(j[1])),
+                                                           std::max(std::abs(j[2]), std::abs(j[3])))) +
+                                      " m/rad): the angular backlash would exceed the range of a double");
+    out.set_scalar("angular_backlash_pitch", pitch);
+    out.set_scalar("angular_backlash_yaw", yaw);
     out.set_scalar("condition_number", condition);
   }
 

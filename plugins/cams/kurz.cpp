@@ -1,5 +1,6 @@
 #include "kurz.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <numbers>
@@ -60,6 +61,31 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   }
   const double phi_1 = sigma * phi_y;
   const double phi_2 = phi_y - phi_1;
+  // Each quarter wave must be wide enough to be told apart from its ends: the host's searches see
+  // a piece's one-sided value at 1e-13 of its width from a knot, and a knot at |phi| <= phi_p is
+  // resolved only to half an ulp, up to 1.1e-16 phi_p; so a wave narrower than 1.1e-3 phi_p merges
+  // into its neighbour (rise_split 0.999 with accel_angle 18 deg reported accel_angle 0). 4e-3 phi_p
+  // (0.26 deg for a 130 deg event) leaves a factor of 3.6; the feasible split is then
+  // [min_wave / accel_angle, 1 - min_wave / accel_angle].
+  const double min_wave = 4e-3 * phi_p;
+  if (phi_y < 2.0 * min_wave) {
+    std::ostringstream msg;
+    msg << "accel_angle = " << deg(phi_y) << " is below " << deg(2.0 * min_wave)
+        << ": its quarter sine and quarter cosine need at least " << deg(min_wave)
+        << " each (0.4 % of half the action angle, " << deg(phi_p) << ")";
+    throw NodeError("accel_angle", msg.str());
+  }
+  if (!(phi_1 >= min_wave) || !(phi_2 >= min_wave)) {
+    std::ostringstream msg;
+    msg << std::setprecision(6) << "rise_split = " << sigma << " leaves the quarter " << (phi_1 < phi_2 ? "sine " : "cosine ")
+        << deg(std::min(phi_1, phi_2)) << " of accel_angle = " << deg(phi_y) << "; each quarter wave needs at least "
+        << deg(min_wave) << " (0.4 % of half the action angle), so rise_split must lie within " << min_wave / phi_y
+        << " .. " << 1.0 - min_wave / phi_y;
+    if (!rise_split)
+      msg << "; this is the default split for accel_angle = " << deg(phi_y) << " and half the action angle "
+          << deg(phi_p) << ": move accel_angle away from half the action angle, or give rise_split";
+    throw NodeError(rise_split ? "rise_split" : "accel_angle", msg.str());
+  }
   const double phi_3 = phi_p - phi_y;
   std::vector<ShapeSegment> positive{{std::make_shared<const QuarterSineRise>(), phi_1},
                                      {std::make_shared<const QuarterCosineFall>(), phi_2}};
@@ -90,7 +116,9 @@ CamLawDefinition kurz_definition() {
           "usual case for valve cams) no split can make the jerk continuous there, and the default is the split "
           "that minimises the larger of the two jerk jumps left, at the start of lift and at the junction: "
           "(1 + k / (pi + sqrt(pi^2 + k^2))) / 2 with k = 6 phi_y^2 / (pi phi_3^2), between 0.5 and 0.62. The "
-          "default therefore changes branch where phi_3 = 1.103 phi_y. The split used is the rise_split output")
+          "default therefore changes branch where phi_3 = 1.103 phi_y. The split used is the rise_split output. Each "
+          "quarter wave must span at least 0.4 % of half the action angle, w (so the split lies within w / "
+          "accel_angle .. 1 - w / accel_angle), the default included")
           .optional()
           .above(0.0)
           .below(1.0),

@@ -1,5 +1,6 @@
 #include "table_law.hpp"
 
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 #include <mechgraph/units.hpp>
@@ -187,8 +188,16 @@ LiftTable parse_lift_table(std::string_view text, const std::string& source, dou
         header_allowed = false;
         continue;
       }
+      // The file may be anything a scene names: quote one offending cell, shortened, never the line.
       std::ostringstream m;
-      m << at_line(source, line_number) << "expected two finite numbers (angle, lift), found '" << line << "'";
+      m << at_line(source, line_number) << "expected two finite numbers (angle, lift), found ";
+      if (fields.size() != 2) {
+        m << fields.size() << " field" << (fields.size() == 1 ? "" : "s");
+      } else {
+        double ignored = 0.0;
+        const std::string_view bad = parse_number(fields[0], ignored) ? fields[1] : fields[0];
+        m << quoted_text_excerpt(bad, 80);
+      }
       throw NodeError("file", m.str());
     }
     header_allowed = false;
@@ -210,11 +219,15 @@ LiftTable parse_lift_table(std::string_view text, const std::string& source, dou
 }
 
 LiftTable read_lift_table(const std::string& path, double angle_scale, double lift_scale) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw NodeError("file", "cannot open the lift table '" + path + "': " + std::strerror(errno));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_lift_table(buffer.str(), path, angle_scale, lift_scale);
+  // A scene from someone else may name a folder, a FIFO, /dev/zero or a huge file: only a regular
+  // file up to lift_table_limit is read, with that bound.
+  std::string text;
+  try {
+    text = read_bounded_file(path, lift_table_limit);
+  } catch (const FileReadError& e) {
+    throw NodeError("file", std::string("the lift table: ") + e.what());
+  }
+  return parse_lift_table(text, path, angle_scale, lift_scale);
 }
 
 TableLaw::TableLaw(const LiftTable& table, double base_radius) : base_radius_(base_radius) {

@@ -27,6 +27,7 @@
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <array>
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -49,7 +50,12 @@ struct LiftTable {
 /// Throws NodeError("file", "source:line: ...") on a bad row, non-increasing angle or negative lift.
 LiftTable parse_lift_table(std::string_view text, const std::string& source, double angle_scale, double lift_scale);
 
+/// The largest lift table read: 64 MiB (a million rows are some 20 MB).
+inline constexpr std::size_t lift_table_limit = std::size_t{64} << 20;
+
 /// Reads and parses a lift table file (a relative path is taken from the working directory).
+/// Only a regular file of at most lift_table_limit bytes is read (mechgraph/bounded_read.hpp);
+/// anything else is NodeError("file", ...) naming the path and why.
 LiftTable read_lift_table(const std::string& path, double angle_scale, double lift_scale);
 
 /// The interpolated table as a CamLaw.

@@ -59,10 +59,16 @@ class FitNodeType final : public NodeType {
       info_.params.push_back(distribution_param(std::string(part) + "_distribution",
                                                std::string("spread of the ") + part +
                                                    " size over its tolerance (normal: tolerance = 6 sigma)"));
-    info_.params.push_back(ParamSpec::number("hole_expansion", dim::per_kelvin, "thermal expansion coefficient of the hole's part (thermal)", "1/K")
-                               .with_default(11.5e-6));
-    info_.params.push_back(ParamSpec::number("shaft_expansion", dim::per_kelvin, "thermal expansion coefficient of the shaft (thermal)", "1/K")
-                               .with_default(11.5e-6));
+    // Engineering materials lie within -1e-5 (Invar-like, some composites) and 2e-4 1/K
+    // (polymers); the range leaves room either way and keeps 1 + alpha dT meaningful.
+    info_.params.push_back(ParamSpec::number("hole_expansion", dim::per_kelvin, "thermal expansion coefficient of the hole's part (thermal), -1e-4 .. 1e-3 1/K", "1/K")
+                               .with_default(11.5e-6)
+                               .at_least(-1e-4)
+                               .at_most(1e-3));
+    info_.params.push_back(ParamSpec::number("shaft_expansion", dim::per_kelvin, "thermal expansion coefficient of the shaft (thermal), -1e-4 .. 1e-3 1/K", "1/K")
+                               .with_default(11.5e-6)
+                               .at_least(-1e-4)
+                               .at_most(1e-3));
     info_.params.push_back(ParamSpec::number("assembly_temperature", dim::temperature, "temperature the sizes hold at (thermal)", "degC")
                                .with_default(293.15)
                                .positive());
@@ -107,6 +113,19 @@ class FitNodeType final : public NodeType {
       const double dT = p.number("operating_temperature") - p.number("assembly_temperature");
       auto grow = [&](double dev, double alpha) { return (size + dev) * (1.0 + alpha * dT) - size; };
       const double ah = p.number("hole_expansion"), as = p.number("shaft_expansion");
+      // Each size is scaled by 1 + alpha dT: at or below zero the part would have shrunk to nothing
+      // and the limits would swap (hole_upper < hole_lower). A growth beyond +-10 % is no longer a
+      // fit's thermal correction either; both are refused naming the coefficient.
+      for (const auto& [name, alpha] : {std::pair{"hole_expansion", ah}, std::pair{"shaft_expansion", as}}) {
+        const double strain = alpha * dT;
+        if (!(std::abs(strain) <= 0.1)) {
+          std::ostringstream m;
+          m << name << " x (operating_temperature - assembly_temperature) = " << alpha << " 1/K x " << dT
+            << " K = " << strain << ": the part's size would change by " << strain * 100.0
+            << " %, beyond the +-10 % a linear thermal expansion can stand for";
+          throw NodeError(name, m.str());
+        }
+      }
       hole = {grow(hole.upper, ah), grow(hole.lower, ah)};
       shaft = {grow(shaft.upper, as), grow(shaft.lower, as)};
       std::ostringstream note;

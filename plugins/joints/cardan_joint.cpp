@@ -33,7 +33,12 @@ class CardanJointType final : public NodeType {
     info_.summary =
         "cardan (universal) joint: trunnion clearances and end float; output angle and speed ratio at a bend angle";
     info_.params = {
-        ParamSpec::number("input_angle", dim::angle, "input yoke angle t1, measured from the plane of the bend", "deg")
+        // One turn either way: the kinematics repeat every half turn, and an angle like 1e300 deg
+        // has no digits left below a turn (its sine is noise), so it is refused, not reduced.
+        ParamSpec::number("input_angle", dim::angle,
+                          "input yoke angle t1, measured from the plane of the bend, -360 .. 360 deg", "deg")
+            .at_least(-360.0 * deg)
+            .at_most(360.0 * deg)
             .with_example(30.0 * deg),
         ParamSpec::number("bend_angle", dim::angle,
                           "bend angle b between the shafts, 0 <= b < 90 deg (evaluated up to 1/cos b = 1e6)", "deg")
@@ -70,7 +75,9 @@ class CardanJointType final : public NodeType {
   void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
     const CardanKinematics joint(p.number("bend_angle"));
     const double t1 = p.number("input_angle");
-    if (!std::isfinite(t1)) throw NodeError("input_angle", "the input angle must be a finite number");
+    // The declared range, again for callers that bypass the scene loader (the SDK's harness).
+    if (!(std::abs(t1) <= 360.0 * deg))
+      throw NodeError("input_angle", "the input angle must lie within -360 .. 360 deg (one turn either way)");
     const double ratio = joint.speed_ratio(t1);
     const double scale = ctx.effect(effect_name) ? ratio : 1.0;
 

@@ -1,60 +1,108 @@
 #include <mechgraph/bounded_read.hpp>
 
-#include <cerrno>
-#include <cstring>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdint>
+#include <cstring>
+
 namespace mechgraph {
 
-BoundedReadError::~BoundedReadError() = default;
+FileReadError::~FileReadError() = default;
 
 namespace {
 
+std::string kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a plain file";
+}
+
+std::string size_text(std::size_t bytes) {
+  if (bytes >= (std::size_t{1} << 20) && bytes % (std::size_t{1} << 20) == 0)
+    return std::to_string(bytes) + " bytes (" + std::to_string(bytes >> 20) + " MiB)";
+  return std::to_string(bytes) + " bytes";
+}
+
 // Closes the descriptor on every path out.
 struct Descriptor {
-  int fd;
+  int fd = -1;
   ~Descriptor() {
     if (fd >= 0) ::close(fd);
   }
 };
 
-std::string size_words(std::size_t bytes) {
-  if (bytes >= (1u << 20) && bytes % (1u << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
-  return std::to_string(bytes) + " bytes";
-}
-
 }  // namespace
 
-std::string read_bounded(const std::filesystem::path& file, std::size_t max_bytes) {
-  // O_NONBLOCK: opening a FIFO with no writer returns at once instead of waiting forever.
-  const Descriptor d{::open(file.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
-  if (d.fd < 0) throw BoundedReadError(std::string("cannot be opened: ") + std::strerror(errno));
+std::string read_bounded_file(const std::filesystem::path& path, std::size_t max_bytes) {
+  const std::string shown = "'" + path.string() + "'";
+  Descriptor file;
+  // O_NONBLOCK: opening a FIFO for reading does not wait for a writer; O_NOCTTY: a terminal named
+  // here does not become ours.
+  do file.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  while (file.fd < 0 && errno == EINTR);
+  if (file.fd < 0)
+    throw FileReadError(FileReadError::Reason::cannot_open, "cannot open " + shown + ": " + std::strerror(errno));
   struct stat st {};
-  if (::fstat(d.fd, &st) != 0) throw BoundedReadError(std::string("cannot be examined: ") + std::strerror(errno));
-  if (S_ISDIR(st.st_mode)) throw BoundedReadError("is a folder, not a file");
-  if (!S_ISREG(st.st_mode)) throw BoundedReadError("is not a regular file (a device, a FIFO or a socket is refused)");
-  if (static_cast<std::size_t>(st.st_size) > max_bytes)
-    throw BoundedReadError("is " + size_words(static_cast<std::size_t>(st.st_size)) + ", more than the limit of " +
-                           size_words(max_bytes));
-  // Read to the end, but never past the limit (a file that grows while we read is cut off there).
-  std::string text(static_cast<std::size_t>(st.st_size), '\0');
+  if (::fstat(file.fd, &st) != 0)
+    throw FileReadError(FileReadError::Reason::cannot_open, "cannot examine " + shown + ": " + std::strerror(errno));
+  if (!S_ISREG(st.st_mode))
+    throw FileReadError(FileReadError::Reason::not_regular, shown + " is " + kind_of(st.st_mode) + ", not a regular file");
+  if (st.st_size < 0 || static_cast<std::uintmax_t>(st.st_size) > max_bytes)
+    throw FileReadError(FileReadError::Reason::too_large, shown + " is " + size_text(static_cast<std::size_t>(st.st_size)) +
+                                                              ", more than the limit of " + size_text(max_bytes));
+  // A regular file ignores O_NONBLOCK; clear it anyway so a read never returns EAGAIN.
+  if (const int flags = ::fcntl(file.fd, F_GETFL); flags >= 0) ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK);
+  std::string out;
+  out.resize(static_cast<std::size_t>(st.st_size));
   std::size_t have = 0;
   for (;;) {
-    if (have == text.size()) {
-      if (text.size() > max_bytes) throw BoundedReadError("grew past the limit of " + size_words(max_bytes) + " while read");
-      text.resize(std::min(max_bytes + 1, std::max<std::size_t>(2 * text.size(), 4096)));
+    // One byte more than the limit allows tells a file that grew past it from one that ends there.
+    if (have == out.size()) {
+      if (out.size() > max_bytes) break;
+      out.resize(std::min(max_bytes + 1, std::max<std::size_t>(out.size() * 2, 4096)));
     }
-    const ssize_t n = ::read(d.fd, text.data() + have, text.size() - have);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw BoundedReadError(std::string("cannot be read: ") + std::strerror(errno));
+    const ssize_t n = ::read(file.fd, out.data() + have, out.size() - have);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw FileReadError(FileReadError::Reason::read_failed, "cannot read " + shown + ": " + std::strerror(errno));
+    }
     if (n == 0) break;
     have += static_cast<std::size_t>(n);
   }
-  if (have > max_bytes) throw BoundedReadError("grew past the limit of " + size_words(max_bytes) + " while read");
-  text.resize(have);
-  return text;
+  if (have > max_bytes)
+    throw FileReadError(FileReadError::Reason::too_large,
+                        shown + " grew past the limit of " + size_text(max_bytes) + " while it was read");
+  out.resize(have);
+  return out;
+}
+
+std::string quoted_text_excerpt(std::string_view text, std::size_t max_chars) {
+  static constexpr char hex[] = "0123456789ABCDEF";
+  std::string out = "'";
+  std::size_t shown = 0;
+  for (char ch : text) {
+    if (shown == max_chars) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f && c != '\\') {
+      out += ch;
+    } else {
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 0xf];
+    }
+    ++shown;
+  }
+  return out + "'";
 }
 
 }  // namespace mechgraph

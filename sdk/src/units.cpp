@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 #include <string>
 
 namespace mechgraph {
@@ -123,9 +124,16 @@ UnitScale parse_unit(std::string_view text) {
       ++i;
       const char* first = text.data() + i;
       const char* last = text.data() + text.size();
-      auto [ptr, ec] = std::from_chars(first, last, power);
-      if (ec != std::errc() || power == 0) throw UnitError("expected a non-zero integer power after '^'", i);
-      if (std::abs(power) > max_power) throw UnitError("a power of a unit must lie within -16..16", i);
+      // Read as a wider integer and bounded before any use: std::abs(INT_MIN) is INT_MIN, which
+      // once let "m^-2147483648" through as a power that wrapped to nothing.
+      long long wide = 0;
+      auto [ptr, ec] = std::from_chars(first, last, wide);
+      if (ec == std::errc::result_out_of_range || (ec == std::errc() && (wide < -max_power || wide > max_power)))
+        throw UnitError("a power of a unit must lie within -" + std::to_string(max_power) + ".." +
+                            std::to_string(max_power) + ", found " + std::string(first, ptr),
+                        i);
+      if (ec != std::errc() || wide == 0) throw UnitError("expected a non-zero integer power after '^'", i);
+      power = static_cast<int>(wide);
       i += static_cast<std::size_t>(ptr - first);
     }
     power *= sign;
@@ -175,7 +183,17 @@ double to_unit(double value_in_si, Dimension dimension, std::string_view unit) {
     throw UnitError("unit '" + std::string(unit) + "' is " + u.dimension.describe() + ", the value is " +
                         dimension.describe(),
                     0);
-  return value_in_si / u.scale - u.offset;
+  const double shown = value_in_si / u.scale - u.offset;
+  // 1e300 m is finite, in nm it is not: never hand a writer "inf".
+  if (!std::isfinite(shown) && std::isfinite(value_in_si)) {
+    std::ostringstream value;
+    value.precision(6);
+    value << value_in_si;
+    throw UnitError("the value " + value.str() + " " + dimension.si_unit() +
+                        " is beyond the range of a double in '" + std::string(unit) + "'",
+                    0);
+  }
+  return shown;
 }
 
 }  // namespace mechgraph

@@ -17,6 +17,9 @@ bool all_finite(const Value& v) {
       if (!finite(v.as_table().axis.values)) return false;
       for (const Table::Column& c : v.as_table().channels)
         if (!finite(c.values)) return false;
+      // Axis marks are drawn by the report like any other number.
+      for (const Table::Mark& m : v.as_table().axis_marks)
+        if (!std::isfinite(m.value)) return false;
       return true;
     case ValueKind::handle: return true;
   }

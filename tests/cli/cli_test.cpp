@@ -97,7 +97,7 @@ TEST_CASE("exit codes: 2 scene, 3 evaluation, 4 plugins", "[cli]") {
   CHECK_THAT(bad_set.err, Contains("unknown scene parameter 'nope'"));
   const auto missing = run_cli(arith_dir() + " run /nonexistent/scene.yaml");
   CHECK(missing.exit_code == 2);
-  CHECK_THAT(missing.err, Contains("cannot be opened"));
+  CHECK_THAT(missing.err, Contains("cannot open"));
 }
 
 TEST_CASE("validate, graph, plugins and describe", "[cli]") {

@@ -2,6 +2,7 @@
 // well-formed UTF-8 and hold nothing its format would read as markup, the end of a string or a
 // command. A violation aborts (a find).
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/text_escape.hpp>
 
 #include <cstdint>
@@ -55,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(j[i] != '"' && static_cast<unsigned char>(j[i]) >= 0x20);
   }
 
-  const std::string e = quoted_excerpt(text);
-  require(!first_invalid_utf8(e) && e.size() < 160);
+  const std::string e = quoted_text_excerpt(text);
+  require(e.size() <= 2 + 4 * 80 + 3);
+  for (char c : e) require(c >= 0x20 && c < 0x7f);
   return 0;
 }

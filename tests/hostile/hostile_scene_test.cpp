@@ -142,11 +142,11 @@ TEST_CASE("hostile: a scene file must be a regular file of bounded size, read wi
     big << "title: \"" << std::string((16u << 20) + 10, 'x') << "\"\nnodes: {}\n";
   }
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {(s.dir / "fifo.yaml").string(), "is not a regular file"},
-      {"/dev/zero", "is not a regular file"},
+      {(s.dir / "fifo.yaml").string(), "is a FIFO (named pipe), not a regular file"},
+      {"/dev/zero", "is a character device, not a regular file"},
       {(s.dir / "folder.yaml").string(), "is a folder"},
-      {(s.dir / "big.yaml").string(), "more than the limit of 16 MiB"},
-      {(s.dir / "missing.yaml").string(), "cannot be opened"},
+      {(s.dir / "big.yaml").string(), "more than the limit of 16777216 bytes (16 MiB)"},
+      {(s.dir / "missing.yaml").string(), "cannot open"},
   };
   for (const auto& [file, expected] : cases) {
     CAPTURE(file);

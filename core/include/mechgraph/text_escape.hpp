@@ -4,6 +4,9 @@
 // is written into, and through nothing else: no writer builds its own quoting. CSV has its own
 // header (csv.hpp: csv_field), JSON its writer (json_writer.hpp, which calls utf8_sanitized).
 //
+// Error messages quote user text with quoted_text_excerpt (bounded_read.hpp, in the SDK so that
+// plugins use the same).
+//
 // The functions never fail: text that cannot be represented (control characters where the format
 // has no escape for them, bytes that are not UTF-8) is replaced, not passed through.
 #include <cstddef>
@@ -33,9 +36,5 @@ std::string gnuplot_string(std::string_view text);
 /// A Graphviz DOT ID, quotes included: a double-quoted string with '"' and '\' escaped, line breaks
 /// as "\n" (DOT's own line break in labels), other controls dropped, ill-formed UTF-8 replaced.
 std::string dot_string(std::string_view text);
-
-/// User text quoted inside an error message: at most `max_bytes` of it (cut at a character
-/// boundary, "... (N more bytes)" appended), controls shown as '?', in single quotes.
-std::string quoted_excerpt(std::string_view text, std::size_t max_bytes = 120);
 
 }  // namespace mechgraph

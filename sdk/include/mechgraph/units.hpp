@@ -39,7 +39,7 @@ UnitScale parse_unit(std::string_view text);
 /// Parses "9.5 mm", "140 deg", "5600 rpm", "1e-3", "-0.04mm" into SI.
 Quantity parse_quantity(std::string_view text);
 
-/// Converts an SI value to a display unit; throws UnitError if the dimensions differ.
+/// Converts an SI value to a display unit; throws UnitError if the dimensions differ or it overflows.
 double to_unit(double value_in_si, Dimension dimension, std::string_view unit);
 
 /// The unit symbols the parser knows, for error messages ("valid units are ...").
