@@ -37,10 +37,11 @@ std::vector<std::string> split_csv_line(std::string_view line) {
 namespace {
 
 // Whether a whole cell is a finite number as mechgraph writes them ("-2", "1.5e-3"): such a cell
-// is data, not a formula, even when it starts with '-' or '+'.
+// is data, not a formula, even when it starts with '-'.
 bool number_cell(std::string_view text) {
   if (text.empty()) return false;
-  const std::string_view digits = text.front() == '+' || text.front() == '-' ? text.substr(1) : text;
+  // Only '-' as a sign: mechgraph never writes "+2", and a spreadsheet reads "+2" as a formula.
+  const std::string_view digits = text.front() == '-' ? text.substr(1) : text;
   if (digits.empty() || !(std::isdigit(static_cast<unsigned char>(digits.front())) || digits.front() == '.')) return false;
   double value = 0;
   const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);

@@ -45,7 +45,7 @@ void read_shard(const std::string& f, Merged& merged) {
     throw UsageError(f + " belongs to another sweep than " + merged.first_file + " (scene, --set, cases or columns differ)");
   }
   std::istringstream in(read_bounded_file(f, max_rows_file_bytes, "merge"));
-  RowChecker checker({m.format, m.cases, m.shard, m.shards, m.inputs}, f);
+  RowChecker checker({m.format, m.cases, m.shard, m.shards, m.inputs, {}}, f);
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
     if (number == 1 && m.format == RowFormat::csv) {

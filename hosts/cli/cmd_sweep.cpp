@@ -227,7 +227,8 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   manifest.origin = table.origin;
   manifest.format = format;
   manifest.inputs = table.variables.size();
-  const RowRules rules{format, table.cases.size(), shard.index, shard.count, table.variables.size()};
+  const RowRules rules{format, table.cases.size(), shard.index, shard.count, table.variables.size(),
+                       [&table](std::size_t i, std::size_t v) { return table.shown(i, v); }};
   SweepFile file(vm.count("out") ? vm["out"].as<std::string>() : std::string(), manifest, vm.count("resume") > 0,
                  vm.count("force") > 0, rules);
 

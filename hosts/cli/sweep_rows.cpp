@@ -315,6 +315,11 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
     if (!plain.front() || !plain[plain.size() - 2]) refuse(number, "the case or exit is not a number");
   }
   const std::size_t index = case_number(cells.front(), number);
+  if (rules_.format == RowFormat::csv && rules_.shown_input && rules_.inputs)
+    for (std::size_t v = 0; v < *rules_.inputs && 1 + v < cells.size(); ++v)
+      if (cells[1 + v] != csv_text(rules_.shown_input(index, v)))
+        refuse(number, "column '" + excerpt(header_[1 + v], 60) + "' holds '" + excerpt(cells[1 + v], 40) + "', case " +
+                           std::to_string(index) + " of this sweep has '" + excerpt(rules_.shown_input(index, v), 40) + "'");
   check_exit_and_outputs(cells, plain, number);
   return {index, cells[cells.size() - 2] != "0"};
 }

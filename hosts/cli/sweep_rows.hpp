@@ -17,6 +17,7 @@
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,6 +73,9 @@ struct RowRules {
   std::size_t cases = 0;                  // case numbers lie below this
   std::size_t shard = 0, shards = 1;      // and are shard mod shards
   std::optional<std::size_t> inputs;      // varied-input columns after `case`, when known
+  /// --resume knows the cases: the text input `v` of case `i` shows (CaseTable::shown). CSV rows
+  /// must then carry exactly that text, so a row edited to other inputs is refused.
+  std::function<std::string(std::size_t i, std::size_t v)> shown_input;
 };
 
 /// Checks rows one at a time, in file order; see the file comment.

@@ -4,6 +4,7 @@
 #include <mechgraph/csv.hpp>
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 

@@ -15,7 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const RowFormat format = data[0] & 1 ? RowFormat::jsonl : RowFormat::csv;
   const std::size_t inputs = (data[0] >> 1) & 3;
   const std::size_t shards = 1 + ((data[0] >> 3) & 3);
-  const RowRules rules{format, 1000, 0, shards, data[0] & 0x80 ? std::optional<std::size_t>() : std::optional<std::size_t>(inputs)};
+  const RowRules rules{format, 1000, 0, shards, data[0] & 0x80 ? std::optional<std::size_t>() : std::optional<std::size_t>(inputs), {}};
   RowChecker checker(rules, "fuzz.csv");
   std::istringstream lines(std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
   std::string line;

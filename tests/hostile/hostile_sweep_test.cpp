@@ -337,6 +337,15 @@ TEST_CASE("hostile merge and resume: huge manifests and edited rows are refused 
   r = run_cli(sweep + " --resume");
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Contains(out.string() + ".part:3:"));
+  // A row whose inputs were edited (case 1 is len = 2 mm in this sweep).
+  write_file(out.string() + ".part", rows.substr(0, rows.find('\n') + 1) + "0,1,0.003,0,\n1,7,0.021,0,\n");
+  r = run_cli(sweep + " --resume");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains(out.string() + ".part:3:") && Contains("has '2'"));
+  // Untouched rows resume to the same file as a run in one go.
+  write_file(out.string() + ".part", rows.substr(0, rows.find("2,3,")));
+  REQUIRE(run_cli(sweep + " --resume").exit_code == 0);
+  CHECK(slurp(out) == rows);
 }
 
 TEST_CASE("hostile sweep values: finite, range-checked like scene values, one bad case does not end JSON Lines", "[hostile][sweep]") {
@@ -404,6 +413,7 @@ TEST_CASE("hostile CSV: one csv_field, RFC 4180 quoting, formulas neutralised, B
   CHECK(csv_field("\tx") == "'\tx");
   CHECK(csv_field("\rx") == " x");  // CR becomes a space first (rows are single lines): no formula left
   CHECK(csv_field("-2") == "-2");
+  CHECK(csv_field("+2") == "'+2");  // found by fuzz_csv_field: a spreadsheet reads "+2" as a formula
   CHECK(csv_field("-1.5e-3") == "-1.5e-3");
   CHECK(csv_field("-") == "-");
   CHECK(csv_field("a,b") == "\"a,b\"");
