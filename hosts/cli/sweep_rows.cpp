@@ -8,8 +8,6 @@
 
 #include <mechgraph/sweep/case_table.hpp>
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -36,6 +34,160 @@ std::string exact(double x) {
 std::string unit_of(const RequestedOutput& o) {
   return o.spec->display_unit.empty() ? o.spec->dimension.si_unit() : o.spec->display_unit;
 }
+
+// A flat JSON object as the rows are written ({"key":value,...}; values strings, numbers, null,
+// true or false; nothing nested), read into keys, cell texts and whether each value was a number
+// or null (`plain`). A small reader of its own: strict JSON (yaml-cpp would take YAML too) and
+// fast enough for merge to check millions of rows. False for anything else.
+class FlatJson {
+ public:
+  explicit FlatJson(std::string_view text) : s_(text) {}
+  bool read(std::vector<std::string>& keys, std::vector<std::string>& cells, std::vector<bool>& plain) {
+    space();
+    if (!eat('{')) return false;
+    space();
+    if (eat('}')) return end();
+    for (;;) {
+      std::string key, cell;
+      bool number = false;
+      space();
+      if (!string(key)) return false;
+      space();
+      if (!eat(':')) return false;
+      space();
+      if (!value(cell, number)) return false;
+      keys.push_back(std::move(key));
+      cells.push_back(std::move(cell));
+      plain.push_back(number);
+      space();
+      if (eat('}')) return end();
+      if (!eat(',')) return false;
+    }
+  }
+
+ private:
+  bool end() {
+    space();
+    return i_ == s_.size();
+  }
+  void space() {
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\t' || s_[i_] == '\r')) ++i_;
+  }
+  bool eat(char c) {
+    if (i_ < s_.size() && s_[i_] == c) {
+      ++i_;
+      return true;
+    }
+    return false;
+  }
+  bool word(std::string_view w) {
+    if (s_.substr(i_, w.size()) != w) return false;
+    i_ += w.size();
+    return true;
+  }
+  static void utf8(std::string& out, unsigned long cp) {
+    if (cp < 0x80) {
+      out += static_cast<char>(cp);
+    } else if (cp < 0x800) {
+      out += static_cast<char>(0xC0 | (cp >> 6));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else if (cp < 0x10000) {
+      out += static_cast<char>(0xE0 | (cp >> 12));
+      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+      out += static_cast<char>(0xF0 | (cp >> 18));
+      out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+      out += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+  }
+  bool hex4(unsigned long& cp) {
+    if (i_ + 4 > s_.size()) return false;
+    cp = 0;
+    for (int k = 0; k < 4; ++k) {
+      const char c = s_[i_++];
+      const int d = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1;
+      if (d < 0) return false;
+      cp = cp * 16 + static_cast<unsigned long>(d);
+    }
+    return true;
+  }
+  bool string(std::string& out) {
+    if (!eat('"')) return false;
+    while (i_ < s_.size()) {
+      const char c = s_[i_++];
+      if (c == '"') return true;
+      if (static_cast<unsigned char>(c) < 0x20) return false;
+      if (c != '\\') {
+        out += c;
+        continue;
+      }
+      if (i_ >= s_.size()) return false;
+      const char e = s_[i_++];
+      switch (e) {
+        case '"': out += '"'; break;
+        case '\\': out += '\\'; break;
+        case '/': out += '/'; break;
+        case 'b': out += '\b'; break;
+        case 'f': out += '\f'; break;
+        case 'n': out += '\n'; break;
+        case 'r': out += '\r'; break;
+        case 't': out += '\t'; break;
+        case 'u': {
+          unsigned long cp = 0;
+          if (!hex4(cp)) return false;
+          if (cp >= 0xD800 && cp < 0xDC00) {  // a surrogate pair
+            unsigned long low = 0;
+            if (!word("\\u") || !hex4(low) || low < 0xDC00 || low >= 0xE000) return false;
+            cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
+          } else if (cp >= 0xDC00 && cp < 0xE000) {
+            return false;
+          }
+          utf8(out, cp);
+          break;
+        }
+        default: return false;
+      }
+    }
+    return false;
+  }
+  // A JSON number: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+  bool number(std::string& out) {
+    const std::size_t start = i_;
+    eat('-');
+    auto digits = [&] {
+      const std::size_t from = i_;
+      while (i_ < s_.size() && s_[i_] >= '0' && s_[i_] <= '9') ++i_;
+      return i_ > from;
+    };
+    if (eat('0')) {
+    } else if (!digits()) {
+      return false;
+    }
+    if (eat('.') && !digits()) return false;
+    if (i_ < s_.size() && (s_[i_] == 'e' || s_[i_] == 'E')) {
+      ++i_;
+      if (!eat('+')) eat('-');
+      if (!digits()) return false;
+    }
+    out.assign(s_.substr(start, i_ - start));
+    return true;
+  }
+  bool value(std::string& out, bool& plain) {
+    if (i_ >= s_.size()) return false;
+    const char c = s_[i_];
+    plain = false;
+    if (c == '"') return string(out);
+    if (word("true")) return out = "true", true;
+    if (word("false")) return out = "false", true;
+    plain = true;
+    if (word("null")) return true;
+    return number(out);
+  }
+  std::string_view s_;
+  std::size_t i_ = 0;
+};
 
 // The names the rows reserve: no input or output column may take them (JSON keys are unique).
 const std::vector<std::string> reserved_columns = {"case", "exit", "error"};
@@ -289,20 +441,8 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
       refuse(number, std::to_string(cells.size()) + " cells, the header has " + std::to_string(header_.size()));
     plain.assign(cells.size(), true);
   } else {
-    YAML::Node object;
-    try {
-      object = YAML::Load(std::string(line));
-    } catch (const YAML::Exception&) {
-      refuse(number, "not a JSON object");
-    }
-    if (!object.IsMap()) refuse(number, "not a JSON object");
     std::vector<std::string> keys;
-    for (const auto& entry : object) {
-      if (!entry.first.IsScalar() || !(entry.second.IsScalar() || entry.second.IsNull())) refuse(number, "a key or value that is not plain");
-      keys.push_back(entry.first.Scalar());
-      cells.push_back(entry.second.IsNull() ? std::string() : entry.second.Scalar());
-      plain.push_back(entry.second.IsNull() || entry.second.Tag() == "?");
-    }
+    if (!FlatJson(line).read(keys, cells, plain)) refuse(number, "not a flat JSON object as the rows are written");
     if (header_.empty()) {
       if (keys.size() < 3 || keys.front() != "case" || keys[keys.size() - 2] != "exit" || keys.back() != "error")
         refuse(number, "the keys are not case,...,exit,error");

@@ -150,6 +150,20 @@ TEST_CASE("hostile sweep: a planted symlink at FILE.part or a temporary's old na
     CHECK(slurp(victim) == "precious\n");
     CHECK(fs::is_symlink(out.string() + ".part"));
   }
+  // The manifest and the lock file planted as symlinks: refused, their target untouched.
+  const fs::path other = dir / "other.csv";
+  fs::create_symlink(victim, other.string() + ".json");
+  auto r = run_cli(sweep_of(scene()) + "--vary len=1mm:3mm:3 --out " + q(other));
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("symbolic link"));
+  fs::remove(other.string() + ".json");
+  fs::remove(other.string() + ".lock");  // the first attempt made the lock file; a symlink takes its place
+  fs::create_symlink(victim, other.string() + ".lock");
+  r = run_cli(sweep_of(scene()) + "--vary len=1mm:3mm:3 --out " + q(other));
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("symbolic link"));
+  CHECK(slurp(victim) == "precious\n");
+  CHECK_FALSE(fs::exists(other));
 }
 
 TEST_CASE("hostile sweep: --force replaces only what mechgraph wrote", "[hostile][sweep]") {
@@ -330,6 +344,24 @@ TEST_CASE("hostile merge and resume: huge manifests and edited rows are refused 
     r = run_cli("merge " + q(out));
     CHECK(r.exit_code == 2);
     CHECK_THAT(r.err, Contains(out.string() + ":") && Contains(e.says));
+  }
+  // JSON Lines: merged back as written; edited objects refused.
+  const fs::path jsonl = dir / "rows.jsonl";
+  REQUIRE(run_cli(sweep_of(scene()) + "--vary len=1mm:5mm:5 --format jsonl --out " + q(jsonl)).exit_code == 0);
+  const std::string objects = slurp(jsonl);
+  r = run_cli("merge " + q(jsonl));
+  REQUIRE(r.exit_code == 0);
+  CHECK(r.out == objects);
+  const std::string first = objects.substr(0, objects.find('\n') + 1);
+  for (const std::string bad : {"{\"case\":0,\"len [mm]\":1,\"s.sum [m]\":[1],\"exit\":0,\"error\":null}",
+                                "{\"case\":0,\"len [mm]\":1,\"s.sum [m]\":\"0.003\",\"exit\":0,\"error\":null}",
+                                "{\"case\":0,\"case\":0,\"s.sum [m]\":0.003,\"exit\":0,\"error\":null}",
+                                "{case: 0, len [mm]: 1, s.sum [m]: 0.003, exit: 0, error: null}"}) {
+    INFO(bad);
+    write_file(jsonl, first + bad + "\n");
+    r = run_cli("merge " + q(jsonl));
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains(jsonl.string() + ":2:"));
   }
   // --resume re-checks the rows it carries over the same way.
   fs::remove(out);
