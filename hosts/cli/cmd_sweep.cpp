@@ -187,7 +187,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("outputs", po::value<std::string>(), "columns: node.port,node.port (default: the scene's outputs and report cells)")
       ("shard", po::value<std::string>(), "I/N: run every N-th case from I (0-based, N at most 10^6); auto: from SLURM_ARRAY_TASK_ID/MIN/COUNT")
       ("resume", "go on with the unfinished FILE.part of the same sweep")
-      ("force", "replace an existing FILE or unfinished FILE.part")
+      ("force", "replace an existing FILE or unfinished FILE.part that mechgraph wrote (FILE.json says so)")
       ("cache-size", po::value<std::size_t>()->default_value(MemoCache::default_capacity), "node results kept in the memo cache (least recently used dropped)");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
@@ -200,6 +200,10 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const RowFormat format = format_name == "csv" ? RowFormat::csv : RowFormat::jsonl;
   if (vm.count("resume") && !vm.count("out")) throw UsageError("--resume needs --out FILE (rows on stdout cannot be resumed)");
   if (vm.count("resume") && vm.count("force")) throw UsageError("--resume and --force contradict each other");
+  // The numbers of the command line are checked before plugins and the scene load: a typo is told at once.
+  const unsigned threads = static_cast<unsigned>(parse_count(vm["threads"].as<std::string>(), "--threads", max_threads));
+  const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
+  if (vm.count("n")) parse_count(vm["n"].as<std::string>(), "--n", max_sweep_cases);
 
   const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
@@ -210,11 +214,10 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const Graph graph = build_sweep_graph(scene, registry, overrides, vm);
   const CaseTable table = make_cases(vm);
   const CaseBinder binder(graph, scene, registry, overrides, table.variables);
-  const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
 
   SweepOptions options;
   for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
-  options.threads = static_cast<unsigned>(parse_count(vm["threads"].as<std::string>(), "--threads", max_threads));
+  options.threads = threads;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
   options.stop = &stop_requested;
 
