@@ -188,7 +188,8 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("shard", po::value<std::string>(), "I/N: run every N-th case from I (0-based, N at most 10^6); auto: from SLURM_ARRAY_TASK_ID/MIN/COUNT")
       ("resume", "go on with the unfinished FILE.part of the same sweep")
       ("force", "replace an existing FILE or unfinished FILE.part that mechgraph wrote (FILE.json says so)")
-      ("cache-size", po::value<std::size_t>()->default_value(MemoCache::default_capacity), "node results kept in the memo cache (least recently used dropped)");
+      ("cache-size", po::value<std::string>()->default_value(std::to_string(MemoCache::default_capacity)),
+       "node results kept in the memo cache, 0 to 10^9 (least recently used dropped)");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
                            "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S])\n"
@@ -204,6 +205,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const unsigned threads = static_cast<unsigned>(parse_count(vm["threads"].as<std::string>(), "--threads", max_threads));
   const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
   if (vm.count("n")) parse_count(vm["n"].as<std::string>(), "--n", max_sweep_cases);
+  const std::size_t cache_size = parse_count(vm["cache-size"].as<std::string>(), "--cache-size", 1000000000);
 
   const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
@@ -264,7 +266,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     for (const CaseResult& r : waiting) put(r);
     waiting.clear();
   };
-  MemoCache cache(vm["cache-size"].as<std::size_t>());
+  MemoCache cache(cache_size);
   SweepSummary summary;
   {
     StopOnSignal on_signal;
