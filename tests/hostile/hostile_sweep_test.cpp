@@ -500,6 +500,18 @@ TEST_CASE("hostile reads: FIFOs, devices and folders are refused, long user text
   r = run_command("timeout 20 '" + std::string(MECHGRAPH_CLI) + "' merge " + q(dir / "rows.csv"));
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Contains("a FIFO"));
+  // Too large (sparse files: nothing is really written): refused from the size, not read.
+  write_file(dir / "huge.csv", "len [mm]\n1\n");
+  fs::resize_file(dir / "huge.csv", std::uintmax_t{300} << 20);
+  r = run_command(sweep + "--cases " + q(dir / "huge.csv"));
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("huge.csv") && Contains("256 MiB"));
+  fs::remove(dir / "rows.csv.json");
+  write_file(dir / "rows.csv.json", "{}");
+  fs::resize_file(dir / "rows.csv.json", std::uintmax_t{17} << 20);
+  r = run_command("timeout 20 '" + std::string(MECHGRAPH_CLI) + "' merge " + q(dir / "rows.csv"));
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("rows.csv.json") && Contains("16 MiB"));
   // 10 000 characters of user text: the message quotes at most a few hundred.
   const std::string long_name(10000, 'k');
   r = run_cli(sweep_of(scene()) + "--vary '" + long_name + "=1mm:2mm:x'");
