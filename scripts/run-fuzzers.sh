@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the scene boundary with libFuzzer (clang from Debian): the scene loader, the unit
-# parser, --set overrides, cam.table's CSV reader and the writers' escaping, each under
-# AddressSanitizer + UBSan.
+# parser, --set overrides, cam.table's CSV reader, the sweep's --cases reader, the row checker of
+# --resume and merge, csv_field and the other writers' escaping, each under AddressSanitizer + UBSan.
 #   scripts/run-fuzzers.sh            every target for 60 s (what CI runs)
 #   scripts/run-fuzzers.sh 3600       every target for an hour (a long run)
 #   scripts/run-fuzzers.sh 600 fuzz_scene
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table fuzz_escape)
+((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table fuzz_cases fuzz_sweep_rows fuzz_csv_field fuzz_escape)
 
 scripts/install-deps.sh
 missing=()

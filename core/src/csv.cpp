@@ -1,5 +1,8 @@
 #include <mechgraph/csv.hpp>
 
+#include <charconv>
+#include <cctype>
+#include <cmath>
 #include <stdexcept>
 
 namespace mechgraph {
@@ -31,16 +34,43 @@ std::vector<std::string> split_csv_line(std::string_view line) {
   return fields;
 }
 
-std::string csv_field(std::string_view text) {
-  std::string out;
-  bool quote = false;
-  for (char c : text) {
+namespace {
+
+// Whether a whole cell is a finite number as mechgraph writes them ("-2", "1.5e-3"): such a cell
+// is data, not a formula, even when it starts with '-'.
+bool number_cell(std::string_view text) {
+  if (text.empty()) return false;
+  // Only '-' as a sign: mechgraph never writes "+2", and a spreadsheet reads "+2" as a formula.
+  const std::string_view digits = text.front() == '-' ? text.substr(1) : text;
+  if (digits.empty() || !(std::isdigit(static_cast<unsigned char>(digits.front())) || digits.front() == '.')) return false;
+  double value = 0;
+  const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  return ec == std::errc() && end == digits.data() + digits.size() && std::isfinite(value);
+}
+
+// What a spreadsheet would start a formula with (OWASP's list; CR cannot remain: it became a space).
+bool formula_start(char c) { return c == '=' || c == '+' || c == '-' || c == '@' || c == '\t' || c == '\r'; }
+
+}  // namespace
+
+std::string csv_text(std::string_view text) {
+  std::string out(text);
+  for (char& c : out)
     if (c == '\n' || c == '\r') c = ' ';
-    if (c == ',' || c == '"') quote = true;
+  // A lone "-" (the report's empty-cell mark) cannot start a formula and stays as it is.
+  if (!out.empty() && out != "-" && formula_start(out.front()) && !number_cell(out)) out.insert(out.begin(), '\'');
+  return out;
+}
+
+std::string csv_field(std::string_view text) {
+  const std::string plain = csv_text(text);
+  if (plain.find_first_of(",\"") == std::string::npos) return plain;
+  std::string out = "\"";
+  for (char c : plain) {
     if (c == '"') out += '"';
     out += c;
   }
-  return quote ? "\"" + out + "\"" : out;
+  return out + "\"";
 }
 
 std::string csv_row(const std::vector<std::string>& fields) {

@@ -10,10 +10,12 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/csv.hpp>
 #include <mechgraph/hash.hpp>
+#include <mechgraph/sweep/case_table.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
@@ -54,11 +56,17 @@ struct Shard {
   std::size_t index = 0, count = 1;
 };
 
-std::size_t parse_count(const std::string& text, const std::string& what) {
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno || text[0] == '-') throw UsageError(what + ": '" + text + "' is not a whole number");
+// The limits of the numbers a sweep's command line takes (documented in --help and the README).
+constexpr std::size_t max_shards = 1000000;         // --shard I/N: N at most 10^6
+constexpr std::size_t max_task_id = 1000000000;     // a Slurm array task id or bound
+
+// A whole number from 0 to `limit`: digits only (no sign, no space, no exponent), so "-1" cannot
+// wrap to 2^64 - 1 and 18446744073709551615 cannot overflow what follows.
+std::size_t parse_count(const std::string& text, const std::string& what, std::size_t limit) {
+  const bool digits = !text.empty() && text.size() <= 19 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits) throw UsageError(what + ": '" + excerpt(text, 40) + "' is not a whole number from 0 to " + std::to_string(limit));
+  const unsigned long long v = std::strtoull(text.c_str(), nullptr, 10);
+  if (v > limit) throw UsageError(what + ": " + text + " is more than " + std::to_string(limit));
   return static_cast<std::size_t>(v);
 }
 
@@ -70,17 +78,23 @@ Shard parse_shard(const std::string& text) {
     const char* min = std::getenv("SLURM_ARRAY_TASK_MIN");
     if (!id || !count)
       throw UsageError("--shard auto needs SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT (run it as a Slurm job array), or give --shard I/N");
-    const std::size_t first = min ? parse_count(min, "SLURM_ARRAY_TASK_MIN") : 0;
-    shard.index = parse_count(id, "SLURM_ARRAY_TASK_ID") - first;
-    shard.count = parse_count(count, "SLURM_ARRAY_TASK_COUNT");
+    const std::size_t first = min ? parse_count(min, "SLURM_ARRAY_TASK_MIN", max_task_id) : 0;
+    const std::size_t task = parse_count(id, "SLURM_ARRAY_TASK_ID", max_task_id);
+    if (task < first)
+      throw UsageError("SLURM_ARRAY_TASK_ID " + std::to_string(task) + " is below SLURM_ARRAY_TASK_MIN " + std::to_string(first));
+    shard.index = task - first;
+    shard.count = parse_count(count, "SLURM_ARRAY_TASK_COUNT", max_shards);
+    if (shard.count == 0 || shard.index >= shard.count)
+      throw UsageError("SLURM_ARRAY_TASK_ID " + std::to_string(task) + " - SLURM_ARRAY_TASK_MIN " + std::to_string(first) +
+                       " must be below SLURM_ARRAY_TASK_COUNT " + std::to_string(shard.count) + " (a job array of consecutive tasks)");
   } else {
     const auto slash = text.find('/');
-    if (slash == std::string::npos) throw UsageError("--shard " + text + ": expected I/N (0 <= I < N) or auto");
-    shard.index = parse_count(text.substr(0, slash), "--shard I");
-    shard.count = parse_count(text.substr(slash + 1), "--shard N");
+    if (slash == std::string::npos) throw UsageError("--shard " + excerpt(text) + ": expected I/N (0 <= I < N) or auto");
+    shard.index = parse_count(text.substr(0, slash), "--shard I", max_shards);
+    shard.count = parse_count(text.substr(slash + 1), "--shard N", max_shards);
   }
   if (shard.count == 0 || shard.index >= shard.count)
-    throw UsageError("--shard " + text + ": needs 0 <= I < N, got I = " + std::to_string(shard.index) + ", N = " + std::to_string(shard.count));
+    throw UsageError("--shard " + excerpt(text) + ": needs 0 <= I < N, got I = " + std::to_string(shard.index) + ", N = " + std::to_string(shard.count));
   return shard;
 }
 
@@ -97,15 +111,16 @@ CaseTable make_cases(const po::variables_map& vm) {
   if (!vm.count("n")) throw UsageError("--sample needs --n N, the number of cases");
   std::vector<SampleSpec> specs;
   for (const std::string& s : vm["sample"].as<std::vector<std::string>>()) specs.push_back(parse_sample(s));
-  return make_latin_hypercube(specs, vm["n"].as<std::size_t>(), vm.count("seed") ? vm["seed"].as<std::uint64_t>() : 1);
+  const std::size_t n = parse_count(vm["n"].as<std::string>(), "--n", max_sweep_cases);
+  if (n == 0) throw UsageError("--n 0: a sample needs at least one case");
+  return make_latin_hypercube(specs, n, vm.count("seed") ? vm["seed"].as<std::uint64_t>() : 1);
 }
 
 // Which sweep a file of rows belongs to: the scene's text, the --set values, every case, the columns.
 std::string fingerprint(const std::string& scene_file, const std::vector<std::string>& sets, const CaseTable& table,
                         const Graph& graph, RowFormat format) {
   Hasher h;
-  std::ifstream in(scene_file, std::ios::binary);
-  h.add(std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  h.add(read_user_file(scene_file, max_scene_bytes, "scene"));
   for (const std::string& s : sets) h.add(s);
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
   for (const auto& row : table.cases)
@@ -163,16 +178,17 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("vary", po::value<std::vector<std::string>>()->composing(), "a grid axis: NAME=FROM:TO:N (ends included) or NAME=A,B,C; several make a full grid")
       ("cases", po::value<std::string>(), "cases from CSV: header of names ('name' or 'name [unit]'), one case per row")
       ("sample", po::value<std::vector<std::string>>()->composing(), "a Latin hypercube variable: NAME=LO:HI")
-      ("n", po::value<std::size_t>(), "cases to sample (with --sample)")
+      ("n", po::value<std::string>(), "cases to sample (with --sample), 1 to 10^7")
       ("seed", po::value<std::uint64_t>(), "seed of the sample (default 1): the same seed, the same cases")
-      ("threads", po::value<unsigned>()->default_value(0), "worker threads (0: one per core)")
+      ("threads", po::value<std::string>()->default_value("0"), "worker threads, 0 to 1024 (0: one per core)")
       ("out", po::value<std::string>(), "write rows to FILE (appended as they come, complete under its name at the end; FILE.json says which sweep)")
       ("format", po::value<std::string>()->default_value("csv"), "csv or jsonl")
       ("outputs", po::value<std::string>(), "columns: node.port,node.port (default: the scene's outputs and report cells)")
-      ("shard", po::value<std::string>(), "I/N: run every N-th case from I (0-based); auto: from SLURM_ARRAY_TASK_ID/COUNT")
+      ("shard", po::value<std::string>(), "I/N: run every N-th case from I (0-based, N at most 10^6); auto: from SLURM_ARRAY_TASK_ID/MIN/COUNT")
       ("resume", "go on with the unfinished FILE.part of the same sweep")
-      ("force", "replace an existing FILE or unfinished FILE.part")
-      ("cache-size", po::value<std::size_t>()->default_value(MemoCache::default_capacity), "node results kept in the memo cache (least recently used dropped)");
+      ("force", "replace an existing FILE or unfinished FILE.part that mechgraph wrote (FILE.json says so)")
+      ("cache-size", po::value<std::string>()->default_value(std::to_string(MemoCache::default_capacity)),
+       "node results kept in the memo cache, 0 to 10^9 (least recently used dropped)");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
                            "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S])\n"
@@ -184,6 +200,11 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const RowFormat format = format_name == "csv" ? RowFormat::csv : RowFormat::jsonl;
   if (vm.count("resume") && !vm.count("out")) throw UsageError("--resume needs --out FILE (rows on stdout cannot be resumed)");
   if (vm.count("resume") && vm.count("force")) throw UsageError("--resume and --force contradict each other");
+  // The numbers of the command line are checked before plugins and the scene load: a typo is told at once.
+  const unsigned threads = static_cast<unsigned>(parse_count(vm["threads"].as<std::string>(), "--threads", max_threads));
+  const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
+  if (vm.count("n")) parse_count(vm["n"].as<std::string>(), "--n", max_sweep_cases);
+  const std::size_t cache_size = parse_count(vm["cache-size"].as<std::string>(), "--cache-size", 1000000000);
 
   const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
@@ -194,11 +215,10 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const Graph graph = build_sweep_graph(scene, registry, overrides, vm);
   const CaseTable table = make_cases(vm);
   const CaseBinder binder(graph, scene, registry, overrides, table.variables);
-  const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
 
   SweepOptions options;
   for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
-  options.threads = vm["threads"].as<unsigned>();
+  options.threads = threads;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
   options.stop = &stop_requested;
 
@@ -210,8 +230,11 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   manifest.scene = scene_file;
   manifest.origin = table.origin;
   manifest.format = format;
+  manifest.inputs = table.variables.size();
+  const RowRules rules{format, table.cases.size(), shard.index, shard.count, table.variables.size(),
+                       [&table](std::size_t i, std::size_t v) { return table.shown(i, v); }};
   SweepFile file(vm.count("out") ? vm["out"].as<std::string>() : std::string(), manifest, vm.count("resume") > 0,
-                 vm.count("force") > 0);
+                 vm.count("force") > 0, rules);
 
   SweepRows rows(graph, table, format);
   std::size_t written = 0, failed = 0;
@@ -242,7 +265,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     for (const CaseResult& r : waiting) put(r);
     waiting.clear();
   };
-  MemoCache cache(vm["cache-size"].as<std::size_t>());
+  MemoCache cache(cache_size);
   SweepSummary summary;
   {
     StopOnSignal on_signal;

@@ -1,5 +1,7 @@
 #include "result_files.hpp"
 
+#include <mechgraph/csv.hpp>
+
 #include "cli.hpp"
 #include "dxf_writer.hpp"
 #include "results_folder.hpp"
@@ -154,13 +156,8 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
   for (std::size_t r = 1; r < rows.size(); ++r) print_row(rows[r]);
 }
 
-// A CSV cell: quoted when it holds a comma, a quote or a line break.
-std::string csv_cell(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
+// A CSV cell: the one escaping function (RFC 4180 quoting, formula-like text neutralised).
+std::string csv_cell(const std::string& text) { return csv_field(text); }
 
 void write_report_csv(const std::filesystem::path& file, const ResolvedReport& report, const RunResult& result,
                       const DisplayUnits& units) {

@@ -3,11 +3,24 @@
 // fresh staging folder beside it, which then takes the folder's place in one rename; if the folder
 // exists already (and may be replaced), the two are swapped atomically (renameat2 RENAME_EXCHANGE)
 // and the old one is removed afterwards. A run killed at any point leaves the old complete
-// results or the new complete results, and at worst a stale staging folder.
+// results or the new complete results, and at worst a stale staging folder, removed by the next
+// write of the same folder (see remove_stale_staging in results_folder.cpp).
+//
+// Ownership (issue 18): every results folder mechgraph writes holds a marker file
+// `.mechgraph-results`. `--force` replaces only a real folder (not a symlink to one) that holds
+// it, or an empty folder; a folder mechgraph did not make, a file, a symlink, a FIFO or a device
+// at DIR is refused (UsageError, exit 2) and left untouched. `--out DIR/` is the same as
+// `--out DIR`; `.`, `..` and `/` are refused (a results folder replaces what is at its path).
 #include <filesystem>
 #include <functional>
 
 namespace mechgraph::cli {
+
+/// The marker file inside every results folder mechgraph writes.
+inline constexpr const char* results_marker = ".mechgraph-results";
+
+/// `dir` without trailing separators ("out/" -> "out"); UsageError for ".", "..", "/" or "".
+std::filesystem::path results_folder_path(const std::filesystem::path& dir);
 
 /// Refuses (UsageError naming --force) an existing, non-empty `dir` unless `replace`: called before
 /// the work, so a run that could not keep its results does not start.

@@ -5,43 +5,49 @@
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/sweep/case_table.hpp>
 
 #include <yaml-cpp/yaml.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-[[noreturn]] void io_failure(const fs::path& p, const std::string& what) {
-  throw IoError(p.string() + ": " + what + ": " + std::strerror(errno));
+[[noreturn]] void io_failure(const fs::path& p, const std::string& what, int error = errno) {
+  throw IoError(p.string() + ": " + what + ": " + std::strerror(error));
 }
 
-// The case number at the start of a row: "12,..." in CSV, {"case":12,...} in JSON Lines.
-std::optional<std::size_t> case_of(const std::string& line, RowFormat format) {
-  std::size_t pos = 0;
-  if (format == RowFormat::jsonl) {
-    const std::string key = "{\"case\":";
-    if (line.rfind(key, 0) != 0) return std::nullopt;
-    pos = key.size();
-  }
-  std::size_t value = 0, digits = 0;
-  for (; pos < line.size() && std::isdigit(static_cast<unsigned char>(line[pos])); ++pos, ++digits) value = value * 10 + (line[pos] - '0');
-  if (!digits) return std::nullopt;
+// A whole number field of a manifest, at most `limit`: digits only (no sign, no exponent), so a
+// "-1" or "1e15" cannot wrap or slip past the limit.
+std::size_t count_field(const YAML::Node& node, const std::string& key, std::size_t limit) {
+  const std::string text = node.as<std::string>();
+  if (text.empty() || text.size() > 19 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    throw UsageError("'" + key + "' is '" + excerpt(text, 40) + "', not a whole number");
+  const std::size_t value = std::stoull(text);
+  if (value > limit) throw UsageError("'" + key + "' is " + text + ", more than " + std::to_string(limit));
   return value;
 }
 
-bool failed_row(const std::string& line, RowFormat format) {
-  if (format == RowFormat::jsonl) return line.find("\"error\":null}") == std::string::npos;
-  try {
-    const auto fields = split_csv_line(line);
-    return fields.size() >= 2 && fields[fields.size() - 2] != "0";
-  } catch (const std::invalid_argument&) {
-    return true;
+// All of an open file, from its start, at most `limit` bytes (the size fstat gives is not trusted).
+std::string read_all(int fd, std::size_t limit, const fs::path& path) {
+  std::string text;
+  char buffer[1 << 16];
+  for (off_t at = 0;;) {
+    const ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) io_failure(path, "cannot read");
+    if (n == 0) return text;
+    if (text.size() + static_cast<std::size_t>(n) > limit)
+      throw UsageError(path.string() + ": more than " + std::to_string(limit >> 20) + " MiB of rows; not read back");
+    text.append(buffer, static_cast<std::size_t>(n));
+    at += n;
   }
 }
 
@@ -49,130 +55,150 @@ bool failed_row(const std::string& line, RowFormat format) {
 
 fs::path manifest_path(const fs::path& file) { return fs::path(file.string() + ".json"); }
 
-SweepManifest read_manifest(const fs::path& file) {
+SweepManifest read_manifest(const fs::path& file) { return read_manifest_checked(file); }
+
+SweepManifest read_manifest_checked(const fs::path& file) {
   const fs::path path = manifest_path(file);
-  if (!fs::exists(path)) throw UsageError(file.string() + ": no manifest " + path.string() + " beside it (was it written by mechgraph sweep --out?)");
+  if (kind_of(path) == "absent")
+    throw UsageError(file.string() + ": no manifest " + path.string() + " beside it (was it written by mechgraph sweep --out?)");
+  const std::string text = read_user_file(path, max_manifest_bytes, "sweep manifest");
   try {
-    const YAML::Node j = YAML::LoadFile(path.string());
+    const YAML::Node j = YAML::Load(text);
+    if (!j.IsMap()) throw UsageError("not a JSON object");
     SweepManifest m;
     m.sweep = j["sweep"].as<std::string>();
-    m.cases = j["cases"].as<std::size_t>();
-    m.shard = j["shard"][0].as<std::size_t>();
-    m.shards = j["shard"][1].as<std::size_t>();
+    m.cases = count_field(j["cases"], "cases", max_sweep_cases);
+    m.shards = count_field(j["shard"][1], "shard[1]", 1000000);
+    m.shard = count_field(j["shard"][0], "shard[0]", 1000000);
+    if (m.shards == 0 || m.shard >= m.shards) throw UsageError("the shard is not I/N with 0 <= I < N");
     m.complete = j["complete"].as<bool>();
-    m.rows = j["rows"].as<std::size_t>();
-    m.failed = j["failed"].as<std::size_t>();
+    m.rows = count_field(j["rows"], "rows", m.cases);
+    m.failed = count_field(j["failed"], "failed", m.rows);
     m.scene = j["scene"].as<std::string>();
     m.origin = j["origin"].as<std::string>();
-    m.format = j["format"].as<std::string>() == "jsonl" ? RowFormat::jsonl : RowFormat::csv;
+    const std::string format = j["format"].as<std::string>();
+    if (format != "csv" && format != "jsonl") throw UsageError("the format is neither csv nor jsonl");
+    m.format = format == "jsonl" ? RowFormat::jsonl : RowFormat::csv;
+    if (j["inputs"]) m.inputs = count_field(j["inputs"], "inputs", 100000);
     return m;
   } catch (const YAML::Exception& e) {
-    throw UsageError(path.string() + ": not a sweep manifest (" + e.what() + ")");
+    throw UsageError(path.string() + ": not a sweep manifest (" + excerpt(e.what()) + ")");
+  } catch (const UsageError& e) {
+    throw UsageError(path.string() + ": not a sweep manifest: " + e.what());
   }
 }
 
-SweepFile::SweepFile(const fs::path& out, SweepManifest manifest, bool resume, bool force)
+bool has_sweep_manifest(const fs::path& file) {
+  try {
+    read_manifest_checked(file);
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void write_manifest(const fs::path& file, const SweepManifest& m) {
+  const fs::path path = manifest_path(file);
+  const std::string kind = kind_of(path);
+  if (kind != "absent" && (kind != "a regular file" || !has_sweep_manifest(file)))
+    throw UsageError(path.string() + " is " + (kind == "a regular file" ? std::string("not a sweep manifest") : kind) +
+                     ": mechgraph did not write it and leaves it alone; choose another --out or remove it");
+  write_file_whole(path, true, [&](std::ostream& os) {
+    JsonWriter json(os);
+    json.begin_object();
+    json.key("sweep").value(m.sweep);
+    json.key("cases").value(static_cast<long>(m.cases));
+    json.key("shard").begin_array().value(static_cast<long>(m.shard)).value(static_cast<long>(m.shards)).end_array();
+    json.key("complete").value(m.complete);
+    json.key("rows").value(static_cast<long>(m.rows));
+    json.key("failed").value(static_cast<long>(m.failed));
+    json.key("scene").value(m.scene);
+    json.key("origin").value(m.origin);
+    json.key("format").value(m.format == RowFormat::jsonl ? "jsonl" : "csv");
+    if (m.inputs) json.key("inputs").value(static_cast<long>(*m.inputs));
+    json.end_object();
+    os << "\n";
+  });
+}
+
+SweepFile::SweepFile(const fs::path& out, SweepManifest manifest, bool resume, bool force, const RowRules& rules)
     : out_(out), manifest_(std::move(manifest)) {
   if (out_.empty()) return;
+  lock_.emplace(out_);  // before anything is read or written: one writer per FILE
   part_ = fs::path(out_.string() + ".part");
-  if (resume && fs::exists(part_)) {
-    const SweepManifest before = read_manifest(out_);
-    if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
-      throw UsageError(part_.string() + " holds rows of another sweep (scene, --set, cases, outputs or shard differ); "
-                       "remove it or use --force to start over");
-    // Cut a line a kill left half-written, then read what is there.
-    std::string text;
-    {
-      std::ifstream in(part_, std::ios::binary);
-      std::ostringstream all;
-      all << in.rdbuf();
-      text = all.str();
+  if (resume && kind_of(part_) != "absent") resume_part(rules);
+  else start_fresh(resume, force);
+  manifest_.complete = false;
+  write_manifest(out_, manifest_);
+  if (!file_) file_ = create_exclusive(part_);
+}
+
+// --resume: the rows in FILE.part are checked one by one; a half-written last line is cut.
+void SweepFile::resume_part(const RowRules& rules) {
+  const SweepManifest before = read_manifest(out_);
+  if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
+    throw UsageError(part_.string() + " holds rows of another sweep (scene, --set, cases, outputs or shard differ); "
+                     "remove it or use --force to start over");
+  file_ = open_existing_regular(part_);
+  const std::string text = read_all(file_.get(), max_rows_file_bytes, part_);
+  const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  if (keep != text.size() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure(part_, "cannot cut the half-written last line");
+  RowChecker checker(rules, part_.string());
+  std::istringstream lines(text.substr(0, keep));
+  std::string line;
+  for (std::size_t number = 1; std::getline(lines, line); ++number) {
+    if (number == 1 && manifest_.format == RowFormat::csv) {
+      checker.header(line, number);
+      resumed_header_ = checker.header_cells();
+      continue;
     }
-    const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
-    if (keep != text.size()) fs::resize_file(part_, keep);
-    std::istringstream lines(text.substr(0, keep));
-    std::string line;
-    bool first = true;
-    while (std::getline(lines, line)) {
-      if (first && manifest_.format == RowFormat::csv) {
-        resumed_header_ = split_csv_line(line);
-        first = false;
-        continue;
-      }
-      first = false;
-      const auto c = case_of(line, manifest_.format);
-      if (!c) throw UsageError(part_.string() + ": a row without a case number; the file is not a sweep's");
-      resumed_cases_.push_back(*c);
-      if (failed_row(line, manifest_.format)) ++resumed_failed_;
-    }
-  } else {
-    if (fs::exists(out_) && !force) {
+    const RowChecker::Row row = checker.row(line, number);
+    resumed_cases_.push_back(row.index);
+    if (row.failed) ++resumed_failed_;
+  }
+}
+
+// A fresh start: FILE and FILE.part are removed first, but only when mechgraph wrote them.
+void SweepFile::start_fresh(bool resume, bool force) {
+  const bool ours = has_sweep_manifest(out_);
+  const std::string out_kind = kind_of(out_), part_kind = kind_of(part_);
+  if (out_kind != "absent") {
+    if (out_kind == "a regular file" && !force) {
       if (resume) throw UsageError(out_.string() + " is complete already; nothing to resume (--force runs it again)");
       throw UsageError(out_.string() + " exists; use --force to replace it");
     }
-    if (fs::exists(part_) && !force)
-      throw UsageError(part_.string() + " holds an unfinished sweep: --resume goes on with it, --force starts over");
-    std::error_code ignored;
-    fs::remove(out_, ignored);
-    fs::remove(part_, ignored);
+    refuse_unless_ours(out_, ours, "--out");
   }
-  manifest_.complete = false;
-  write_manifest();
-  file_ = std::fopen(part_.c_str(), "ab");
-  if (!file_) io_failure(part_, "cannot open for writing");
+  if (part_kind != "absent") {
+    if (part_kind == "a regular file" && !force)
+      throw UsageError(part_.string() + " holds an unfinished sweep: --resume goes on with it, --force starts over");
+    refuse_unless_ours(part_, ours, "--out's unfinished rows");
+  }
+  for (const fs::path& p : {out_, part_})
+    if (::unlink(p.c_str()) != 0 && errno != ENOENT) io_failure(p, "cannot remove");
 }
 
-SweepFile::~SweepFile() {
-  if (file_) std::fclose(file_);
-}
+SweepFile::~SweepFile() = default;
 
 void SweepFile::write(const std::string& text) {
-  std::FILE* f = file_ ? file_ : stdout;
-  if (std::fwrite(text.data(), 1, text.size(), f) != text.size() || std::fflush(f) != 0)
-    io_failure(file_ ? part_ : fs::path("standard output"), "cannot write");
+  if (file_) {
+    write_all(file_.get(), text, part_);
+    return;
+  }
+  if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
+    io_failure("standard output", "cannot write");
 }
 
 void SweepFile::finish(bool complete, std::size_t rows, std::size_t failed) {
   if (!file_) return;
-  if (std::fclose(file_) != 0) {
-    file_ = nullptr;
-    io_failure(part_, "cannot close");
-  }
-  file_ = nullptr;
+  if (::close(file_.release()) != 0) io_failure(part_, "cannot close");
   manifest_.rows = rows;
   manifest_.failed = failed;
   if (complete) {
-    std::error_code error;
-    fs::rename(part_, out_, error);
-    if (error) throw IoError(part_.string() + ": cannot rename to " + out_.string() + ": " + error.message());
+    if (std::rename(part_.c_str(), out_.c_str()) != 0) io_failure(part_, "cannot rename to " + out_.string());
     manifest_.complete = true;
   }
-  write_manifest();
-}
-
-void SweepFile::write_manifest() {
-  const fs::path path = manifest_path(out_), staging = fs::path(path.string() + ".tmp");
-  {
-    std::ofstream os(staging);
-    JsonWriter json(os);
-    json.begin_object();
-    json.key("sweep").value(manifest_.sweep);
-    json.key("cases").value(static_cast<long>(manifest_.cases));
-    json.key("shard").begin_array().value(static_cast<long>(manifest_.shard)).value(static_cast<long>(manifest_.shards)).end_array();
-    json.key("complete").value(manifest_.complete);
-    json.key("rows").value(static_cast<long>(manifest_.rows));
-    json.key("failed").value(static_cast<long>(manifest_.failed));
-    json.key("scene").value(manifest_.scene);
-    json.key("origin").value(manifest_.origin);
-    json.key("format").value(manifest_.format == RowFormat::jsonl ? "jsonl" : "csv");
-    json.end_object();
-    os << "\n";
-    os.close();
-    if (!os) io_failure(staging, "cannot write");
-  }
-  std::error_code error;
-  fs::rename(staging, path, error);
-  if (error) throw IoError(staging.string() + ": cannot rename to " + path.string() + ": " + error.message());
+  write_manifest(out_, manifest_);
 }
 
 }  // namespace mechgraph::cli

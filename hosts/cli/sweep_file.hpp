@@ -7,6 +7,16 @@
 // it is complete. After a crash or kill -9, `--resume` cuts a half-written last line, checks that
 // the rows are this sweep's first cases in order, and goes on from the next one: no case is lost
 // or written twice. `mechgraph merge` reads the manifests to check that shards cover a sweep.
+//
+// Hostile folders (issue 18): FILE.lock is flocked for the whole run, so a second sweep (or a
+// merge) writing FILE is refused naming the first's pid; FILE.part is created O_EXCL|O_NOFOLLOW
+// and reopened for --resume O_NOFOLLOW as a regular file of this user, so a planted symlink of
+// that name is refused, its target never written or truncated; the manifest is written whole
+// through a temporary with an unpredictable name (write_file_whole). `--force` replaces FILE only
+// when its manifest says mechgraph wrote it, and never anything but a regular file. Every row
+// --resume carries over is checked (RowChecker). Reads are bounded: a manifest at most 16 MiB, a
+// rows file at most max_rows_file_bytes, regular files only.
+#include "output_file.hpp"
 #include "sweep_rows.hpp"
 
 #include <cstdio>
@@ -25,17 +35,33 @@ struct SweepManifest {
   std::size_t rows = 0, failed = 0;
   std::string scene, origin;
   RowFormat format = RowFormat::csv;
+  std::optional<std::size_t> inputs;  // varied-input columns (absent in manifests before issue 18)
 };
 
-/// Reads FILE.json beside `file`; throws UsageError naming it when absent or unreadable.
+/// The largest rows file --resume and merge read back (4 GiB).
+inline constexpr std::size_t max_rows_file_bytes = std::size_t{4} << 30;
+
+/// Reads FILE.json beside `file`; throws UsageError naming it when absent, unreadable, larger than
+/// 16 MiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N
+/// <= 10^6, more rows than cases).
+SweepManifest read_manifest_checked(const std::filesystem::path& file);
+
+/// Whether FILE.json beside `file` is a sweep manifest: the proof --force needs that mechgraph wrote FILE.
+bool has_sweep_manifest(const std::filesystem::path& file);
+
+/// Writes FILE.json beside `file` whole; a manifest path holding anything but an earlier manifest is refused.
+void write_manifest(const std::filesystem::path& file, const SweepManifest& manifest);
+
+/// Same as read_manifest_checked.
 SweepManifest read_manifest(const std::filesystem::path& file);
 std::filesystem::path manifest_path(const std::filesystem::path& file);
 
 class SweepFile {
  public:
   /// Opens `out` (or stdout when empty). An existing FILE (or FILE.part without `resume`) is
-  /// refused unless `force`.
-  SweepFile(const std::filesystem::path& out, SweepManifest manifest, bool resume, bool force);
+  /// refused unless `force`, and even then unless mechgraph wrote it. With `resume`, `rules`
+  /// check every row carried over.
+  SweepFile(const std::filesystem::path& out, SweepManifest manifest, bool resume, bool force, const RowRules& rules);
   ~SweepFile();
 
   /// With --resume: the header of the rows already written (empty if none) and their case numbers.
@@ -50,10 +76,12 @@ class SweepFile {
   const std::filesystem::path& path() const { return out_; }
 
  private:
-  void write_manifest();
+  void resume_part(const RowRules& rules);
+  void start_fresh(bool resume, bool force);
   std::filesystem::path out_, part_;
   SweepManifest manifest_;
-  std::FILE* file_ = nullptr;
+  std::optional<OutputLock> lock_;
+  FileHandle file_;
   std::vector<std::string> resumed_header_;
   std::vector<std::size_t> resumed_cases_;
   std::size_t resumed_failed_ = 0;

@@ -4,9 +4,20 @@
 // read `name [unit]`; values are in the column's unit, written with 17 significant digits so a
 // row reads back to the same doubles (the shortest such text). The columns of a series are known once a case has produced
 // it, so rows wait until the first case succeeds (or the sweep ends) to fix the header.
+//
+// Column names are unique, so a JSON Lines object never has the same key twice: `case`, `exit`
+// and `error` are reserved; a varied input named like one of them is written `in.NAME`, an output
+// whose name an earlier column has (a swept parameter that is also an output) `out.NAME`.
+// Every CSV cell goes through csv_field (RFC 4180, formula-like text neutralised).
+//
+// RowChecker re-reads rows written earlier (--resume, merge) and refuses, naming FILE:line, any
+// row this code would not have written: a cell count other than the header's, a case number that
+// is not a whole number below the sweep's count, not this shard's or not after the previous row's,
+// an exit other than 0, 2 or 3, an output cell that is neither empty nor a finite number.
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +56,8 @@ class SweepRows {
   Column column(std::size_t output, std::optional<std::size_t> element) const;
   std::vector<std::string> output_headers(const CaseResult* success, std::vector<Column>& columns) const;
   std::string format(const std::vector<std::string>& cells, const std::vector<bool>& numeric) const;
+  std::vector<std::string> input_headers() const;
+  static void make_unique(std::vector<std::string>& names, const std::vector<std::string>& taken, const std::string& prefix);
 
   const Graph& graph_;
   const CaseTable& table_;
@@ -53,6 +66,44 @@ class SweepRows {
   std::vector<std::string> header_;
   std::vector<Column> columns_;
 };
+
+/// The rules a row read back must follow.
+struct RowRules {
+  RowFormat format = RowFormat::csv;
+  std::size_t cases = 0;                  // case numbers lie below this
+  std::size_t shard = 0, shards = 1;      // and are shard mod shards
+  std::optional<std::size_t> inputs;      // varied-input columns after `case`, when known
+  /// --resume knows the cases: the text input `v` of case `i` shows (CaseTable::shown). CSV rows
+  /// must then carry exactly that text, so a row edited to other inputs is refused.
+  std::function<std::string(std::size_t i, std::size_t v)> shown_input;
+};
+
+/// Checks rows one at a time, in file order; see the file comment.
+class RowChecker {
+ public:
+  RowChecker(RowRules rules, std::string file) : rules_(std::move(rules)), file_(std::move(file)) {}
+  /// CSV: the header line (read before any row); throws UsageError for a malformed one.
+  void header(std::string_view line, std::size_t number);
+  const std::vector<std::string>& header_cells() const { return header_; }
+  /// One row: its case number and whether it records a failure. Throws UsageError "FILE:line: ...".
+  struct Row {
+    std::size_t index;
+    bool failed;
+  };
+  Row row(std::string_view line, std::size_t number);
+
+ private:
+  [[noreturn]] void refuse(std::size_t number, const std::string& why) const;
+  std::size_t case_number(std::string_view text, std::size_t number);
+  void check_exit_and_outputs(const std::vector<std::string>& cells, const std::vector<bool>& plain, std::size_t number) const;
+  RowRules rules_;
+  std::string file_;
+  std::vector<std::string> header_;        // CSV header, or the first JSON row's keys
+  std::optional<std::size_t> previous_;
+};
+
+/// Whether a cell is a finite number as the rows write them (std::from_chars over all of it).
+bool finite_number_cell(std::string_view text);
 
 /// The exit code a failed case's class maps to (2 scene or usage, 3 evaluation), 0 for success.
 int exit_code_of(CaseFailure failure);

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace mechgraph {
 namespace {
@@ -80,7 +81,7 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
   }
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const CaseValue& value = values[v];
-    const std::string what = variables_[v].name + " = '" + value.text + "'";
+    const std::string what = variables_[v].name + " = '" + excerpt(value.text) + "'";
     for (const Target& t : targets_[v]) {
       GraphNode& node = graph.nodes[t.node];
       const ParamSpec& spec = *t.spec;
@@ -98,6 +99,8 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
             }
             throw SceneError(what + ": " + param + ": " + why);
           }
+          // Read values are finite already (case_table); a table built by a library caller may not be.
+          if (!std::isfinite(*value.si)) throw SceneError(what + ": " + param + ": not a finite number");
           if (!(value.dimension == spec.dimension))
             throw SceneError(what + ": " + param + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));

@@ -1,14 +1,21 @@
 #include <mechgraph/sweep/case_table.hpp>
 
 #include <mechgraph/csv.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <cstring>
 #include <numeric>
+#include <sstream>
 
 namespace mechgraph {
 namespace {
@@ -35,8 +42,9 @@ bool bare_number(const std::string& text) {
   return end != begin && trim(std::string_view(end)).empty();
 }
 
-// A number with its unit if it reads as one, else a word.
-CaseValue read_value(const std::string& text) {
+// A number with its unit if it reads as one, else a word. An infinite or NaN number ("1e400 m",
+// "nan") is refused here, naming `context`: no such value may reach a node.
+CaseValue read_value(const std::string& text, const std::string& context) {
   CaseValue v{text, std::nullopt, {}};
   try {
     const Quantity q = parse_quantity(text);
@@ -44,7 +52,21 @@ CaseValue read_value(const std::string& text) {
     v.dimension = q.dimension;
   } catch (const UnitError&) {
   }
+  if (v.si && !std::isfinite(*v.si)) throw SceneError(context + ": '" + excerpt(text) + "' is not a finite number");
   return v;
+}
+
+// The point a fraction `t` of the way from `low` to `high`. The plain form when the span is a
+// finite number (the points sweeps always had); the weighted form when `high - low` overflows
+// (-1e308 m to 1e308 m), which stays finite between finite ends.
+double between(double low, double high, double t) {
+  const double span = high - low;
+  if (std::isfinite(span)) return low + span * t;
+  return low * (1.0 - t) + high * t;
+}
+
+void require_finite(double x, const std::string& context) {
+  if (!std::isfinite(x)) throw SceneError(context + ": a generated value is not a finite number");
 }
 
 std::string format_shown(double x) {
@@ -76,7 +98,7 @@ struct SplitMix64 {
 std::pair<std::string, std::string> split_assignment(std::string_view text, const char* flag, const char* example) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
-    throw SceneError(std::string(flag) + " " + std::string(text) + ": expected " + example);
+    throw SceneError(std::string(flag) + " " + excerpt(text) + ": expected " + example);
   return {trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
 }
 
@@ -84,14 +106,32 @@ std::pair<std::string, std::string> split_assignment(std::string_view text, cons
 std::pair<Quantity, std::string> range_end(const std::string& text, const std::string& other, const std::string& context) {
   std::string written = text;
   if (bare_number(text) && !bare_number(other)) written = text + " " + unit_of(other);
+  Quantity q;
   try {
-    return {parse_quantity(written), unit_of(written)};
+    q = parse_quantity(written);
   } catch (const UnitError& e) {
-    throw SceneError(context + ": '" + text + "': " + e.what());
+    throw SceneError(context + ": '" + excerpt(text) + "': " + e.what());
   }
+  if (!std::isfinite(q.value)) throw SceneError(context + ": '" + excerpt(text) + "' is not a finite number");
+  return {q, unit_of(written)};
 }
 
 }  // namespace
+
+std::string excerpt(std::string_view text, std::size_t limit) {
+  if (text.size() <= limit) return std::string(text);
+  std::size_t cut = limit;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
+  return std::string(text.substr(0, cut)) + "...";
+}
+
+std::string read_user_file(const std::filesystem::path& file, std::size_t limit, const std::string& what) {
+  try {
+    return read_bounded_file(file, limit);
+  } catch (const FileReadError& e) {
+    throw SceneError(what + ": " + e.what());
+  }
+}
 
 std::string CaseTable::shown(std::size_t i, std::size_t v) const {
   const CaseValue& value = cases[i][v];
@@ -99,7 +139,8 @@ std::string CaseTable::shown(std::size_t i, std::size_t v) const {
   const std::string& unit = variables[v].unit;
   if (!unit.empty()) {
     try {
-      return format_shown(to_unit(*value.si, value.dimension, unit));
+      const double x = to_unit(*value.si, value.dimension, unit);
+      return std::isfinite(x) ? format_shown(x) : value.text;  // 1e308 m in mm overflows: shown as written
     } catch (const UnitError&) {
       return value.text;  // a cell in another unit than its column: shown as written
     }
@@ -110,7 +151,7 @@ std::string CaseTable::shown(std::size_t i, std::size_t v) const {
 VarySpec parse_vary(std::string_view text) {
   const auto [name, rhs] = split_assignment(text, "--vary", "NAME=FROM:TO:N (e.g. rpm=3000rpm:7000rpm:9) or NAME=A,B,C");
   VarySpec spec{name, {}, {}};
-  const std::string context = "--vary " + std::string(text);
+  const std::string context = "--vary " + excerpt(text);
   if (rhs.find(':') != std::string::npos) {
     std::vector<std::string> parts;
     std::size_t start = 0;
@@ -123,14 +164,16 @@ VarySpec parse_vary(std::string_view text) {
     if (!(from.dimension == to.dimension))
       throw SceneError(context + ": FROM is " + from.dimension.describe() + " but TO is " + to.dimension.describe());
     char* end = nullptr;
+    errno = 0;
     const long n = std::strtol(parts[2].c_str(), &end, 10);
-    if (end == parts[2].c_str() || *end != '\0' || n < 1 || n > 10000000)
-      throw SceneError(context + ": N = '" + parts[2] + "' must be a whole number of points from 1 to 10^7");
+    if (end == parts[2].c_str() || *end != '\0' || errno || n < 1 || n > static_cast<long>(max_sweep_cases))
+      throw SceneError(context + ": N = '" + excerpt(parts[2]) + "' must be a whole number of points from 1 to 10^7");
     if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
     for (long k = 0; k < n; ++k) {
       // Ends exactly as written; the points between evenly spaced in SI.
-      const double x = k == n - 1 ? to.value : from.value + (to.value - from.value) * static_cast<double>(k) / static_cast<double>(n - 1);
+      const double x = k == n - 1 ? to.value : between(from.value, to.value, static_cast<double>(k) / static_cast<double>(n - 1));
+      require_finite(x, context);
       spec.values.push_back({exact_text(x, from.dimension), x, from.dimension});
     }
     return spec;
@@ -140,7 +183,7 @@ VarySpec parse_vary(std::string_view text) {
     comma = rhs.find(',', start);
     const std::string item = trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (item.empty()) throw SceneError(context + ": an empty value in the list");
-    spec.values.push_back(read_value(item));
+    spec.values.push_back(read_value(item, context));
     if (spec.unit.empty() && spec.values.back().si) spec.unit = unit_of(item);
     if (comma == std::string::npos) break;
   }
@@ -153,8 +196,8 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
   for (const VarySpec& s : specs) {
     table.variables.push_back({s.name, s.unit});
     table.origin += (table.origin.empty() ? "--vary " : " --vary ") + s.name;
-    if (total > 100000000 / std::max<std::size_t>(s.values.size(), 1))
-      throw SceneError("--vary: the grid would have more than 10^8 cases; sample it instead (--sample NAME=LO:HI --n N)");
+    if (total > max_sweep_cases / std::max<std::size_t>(s.values.size(), 1))
+      throw SceneError("--vary: the grid would have more than 10^7 cases; sample it instead (--sample NAME=LO:HI --n N)");
     total *= s.values.size();
   }
   table.cases.reserve(total);
@@ -172,7 +215,7 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
 
 SampleSpec parse_sample(std::string_view text) {
   const auto [name, rhs] = split_assignment(text, "--sample", "NAME=LO:HI (e.g. cam.max_lift=8mm:10mm)");
-  const std::string context = "--sample " + std::string(text);
+  const std::string context = "--sample " + excerpt(text);
   const auto colon = rhs.find(':');
   if (colon == std::string::npos || rhs.find(':', colon + 1) != std::string::npos)
     throw SceneError(context + ": expected LO:HI, e.g. cam.max_lift=8mm:10mm");
@@ -187,6 +230,7 @@ SampleSpec parse_sample(std::string_view text) {
 
 CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t n, std::uint64_t seed) {
   if (n == 0) throw SceneError("--n: a sample needs at least one case");
+  if (n > max_sweep_cases) throw SceneError("--n " + std::to_string(n) + ": at most 10^7 cases in one sweep");
   CaseTable table;
   table.origin = "Latin hypercube, " + std::to_string(n) + " cases, seed " + std::to_string(seed);
   table.cases.assign(n, std::vector<CaseValue>(specs.size()));
@@ -199,7 +243,8 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
     for (std::size_t i = n; i-- > 1;) std::swap(stratum[i], stratum[random.below(i + 1)]);  // Fisher-Yates
     for (std::size_t i = 0; i < n; ++i) {
       const double u = (static_cast<double>(stratum[i]) + random.uniform()) / static_cast<double>(n);
-      const double x = s.low + (s.high - s.low) * u;
+      const double x = between(s.low, s.high, u);
+      require_finite(x, "--sample " + s.name);
       table.cases[i][v] = {exact_text(x, s.dimension), x, s.dimension};
     }
   }
@@ -207,8 +252,8 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
 }
 
 CaseTable read_cases_csv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw SceneError(file.string() + ": cannot read the cases file");
+  std::istringstream in(read_user_file(file, max_cases_file_bytes, "--cases"));
+  const std::string where = excerpt(file.string());
   CaseTable table;
   table.origin = file.string();
   std::string line;
@@ -217,49 +262,51 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
   std::vector<std::string> header_units;  // a bare number in a cell is in its column's unit
   while (std::getline(in, line)) {
     ++number;
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte order mark
     const std::string trimmed = trim(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
     std::vector<std::string> fields;
     try {
       fields = split_csv_line(line);
     } catch (const std::invalid_argument& e) {
-      throw SceneError(file.string() + ":" + std::to_string(number) + ":1: " + e.what());
+      throw SceneError(where + ":" + std::to_string(number) + ":1: " + e.what());
     }
     if (!header) {
       header = true;
       for (const std::string& f : fields) {
         auto [name, unit] = split_header(f);
-        if (name.empty()) throw SceneError(file.string() + ":" + std::to_string(number) + ":1: a column without a name");
+        if (name.empty()) throw SceneError(where + ":" + std::to_string(number) + ":1: a column without a name");
         for (const SweepVariable& v : table.variables)
-          if (v.name == name) throw SceneError(file.string() + ":" + std::to_string(number) + ":1: column '" + name + "' appears twice");
+          if (v.name == name) throw SceneError(where + ":" + std::to_string(number) + ":1: column '" + excerpt(name) + "' appears twice");
         table.variables.push_back({name, unit});
         header_units.push_back(unit);
       }
       continue;
     }
+    if (table.cases.size() >= max_sweep_cases)
+      throw SceneError(where + ":" + std::to_string(number) + ":1: more than 10^7 cases in one file; split it into several sweeps");
     if (fields.size() != table.variables.size())
-      throw SceneError(file.string() + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
+      throw SceneError(where + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
                        " cells, the header has " + std::to_string(table.variables.size()));
     std::vector<CaseValue> row;
     int column = 1;
     for (std::size_t v = 0; v < fields.size(); ++v) {
       const std::string cell = trim(fields[v]);
       if (cell.empty())
-        throw SceneError(file.string() + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
-                         table.variables[v].name + "' has no value");
+        throw SceneError(where + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
+                         excerpt(table.variables[v].name) + "' has no value");
       const std::string& unit = header_units[v];
-      CaseValue value = read_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell);
-      if (!unit.empty() && !value.si)
-        throw SceneError(file.string() + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" + cell +
-                         "' is not a number in " + unit);
+      const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
+      CaseValue value = read_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell, at);
+      if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell) + "' is not a number in " + excerpt(unit));
       if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell);
       row.push_back(std::move(value));
       column += static_cast<int>(fields[v].size()) + 1;
     }
     table.cases.push_back(std::move(row));
   }
-  if (!header) throw SceneError(file.string() + ":1:1: no header (a line of parameter names, e.g. rpm,cam.max_lift [mm])");
-  if (table.cases.empty()) throw SceneError(file.string() + ": no cases below the header");
+  if (!header) throw SceneError(where + ":1:1: no header (a line of parameter names, e.g. rpm,cam.max_lift [mm])");
+  if (table.cases.empty()) throw SceneError(where + ": no cases below the header");
   return table;
 }
 

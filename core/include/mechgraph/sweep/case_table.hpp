@@ -8,10 +8,25 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string_view>
 #include <string>
 #include <vector>
 
 namespace mechgraph {
+
+/// The most cases one sweep may have (a grid, a sample, a cases file, a manifest a merge reads):
+/// 10^7. More is refused as a usage error, before anything is allocated for them.
+inline constexpr std::size_t max_sweep_cases = 10'000'000;
+/// The largest cases file read (256 MiB) and the largest sweep manifest (16 MiB).
+inline constexpr std::size_t max_cases_file_bytes = std::size_t{256} << 20;
+inline constexpr std::size_t max_manifest_bytes = std::size_t{16} << 20;
+
+/// read_bounded_file (bounded_read.hpp: a regular file only, non-blocking, at most `limit` bytes)
+/// with its refusal as a SceneError "`what`: 'FILE' is a FIFO (named pipe), not a regular file".
+std::string read_user_file(const std::filesystem::path& file, std::size_t limit, const std::string& what);
+
+/// At most `limit` characters of user text, for an error message ("..." marks a cut).
+std::string excerpt(std::string_view text, std::size_t limit = 200);
 
 /// One value of one case: a number with its dimension (SI), or a word (a choice such as an
 /// integrator's name) for parameters that take one.
@@ -35,6 +50,8 @@ struct CaseTable {
   std::string shown(std::size_t i, std::size_t v) const;
 };
 
+/// Every number a sweep generates or reads is finite: an infinite or NaN end, list value or
+/// generated point is a SceneError naming the option.
 /// `NAME=FROM:TO:N` (units in FROM and TO as in scenes, TO may omit it; N >= 1 points, ends
 /// included) or `NAME=A,B,C` (the values listed, numbers with units or words).
 struct VarySpec {
@@ -63,7 +80,10 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
 
 /// A CSV file of cases: a header of parameter names (`name` or `name [unit]`), then one case per
 /// row; a cell is a number with its unit (`5600 rpm`), a bare number in the header's unit, or a
-/// word. Blank lines and lines starting with '#' are skipped. Throws SceneError "file:line:column".
+/// word. Blank lines and lines starting with '#' are skipped; a UTF-8 byte order mark before the
+/// header is skipped (spreadsheets write one). Numbers must be finite. The file is read through
+/// read_bounded_file (max_cases_file_bytes) and may hold at most max_sweep_cases cases. Throws
+/// SceneError "file:line:column".
 CaseTable read_cases_csv(const std::filesystem::path& file);
 
 }  // namespace mechgraph
