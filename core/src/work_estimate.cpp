@@ -35,7 +35,13 @@ WorkEstimate estimate_work(const Graph& graph) {
     const GraphNode& n = graph.nodes[index];
     double revolutions = 1, rows = 0;
     std::vector<WorkEstimate::Term> node_terms;
+    // Parameters of an effect that is off are not read: they cost nothing.
+    std::set<std::string> idle;
+    for (const EffectSpec& effect : n.info().effects)
+      if (std::find(n.effects_read.begin(), n.effects_read.end(), effect.name) == n.effects_read.end())
+        idle.insert(effect.params.begin(), effect.params.end());
     for (const auto& [name, value] : n.params.all()) {
+      if (idle.count(name)) continue;
       const std::string what = n.name + "." + name;
       if (value.kind == ParamKind::integer) {
         if (name == "revolutions") revolutions = std::max(1.0, value.number);
@@ -74,7 +80,7 @@ void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudg
     const auto it = std::max_element(e.terms.begin(), e.terms.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
     return it == e.terms.end() ? std::string("-") : it->what;
   };
-  const std::string per_case = cases > 1 ? " x " + amount(cases) + " cases" : std::string();
+  const std::string per_case = cases > 1 ? " over " + amount(cases) + " cases" : std::string();
   const double work = e.work * cases;
   if (!(work <= budget.max_work))
     throw SceneError(graph.file + ": the scene asks for about " + amount(work) + " work items" + per_case +

@@ -5,6 +5,7 @@
 #include "spawn.hpp"
 #include "options.hpp"
 
+#include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/knob_bench.hpp>
@@ -61,9 +62,8 @@ void write_csv(std::ostream& os, const std::vector<KnobTrial>& trials) {
   for (const KnobTrial& t : trials) {
     std::string work;
     for (const auto& [counter, amount] : t.work) work += (work.empty() ? "" : ";") + counter + "=" + std::to_string(amount);
-    os << t.node << "," << t.type << "," << t.knob << ",\"" << t.setting << "\"," << (t.is_default ? 1 : 0) << ","
-       << (t.on_front ? 1 : 0) << ","
-       << t.seconds << "," << t.max_relative_error << "," << t.worst_output << "," << work << ",\"" << t.failure << "\"\n";
+    os << csv_row({t.node, t.type, t.knob, t.setting}) << "," << (t.is_default ? 1 : 0) << "," << (t.on_front ? 1 : 0) << ","
+       << t.seconds << "," << t.max_relative_error << "," << csv_row({t.worst_output, work, t.failure}) << "\n";
   }
 }
 

@@ -38,7 +38,7 @@ inline void add_scene_options(po::options_description& visible) {
   visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
                                                 "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
       "max-work", po::value<double>()->default_value(defaults.max_work, "1e9"),
-      "refuse a scene (a sweep: all its cases) estimated at more work items (curve points, samples, bins, records) than this")(
+      "refuse a scene estimated at more work items (curve points, samples, bins, records) than this (a sweep: all its cases, default 1e12)")(
       "max-output", po::value<double>()->default_value(defaults.max_bytes, "268435456"),
       "refuse a scene whose curves would write more bytes of files than this (256 MiB)");
 }

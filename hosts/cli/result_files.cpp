@@ -206,7 +206,7 @@ void write_table_csv(const std::filesystem::path& file, const Table& t, const Di
   std::vector<std::string> unit(columns.size());
   for (std::size_t k = 0; k < columns.size(); ++k) {
     unit[k] = units.unit_for(columns[k]->dimension);
-    out << (k ? "," : "") << columns[k]->name << " [" << (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) << "]";
+    out << (k ? "," : "") << csv_field(columns[k]->name + " [" + (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) + "]");
   }
   out << "\n" << std::setprecision(17);
   for (std::size_t i = 0; i < t.axis.values.size(); ++i) {

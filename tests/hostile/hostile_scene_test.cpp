@@ -254,3 +254,13 @@ TEST_CASE("hostile: which nodes are evaluated and which reused does not depend o
     CHECK(bad.exit_code == 2);
   }
 }
+
+TEST_CASE("hostile: a sweep's work is estimated over all its cases before the first runs", "[hostile]") {
+  Scratch s("sweep_budget");
+  const std::string scene = source_file("scenes/tolerance_stack.yaml");
+  const Outcome o = run_mechgraph({"sweep", scene, "--sample", "gap.samples=1000:2000", "--n", "1000", "--max-work", "1e5",
+                                   "--out", (s.dir / "rows.csv").string()});
+  CHECK(o.exit_code == 2);
+  CHECK_THAT(o.err, Contains("over 1000 cases, more than the budget of 100000"));
+  CHECK_FALSE(std::filesystem::exists(s.dir / "rows.csv"));
+}

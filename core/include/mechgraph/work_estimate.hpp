@@ -28,8 +28,11 @@ struct WorkEstimate {
   std::vector<Term> terms;
 };
 
+/// A sweep's default work budget, for all its cases together.
+inline constexpr double sweep_default_max_work = 1e12;
+
 struct WorkBudget {
-  double max_work = 1e9;            // work items per run (a sweep: for all its cases together x 1000)
+  double max_work = 1e9;            // work items of one evaluation of the scene (a sweep: sweep_default_max_work)
   double max_bytes = 256.0 * (1 << 20);  // bytes of result files
 };
 
