@@ -13,6 +13,8 @@
 #include <fstream>
 #include <string>
 #include <sys/wait.h>
+#include <chrono>
+#include <thread>
 
 namespace mechgraph::testing {
 
@@ -102,5 +104,24 @@ inline CommandResult run_command(const std::string& shell_command) {
 
 /// Runs the mechgraph command with `args` (a shell fragment), capturing stdout and stderr.
 inline CommandResult run_cli(const std::string& args) { return run_command(std::string("'") + MECHGRAPH_CLI + "' " + args); }
+
+/// Starts the mechgraph command with `args` (a shell fragment of the test's own fixed text) in the
+/// background and returns its process id; its exit status lands in `status_file` when it ends.
+/// `pid_file` is scratch space.
+inline pid_t start_cli_in_background(const std::string& args, const std::filesystem::path& status_file,
+                                     const std::filesystem::path& pid_file) {
+  std::filesystem::remove(pid_file);
+  std::filesystem::remove(status_file);
+  const std::string command = "( '" + std::string(MECHGRAPH_CLI) + "' " + args + " >/dev/null 2>&1 & echo $! > '" +
+                              pid_file.string() + "'; wait $!; echo $? > '" + status_file.string() + "' ) >/dev/null 2>&1 &";
+  if (std::system(command.c_str()) != 0) throw std::runtime_error("cannot start: " + command);
+  pid_t pid = 0;
+  for (int i = 0; i < 500 && pid == 0; ++i) {
+    std::ifstream(pid_file) >> pid;
+    if (pid == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (pid <= 0) throw std::runtime_error("the command did not start: " + command);
+  return pid;
+}
 
 }  // namespace mechgraph::testing

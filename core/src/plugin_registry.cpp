@@ -1,4 +1,5 @@
 #include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
 
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/plugin_abi.hpp>
@@ -403,6 +404,20 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
                         other->plugin_id + "' (" + other_path + ") already provides");
     }
     if (!own.insert(name).second) throw PluginError(where + " provides node type '" + name + "' twice");
+    // Port, parameter and effect names become CSV headers, file names and plot titles: they follow
+    // the grammar of scene names (a port called "../x" or "a,b" is a defect of the plugin).
+    const NodeInfo& described = call_plugin(where + " ('" + id + "')", "a node type's info()", [&]() -> const NodeInfo& { return t->info(); });
+    const auto check_name = [&](const std::string& what, const std::string& n) {
+      if (const std::string why = name_problem(n); !why.empty())
+        throw PluginError(where + " ('" + id + "'): node type '" + name + "' has a " + what + " whose name " + why);
+    };
+    for (const PortSpec& port : described.inputs) check_name("input port", port.name);
+    for (const PortSpec& port : described.outputs) check_name("output port", port.name);
+    for (const EffectSpec& effect : described.effects) check_name("effect", effect.name);
+    for (const ParamSpec& param : described.params) {
+      check_name("parameter", param.name);
+      for (const ParamSpec& field : param.fields) check_name("record field", field.name);
+    }
     info.node_types.push_back(name);
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id});
   }

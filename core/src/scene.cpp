@@ -252,13 +252,14 @@ RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
   if (text.size() > max_value_bytes)
     throw SceneError(where.str() + "a value of " + std::to_string(text.size()) + " bytes is more than the limit of 1 MiB");
   detail::check_utf8(text, where.file);
+  detail::check_yaml_events(text, where.file, {16, 100'000, 100'000});
   YAML::Node node;
   try {
     node = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
     throw SceneError(where.str() + "cannot read " + quoted_text_excerpt(text) + ": " + e.msg);
   }
-  detail::check_yaml_bounds(node, where.file, {16, 100'000});
+  detail::check_yaml_bounds(node, where.file, {16, 100'000, 100'000});
   RawValue v = SceneReader(where.file).raw(node);
   std::function<void(RawValue&)> relocate = [&](RawValue& r) {
     r.where = where;
@@ -272,6 +273,7 @@ RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
 
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label) {
   detail::check_utf8(yaml_text, file_label);
+  detail::check_yaml_events(yaml_text, file_label);
   YAML::Node root;
   try {
     root = YAML::Load(std::string(yaml_text));

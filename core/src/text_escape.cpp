@@ -113,4 +113,16 @@ std::string dot_string(std::string_view text) {
   return out + "\"";
 }
 
+std::string terminal_text(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for_each_character(text, [&](std::string_view c) {
+    const auto first = static_cast<unsigned char>(c[0]);
+    const bool c0 = c.size() == 1 && is_control(first) && c[0] != '\t' && c[0] != '\n';
+    const bool c1 = c.size() == 2 && first == 0xC2 && static_cast<unsigned char>(c[1]) < 0xA0;  // U+0080..U+009F
+    out += c0 || c1 ? std::string_view("?") : c;
+  });
+  return out;
+}
+
 }  // namespace mechgraph

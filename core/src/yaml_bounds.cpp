@@ -5,8 +5,13 @@
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/text_escape.hpp>
 
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
+
 #include <cstdio>
 #include <map>
+#include <sstream>
+#include <unordered_map>
 #include <vector>
 
 namespace mechgraph::detail {
@@ -58,7 +63,84 @@ class BoundsWalk {
   std::vector<YAML::Node> path_;
 };
 
+// Counts what the document would build, expanding each alias by the size of the node it names.
+class CountingHandler final : public YAML::EventHandler {
+ public:
+  CountingHandler(std::string file, const YamlLimits& limits) : file_(std::move(file)), limits_(limits) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t anchor) override { leaf(m, anchor); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t anchor, const std::string&) override { leaf(m, anchor); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t anchor) override {
+    for (const Open& o : open_)
+      if (o.anchor == anchor && anchor != 0) fail(m, "an alias refers to a node that contains it (a cycle): a scene is a tree");
+    const auto it = size_.find(anchor);
+    add(m, it == size_.end() ? 1 : it->second, 0);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+    start(m, anchor);
+  }
+  void OnSequenceEnd() override { end(); }
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+    start(m, anchor);
+  }
+  void OnMapEnd() override { end(); }
+
+ private:
+  struct Open {
+    YAML::anchor_t anchor;
+    std::size_t expanded_before;
+  };
+
+  void leaf(const YAML::Mark& m, YAML::anchor_t anchor) {
+    add(m, 1, 1);
+    if (anchor) size_[anchor] = 1;
+  }
+  void start(const YAML::Mark& m, YAML::anchor_t anchor) {
+    if (open_.size() >= limits_.max_depth)
+      fail(m, "the scene nests maps and lists more than " + std::to_string(limits_.max_depth) + " levels deep");
+    open_.push_back({anchor, expanded_});
+    add(m, 1, 1);
+  }
+  void end() {
+    if (open_.empty()) return;
+    const Open o = open_.back();
+    open_.pop_back();
+    if (o.anchor) size_[o.anchor] = expanded_ - o.expanded_before;
+  }
+  void add(const YAML::Mark& m, std::size_t expanded, std::size_t written) {
+    expanded_ += expanded;
+    written_ += written;
+    if (written_ > limits_.max_written)
+      fail(m, "the scene holds more than " + std::to_string(limits_.max_written) + " YAML nodes: too large to be a scene");
+    if (expanded_ > limits_.max_nodes)
+      fail(m, "the scene expands to more than " + std::to_string(limits_.max_nodes) +
+                  " YAML nodes (an alias counts each time it is used): too large to be a scene");
+  }
+  [[noreturn]] void fail(const YAML::Mark& m, const std::string& message) const {
+    throw SceneError(SourceLocation{file_, m.line + 1, m.column + 1}.str() + message);
+  }
+
+  std::string file_;
+  YamlLimits limits_;
+  std::vector<Open> open_;
+  std::unordered_map<YAML::anchor_t, std::size_t> size_;
+  std::size_t expanded_ = 0, written_ = 0;
+};
+
 }  // namespace
+
+void check_yaml_events(std::string_view text, const std::string& file, const YamlLimits& limits) {
+  std::istringstream in{std::string(text)};
+  CountingHandler counter(file, limits);
+  try {
+    YAML::Parser parser(in);
+    parser.HandleNextDocument(counter);
+  } catch (const YAML::Exception&) {
+    // A syntax error: YAML::Load reports it with its location next.
+  }
+}
 
 void check_yaml_bounds(const YAML::Node& root, const std::string& file, const YamlLimits& limits) {
   BoundsWalk(file, limits).visit(root);

@@ -12,7 +12,14 @@ namespace mechgraph::detail {
 struct YamlLimits {
   std::size_t max_depth = 64;          // maps and lists inside each other
   std::size_t max_nodes = 1'000'000;   // nodes visited, an alias counted each time it is used
+  std::size_t max_written = 250'000;   // nodes written out (aliases not counted): what yaml-cpp builds
 };
+
+/// Reads `text` as a stream of parser events, before any tree is built (a tree costs about 240
+/// bytes a node), and throws SceneError at the first: more than max_written nodes, more than
+/// max_nodes once every alias is expanded, nesting deeper than max_depth, an alias used inside the
+/// node it names (a cycle). A YAML syntax error is left for the loader to report.
+void check_yaml_events(std::string_view text, const std::string& file, const YamlLimits& limits = {});
 
 /// Walks the document once and throws SceneError ("file:line:column: ...") on the first of: a node
 /// that contains itself (a recursive alias), nesting deeper than max_depth, more than max_nodes

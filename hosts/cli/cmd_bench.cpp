@@ -14,11 +14,13 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 
 namespace mechgraph::cli {
 namespace {
@@ -167,10 +169,19 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   options.steps = vm["steps"].as<int>();
   options.repeats = vm["repeats"].as<int>();
   if (options.steps < 0 || options.steps > 20) throw UsageError("--steps must be between 0 and 20");
-  if (options.repeats < 1) throw UsageError("--repeats must be at least 1");
+  if (options.repeats < 1 || options.repeats > 100) throw UsageError("--repeats must be between 1 and 100");
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
+  // The bench evaluates far more than the scene: a reference with every knob 2^(steps+2) times
+  // tighter, then 2 steps + 1 settings of each knob, each `repeats` times. Its work is checked as
+  // that many evaluations of the scene (an upper bound: a looser setting costs less).
+  std::size_t knobs = 0;
+  for (std::size_t i : graph.order)
+    for (const ParamSpec& p : graph.nodes[i].info().params) knobs += p.knob ? 1 : 0;
+  const double evaluations = std::ldexp(1.0, options.steps + 2) +
+                             static_cast<double>((2 * options.steps + 1) * options.repeats) * static_cast<double>(std::max<std::size_t>(knobs, 1));
+  check_work_budget(graph, estimate_work(graph), work_budget(vm), evaluations, false);
   const double tolerance = vm["tol"].as<double>();
   if (!(tolerance > 0.0)) throw UsageError("--tol must be > 0");
   options.progress = [](std::size_t done, std::size_t total, const std::string& node) {
@@ -179,8 +190,11 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::vector<KnobTrial> trials = bench_knobs(graph, options);
   const std::vector<KnobAdvice> advice = advise_knobs(trials, tolerance);
   spdlog::info("{} knob settings measured", trials.size());
-  if (vm.count("json")) write_json(std::cout, trials, advice);
-  else write_table(std::cout, trials, advice);
+  // Built whole first: an error while writing leaves stdout empty, not a truncated document.
+  std::ostringstream shown;
+  if (vm.count("json")) write_json(shown, trials, advice);
+  else write_table(shown, trials, advice);
+  std::cout << shown.str();
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {

@@ -6,6 +6,7 @@
 #include <mechgraph/did_you_mean.hpp>
 
 #include <iostream>
+#include <sstream>
 
 namespace mechgraph::cli {
 
@@ -23,9 +24,10 @@ int describe_command(const GlobalOptions& g, const std::vector<std::string>& arg
   const RegisteredType* t = registry.find(type);
   if (!t) throw UsageError(unknown_name_message("node type", type, registry.type_names()));
   if (vm.count("json")) {
-    JsonWriter json(std::cout);
+    std::ostringstream text;  // built whole: a failure leaves stdout empty, not half a document
+    JsonWriter json(text);
     write_node_info_json(json, t->type->info());
-    std::cout << "\n";
+    std::cout << text.str() << "\n";
   } else {
     write_node_info_text(std::cout, t->type->info());
   }

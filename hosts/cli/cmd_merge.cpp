@@ -38,6 +38,8 @@ struct Merged {
 void read_shard(const std::string& f, Merged& merged) {
   const SweepManifest m = read_manifest(f);
   if (!m.complete) throw UsageError(f + ": this shard is not complete (its manifest says so); finish it with --resume first");
+  // Without the count of input columns the outputs could not be told from inputs and checked.
+  if (!m.inputs) throw UsageError(f + ": its manifest does not say how many input columns the rows have; run the shard again");
   if (!merged.first) {
     merged.first = m;
     merged.first_file = f;

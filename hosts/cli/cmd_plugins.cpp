@@ -4,6 +4,7 @@
 #include "options.hpp"
 
 #include <iostream>
+#include <sstream>
 
 namespace mechgraph::cli {
 
@@ -15,7 +16,8 @@ int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args
   if (!parse_options(args, visible, visible, none, vm, "mechgraph plugins [--json]")) return ok;
   const PluginRegistry registry = load_plugins(g);
   if (vm.count("json")) {
-    JsonWriter json(std::cout);
+    std::ostringstream text;  // built whole: a failure leaves stdout empty, not half a document
+    JsonWriter json(text);
     json.begin_object().key("plugins").begin_array();
     for (const PluginInfo& p : registry.plugins()) {
       json.begin_object().key("id").value(p.id).key("version").value(p.version).key("path").value(p.path.string());
@@ -27,7 +29,7 @@ int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args
     for (const SkippedPlugin& s : registry.skipped())
       json.begin_object().key("path").value(s.path.string()).key("reason").value(s.reason).end_object();
     json.end_array().end_object();
-    std::cout << "\n";
+    std::cout << text.str() << "\n";
     return ok;
   }
   for (const PluginInfo& p : registry.plugins()) {

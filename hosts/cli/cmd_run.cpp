@@ -7,6 +7,7 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
@@ -65,7 +66,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     }
     if (!graph.reports.empty() && graph.scene_output_count) std::cout << "\n";
     if (graph.reports.empty() && !graph.title.empty()) {
-      std::cout << graph.title << "\n\n";
+      std::cout << terminal_text(graph.title) << "\n\n";
     }
     for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
       const OutputValue& o = result.outputs[i];
@@ -84,7 +85,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
       for (const std::string& n : r.notes) {
         if (first_note) std::cout << "\n";
         first_note = false;
-        std::cout << r.node << ": " << n << "\n";
+        std::cout << r.node << ": " << terminal_text(n) << "\n";
       }
   }
   if (vm.count("out")) {

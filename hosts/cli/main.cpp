@@ -52,13 +52,24 @@ exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load e
             5 results could not be written, 6 a plugin-test check failed, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
 )";
 
-// An error message as printed: valid UTF-8 (a message may quote bytes a user gave), and at most
-// 4000 bytes (a 1 MB value must not become a 1 MB message).
+// An error message as printed: valid UTF-8 without control sequences (a message may quote bytes a
+// user gave), and at most 4000 bytes (a 1 MB value must not become a 1 MB message).
 std::string bounded(std::string_view message) {
   constexpr std::size_t limit = 4000;
-  std::string text = mechgraph::utf8_sanitized(message.substr(0, std::min(message.size(), limit)));
+  std::string text = mechgraph::terminal_text(message.substr(0, std::min(message.size(), limit)));
   if (message.size() > limit) text += "... (message cut: " + std::to_string(message.size() - limit) + " more bytes)";
   return text;
+}
+
+// Standard output is a result file like any other: a write that failed (a full disk, a closed
+// terminal) turns `code` 0 into exit 5, never a silent 0.
+int stdout_written(int code) {
+  std::cout.flush();
+  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    spdlog::error("cannot write the results to standard output (disk full, or the reader went away?)");
+    if (code == mechgraph::cli::ok) code = mechgraph::cli::io_error;
+  }
+  return code;
 }
 
 }  // namespace
@@ -77,10 +88,10 @@ int main(int argc, char** argv) {
     const std::string& a = args[i];
     if (a == "--version") {
       std::cout << "mechgraph " << MECHGRAPH_VERSION << " (plugin ABI " << MECHGRAPH_PLUGIN_ABI_VERSION << ")\n";
-      return 0;
+      return stdout_written(cli::ok);
     } else if (a == "-h" || a == "--help") {
       std::cout << usage;
-      return 0;
+      return stdout_written(cli::ok);
     } else if (a == "-v" || a == "--verbose") {
       spdlog::set_level(spdlog::level::debug);
     } else if (a == "-q" || a == "--quiet") {
@@ -151,12 +162,5 @@ int main(int argc, char** argv) {
     spdlog::error("{}: failed with an exception that is not a std::exception (a defect; please report it)", command);
     code = cli::evaluation_error;
   }
-  // Standard output is a result file like any other: a write that failed (a full disk, a closed
-  // terminal) is exit 5, never a silent 0.
-  std::cout.flush();
-  if (!std::cout || std::fflush(stdout) != 0 || std::ferror(stdout)) {
-    spdlog::error("cannot write the results to standard output (disk full, or the reader went away?)");
-    if (code == cli::ok) code = cli::io_error;
-  }
-  return code;
+  return stdout_written(code);
 }

@@ -17,11 +17,11 @@
 
 namespace mechgraph::cli {
 namespace fs = std::filesystem;
-namespace {
-
-[[noreturn]] void io_failure(const std::string& what, const fs::path& path, int error) {
+void io_failure(const std::string& what, const fs::path& path, int error) {
   throw IoError("cannot " + what + " '" + path.string() + "': " + std::strerror(error));
 }
+
+namespace {
 
 // Twelve characters no one can guess (getrandom), so a temporary's name cannot be planted first.
 std::string random_suffix() {
@@ -197,7 +197,11 @@ fs::path OutputLock::lock_path(const fs::path& target) { return fs::path(target.
 
 OutputLock::OutputLock(const fs::path& target) {
   const fs::path path = lock_path(target);
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  // Made fresh when it can be (O_EXCL); an existing one is taken only when it is what mechgraph
+  // leaves there (ours, a pid at most): a user's own FILE.lock (`--out Cargo`) is never truncated.
+  int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC, 0644);
+  const bool created = fd >= 0;
+  if (fd < 0 && errno == EEXIST) fd = ::open(path.c_str(), O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
     if (errno == ELOOP) throw UsageError(path.string() + " is a symbolic link, not mechgraph's lock: it is left alone; remove it");
     io_failure("open the lock file", path, errno);
@@ -206,6 +210,14 @@ OutputLock::OutputLock(const fs::path& target) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) io_failure("inspect the lock file", path, errno);
   if (!S_ISREG(st.st_mode)) throw UsageError(path.string() + " is " + mode_kind(st.st_mode) + ", not mechgraph's lock file: remove it");
+  if (!created) {
+    char text[32] = {};
+    const ssize_t n = st.st_size < 32 ? ::pread(fd, text, sizeof text - 1, 0) : -1;
+    bool pid_only = n >= 0 && st.st_uid == ::geteuid();
+    for (ssize_t i = 0; pid_only && i < n; ++i) pid_only = (text[i] >= '0' && text[i] <= '9') || (text[i] == '\n' && i == n - 1);
+    if (!pid_only)
+      throw UsageError(path.string() + " exists and is not mechgraph's lock file (a process id): it is left alone; choose another --out");
+  }
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     if (errno != EWOULDBLOCK) io_failure("lock", path, errno);
     char text[32] = {};

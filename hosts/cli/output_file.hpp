@@ -28,6 +28,9 @@ namespace mechgraph::cli {
 /// removed then. An exception from `write` removes the temporary and is rethrown.
 void write_file_whole(const std::filesystem::path& target, bool replace, const std::function<void(std::ostream&)>& write);
 
+/// Throws IoError "cannot WHAT 'PATH': <strerror(error)>" (exit 5).
+[[noreturn]] void io_failure(const std::string& what, const std::filesystem::path& path, int error);
+
 /// A file descriptor that closes itself.
 class FileHandle {
  public:

@@ -1,6 +1,7 @@
 #include "result_files.hpp"
 
 #include <mechgraph/csv.hpp>
+#include <mechgraph/text_escape.hpp>
 
 #include "cli.hpp"
 #include "dxf_writer.hpp"
@@ -137,7 +138,10 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
 }
 
 void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units) {
-  const auto rows = report_cells(report, result, units);
+  // Labels are the scene's text: no control sequence reaches the terminal.
+  auto rows = report_cells(report, result, units);
+  for (auto& r : rows)
+    for (std::string& cell : r) cell = terminal_text(cell);
   std::vector<std::size_t> width(rows.front().size(), 0);
   for (const auto& r : rows)
     for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
@@ -148,7 +152,7 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
     }
     os << "\n";
   };
-  if (!report.title.empty()) os << report.title << "\n\n";
+  if (!report.title.empty()) os << terminal_text(report.title) << "\n\n";
   print_row(rows.front());
   std::size_t total = 0;
   for (std::size_t w : width) total += w + 2;
@@ -225,8 +229,8 @@ void write_csv(const std::filesystem::path& file, const OutputValue& o, const Di
   if (!out) throw IoError("cannot write '" + file.string() + "'");
   const Series& s = o.value.as_series();
   const std::string axis_unit = units.unit_for(s.axis_dimension), value_unit = units.unit_for(o.dimension);
-  out << "axis [" << (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) << "]," << o.label << " ["
-      << (value_unit.empty() ? o.dimension.si_unit() : value_unit) << "]\n";
+  out << csv_field("axis [" + (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) + "]") << ","
+      << csv_field(o.label + " [" + (value_unit.empty() ? o.dimension.si_unit() : value_unit) + "]") << "\n";
   out << std::setprecision(17);
   for (std::size_t i = 0; i < s.values.size(); ++i)
     out << (axis_unit.empty() ? s.axis[i] : to_unit(s.axis[i], s.axis_dimension, axis_unit)) << ","

@@ -21,10 +21,6 @@ namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-[[noreturn]] void io_failure(const std::string& what, const fs::path& path, int error) {
-  throw IoError("cannot " + what + " '" + path.string() + "': " + std::strerror(error));
-}
-
 // The prefix of every staging folder of `dir`: ".NAME.staging-" (mkdtemp adds six random characters).
 std::string staging_prefix(const fs::path& dir) { return "." + dir.filename().string() + ".staging-"; }
 
@@ -67,6 +63,10 @@ FileHandle make_staging(const fs::path& dir, fs::path& staging) {
   std::string pattern = (parent / (staging_prefix(dir) + "XXXXXX")).string();
   if (!::mkdtemp(pattern.data())) io_failure("make the staging folder", pattern, errno);
   staging = pattern;
+  // mkdtemp makes it 0700; results are read by others as a folder made by mkdir would be (umask).
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  if (::chmod(staging.c_str(), 0777 & ~mask) != 0) io_failure("set the permissions of", staging, errno);
   const fs::path locking = staging / ".mechgraph-results.new";
   const int fd = ::open(locking.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) io_failure("make the marker in", staging, errno);

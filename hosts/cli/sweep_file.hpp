@@ -14,7 +14,7 @@
 // that name is refused, its target never written or truncated; the manifest is written whole
 // through a temporary with an unpredictable name (write_file_whole). `--force` replaces FILE only
 // when its manifest says mechgraph wrote it, and never anything but a regular file. Every row
-// --resume carries over is checked (RowChecker). Reads are bounded: a manifest at most 16 MiB, a
+// --resume carries over is checked (RowChecker). Reads are bounded: a manifest at most 64 KiB, a
 // rows file at most max_rows_file_bytes, regular files only.
 #include "output_file.hpp"
 #include "sweep_rows.hpp"
@@ -42,7 +42,7 @@ struct SweepManifest {
 inline constexpr std::size_t max_rows_file_bytes = std::size_t{4} << 30;
 
 /// Reads FILE.json beside `file`; throws UsageError naming it when absent, unreadable, larger than
-/// 16 MiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N
+/// 64 KiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N
 /// <= 10^6, more rows than cases).
 SweepManifest read_manifest_checked(const std::filesystem::path& file);
 

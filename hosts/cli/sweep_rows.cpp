@@ -439,6 +439,10 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
     }
     if (cells.size() != header_.size())
       refuse(number, std::to_string(cells.size()) + " cells, the header has " + std::to_string(header_.size()));
+    // Every cell as csv_field writes it: a formula-like cell mechgraph would have neutralised, or a
+    // line break, was put there by someone else.
+    for (const std::string& cell : cells)
+      if (csv_text(cell) != cell) refuse(number, "the cell '" + excerpt(cell, 40) + "' is not as mechgraph writes cells");
     plain.assign(cells.size(), true);
   } else {
     std::vector<std::string> keys;

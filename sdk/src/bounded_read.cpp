@@ -41,6 +41,7 @@ struct Descriptor {
 }  // namespace
 
 std::string read_bounded_file(const std::filesystem::path& path, std::size_t max_bytes) {
+  max_bytes = std::min<std::size_t>(max_bytes, std::size_t{1} << 40);  // max_bytes + 1 below never wraps
   const std::string shown = "'" + path.string() + "'";
   Descriptor file;
   // O_NONBLOCK: opening a FIFO for reading does not wait for a writer; O_NOCTTY: a terminal named

@@ -67,19 +67,7 @@ outputs: [ slow.out ]
 // Starts the command in the background; returns its process id. Its exit status lands in
 // `status_file` when it ends.
 pid_t start_cli(const std::string& args, const fs::path& status_file) {
-  const fs::path pid_file = work_dir() / "pid";
-  fs::remove(pid_file);
-  fs::remove(status_file);
-  const std::string command = "( '" + std::string(MECHGRAPH_CLI) + "' " + args + " >/dev/null 2>&1 & echo $! > '" +
-                              pid_file.string() + "'; wait $!; echo $? > '" + status_file.string() + "' ) >/dev/null 2>&1 &";
-  REQUIRE(std::system(command.c_str()) == 0);
-  pid_t pid = 0;
-  for (int i = 0; i < 500 && pid == 0; ++i) {
-    std::ifstream(pid_file) >> pid;
-    if (pid == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  REQUIRE(pid > 0);
-  return pid;
+  return mechgraph::testing::start_cli_in_background(args, status_file, work_dir() / "pid");
 }
 
 // Waits until `file` has at least `lines` lines (or 20 s pass).

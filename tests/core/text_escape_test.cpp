@@ -41,6 +41,11 @@ TEST_CASE("DOT strings: double-quoted, quote and backslash escaped, line breaks 
   CHECK(dot_string("a\\N\nb") == "\"a\\\\N\\nb\"");
 }
 
+TEST_CASE("terminal text: no escape sequence, C1 control or DEL reaches the screen", "[escape]") {
+  CHECK(terminal_text("a\x1b]0;owned\x07" "b\tc\n") == "a?]0;owned?b\tc\n");
+  CHECK(terminal_text("\xC2\x9B" "31m \x7f \xC2\xA0 \xC3\xA9") == "?31m ? \xC2\xA0 \xC3\xA9");  // CSI as C1; NBSP and é kept
+}
+
 TEST_CASE("escaping random bytes always gives valid text of the format", "[escape]") {
   std::mt19937 rng(20261125);
   std::uniform_int_distribution<int> byte(0, 255), length(0, 40);
@@ -64,6 +69,10 @@ TEST_CASE("escaping random bytes always gives valid text of the format", "[escap
       if (d[i] == '\\') { ++i; continue; }
       CHECK(d[i] != '"');
     }
+    const std::string t = terminal_text(text);
+    CHECK_FALSE(first_invalid_utf8(t));
+    for (unsigned char c : t) CHECK((c >= 0x20 || c == '\t' || c == '\n'));
+    CHECK(t.find("\xC2\x9B") == std::string::npos);
     std::ostringstream json;
     JsonWriter(json).value(text);
     CHECK_FALSE(first_invalid_utf8(json.str()));

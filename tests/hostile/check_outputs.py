@@ -2,12 +2,16 @@
 """Parses every file mechgraph wrote into a folder with a real parser of its format and fails on the
 first that does not parse, or that carries active content a hostile scene could have put there.
 
-  check_outputs.py DIR [--expect-text TEXT ...]
+  check_outputs.py DIR [--expect-text TEXT ...] [--expect-cell TEXT ...] [--expect-label TEXT ...]
 
 HTML: html.parser over the whole page; no <script>, <iframe>, <object>, <embed>, no on* attribute,
 no javascript: URL; each --expect-text must appear in the page's text content exactly (so it went in
 escaped, as text, not as markup). Inline and separate SVG: xml.etree. CSV: the csv module, every row.
-JSON: json with NaN and Infinity refused. DOT: Graphviz's dot -Tjson, then json. DXF: ezdxf audit.
+Every CSV row has the header's width; each --expect-cell must be one whole cell of some CSV (so a
+comma or a quote inside it was quoted, not taken for a separator). JSON: json with NaN and Infinity
+refused. DOT: Graphviz's dot -Tjson, then json: no URL, href or tooltip attribute anywhere (an
+attribute smuggled in through a name), and each --expect-label is the label of the graph or of a
+node. DXF: ezdxf audit.
 """
 import csv
 import html.parser
@@ -67,11 +71,16 @@ def check_html(path, expected):
     return 1
 
 
-def check_csv(path):
+def check_csv(path, cells):
     with path.open(newline="", encoding="utf-8") as f:
         rows = list(csv.reader(f, strict=True))
     if not rows:
         raise AssertionError(f"{path}: empty CSV")
+    for number, row in enumerate(rows, 1):
+        if len(row) != len(rows[0]):
+            raise AssertionError(f"{path}:{number}: {len(row)} cells, the header has {len(rows[0])}")
+    for row in rows:
+        cells.update(row)
     return 1
 
 
@@ -83,11 +92,30 @@ def check_json(path):
     return 1
 
 
-def check_dot(path):
+def check_dot(path, labels):
     result = subprocess.run(["dot", "-Tjson", str(path)], capture_output=True, text=True, timeout=60)
     if result.returncode != 0:
         raise AssertionError(f"{path}: dot refused it: {result.stderr}")
-    json.loads(result.stdout)
+    graph = json.loads(result.stdout)
+    found = set()
+
+    def walk(item):
+        if isinstance(item, dict):
+            for key in ("URL", "href", "tooltip", "target"):
+                if key in item:
+                    raise AssertionError(f"{path}: a {key} attribute: {item[key]!r}")
+            if isinstance(item.get("label"), str):
+                found.add(item["label"].replace("\\n", "\n"))
+            for value in item.values():
+                walk(value)
+        elif isinstance(item, list):
+            for value in item:
+                walk(value)
+
+    walk(graph)
+    for label in labels:
+        if label not in found:
+            raise AssertionError(f"{path}: no graph or node has the label {label!r} (labels: {sorted(found)[:10]})")
     return 1
 
 
@@ -102,14 +130,16 @@ def check_dxf(path):
 
 def main():
     folder = pathlib.Path(sys.argv[1])
-    expected = []
+    expected, expected_cells, expected_labels = [], [], []
     args = sys.argv[2:]
     while args:
-        if args[0] == "--expect-text" and len(args) > 1:
-            expected.append(args[1])
+        lists = {"--expect-text": expected, "--expect-cell": expected_cells, "--expect-label": expected_labels}
+        if args[0] in lists and len(args) > 1:
+            lists[args[0]].append(args[1])
             args = args[2:]
         else:
             sys.exit(f"unknown argument {args[0]!r}")
+    cells = set()
     checked = 0
     for path in sorted(folder.rglob("*")):
         if not path.is_file():
@@ -120,15 +150,18 @@ def main():
             ET.parse(path)
             checked += 1
         elif path.suffix == ".csv":
-            checked += check_csv(path)
+            checked += check_csv(path, cells)
         elif path.suffix in (".json", ".jsonl"):
             checked += check_json(path)
         elif path.suffix == ".dot":
-            checked += check_dot(path)
+            checked += check_dot(path, expected_labels)
         elif path.suffix == ".dxf":
             checked += check_dxf(path)
     if checked == 0:
         sys.exit(f"{folder}: no file to check")
+    for cell in expected_cells:
+        if cell not in cells:
+            sys.exit(f"{folder}: no CSV has the cell {cell!r}")
     print(f"checked {checked} files")
 
 

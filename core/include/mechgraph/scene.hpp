@@ -112,8 +112,9 @@ struct SceneSpec {
   std::vector<ReportSpec> report;  // `report:` is one table or a list of tables
 };
 
-/// The largest scene file read (a scene is a page of text; anything larger is refused unread).
-constexpr std::size_t max_scene_bytes = 16u << 20;
+/// The largest scene file read: 1 MiB (a scene is a few pages of text; anything larger is refused
+/// unread; YAML builds about 240 bytes per node, so this bounds the tree too).
+constexpr std::size_t max_scene_bytes = 1u << 20;
 
 /// Why `name` cannot name a node or a scene parameter (empty when it can): names start with an
 /// ASCII letter or '_', hold letters, digits, '_' and '-', at most 64 of them. They become file
@@ -121,8 +122,9 @@ constexpr std::size_t max_scene_bytes = 16u << 20;
 std::string name_problem(std::string_view name);
 
 /// Reads and shape-checks a scene; throws SceneError("file:line:column: ...").
-/// Refused before any node is made: more than max_scene_bytes, bytes that are not UTF-8, a YAML
-/// alias cycle or expansion beyond a million nodes, nesting deeper than 64, a key given twice.
+/// Refused before any node is made: more than max_scene_bytes, bytes that are not UTF-8, more than
+/// 250000 YAML nodes written, a YAML alias cycle or expansion beyond a million nodes, nesting
+/// deeper than 64, a key given twice.
 SceneSpec load_scene(const std::filesystem::path& file);
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label);
 

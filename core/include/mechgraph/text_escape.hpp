@@ -37,4 +37,8 @@ std::string gnuplot_string(std::string_view text);
 /// as "\n" (DOT's own line break in labels), other controls dropped, ill-formed UTF-8 replaced.
 std::string dot_string(std::string_view text);
 
+/// Text for a terminal: C0 and C1 controls other than tab and line feed (an escape sequence could
+/// rewrite the screen or hide lines) and DEL shown as '?', ill-formed UTF-8 replaced.
+std::string terminal_text(std::string_view text);
+
 }  // namespace mechgraph

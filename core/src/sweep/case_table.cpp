@@ -3,6 +3,7 @@
 #include <mechgraph/csv.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
 #include <fcntl.h>
@@ -119,10 +120,11 @@ std::pair<Quantity, std::string> range_end(const std::string& text, const std::s
 }  // namespace
 
 std::string excerpt(std::string_view text, std::size_t limit) {
-  if (text.size() <= limit) return std::string(text);
+  // Shown on a terminal: no control sequence (terminal_text), cut at a character's start.
+  if (text.size() <= limit) return terminal_text(text);
   std::size_t cut = limit;
   while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a UTF-8 character
-  return std::string(text.substr(0, cut)) + "...";
+  return terminal_text(text.substr(0, cut)) + "...";
 }
 
 std::string read_user_file(const std::filesystem::path& file, std::size_t limit, const std::string& what) {
@@ -200,6 +202,9 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
       throw SceneError("--vary: the grid would have more than 10^7 cases; sample it instead (--sample NAME=LO:HI --n N)");
     total *= s.values.size();
   }
+  if (total > max_case_cells / std::max<std::size_t>(specs.size(), 1))
+    throw SceneError("--vary: " + std::to_string(total) + " cases of " + std::to_string(specs.size()) + " values each are more than " +
+                     std::to_string(max_case_cells) + " values in one sweep");
   table.cases.reserve(total);
   for (std::size_t i = 0; i < total; ++i) {
     std::vector<CaseValue> row(specs.size());
@@ -231,6 +236,9 @@ SampleSpec parse_sample(std::string_view text) {
 CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t n, std::uint64_t seed) {
   if (n == 0) throw SceneError("--n: a sample needs at least one case");
   if (n > max_sweep_cases) throw SceneError("--n " + std::to_string(n) + ": at most 10^7 cases in one sweep");
+  if (n > max_case_cells / std::max<std::size_t>(specs.size(), 1))
+    throw SceneError("--n " + std::to_string(n) + " cases of " + std::to_string(specs.size()) + " values each are more than " +
+                     std::to_string(max_case_cells) + " values in one sweep");
   CaseTable table;
   table.origin = "Latin hypercube, " + std::to_string(n) + " cases, seed " + std::to_string(seed);
   table.cases.assign(n, std::vector<CaseValue>(specs.size()));
@@ -285,6 +293,9 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
     }
     if (table.cases.size() >= max_sweep_cases)
       throw SceneError(where + ":" + std::to_string(number) + ":1: more than 10^7 cases in one file; split it into several sweeps");
+    if ((table.cases.size() + 1) * std::max<std::size_t>(table.variables.size(), 1) > max_case_cells)
+      throw SceneError(where + ":" + std::to_string(number) + ":1: more than " + std::to_string(max_case_cells) +
+                       " values in one file; split it into several sweeps");
     if (fields.size() != table.variables.size())
       throw SceneError(where + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
                        " cells, the header has " + std::to_string(table.variables.size()));

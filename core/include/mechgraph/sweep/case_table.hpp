@@ -17,15 +17,19 @@ namespace mechgraph {
 /// The most cases one sweep may have (a grid, a sample, a cases file, a manifest a merge reads):
 /// 10^7. More is refused as a usage error, before anything is allocated for them.
 inline constexpr std::size_t max_sweep_cases = 10'000'000;
-/// The largest cases file read (256 MiB) and the largest sweep manifest (16 MiB).
+/// The most values (cases x varied parameters) one sweep's table may hold: 2 x 10^7, about 2 GB
+/// as they are kept; checked before the table is built.
+inline constexpr std::size_t max_case_cells = 20'000'000;
+/// The largest cases file read (256 MiB) and the largest sweep manifest (64 KiB: a dozen fields).
 inline constexpr std::size_t max_cases_file_bytes = std::size_t{256} << 20;
-inline constexpr std::size_t max_manifest_bytes = std::size_t{16} << 20;
+inline constexpr std::size_t max_manifest_bytes = std::size_t{64} << 10;
 
 /// read_bounded_file (bounded_read.hpp: a regular file only, non-blocking, at most `limit` bytes)
 /// with its refusal as a SceneError "`what`: 'FILE' is a FIFO (named pipe), not a regular file".
 std::string read_user_file(const std::filesystem::path& file, std::size_t limit, const std::string& what);
 
-/// At most `limit` characters of user text, for an error message ("..." marks a cut).
+/// At most `limit` bytes of user text for an error message, UTF-8 kept whole and readable (unlike
+/// quoted_text_excerpt's \xNN), controls as '?' (terminal_text), "..." where it was cut.
 std::string excerpt(std::string_view text, std::size_t limit = 200);
 
 /// One value of one case: a number with its dimension (SI), or a word (a choice such as an
