@@ -1,7 +1,10 @@
 #include <mechgraph/graph.hpp>
+
+#include <sys/stat.h>
 #include <mechgraph/semantic_version.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -230,6 +233,15 @@ class GraphBuilder {
         std::string text = v.text;
         if (spec.is_path && !text.empty() && !std::filesystem::path(text).is_absolute() && v.where.line != 0)
           text = (std::filesystem::path(scene_.file).parent_path() / text).lexically_normal().string();
+        // A file a scene names is refused at load when it is there but no regular file (a folder,
+        // a FIFO, a device such as /dev/zero): `validate` says so, nothing waits on it later.
+        if (spec.is_path && !text.empty()) {
+          struct stat st {};
+          if (::stat(text.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+            fail(v.where, what + ": " + quoted_text_excerpt(text, 200) + " is " +
+                              (S_ISDIR(st.st_mode) ? "a folder" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket") +
+                              ", not a regular file" + via);
+        }
         return ParamValue::of_text(text);
       }
       case ParamKind::number_list: {

@@ -1,5 +1,7 @@
 #include "dxf_writer.hpp"
 
+#include "output_file.hpp"
+
 #include <mechgraph/errors.hpp>
 
 #include <dxflib/dl_dxf.h>
@@ -107,36 +109,6 @@ class BufferWriter final : public DL_WriterA {
   mutable std::string text_;
 };
 
-// Writes `bytes` to the new file `file` (O_EXCL: never over another file), each write checked,
-// the data flushed to the disk and the close checked; on any failure the partial file is removed
-// and IoError names the file and the system's reason (a full disk: "No space left on device").
-void write_new_file(const std::filesystem::path& file, std::string_view bytes) {
-  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOCTTY, 0644);
-  if (fd < 0) throw IoError("cannot write '" + file.string() + "': " + std::strerror(errno));
-  auto fail = [&](const char* what, int error) {
-    ::close(fd);
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-    throw IoError(std::string("cannot ") + what + " '" + file.string() + "' (" + std::to_string(bytes.size()) +
-                  " bytes of DXF): " + std::strerror(error));
-  };
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) fail("write", n < 0 ? errno : ENOSPC);
-    done += static_cast<std::size_t>(n);
-  }
-  // tmpfs and NFS may report a full disk only here.
-  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) fail("flush", errno);
-  if (::close(fd) != 0) {
-    const int error = errno;
-    std::error_code ignored;
-    std::filesystem::remove(file, ignored);
-    throw IoError("cannot write '" + file.string() + "': " + std::strerror(error));
-  }
-}
-
 }  // namespace
 
 bool is_drawable_curve(const Table& t) { return t.closed_curve && !curves_of(t).empty(); }
@@ -195,7 +167,8 @@ void write_dxf(const std::filesystem::path& file, const Table& t) {
   dxf.writeObjects(*dw);
   dxf.writeObjectsEnd(*dw);
   dw->dxfEOF();
-  write_new_file(file, dw->text());
+  // Whole or not at all, every write, fsync and close checked (a full disk is IoError, exit 5).
+  write_file_whole(file, false, [&](std::ostream& os) { os << dw->text(); });
 }
 
 }  // namespace mechgraph::cli

@@ -1,6 +1,7 @@
 #include "sweep_file.hpp"
 
 #include "cli.hpp"
+#include "output_file.hpp"
 
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
@@ -20,10 +21,6 @@ namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-[[noreturn]] void io_failure(const fs::path& p, const std::string& what, int error = errno) {
-  throw IoError(p.string() + ": " + what + ": " + std::strerror(error));
-}
-
 // A whole number field of a manifest, at most `limit`: digits only (no sign, no exponent), so a
 // "-1" or "1e15" cannot wrap or slip past the limit.
 std::size_t count_field(const YAML::Node& node, const std::string& key, std::size_t limit) {
@@ -42,7 +39,7 @@ std::string read_all(int fd, std::size_t limit, const fs::path& path) {
   for (off_t at = 0;;) {
     const ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) io_failure(path, "cannot read");
+    if (n < 0) io_failure("read", path, errno);
     if (n == 0) return text;
     if (text.size() + static_cast<std::size_t>(n) > limit)
       throw UsageError(path.string() + ": more than " + std::to_string(limit >> 20) + " MiB of rows; not read back");
@@ -142,7 +139,7 @@ void SweepFile::resume_part(const RowRules& rules) {
   file_ = open_existing_regular(part_);
   const std::string text = read_all(file_.get(), max_rows_file_bytes, part_);
   const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
-  if (keep != text.size() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure(part_, "cannot cut the half-written last line");
+  if (keep != text.size() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure("cut the half-written last line of", part_, errno);
   RowChecker checker(rules, part_.string());
   std::istringstream lines(text.substr(0, keep));
   std::string line;
@@ -175,7 +172,7 @@ void SweepFile::start_fresh(bool resume, bool force) {
     refuse_unless_ours(part_, ours, "--out's unfinished rows");
   }
   for (const fs::path& p : {out_, part_})
-    if (::unlink(p.c_str()) != 0 && errno != ENOENT) io_failure(p, "cannot remove");
+    if (::unlink(p.c_str()) != 0 && errno != ENOENT) io_failure("remove", p, errno);
 }
 
 SweepFile::~SweepFile() = default;
@@ -186,16 +183,16 @@ void SweepFile::write(const std::string& text) {
     return;
   }
   if (std::fwrite(text.data(), 1, text.size(), stdout) != text.size() || std::fflush(stdout) != 0)
-    io_failure("standard output", "cannot write");
+    io_failure("write to", "standard output", errno);
 }
 
 void SweepFile::finish(bool complete, std::size_t rows, std::size_t failed) {
   if (!file_) return;
-  if (::close(file_.release()) != 0) io_failure(part_, "cannot close");
+  if (::close(file_.release()) != 0) io_failure("close", part_, errno);
   manifest_.rows = rows;
   manifest_.failed = failed;
   if (complete) {
-    if (std::rename(part_.c_str(), out_.c_str()) != 0) io_failure(part_, "cannot rename to " + out_.string());
+    if (std::rename(part_.c_str(), out_.c_str()) != 0) io_failure("rename to " + out_.string() + " the file", part_, errno);
     manifest_.complete = true;
   }
   write_manifest(out_, manifest_);
