@@ -16,6 +16,7 @@
 #include <iterator>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace mechgraph {
@@ -317,14 +318,23 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
 // Refused here, naming the output and the unit, before anything is printed.
 void check_displayable(const GraphNode& node, const OutputValue& o, const DisplayUnits& units) {
   auto check = [&](const std::vector<double>& xs, Dimension d, const std::string& own_unit, const std::string& what) {
+    if (xs.empty()) return;
     const std::string unit = units.unit_for(d, own_unit);
-    if (unit.empty() || xs.empty()) return;
-    UnitScale u;
-    try {
-      u = parse_unit(unit);
-    } catch (const UnitError&) {
-      return;  // the writers refuse a unit they cannot read; nothing to check against here
+    if (unit.empty()) return;
+    // Each unit parsed once per thread: a sweep asks the same few units for every case.
+    thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
+    auto at = parsed.find(unit);
+    if (at == parsed.end()) {
+      std::optional<UnitScale> scale;
+      try {
+        scale = parse_unit(unit);
+      } catch (const UnitError&) {
+        // the writers refuse a unit they cannot read; nothing to check against here
+      }
+      at = parsed.emplace(unit, scale).first;
     }
+    if (!at->second) return;
+    const UnitScale& u = *at->second;
     double largest = 0.0;
     for (double x : xs) largest = std::max(largest, std::abs(x));
     if (!std::isfinite(largest / u.scale - u.offset) || !std::isfinite(-largest / u.scale - u.offset))
