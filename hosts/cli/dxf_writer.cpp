@@ -113,10 +113,13 @@ class BufferWriter final : public DL_WriterA {
 
 bool is_drawable_curve(const Table& t) { return t.closed_curve && !curves_of(t).empty(); }
 
-void write_dxf(const std::filesystem::path& file, const Table& t) {
+void write_dxf(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& notes) {
   const std::vector<Curve> curves = curves_of(t);
   DL_Dxf dxf;
   auto dw = std::make_unique<BufferWriter>();
+
+  // The node's notes (a contour's direction of rotation) as comments, escaped like every text.
+  for (const std::string& n : notes) dw->dxfString(999, dxf_text(n));
 
   dxf.writeHeader(*dw);
   dw->dxfString(9, "$INSUNITS");

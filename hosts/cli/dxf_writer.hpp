@@ -6,13 +6,16 @@
 #include <mechgraph/value.hpp>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace mechgraph::cli {
 
 /// Whether `t` holds a curve this writer can draw (closed_curve with length channels x and y).
 bool is_drawable_curve(const Table& t);
 
-/// Writes `t` to `file`; throws IoError when the file cannot be written.
-void write_dxf(const std::filesystem::path& file, const Table& t);
+/// Writes `t` to `file`, each of `notes` (the producing node's notes, e.g. which way a cam contour
+/// turns) as a 999 comment line at the top; throws IoError when the file cannot be written.
+void write_dxf(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& notes = {});
 
 }  // namespace mechgraph::cli

@@ -251,7 +251,14 @@ void write_result_files(const std::filesystem::path& dir, const Graph& graph, co
     if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units);
     else if (o.value.kind() == ValueKind::table) {
       write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units);
-      if (is_drawable_curve(o.value.as_table())) write_dxf(dir / (o.label + ".dxf"), o.value.as_table());
+      if (is_drawable_curve(o.value.as_table())) {
+        // The producing node's notes go into the drawing too (a contour says which way it turns).
+        const std::string node = o.label.substr(0, o.label.find('.'));
+        std::vector<std::string> notes;
+        for (const NodeRun& r : result.runs)
+          if (r.node == node) notes = r.notes;
+        write_dxf(dir / (o.label + ".dxf"), o.value.as_table(), notes);
+      }
     }
 }
 

@@ -16,8 +16,12 @@ double Follower::pitch_base() const {
 }
 
 ContactGeometry contact_at(const Follower& f, double phi, const LiftDerivatives& d) {
-  const double ux = -std::sin(phi), uy = std::cos(phi);
-  const double tx = -std::cos(phi), ty = -std::sin(phi);
+  // The follower axis in the cam's frame (docs/methods/valvetrain.md, "The cam contour"): a cam
+  // turned by phi ccw carries u(phi) = (sin phi, cos phi) onto the fixed axis +y, one turned cw
+  // u(phi) = (-sin phi, cos phi); t = du/dphi, and t' = -u in both cases.
+  const double sigma = f.clockwise ? -1.0 : 1.0;
+  const double ux = sigma * std::sin(phi), uy = std::cos(phi);
+  const double tx = sigma * std::cos(phi), ty = -std::sin(phi);
   ContactGeometry g;
   if (f.kind == Follower::Kind::flat) {
     const double s = f.base_radius + d.lift;
@@ -37,10 +41,6 @@ ContactGeometry contact_at(const Follower& f, double phi, const LiftDerivatives&
     g.pressure_angle = std::atan2(a, s);
     const double cross = a * (2.0 * d.velocity - f.offset) + s * s - s * d.acceleration;
     g.curvature_radius = speed * speed * speed / cross - f.roller_radius;
-  }
-  if (f.clockwise) {
-    g.x = -g.x;
-    g.pitch_x = -g.pitch_x;
   }
   return g;
 }

@@ -1,8 +1,11 @@
 #pragma once
 // The cam contour a follower needs, in the cam's own frame (docs/methods/valvetrain.md, "The cam
-// contour"). The cam turns counterclockwise by the cam angle phi; in its frame the follower's axis
-// points along u(phi) = (-sin phi, cos phi) (the nose of a symmetric lobe on +y), and
-// t(phi) = du/dphi = (-cos phi, -sin phi).
+// contour"). Seen from the front, the cam turns by the cam angle phi in the stated direction under
+// a follower on the fixed axis +y (the nose of a symmetric lobe on +y at phi = 0). In the cam's
+// frame the follower's axis then points along u(phi) = (sigma sin phi, cos phi), sigma = +1 when
+// the cam turns counterclockwise, -1 clockwise (turning the drawn cam by sigma phi carries u onto
+// +y), and t(phi) = du/dphi = (sigma cos phi, -sin phi); t' = -u either way, so the formulas below
+// hold for both directions.
 //  - Flat-faced follower, face at s = r0 + h from the centre: the contour is the envelope of the
 //    faces, P = s u + h' t; the contact lies h' from the axis along the face; rho = r0 + h + h''.
 //  - Roller of radius rr, its axis offset by e (positive: the side that lowers the pressure angle
@@ -21,7 +24,7 @@ struct Follower {
   double base_radius = 0.0;    // r0, m
   double roller_radius = 0.0;  // rr, m (roller)
   double offset = 0.0;         // e, m (roller)
-  bool clockwise = false;      // the cam turns clockwise: the contour is mirrored in x
+  bool clockwise = false;      // the cam turns clockwise seen from the front (sigma = -1)
   double pitch_base() const;   // s0
 };
 

@@ -89,7 +89,9 @@ class ContourNodeType final : public NodeType {
  public:
   ContourNodeType() {
     info_.type = "cam.contour";
-    info_.version = 2;  // 2: a forces table over less than a revolution loads only its span
+    // 2: a forces table over less than a revolution loads only its span; 3: the contour turned
+    // the stated way (it was mirrored: an asymmetric lobe ran backwards)
+    info_.version = 3;
     info_.summary =
         "cam contour (x, y) in the cam frame for a flat or roller follower, with its pitch curve, pressure angle, "
         "Hertz contact stress and the face a flat tappet needs";
@@ -114,7 +116,10 @@ class ContourNodeType final : public NodeType {
                           "angle on the rise",
                           "mm")
             .with_default(0.0),
-        ParamSpec::choice("rotation", {"ccw", "cw"}, "direction the cam turns, seen from the front; cw mirrors the contour")
+        ParamSpec::choice("rotation", {"ccw", "cw"},
+                          "direction the cam turns, seen from the front: turned by the cam angle this way from the "
+                          "drawn position (nose of a symmetric lobe on +y), it lifts the follower on +y by h; cw "
+                          "mirrors the contour")
             .with_default("ccw"),
         ParamSpec::number("chord_error", dim::length,
                           "largest distance between the contour (and pitch curve) and the chords between its points",
@@ -216,6 +221,11 @@ class ContourNodeType final : public NodeType {
         auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
         for (const auto& g : c.points) py.push_back(g.pitch_y);
       }
+      // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
+      out.note(f.clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
+                             "cam angle phi lies phi counterclockwise from +y (nose at phi = 0)"
+                           : "contour: the cam turns counterclockwise seen from the front; in the drawing the follower "
+                             "axis at cam angle phi lies phi clockwise from +y (nose at phi = 0)");
       out.set_scalar("points", static_cast<double>(c.points.size()));
       out.set("contour", Value::table(std::move(t)));
     }

@@ -5,6 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include <unistd.h>
 
@@ -30,4 +33,11 @@ TEST_CASE("contours go out as CSV and DXF; ezdxf reads the DXF back with the CSV
   INFO(roller.out << roller.err);
   CHECK(roller.exit_code == 0);
   CHECK_THAT(roller.out, Contains("PITCH: 571 points, closed"));
+  // Which way the cam turns: a comment in the drawing, a note in results.json.
+  auto text_of = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  CHECK_THAT(text_of(dir / "flat.contour.dxf"), Contains("999\ncontour: the cam turns counterclockwise seen from the front"));
+  CHECK_THAT(text_of(dir / "results.json"), Contains("contour: the cam turns counterclockwise seen from the front"));
 }

@@ -60,7 +60,7 @@ TEST_CASE("flat-face contour: base circle at r0, and its support function is r0 
   // The face at angle phi touches the cam: max over the contour of P.u(phi) = r0 + h(phi), to the
   // chord error (the polyline lies inside the convex contour by at most tol).
   for (double phi = -pi; phi < pi; phi += 0.7 * deg) {
-    const double ux = -std::sin(phi), uy = std::cos(phi);
+    const double ux = std::sin(phi), uy = std::cos(phi);  // ccw: u(phi) = (sin phi, cos phi)
     double support = -1.0;
     for (std::size_t i = 0; i < x.size(); ++i) support = std::max(support, x[i] * ux + y[i] * uy);
     const double expected = 40e-3 + law->at(phi).lift;
@@ -140,10 +140,12 @@ TEST_CASE("pressure angle and radius of curvature agree with the contour's own g
     const ContactGeometry g = contact_at(f, phi, law->at(phi));
     const ContactGeometry a = contact_at(f, phi - h, law->at(phi - h)), b = contact_at(f, phi + h, law->at(phi + h));
     // The contact normal is perpendicular to the pitch curve's tangent; the pressure angle is the
-    // angle between that normal and the follower axis u = (-sin phi, cos phi).
+    // angle between that normal and the follower axis u.
     const double tx = b.pitch_x - a.pitch_x, ty = b.pitch_y - a.pitch_y;
-    const double nx = ty, ny = -tx;  // the tangent turned clockwise: outward for a ccw curve
-    const double cos_alpha = (nx * -std::sin(phi) + ny * std::cos(phi)) / std::hypot(nx, ny);
+    // The cam turns ccw, so the pitch curve is run through clockwise as phi grows: the tangent
+    // turned counterclockwise points outward; u = (sin phi, cos phi).
+    const double nx = -ty, ny = tx;
+    const double cos_alpha = (nx * std::sin(phi) + ny * std::cos(phi)) / std::hypot(nx, ny);
     CHECK_THAT(std::abs(g.pressure_angle), Catch::Matchers::WithinAbs(std::acos(std::min(1.0, cos_alpha)), 1e-6));
     // Circumradius of three contour points.
     const double ab = std::hypot(b.x - a.x, b.y - a.y), ag = std::hypot(g.x - a.x, g.y - a.y), gb = std::hypot(b.x - g.x, b.y - g.y);
