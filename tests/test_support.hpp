@@ -105,6 +105,18 @@ inline CommandResult run_command(const std::string& shell_command) {
 /// Runs the mechgraph command with `args` (a shell fragment), capturing stdout and stderr.
 inline CommandResult run_cli(const std::string& args) { return run_command(std::string("'") + MECHGRAPH_CLI + "' " + args); }
 
+/// The command-line option that loads the arithmetic test plugin alone.
+inline std::string arith_plugin_dir_option() {
+  return "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'";
+}
+
+/// A scratch folder `NAME_PID` under the temporary folder, made if missing.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 /// Starts the mechgraph command with `args` (a shell fragment of the test's own fixed text) in the
 /// background and returns its process id; its exit status lands in `status_file` when it ends.
 /// `pid_file` is scratch space.

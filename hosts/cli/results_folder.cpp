@@ -63,18 +63,25 @@ FileHandle make_staging(const fs::path& dir, fs::path& staging) {
   std::string pattern = (parent / (staging_prefix(dir) + "XXXXXX")).string();
   if (!::mkdtemp(pattern.data())) io_failure("make the staging folder", pattern, errno);
   staging = pattern;
-  // mkdtemp makes it 0700; results are read by others as a folder made by mkdir would be (umask).
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  if (::chmod(staging.c_str(), 0777 & ~mask) != 0) io_failure("set the permissions of", staging, errno);
-  const fs::path locking = staging / ".mechgraph-results.new";
-  const int fd = ::open(locking.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) io_failure("make the marker in", staging, errno);
-  FileHandle marker(fd);
-  if (::flock(fd, LOCK_EX) != 0) io_failure("lock the marker in", staging, errno);
-  write_all(fd, "written by mechgraph; --force may replace this folder\n", locking);
-  if (std::rename(locking.c_str(), (staging / results_marker).c_str()) != 0) io_failure("name the marker in", staging, errno);
-  return marker;
+  try {
+    // mkdtemp makes it 0700; results are read by others as a folder made by mkdir would be (umask).
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    if (::chmod(staging.c_str(), 0777 & ~mask) != 0) io_failure("set the permissions of", staging, errno);
+    const fs::path locking = staging / ".mechgraph-results.new";
+    const int fd = ::open(locking.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) io_failure("make the marker in", staging, errno);
+    FileHandle marker(fd);
+    if (::flock(fd, LOCK_EX) != 0) io_failure("lock the marker in", staging, errno);
+    write_all(fd, "written by mechgraph; --force may replace this folder\n", locking);
+    if (std::rename(locking.c_str(), (staging / results_marker).c_str()) != 0) io_failure("name the marker in", staging, errno);
+    return marker;
+  } catch (...) {
+    // A staging folder without its marker would never be cleaned up as stale: remove it now.
+    std::error_code ignored;
+    fs::remove_all(staging, ignored);
+    throw;
+  }
 }
 
 }  // namespace

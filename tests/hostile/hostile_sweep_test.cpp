@@ -30,13 +30,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string arith_dir() { return "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'"; }
-
-fs::path work_dir() {
-  const auto dir = fs::temp_directory_path() / ("mechgraph_hostile_sweep_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+std::string arith_dir() { return arith_plugin_dir_option(); }
+fs::path work_dir() { return scratch_dir("mechgraph_hostile_sweep"); }
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = work_dir() / name;

@@ -28,6 +28,16 @@ inline const NodeType& cam_type(const std::string& name) {
   throw std::logic_error("unreachable");
 }
 
+/// The cam.contour node type (registered apart from the cam laws).
+inline const NodeType& contour_type() {
+  static const NodeTypeList types = [] {
+    NodeTypeList list;
+    add_contour_type(list);
+    return list;
+  }();
+  return *types.front();
+}
+
 /// Evaluates cam node `type` with `given` parameters on top of the ParamSpec defaults.
 inline OutputSet run_cam(const std::string& type, const std::map<std::string, ParamValue>& given) {
   const NodeType& node = cam_type(type);

@@ -23,21 +23,13 @@ namespace {
 constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 
-const NodeType& contour_node() {
-  static const NodeTypeList types = [] {
-    NodeTypeList list;
-    add_contour_type(list);
-    return list;
-  }();
-  return *types.front();
-}
 
 OutputSet cut(std::shared_ptr<const CamLaw> law, const std::map<std::string, ParamValue>& given) {
   InputSet in;
   in.add("cam", Value::handle(std::move(law)));
   OutputSet out;
   mechgraph::testing::RecordingContext ctx;
-  contour_node().evaluate(mechgraph::testing::defaults_of(contour_node().info(), given), in, out, ctx);
+  testing::contour_type().evaluate(mechgraph::testing::defaults_of(testing::contour_type().info(), given), in, out, ctx);
   return out;
 }
 

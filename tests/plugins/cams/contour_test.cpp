@@ -18,14 +18,6 @@ namespace {
 constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 
-const NodeType& contour_type() {
-  static const NodeTypeList types = [] {
-    NodeTypeList list;
-    add_contour_type(list);
-    return list;
-  }();
-  return *types.front();
-}
 
 OutputSet run_contour(std::shared_ptr<const CamLaw> law, const std::map<std::string, ParamValue>& given,
                       const Table* forces = nullptr) {
@@ -34,7 +26,7 @@ OutputSet run_contour(std::shared_ptr<const CamLaw> law, const std::map<std::str
   if (forces) in.add("forces", Value::table(*forces));
   OutputSet out;
   mechgraph::testing::RecordingContext ctx;
-  contour_type().evaluate(mechgraph::testing::defaults_of(contour_type().info(), given), in, out, ctx);
+  testing::contour_type().evaluate(mechgraph::testing::defaults_of(testing::contour_type().info(), given), in, out, ctx);
   CHECK(ctx.work.at("evaluations") > 0);
   return out;
 }
