@@ -236,20 +236,24 @@ class ContourNodeType final : public NodeType {
       if (step > -pi && step < pi) knots.push_back(step);
     std::sort(knots.begin(), knots.end());
     knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
-    numerics::Extremum peaks[4];
-    numerics::maximize_piecewise_together(
-        [&](double phi, double* v, double* slope) {
+    // Each function is smooth on each piece (|pressure angle| is not: both of its signs are searched).
+    numerics::SmoothPieces pieces(
+        [&](double phi, double* v, double*) {
           const LiftDerivatives d = law->at(phi);
           const ContactGeometry g = contact_at(f, phi, d);
-          v[0] = std::abs(g.pressure_angle);
+          v[0] = g.pressure_angle;
           v[1] = load.given() ? stress(phi, g) : 0.0;
           v[2] = d.velocity;
-          v[3] = -d.velocity;
-          slope[0] = slope[1] = std::numeric_limits<double>::quiet_NaN();
-          slope[2] = d.acceleration;
-          slope[3] = -d.acceleration;
         },
-        4, knots, samples, evaluations, peaks);
+        3, knots, samples);
+    const numerics::Extremum pa_max = pieces.maximum(0), pa_min = pieces.minimum(0);
+    const numerics::Extremum v_max = pieces.maximum(2), v_min = pieces.minimum(2);
+    const numerics::Extremum peaks[4] = {
+        std::abs(pa_min.value) > std::abs(pa_max.value) ? numerics::Extremum{pa_min.x, -pa_min.value} : pa_max,
+        load.given() ? pieces.maximum(1) : numerics::Extremum{},
+        v_max,
+        {v_min.x, -v_min.value}};
+    evaluations += pieces.work().evaluations;
     out.set_scalar("max_pressure_angle", peaks[0].value);
     if (f.kind == Follower::Kind::flat) {
       out.set_scalar("min_face_width", peaks[2].value + peaks[3].value);

@@ -120,12 +120,19 @@ class SpringDesignType final : public NodeType {
     const double min_seat = p.number("min_seat_force");
     const double w = motion->camshaft_speed();
     const double h_max = rocker * motion->cam().max_lift() - motion->lash();  // full valve lift
-    const std::vector<double>& knots = motion->knots();
     const int samples = static_cast<int>(p.integer("samples"));
     long evaluations = 0;
     const bool source_rule = p.text("rule") == "source";
 
-    // |a| where the valve decelerates, 0 elsewhere (the requirement is K M |a| there).
+    // |a| where the valve decelerates, 0 elsewhere (the requirement is K M |a| there). The searches
+    // split where the acceleration changes sign, so that each piece is smooth (the certified
+    // searches need smooth pieces: max(0, .) has a kink there).
+    std::vector<double> knots = motion->knots();
+    for (double x : numerics::all_sign_changes([&](double phi) { return motion->at(phi).acceleration; }, knots, samples,
+                                               evaluations))
+      knots.push_back(x);
+    std::sort(knots.begin(), knots.end());
+    knots.erase(std::unique(knots.begin(), knots.end()), knots.end());
     auto deceleration = [&](double phi) { return std::max(0.0, -w * w * motion->at(phi).acceleration); };
 
     // The line per unit of K M_red: both rules scale linearly with the mass, so the searches run once.
@@ -216,13 +223,15 @@ class SpringDesignType final : public NodeType {
     auto margin = [&](double phi) {
       return line.preload + line.rate * motion->at(phi).lift - K * M * deceleration(phi);
     };
-    auto safety = [&](double phi) {
-      const double a = deceleration(phi);
+    // The least safety force / (M |a|) is the inverse of the most the deceleration asks per unit of
+    // spring force, M |a| / force: smooth, and zero where the valve accelerates (no requirement).
+    auto demand = [&](double phi) {
       const double force = line.preload + line.rate * motion->at(phi).lift;
-      return a > 0.0 ? force / (M * a) : 1e300;  // no requirement where the valve accelerates
+      return M * deceleration(phi) / force;
     };
     const auto least_margin = numerics::minimize_piecewise(margin, knots, samples, evaluations);
-    const auto least_safety = numerics::minimize_piecewise(safety, knots, samples, evaluations);
+    const auto most_demand = numerics::maximize_piecewise(demand, knots, samples, evaluations);
+    const numerics::Extremum least_safety{most_demand.x, most_demand.value > 0.0 ? 1.0 / most_demand.value : 1e300};
 
     ctx.report_work("iterations", iterations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));

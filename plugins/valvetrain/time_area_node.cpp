@@ -88,13 +88,11 @@ class TimeAreaType final : public NodeType {
       // and the top keeps those two crossings in different pieces.
       std::vector<double> knots = motion->knots();
       if (!area.stage_lifts().empty()) {
-        std::vector<double> search = knots;
-        search.push_back(numerics::maximize_piecewise([&](double x) { return motion->at(x).lift; }, knots, 200, evaluations).x);
-        std::sort(search.begin(), search.end());
-        for (double stage_lift : area.stage_lifts()) {
-          auto crossing = [&](double phi) { return motion->at(phi).lift - stage_lift; };
-          for (double x : numerics::all_sign_changes(crossing, search, 200, evaluations)) knots.push_back(x);
-        }
+        // Every crossing of every stage lift, from one certified interpolation of the lift.
+        numerics::SmoothPieces lift([&](double x, double* v, double*) { v[0] = motion->at(x).lift; }, 1, knots, 16);
+        for (double stage_lift : area.stage_lifts())
+          for (double x : lift.crossings(0, stage_lift)) knots.push_back(x);
+        evaluations += lift.work().evaluations;
       }
       std::sort(knots.begin(), knots.end());
       angle_area = numerics::integrate_piecewise(f, knots, p.number("tolerance"), evaluations);

@@ -67,23 +67,20 @@ class ValveMotionType final : public NodeType {
     auto motion = std::make_shared<const CamValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
                                                       p.number("lash"), samples, evaluations);
     const std::vector<double>& knots = motion->knots();
-    // Lift, |velocity| and both acceleration extremes from one sampling pass over the open period.
-    numerics::Extremum peaks[4];
-    numerics::maximize_piecewise_together(
-        [&](double x, double* v, double* slope) {
+    // Lift, |velocity| and both acceleration extremes from one interpolation of the open period
+    // (each function smooth on each piece; |velocity| is the larger of its two signed extremes).
+    numerics::SmoothPieces pieces(
+        [&](double x, double* v, double*) {
           const LiftDerivatives d = motion->at(x);
-          const double sign = d.velocity < 0.0 ? -1.0 : 1.0;
           v[0] = d.lift;
-          slope[0] = d.velocity;
-          v[1] = sign * d.velocity;
-          slope[1] = sign * d.acceleration;
+          v[1] = d.velocity;
           v[2] = d.acceleration;
-          slope[2] = d.jerk;
-          v[3] = -d.acceleration;
-          slope[3] = -d.jerk;
         },
-        4, knots, samples, evaluations, peaks);
-    const numerics::Extremum lift = peaks[0], velocity = peaks[1], acc_max = peaks[2], acc_min{peaks[3].x, -peaks[3].value};
+        3, knots, samples);
+    const numerics::Extremum lift = pieces.maximum(0), acc_max = pieces.maximum(2), acc_min = pieces.minimum(2);
+    const numerics::Extremum v_max = pieces.maximum(1), v_min = pieces.minimum(1);
+    const numerics::Extremum velocity = -v_min.value > v_max.value ? numerics::Extremum{v_min.x, -v_min.value} : v_max;
+    evaluations += pieces.work().evaluations;
     const double w = camshaft_speed;
     if (ctx.wanted("lift_curve")) {  // a few hundred evaluations: only when something reads it
       Series curve;

@@ -43,10 +43,10 @@ Table svaj_table(const std::function<LiftDerivatives(double)>& at, double begin,
   return t;
 }
 
-std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& lift, std::span<const double> knots,
-                                         double checking_lift, int samples, long& evaluations) {
-  const std::vector<double> crossings = numerics::all_sign_changes(
-      [&](double phi) { return lift(phi) - checking_lift; }, knots, samples, evaluations);
+namespace {
+
+// The events from the crossings of one checking lift: the first and the last.
+std::optional<LiftEvents> events_from(const std::vector<double>& crossings) {
   if (crossings.empty()) return std::nullopt;
   LiftEvents e;
   e.opening = crossings.front();
@@ -54,6 +54,14 @@ std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& li
   e.duration = e.closing - e.opening;
   e.centreline = 0.5 * (e.opening + e.closing);
   return e;
+}
+
+}  // namespace
+
+std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& lift, std::span<const double> knots,
+                                         double checking_lift, int samples, long& evaluations) {
+  return events_from(numerics::all_sign_changes([&](double phi) { return lift(phi) - checking_lift; }, knots, samples,
+                                                evaluations));
 }
 
 std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift, int samples, long& evaluations) {
@@ -70,10 +78,16 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
   for (const char* n : names) t.add_channel(n, dim::angle, "deg");
   if (nose_timing)
     for (const char* n : {"opening_atdc", "closing_atdc", "centreline_atdc"}) t.add_channel(n, dim::angle, "deg");
+  // One interpolation of the lift answers every checking lift.
+  std::optional<numerics::SmoothPieces> pieces;
   for (double h : checking_lifts) {
     std::optional<LiftEvents> e;
-    if (h == 0.0) e = LiftEvents{knots.front(), knots.back(), knots.back() - knots.front(), 0.5 * (knots.front() + knots.back())};
-    else e = events_at_lift(lift, knots, h, samples, evaluations);
+    if (h == 0.0) {
+      e = LiftEvents{knots.front(), knots.back(), knots.back() - knots.front(), 0.5 * (knots.front() + knots.back())};
+    } else {
+      if (!pieces) pieces.emplace([&](double phi, double* v, double*) { v[0] = lift(phi); }, 1, knots, samples);
+      e = events_from(pieces->crossings(0, h));
+    }
     if (!e) continue;
     t.axis.values.push_back(h);
     const double cam[4] = {e->opening, e->closing, e->duration, e->centreline};
@@ -88,6 +102,7 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
       t.channels[10].values.push_back(*nose_timing + 2.0 * e->centreline);
     }
   }
+  if (pieces) evaluations += pieces->work().evaluations;
   return t;
 }
 

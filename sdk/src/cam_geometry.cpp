@@ -10,23 +10,24 @@
 #include <vector>
 
 namespace mechgraph {
+namespace {
+
+// The end of the positive-acceleration phase: the first place where h'' falls through zero (it was
+// positive just before, so a ramp's h'' = 0 or a table's tiny negative start does not end it).
+double phase_end(numerics::SmoothPieces& pieces, std::size_t acceleration, double begin) {
+  for (const auto& [x, rising] : pieces.directed_crossings(acceleration, 0.0))
+    if (!rising) return x - begin;
+  return 0.0;
+}
+
+}  // namespace
+
 double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluations) {
   const std::vector<double> knots = law.knots();
-  auto acceleration = [&](double x) { return law.at(x).acceleration; };
-  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
-    const double a = knots[p], b = knots[p + 1];
-    for (int i = 0; i < samples; ++i) {
-      // Inset from the knot, as the extremum searches are, to see this piece's one-sided value.
-      const double x = i == 0 ? a + 1e-13 * (b - a) : a + (b - a) * static_cast<double>(i) / samples;
-      ++evaluations;
-      if (!(acceleration(x) > 0.0)) continue;
-      std::vector<double> rest{x};
-      for (std::size_t q = p + 1; q < knots.size(); ++q) rest.push_back(knots[q]);
-      const auto end = numerics::first_sign_change(acceleration, rest, samples, evaluations);
-      return end ? *end - law.event_begin() : 0.0;
-    }
-  }
-  return 0.0;
+  numerics::SmoothPieces pieces([&](double x, double* v, double*) { v[0] = law.at(x).acceleration; }, 1, knots, samples);
+  const double phase = phase_end(pieces, 0, law.event_begin());
+  evaluations += pieces.work().evaluations;
+  return phase;
 }
 
 double contour_curvature_radius(const CamLaw& law, double phi) { return contour_curvature_radius(law, phi, law.at(phi)); }
@@ -44,29 +45,24 @@ CamSummary summarize(const CamLaw& law, int samples) {
   CamSummary s;
   const std::vector<double> knots = law.knots();
   const std::span<const double> k(knots);
-  // |velocity|, both acceleration extremes and the contour's curvature from one sampling pass.
-  numerics::Extremum peaks[4];
-  numerics::maximize_piecewise_together(
-      [&](double x, double* v, double* slope) {
+  // Velocity, acceleration and the contour's curvature from one interpolation of each smooth piece
+  // (certified: numerics/piecewise.hpp); |h'| is the larger of h''s two signed extremes.
+  numerics::SmoothPieces pieces(
+      [&](double x, double* v, double*) {
         const LiftDerivatives d = law.at(x);
-        const double sign = d.velocity < 0.0 ? -1.0 : 1.0;
-        v[0] = sign * d.velocity;
-        slope[0] = sign * d.acceleration;
+        v[0] = d.velocity;
         v[1] = d.acceleration;
-        slope[1] = d.jerk;
-        v[2] = -d.acceleration;
-        slope[2] = -d.jerk;
-        v[3] = -contour_curvature_radius(law, x, d);
-        slope[3] = std::numeric_limits<double>::quiet_NaN();  // would need the 4th derivative: Brent
+        v[2] = contour_curvature_radius(law, x, d);
       },
-      4, k, samples, s.evaluations, peaks);
-  s.max_velocity = peaks[0].value;
-  s.max_acceleration = peaks[1].value;
-  s.min_acceleration = -peaks[2].value;
-  s.accel_angle = positive_acceleration_phase(law, samples, s.evaluations);
+      3, k, samples);
+  s.max_velocity = std::max(pieces.maximum(0).value, -pieces.minimum(0).value);
+  s.max_acceleration = pieces.maximum(1).value;
+  s.min_acceleration = pieces.minimum(1).value;
+  s.accel_angle = phase_end(pieces, 1, law.event_begin());
   // The contour's curvature is checked around the whole cam: on the base circle it is r0 (flat)
   // or r0 (roller contour) and inside the event it varies.
-  s.min_curvature_radius = -peaks[3].value;
+  s.min_curvature_radius = pieces.minimum(2).value;
+  s.evaluations += pieces.work().evaluations;
   s.min_curvature_radius = std::min(s.min_curvature_radius, law.base_radius());
   return s;
 }

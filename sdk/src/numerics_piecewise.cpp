@@ -1,5 +1,7 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
+#include <mechgraph/numerics/chebyshev.hpp>
+
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -10,199 +12,362 @@
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mechgraph::numerics {
 namespace {
 
-// Sample points of one piece: uniform, the two ends pulled inside by a relative 1e-13 so that at a
-// knot where f jumps we see the one-sided limit belonging to this piece.
-double sample_point(double a, double b, int i, int n) {
-  const double inset = 1e-13 * (b - a);
-  if (i == 0) return a + inset;
-  if (i == n - 1) return b - inset;
-  return a + (b - a) * static_cast<double>(i) / (n - 1);
-}
+constexpr double eps = std::numeric_limits<double>::epsilon();
+constexpr int halvings = 4;  // a piece that does not resolve at 257 points is halved at most this often
 
 void check_knots(std::span<const double> knots, int samples) {
   if (knots.size() < 2) throw std::invalid_argument("piecewise numerics need at least two knots");
   if (samples < 3) throw std::invalid_argument("piecewise numerics need at least 3 samples per piece");
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    if (!std::isfinite(knots[i])) throw std::invalid_argument("piecewise numerics need finite knots");
+    if (i > 0 && knots[i] < knots[i - 1]) throw std::invalid_argument("piecewise numerics need ascending knots");
+  }
 }
 
-Extremum maximize(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
-  check_knots(knots, n);
-  Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
+// The starting number of intervals: the power of two at or above samples - 1, within [16, 256].
+int starting_intervals(int samples) {
+  int n = 16;
+  while (n < samples - 1 && n < chebyshev_max_intervals) n *= 2;
+  return n;
+}
+
+
+}  // namespace
+
+SmoothPieces::SmoothPieces(Sampler sample, std::size_t count, std::span<const double> knots, int samples_per_piece)
+    : sample_(std::move(sample)), count_(count), scratch_(count), slopes_(count) {
+  check_knots(knots, samples_per_piece);
+  if (count == 0) throw std::invalid_argument("SmoothPieces needs at least one function");
+  const int n0 = starting_intervals(samples_per_piece);
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a = knots[p], b = knots[p + 1];
     if (!(b > a)) continue;
-    int best_i = 0;
-    double best_v = -std::numeric_limits<double>::infinity();
-    std::vector<double> v(n);
-    for (int i = 0; i < n; ++i) {
-      v[i] = f(sample_point(a, b, i, n));
-      if (v[i] > best_v) { best_v = v[i]; best_i = i; }
-    }
-    evaluations += n;
-    Extremum piece{sample_point(a, b, best_i, n), best_v};
-    // Refine inside the bracket of the neighbouring samples (Brent, full precision).
-    const double lo = sample_point(a, b, std::max(best_i - 1, 0), n);
-    const double hi = sample_point(a, b, std::min(best_i + 1, n - 1), n);
-    std::uintmax_t iterations = 100;
-    auto r = boost::math::tools::brent_find_minima([&](double x) { return -f(x); }, lo, hi,
-                                                   std::numeric_limits<double>::digits / 2, iterations);
-    evaluations += static_cast<long>(iterations);
-    if (-r.second > piece.value) piece = {r.first, -r.second};
-    if (piece.value > best.value) best = piece;
+    // Pulled inside by a relative 1e-13: at a knot where f jumps, each piece sees its own side.
+    const double inset = 1e-13 * (b - a);
+    resolve(a + inset, b - inset, n0, 0);
   }
-  return best;
+  if (pieces_.empty()) throw std::invalid_argument("piecewise numerics need an interval of positive length");
+}
+
+void SmoothPieces::resolve(double a, double b, int n, int depth) {
+  const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+  Piece piece;
+  piece.a = a;
+  piece.b = b;
+  std::vector<double>& values = piece.values;
+  auto sample_point = [&](int j, int intervals) {
+    const double x = mid + half * chebyshev_point(j, intervals);
+    double* v = &values[static_cast<std::size_t>(j) * count_];
+    sample_(std::clamp(x, a, b), v, slopes_.data());
+    ++work_.evaluations;
+    for (std::size_t f = 0; f < count_; ++f)
+      if (!std::isfinite(v[f]))
+        throw std::domain_error("a function searched for its extremes or crossings is not finite at x = " + std::to_string(x));
+  };
+  values.assign(static_cast<std::size_t>(n + 1) * count_, 0.0);
+  for (int j = 0; j <= n; ++j) sample_point(j, n);
+  std::vector<double> column, coefficients;
+  for (;;) {
+    piece.coefficients.assign(count_, {});
+    piece.tail.assign(count_, 0.0);
+    bool resolved = true;
+    for (std::size_t f = 0; f < count_; ++f) {
+      column.resize(static_cast<std::size_t>(n) + 1);
+      for (int j = 0; j <= n; ++j) column[static_cast<std::size_t>(j)] = values[static_cast<std::size_t>(j) * count_ + f];
+      chebyshev_coefficients(column, coefficients);
+      const std::size_t length = chebyshev_resolved_length(coefficients, eps);
+      double tail = 0.0;
+      if (length == 0) {
+        resolved = false;
+      } else {
+        for (std::size_t k = length; k < coefficients.size(); ++k) tail += std::abs(coefficients[k]);
+        coefficients.resize(length);
+      }
+      piece.tail[f] = tail;
+      piece.coefficients[f] = coefficients;
+      if (!resolved && n < chebyshev_max_intervals) break;  // more points are needed anyway
+    }
+    if (resolved || n == chebyshev_max_intervals) {
+      if (!resolved && depth < halvings) {
+        resolve(a, mid, 16, depth + 1);
+        resolve(mid, b, 16, depth + 1);
+        return;
+      }
+      piece.n = n;
+      piece.resolved = resolved;
+      work_.unresolved += resolved ? 0 : 1;
+      work_.pieces += 1;
+      work_.most_points = std::max(work_.most_points, n + 1);
+      pieces_.push_back(std::move(piece));
+      return;
+    }
+    // Twice the points: the old ones are the even points of the new set.
+    std::vector<double> old = std::move(values);
+    values.assign(static_cast<std::size_t>(2 * n + 1) * count_, 0.0);
+    for (int j = 0; j <= n; ++j)
+      std::copy_n(&old[static_cast<std::size_t>(j) * count_], count_, &values[static_cast<std::size_t>(2 * j) * count_]);
+    n *= 2;
+    for (int j = 1; j < n; j += 2) sample_point(j, n);
+  }
+}
+
+double SmoothPieces::value_at(std::size_t j, double x) {
+  sample_(x, scratch_.data(), slopes_.data());
+  ++work_.evaluations;
+  return scratch_[j];
+}
+
+Extremum SmoothPieces::extreme(std::size_t j, double sign) {
+  if (j >= count_) throw std::out_of_range("SmoothPieces: no such function");
+  // The best sample is a lower bound of the maximum; the interpolant's critical points are where
+  // anything better can be.
+  Extremum best{pieces_.front().a, -std::numeric_limits<double>::infinity()};
+  double scale = 0.0;
+  for (const Piece& piece : pieces_)
+    for (int i = 0; i <= piece.n; ++i) {
+      const double v = sign * piece.values[static_cast<std::size_t>(i) * count_ + j];
+      scale = std::max(scale, std::abs(v));
+      if (v > best.value) best = {0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * chebyshev_point(i, piece.n), v};
+    }
+  struct Candidate {
+    double x, interpolated;
+  };
+  std::vector<Candidate> candidates;
+  double bound = best.value;  // the best value known, raised by the interpolant's candidates
+  for (const Piece& piece : pieces_) {
+    if (!piece.resolved) {
+      // No interpolant to trust (a kink or noise the halvings did not isolate): the best sample's
+      // bracket is refined on the function itself, as a plain sampling search would.
+      int top_i = 0;
+      for (int i = 1; i <= piece.n; ++i)
+        if (sign * piece.values[static_cast<std::size_t>(i) * count_ + j] > sign * piece.values[static_cast<std::size_t>(top_i) * count_ + j]) top_i = i;
+      auto x_of = [&](int i) { return 0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * chebyshev_point(std::clamp(i, 0, piece.n), piece.n); };
+      std::uintmax_t iterations = 100;
+      const auto r = boost::math::tools::brent_find_minima([&](double x) { return -sign * value_at(j, x); }, x_of(top_i + 1),
+                                                           x_of(top_i - 1), std::numeric_limits<double>::digits / 2, iterations);
+      if (-r.second > best.value) best = {r.first, -r.second};
+      continue;
+    }
+    const std::vector<double>& c = piece.coefficients[j];
+    if (c.size() <= 2) continue;  // constant or linear: its ends are samples
+    // Branch and bound on p's own series (numerics/chebyshev.hpp): the best sample is the bound
+    // to beat; candidates within a margin far below the results' 1e-12 come back.
+    std::vector<double> signed_c(c.begin(), c.end());
+    for (double& v : signed_c) v *= sign;
+    const double margin = std::max(1e-13 * scale, 2.0 * piece.tail[j]);
+    for (const SeriesPoint& point : chebyshev_maximum_candidates(signed_c, bound, margin, work_.cells))
+      candidates.push_back({0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * point.t, point.value});
+  }
+  // The true function at the candidates the interpolant ranks within a hair of the best (the
+  // interpolant is the function to rounding level, so a lower candidate cannot win).
+  const double hair = 1e-9 * scale;
+  double top = best.value;
+  for (const Candidate& c : candidates) top = std::max(top, c.interpolated);
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& l, const Candidate& r) { return l.interpolated > r.interpolated; });
+  int checked = 0;
+  for (const Candidate& c : candidates) {
+    if (c.interpolated < top - hair || c.interpolated < best.value - hair || checked == 8) break;
+    ++checked;
+    const double v = sign * value_at(j, c.x);
+    if (v > best.value) best = {c.x, v};
+  }
+  return {best.x, sign * best.value};
+}
+
+Extremum SmoothPieces::maximum(std::size_t j) { return extreme(j, 1.0); }
+Extremum SmoothPieces::minimum(std::size_t j) { return extreme(j, -1.0); }
+
+double SmoothPieces::scale(std::size_t j) const {
+  double m = 0.0;
+  for (const Piece& piece : pieces_)
+    for (int i = 0; i <= piece.n; ++i) m = std::max(m, std::abs(piece.values[static_cast<std::size_t>(i) * count_ + j]));
+  return m;
+}
+
+std::vector<std::pair<double, bool>> SmoothPieces::directed_crossings(std::size_t j, double level) {
+  if (j >= count_) throw std::out_of_range("SmoothPieces: no such function");
+  // Rounding level of f_j - level, the same on every piece: a piece where f_j is the level up to
+  // rounding (a dwell, a constant-velocity ramp's h'' = 0) is a zone, not a string of crossings.
+  const double floor = 16.0 * eps * (scale(j) + std::abs(level)) + std::numeric_limits<double>::min();
+  auto sign_of = [&](double v) { return v > floor ? 1 : v < -floor ? -1 : 0; };
+  // Walk left to right: between the simple roots, zones and knots the sign of f_j - level is
+  // definite (the root search proves there is no other zero). A crossing is where the definite
+  // sign flips: at the simple root between, else at a knot between (a jump), else mid-zone.
+  struct Crossing {
+    double x;
+    bool rising;
+    double lo, hi;  // where the signs either side were read: a bracket on the function itself
+  };
+  std::vector<Crossing> found;
+  int last = 0;
+  double last_x = 0.0;
+  std::optional<double> pending_root, pending_knot;
+  double zone_lo = 0.0, zone_hi = 0.0;
+  bool pending_zone = false;
+  auto arrive = [&](int sign, double at) {
+    if (sign == 0) return;
+    if (last != 0 && sign != last) {
+      const double x = pending_root ? *pending_root : pending_knot ? *pending_knot : 0.5 * (zone_lo + zone_hi);
+      if (pending_root || pending_knot || pending_zone) found.push_back({x, sign > 0, last_x, at});
+    }
+    last = sign;
+    last_x = at;
+    pending_root.reset();
+    pending_knot.reset();
+    pending_zone = false;
+  };
+  const Piece* previous = nullptr;
+  for (const Piece& piece : pieces_) {
+    const double mid = 0.5 * (piece.a + piece.b), half = 0.5 * (piece.b - piece.a);
+    auto x_of = [&](double t) { return mid + half * t; };
+    // A knot (or a halving) between pieces: f_j may jump there, or cross the level right at it
+    // with each side's interpolant a rounding error off.
+    if (previous && !pending_knot) pending_knot = 0.5 * (previous->b + piece.a);
+    previous = &piece;
+    if (!piece.resolved) {
+      // No interpolant to trust: sign changes between neighbouring samples, refined on the function.
+      auto g = [&](double x) { return value_at(j, x) - level; };
+      for (int i = piece.n; i >= 0; --i) {
+        const double g1 = piece.values[static_cast<std::size_t>(i) * count_ + j] - level;
+        const int s1 = sign_of(g1);
+        if (i < piece.n && s1 != 0 && last != 0 && s1 != last && !pending_knot) {
+          const double g0 = piece.values[static_cast<std::size_t>(i + 1) * count_ + j] - level;
+          if ((g0 < 0.0 && g1 > 0.0) || (g0 > 0.0 && g1 < 0.0)) {
+            std::uintmax_t iterations = 200;
+            const auto r = boost::math::tools::toms748_solve(g, x_of(chebyshev_point(i + 1, piece.n)),
+                                                             x_of(chebyshev_point(i, piece.n)), g0, g1,
+                                                             boost::math::tools::eps_tolerance<double>(50), iterations);
+            pending_root = 0.5 * (r.first + r.second);
+          }
+        }
+        if (s1 == 0 && !pending_zone) {
+          pending_zone = true;
+          zone_lo = x_of(chebyshev_point(i, piece.n));
+        }
+        if (s1 == 0) zone_hi = x_of(chebyshev_point(i, piece.n));
+        arrive(s1, x_of(chebyshev_point(i, piece.n)));
+      }
+      continue;
+    }
+    std::vector<double> c = piece.coefficients[j];
+    c[0] -= level;
+    // Below the interpolant's own accuracy on this piece (its cut tail) a sign means nothing either.
+    const double piece_floor = std::max(floor, 2.0 * piece.tail[j]);
+    auto piece_sign = [&](double v) { return v > piece_floor ? 1 : v < -piece_floor ? -1 : 0; };
+    const std::vector<SeriesZero> zeros = chebyshev_zeros(c, piece_floor, work_.cells);
+    // The sign on the stretch from t_from to t_to (between two zeros), read at its middle.
+    double read_at = 0.0;  // where the last stretch's sign was read
+    auto stretch = [&](double t_from, double t_to) {
+      if (!(t_to > t_from)) return 0;
+      read_at = x_of(0.5 * (t_from + t_to));
+      return piece_sign(chebyshev_value(c, 0.5 * (t_from + t_to)));
+    };
+    double t = -1.0;
+    auto ambiguous = [&](double t_from, double t_to) {  // a stretch within the floor: part of a zone
+      if (!pending_zone) zone_lo = x_of(t_from);
+      pending_zone = true;
+      zone_hi = x_of(t_to);
+    };
+    for (const SeriesZero& z : zeros) {
+      const double t_to = z.zone ? z.lo : z.x;
+      const int s_before = stretch(t, t_to);
+      if (s_before == 0 && t_to > t) ambiguous(t, t_to);
+      arrive(s_before, read_at);
+      if (z.zone) {
+        ambiguous(z.lo, z.hi);
+        t = z.hi;
+      } else {
+        if (!pending_root) pending_root = x_of(z.x);
+        t = z.x;
+      }
+    }
+    const int s_end = stretch(t, 1.0);
+    if (s_end == 0 && t < 1.0) ambiguous(t, 1.0);
+    arrive(s_end, read_at);
+  }
+  // Each crossing polished on the function itself, so that it does not depend on the interpolant
+  // (nor on the starting density): first in a hair-wide bracket about the interpolant's root, else
+  // between the places where the signs either side were read. Where the function's sign change
+  // is flat (a zone), the interpolant only knows it to the floor; the function knows it exactly.
+  std::vector<std::pair<double, bool>> roots;
+  const double span = pieces_.back().b - pieces_.front().a;
+  auto g = [&](double x) { return value_at(j, x) - level; };
+  auto opposite = [](double a, double b) { return (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0); };
+  for (const Crossing& c : found) {
+    double lo = std::max(c.lo, c.x - 1e-9 * span), hi = std::min(c.hi, c.x + 1e-9 * span);
+    double g_lo = g(lo), g_hi = g(hi);
+    if (!opposite(g_lo, g_hi)) {
+      lo = c.lo;
+      hi = c.hi;
+      g_lo = g(lo);
+      g_hi = g(hi);
+    }
+    double x = c.x;
+    if (opposite(g_lo, g_hi)) {
+      std::uintmax_t iterations = 100;
+      const auto r = boost::math::tools::toms748_solve(g, lo, hi, g_lo, g_hi,
+                                                       boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2),
+                                                       iterations);
+      x = 0.5 * (r.first + r.second);
+    }
+    roots.push_back({x, c.rising});
+  }
+  return roots;
+}
+
+std::vector<double> SmoothPieces::crossings(std::size_t j, double level) {
+  std::vector<double> xs;
+  for (const auto& r : directed_crossings(j, level)) xs.push_back(r.first);
+  return xs;
+}
+
+namespace {
+
+Sampler one_function(const Function1D& f) {
+  return [&f](double x, double* v, double*) { v[0] = f(x); };
 }
 
 }  // namespace
 
 void maximize_piecewise_together(const Sampler& sample, std::size_t count, std::span<const double> knots, int n,
                                  long& evaluations, Extremum* maxima) {
-  check_knots(knots, n);
-  struct Candidate {
-    std::size_t piece;
-    int index;        // best sample in the piece
-    double value;     // its value
-    double drop;      // how far the neighbouring samples fall below it (0 at a piece's end)
-  };
-  std::vector<std::vector<Candidate>> candidates(count);
-  std::vector<double> values(count * static_cast<std::size_t>(n)), slopes(count * static_cast<std::size_t>(n));
-  std::vector<double> overall(count, -std::numeric_limits<double>::infinity());
-  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
-    const double a = knots[p], b = knots[p + 1];
-    if (!(b > a)) continue;
-    for (int i = 0; i < n; ++i)
-      sample(sample_point(a, b, i, n), &values[static_cast<std::size_t>(i) * count], &slopes[static_cast<std::size_t>(i) * count]);
-    evaluations += n;
-    for (std::size_t j = 0; j < count; ++j) {
-      int best = 0;
-      for (int i = 1; i < n; ++i)
-        if (values[static_cast<std::size_t>(i) * count + j] > values[static_cast<std::size_t>(best) * count + j]) best = i;
-      const double v = values[static_cast<std::size_t>(best) * count + j];
-      double drop = 0.0;
-      for (int i : {best - 1, best + 1})
-        if (i >= 0 && i < n) drop = std::max(drop, v - values[static_cast<std::size_t>(i) * count + j]);
-      candidates[j].push_back({p, best, v, drop});
-      overall[j] = std::max(overall[j], v);
-    }
-  }
-  std::vector<double> one(count), one_slope(count);
-  const double x_tolerance = 0x1.0p-26 * (knots.back() - knots.front());
-  for (std::size_t j = 0; j < count; ++j) {
-    Extremum best{knots.front(), -std::numeric_limits<double>::infinity()};
-    for (const Candidate& c : candidates[j]) {
-      const double a = knots[c.piece], b = knots[c.piece + 1];
-      if (c.value > best.value) best = {sample_point(a, b, c.index, n), c.value};
-      // Between samples a smooth function rises at most about its drop to a neighbour above the
-      // best sample; twice that is the margin.
-      if (c.value + 2.0 * c.drop < overall[j] && c.value < overall[j]) continue;
-      const int i_lo = std::max(c.index - 1, 0), i_hi = std::min(c.index + 1, n - 1);
-      const double lo = sample_point(a, b, i_lo, n), hi = sample_point(a, b, i_hi, n);
-      auto at = [&](double x) {
-        sample(x, one.data(), one_slope.data());
-        ++evaluations;
-        return one[j];
-      };
-      at(lo);
-      const double slope_lo = one_slope[j];
-      at(hi);
-      const double slope_hi = one_slope[j];
-      if (slope_lo > 0.0 && slope_hi < 0.0) {
-        // Rising into the bracket and falling out of it: the maximum is where the slope is zero.
-        std::uintmax_t iterations = 100;
-        const auto root = boost::math::tools::toms748_solve(
-            [&](double x) {
-              at(x);
-              return one_slope[j];
-            },
-            // Half the digits in x are all the value needs: near a maximum it moves as dx^2. The
-            // tolerance is absolute, on the scale of the whole interval, so a maximum at x = 0
-            // (a cam's nose) converges too.
-            lo, hi, slope_lo, slope_hi, [&](double x0, double x1) { return std::abs(x1 - x0) <= x_tolerance; }, iterations);
-        const double x = 0.5 * (root.first + root.second);
-        const double v = at(x);
-        if (v > best.value) best = {x, v};
-        continue;
-      }
-      if (slope_lo >= 0.0 && slope_hi >= 0.0 && c.index == n - 1) continue;  // rising to the piece's end
-      if (slope_lo <= 0.0 && slope_hi <= 0.0 && c.index == 0) continue;      // falling from its start
-      std::uintmax_t iterations = 100;
-      auto r = boost::math::tools::brent_find_minima([&](double x) { return -at(x); }, lo, hi,
-                                                     std::numeric_limits<double>::digits / 2, iterations);
-      if (-r.second > best.value) best = {r.first, -r.second};
-    }
-    maxima[j] = best;
-  }
+  SmoothPieces pieces(sample, count, knots, n);
+  for (std::size_t j = 0; j < count; ++j) maxima[j] = pieces.maximum(j);
+  evaluations += pieces.work().evaluations;
 }
 
 Extremum maximize_piecewise(const Function1D& f, std::span<const double> knots, int samples, long& evaluations) {
-  return maximize(f, knots, samples, evaluations);
+  SmoothPieces pieces(one_function(f), 1, knots, samples);
+  const Extremum e = pieces.maximum(0);
+  evaluations += pieces.work().evaluations;
+  return e;
 }
 
 Extremum minimize_piecewise(const Function1D& f, std::span<const double> knots, int samples, long& evaluations) {
-  Extremum e = maximize([&](double x) { return -f(x); }, knots, samples, evaluations);
-  return {e.x, -e.value};
+  SmoothPieces pieces(one_function(f), 1, knots, samples);
+  const Extremum e = pieces.minimum(0);
+  evaluations += pieces.work().evaluations;
+  return e;
 }
-
-namespace {
-
-// Walks the samples of every piece and reports each change of sign (refined with TOMS 748) to
-// `on_root`, which returns false to stop. Samples where f is exactly zero are stepped over, so a
-// function that only touches zero does not count. A jump across zero at a knot is a root there.
-void scan_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations,
-                       const std::function<bool(double)>& on_root) {
-  check_knots(knots, n);
-  for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
-    const double a = knots[p], b = knots[p + 1];
-    if (!(b > a)) continue;
-    double x_prev = sample_point(a, b, 0, n);
-    double f_prev = f(x_prev);
-    ++evaluations;
-    if (p > 0) {
-      const double left = f(knots[p] - 1e-13 * (knots[p] - knots[p - 1]));
-      ++evaluations;
-      if (((left > 0 && f_prev < 0) || (left < 0 && f_prev > 0)) && !on_root(knots[p])) return;
-    }
-    for (int i = 1; i < n; ++i) {
-      const double x = sample_point(a, b, i, n);
-      const double fx = f(x);
-      ++evaluations;
-      if ((f_prev > 0 && fx < 0) || (f_prev < 0 && fx > 0)) {
-        std::uintmax_t iterations = 200;
-        boost::math::tools::eps_tolerance<double> tol(std::numeric_limits<double>::digits - 3);
-        auto r = boost::math::tools::toms748_solve(f, x_prev, x, f_prev, fx, tol, iterations);
-        evaluations += static_cast<long>(iterations);
-        if (!on_root(0.5 * (r.first + r.second))) return;
-      }
-      if (fx != 0.0) {
-        x_prev = x;
-        f_prev = fx;
-      }
-    }
-  }
-}
-
-}  // namespace
 
 std::optional<double> first_sign_change(const Function1D& f, std::span<const double> knots, int n,
                                         long& evaluations) {
-  std::optional<double> first;
-  scan_sign_changes(f, knots, n, evaluations, [&](double x) {
-    first = x;
-    return false;
-  });
-  return first;
+  const std::vector<double> roots = all_sign_changes(f, knots, n, evaluations);
+  if (roots.empty()) return std::nullopt;
+  return roots.front();
 }
 
 std::vector<double> all_sign_changes(const Function1D& f, std::span<const double> knots, int n, long& evaluations) {
-  std::vector<double> roots;
-  scan_sign_changes(f, knots, n, evaluations, [&](double x) {
-    roots.push_back(x);
-    return true;
-  });
+  SmoothPieces pieces(one_function(f), 1, knots, n);
+  std::vector<double> roots = pieces.crossings(0, 0.0);
+  evaluations += pieces.work().evaluations;
   return roots;
 }
 

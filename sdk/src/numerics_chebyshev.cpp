@@ -1,0 +1,335 @@
+#include <mechgraph/numerics/chebyshev.hpp>
+
+#include <boost/math/tools/roots.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace mechgraph::numerics {
+namespace {
+
+constexpr int max_n = chebyshev_max_intervals;
+
+// cos(pi m / max_n) for m = 0 .. 2 max_n - 1: every cosine an interpolant of n | max_n intervals needs.
+const std::array<double, 2 * max_n>& cosine_table() {
+  static const std::array<double, 2 * max_n> table = [] {
+    std::array<double, 2 * max_n> t{};
+    for (int m = 0; m < 2 * max_n; ++m) t[static_cast<std::size_t>(m)] = std::cos(std::numbers::pi * m / max_n);
+    return t;
+  }();
+  return table;
+}
+
+bool power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+// Drops trailing coefficients whose sum stays below `budget` (keeps at least one).
+void drop_tail(std::vector<double>& a, double budget) {
+  double dropped = 0.0;
+  while (a.size() > 1 && dropped + std::abs(a.back()) <= budget) {
+    dropped += std::abs(a.back());
+    a.pop_back();
+  }
+}
+
+// The series of p restricted to [-1, 0] (left) or [0, 1] (right), in the half's own variable.
+std::vector<double> half_series(std::span<const double> a, bool left, double budget) {
+  int n = 1;
+  while (n + 1 < static_cast<int>(a.size())) n *= 2;
+  std::vector<double> values(static_cast<std::size_t>(n) + 1);
+  for (int j = 0; j <= n; ++j) {
+    const double t = chebyshev_point(j, n);
+    values[static_cast<std::size_t>(j)] = chebyshev_value(a, left ? 0.5 * (t - 1.0) : 0.5 * (t + 1.0));
+  }
+  std::vector<double> child;
+  chebyshev_coefficients(values, child);
+  drop_tail(child, budget);
+  return child;
+}
+
+struct Cell {
+  double lo, hi;
+  std::vector<double> a;
+  int depth;
+};
+
+}  // namespace
+
+double chebyshev_point(int j, int n) {
+  // sin form, symmetric about 0 and exact at the middle: cos(pi j/n) = sin(pi (n - 2j) / (2n)).
+  return std::sin(std::numbers::pi * (n - 2 * j) / (2.0 * n));
+}
+
+void chebyshev_coefficients(std::span<const double> values, std::vector<double>& c) {
+  const int n = static_cast<int>(values.size()) - 1;
+  if (!power_of_two(n) || n > max_n) throw std::invalid_argument("chebyshev_coefficients: n must be a power of two up to 256");
+  const auto& cosines = cosine_table();
+  const int stride = max_n / n;
+  c.assign(static_cast<std::size_t>(n) + 1, 0.0);
+  // DCT-I: c_k = (2/n) sum''_j f_j cos(pi j k / n), the first and last terms (and c_0, c_n) halved.
+  for (int k = 0; k <= n; ++k) {
+    double sum = 0.5 * (values[0] + ((k & 1) ? -values[static_cast<std::size_t>(n)] : values[static_cast<std::size_t>(n)]));
+    int m = 0;
+    const int step = (k * stride) % (2 * max_n);
+    for (int j = 1; j < n; ++j) {
+      m += step;
+      if (m >= 2 * max_n) m -= 2 * max_n;
+      sum += values[static_cast<std::size_t>(j)] * cosines[static_cast<std::size_t>(m)];
+    }
+    c[static_cast<std::size_t>(k)] = 2.0 * sum / n;
+  }
+  c.front() *= 0.5;
+  c.back() *= 0.5;
+}
+
+std::size_t chebyshev_resolved_length(std::span<const double> coefficients, double tolerance) {
+  // Aurentz & Trefethen's standardChop: the envelope (running maximum from the right, scaled by
+  // its first entry) must reach a plateau: from some j on, the envelope at 1.25 j + 5 is still
+  // more than r(j) times the envelope at j, where r grows as the envelope falls towards the
+  // tolerance. The cut is then where the envelope plus a slight linear tilt is lowest.
+  const std::size_t n = coefficients.size();
+  if (n < 17) return 0;
+  std::vector<double> envelope(n);
+  envelope[n - 1] = std::abs(coefficients[n - 1]);
+  for (std::size_t j = n - 1; j-- > 0;) envelope[j] = std::max(std::abs(coefficients[j]), envelope[j + 1]);
+  if (envelope[0] == 0.0) return 1;
+  for (double& e : envelope) e /= envelope[0];
+  std::size_t plateau = 0, j2 = 0;
+  bool found = false;
+  for (std::size_t j = 2; j <= n; ++j) {  // 1-based j as in the paper
+    j2 = static_cast<std::size_t>(std::lround(1.25 * static_cast<double>(j) + 5.0));
+    if (j2 > n) return 0;  // no plateau
+    const double e1 = envelope[j - 1], e2 = envelope[j2 - 1];
+    const double r = 3.0 * (1.0 - std::log(e1) / std::log(tolerance));
+    if (e1 == 0.0 || e2 / e1 > r) {
+      plateau = j - 1;
+      found = true;
+      break;
+    }
+  }
+  if (!found) return 0;
+  if (envelope[plateau - 1] == 0.0) return plateau;
+  // Step 3: the cut minimises log10(envelope) + a line rising by -log10(tol)/3 over the plateau.
+  std::size_t j3 = 0;
+  for (double e : envelope)
+    if (e >= std::pow(tolerance, 7.0 / 6.0)) ++j3;
+  std::vector<double> env(envelope.begin(), envelope.begin() + static_cast<long>(std::min(j2, n)));
+  if (j3 < j2) {
+    j2 = j3 + 1;
+    env.resize(j2);
+    env[j2 - 1] = std::pow(tolerance, 7.0 / 6.0);
+  }
+  std::size_t best = 0;
+  double best_value = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < j2; ++i) {
+    const double tilt = j2 > 1 ? (-1.0 / 3.0) * std::log10(tolerance) * static_cast<double>(i) / static_cast<double>(j2 - 1) : 0.0;
+    const double v = std::log10(std::max(env[i], std::numeric_limits<double>::min())) + tilt;
+    if (v < best_value) {
+      best_value = v;
+      best = i;
+    }
+  }
+  return std::max<std::size_t>(best, 1);  // 1-based d - 1 = 0-based best
+}
+
+double chebyshev_value(std::span<const double> c, double x) {
+  double b1 = 0.0, b2 = 0.0;
+  const double two_x = 2.0 * x;
+  for (std::size_t k = c.size(); k-- > 1;) {
+    const double b0 = c[k] + two_x * b1 - b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return c.empty() ? 0.0 : c[0] + x * b1 - b2;
+}
+
+std::vector<double> chebyshev_derivative(std::span<const double> c) {
+  const std::size_t n = c.size();
+  if (n <= 1) return {0.0};
+  // d_{k-1} = d_{k+1} + 2 k c_k from the top down; d_0 halved.
+  std::vector<double> d(n + 1, 0.0);
+  for (std::size_t k = n - 1; k >= 1; --k) d[k - 1] = d[k + 1] + 2.0 * static_cast<double>(k) * c[k];
+  d[0] *= 0.5;
+  d.resize(n - 1);
+  return d;
+}
+
+std::vector<SeriesZero> chebyshev_zeros(std::span<const double> c, double floor, long& cells,
+                                        const std::function<bool(double, double, std::span<const double>)>& skip) {
+  std::vector<SeriesZero> zeros;
+  if (c.empty()) return zeros;
+  const double budget = 1e-3 * floor;  // what re-expanded halves may drop
+  auto sign = [&](double v) { return v > floor ? 1 : v < -floor ? -1 : 0; };
+  std::vector<Cell> stack;
+  stack.push_back({-1.0, 1.0, std::vector<double>(c.begin(), c.end()), 0});
+  // A bound on the work: a series resolved to rounding level needs a few cells per root; one that
+  // is not (noise) could split for long. Past the budget, the cells left count as places where p
+  // may be zero (the callers evaluate the function there).
+  const long budget_cells = 64 * static_cast<long>(c.size()) + 256;
+  long examined = 0;
+  while (!stack.empty()) {
+    Cell cell = std::move(stack.back());
+    stack.pop_back();
+    ++cells;
+    if (++examined > budget_cells) {
+      zeros.push_back({0.5 * (cell.lo + cell.hi), cell.lo, cell.hi, false, false, true});
+      continue;
+    }
+    const std::vector<double>& a = cell.a;
+    if (skip && skip(cell.lo, cell.hi, a)) continue;
+    double rest = 0.0, curvature = 0.0, right = 0.0, left = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (k >= 1) rest += std::abs(a[k]);
+      if (k >= 2) curvature += static_cast<double>(k * k) * std::abs(a[k]);
+      right += a[k];
+      left += (k & 1) ? -a[k] : a[k];
+    }
+    const double mid = 0.5 * (cell.lo + cell.hi), half = 0.5 * (cell.hi - cell.lo);
+    if (std::abs(a[0]) > rest + floor) continue;  // |p| > floor on the whole cell
+    if (std::abs(a[0]) + rest <= floor) {         // |p| <= floor on the whole cell
+      zeros.push_back({mid, cell.lo, cell.hi, false, false, true});
+      continue;
+    }
+    // Monotone when p' has no zero on the cell: its series b (in the cell's variable) has
+    // |b_0| > sum_{k>=1} |b_k| (the cheaper Markov test |a_1| > sum k^2 |a_k| implies less).
+    bool monotone = a.size() > 1 && std::abs(a[1]) > curvature;
+    if (!monotone && a.size() > 2) {
+      const std::vector<double> b = chebyshev_derivative(a);
+      double b_rest = 0.0;
+      for (std::size_t k = 1; k < b.size(); ++k) b_rest += std::abs(b[k]);
+      monotone = std::abs(b[0]) > b_rest;
+    }
+    if (monotone) {
+      // Monotone on the cell: one root or none. A root within the floor of an end belongs to the
+      // cell whose left end it is (the last cell keeps its right end), so it is counted once.
+      const int sl = sign(left), sr = sign(right);
+      const bool crosses = (sl != 0 && sr != 0 && sl != sr) || (sl == 0 && sr != 0) || (sr == 0 && cell.hi == 1.0 && sl != 0);
+      if (sl == 0 && sr == 0) {
+        zeros.push_back({mid, cell.lo, cell.hi, false, false, true});
+        continue;
+      }
+      if (!crosses) continue;
+      double t;
+      if ((left < 0.0 && right > 0.0) || (left > 0.0 && right < 0.0)) {
+        std::uintmax_t iterations = 100;
+        const auto r = boost::math::tools::toms748_solve([&](double u) { return chebyshev_value(a, u); }, -1.0, 1.0, left,
+                                                         right, boost::math::tools::eps_tolerance<double>(52), iterations);
+        t = 0.5 * (r.first + r.second);
+      } else {
+        t = sl == 0 ? -1.0 : 1.0;
+      }
+      zeros.push_back({std::clamp(mid + half * t, cell.lo, cell.hi), cell.lo, cell.hi, true, right > left});
+      continue;
+    }
+    if (cell.depth >= 60 || half <= 4.0 * std::numeric_limits<double>::epsilon()) {
+      zeros.push_back({mid, cell.lo, cell.hi, false, false, true});
+      continue;
+    }
+    // Right half first onto the stack, so cells come off it left to right.
+    stack.push_back({mid, cell.hi, half_series(a, false, budget), cell.depth + 1});
+    stack.push_back({cell.lo, mid, half_series(a, true, budget), cell.depth + 1});
+  }
+  // Neighbouring flat cells are one place; whether p changes sign across it is read off p just
+  // outside (stepping out until |p| clears the floor).
+  std::sort(zeros.begin(), zeros.end(), [](const SeriesZero& l, const SeriesZero& r) { return l.x < r.x; });
+  std::vector<SeriesZero> merged;
+  for (const SeriesZero& z : zeros) {
+    if (!merged.empty() && z.zone && merged.back().zone && z.lo <= merged.back().hi) {
+      merged.back().hi = std::max(merged.back().hi, z.hi);
+      merged.back().x = 0.5 * (merged.back().lo + merged.back().hi);
+      continue;
+    }
+    merged.push_back(z);
+  }
+  for (SeriesZero& z : merged) {
+    if (!z.zone) continue;
+    auto outside = [&](double from, double direction) {
+      double step = std::max(z.hi - z.lo, 1e-12);
+      for (int i = 0; i < 60; ++i, step *= 2.0) {
+        const double x = std::clamp(from + direction * step, -1.0, 1.0);
+        const double v = chebyshev_value(c, x);
+        if (std::abs(v) > floor || x == -1.0 || x == 1.0) return sign(v);
+      }
+      return 0;
+    };
+    const int sl = outside(z.lo, -1.0), sr = outside(z.hi, 1.0);
+    z.crosses = sl != 0 && sr != 0 && sl != sr;
+    z.rising = sr > 0;
+  }
+  return merged;
+}
+
+std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c, double& best, double margin,
+                                                      long& cells) {
+  std::vector<SeriesPoint> found;
+  if (c.empty()) return found;
+  const double budget = 1e-3 * margin;  // what re-expanded halves may drop
+  const long budget_cells = 64 * static_cast<long>(c.size()) + 256;
+  long examined = 0;
+  auto take = [&](double t, double v) {
+    found.push_back({t, v});
+    best = std::max(best, v);
+  };
+  std::vector<Cell> stack;
+  stack.push_back({-1.0, 1.0, std::vector<double>(c.begin(), c.end()), 0});
+  while (!stack.empty()) {
+    Cell cell = std::move(stack.back());
+    stack.pop_back();
+    ++cells;
+    const std::vector<double>& a = cell.a;
+    const double mid = 0.5 * (cell.lo + cell.hi), half = 0.5 * (cell.hi - cell.lo);
+    double variation = 0.0, right = 0.0, left = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (k >= 1) variation += std::abs(a[k]);
+      right += a[k];
+      left += (k & 1) ? -a[k] : a[k];
+    }
+    if (a[0] + variation <= best + margin) continue;  // cannot beat the best
+    if (variation <= margin || ++examined > budget_cells || cell.depth >= 60) {
+      take(mid, a[0]);  // p(mid) = a_0 - a_2 + a_4 - ..., within the variation of a_0 anyway
+      continue;
+    }
+    const std::vector<double> b = chebyshev_derivative(a);  // p' in the cell's variable
+    double b_rest = 0.0;
+    for (std::size_t k = 1; k < b.size(); ++k) b_rest += std::abs(b[k]);
+    if (std::abs(b[0]) > b_rest) {  // p monotone on the cell: its maximum is at an end
+      take(b[0] > 0.0 ? cell.hi : cell.lo, b[0] > 0.0 ? right : left);
+      continue;
+    }
+    if (b.size() > 1) {
+      const std::vector<double> b2 = chebyshev_derivative(b);
+      double b2_rest = 0.0;
+      for (std::size_t k = 1; k < b2.size(); ++k) b2_rest += std::abs(b2[k]);
+      if (std::abs(b2[0]) > b2_rest) {
+        // p' monotone: one critical point at most; with p' falling through zero it is a maximum,
+        // else the maximum is at an end.
+        double b_left = 0.0, b_right = 0.0;
+        for (std::size_t k = 0; k < b.size(); ++k) {
+          b_right += b[k];
+          b_left += (k & 1) ? -b[k] : b[k];
+        }
+        if (b_left > 0.0 && b_right < 0.0) {
+          std::uintmax_t iterations = 100;
+          const auto r = boost::math::tools::toms748_solve([&](double u) { return chebyshev_value(b, u); }, -1.0, 1.0,
+                                                           b_left, b_right, boost::math::tools::eps_tolerance<double>(52),
+                                                           iterations);
+          const double u = 0.5 * (r.first + r.second);
+          take(mid + half * u, chebyshev_value(a, u));
+        } else {
+          take(cell.lo, left);
+          take(cell.hi, right);
+        }
+        continue;
+      }
+    }
+    stack.push_back({mid, cell.hi, half_series(a, false, budget), cell.depth + 1});
+    stack.push_back({cell.lo, mid, half_series(a, true, budget), cell.depth + 1});
+  }
+  return found;
+}
+
+}  // namespace mechgraph::numerics
