@@ -37,7 +37,8 @@ double contour_curvature_radius(const CamLaw& law, double, const LiftDerivatives
   if (rr <= 0.0) return law.base_radius() + d.lift + d.acceleration;
   const double R = law.base_radius() + rr + d.lift;
   const double v2 = d.velocity * d.velocity;
-  const double rho_pitch = std::pow(R * R + v2, 1.5) / (R * R + 2.0 * v2 - R * d.acceleration);
+  const double r2 = R * R + v2;
+  const double rho_pitch = r2 * std::sqrt(r2) / (R * R + 2.0 * v2 - R * d.acceleration);  // (R^2 + h'^2)^(3/2) / (...)
   return rho_pitch - rr;
 }
 

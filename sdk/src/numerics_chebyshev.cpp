@@ -1,6 +1,9 @@
 #include <mechgraph/numerics/chebyshev.hpp>
 
 #include <boost/math/tools/roots.hpp>
+#include <unsupported/Eigen/FFT>
+
+#include <complex>
 
 #include <algorithm>
 #include <array>
@@ -36,17 +39,51 @@ void drop_tail(std::vector<double>& a, double budget) {
   }
 }
 
-// The series of p restricted to [-1, 0] (left) or [0, 1] (right), in the half's own variable.
+// The left-half matrix: column k holds the Chebyshev coefficients of T_k((x - 1) / 2), the
+// restriction of T_k to [-1, 0] in that half's own variable x. Built once by the recurrence
+// T_{k+1}(t) = 2 t T_k(t) - T_{k-1}(t) with 2t = x - 1 and x T_j = (T_{j+1} + T_{|j-1|}) / 2;
+// stored column by column, column k holding rows 0..k (it is upper triangular).
+constexpr int split_size = chebyshev_max_intervals + 1;
+
+const std::vector<double>& left_split_matrix() {
+  static const std::vector<double> matrix = [] {
+    std::vector<double> m;
+    m.reserve(static_cast<std::size_t>(split_size) * (split_size + 1) / 2);
+    std::vector<double> previous{1.0}, current{-0.5, 0.5};
+    m.push_back(1.0);
+    m.insert(m.end(), current.begin(), current.end());
+    for (int k = 1; k + 1 < split_size; ++k) {
+      std::vector<double> next(static_cast<std::size_t>(k) + 2, 0.0);
+      for (int j = 0; j <= k; ++j) {
+        const double v = current[static_cast<std::size_t>(j)];
+        next[static_cast<std::size_t>(j) + 1] += 0.5 * v;       // x T_j: half to T_{j+1}
+        next[static_cast<std::size_t>(j == 0 ? 1 : j - 1)] += 0.5 * v;  // and half to T_{|j-1|}
+        next[static_cast<std::size_t>(j)] -= v;                 // - T_j
+      }
+      for (int j = 0; j < k; ++j) next[static_cast<std::size_t>(j)] -= previous[static_cast<std::size_t>(j)];
+      m.insert(m.end(), next.begin(), next.end());
+      previous = std::move(current);
+      current = std::move(next);
+    }
+    return m;
+  }();
+  return matrix;
+}
+
+// The series of p restricted to [-1, 0] (left) or [0, 1] (right), in the half's own variable:
+// child_j = sum_{k >= j} L_jk a_k, with R_jk = (-1)^(j+k) L_jk for the right half.
 std::vector<double> half_series(std::span<const double> a, bool left, double budget) {
-  int n = 1;
-  while (n + 1 < static_cast<int>(a.size())) n *= 2;
-  std::vector<double> values(static_cast<std::size_t>(n) + 1);
-  for (int j = 0; j <= n; ++j) {
-    const double t = chebyshev_point(j, n);
-    values[static_cast<std::size_t>(j)] = chebyshev_value(a, left ? 0.5 * (t - 1.0) : 0.5 * (t + 1.0));
+  const auto& m = left_split_matrix();
+  const std::size_t n = std::min<std::size_t>(a.size(), split_size);
+  std::vector<double> child(n, 0.0);
+  std::size_t column = 0;  // start of column k in m
+  for (std::size_t k = 0; k < n; ++k) {
+    const double ak = (!left && (k & 1)) ? -a[k] : a[k];
+    for (std::size_t j = 0; j <= k; ++j) child[j] += m[column + j] * ak;
+    column += k + 1;
   }
-  std::vector<double> child;
-  chebyshev_coefficients(values, child);
+  if (!left)
+    for (std::size_t j = 1; j < n; j += 2) child[j] = -child[j];
   drop_tail(child, budget);
   return child;
 }
@@ -60,16 +97,66 @@ struct Cell {
 }  // namespace
 
 double chebyshev_point(int j, int n) {
-  // sin form, symmetric about 0 and exact at the middle: cos(pi j/n) = sin(pi (n - 2j) / (2n)).
+  // sin form, symmetric about 0 and exact at the middle: cos(pi j/n) = sin(pi (n - 2j) / (2n)),
+  // from a table of the finest set when n divides it (every n the searches use).
+  static const std::array<double, max_n + 1> finest = [] {
+    std::array<double, max_n + 1> t{};
+    for (int i = 0; i <= max_n; ++i) t[static_cast<std::size_t>(i)] = std::sin(std::numbers::pi * (max_n - 2 * i) / (2.0 * max_n));
+    return t;
+  }();
+  if (n > 0 && n <= max_n && max_n % n == 0 && j >= 0 && j <= n) return finest[static_cast<std::size_t>(j * (max_n / n))];
   return std::sin(std::numbers::pi * (n - 2 * j) / (2.0 * n));
 }
 
 void chebyshev_coefficients(std::span<const double> values, std::vector<double>& c) {
   const int n = static_cast<int>(values.size()) - 1;
   if (!power_of_two(n) || n > max_n) throw std::invalid_argument("chebyshev_coefficients: n must be a power of two up to 256");
+  c.assign(static_cast<std::size_t>(n) + 1, 0.0);
+  if (n >= 64) {
+    // By FFT of the even extension [f_0 .. f_n, f_{n-1} .. f_1]: X_k = f_0 + (-1)^k f_n +
+    // 2 sum_{j=1}^{n-1} f_j cos(pi j k / n), so c_k = X_k / n (c_0, c_n halved).
+    thread_local Eigen::FFT<double> fft;
+    thread_local std::vector<double> extended;
+    thread_local std::vector<std::complex<double>> spectrum;
+    extended.resize(2 * static_cast<std::size_t>(n));
+    for (int j = 0; j <= n; ++j) extended[static_cast<std::size_t>(j)] = values[static_cast<std::size_t>(j)];
+    for (int j = 1; j < n; ++j) extended[static_cast<std::size_t>(2 * n - j)] = values[static_cast<std::size_t>(j)];
+    fft.fwd(spectrum, extended);
+    for (int k = 0; k <= n; ++k) c[static_cast<std::size_t>(k)] = spectrum[static_cast<std::size_t>(k)].real() / n;
+    c.front() *= 0.5;
+    c.back() *= 0.5;
+    return;
+  }
+  if (n <= 32) {
+    // Small sizes by a stored matrix (vectorises): row k holds the weights of c_k.
+    static const std::array<std::vector<double>, 6> matrices = [] {
+      std::array<std::vector<double>, 6> all;
+      for (int level = 0; level < 6; ++level) {
+        const int m = 1 << level;
+        std::vector<double>& w = all[static_cast<std::size_t>(level)];
+        w.assign(static_cast<std::size_t>((m + 1) * (m + 1)), 0.0);
+        for (int k = 0; k <= m; ++k)
+          for (int j = 0; j <= m; ++j) {
+            double v = 2.0 / m * std::cos(std::numbers::pi * static_cast<double>(j * k % (2 * m)) / m);
+            if (j == 0 || j == m) v *= 0.5;
+            if (k == 0 || k == m) v *= 0.5;
+            w[static_cast<std::size_t>(k * (m + 1) + j)] = v;
+          }
+      }
+      return all;
+    }();
+    int level = 0;
+    while ((1 << level) < n) ++level;
+    const double* w = matrices[static_cast<std::size_t>(level)].data();
+    for (int k = 0; k <= n; ++k) {
+      double sum = 0.0;
+      for (int j = 0; j <= n; ++j) sum += w[k * (n + 1) + j] * values[static_cast<std::size_t>(j)];
+      c[static_cast<std::size_t>(k)] = sum;
+    }
+    return;
+  }
   const auto& cosines = cosine_table();
   const int stride = max_n / n;
-  c.assign(static_cast<std::size_t>(n) + 1, 0.0);
   // DCT-I: c_k = (2/n) sum''_j f_j cos(pi j k / n), the first and last terms (and c_0, c_n) halved.
   for (int k = 0; k <= n; ++k) {
     double sum = 0.5 * (values[0] + ((k & 1) ? -values[static_cast<std::size_t>(n)] : values[static_cast<std::size_t>(n)]));
@@ -100,11 +187,14 @@ std::size_t chebyshev_resolved_length(std::span<const double> coefficients, doub
   for (double& e : envelope) e /= envelope[0];
   std::size_t plateau = 0, j2 = 0;
   bool found = false;
+  const double log_tol = std::log(tolerance);
   for (std::size_t j = 2; j <= n; ++j) {  // 1-based j as in the paper
     j2 = static_cast<std::size_t>(std::lround(1.25 * static_cast<double>(j) + 5.0));
     if (j2 > n) return 0;  // no plateau
     const double e1 = envelope[j - 1], e2 = envelope[j2 - 1];
-    const double r = 3.0 * (1.0 - std::log(e1) / std::log(tolerance));
+    // r <= 1 needs e1 below tol^(2/3): skip the logarithm above that (e2 / e1 <= 1 < r there).
+    if (e1 > 1e-10 && e2 <= e1) continue;
+    const double r = 3.0 * (1.0 - std::log(e1) / log_tol);
     if (e1 == 0.0 || e2 / e1 > r) {
       plateau = j - 1;
       found = true;
@@ -115,13 +205,14 @@ std::size_t chebyshev_resolved_length(std::span<const double> coefficients, doub
   if (envelope[plateau - 1] == 0.0) return plateau;
   // Step 3: the cut minimises log10(envelope) + a line rising by -log10(tol)/3 over the plateau.
   std::size_t j3 = 0;
+  const double tol_7_6 = std::pow(tolerance, 7.0 / 6.0);
   for (double e : envelope)
-    if (e >= std::pow(tolerance, 7.0 / 6.0)) ++j3;
+    if (e >= tol_7_6) ++j3;
   std::vector<double> env(envelope.begin(), envelope.begin() + static_cast<long>(std::min(j2, n)));
   if (j3 < j2) {
     j2 = j3 + 1;
     env.resize(j2);
-    env[j2 - 1] = std::pow(tolerance, 7.0 / 6.0);
+    env[j2 - 1] = tol_7_6;
   }
   std::size_t best = 0;
   double best_value = std::numeric_limits<double>::infinity();
@@ -213,6 +304,13 @@ std::vector<SeriesZero> chebyshev_zeros(std::span<const double> c, double floor,
         continue;
       }
       if (!crosses) continue;
+      if (sl == 0 || sr == 0) {
+        // Zero within the floor at an end: a zone of no width there, so that it joins a zone
+        // next to it and its crossing is read off the signs either side like any zone's.
+        const double at = sl == 0 ? cell.lo : cell.hi;
+        zeros.push_back({at, at, at, false, false, true});
+        continue;
+      }
       double t;
       if ((left < 0.0 && right > 0.0) || (left > 0.0 && right < 0.0)) {
         std::uintmax_t iterations = 100;
@@ -267,7 +365,7 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
                                                       long& cells) {
   std::vector<SeriesPoint> found;
   if (c.empty()) return found;
-  const double budget = 1e-3 * margin;  // what re-expanded halves may drop
+  const double budget = 0.1 * margin;  // what re-expanded halves may drop (it moves p by no more)
   const long budget_cells = 64 * static_cast<long>(c.size()) + 256;
   long examined = 0;
   auto take = [&](double t, double v) {
@@ -288,7 +386,7 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
       right += a[k];
       left += (k & 1) ? -a[k] : a[k];
     }
-    if (a[0] + variation <= best + margin) continue;  // cannot beat the best
+    if (a[0] + variation <= best + margin) { continue; }  // cannot beat the best
     if (variation <= margin || ++examined > budget_cells || cell.depth >= 60) {
       take(mid, a[0]);  // p(mid) = a_0 - a_2 + a_4 - ..., within the variation of a_0 anyway
       continue;
@@ -312,6 +410,7 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
           b_right += b[k];
           b_left += (k & 1) ? -b[k] : b[k];
         }
+        
         if (b_left > 0.0 && b_right < 0.0) {
           std::uintmax_t iterations = 100;
           const auto r = boost::math::tools::toms748_solve([&](double u) { return chebyshev_value(b, u); }, -1.0, 1.0,
@@ -326,6 +425,7 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
         continue;
       }
     }
+    
     stack.push_back({mid, cell.hi, half_series(a, false, budget), cell.depth + 1});
     stack.push_back({cell.lo, mid, half_series(a, true, budget), cell.depth + 1});
   }

@@ -32,7 +32,9 @@ void check_knots(std::span<const double> knots, int samples) {
 
 // The starting number of intervals: the power of two at or above samples - 1, within [16, 256].
 int starting_intervals(int samples) {
-  int n = 16;
+  // 32 at least: the plateau test needs about 1.25 L + 5 coefficients to see a series of length L
+  // end, and the laws' pieces are mostly resolved at a length of 9 to 20.
+  int n = 32;
   while (n < samples - 1 && n < chebyshev_max_intervals) n *= 2;
   return n;
 }
@@ -50,7 +52,9 @@ SmoothPieces::SmoothPieces(Sampler sample, std::size_t count, std::span<const do
     if (!(b > a)) continue;
     // Pulled inside by a relative 1e-13: at a knot where f jumps, each piece sees its own side.
     const double inset = 1e-13 * (b - a);
+    const std::size_t first = pieces_.size();
     resolve(a + inset, b - inset, n0, 0);
+    pieces_[first].knot = a;
   }
   if (pieces_.empty()) throw std::invalid_argument("piecewise numerics need an interval of positive length");
 }
@@ -60,6 +64,7 @@ void SmoothPieces::resolve(double a, double b, int n, int depth) {
   Piece piece;
   piece.a = a;
   piece.b = b;
+  piece.knot = a;
   std::vector<double>& values = piece.values;
   auto sample_point = [&](int j, int intervals) {
     const double x = mid + half * chebyshev_point(j, intervals);
@@ -73,11 +78,15 @@ void SmoothPieces::resolve(double a, double b, int n, int depth) {
   values.assign(static_cast<std::size_t>(n + 1) * count_, 0.0);
   for (int j = 0; j <= n; ++j) sample_point(j, n);
   std::vector<double> column, coefficients;
+  // Each function keeps the series of the first density that resolves it (the coarser points are
+  // a subset of the finer), so only the unresolved ones are transformed again.
+  piece.coefficients.assign(count_, {});
+  piece.tail.assign(count_, 0.0);
+  std::vector<char> done(count_, 0);
   for (;;) {
-    piece.coefficients.assign(count_, {});
-    piece.tail.assign(count_, 0.0);
     bool resolved = true;
     for (std::size_t f = 0; f < count_; ++f) {
+      if (done[f]) continue;
       column.resize(static_cast<std::size_t>(n) + 1);
       for (int j = 0; j <= n; ++j) column[static_cast<std::size_t>(j)] = values[static_cast<std::size_t>(j) * count_ + f];
       chebyshev_coefficients(column, coefficients);
@@ -88,19 +97,19 @@ void SmoothPieces::resolve(double a, double b, int n, int depth) {
       } else {
         for (std::size_t k = length; k < coefficients.size(); ++k) tail += std::abs(coefficients[k]);
         coefficients.resize(length);
+        done[f] = 1;
       }
       piece.tail[f] = tail;
       piece.coefficients[f] = coefficients;
-      if (!resolved && n < chebyshev_max_intervals) break;  // more points are needed anyway
     }
     if (resolved || n == chebyshev_max_intervals) {
       if (!resolved && depth < halvings) {
-        resolve(a, mid, 16, depth + 1);
-        resolve(mid, b, 16, depth + 1);
+        resolve(a, mid, 32, depth + 1);
+        resolve(mid, b, 32, depth + 1);
         return;
       }
       piece.n = n;
-      piece.resolved = resolved;
+      piece.resolved.assign(done.begin(), done.end());
       work_.unresolved += resolved ? 0 : 1;
       work_.pieces += 1;
       work_.most_points = std::max(work_.most_points, n + 1);
@@ -141,7 +150,7 @@ Extremum SmoothPieces::extreme(std::size_t j, double sign) {
   std::vector<Candidate> candidates;
   double bound = best.value;  // the best value known, raised by the interpolant's candidates
   for (const Piece& piece : pieces_) {
-    if (!piece.resolved) {
+    if (!piece.resolved[j]) {
       // No interpolant to trust (a kink or noise the halvings did not isolate): the best sample's
       // bracket is refined on the function itself, as a plain sampling search would.
       int top_i = 0;
@@ -204,6 +213,7 @@ std::vector<std::pair<double, bool>> SmoothPieces::directed_crossings(std::size_
     double x;
     bool rising;
     double lo, hi;  // where the signs either side were read: a bracket on the function itself
+    bool at_knot;   // a jump at a knot: the knot itself is the answer
   };
   std::vector<Crossing> found;
   int last = 0;
@@ -215,7 +225,8 @@ std::vector<std::pair<double, bool>> SmoothPieces::directed_crossings(std::size_
     if (sign == 0) return;
     if (last != 0 && sign != last) {
       const double x = pending_root ? *pending_root : pending_knot ? *pending_knot : 0.5 * (zone_lo + zone_hi);
-      if (pending_root || pending_knot || pending_zone) found.push_back({x, sign > 0, last_x, at});
+      if (pending_root || pending_knot || pending_zone)
+        found.push_back({x, sign > 0, last_x, at, !pending_root && pending_knot && !pending_zone});
     }
     last = sign;
     last_x = at;
@@ -229,9 +240,9 @@ std::vector<std::pair<double, bool>> SmoothPieces::directed_crossings(std::size_
     auto x_of = [&](double t) { return mid + half * t; };
     // A knot (or a halving) between pieces: f_j may jump there, or cross the level right at it
     // with each side's interpolant a rounding error off.
-    if (previous && !pending_knot) pending_knot = 0.5 * (previous->b + piece.a);
+    if (previous && !pending_knot) pending_knot = piece.knot;
     previous = &piece;
-    if (!piece.resolved) {
+    if (!piece.resolved[j]) {
       // No interpolant to trust: sign changes between neighbouring samples, refined on the function.
       auto g = [&](double x) { return value_at(j, x) - level; };
       for (int i = piece.n; i >= 0; --i) {
@@ -301,6 +312,10 @@ std::vector<std::pair<double, bool>> SmoothPieces::directed_crossings(std::size_
   auto g = [&](double x) { return value_at(j, x) - level; };
   auto opposite = [](double a, double b) { return (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0); };
   for (const Crossing& c : found) {
+    if (c.at_knot) {
+      roots.push_back({c.x, c.rising});
+      continue;
+    }
     double lo = std::max(c.lo, c.x - 1e-9 * span), hi = std::min(c.hi, c.x + 1e-9 * span);
     double g_lo = g(lo), g_hi = g(hi);
     if (!opposite(g_lo, g_hi)) {

@@ -62,11 +62,12 @@ class SmoothPieces {
  private:
   struct Piece {
     double a = 0.0, b = 0.0;   // interpolation interval (knots pulled in by a relative 1e-13)
+    double knot = 0.0;         // where the piece begins: the knot itself (a halving's midpoint)
     int n = 0;                 // intervals: n + 1 Chebyshev points
     std::vector<double> values;                     // (n + 1) x count, point-major, x descending
     std::vector<std::vector<double>> coefficients;  // per function, cut at its plateau
     std::vector<double> tail;                       // per function: sum |c_k| of the cut tail
-    bool resolved = true;
+    std::vector<char> resolved;                     // per function: reached rounding level
   };
   void resolve(double a, double b, int n, int depth);
   Extremum extreme(std::size_t j, double sign);
