@@ -149,6 +149,28 @@ Extremum SmoothPieces::extreme(std::size_t j, double sign) {
   };
   std::vector<Candidate> candidates;
   double bound = best.value;  // the best value known, raised by the interpolant's candidates
+  // A few Newton steps on p' from the best sample of each piece raise the bound to about the true
+  // maximum before the branch and bound starts, so that it drops more cells at once. (A bound only:
+  // the candidates still come from the branch and bound.)
+  for (const Piece& piece : pieces_) {
+    if (!piece.resolved[j] || piece.coefficients[j].size() <= 2) continue;
+    int top_i = 0;
+    for (int i = 1; i <= piece.n; ++i)
+      if (sign * piece.values[static_cast<std::size_t>(i) * count_ + j] > sign * piece.values[static_cast<std::size_t>(top_i) * count_ + j]) top_i = i;
+    if (sign * piece.values[static_cast<std::size_t>(top_i) * count_ + j] < bound - 1e-3 * scale) continue;
+    const std::vector<double>& c = piece.coefficients[j];
+    const std::vector<double> d = chebyshev_derivative(c), d2 = chebyshev_derivative(d);
+    const double lo = chebyshev_point(std::min(top_i + 1, piece.n), piece.n), hi = chebyshev_point(std::max(top_i - 1, 0), piece.n);
+    double t = chebyshev_point(top_i, piece.n);
+    for (int k = 0; k < 4; ++k) {
+      const double curvature = chebyshev_value(d2, t);
+      if (!(curvature * sign < 0.0)) break;
+      t = std::clamp(t - chebyshev_value(d, t) / curvature, lo, hi);
+    }
+    // The point itself is a candidate: the branch and bound may then drop its cell as no better.
+    candidates.push_back({0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * t, sign * chebyshev_value(c, t)});
+    bound = std::max(bound, candidates.back().interpolated);
+  }
   for (const Piece& piece : pieces_) {
     if (!piece.resolved[j]) {
       // No interpolant to trust (a kink or noise the halvings did not isolate): the best sample's
