@@ -362,8 +362,9 @@ Studied study_numeric(NodeBench& bench, const ParamSpec& knob, const KnobBenchOp
 }
 
 // A choice knob of a deterministic node: each choice against the first, whose floor is how far it
-// moves when each other knob acting here (`acting`) is tightened one reference step.
-Studied study_choice(NodeBench& bench, const ParamSpec& knob, const std::vector<const ParamSpec*>& acting,
+// moves when each of the node's numeric knobs that can act (`others`: none of an effect that is
+// off; one inert under the scene's choice may act under the first) is tightened one reference step.
+Studied study_choice(NodeBench& bench, const ParamSpec& knob, const std::vector<const ParamSpec*>& others,
                      const KnobBenchOptions& o) {
   const GraphNode& n = bench.node();
   Studied s;
@@ -391,7 +392,7 @@ Studied study_choice(NodeBench& bench, const ParamSpec& knob, const std::vector<
   }
   double floor = 0.0, largest = 0.0;
   std::vector<std::string> moved;
-  for (const ParamSpec* other : acting) {
+  for (const ParamSpec* other : others) {
     const ParamValue& base = n.params.get(other->name);
     const auto v = reference_rung(*other, base, 1, base);
     if (!v) continue;
@@ -542,16 +543,16 @@ KnobBench bench_knobs(const Graph& graph, const KnobBenchOptions& options) {
     if (!scene->failure.empty())
       throw EvaluationError("bench: node '" + n.name + "' fails at the scene's settings: " + scene->failure);
     const bool random = is_monte_carlo(n);
-    // Integer and real knobs first: a choice knob's floor needs to know which of them act.
+    // Integer and real knobs first, then the choices (whose floors tighten the numeric knobs).
     std::map<const ParamSpec*, Studied> studied;
-    std::vector<const ParamSpec*> acting;
+    std::vector<const ParamSpec*> numeric;
     for (const ParamSpec* k : knobs) {
       if (k->kind == ParamKind::choice || !is_numeric(*k)) continue;
       Studied s;
       if (std::string off = effect_off(n, *k); !off.empty()) s.study.not_measured = off;
       else if (random) s = study_monte_carlo(bench, *k, options);
       else s = study_numeric(bench, *k, options);
-      if (s.study.not_measured.empty() && !random) acting.push_back(k);
+      if (effect_off(n, *k).empty()) numeric.push_back(k);
       studied[k] = std::move(s);
     }
     for (const ParamSpec* k : knobs) {
@@ -560,7 +561,7 @@ KnobBench bench_knobs(const Graph& graph, const KnobBenchOptions& options) {
       if (std::string off = effect_off(n, *k); !off.empty()) s.study.not_measured = off;
       else if (k->kind != ParamKind::choice) s.study.not_measured = "not measured: " + k->name + " is no number and no choice";
       else if (random) s = study_monte_carlo(bench, *k, options);
-      else s = study_choice(bench, *k, acting, options);
+      else s = study_choice(bench, *k, numeric, options);
       studied[k] = std::move(s);
     }
     for (const ParamSpec* k : knobs) {

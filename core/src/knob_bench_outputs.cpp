@@ -122,7 +122,12 @@ OutputDeviation relative_spread(const std::vector<std::vector<OutputValue>>& run
     Moments m{first, std::vector<double>(first.values.size(), 0.0)};
     for (std::size_t i = 0; i < first.values.size(); ++i) {
       double sum = 0.0;
-      for (const Piece* p : same) sum += p->values[i];
+      bool all_equal = true;
+      for (const Piece* p : same) {
+        sum += p->values[i];
+        all_equal = all_equal && p->values[i] == first.values[i];
+      }
+      if (all_equal) continue;  // a value the seed does not touch: no spread (not a rounding's worth)
       const double mean = sum / k;
       double squares = 0.0;
       for (const Piece* p : same) squares += (p->values[i] - mean) * (p->values[i] - mean);
