@@ -295,6 +295,7 @@ Studied study_numeric(NodeBench& bench, const ParamSpec& knob, const KnobBenchOp
     if (history.size() < 2 || !(history[history.size() - 2] > 0.0)) return first;
     return std::max(1.0, history.back() / history[history.size() - 2]);
   };
+  int agreeing = 0;  // successive differences in a row within the agreement
   int j = 1;
   for (; j <= o.reference_steps; ++j) {
     const auto v = reference_rung(knob, base, j, previous_value);
@@ -332,9 +333,17 @@ Studied study_numeric(NodeBench& bench, const ParamSpec& knob, const KnobBenchOp
     reference = m;
     s.study.reference = text_of(knob, *v);
     s.study.reference_steps = j;
-    s.study.floor = d.max_relative;
-    s.study.floor_output = d.worst;
-    if (d.max_relative <= agreement) {
+    // The floor: the last difference, or the larger of the last two once they agree (a result
+    // that moves in steps, a bisection's, can repeat itself once by chance and move again).
+    const double last = d.max_relative;
+    if (agreeing > 0 && s.study.floor >= last) {
+      // the previous difference stays the floor, with its output
+    } else {
+      s.study.floor = last;
+      s.study.floor_output = d.worst;
+    }
+    agreeing = last <= agreement ? agreeing + 1 : 0;
+    if (agreeing == 2) {
       s.study.converged = true;
       break;
     }
@@ -350,7 +359,7 @@ Studied study_numeric(NodeBench& bench, const ParamSpec& knob, const KnobBenchOp
     return s;
   }
   if (s.study.converged)
-    s.study.stopped = "converged: successive values agree to " + number_text(s.study.floor) + " (at most 1e-3 x --tol)";
+    s.study.stopped = "converged: three successive values agree to " + number_text(s.study.floor) + " (at most 1e-3 x --tol)";
   else if (std::isfinite(s.study.floor))
     s.study.stopped = "not converged (" + stop + "): the last step moved the outputs by " + number_text(s.study.floor);
   else
@@ -414,7 +423,7 @@ Studied study_choice(NodeBench& bench, const ParamSpec& knob, const std::vector<
     std::string names;
     for (const std::string& name : moved) names += (names.empty() ? "" : ", ") + name;
     s.study.stopped = "the first choice, the other knobs at the scene's settings; tightening each of them one step (" +
-                      names + ") moves it by " + number_text(floor) + " in all";
+                      names + (floor > 0.0 ? ") moves it by " + number_text(floor) + " in all" : ") leaves it the same to the bit");
   }
   compare_with_reference(s.trials, measured, reference, floor, n.info().work_counters);
   return s;

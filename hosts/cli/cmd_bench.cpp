@@ -54,7 +54,8 @@ std::string reference_line(const KnobStudy& study) {
     return "error: the relative standard deviation of the outputs over " + std::to_string(study.seeds) +
            " independent seeds, +- its standard error";
   std::string line = "reference: " + study.knob + " = " + study.reference;
-  if (study.reference_steps > 0) line += " (" + std::to_string(study.reference_steps) + " steps tighter)";
+  if (study.reference_steps > 0)
+    line += " (" + std::to_string(study.reference_steps) + (study.reference_steps == 1 ? " step" : " steps") + " tighter)";
   line += "; " + study.stopped;
   if (!study.floor_output.empty() && std::isfinite(study.floor) && study.floor > 0) line += " (most in " + study.floor_output + ")";
   return line;

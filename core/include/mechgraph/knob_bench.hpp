@@ -8,10 +8,12 @@
 // listed most accurate first.
 //
 // The error of a setting is measured against that knob's own converged reference: the knob alone
-// tightened (integer x2, real /4 a step), the other knobs at the scene's settings, until two
-// successive values agree to 1e-3 x the tolerance, the knob's range ends, the step limit or the
-// work or time budget is reached, or an evaluation fails. The last difference is the reference's
-// own uncertainty, the floor: an error below it is reported as "< floor", not as its value. A
+// tightened (integer x2, real /4 a step), the other knobs at the scene's settings, until three
+// successive values agree to 1e-3 x the tolerance (two agreeing differences in a row: a result
+// that moves in steps can repeat once by chance), the knob's range ends, the step limit or the
+// work or time budget is reached, or an evaluation fails. The last difference (of two agreeing,
+// the larger) is the reference's own uncertainty, the floor: an error below it is reported as
+// "< floor", not as its value. A
 // choice knob's reference is its first choice; its floor is how far that moves when each other
 // knob acting in the scene is tightened one step.
 //
@@ -63,7 +65,7 @@ struct KnobStudy {
   int reference_steps = 0;          // tightening steps from the scene's setting to the reference
   double floor = 0.0;               // the reference's own uncertainty (infinite: not known)
   std::string floor_output;         // where the last step changed the outputs most
-  bool converged = false;           // successive values agreed to 1e-3 x the tolerance
+  bool converged = false;           // three successive values agreed to 1e-3 x the tolerance
   std::string stopped;              // how the reference was found, in words
   std::size_t first_trial = 0;      // its trials: [first_trial, first_trial + trial_count)
   std::size_t trial_count = 0;
@@ -79,7 +81,7 @@ struct KnobBenchOptions {
   int steps = 3;                    // ladder: default x 2^-steps .. x 2^steps
   int repeats = 3;                  // time = the fastest of this many evaluations
   double tolerance = 1e-9;          // a reference is converged when successive values agree to 1e-3 x this
-  int reference_steps = 10;         // at most this many tightening steps for a reference
+  int reference_steps = 8;          // at most this many tightening steps for a reference
   double max_work = 1e9;            // no reference step whose work (estimated or extrapolated) exceeds this
   double reference_seconds = 30.0;  // no reference step that would take a knob's search beyond this
   int seeds = 8;                    // Monte Carlo: independent seeds per setting
