@@ -499,9 +499,13 @@ bool is_monte_carlo(const GraphNode& node) {
 
 WorkEstimate estimate_bench_work(const Graph& graph, const KnobBenchOptions& options) {
   WorkEstimate total;
-  for (std::size_t i : graph.order) {
+  std::vector<std::size_t> nodes = graph.order;
+  if (options.node) {
+    const auto i = graph.find(*options.node);  // also a node the scene culled
+    nodes.assign(i ? 1 : 0, i.value_or(0));
+  }
+  for (std::size_t i : nodes) {
     const GraphNode& n = graph.nodes[i];
-    if (options.node && n.name != *options.node) continue;
     double knobs = 0;
     for (const ParamSpec& p : n.info().params) knobs += p.knob && n.params.has(p.name) ? 1 : 0;
     if (knobs == 0) continue;
