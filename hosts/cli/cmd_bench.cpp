@@ -1,10 +1,12 @@
-// mechgraph bench SCENE: work-precision of every accuracy knob (error against a tight reference
-// and the time it cost), as a table, JSON, or CSV + JSON files.
+// mechgraph bench SCENE: work-precision of every accuracy knob (each setting's error against the
+// knob's own converged reference, or its spread over seeds for a Monte Carlo node, and the time it
+// cost), as a table, JSON, or CSV + JSON + SVG files. docs/bench.md says what the columns mean.
 #include "cli.hpp"
 #include "results_folder.hpp"
 #include "spawn.hpp"
 #include "options.hpp"
 
+#include <mechgraph/bench_plot.hpp>
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
@@ -25,24 +27,81 @@
 namespace mechgraph::cli {
 namespace {
 
-void write_json(std::ostream& os, const std::vector<KnobTrial>& trials, const std::vector<KnobAdvice>& advice) {
+std::string number_text(double x, const char* format = "%.3g") {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, format, x);
+  return buffer;
+}
+
+// A number JSON can hold, or null (an unknown floor is infinite).
+void finite_or_null(JsonWriter& json, double x) {
+  if (std::isfinite(x)) json.value(x);
+  else json.null();
+}
+
+// The error as the table shows it: "< floor" below the reference's floor, "value +- uncertainty"
+// for Monte Carlo.
+std::string error_text(const KnobStudy& study, const KnobTrial& t) {
+  if (t.below_floor) return "< " + number_text(t.reference_floor, "%.2g");
+  std::string text = number_text(t.max_relative_error, "%.3g");
+  if (study.monte_carlo) text += " +- " + number_text(t.error_uncertainty, "%.2g");
+  return text;
+}
+
+// How the study's reference was found, in one line.
+std::string reference_line(const KnobStudy& study) {
+  if (study.monte_carlo)
+    return "error: the relative standard deviation of the outputs over " + std::to_string(study.seeds) +
+           " independent seeds, +- its standard error";
+  std::string line = "reference: " + study.knob + " = " + study.reference;
+  if (study.reference_steps > 0)
+    line += " (" + std::to_string(study.reference_steps) + (study.reference_steps == 1 ? " step" : " steps") + " tighter)";
+  line += "; " + study.stopped;
+  if (!study.floor_output.empty() && std::isfinite(study.floor) && study.floor > 0) line += " (most in " + study.floor_output + ")";
+  return line;
+}
+
+void write_json(std::ostream& os, const KnobBench& bench, const std::vector<KnobAdvice>& advice, double tolerance) {
   JsonWriter json(os);
-  json.begin_object().key("advice").begin_array();
+  json.begin_object().key("tolerance").value(tolerance).key("advice").begin_array();
   for (const KnobAdvice& a : advice) {
     json.begin_object().key("node").value(a.node).key("knob").value(a.knob);
     json.key("recommended");
-    if (a.recommended) json.value(trials[*a.recommended].setting);
+    if (a.recommended) json.value(bench.trials[*a.recommended].setting);
     else json.null();
     json.key("default_off_front").value(a.current_off_front).key("text").value(a.text).end_object();
   }
   json.end_array();
+  json.key("knobs").begin_array();
+  for (const KnobStudy& k : bench.knobs) {
+    json.begin_object().key("node").value(k.node).key("type").value(k.type).key("knob").value(k.knob);
+    json.key("measured").value(k.not_measured.empty());
+    if (!k.not_measured.empty()) {
+      json.key("not_measured").value(k.not_measured).end_object();
+      continue;
+    }
+    json.key("monte_carlo").value(k.monte_carlo);
+    if (k.monte_carlo) {
+      json.key("seeds").value(static_cast<long>(k.seeds));
+    } else {
+      json.key("reference").value(k.reference).key("reference_steps").value(static_cast<long>(k.reference_steps));
+      json.key("reference_floor");
+      finite_or_null(json, k.floor);
+      json.key("floor_output").value(k.floor_output).key("converged").value(k.converged);
+    }
+    json.key("how").value(k.stopped).end_object();
+  }
+  json.end_array();
   json.key("trials").begin_array();
-  for (const KnobTrial& t : trials) {
+  for (const KnobTrial& t : bench.trials) {
     json.begin_object();
     json.key("node").value(t.node).key("type").value(t.type).key("knob").value(t.knob).key("setting").value(t.setting);
     json.key("default").value(t.is_default);
     if (t.failure.empty()) {
       json.key("seconds").value(t.seconds).key("max_relative_error").value(t.max_relative_error);
+      json.key("error_uncertainty").value(t.error_uncertainty).key("reference_floor");
+      finite_or_null(json, t.reference_floor);
+      json.key("below_floor").value(t.below_floor);
       json.key("worst_output").value(t.worst_output).key("on_front").value(t.on_front);
       json.key("errors").begin_object();
       for (const auto& [output, error] : t.errors) json.key(output).value(error);
@@ -59,84 +118,74 @@ void write_json(std::ostream& os, const std::vector<KnobTrial>& trials, const st
   os << "\n";
 }
 
-void write_csv(std::ostream& os, const std::vector<KnobTrial>& trials) {
-  os << "node,type,knob,setting,default,on_front,seconds,max_relative_error,worst_output,work,failure\n";
-  for (const KnobTrial& t : trials) {
-    std::string work;
-    for (const auto& [counter, amount] : t.work) work += (work.empty() ? "" : ";") + counter + "=" + std::to_string(amount);
-    os << csv_row({t.node, t.type, t.knob, t.setting}) << "," << (t.is_default ? 1 : 0) << "," << (t.on_front ? 1 : 0) << ","
-       << t.seconds << "," << t.max_relative_error << "," << csv_row({t.worst_output, work, t.failure}) << "\n";
-  }
-}
-
-void write_table(std::ostream& os, const std::vector<KnobTrial>& trials, const std::vector<KnobAdvice>& advice) {
-  std::string last;
-  std::size_t group_index = 0;
-  auto close_group = [&] {
-    if (!last.empty() && group_index < advice.size()) os << "  -> " << advice[group_index++].text << "\n";
-  };
-  for (const KnobTrial& t : trials) {
-    const std::string group = t.node + " (" + t.type + ") knob " + t.knob;
-    if (group != last) {
-      close_group();
-      os << (last.empty() ? "" : "\n") << group << "\n";
-      os << "  setting                     time [s]   max rel. error   work\n";
-      last = group;
-    }
-    char line[200];
-    if (!t.failure.empty()) {
-      std::snprintf(line, sizeof line, "  %-22s %s    failed: ", t.setting.c_str(), t.is_default ? "*" : " ");
-      os << line << t.failure << "\n";
+void write_csv(std::ostream& os, const KnobBench& bench) {
+  os << "node,type,knob,setting,default,on_front,seconds,max_relative_error,error_uncertainty,reference_floor,below_floor,"
+        "worst_output,work,failure,not_measured\n";
+  for (const KnobStudy& k : bench.knobs) {
+    if (!k.not_measured.empty()) {
+      os << csv_row({k.node, k.type, k.knob}) << ",,,,,,,,,," << csv_row({"", "", "", k.not_measured}) << "\n";
       continue;
     }
-    std::string work;
-    for (const auto& [counter, amount] : t.work) {
-      char w[64];
-      std::snprintf(w, sizeof w, "%s%s=%.0f", work.empty() ? "" : " ", counter.c_str(), amount);
-      work += w;
+    for (std::size_t i = k.first_trial; i < k.first_trial + k.trial_count; ++i) {
+      const KnobTrial& t = bench.trials[i];
+      std::string work;
+      for (const auto& [counter, amount] : t.work) work += (work.empty() ? "" : ";") + counter + "=" + number_text(amount, "%.17g");
+      const std::string floor = std::isfinite(t.reference_floor) ? number_text(t.reference_floor, "%.6g") : "";
+      os << csv_row({t.node, t.type, t.knob, t.setting}) << "," << (t.is_default ? 1 : 0) << "," << (t.on_front ? 1 : 0) << ","
+         << number_text(t.seconds, "%.6g") << "," << number_text(t.max_relative_error, "%.6g") << ","
+         << number_text(t.error_uncertainty, "%.6g") << "," << floor << "," << (t.below_floor ? 1 : 0) << ","
+         << csv_row({t.worst_output, work, t.failure, ""}) << "\n";
     }
-    std::snprintf(line, sizeof line, "  %-22s %s%s %10.3g   %14.3g   ", t.setting.c_str(), t.is_default ? "*" : " ",
-                  t.on_front ? "P" : " ", t.seconds, t.max_relative_error);
-    os << line << work << "\n";
   }
-  close_group();
-  os << "\n* the scene's setting; P on the Pareto front (no other setting both faster and more accurate);\n"
-        "  error against every numeric knob tightened past the ladder (Monte Carlo: 2^(steps+2) times the samples)\n";
 }
 
-// The work-precision plot: log error over log time, one line per node and knob, drawn by gnuplot
-// (Debian's gnuplot-nox) as SVG. Errors of exactly zero sit at 1e-17, below double precision.
-void write_plot(const std::filesystem::path& dir, const std::vector<KnobTrial>& trials) {
-  std::ofstream data(dir / "bench.dat");
-  std::vector<std::string> titles;
-  std::string last;
-  for (const KnobTrial& t : trials) {
-    if (!t.failure.empty() || !(t.seconds > 0)) continue;
-    const std::string group = t.node + "." + t.knob;
-    if (group != last) {
-      if (!last.empty()) data << "\n\n";
-      titles.push_back(group);
-      last = group;
+void write_table(std::ostream& os, const KnobBench& bench, const std::vector<KnobAdvice>& advice) {
+  for (std::size_t s = 0; s < bench.knobs.size(); ++s) {
+    const KnobStudy& k = bench.knobs[s];
+    const std::string group = k.node + " (" + k.type + ") knob " + k.knob;
+    os << (s ? "\n" : "") << group;
+    if (!k.not_measured.empty()) {
+      os << ": " << terminal_text(k.not_measured) << "\n";
+      continue;
     }
-    data << t.seconds << " " << std::max(t.max_relative_error, 1e-17) << " " << (t.is_default ? 1 : 0) << "\n";
+    os << "\n  " << terminal_text(reference_line(k)) << "\n";
+    os << "  setting                   time [s]   error               worst output                   work\n";
+    for (std::size_t i = k.first_trial; i < k.first_trial + k.trial_count; ++i) {
+      const KnobTrial& t = bench.trials[i];
+      char line[256];
+      if (!t.failure.empty()) {
+        std::snprintf(line, sizeof line, "  %-22s %s    failed: ", t.setting.c_str(), t.is_default ? "*" : " ");
+        os << line << terminal_text(t.failure) << "\n";
+        continue;
+      }
+      std::string work;
+      for (const auto& [counter, amount] : t.work) work += (work.empty() ? "" : " ") + counter + "=" + number_text(amount, "%.0f");
+      std::snprintf(line, sizeof line, "  %-22s %s%s %10.3g   %-18s  %-30s ", t.setting.c_str(), t.is_default ? "*" : " ",
+                    t.on_front ? "P" : " ", t.seconds, error_text(k, t).c_str(), t.worst_output.c_str());
+      os << line << work << "\n";
+    }
+    if (s < advice.size()) os << "  -> " << terminal_text(advice[s].text) << "\n";
   }
+  os << "\n* the scene's setting; P on the Pareto front (no other setting both faster and more accurate).\n"
+        "error: the largest relative error over the node's outputs, in the output named beside it, against the\n"
+        "  knob's own converged reference (that knob tightened until successive values agree, the others at the\n"
+        "  scene's settings); \"< x\": below the reference's own uncertainty x. Monte Carlo: the spread over seeds\n"
+        "  +- its standard error. A setting is recommended only when error + uncertainty + floor is within --tol.\n";
+}
+
+// The work-precision plot: bench.dat and bench.gp from the core, drawn by gnuplot (Debian's
+// gnuplot-nox) as SVG.
+void write_plot(const std::filesystem::path& dir, const KnobBench& bench) {
+  const BenchPlot plot = bench_plot(bench);
+  if (plot.script.empty()) return;  // no knob was measured
+  std::ofstream data(dir / "bench.dat");
+  data << plot.data;
   data.close();
   check_written(data, dir / "bench.dat");
   std::ofstream script(dir / "bench.gp");
-  script << "set terminal svg size 900,600 dynamic enhanced font 'sans,11'\n"
-         << "set output 'bench.svg'\n"
-         << "set logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
-         << "set xlabel 'time of the node [s]'\nset ylabel 'max. relative error'\n"
-         << "set title 'Work-precision of the accuracy knobs (filled: the scene setting)'\n"
-         << "set key outside right\nset grid\n"
-         << "plot";
-  for (std::size_t i = 0; i < titles.size(); ++i)
-    script << (i ? ", \\\n    " : " ") << "'bench.dat' index " << i << " using 1:2 with linespoints lc " << i + 1
-           << " pt 6 title " << gnuplot_string(titles[i]) << " noenhanced, '' index " << i << " using 1:($3 > 0 ? $2 : 1/0) with points lc " << i + 1
-           << " pt 7 ps 1.5 notitle";
-  script << "\n";
+  script << plot.script;
   script.close();
-  if (!script) throw IoError("cannot write '" + (dir / "bench.gp").string() + "'");
+  check_written(script, dir / "bench.gp");
   const std::optional<std::filesystem::path> gnuplot = find_program("gnuplot");
   if (!gnuplot) {
     spdlog::warn("bench: gnuplot is not installed (apt-get install gnuplot-nox): no bench.svg, its data is in bench.dat");
@@ -153,14 +202,20 @@ void write_plot(const std::filesystem::path& dir, const std::vector<KnobTrial>& 
 int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("bench options");
   add_scene_options(visible);
-  visible.add_options()(
-      "node", po::value<std::string>(), "only this node")("steps", po::value<int>()->default_value(3),
-                                                          "ladder: each knob from x 2^-steps to x 2^steps")(
-      "repeats", po::value<int>()->default_value(3), "time = fastest of this many evaluations")(
-      "json", "print JSON on stdout")("out", po::value<std::string>(),
-                                       "also write bench.csv and bench.json into DIR (whole or not at all)")(
-      "force", "replace the results in an existing --out DIR")(
-      "tol", po::value<double>()->default_value(1e-9), "recommend the cheapest setting within this relative error");
+  const KnobBenchOptions defaults;
+  visible.add_options()("node", po::value<std::string>(), "only this node")(
+      "steps", po::value<int>()->default_value(defaults.steps), "ladder: each knob from x 2^-steps to x 2^steps")(
+      "repeats", po::value<int>()->default_value(defaults.repeats), "time = fastest of this many evaluations")(
+      "tol", po::value<double>()->default_value(defaults.tolerance, "1e-9"),
+      "recommend the cheapest setting whose error + uncertainty + reference floor is within this relative error; a "
+      "reference is converged when successive values agree to 1e-3 x this")(
+      "seeds", po::value<int>()->default_value(defaults.seeds), "Monte Carlo nodes: independent seeds per setting (2 to 100)")(
+      "reference-steps", po::value<int>()->default_value(defaults.reference_steps),
+      "at most this many steps tightening a knob for its reference (integer x2, real /4 a step)")(
+      "reference-time", po::value<double>()->default_value(defaults.reference_seconds, "30"),
+      "seconds one knob's reference search may take")("json", "print JSON on stdout")(
+      "out", po::value<std::string>(), "also write bench.csv, bench.json and bench.svg into DIR (whole or not at all)")(
+      "force", "replace the results in an existing --out DIR");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm, "mechgraph bench SCENE [--node NAME] [--steps N] [--tol 1e-9] [--json] [--out DIR]"))
     return ok;
@@ -168,45 +223,47 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   if (vm.count("node")) options.node = vm["node"].as<std::string>();
   options.steps = vm["steps"].as<int>();
   options.repeats = vm["repeats"].as<int>();
+  options.seeds = vm["seeds"].as<int>();
+  options.reference_steps = vm["reference-steps"].as<int>();
+  options.reference_seconds = vm["reference-time"].as<double>();
+  options.tolerance = vm["tol"].as<double>();
   if (options.steps < 0 || options.steps > 20) throw UsageError("--steps must be between 0 and 20");
   if (options.repeats < 1 || options.repeats > 100) throw UsageError("--repeats must be between 1 and 100");
+  if (options.seeds < 2 || options.seeds > 100) throw UsageError("--seeds must be between 2 and 100");
+  if (options.reference_steps < 0 || options.reference_steps > 40) throw UsageError("--reference-steps must be between 0 and 40");
+  if (!(options.reference_seconds >= 0.0) || !std::isfinite(options.reference_seconds))
+    throw UsageError("--reference-time must be a number of seconds >= 0");
+  if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance)) throw UsageError("--tol must be > 0");
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
-  // The bench evaluates far more than the scene: a reference with every knob 2^(steps+2) times
-  // tighter, then 2 steps + 1 settings of each knob, each `repeats` times. Its work is checked as
-  // that many evaluations of the scene (an upper bound: a looser setting costs less).
-  std::size_t knobs = 0;
-  for (std::size_t i : graph.order)
-    for (const ParamSpec& p : graph.nodes[i].info().params) knobs += p.knob ? 1 : 0;
-  const double evaluations = std::ldexp(1.0, options.steps + 2) +
-                             static_cast<double>((2 * options.steps + 1) * options.repeats) * static_cast<double>(std::max<std::size_t>(knobs, 1));
-  check_work_budget(graph, estimate_work(graph), work_budget(vm), evaluations, false);
-  const double tolerance = vm["tol"].as<double>();
-  if (!(tolerance > 0.0)) throw UsageError("--tol must be > 0");
+  // The ladders' work is checked before anything runs; each reference is checked step by step.
+  const WorkBudget budget = work_budget(vm);
+  options.max_work = budget.max_work;
+  check_work_budget(graph, estimate_bench_work(graph, options), budget, 1, false);
   options.progress = [](std::size_t done, std::size_t total, const std::string& node) {
     spdlog::info("bench: node {} of {}: {}", done + 1, total, node);
   };
-  std::vector<KnobTrial> trials = bench_knobs(graph, options);
-  const std::vector<KnobAdvice> advice = advise_knobs(trials, tolerance);
-  spdlog::info("{} knob settings measured", trials.size());
+  KnobBench bench = bench_knobs(graph, options);
+  const std::vector<KnobAdvice> advice = advise_knobs(bench, options.tolerance);
+  spdlog::info("{} knob settings measured", bench.trials.size());
   // Built whole first: an error while writing leaves stdout empty, not a truncated document.
   std::ostringstream shown;
-  if (vm.count("json")) write_json(shown, trials, advice);
-  else write_table(shown, trials, advice);
+  if (vm.count("json")) write_json(shown, bench, advice, options.tolerance);
+  else write_table(shown, bench, advice);
   std::cout << shown.str();
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
       std::ofstream csv(staging / "bench.csv"), json(staging / "bench.json");
       if (!csv || !json) throw IoError("cannot write into '" + staging.string() + "'");
-      write_csv(csv, trials);
-      write_json(json, trials, advice);
+      write_csv(csv, bench);
+      write_json(json, bench, advice, options.tolerance);
       csv.close();
       json.close();
       check_written(csv, dir / "bench.csv");
       check_written(json, dir / "bench.json");
-      write_plot(staging, trials);
+      write_plot(staging, bench);
     });
   }
   return ok;

@@ -31,7 +31,7 @@ commands:
   graph SCENE [--set NAME=VALUE ...]                      Graphviz DOT; culled nodes shown apart
   plugins [--json]                                        plugins, node types, ports, params
   describe TYPE [--json]                                  one node type in full
-  bench SCENE [--node NAME] [--json] [--out DIR]          accuracy knobs: error against a reference vs time
+  bench SCENE [--node NAME] [--json] [--out DIR]          accuracy knobs: error (own converged reference) vs time
   sweep SCENE (--vary N=A:B:K | --cases F.csv | --sample N=A:B --n K) [--threads N] [--out F] [--shard I/N]
                                                           many designs: one row per case, on all cores
   merge FILE... [--out FILE]                              shards of one sweep back together, checked
