@@ -214,11 +214,14 @@ std::size_t chebyshev_resolved_length(std::span<const double> coefficients, doub
     env.resize(j2);
     env[j2 - 1] = tol_7_6;
   }
+  // argmin of log10(env_i) + i s, s = -log10(tol) / 3 / (j2 - 1): the same as argmin env_i q^i
+  // with q = 10^s, without a logarithm per entry.
   std::size_t best = 0;
   double best_value = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < j2; ++i) {
-    const double tilt = j2 > 1 ? (-1.0 / 3.0) * std::log10(tolerance) * static_cast<double>(i) / static_cast<double>(j2 - 1) : 0.0;
-    const double v = std::log10(std::max(env[i], std::numeric_limits<double>::min())) + tilt;
+  const double q = j2 > 1 ? std::pow(10.0, (-1.0 / 3.0) * std::log10(tolerance) / static_cast<double>(j2 - 1)) : 1.0;
+  double weight = 1.0;
+  for (std::size_t i = 0; i < j2; ++i, weight *= q) {
+    const double v = std::max(env[i], std::numeric_limits<double>::min()) * weight;
     if (v < best_value) {
       best_value = v;
       best = i;
