@@ -72,10 +72,10 @@ const std::vector<double>& left_split_matrix() {
 
 // The series of p restricted to [-1, 0] (left) or [0, 1] (right), in the half's own variable:
 // child_j = sum_{k >= j} L_jk a_k, with R_jk = (-1)^(j+k) L_jk for the right half.
-std::vector<double> half_series(std::span<const double> a, bool left, double budget) {
+void half_series_into(std::span<const double> a, bool left, double budget, std::vector<double>& child) {
   const auto& m = left_split_matrix();
   const std::size_t n = std::min<std::size_t>(a.size(), split_size);
-  std::vector<double> child(n, 0.0);
+  child.assign(n, 0.0);
   std::size_t column = 0;  // start of column k in m
   for (std::size_t k = 0; k < n; ++k) {
     const double ak = (!left && (k & 1)) ? -a[k] : a[k];
@@ -85,7 +85,43 @@ std::vector<double> half_series(std::span<const double> a, bool left, double bud
   if (!left)
     for (std::size_t j = 1; j < n; j += 2) child[j] = -child[j];
   drop_tail(child, budget);
+}
+
+// Coefficient vectors of finished cells, kept per thread for the next cells (the searches run
+// millions of cells in a sweep; an allocation each would cost as much as the arithmetic).
+std::vector<std::vector<double>>& spare_vectors() {
+  thread_local std::vector<std::vector<double>> spare;
+  return spare;
+}
+std::vector<double> recycled_vector() {
+  auto& spare = spare_vectors();
+  if (spare.empty()) return {};
+  std::vector<double> v = std::move(spare.back());
+  spare.pop_back();
+  return v;
+}
+void recycle(std::vector<double>&& v) {
+  auto& spare = spare_vectors();
+  if (spare.size() < 256) spare.push_back(std::move(v));
+}
+
+std::vector<double> half_series(std::span<const double> a, bool left, double budget) {
+  std::vector<double> child = recycled_vector();
+  half_series_into(a, left, budget, child);
   return child;
+}
+
+// p' of a series into `out` (no allocation once `out` has grown).
+void derivative_into(std::span<const double> c, std::vector<double>& out) {
+  const std::size_t n = c.size();
+  if (n <= 1) {
+    out.assign(1, 0.0);
+    return;
+  }
+  out.assign(n + 1, 0.0);
+  for (std::size_t k = n - 1; k >= 1; --k) out[k - 1] = out[k + 1] + 2.0 * static_cast<double>(k) * c[k];
+  out[0] *= 0.5;
+  out.resize(n - 1);
 }
 
 struct Cell {
@@ -381,6 +417,10 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
     Cell cell = std::move(stack.back());
     stack.pop_back();
     ++cells;
+    struct Recycle {
+      std::vector<double>& v;
+      ~Recycle() { recycle(std::move(v)); }
+    } recycle_after{cell.a};
     const std::vector<double>& a = cell.a;
     const double mid = 0.5 * (cell.lo + cell.hi), half = 0.5 * (cell.hi - cell.lo);
     double variation = 0.0, right = 0.0, left = 0.0;
@@ -394,7 +434,8 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
       take(mid, a[0]);  // p(mid) = a_0 - a_2 + a_4 - ..., within the variation of a_0 anyway
       continue;
     }
-    const std::vector<double> b = chebyshev_derivative(a);  // p' in the cell's variable
+    thread_local std::vector<double> b, b2;
+    derivative_into(a, b);  // p' in the cell's variable
     double b_rest = 0.0;
     for (std::size_t k = 1; k < b.size(); ++k) b_rest += std::abs(b[k]);
     if (std::abs(b[0]) > b_rest) {  // p monotone on the cell: its maximum is at an end
@@ -402,7 +443,7 @@ std::vector<SeriesPoint> chebyshev_maximum_candidates(std::span<const double> c,
       continue;
     }
     if (b.size() > 1) {
-      const std::vector<double> b2 = chebyshev_derivative(b);
+      derivative_into(b, b2);
       double b2_rest = 0.0;
       for (std::size_t k = 1; k < b2.size(); ++k) b2_rest += std::abs(b2[k]);
       if (std::abs(b2[0]) > b2_rest) {
