@@ -67,18 +67,20 @@ class ValveMotionType final : public NodeType {
     auto motion = std::make_shared<const CamValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
                                                       p.number("lash"), samples, evaluations);
     const std::vector<double>& knots = motion->knots();
-    // Lift, |velocity| and both acceleration extremes from one interpolation of the open period
-    // (each function smooth on each piece; |velocity| is the larger of its two signed extremes).
+    // |velocity| and both acceleration extremes from one interpolation of the open period (each
+    // function smooth on each piece; |velocity| is the larger of its two signed extremes). The
+    // valve's full lift is the cam's declared one through the rocker, less the lash (the CamLaw
+    // contract: max_lift() is the law's maximum, checked against dense sampling by the kit).
     numerics::SmoothPieces pieces(
         [&](double x, double* v, double*) {
           const LiftDerivatives d = motion->at(x);
-          v[0] = d.lift;
-          v[1] = d.velocity;
-          v[2] = d.acceleration;
+          v[0] = d.velocity;
+          v[1] = d.acceleration;
         },
-        3, knots, samples);
-    const numerics::Extremum lift = pieces.maximum(0), acc_max = pieces.maximum(2), acc_min = pieces.minimum(2);
-    const numerics::Extremum v_max = pieces.maximum(1), v_min = pieces.minimum(1);
+        2, knots, samples);
+    const numerics::Extremum lift{0.0, motion->rocker_ratio() * motion->cam().max_lift() - motion->lash()};
+    const numerics::Extremum acc_max = pieces.maximum(1), acc_min = pieces.minimum(1);
+    const numerics::Extremum v_max = pieces.maximum(0), v_min = pieces.minimum(0);
     const numerics::Extremum velocity = -v_min.value > v_max.value ? numerics::Extremum{v_min.x, -v_min.value} : v_max;
     evaluations += pieces.work().evaluations;
     const double w = camshaft_speed;
