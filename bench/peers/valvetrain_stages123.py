@@ -63,6 +63,7 @@ import math
 import os
 import re
 import subprocess
+import shutil
 import tempfile
 import time
 from fractions import Fraction
@@ -554,8 +555,10 @@ def main():
 
     # --- Timing, in rounds over the sides (a burst of load elsewhere spoils no single side); the
     # fastest run of each side counts.
-    fd, csv_path = tempfile.mkstemp(prefix="mechgraph_stages123_", suffix=".csv")
-    os.close(fd)
+    # A fresh folder of our own: mechgraph writes the table there itself (it refuses to replace a
+    # file it did not write, such as an empty one made in advance).
+    work_dir = tempfile.mkdtemp(prefix="mechgraph_stages123_")
+    csv_path = os.path.join(work_dir, "sweep.csv")
     cases = latin_hypercube(args.cases, 1)
     study(cases[:5])           # warm-up
     study_batched(cases[:5])
@@ -573,9 +576,7 @@ def main():
             best["batched"] = min(best["batched"], time.perf_counter() - t0)
         m_cases, m_results, m_failed = read_sweep_csv(csv_path)
     finally:
-        for p in (csv_path, csv_path + ".json"):
-            if os.path.exists(p):
-                os.remove(p)
+        shutil.rmtree(work_dir, ignore_errors=True)
 
     # --- Accuracy over the whole sweep: numpy on mechgraph's own cases.
     n_results, n_flags = study(m_cases)
