@@ -111,6 +111,14 @@ void SmoothPieces::resolve(double a, double b, int n, int depth) {
       }
       piece.n = n;
       piece.resolved.assign(done.begin(), done.end());
+      piece.top.assign(count_, 0);
+      piece.bottom.assign(count_, 0);
+      for (std::size_t f = 0; f < count_; ++f)
+        for (int i = 1; i <= n; ++i) {
+          const double v = values[static_cast<std::size_t>(i) * count_ + f];
+          if (v > values[static_cast<std::size_t>(piece.top[f]) * count_ + f]) piece.top[f] = i;
+          if (v < values[static_cast<std::size_t>(piece.bottom[f]) * count_ + f]) piece.bottom[f] = i;
+        }
       work_.unresolved += resolved ? 0 : 1;
       work_.pieces += 1;
       work_.most_points = std::max(work_.most_points, n + 1);
@@ -139,12 +147,14 @@ Extremum SmoothPieces::extreme(std::size_t j, double sign) {
   // anything better can be.
   Extremum best{pieces_.front().a, -std::numeric_limits<double>::infinity()};
   double scale = 0.0;
-  for (const Piece& piece : pieces_)
-    for (int i = 0; i <= piece.n; ++i) {
-      const double v = sign * piece.values[static_cast<std::size_t>(i) * count_ + j];
-      scale = std::max(scale, std::abs(v));
-      if (v > best.value) best = {0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * chebyshev_point(i, piece.n), v};
-    }
+  auto best_index = [&](const Piece& piece) { return sign > 0.0 ? piece.top[j] : piece.bottom[j]; };
+  for (const Piece& piece : pieces_) {
+    scale = std::max({scale, std::abs(piece.values[static_cast<std::size_t>(piece.top[j]) * count_ + j]),
+                      std::abs(piece.values[static_cast<std::size_t>(piece.bottom[j]) * count_ + j])});
+    const int i = best_index(piece);
+    const double v = sign * piece.values[static_cast<std::size_t>(i) * count_ + j];
+    if (v > best.value) best = {0.5 * (piece.a + piece.b) + 0.5 * (piece.b - piece.a) * chebyshev_point(i, piece.n), v};
+  }
   struct Candidate {
     double x, interpolated;
   };
@@ -155,9 +165,7 @@ Extremum SmoothPieces::extreme(std::size_t j, double sign) {
   // the candidates still come from the branch and bound.)
   for (const Piece& piece : pieces_) {
     if (!piece.resolved[j] || piece.coefficients[j].size() <= 2) continue;
-    int top_i = 0;
-    for (int i = 1; i <= piece.n; ++i)
-      if (sign * piece.values[static_cast<std::size_t>(i) * count_ + j] > sign * piece.values[static_cast<std::size_t>(top_i) * count_ + j]) top_i = i;
+    const int top_i = best_index(piece);
     if (sign * piece.values[static_cast<std::size_t>(top_i) * count_ + j] < bound - 1e-3 * scale) continue;
     const std::vector<double>& c = piece.coefficients[j];
     const std::vector<double> d = chebyshev_derivative(c), d2 = chebyshev_derivative(d);
@@ -219,7 +227,8 @@ Extremum SmoothPieces::minimum(std::size_t j) { return extreme(j, -1.0); }
 double SmoothPieces::scale(std::size_t j) const {
   double m = 0.0;
   for (const Piece& piece : pieces_)
-    for (int i = 0; i <= piece.n; ++i) m = std::max(m, std::abs(piece.values[static_cast<std::size_t>(i) * count_ + j]));
+    m = std::max({m, std::abs(piece.values[static_cast<std::size_t>(piece.top[j]) * count_ + j]),
+                  std::abs(piece.values[static_cast<std::size_t>(piece.bottom[j]) * count_ + j])});
   return m;
 }
 

@@ -68,6 +68,7 @@ class SmoothPieces {
     std::vector<std::vector<double>> coefficients;  // per function, cut at its plateau
     std::vector<double> tail;                       // per function: sum |c_k| of the cut tail
     std::vector<char> resolved;                     // per function: reached rounding level
+    std::vector<int> top, bottom;                   // per function: its largest and smallest sample
   };
   void resolve(double a, double b, int n, int depth);
   Extremum extreme(std::size_t j, double sign);
