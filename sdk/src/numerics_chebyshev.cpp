@@ -292,7 +292,7 @@ std::vector<SeriesZero> chebyshev_zeros(std::span<const double> c, double floor,
                                         const std::function<bool(double, double, std::span<const double>)>& skip) {
   std::vector<SeriesZero> zeros;
   if (c.empty()) return zeros;
-  const double budget = 1e-3 * floor;  // what re-expanded halves may drop
+  const double budget = 0.1 * floor;  // what re-expanded halves may drop (it moves p by no more)
   auto sign = [&](double v) { return v > floor ? 1 : v < -floor ? -1 : 0; };
   std::vector<Cell> stack;
   stack.push_back({-1.0, 1.0, std::vector<double>(c.begin(), c.end()), 0});
