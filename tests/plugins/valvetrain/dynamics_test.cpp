@@ -38,14 +38,10 @@ double simulated_residual(double r, const std::string& integrator) {
   p.link_stiffness = {0.2 * omega * omega};
   p.link_damping = {0.0};
   p.seat = false;  // the drive alone
-  const ChainModel model(p, [&](double t, double& y, double& dy) {
-    if (t >= T) {
-      y = h;
-      dy = 0;
-      return;
-    }
-    y = h * (t / T - std::sin(2 * pi * t / T) / (2 * pi));
-    dy = h / T * (1 - std::cos(2 * pi * t / T));
+  const ChainModel model(p, [&](double t) {
+    if (t >= T) return DriveValue{h, 0.0, 0.0};
+    return DriveValue{h * (t / T - std::sin(2 * pi * t / T) / (2 * pi)), h / T * (1 - std::cos(2 * pi * t / T)),
+                      2 * pi * h / (T * T) * std::sin(2 * pi * t / T)};
   });
   SimulationOptions o;
   o.integrator = integrator;
