@@ -5,6 +5,7 @@ namespace mechgraph::valvetrain {
 
 ChainModel::ChainModel(ChainParams p, Excitation y) : p_(std::move(p)), y_(std::move(y)) {
   positions_ = p_.mass.size() + static_cast<std::size_t>(p_.coils);
+  list_roots();
 }
 
 double ChainModel::cam_force(const DriveValue& e, const ChainState& s) const {
@@ -105,28 +106,26 @@ double ChainModel::spring_force_rate(const Snapshot& x) const {
   return (p_.coils + 1) * p_.spring_rate * (x.rate[v] - x.rate[z]) + p_.coil_damping * (x.rate[P + v] - x.rate[P + z]);
 }
 
-std::vector<RootKind> ChainModel::root_kinds(const Mode& m) const {
-  std::vector<RootKind> k;
-  if (p_.seat) k.push_back(m.seated ? RootKind::lift_off : RootKind::landing);
-  if (p_.contact_loss && !(m.seated && rigid_when_seated())) {
-    if (m.contact) {
-      k.push_back(RootKind::contact_loss);
-    } else {
-      k.push_back(RootKind::contact_by_position);
-      k.push_back(RootKind::contact_by_force);
+// The event functions of each mode, listed once (they are asked for at every step).
+void ChainModel::list_roots() {
+  for (int i = 0; i < 4; ++i) {
+    const Mode m{(i & 1) != 0, (i & 2) != 0};
+    std::vector<RootKind>& k = kinds_[i];
+    if (p_.seat) k.push_back(m.seated ? RootKind::lift_off : RootKind::landing);
+    if (p_.contact_loss && !(m.seated && rigid_when_seated())) {
+      if (m.contact) {
+        k.push_back(RootKind::contact_loss);
+      } else {
+        k.push_back(RootKind::contact_by_position);
+        k.push_back(RootKind::contact_by_force);
+      }
     }
+    for (RootKind r : k) directions_[i].push_back(r == RootKind::landing || r == RootKind::contact_loss ? -1 : +1);
   }
-  return k;
-}
-
-std::vector<int> ChainModel::root_directions(const Mode& m) const {
-  std::vector<int> d;
-  for (RootKind k : root_kinds(m)) d.push_back(k == RootKind::landing || k == RootKind::contact_loss ? -1 : +1);
-  return d;
 }
 
 void ChainModel::roots(const Snapshot& x, double* g, double* dg) const {
-  const auto kinds = root_kinds(x.mode);
+  const std::vector<RootKind>& kinds = root_kinds(x.mode);
   const std::size_t v = valve(), P = positions_;
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     switch (kinds[i]) {

@@ -106,9 +106,9 @@ class ChainModel {
   double pushing_force_rate(const Snapshot& x) const;
   double force_on_valve_rate(const Snapshot& x) const;
   double spring_force_rate(const Snapshot& x) const;
-  std::vector<RootKind> root_kinds(const Mode& m) const;
+  const std::vector<RootKind>& root_kinds(const Mode& m) const { return kinds_[index(m)]; }
   /// +1: the event is the function's rise through 0, -1: its fall.
-  std::vector<int> root_directions(const Mode& m) const;
+  const std::vector<int>& root_directions(const Mode& m) const { return directions_[index(m)]; }
   /// The event functions of the snapshot's mode, and their rates when `dg` is not null.
   void roots(const Snapshot& x, double* g, double* dg) const;
   /// d(rhs)/d(state), row-major (the model is linear in the state within a mode).
@@ -122,9 +122,13 @@ class ChainModel {
               std::vector<double>& f) const;
   bool pushes(const DriveValue& e, const ChainState& s) const;
   void rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const;
+  void list_roots();
+  static int index(const Mode& m) { return (m.seated ? 1 : 0) + (m.contact ? 2 : 0); }
   ChainParams p_;
   Excitation y_;
   std::size_t positions_;
+  std::vector<RootKind> kinds_[4];  // per mode (index())
+  std::vector<int> directions_[4];
 };
 
 }  // namespace mechgraph::valvetrain

@@ -74,13 +74,14 @@ class CvodeBackend final : public OdeBackend {
 
   void state_at(double t, ChainState& s) override {
     // Inside the last step from the Nordsieck history; at the step's end CVODE's own solution.
-    if (t == end_) {
-      s = state(y_);
-      return;
+    N_Vector from = y_;
+    if (t != end_) {
+      error_.clear();
+      check(CVodeGetDky(memory_, t, 0, dky_), "CVodeGetDky");
+      from = dky_;
     }
-    error_.clear();
-    check(CVodeGetDky(memory_, t, 0, dky_), "CVodeGetDky");
-    s = state(dky_);
+    const sunrealtype* data = N_VGetArrayPointer(from);
+    s.assign(data, data + size_);
   }
 
   void add_work(std::map<std::string, double>& work) const override {

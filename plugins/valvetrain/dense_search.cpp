@@ -15,22 +15,23 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 
 DenseSearch::DenseSearch(double rtol) : relative_width_(std::clamp(std::sqrt(rtol), 1e-7, 1e-2)) {}
 
-std::vector<Sample> DenseSearch::pieces(const Sample& a, const Sample& b, const Probe& q, SearchWork& work) const {
+Pieces DenseSearch::pieces(const Sample& a, const Sample& b, const Probe& q, SearchWork& work) const {
   const double h = b.t - a.t;
-  if (!(h > 0.0) || a.rate * b.rate < 0.0) return {a, b};  // one turn at most (signs at the ends differ)
+  if (!(h > 0.0) || a.rate * b.rate < 0.0) return Pieces{{a, b, b}, 2};
+  const Pieces whole{{a, b, b}, 2};  // one turn at most (signs at the ends differ)
   // The cubic Hermite interpolant on s = (t - a) / h: p'(s) = A s^2 + B s + C.
   const double ma = h * a.rate, mb = h * b.rate, d = b.value - a.value;
   const double A = 3.0 * (ma + mb - 2.0 * d), B = 2.0 * (3.0 * d - 2.0 * ma - mb), C = ma;
-  if (A == 0.0) return {a, b};
+  if (A == 0.0) return whole;
   const double vertex = -B / (2.0 * A);
-  if (!(vertex > 0.0 && vertex < 1.0)) return {a, b};
+  if (!(vertex > 0.0 && vertex < 1.0)) return whole;
   const double least_rate = C - B * B / (4.0 * A);  // p' at its vertex
   const bool turns_twice = (ma >= 0.0 && mb >= 0.0 && least_rate < 0.0) || (ma <= 0.0 && mb <= 0.0 && least_rate > 0.0);
-  if (!turns_twice) return {a, b};
+  if (!turns_twice) return whole;
   const double t = a.t + vertex * h;
-  if (!(t > a.t && t < b.t)) return {a, b};
+  if (!(t > a.t && t < b.t)) return whole;
   ++work.evaluations;
-  return {a, q(t), b};
+  return Pieces{{a, q(t), b}, 3};
 }
 
 double DenseSearch::tangent_bound(const Sample& a, const Sample& b) {
@@ -93,9 +94,9 @@ std::optional<Sample> DenseSearch::interior_min(const Sample& a, const Sample& b
 }
 
 std::optional<double> DenseSearch::first_fall(const Sample& a, const Sample& b, const Probe& q, SearchWork& work) const {
-  const std::vector<Sample> p = pieces(a, b, q, work);
-  for (std::size_t i = 0; i + 1 < p.size(); ++i)
-    if (const auto t = fall_in_piece(p[i], p[i + 1], q, work)) return t;
+  const Pieces p = pieces(a, b, q, work);
+  for (std::size_t i = 0; i + 1 < p.size; ++i)
+    if (const auto t = fall_in_piece(p.at[i], p.at[i + 1], q, work)) return t;
   return std::nullopt;
 }
 

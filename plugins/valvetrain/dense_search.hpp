@@ -15,9 +15,9 @@
 // A crossing is a fall of q from above zero to zero or below (a rise is the fall of -q); a start
 // at zero counts as above when q' > 0 there, so a hop that leaves zero and comes back inside one
 // step is a crossing too.
-#include <functional>
+#include <array>
 #include <optional>
-#include <vector>
+#include <type_traits>
 
 namespace mechgraph::valvetrain {
 
@@ -27,8 +27,24 @@ struct Sample {
   double rate = 0.0;  // dq/dt
 };
 
-/// q and q' at a time inside the step (from the dense output).
-using Probe = std::function<Sample(double t)>;
+/// q and q' at a time inside the step (from the dense output): a reference to a callable
+/// Sample(double t) that outlives it (not owned, nothing allocated: probes are made every step).
+class Probe {
+ public:
+  template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, Probe>>>
+  Probe(const F& f) : object_(&f), call_([](const void* o, double t) { return (*static_cast<const F*>(o))(t); }) {}
+  Sample operator()(double t) const { return call_(object_, t); }
+
+ private:
+  const void* object_;
+  Sample (*call_)(const void*, double);
+};
+
+/// A step cut where q' may change sign: 2 or 3 samples in time order.
+struct Pieces {
+  std::array<Sample, 3> at;
+  std::size_t size = 2;
+};
 
 struct SearchWork {
   long evaluations = 0;  // probes called
@@ -42,7 +58,7 @@ class DenseSearch {
 
   /// [a, b] as pieces on each of which q' changes sign at most once: {a, b}, or {a, m, b} with q
   /// sampled at m between the Hermite interpolant's two turns.
-  std::vector<Sample> pieces(const Sample& a, const Sample& b, const Probe& q, SearchWork& work) const;
+  Pieces pieces(const Sample& a, const Sample& b, const Probe& q, SearchWork& work) const;
 
   /// On a piece whose q' falls from + to -: the interior maximum, refined when the tangent bound
   /// exceeds `beat` (otherwise it cannot beat it, and nullopt).

@@ -17,10 +17,10 @@ void ExtremumTracker::take(const Sample& s) {
 void ExtremumTracker::extend(const Sample& end, const Probe& q, SearchWork& work) {
   if (!open_) begin(end);
   if (!(end.t > last_.t)) return;
-  const std::vector<Sample> pieces = search_.pieces(last_, end, q, work);
-  for (std::size_t i = 0; i + 1 < pieces.size(); ++i) {
-    const Sample& a = pieces[i];
-    const Sample& b = pieces[i + 1];
+  const Pieces pieces = search_.pieces(last_, end, q, work);
+  for (std::size_t i = 0; i + 1 < pieces.size; ++i) {
+    const Sample& a = pieces.at[i];
+    const Sample& b = pieces.at[i + 1];
     take(b);
     if (monitor_.greatest)
       if (const auto top = search_.interior_max(a, b, current_.greatest.value, q, work)) take(*top);

@@ -187,13 +187,27 @@ class Driver {
     if (rigid_seated()) s = rest_;
     else backend_->state_at(t, s);
   }
+  // The snapshot at t; without `full_` only its state (enough for an event function of the state
+  // alone, when no monitor looks): the drive and the rates are not computed.
   void snapshot_at(double t, Snapshot& x) {
     state_at(t, scratch_state_);
-    model_.snapshot(t, scratch_state_, current_.mode, x);
+    if (full_) {
+      model_.snapshot(t, scratch_state_, current_.mode, x);
+      return;
+    }
+    x.t = t;
+    x.mode = current_.mode;
+    x.state = scratch_state_;
+  }
+  bool roots_need_snapshot(const Mode& m) const {
+    for (RootKind k : model_.root_kinds(m))
+      if (k != RootKind::landing) return true;
+    return false;
   }
 
   void set_current(double t, const ChainState& s, const Mode& m) {
     model_.snapshot(t, s, m, current_);
+    current_full_ = true;
     read_roots(current_, g_, dg_);
   }
   void read_roots(const Snapshot& x, std::vector<double>& g, std::vector<double>& dg) {
@@ -206,6 +220,8 @@ class Driver {
   // Looks at [ta, tb] of the current step: the first event in it, the outputs, the monitors. Returns
   // where the interval ended (the event's time, or tb).
   double interval(double ta, double tb) {
+    full_ = roots_need_snapshot(current_.mode);
+    for (const Monitor& m : monitors_) full_ = full_ || (m.from < tb && m.to > ta);
     Snapshot& end = end_;
     snapshot_at(tb, end);
     read_roots(end, g_end_, dg_end_);
@@ -213,18 +229,18 @@ class Driver {
     else if (!g_end_.empty()) ++root_work_.evaluations;
 
     // The earliest event: each event function's first crossing in its direction.
-    const std::vector<int> direction = model_.root_directions(current_.mode);
+    const std::vector<int>& direction = model_.root_directions(current_.mode);
     std::optional<double> event_time;
     int event = -1;
     for (std::size_t i = 0; i < g_.size(); ++i) {
       const double d = direction[i] < 0 ? 1.0 : -1.0;  // the crossing as a fall of d g
       const Sample a{ta, d * g_[i], d * dg_[i]}, b{tb, d * g_end_[i], d * dg_end_[i]};
-      const Probe probe = [&, i, d](double t) {
+      const auto event_function = [&, i, d](double t) {
         snapshot_at(t, probe_);
         read_roots(probe_, probe_g_, probe_dg_);
         return Sample{t, d * probe_g_[i], d * probe_dg_[i]};
       };
-      const auto found = search_.first_fall(a, b, probe, root_work_);
+      const auto found = search_.first_fall(a, b, Probe(event_function), root_work_);
       if (found && (!event_time || *found < *event_time)) {
         event_time = found;
         event = static_cast<int>(i);
@@ -243,13 +259,14 @@ class Driver {
 
     follow_monitors(ta, t_end, end);
 
+    current_full_ = full_;
     if (!event_time) {
-      current_ = end;
+      std::swap(current_, end_);
       std::swap(g_, g_end_);
       std::swap(dg_, dg_end_);
       return tb;
     }
-    current_ = end;  // the state just before the event
+    std::swap(current_, end_);  // the state just before the event
     fire(model_.root_kinds(current_.mode)[static_cast<std::size_t>(event)], t_end);
     return t_end;
   }
@@ -281,16 +298,20 @@ class Driver {
         continue;
       }
       if (!tracker.is_open()) {
+        if (from == ta && !current_full_) {
+          model_.snapshot(ta, current_.state, current_.mode, current_);
+          current_full_ = true;
+        }
         const Reading first = read(m, from == ta ? current_ : (snapshot_at(from, probe_), probe_));
         if (!first.defined) continue;
         tracker.begin({from, first.value, first.rate});
       }
-      const Probe probe = [&](double t) {
+      const auto quantity = [&](double t) {
         snapshot_at(t, probe_);
         const Reading r = read(m, probe_);
         return Sample{t, r.value, r.rate};
       };
-      tracker.extend({to, last.value, last.rate}, probe, monitor_work_);
+      tracker.extend({to, last.value, last.rate}, Probe(quantity), monitor_work_);
       if (to >= m.to) tracker.finish(result_.extremes[k]);
     }
   }
@@ -321,6 +342,7 @@ class Driver {
   ChainState rest_, scratch_state_;
   SearchWork root_work_, monitor_work_;
   long event_count_ = 0, seated_evaluations_ = 0;
+  bool full_ = true, current_full_ = true;  // snapshots with the drive and the rates (see snapshot_at)
 };
 
 }  // namespace
