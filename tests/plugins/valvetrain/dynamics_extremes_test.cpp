@@ -245,3 +245,53 @@ outputs: [ uni.floats, uni.min_contact_force, bi.min_contact_force ]
       CHECK(num(run_scene(scene_text, lower), "uni.floats") == 0);
     }
 }
+
+TEST_CASE("chain model: the rates of the forces and event functions are their time derivatives along the motion",
+          "[valvetrain][dynamics][extremes]") {
+  // Four masses, three coils, damped links and coils, unilateral contact: each rate against the
+  // central difference of its quantity at (t +- tau, s +- tau s'), exact to O(tau^2) (the model
+  // is affine in the state; the drive y = a sin(w t) curves).
+  ChainParams p;
+  p.mass = {0.02, 0.03, 0.01, 0.08};
+  p.link_stiffness = {5e7, 3e7, 4e7, 2e7};
+  p.link_damping = {30.0, 20.0, 25.0, 15.0};
+  p.preload = 300.0;
+  p.spring_rate = 4e4;
+  p.coils = 3;
+  p.coil_mass = 0.004;
+  p.coil_damping = 2.0;
+  p.contact_loss = true;
+  const double a = 0.01, w = 300.0;
+  const ChainModel model(p, [=](double t) {
+    return DriveValue{a * std::sin(w * t), a * w * std::cos(w * t), -a * w * w * std::sin(w * t)};
+  });
+  const double t = 0.0123, tau = 1e-7;
+  for (const Mode mode : {Mode{false, true}, Mode{false, false}, Mode{true, true}}) {
+    INFO("seated " << mode.seated << ", contact " << mode.contact);
+    // A state with the cam pushing (y > x_0); the valve at rest on its seat when seated.
+    ChainState s = {0.5 * a * std::sin(w * t), 1e-3, 2e-3, mode.seated ? 0.0 : 1.5e-3, 4e-4, 2e-4, 1e-4,
+                    0.3, -0.2, 0.1, mode.seated ? 0.0 : 0.4, 0.05, -0.02, 0.01};
+    Snapshot x, ahead, behind;
+    model.snapshot(t, s, mode, x);
+    ChainState plus = s, minus = s;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      plus[i] += tau * x.rate[i];
+      minus[i] -= tau * x.rate[i];
+    }
+    model.snapshot(t + tau, plus, mode, ahead);
+    model.snapshot(t - tau, minus, mode, behind);
+    auto difference = [&](auto quantity) { return (quantity(ahead) - quantity(behind)) / (2 * tau); };
+    auto check = [&](double rate, double reference) { CHECK_THAT(rate, WithinAbs(reference, 1e-6 * std::abs(reference) + 1e-6)); };
+    check(model.cam_force_rate(x), difference([&](const Snapshot& y) { return model.cam_force(y.drive, y.state); }));
+    check(model.pushing_force_rate(x), difference([&](const Snapshot& y) { return model.pushing_force(y.drive, y.state); }));
+    check(model.force_on_valve_rate(x), difference([&](const Snapshot& y) { return model.force_on_valve(y.drive, y.state); }));
+    check(model.spring_force_rate(x), difference([&](const Snapshot& y) { return model.spring_force(y.state); }));
+    const std::size_t n = model.root_kinds(mode).size();
+    REQUIRE(n >= 1);
+    std::vector<double> g(n), dg(n), g_ahead(n), g_behind(n);
+    model.roots(x, g.data(), dg.data());
+    model.roots(ahead, g_ahead.data(), nullptr);
+    model.roots(behind, g_behind.data(), nullptr);
+    for (std::size_t i = 0; i < n; ++i) check(dg[i], (g_ahead[i] - g_behind[i]) / (2 * tau));
+  }
+}
