@@ -1,6 +1,8 @@
 // The chain model's forces, rates and event functions (chain_model.hpp).
 #include "chain_model.hpp"
 
+#include <algorithm>
+
 namespace mechgraph::valvetrain {
 
 ChainModel::ChainModel(ChainParams p, Excitation y) : p_(std::move(p)), y_(std::move(y)) {
@@ -21,10 +23,9 @@ double ChainModel::pushing_force(const DriveValue& e, const ChainState& s) const
   return pushes(e, s) ? cam_force(e, s) : 0.0;
 }
 
-void ChainModel::forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates,
-                        std::vector<double>& f) const {
+void ChainModel::forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates, double* f) const {
   const std::size_t n = p_.mass.size(), P = positions_, v = valve();
-  f.assign(P, 0.0);
+  std::fill(f, f + P, 0.0);
   if (m.contact && pushing) f[0] += p_.link_stiffness[0] * (y - s[0]) + p_.link_damping[0] * (dy - s[P]);
   for (std::size_t j = 1; j < n; ++j) {
     const double link = p_.link_stiffness[j] * (s[j - 1] - s[j]) + p_.link_damping[j] * (s[P + j - 1] - s[P + j]);
@@ -51,7 +52,8 @@ void ChainModel::forces(const Mode& m, double y, double dy, const ChainState& s,
 
 double ChainModel::force_on_valve(const DriveValue& e, const ChainState& s) const {
   thread_local std::vector<double> f;  // scratch: called in the integrators' inner loops
-  forces(Mode{false, true}, e.y, e.rate, s, pushes(e, s), false, f);
+  f.resize(positions_);
+  forces(Mode{false, true}, e.y, e.rate, s, pushes(e, s), false, f.data());
   return f[valve()];
 }
 
@@ -65,13 +67,12 @@ void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& d
 
 void ChainModel::rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const {
   const std::size_t P = positions_, n = p_.mass.size();
-  thread_local std::vector<double> f;  // scratch: called in the integrators' inner loops
-  forces(m, e.y, e.rate, s, pushes(e, s), false, f);
   ds.resize(2 * P);
+  forces(m, e.y, e.rate, s, pushes(e, s), false, ds.data() + P);  // the forces, then / mass
   for (std::size_t i = 0; i < P; ++i) {
     const bool frozen = m.seated && i == valve();
     ds[i] = frozen ? 0.0 : s[P + i];
-    ds[P + i] = frozen ? 0.0 : f[i] / (i < n ? p_.mass[i] : p_.coil_mass);
+    ds[P + i] = frozen ? 0.0 : ds[P + i] / (i < n ? p_.mass[i] : p_.coil_mass);
   }
 }
 
@@ -96,7 +97,8 @@ double ChainModel::pushing_force_rate(const Snapshot& x) const {
 
 double ChainModel::force_on_valve_rate(const Snapshot& x) const {
   thread_local std::vector<double> f;
-  forces(Mode{false, true}, x.drive.rate, x.drive.acceleration, x.rate, pushes(x.drive, x.state), true, f);
+  f.resize(positions_);
+  forces(Mode{false, true}, x.drive.rate, x.drive.acceleration, x.rate, pushes(x.drive, x.state), true, f.data());
   return f[valve()];
 }
 
@@ -154,11 +156,11 @@ std::vector<double> ChainModel::jacobian(const Mode& m) const {
   // Within a mode the right-hand side is affine in the state: column i is its linear part applied
   // to e_i (the cam's force counted wherever the mode has contact).
   const std::size_t N = 2 * positions_, P = positions_, n = p_.mass.size();
-  std::vector<double> J(N * N, 0.0), f;
+  std::vector<double> J(N * N, 0.0), f(P);
   ChainState unit(N, 0.0);
   for (std::size_t i = 0; i < N; ++i) {
     unit[i] = 1.0;
-    forces(m, 0.0, 0.0, unit, true, true, f);
+    forces(m, 0.0, 0.0, unit, true, true, f.data());
     for (std::size_t r = 0; r < P; ++r) {
       const bool frozen = m.seated && r == valve();
       J[r * N + i] = frozen ? 0.0 : unit[P + r];

@@ -118,8 +118,8 @@ class ChainModel {
   // The forces on each position for state s and drive (y, y'); with `rates`, s is the state's rate,
   // (y, y') the drive's (y', y''), and the constant preload left out: the forces' time derivative.
   // `pushing` says whether the cam's force acts (contact, and with contact_loss: touching and pushing).
-  void forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates,
-              std::vector<double>& f) const;
+  // f: room for positions() values.
+  void forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates, double* f) const;
   bool pushes(const DriveValue& e, const ChainState& s) const;
   void rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const;
   void list_roots();
