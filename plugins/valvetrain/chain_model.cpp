@@ -65,6 +65,11 @@ double ChainModel::spring_force(const ChainState& s) const {
 
 void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const { rates(m, y_(t), s, ds); }
 
+void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& ds, DriveValue& drive) const {
+  drive = y_(t);
+  rates(m, drive, s, ds);
+}
+
 void ChainModel::rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const {
   const std::size_t P = positions_, n = p_.mass.size();
   ds.resize(2 * P);

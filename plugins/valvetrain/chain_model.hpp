@@ -98,6 +98,8 @@ class ChainModel {
   /// The spring's force on the valve: P0 + c_s x_v, or the first coil element's with spring_surge.
   double spring_force(const ChainState& s) const;
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const;
+  /// The same, and the drive's motion at t that it used.
+  void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds, DriveValue& drive) const;
   /// The state's rate and the drive's motion at (t, s) in mode m, into `out` (its buffers reused).
   void snapshot(double t, const ChainState& s, const Mode& m, Snapshot& out) const;
   /// Time derivatives of the forces above along the motion, from a snapshot (exact: the model is

@@ -47,6 +47,18 @@ class Dopri5Backend final : public OdeBackend {
 
   double step_begin() const override { return dense_.previous_time(); }
 
+  // Dormand-Prince's last stage is the right-hand side at the step's end (first same as last): the
+  // state, its rate and the drive there are still in the buffers of that call.
+  bool end_snapshot(Snapshot& x) const override {
+    if (!(last_t_ == dense_.current_time()) || steps_ == 0) return false;
+    x.t = last_t_;
+    x.mode = mode_;
+    x.state = scratch_;
+    x.rate = derivative_;
+    x.drive = last_drive_;
+    return true;
+  }
+
   void state_at(double t, ChainState& s) override {
     scaled_.resize(2 * positions_);
     dense_.calc_state(t, scaled_);
@@ -71,7 +83,8 @@ class Dopri5Backend final : public OdeBackend {
       ChainState& s = self->scratch_;
       s.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) s[i] = q[i] * self->unit(i);
-      self->model_.rhs(self->mode_, t, s, self->derivative_);
+      self->model_.rhs(self->mode_, t, s, self->derivative_, self->last_drive_);
+      self->last_t_ = t;
       dq.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) dq[i] = self->derivative_[i] / self->unit(i);
     }
@@ -91,6 +104,8 @@ class Dopri5Backend final : public OdeBackend {
   Scaled scaled_;
   odeint::dense_output_runge_kutta<odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Scaled>>> dense_;
   Mode mode_{};
+  DriveValue last_drive_;  // of the last right-hand side, at last_t_
+  double last_t_ = -1.0;
   double first_step_ = 0.0;
   long steps_ = 0, rhs_ = 0, initialisations_ = 0;
 };

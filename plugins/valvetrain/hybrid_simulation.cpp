@@ -221,9 +221,9 @@ class Driver {
   // where the interval ended (the event's time, or tb).
   double interval(double ta, double tb) {
     full_ = roots_need_snapshot(current_.mode);
-    for (const Monitor& m : monitors_) full_ = full_ || (m.from < tb && m.to > ta);
+    for (const Monitor& m : monitors_) full_ = full_ || ((m.least || m.greatest) && m.from < tb && m.to > ta);
     Snapshot& end = end_;
-    snapshot_at(tb, end);
+    if (!(full_ && !rigid_seated() && backend_->end_snapshot(end) && end.t == tb)) snapshot_at(tb, end);
     read_roots(end, g_end_, dg_end_);
     if (rigid_seated()) ++seated_evaluations_;
     else if (!g_end_.empty()) ++root_work_.evaluations;
@@ -286,6 +286,7 @@ class Driver {
   void follow_monitors(double ta, double tb, const Snapshot& end) {
     for (std::size_t k = 0; k < monitors_.size(); ++k) {
       const Monitor& m = monitors_[k];
+      if (!m.least && !m.greatest) continue;  // nothing asked of it
       ExtremumTracker& tracker = trackers_[k];
       const double from = std::max(ta, m.from), to = std::min(tb, m.to);
       if (!(to > from)) {

@@ -24,6 +24,9 @@ class OdeBackend {
   virtual double step_begin() const = 0;
   /// The state at t in [step_begin(), end of the last step], from the dense output.
   virtual void state_at(double t, ChainState& s) = 0;
+  /// The snapshot at the end of the last step when the integrator has it already (an explicit
+  /// method's last stage there), else false: the driver then makes its own.
+  virtual bool end_snapshot(Snapshot&) const { return false; }
   /// Adds the work done so far to `work` (steps, rhs_evaluations, ...).
   virtual void add_work(std::map<std::string, double>& work) const = 0;
 };
