@@ -21,9 +21,9 @@
 //   cam contact   bilateral unless contact_loss: then contact is lost when F_c falls to 0 and
 //                 regained when the cam catches up (y - x_0 crosses 0 upward, or F_c turns
 //                 positive while y > x_0).
+// hybrid_simulation.hpp integrates it; the event functions and the forces come with their exact
+// time derivatives, so extremes and crossings can be refined inside a step.
 #include <functional>
-#include <map>
-#include <string>
 #include <vector>
 
 namespace mechgraph::valvetrain {
@@ -45,8 +45,15 @@ struct ChainParams {
   int max_bounces = 100;               // per landing: then the valve is seated
 };
 
-/// The drive's displacement y(t) and velocity y'(t), smooth between the knots given to simulate().
-using Excitation = std::function<void(double t, double& y, double& dy)>;
+/// The drive's displacement y, velocity y' and acceleration y'' at one time.
+struct DriveValue {
+  double y = 0.0;             // m
+  double rate = 0.0;          // m/s
+  double acceleration = 0.0;  // m/s^2
+};
+
+/// The drive's motion y(t), smooth between the knots given to simulate().
+using Excitation = std::function<DriveValue(double t)>;
 
 /// The discrete state: is the valve on its seat, is the cam touching the first mass.
 struct Mode {
@@ -60,6 +67,16 @@ enum class RootKind { lift_off, landing, contact_loss, contact_by_position, cont
 /// Positions then velocities: x_0..x_{n-1}, z_1..z_p, x_0'..., z_p'.
 using ChainState = std::vector<double>;
 
+/// The state at one time with what the event functions and watched quantities are made of: its
+/// rate of change in the mode, and the drive's motion.
+struct Snapshot {
+  double t = 0.0;
+  Mode mode;
+  ChainState state;
+  ChainState rate;  // d(state)/dt in `mode`
+  DriveValue drive;
+};
+
 class ChainModel {
  public:
   ChainModel(ChainParams p, Excitation y);
@@ -69,55 +86,51 @@ class ChainModel {
   /// True when nothing moves while the valve is seated (one mass, massless spring).
   bool rigid_when_seated() const { return p_.mass.size() == 1 && p_.coils == 0; }
 
-  double cam_force(double t, const ChainState& s) const;
+  DriveValue excitation(double t) const { return y_(t); }
+  double cam_force(double t, const ChainState& s) const { return cam_force(y_(t), s); }
+  double cam_force(const DriveValue& e, const ChainState& s) const;
   /// The cam force as it acts: cam_force, or with contact_loss only while the cam touches and pushes.
-  double pushing_force(double t, const ChainState& s) const;
+  double pushing_force(double t, const ChainState& s) const { return pushing_force(y_(t), s); }
+  double pushing_force(const DriveValue& e, const ChainState& s) const;
   /// Net force on the valve from the chain and the spring (without the seat's reaction).
-  double force_on_valve(double t, const ChainState& s) const;
+  double force_on_valve(double t, const ChainState& s) const { return force_on_valve(y_(t), s); }
+  double force_on_valve(const DriveValue& e, const ChainState& s) const;
+  /// The spring's force on the valve: P0 + c_s x_v, or the first coil element's with spring_surge.
+  double spring_force(const ChainState& s) const;
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const;
-  std::vector<RootKind> root_kinds(const Mode& m) const;
-  std::vector<int> root_directions(const Mode& m) const;
-  void roots(const Mode& m, double t, const ChainState& s, double* g) const;
+  /// The same, and the drive's motion at t that it used.
+  void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds, DriveValue& drive) const;
+  /// The state's rate and the drive's motion at (t, s) in mode m, into `out` (its buffers reused).
+  void snapshot(double t, const ChainState& s, const Mode& m, Snapshot& out) const;
+  /// Time derivatives of the forces above along the motion, from a snapshot (exact: the model is
+  /// affine in the state and the drive within a mode).
+  double cam_force_rate(const Snapshot& x) const;
+  double pushing_force_rate(const Snapshot& x) const;
+  double force_on_valve_rate(const Snapshot& x) const;
+  double spring_force_rate(const Snapshot& x) const;
+  const std::vector<RootKind>& root_kinds(const Mode& m) const { return kinds_[index(m)]; }
+  /// +1: the event is the function's rise through 0, -1: its fall.
+  const std::vector<int>& root_directions(const Mode& m) const { return directions_[index(m)]; }
+  /// The event functions of the snapshot's mode, and their rates when `dg` is not null.
+  void roots(const Snapshot& x, double* g, double* dg) const;
   /// d(rhs)/d(state), row-major (the model is linear in the state within a mode).
   std::vector<double> jacobian(const Mode& m) const;
-  void excitation(double t, double& y, double& dy) const { y_(t, y, dy); }
 
  private:
-  void forces(const Mode& m, double t, const ChainState& s, std::vector<double>& f) const;
+  // The forces on each position for state s and drive (y, y'); with `rates`, s is the state's rate,
+  // (y, y') the drive's (y', y''), and the constant preload left out: the forces' time derivative.
+  // `pushing` says whether the cam's force acts (contact, and with contact_loss: touching and pushing).
+  // f: room for positions() values.
+  void forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates, double* f) const;
+  bool pushes(const DriveValue& e, const ChainState& s) const;
+  void rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const;
+  void list_roots();
+  static int index(const Mode& m) { return (m.seated ? 1 : 0) + (m.contact ? 2 : 0); }
   ChainParams p_;
   Excitation y_;
   std::size_t positions_;
+  std::vector<RootKind> kinds_[4];  // per mode (index())
+  std::vector<int> directions_[4];
 };
-
-struct SimulationOptions {
-  std::string integrator = "cvode";  // "cvode" (BDF, Newton, root finding) or "dopri5" (explicit RK 5(4))
-  double rtol = 1e-8;
-  double atol_x = 1e-10;             // m
-  double atol_v = 1e-8;              // m/s
-  double max_step = 0.0;             // s, 0: none; the integrators' largest step
-  double scan_step = 0.0;            // s: sampling of a seated valve's lift-off search (0: max_step)
-  long max_steps = 2000000;
-  long max_events = 100000;
-};
-
-struct EventRecord {
-  double t = 0.0;
-  std::string kind;    // lift_off, landing, bounce, contact_loss, contact_regain
-  double speed = 0.0;  // |x_v'| at a landing or bounce
-};
-
-struct SimulationResult {
-  std::vector<double> t;  // at the output times asked for
-  std::vector<ChainState> state;
-  std::vector<Mode> mode;
-  std::vector<EventRecord> events;
-  std::map<std::string, double> work;  // steps, rhs_evaluations, jacobian_evaluations, root_evaluations, rejected_steps, events
-};
-
-/// Integrates from t0 (at rest: valve seated, cam in contact, or valve free without a seat) to t1.
-/// `output_times` and `knots` are sorted, inside [t0, t1]. Throws std::runtime_error with the
-/// integrator's message when it fails, or when steps or events exceed their limits.
-SimulationResult simulate(const ChainModel& model, double t0, double t1, const std::vector<double>& output_times,
-                          const std::vector<double>& knots, const SimulationOptions& options);
 
 }  // namespace mechgraph::valvetrain

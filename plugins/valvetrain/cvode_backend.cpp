@@ -1,6 +1,7 @@
 // The CVODE backend: BDF (orders 1-5) with Newton iterations on the model's exact (constant per
-// mode) Jacobian, and CVODE's own root finding for the contact events. Each instance owns its SUNDIALS
-// context, so simulations on several threads never share solver memory.
+// mode) Jacobian, one internal step at a time (CV_ONE_STEP); the state inside the last step comes
+// from the Nordsieck history (CVodeGetDky), where the driver looks for events and extremes. Each
+// instance owns its SUNDIALS context, so simulations on several threads never share solver memory.
 #include "ode_backend.hpp"
 
 #include <cvode/cvode.h>
@@ -20,13 +21,14 @@ class CvodeBackend final : public OdeBackend {
       : model_(model), options_(options), size_(static_cast<sunindextype>(2 * model.positions())) {
     if (SUNContext_Create(nullptr, &context_) != 0) throw std::runtime_error("CVODE: cannot create a SUNDIALS context");
     y_ = N_VNew_Serial(size_, context_);
+    dky_ = N_VNew_Serial(size_, context_);
     atol_ = N_VNew_Serial(size_, context_);
     const sunindextype P = size_ / 2;
     for (sunindextype i = 0; i < size_; ++i) NV_Ith_S(atol_, i) = i < P ? options.atol_x : options.atol_v;
     matrix_ = SUNDenseMatrix(size_, size_, context_);
     solver_ = SUNLinSol_Dense(y_, matrix_, context_);
     memory_ = CVodeCreate(CV_BDF, context_);
-    if (!y_ || !atol_ || !matrix_ || !solver_ || !memory_) {
+    if (!y_ || !dky_ || !atol_ || !matrix_ || !solver_ || !memory_) {
       release();
       throw std::runtime_error("CVODE: out of memory");
     }
@@ -47,41 +49,39 @@ class CvodeBackend final : public OdeBackend {
       check(CVodeSetJacFn(memory_, &CvodeBackend::jacobian), "CVodeSetJacFn");
       check(CVodeSetMaxNumSteps(memory_, options_.max_steps), "CVodeSetMaxNumSteps");
       if (options_.max_step > 0.0) check(CVodeSetMaxStep(memory_, options_.max_step), "CVodeSetMaxStep");
-      check(CVodeSetNoInactiveRootWarn(memory_), "CVodeSetNoInactiveRootWarn");
       initialised_ = true;
     } else {
       check(CVodeReInit(memory_, t, y_), "CVodeReInit");
     }
     if (!(m == mode_) || jacobian_.empty()) jacobian_ = model_.jacobian(m);
     mode_ = m;
-    const int n = static_cast<int>(model_.root_kinds(m).size());
-    check(CVodeRootInit(memory_, n, n ? &CvodeBackend::roots : nullptr), "CVodeRootInit");
-    if (n) {
-      directions_ = model_.root_directions(m);
-      check(CVodeSetRootDirection(memory_, directions_.data()), "CVodeSetRootDirection");
-    }
+    begin_ = end_ = t;
   }
 
-  BackendStep advance(double target, double limit) override {
+  double step(double limit) override {
     error_.clear();
     check(CVodeSetStopTime(memory_, limit), "CVodeSetStopTime");
     advanced_ = true;
     sunrealtype t = 0.0;
-    const int flag = CVode(memory_, target, y_, &t, CV_NORMAL);
-    BackendStep step{t, state(y_), -1};
-    if (flag == CV_ROOT_RETURN) {
-      std::vector<int> found(model_.root_kinds(mode_).size(), 0);
-      check(CVodeGetRootInfo(memory_, found.data()), "CVodeGetRootInfo");
-      for (std::size_t i = 0; i < found.size(); ++i)
-        if (found[i] != 0) {
-          step.root = static_cast<int>(i);
-          break;
-        }
-      return step;
-    }
+    const int flag = CVode(memory_, limit, y_, &t, CV_ONE_STEP);
     if (flag < 0) check(flag, "CVode");
-    step.t = target;  // CV_SUCCESS and CV_TSTOP_RETURN end exactly there
-    return step;
+    begin_ = end_;
+    end_ = flag == CV_TSTOP_RETURN ? limit : t;  // a stop at the limit ends exactly there
+    return end_;
+  }
+
+  double step_begin() const override { return begin_; }
+
+  void state_at(double t, ChainState& s) override {
+    // Inside the last step from the Nordsieck history; at the step's end CVODE's own solution.
+    N_Vector from = y_;
+    if (t != end_) {
+      error_.clear();
+      check(CVodeGetDky(memory_, t, 0, dky_), "CVodeGetDky");
+      from = dky_;
+    }
+    const sunrealtype* data = N_VGetArrayPointer(from);
+    s.assign(data, data + size_);
   }
 
   void add_work(std::map<std::string, double>& work) const override {
@@ -89,7 +89,6 @@ class CvodeBackend final : public OdeBackend {
     for (const auto& [k, v] : totals_) work[k] += v;
     work["rhs_evaluations"] += static_cast<double>(rhs_count_);
     work["jacobian_evaluations"] += static_cast<double>(jacobian_count_);
-    work["root_evaluations"] += static_cast<double>(root_count_);
   }
 
  private:
@@ -117,12 +116,6 @@ class CvodeBackend final : public OdeBackend {
     for (std::size_t r = 0; r < n; ++r)
       for (std::size_t c = 0; c < n; ++c)
         SM_ELEMENT_D(J, static_cast<sunindextype>(r), static_cast<sunindextype>(c)) = self->jacobian_[r * n + c];
-    return 0;
-  }
-  static int roots(sunrealtype t, N_Vector y, sunrealtype* g, void* data) {
-    auto* self = static_cast<CvodeBackend*>(data);
-    ++self->root_count_;
-    self->model_.roots(self->mode_, t, self->view(y), g);
     return 0;
   }
   static void on_error(int, const char*, const char* function, char* message, void* data) {
@@ -155,6 +148,7 @@ class CvodeBackend final : public OdeBackend {
     if (solver_) SUNLinSolFree(solver_);
     if (matrix_) SUNMatDestroy(matrix_);
     if (atol_) N_VDestroy(atol_);
+    if (dky_) N_VDestroy(dky_);
     if (y_) N_VDestroy(y_);
     if (context_) SUNContext_Free(&context_);
   }
@@ -166,17 +160,18 @@ class CvodeBackend final : public OdeBackend {
   ChainState scratch_, derivative_;
   SUNContext context_ = nullptr;
   N_Vector y_ = nullptr;
+  N_Vector dky_ = nullptr;  // the state inside the last step
   N_Vector atol_ = nullptr;
   SUNMatrix matrix_ = nullptr;
   SUNLinearSolver solver_ = nullptr;
   void* memory_ = nullptr;
   bool initialised_ = false;
   Mode mode_{};
-  std::vector<int> directions_;
+  double begin_ = 0.0, end_ = 0.0;  // the last step
   std::string error_;
   std::map<std::string, double> totals_;
   bool advanced_ = false;
-  long rhs_count_ = 0, jacobian_count_ = 0, root_count_ = 0;
+  long rhs_count_ = 0, jacobian_count_ = 0;
 };
 
 }  // namespace

@@ -1,8 +1,10 @@
 // valvetrain.dynamics: the valve's motion with the drive's elasticity and the contacts as effects
-// (docs/methods/valvetrain.md, "dynamic simulation"; the model is in single_mass_model.hpp).
-// With elastic_drive off the node is a pass-through: the rigid drive's (kinematic) lift, nothing
+// (docs/methods/valvetrain.md, "dynamic simulation"; the model is in chain_model.hpp). With
+// elastic_drive off the node is a pass-through: the rigid drive's (kinematic) lift, nothing
 // integrated. Results are taken from the last of `revolutions` cam revolutions, so the start-up
-// transient has died out when the drive is damped.
+// transient has died out when the drive is damped. The curves are read at their points; the scalar
+// extremes (deviations, least contact force, greatest spring force, bounce height) are followed on
+// the integrator's dense output between them ("Extremes and events from the dense output").
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
@@ -22,7 +24,7 @@ class DynamicsType final : public NodeType {
  public:
   DynamicsType() {
     info_.type = "valvetrain.dynamics";
-    info_.version = 1;
+    info_.version = 2;
     info_.summary = "valve motion on an elastic drive (single mass), cam contact and seat as located events; rigid when "
                     "elastic_drive is off";
     info_.params = {
@@ -55,7 +57,7 @@ class DynamicsType final : public NodeType {
                           "5(4) with event location")
             .with_default("cvode")
             .as_knob(),
-        ParamSpec::integer("curve_points", "points of the curves over the last cam revolution (also where deviations are read)")
+        ParamSpec::integer("curve_points", "points of the curves over the last cam revolution (the scalar extremes are found between them)")
             .with_default(1441.0)
             .at_least(16)
             .at_most(1e7)
@@ -95,7 +97,7 @@ class DynamicsType final : public NodeType {
     info_.outputs = {
         PortSpec::table("curves", "over the last revolution's cam angle: lift x, quasi-static x_qs, kinematic lift, drive "
                                   "displacement y, velocity, contact force, spring force"),
-        PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the curve points", "mm"),
+        PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the last revolution (dense output)", "mm"),
         PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
         PortSpec::scalar("min_contact_force", dim::force,
                          "least cam force while the valve is off its seat (0 if contact is lost; negative: the bilateral "
@@ -105,8 +107,8 @@ class DynamicsType final : public NodeType {
         PortSpec::scalar("floats", dim::none, "1 if the valve lost cam contact in the last revolution, else 0"),
         PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
         PortSpec::scalar("bounce_height", dim::length, "highest lift after the first landing of the last revolution", "mm"),
-        PortSpec::scalar("target_deviation", dim::length, "max |x - target lift| over the curve points (with a target)", "mm"),
-        PortSpec::scalar("max_spring_force", dim::force, "greatest spring force on the valve over the curve points", "N"),
+        PortSpec::scalar("target_deviation", dim::length, "max |x - target lift| over the last revolution (with a target)", "mm"),
+        PortSpec::scalar("max_spring_force", dim::force, "greatest spring force on the valve over the last revolution", "N"),
         PortSpec::series("natural_frequencies", dim::frequency,
                          "of the drive (valve off its seat, cam in contact), lowest first; with spring_surge the coils' too",
                          "Hz"),
@@ -126,7 +128,7 @@ class DynamicsType final : public NodeType {
          {}, {"coils", "surge_damping_ratio"}},
     };
     info_.work_counters = {"steps", "rhs_evaluations", "jacobian_evaluations", "root_evaluations", "rejected_steps",
-                           "newton_iterations", "events"};
+                           "newton_iterations", "events", "monitor_evaluations", "refinements"};
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -169,7 +171,7 @@ class DynamicsType final : public NodeType {
     auto& spring = curves.channels[6].values;
 
     double min_contact = std::numeric_limits<double>::infinity();
-    double seating_velocity = 0.0, bounce_height = 0.0, max_dev = 0.0, residual = 0.0;
+    double seating_velocity = 0.0, bounce_height = 0.0, max_dev = 0.0, residual = 0.0, max_spring = 0.0;
     double floats = 0.0, bounces = 0.0;
 
     if (!elastic) {
@@ -210,18 +212,59 @@ class DynamicsType final : public NodeType {
       settings.seat_impact = ctx.effect("seat_impact");
       settings.restitution = p.number("restitution");
       settings.seating_speed = p.number("seating_speed");
-      const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi);
+      // The drive's stiffness in series, for the quasi-static lift
+      //   x_qs = max(0, (k_d y - P0) / (k_d + c_s)),  x_qs' = k_d y' / (k_d + c_s) where positive.
+      double compliance = 0.0;
+      for (double k : settings.multi_mass ? settings.stiffnesses : std::vector<double>{settings.stiffness}) compliance += 1.0 / k;
+      const double k_d = 1.0 / compliance;
+      const double last = (revolutions - 1) * period, nose = last + pi / w;
+
+      // What is followed on the dense output over the last revolution (hybrid_simulation.hpp).
+      enum Watched { deviation, closing_deviation, contact_force, spring_force, valve_lift, target_gap };
+      auto deviation_reading = [=](const ChainModel& model, const Snapshot& x) {
+        const std::size_t valve = model.valve(), P = model.positions();
+        const double y = x.drive.y, above = k_d * y - P0;
+        const double x_qs = above > 0.0 ? above / (k_d + c_s) : 0.0;
+        const double x_qs_rate = above > 0.0 ? k_d * x.drive.rate / (k_d + c_s) : 0.0;
+        const double d = x.state[valve] - x_qs, d_rate = x.state[P + valve] - x_qs_rate;
+        return Reading{std::abs(d), d < 0.0 ? -d_rate : d_rate};
+      };
+      std::vector<Monitor> watch(6);
+      watch[deviation] = {last, period * revolutions, false, true, deviation_reading};
+      watch[closing_deviation] = {nose, period * revolutions, false, true, deviation_reading};
+      // The cam's force while the valve is off its seat: none without contact.
+      watch[contact_force] = {last, period * revolutions, true, false, [](const ChainModel& model, const Snapshot& x) {
+                                if (x.mode.seated) return Reading{0.0, 0.0, false};
+                                if (!x.mode.contact) return Reading{0.0, 0.0};
+                                return Reading{model.pushing_force(x.drive, x.state), model.pushing_force_rate(x)};
+                              }};
+      watch[spring_force] = {last, period * revolutions, false, true, [](const ChainModel& model, const Snapshot& x) {
+                               return Reading{model.spring_force(x.state), model.spring_force_rate(x)};
+                             }};
+      watch[valve_lift] = {last, period * revolutions, false, settings.seat_impact, [](const ChainModel& model, const Snapshot& x) {
+                             return Reading{x.state[model.valve()], x.state[model.positions() + model.valve()]};
+                           }};
+      std::shared_ptr<const ValveMotion> target;
+      if (in.count("target")) {
+        target = in.handle<ValveMotion>("target");
+        const ValveMotion* law = target.get();
+        watch[target_gap] = {last, period * revolutions, false, true, [=](const ChainModel& model, const Snapshot& x) {
+                               const LiftDerivatives aim = law->at(-pi + w * (x.t - last));
+                               const double d = x.state[model.valve()] - aim.lift;
+                               const double rate = x.state[model.positions() + model.valve()] - w * aim.velocity;
+                               return Reading{std::abs(d), d < 0.0 ? -rate : rate};
+                             }};
+      } else {
+        watch.pop_back();
+      }
+
+      const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
       const SimulationResult& run = sim.run;
       if (run.state.size() != phi.size())
         throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
                                std::to_string(phi.size()) + " curve points");
       const ChainModel& model = sim.model;
       const std::size_t v = model.valve(), P = model.positions();
-      const double last = sim.last_start;
-      // The drive's stiffness in series, for the quasi-static lift.
-      double compliance = 0.0;
-      for (double k : model.params().link_stiffness) compliance += 1.0 / k;
-      const double k_d = 1.0 / compliance;
       std::vector<double> frequencies;
       for (double omega : natural_frequencies(model.params())) frequencies.push_back(omega / (2.0 * pi));
       Series modes;
@@ -258,25 +301,23 @@ class DynamicsType final : public NodeType {
         const double force = mode.seated && model.rigid_when_seated() ? std::max(0.0, model.pushing_force(run.t[j], s))
                              : !mode.contact                            ? 0.0
                                                                         : model.pushing_force(run.t[j], s);
-        // The spring's force on the valve: its line, or the first coil element's with spring_surge.
-        const double spring_force = model.params().coils == 0
-                                        ? P0 + c_s * x
-                                        : P0 + (model.params().coils + 1) * c_s * (x - s[model.params().mass.size()]) +
-                                              model.params().coil_damping * (s[P + v] - s[P + model.params().mass.size()]);
         lift.push_back(x);
         quasi_static.push_back(x_qs);
         kinematic.push_back(motion->at(phi[j]).lift);
         drive.push_back(y);
         velocity.push_back(s[P + v]);
         contact.push_back(force);
-        spring.push_back(spring_force);
+        spring.push_back(model.spring_force(s));
         if (tappet) tappet->push_back(s[0]);
-        const double dev = std::abs(x - x_qs);
-        max_dev = std::max(max_dev, dev);
-        if (phi[j] >= 0.0) residual = std::max(residual, dev);
-        if (x > 0.0) min_contact = std::min(min_contact, force);  // 0 while the valve flies off the cam
-        if (run.t[j] > first_landing) bounce_height = std::max(bounce_height, x);
       }
+      const auto& extremes = run.extremes;
+      max_dev = std::max(0.0, greatest_of(extremes[deviation]).value);
+      residual = std::max(0.0, greatest_of(extremes[closing_deviation]).value);
+      min_contact = least_of(extremes[contact_force]).value;  // +inf: never off the seat
+      max_spring = greatest_of(extremes[spring_force]).value;
+      // Bounces: the valve's highest lift after the first landing of the last revolution.
+      if (std::isfinite(first_landing)) bounce_height = std::max(0.0, greatest_of(extremes[valve_lift], first_landing).value);
+      if (target) out.set_scalar("target_deviation", greatest_of(extremes[target_gap]).value);
       out.set_scalar("max_deviation", max_dev);
       out.set_scalar("residual_amplitude", residual);
       if (settings.contact_loss) out.set_scalar("floats", floats);
@@ -285,14 +326,15 @@ class DynamicsType final : public NodeType {
         out.set_scalar("bounce_height", bounce_height);
       }
     }
-    if (in.count("target")) {
+    if (!elastic && in.count("target")) {
       const auto target = in.handle<ValveMotion>("target");
       double worst = 0.0;
       for (std::size_t j = 0; j < phi.size(); ++j) worst = std::max(worst, std::abs(lift[j] - target->at(phi[j]).lift));
       out.set_scalar("target_deviation", worst);
     }
-    if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat at the curve points
-    out.set_scalar("max_spring_force", *std::max_element(spring.begin(), spring.end()));
+    if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat
+    if (!elastic) max_spring = *std::max_element(spring.begin(), spring.end());
+    out.set_scalar("max_spring_force", max_spring);
     out.set_scalar("min_contact_force", min_contact);
     out.set_scalar("seating_velocity", seating_velocity);
     out.set("curves", Value::table(std::move(curves)));

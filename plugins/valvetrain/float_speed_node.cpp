@@ -1,15 +1,26 @@
 // valvetrain.float_speed: the lowest crank speed in a range at which the valve floats, i.e. loses
-// cam contact (docs/methods/valvetrain.md, "dynamic simulation"). Each trial speed runs the
-// single-mass simulation with unilateral contact (valve_simulation.hpp); the range is scanned
-// upward on `scan_points` speeds, and the first floating speed is bisected against the last
-// speed that held, to `speed_tolerance`. Float is "lost contact while off the seat during the last
-// of `revolutions` revolutions". A range in which the valve never floats is an error that says
-// so (and up to which speed it was checked).
+// cam contact (docs/methods/valvetrain.md, "Float speed"). Each trial speed n runs the single-mass
+// simulation with unilateral contact (valve_simulation.hpp) and reads its contact margin
+//   m(n) = least cam force k_d (y - x) + b_d (y' - x') while the valve is off its seat in the last
+//          of `revolutions` revolutions,
+// found on the integrator's dense output (a brief dip below zero between steps counts): the valve
+// floats at n when m(n) <= 0. The range is scanned on `scan_points` speeds; an interval between two
+// speeds that hold is split again while the margin comes within its local variation of zero
+// (min(m_a, m_b) <= the steepest slope of the interval and its neighbours times its width), so a
+// window of float narrower than the scan is not stepped over; the first speed that floats is
+// bisected against the last that held to `speed_tolerance`, the part below it searched first. A range in which the
+// valve never floats is an error that says so (and up to which speed it was checked).
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
+#include <iterator>
+#include <limits>
+#include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace mechgraph::valvetrain {
@@ -21,6 +32,7 @@ class FloatSpeedType final : public NodeType {
  public:
   FloatSpeedType() {
     info_.type = "valvetrain.float_speed";
+    info_.version = 2;
     info_.summary = "lowest crank speed in a range at which the valve loses cam contact (valve float)";
     info_.params = {
         ParamSpec::number("rpm_min", dim::angular_speed, "lowest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).with_example(3000 * rpm),
@@ -37,7 +49,7 @@ class FloatSpeedType final : public NodeType {
             .with_default(3.0)
             .at_least(1)
             .at_most(1000),
-        ParamSpec::integer("scan_points", "speeds tried across the range before bisecting")
+        ParamSpec::integer("scan_points", "speeds tried evenly across the range first (refined where the margin could reach 0)")
             .with_default(12.0)
             .at_least(2)
             .at_most(10000)
@@ -62,8 +74,10 @@ class FloatSpeedType final : public NodeType {
         PortSpec::scalar("held_speed", dim::angular_speed, "highest speed below it at which the valve held (bracket's lower end)",
                          "rpm"),
         PortSpec::scalar("simulations", dim::none, "simulations run"),
+        PortSpec::table("contact_margin", "over the crank speeds tried: the least cam force while the valve is off its seat "
+                                          "in the last revolution (<= 0: it floats)"),
     };
-    info_.work_counters = {"simulations", "steps", "rhs_evaluations"};
+    info_.work_counters = {"simulations", "steps", "rhs_evaluations", "refined_intervals"};
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -79,47 +93,99 @@ class FloatSpeedType final : public NodeType {
     drive.tolerance = p.number("tolerance");
     drive.integrator = p.text("integrator");
     drive.contact_loss = true;
-    long simulations = 0;
-    auto floats = [&](double crank_speed) {
+    const int revolutions = drive.revolutions;
+    long simulations = 0, refined = 0;
+    std::map<double, double> margin;  // crank speed -> contact margin m(n), N
+    auto margin_at = [&](double crank_speed) {
       const RespeededMotion at_speed(*motion, crank_speed / 2.0);
-      const ValveSimulation sim = simulate_valve(at_speed, *design, drive, {});
+      const double period = 4.0 * std::numbers::pi / crank_speed;
+      // The cam force, signed (negative while the cam is clear of the valve), off the seat.
+      const Monitor cam_force{(revolutions - 1) * period, revolutions * period, true, false,
+                              [](const ChainModel& model, const Snapshot& x) {
+                                if (x.mode.seated) return Reading{0.0, 0.0, false};
+                                return Reading{model.cam_force(x.drive, x.state), model.cam_force_rate(x)};
+                              }};
+      const ValveSimulation sim = simulate_valve(at_speed, *design, drive, {}, {cam_force});
       ++simulations;
       for (const auto& [counter, amount] : sim.run.work)
         if (counter == "steps" || counter == "rhs_evaluations") ctx.report_work(counter, amount);
-      for (const EventRecord& e : sim.run.events)
-        if (e.t >= sim.last_start && e.kind == "contact_loss") return true;
-      return false;
+      const double m = least_of(sim.run.extremes[0]).value;  // +inf: the valve never lifted
+      margin[crank_speed] = m;
+      return m;
     };
-    // Scan upward for the first speed that floats.
+    auto floats = [](double m) { return m <= 0.0; };
+
+    // Could the margin reach 0 between two speeds that hold? It is looked at again (the interval
+    // split) when it comes within its local variation of zero: min(m_a, m_b) <= s (b - a), s the
+    // steepest slope of the interval and the intervals next to it (margins below 0 counted as 0:
+    // how deep a float is says nothing here).
+    auto could_reach_zero = [&](double a, double b) {
+      const auto ia = margin.find(a), ib = margin.find(b);
+      if (!std::isfinite(ia->second) || !std::isfinite(ib->second)) return false;
+      auto clipped = [](double m) { return std::max(0.0, m); };
+      auto slope = [&](std::map<double, double>::const_iterator l, std::map<double, double>::const_iterator r) {
+        const double d = std::abs(clipped(r->second) - clipped(l->second)) / (r->first - l->first);
+        return std::isfinite(d) ? d : 0.0;
+      };
+      double steepest = slope(ia, ib);
+      if (ia != margin.begin()) steepest = std::max(steepest, slope(std::prev(ia), ia));
+      if (std::next(ib) != margin.end()) steepest = std::max(steepest, slope(ib, std::next(ib)));
+      return std::min(ia->second, ib->second) <= steepest * (b - a);
+    };
+    const double tol = p.number("speed_tolerance");
+    // The first float in [a, b] (a holds): a bracket (held, floating) no wider than tol.
+    std::function<std::optional<std::pair<double, double>>(double, double)> first_float =
+        [&](double a, double b) -> std::optional<std::pair<double, double>> {
+      const bool b_floats = floats(margin.at(b));
+      if (b - a <= tol) return b_floats ? std::optional(std::pair(a, b)) : std::nullopt;
+      if (!b_floats) {
+        if (!could_reach_zero(a, b)) return std::nullopt;
+        ++refined;
+      }
+      const double c = 0.5 * (a + b);
+      if (!(c > a && c < b)) return b_floats ? std::optional(std::pair(a, b)) : std::nullopt;  // adjacent doubles
+      margin_at(c);
+      if (auto below = first_float(a, c)) return below;
+      return first_float(c, b);
+    };
+
     const long n = p.integer("scan_points");
+    std::vector<double> scan;
+    for (long i = 0; i < n; ++i) scan.push_back(lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(n - 1));
+    scan.back() = hi;
     double held = lo, floating = 0.0;
     bool found = false;
-    for (long i = 0; i < n && !found; ++i) {
-      const double speed = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(n - 1);
-      if (floats(speed)) {
-        floating = speed;
+    if (floats(margin_at(lo))) {
+      ctx.log(LogLevel::warn, "the valve floats already at rpm_min: the float speed is at or below it");
+      found = true;
+      floating = lo;
+    }
+    // Upward, interval by interval: each scanned before the next speed is tried.
+    for (std::size_t i = 1; i < scan.size() && !found; ++i) {
+      margin_at(scan[i]);
+      if (const auto bracket = first_float(scan[i - 1], scan[i])) {
+        std::tie(held, floating) = *bracket;
         found = true;
-      } else {
-        held = speed;
       }
     }
     if (!found) {
       std::ostringstream msg;
       msg << "the valve does not float between rpm_min " << lo / rpm << " rpm and rpm_max " << hi / rpm << " rpm ("
-          << n << " speeds checked): raise rpm_max";
+          << simulations << " speeds checked): raise rpm_max";
       throw NodeError("rpm_max", msg.str());
     }
-    if (floating == lo) {
-      ctx.log(LogLevel::warn, "the valve floats already at rpm_min: the float speed is at or below it");
-      held = lo;
-    } else {
-      const double tol = p.number("speed_tolerance");
-      while (floating - held > tol) {
-        const double mid = 0.5 * (held + floating);
-        if (mid <= held || mid >= floating) break;  // adjacent doubles: as narrow as it gets
-        (floats(mid) ? floating : held) = mid;
+    Table table;
+    std::vector<double> speeds, least;
+    for (const auto& [speed, m] : margin)
+      if (std::isfinite(m)) {
+        speeds.push_back(speed);
+        least.push_back(m);
       }
-    }
+    table.axis = {"crank_speed", dim::angular_speed, speeds, "rpm"};
+    table.add_channel("least_cam_force", dim::force, "N");
+    table.channels.back().values = least;
+    out.set("contact_margin", Value::table(std::move(table)));
+    ctx.report_work("refined_intervals", static_cast<double>(refined));
     ctx.report_work("simulations", static_cast<double>(simulations));
     out.set_scalar("float_speed", floating);
     out.set_scalar("held_speed", held);

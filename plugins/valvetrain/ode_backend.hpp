@@ -1,9 +1,10 @@
 #pragma once
-// What the hybrid driver (chain_model.cpp) needs of an ODE integrator: restart in a mode,
-// advance toward a time, stop at the first root of that mode's event functions. Two backends:
-// SUNDIALS CVODE (BDF with Newton iterations and its own root finding) and Boost.Odeint's
-// Dormand-Prince 5(4) with dense output, the roots bracketed per step and refined by TOMS 748.
-#include "chain_model.hpp"
+// What the hybrid driver (hybrid_simulation.cpp) needs of an ODE integrator: restart in a mode,
+// take one step (never past a limit), and give the state anywhere inside that step from its dense
+// output. The driver locates the events and extremes on that dense output itself, the same way for
+// both backends: SUNDIALS CVODE (BDF with Newton iterations; the Nordsieck history through
+// CVodeGetDky) and Boost.Odeint's Dormand-Prince 5(4) with its continuous extension.
+#include "hybrid_simulation.hpp"
 
 #include <map>
 #include <memory>
@@ -11,20 +12,21 @@
 
 namespace mechgraph::valvetrain {
 
-struct BackendStep {
-  double t = 0.0;
-  ChainState state;
-  int root = -1;  // index into the model's root_kinds(mode) of the root that stopped the step, -1: none
-};
-
 class OdeBackend {
  public:
   virtual ~OdeBackend() = default;
   /// Starts afresh at (t, s) in mode m (after an event or at a kink of the excitation).
   virtual void restart(double t, const ChainState& s, const Mode& m) = 0;
-  /// Advances to `target` (<= `limit`, the next time the solution must not be integrated past),
-  /// or to the first root before it.
-  virtual BackendStep advance(double target, double limit) = 0;
+  /// Takes one step from the current time, ending at or before `limit` (the next time the solution
+  /// must not be integrated past); returns the step's end.
+  virtual double step(double limit) = 0;
+  /// The start of the last step.
+  virtual double step_begin() const = 0;
+  /// The state at t in [step_begin(), end of the last step], from the dense output.
+  virtual void state_at(double t, ChainState& s) = 0;
+  /// The snapshot at the end of the last step when the integrator has it already (an explicit
+  /// method's last stage there), else false: the driver then makes its own.
+  virtual bool end_snapshot(Snapshot&) const { return false; }
   /// Adds the work done so far to `work` (steps, rhs_evaluations, ...).
   virtual void add_work(std::map<std::string, double>& work) const = 0;
 };

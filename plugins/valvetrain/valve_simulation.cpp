@@ -125,7 +125,7 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive) 
 }
 
 ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& design, const DriveSettings& drive,
-                               const std::vector<double>& cam_angles) {
+                               const std::vector<double>& cam_angles, const std::vector<Monitor>& monitors) {
   constexpr double pi = std::numbers::pi;
   const double w = motion.camshaft_speed();
   ChainParams mp = build_chain(design, drive);
@@ -135,10 +135,9 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   mp.seating_speed = drive.seating_speed;
   // t = 0 at cam angle -pi (the base circle, valve seated).
   ValveSimulation sim{ChainModel(std::move(mp),
-                                      [&motion, w](double t, double& y, double& dy) {
+                                      [&motion, w](double t) {
                                         const LiftDerivatives d = motion.drive(-pi + w * t);
-                                        y = d.lift;
-                                        dy = w * d.velocity;
+                                        return DriveValue{d.lift, w * d.velocity, w * w * d.acceleration};
                                       }),
                       {}, 2.0 * pi / w, 0.0};
   sim.last_start = (drive.revolutions - 1) * sim.period;
@@ -161,7 +160,7 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   const double end = drive.revolutions * sim.period;
   for (double a : cam_angles) times.push_back(std::min(end, sim.last_start + (a + pi) / w));  // phi = pi: the very end
   try {
-    sim.run = simulate(sim.model, 0.0, end, times, knots, options);
+    sim.run = simulate(sim.model, 0.0, end, times, knots, options, monitors);
   } catch (const std::runtime_error& e) {
     throw NodeError("tolerance", std::string("the simulation failed: ") + e.what() + " (loosen tolerance, or try integrator: " +
                                      (options.integrator == "cvode" ? "dopri5" : "cvode") + ")");

@@ -1,7 +1,7 @@
 #pragma once
 // The valve train's simulation set up from a valve motion and a spring design: the piece
 // valvetrain.dynamics and valvetrain.float_speed share (chain_model.hpp has the model).
-#include "chain_model.hpp"
+#include "hybrid_simulation.hpp"
 #include "train_masses.hpp"
 
 #include <mechgraph/domain/valve_motion.hpp>
@@ -42,10 +42,11 @@ ChainParams build_chain(const SpringDesign& design, const DriveSettings& drive);
 std::vector<double> natural_frequencies(const ChainParams& chain);
 
 /// Simulates `revolutions` cam revolutions from the base circle (t = 0 at cam angle -pi, valve
-/// seated) and records the state at `cam_angles` (in [-pi, pi], ascending) of the last one.
-/// Throws NodeError("tolerance") if the integrator fails.
+/// seated) and records the state at `cam_angles` (in [-pi, pi], ascending) of the last one, and
+/// the extremes of the `monitors` (their windows in that time: the last revolution starts at
+/// (revolutions - 1) 2 pi / w_k). Throws NodeError("tolerance") if the integrator fails.
 ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& design, const DriveSettings& drive,
-                               const std::vector<double>& cam_angles);
+                               const std::vector<double>& cam_angles, const std::vector<Monitor>& monitors = {});
 
 /// The same valve motion at another camshaft speed (the motion over cam angle does not depend on it).
 class RespeededMotion final : public ValveMotion {

@@ -4,7 +4,7 @@
 // and bounded work.
 #include "chain_model.hpp"
 #include "valve_simulation.hpp"
-#include "test_support.hpp"
+#include "dynamics_scenes.hpp"
 
 #include <mechgraph/domain/valve_motion.hpp>
 #include <mechgraph/errors.hpp>
@@ -18,6 +18,7 @@
 
 using namespace mechgraph;
 using namespace mechgraph::testing;
+using namespace mechgraph::testing::dynamics;
 using namespace mechgraph::valvetrain;
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
@@ -38,14 +39,10 @@ double simulated_residual(double r, const std::string& integrator) {
   p.link_stiffness = {0.2 * omega * omega};
   p.link_damping = {0.0};
   p.seat = false;  // the drive alone
-  const ChainModel model(p, [&](double t, double& y, double& dy) {
-    if (t >= T) {
-      y = h;
-      dy = 0;
-      return;
-    }
-    y = h * (t / T - std::sin(2 * pi * t / T) / (2 * pi));
-    dy = h / T * (1 - std::cos(2 * pi * t / T));
+  const ChainModel model(p, [&](double t) {
+    if (t >= T) return DriveValue{h, 0.0, 0.0};
+    return DriveValue{h * (t / T - std::sin(2 * pi * t / T) / (2 * pi)), h / T * (1 - std::cos(2 * pi * t / T)),
+                      2 * pi * h / (T * T) * std::sin(2 * pi * t / T)};
   });
   SimulationOptions o;
   o.integrator = integrator;
@@ -56,40 +53,6 @@ double simulated_residual(double r, const std::string& integrator) {
   const SimulationResult run = simulate(model, 0.0, 2 * T, {T}, {T}, o);
   const ChainState s = run.state.at(0);
   return std::hypot(s[0] - h, s[1] / omega) / h;
-}
-
-RunResult run_scene(const std::string& yaml, const std::vector<Override>& overrides = {}) {
-  return run_yaml(yaml, project_registry(), overrides);
-}
-
-double num(const RunResult& r, const std::string& label) { return scalar_output(r, label); }
-
-const NodeRun& node_run(const RunResult& r, const std::string& name) {
-  for (const NodeRun& n : r.runs)
-    if (n.node == name) return n;
-  throw std::runtime_error("no run of " + name);
-}
-
-// A cam, valve, masses, spring and spring design as in the study; `cam` and `dyn` vary.
-std::string dynamics_scene(const std::string& cam, const std::string& dyn, const std::string& outputs,
-                           const std::string& rpm = "5600 rpm", const std::string& lash = "0.25 mm",
-                           const std::string& extra_nodes = "") {
-  return "nodes:\n" + extra_nodes + "  cam: " + cam + R"(
-  v:      { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: )" + rpm + ", rocker_ratio: 1.5, lash: " + lash + R"( } }
-  train:  { type: valvetrain.masses, params: { valve_mass: 55 g, retainer_mass: 18 g, tappet_mass: 60 g, pushrod_mass: 50 g,
-                                               rocker_inertia: 4e-5 kg*m^2, arm_valve: 45 mm, arm_pushrod: 30 mm } }
-  spring: { type: spring.helical }
-  sd:     { type: valvetrain.spring_design, inputs: { valve: v.motion, spring: spring.model, masses: train.masses } }
-  dyn: )" + dyn + R"(
-outputs: [ )" + outputs + " ]\n";
-}
-
-const std::string kurz = "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }";
-
-// A second valve motion `fast` of the same cam at another crank speed (the spring stays designed for `v`).
-std::string fast_valve(double rpm) {
-  return "  fast: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: " + std::to_string(rpm) +
-         " rpm, rocker_ratio: 1.5, lash: 0.25 mm } }\n";
 }
 
 }  // namespace
