@@ -241,6 +241,12 @@ TableLaw::TableLaw(const LiftTable& table, double base_radius, const TableSmooth
     d.resolution_detected = d.resolution > 0.0;
   }
 
+  if (d.resolution > 0.0) {
+    int same = 0;
+    for (int i = 1; i < m; ++i) same += std::abs(y[i] - y[i - 1]) < 0.5 * d.resolution ? 1 : 0;
+    d.same_lift_share = static_cast<double>(same) / (m - 1);
+  }
+
   // The law: the interpolant, or the smoothing spline at the chosen lambda.
   std::optional<QuinticSmoother> smoother;
   if (method_ == TableSmoothing::none) {
@@ -328,6 +334,13 @@ std::vector<std::string> TableLaw::notes() const {
       << " % of its peak)";
     return m.str();
   };
+  if (d.same_lift_share > 0.1) {
+    out.push_back(g(100.0 * d.same_lift_share, 2) + " % of neighbouring rows have the same lift: the rows are closer (" +
+                  step + ") than a resolution of " + length_text(d.resolution) +
+                  " tells apart, so their rounding errors form a staircase rather than independent noise; the " +
+                  "noise estimates assume independent errors and the smoothing may follow the steps. A table with "
+                  "fewer rows (every few rows of this one) would be read more faithfully");
+  }
   const bool acceleration_noisy = d.acceleration_noise > 0.01 * d.max_abs_acceleration;
   const bool jerk_noisy = d.jerk_noise > 0.1 * d.max_jerk;
   if (method_ == TableSmoothing::none) {
@@ -357,12 +370,16 @@ std::vector<std::string> TableLaw::notes() const {
   }
   out.push_back(m.str());
   if (d.lambda_at_limit) {
-    out.push_back(d.lambda <= QuinticSmoother::lambda_min
-                      ? "the smoothing's lambda is at the lower end of its range (" + g(QuinticSmoother::lambda_min) +
-                            "): the smoothed law interpolates the rows; the rows scatter more than the resolution "
-                            "says (is the resolution right?)"
-                      : "the smoothing's lambda is at the upper end of its range (" + g(QuinticSmoother::lambda_max) +
-                            "): the rows scatter less than the resolution says, the smoothing is as heavy as it goes");
+    const bool lower = d.lambda <= QuinticSmoother::lambda_min;
+    const bool by_resolution = method_ == TableSmoothing::resolution;
+    out.push_back(std::string("the smoothing's lambda is at the ") + (lower ? "lower" : "upper") + " end of its range (" +
+                  g(d.lambda) + "): " +
+                  (lower ? (by_resolution ? "the law interpolates the rows, which scatter more than the resolution "
+                                            "says (is the resolution right?)"
+                                          : "cross-validation finds no noise to remove, the law interpolates the rows")
+                         : (by_resolution ? "the law is as smooth as it goes and still fits the rows closer than the "
+                                            "resolution says they can be (is the resolution right?)"
+                                          : "cross-validation asks for the smoothest law on offer")));
   }
   if (d.resolution > 0.0 && d.residual_max > 2.0 * d.resolution) {
     std::ostringstream s;

@@ -83,6 +83,10 @@ struct TableDiagnostics {
   double row_step = 0.0;     // median angle step between the rows
   double resolution = 0.0;   // stated, else detected (lift_quantum); 0 unknown
   bool resolution_detected = false;
+  // Share of neighbouring rows of the event whose lifts differ by less than half the resolution
+  // (the same printed value): rows closer than the resolution tells apart, whose rounding errors
+  // are a staircase, not independent noise. 0 when no resolution is known.
+  double same_lift_share = 0.0;
   // Rows minus law over the inner rows of the event (the ends are held at zero).
   double residual_rms = 0.0;
   double residual_max = 0.0;  // largest |row - law|
