@@ -63,6 +63,22 @@ double QuinticPieces::max_abs_derivative(int k) const {
   return best;
 }
 
+double QuinticPieces::rms_derivative(int k) const {
+  // Four-point Gauss-Legendre nodes and weights on [-1, 1].
+  const double a = std::sqrt(3.0 / 7.0 - 2.0 / 7.0 * std::sqrt(1.2)), b = std::sqrt(3.0 / 7.0 + 2.0 / 7.0 * std::sqrt(1.2));
+  const double wa = (18.0 + std::sqrt(30.0)) / 36.0, wb = (18.0 - std::sqrt(30.0)) / 36.0;
+  const double nodes[4] = {-b, -a, a, b}, weights[4] = {wb, wa, wa, wb};
+  double sum = 0.0;
+  for (std::size_t i = 0; i < taylor.size(); ++i) {
+    const double mid = 0.5 * (breaks[i] + breaks[i + 1]), half = 0.5 * (breaks[i + 1] - breaks[i]);
+    for (int g = 0; g < 4; ++g) {
+      const double v = at(mid + half * nodes[g])[k];
+      sum += weights[g] * half * v * v;
+    }
+  }
+  return std::sqrt(sum / (breaks.back() - breaks.front()));
+}
+
 int knot_span(const std::vector<double>& t, int n, double x) {
   const auto it = std::upper_bound(t.begin() + p + 1, t.begin() + n, x);
   return static_cast<int>(it - t.begin()) - 1;

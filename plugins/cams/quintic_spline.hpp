@@ -26,6 +26,9 @@ struct QuinticPieces {
   /// max over the pieces of |s^(k)|, k = 2 or 3, in closed form: per piece the ends and the roots of
   /// s^(k+1) (a quadratic for k = 2, linear for k = 3).
   double max_abs_derivative(int k) const;
+  /// sqrt(integral (s^(k))^2 dx / length) over all pieces, k = 2 or 3: exact by four
+  /// Gauss-Legendre points a piece (the integrand is a polynomial of degree 6 or 4).
+  double rms_derivative(int k) const;
 };
 
 /// Index mu of the knot span t[mu] <= x < t[mu+1] holding x, for a clamped knot vector with n

@@ -289,7 +289,9 @@ TableLaw::TableLaw(const LiftTable& table, double base_radius, const TableSmooth
   d.max_jerk = pieces_.max_abs_derivative(3);
 
   // The noise of the resolution in h'' and h''': the same linear operator (interpolant, or the
-  // unconstrained smoother at the same lambda) applied to rounding errors uniform in +-r/2.
+  // unconstrained smoother at the same lambda) applied to rounding errors uniform in +-r/2, its
+  // h'' and h''' as RMS over the event (their extremes reach some 2 to 3 times that, more in the
+  // end intervals of the interpolant).
   d.noise_resolution = d.resolution;
   if (!(d.noise_resolution > 0.0) && method_ == TableSmoothing::gcv && d.dof < m - 2 - 0.5) {
     d.noise_resolution = std::sqrt(12.0 * d.residual_rms * d.residual_rms * (m - 2) / (m - 2 - d.dof));
@@ -301,8 +303,8 @@ TableLaw::TableLaw(const LiftTable& table, double base_radius, const TableSmooth
     for (int i = 1; i + 1 < m; ++i) e[i] = d.noise_resolution * (uniform.next() - 0.5);
     const QuinticPieces noise = smoother ? smoother->pieces(smoother->smooth(e, d.lambda, d.work))
                                          : interpolate_quintic(x, e, src + ": ");
-    d.acceleration_noise = noise.max_abs_derivative(2);
-    d.jerk_noise = noise.max_abs_derivative(3);
+    d.acceleration_noise = noise.rms_derivative(2);
+    d.jerk_noise = noise.rms_derivative(3);
   }
 
   // Maximum of the law, over each polynomial piece.
@@ -324,13 +326,13 @@ std::vector<std::string> TableLaw::notes() const {
   std::string resolution_said;
   if (d.resolution > 0.0)
     resolution_said = length_text(d.resolution) + (d.resolution_detected ? " (every lift a multiple of it)" : " (stated)");
-  // How far the resolution alone moves h'' and h''', against their peaks.
-  auto noise_said = [&](const char* what) {
+  // How far the resolution alone moves h'' and h''' (RMS over the event), against their peaks.
+  auto noise_said = [&]() {
     std::ostringstream m;
-    m << what << " h'' by up to " << g(d.acceleration_noise * 1e3) << " mm/rad^2 ("
+    m << " h'' by " << g(d.acceleration_noise * 1e3) << " mm/rad^2 RMS ("
       << g(100.0 * d.acceleration_noise / std::max(d.max_abs_acceleration, 1e-300), 2)
-      << " % of its peak; a flat follower's radius of curvature r0 + h + h'' by as much) and h''' by up to "
-      << g(d.jerk_noise * 1e3) << " mm/rad^3 (" << g(100.0 * d.jerk_noise / std::max(d.max_jerk, 1e-300), 2)
+      << " % of its peak; a flat follower's radius of curvature r0 + h + h'' by as much) and h''' by "
+      << g(d.jerk_noise * 1e3) << " mm/rad^3 RMS (" << g(100.0 * d.jerk_noise / std::max(d.max_jerk, 1e-300), 2)
       << " % of its peak)";
     return m.str();
   };
@@ -349,7 +351,7 @@ std::vector<std::string> TableLaw::notes() const {
                                 : acceleration_noisy             ? "the radius of curvature and acceleration"
                                                                  : "the jerk";
       out.push_back("lift table rounded to " + resolution_said + ", " + step + ": the rounding alone moves" +
-                    noise_said("") + ", so " + meaningless +
+                    noise_said() + ", so " + meaningless +
                     " of the unsmoothed table are not meaningful; set smoothing: resolution (or gcv)");
     }
     return out;
@@ -366,7 +368,7 @@ std::vector<std::string> TableLaw::notes() const {
     m << "; " << (d.noise_resolution_estimated ? "noise of " + length_text(d.noise_resolution) +
                                                      " (estimated from the residual, as if rounded to it)"
                                                : std::string("the resolution"))
-      << " alone moves the smoothed" << noise_said("");
+      << " alone moves the smoothed" << noise_said();
   }
   out.push_back(m.str());
   if (d.lambda_at_limit) {
@@ -475,11 +477,11 @@ CamLawDefinition table_law_definition() {
       PortSpec::scalar("lift_resolution", dim::length, "the resolution used: stated, or read from the file (when known)",
                        "um"),
       PortSpec::scalar("acceleration_noise", dim::length / dim::angle.pow(2),
-                       "largest change of h'' that rounding the rows to the resolution alone makes (when a resolution "
-                       "is known or, with gcv, estimated)"),
+                       "RMS over the event of the change of h'' that rounding the rows to the resolution alone makes "
+                       "(when a resolution is known or, with gcv, estimated)"),
       PortSpec::scalar("jerk_noise", dim::length / dim::angle.pow(3),
-                       "largest change of h''' that rounding the rows to the resolution alone makes (when a "
-                       "resolution is known or, with gcv, estimated)"),
+                       "RMS over the event of the change of h''' that rounding the rows to the resolution alone makes "
+                       "(when a resolution is known or, with gcv, estimated)"),
       PortSpec::scalar("master_deviation_rms", dim::length,
                        "RMS of the law minus the master law at the table's angles (master connected only)", "um"),
       PortSpec::scalar("master_deviation_max", dim::length,

@@ -101,7 +101,7 @@ struct TableDiagnostics {
   // max |h''| and |h'''| of the law over the event.
   double max_abs_acceleration = 0.0;
   double max_jerk = 0.0;
-  // The noise the resolution alone puts into h'' and h''': max |h''|, |h'''| of the same
+  // The noise the resolution alone puts into h'' and h''': their RMS over the event for the same
   // interpolant or smoother applied to a pattern of rounding errors (uniform in +-r/2, fixed seed)
   // at the table's rows. Zero when no resolution is known.
   double noise_resolution = 0.0;           // r behind them: stated, detected, or GCV's estimate
