@@ -168,7 +168,15 @@ class CamNodeType final : public NodeType {
     const int samples = static_cast<int>(params.integer("samples"));
     CamSummary s = summarize(*law, samples);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
-    refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
+    try {
+      refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
+    } catch (const NodeError& e) {
+      // The law's own notes may explain it (a measured table whose curvature is rounding noise).
+      if (out.notes().empty()) throw;
+      std::string message = e.what();
+      for (const std::string& note : out.notes()) message += "; " + note;
+      throw NodeError(e.parameter(), message);
+    }
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
     out.set_scalar("max_velocity", s.max_velocity);

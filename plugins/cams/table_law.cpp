@@ -336,7 +336,7 @@ std::vector<std::string> TableLaw::notes() const {
       << " % of its peak)";
     return m.str();
   };
-  if (d.same_lift_share > 0.1) {
+  if (d.same_lift_share > 0.05) {
     out.push_back(g(100.0 * d.same_lift_share, 2) + " % of neighbouring rows have the same lift: the rows are closer (" +
                   step + ") than a resolution of " + length_text(d.resolution) +
                   " tells apart, so their rounding errors form a staircase rather than independent noise; the " +
