@@ -17,8 +17,9 @@
 // quartic or harmonic flank starts with a step of acceleration): on 7.5 (1 - (phi/62 deg)^2)^2 mm
 // sampled every 2 deg and rounded to 1 um it pulls the acceleration at the ends down by 11 %; with the
 // fourth, s'''' = s^(5) = 0 there and acceleration and jerk are free, 1.7 %. A fifth-derivative
-// penalty (null space: quartics) would fit that quartic exactly but smears laws of higher degree
-// (polydyne) more. lambda -> 0 gives an interpolating spline; lambda -> infinity the penalty's
+// penalty (null space: quartics) would fit that quartic exactly, but does no better on polydynes and
+// needs a lambda some thousand times larger per halving of the row step, beyond what the numerics
+// hold on fine tables. lambda -> 0 gives an interpolating spline; lambda -> infinity the penalty's
 // null space, the least-squares cubic through the two ends, (x - x_0)(x_{m-1} - x)(a + b x).
 //
 // The minimiser solves (G + lambda Omega) c = B^T y, G = B^T B, Omega = P^T P with P the fourth
