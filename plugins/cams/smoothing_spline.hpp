@@ -45,8 +45,8 @@
 
 namespace mechgraph::cams {
 
-/// The work of the smoothing: banded factorisations, and the steps of the lambda search and the
-/// active set.
+/// The work of the smoothing: least-squares solves (each a banded Givens QR), and the steps of the
+/// lambda search and of the active set.
 struct SmoothingWork {
   long solves = 0;
   long iterations = 0;

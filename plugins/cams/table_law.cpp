@@ -445,9 +445,10 @@ CamLawDefinition table_law_definition() {
       ParamSpec::text("lift_unit", "unit of the table's lift column").with_default(std::string("mm")),
       ParamSpec::choice("smoothing", {"none", "resolution", "gcv"},
                         "none: the quintic spline through every row (for exact or exported tables); resolution: a "
-                        "penalised quintic spline (penalty on the integral of h'''^2) whose residual RMS equals the "
-                        "rounding noise resolution/sqrt(12) (for measured tables); gcv: the same spline, its "
-                        "smoothing chosen by generalised cross-validation (when the resolution is not known)")
+                        "penalised quintic spline (penalty on the integral of h''''^2, the rate of change of the "
+                        "jerk) whose residual RMS equals the rounding noise resolution/sqrt(12) (for measured "
+                        "tables); gcv: the same spline, its smoothing chosen by generalised cross-validation (when "
+                        "the resolution is not known)")
           .with_default("none"),
       ParamSpec::number("resolution", dim::length,
                         "the measuring machine's last printed digit of the lift (e.g. 1 um); default: read from the "
@@ -469,7 +470,7 @@ CamLawDefinition table_law_definition() {
       PortSpec::scalar("residual_max", dim::length, "largest |row - law| (inner rows of the event)", "um"),
       PortSpec::scalar("max_jerk", dim::length / dim::angle.pow(3), "max |d3h/dphi3| over the event"),
       PortSpec::scalar("smoothing_lambda", dim::none,
-                       "the smoothing's lambda: weight of the integral of h'''^2, in units of the mean row step^5 "
+                       "the smoothing's lambda: weight of the integral of h''''^2, in units of the mean row step^7 "
                        "(smoothing resolution or gcv only)"),
       PortSpec::scalar("smoothing_dof", dim::none,
                        "effective degrees of freedom of the smoothing spline, the trace of its influence matrix "
