@@ -148,25 +148,35 @@ class CamNodeType final : public NodeType {
         "svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
     for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
     for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
+    info_.inputs = std::move(d.extra_inputs);
     info_.work_counters = {"evaluations"};
+    for (auto& c : d.extra_work_counters) info_.work_counters.push_back(std::move(c));
   }
 
   const NodeInfo& info() const override { return info_; }
 
-  void evaluate(const ParamSet& params, const InputSet&, OutputSet& out, EvalContext& ctx) const override {
+  void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx) const override {
     const RampSpec ramp = read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
     if (ramp.type != RampType::none && !(has_lift && has_action))
       throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
     const double action_angle = has_action ? params.number("action_angle") : 0.0;
     const CamBasics basics{has_lift ? main_lift(ramp, params.number("max_lift"), action_angle) : 0.0, action_angle,
-                           params.number("base_radius"), has_lift, has_action};
+                           params.number("base_radius"), has_lift, has_action, &inputs, &ctx};
     std::shared_ptr<const CamLaw> law = make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
     CamSummary s = summarize(*law, samples);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
-    refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
+    try {
+      refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
+    } catch (const NodeError& e) {
+      // The law's own notes may explain it (a measured table whose curvature is rounding noise).
+      if (out.notes().empty()) throw;
+      std::string message = e.what();
+      for (const std::string& note : out.notes()) message += "; " + note;
+      throw NodeError(e.parameter(), message);
+    }
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
     out.set_scalar("max_velocity", s.max_velocity);
@@ -194,7 +204,9 @@ class CamNodeType final : public NodeType {
                                                     double r0) const {
     OutputSet scratch;
     std::shared_ptr<const CamLaw> law =
-        make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle}, params, scratch);
+        make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle, basics.inputs,
+                        basics.context},
+              params, scratch);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     return law;
   }

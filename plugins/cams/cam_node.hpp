@@ -23,6 +23,9 @@ struct CamBasics {
   /// its own data; these say whether the scene gave them anyway (to be checked against the data).
   bool has_max_lift = true;
   bool has_action_angle = true;
+  /// The node's inputs (CamLawDefinition::extra_inputs) and context (its extra_work_counters).
+  const InputSet* inputs = nullptr;
+  EvalContext* context = nullptr;
 };
 
 /// Builds the law; may also set law-specific outputs (e.g. three-arc radii) in `extra`.
@@ -36,6 +39,8 @@ struct CamLawDefinition {
   std::string summary;
   std::vector<ParamSpec> params;        // law-specific parameters only
   std::vector<PortSpec> extra_outputs;  // law-specific outputs only
+  std::vector<PortSpec> extra_inputs;   // law-specific inputs (CamBasics::inputs)
+  std::vector<std::string> extra_work_counters;
   CamLawFactory make;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.
   bool derives_lift_and_action = false;

@@ -9,16 +9,17 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace mechgraph::cams {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-constexpr int degree = 5;
 
 std::string at_line(const std::string& source, int line) { return source + ":" + std::to_string(line) + ": "; }
 
@@ -57,111 +58,32 @@ bool parse_number(std::string_view field, double& value) {
   return ec == std::errc() && ptr == field.data() + field.size() && std::isfinite(value);
 }
 
-// ---- Quintic B-spline interpolation (de Boor) -------------------------------------------------
-
-// Values of the d+1 B-splines of degree d that are nonzero on the knot span mu (t[mu] <= x <=
-// t[mu+1]), B_{mu-d} .. B_mu, by the Cox-de Boor recurrence.
-std::array<double, degree + 1> basis(const std::vector<double>& t, int mu, int d, double x) {
-  std::array<double, degree + 1> N{};
-  std::array<double, degree + 1> left{}, right{};
-  N[0] = 1.0;
-  for (int j = 1; j <= d; ++j) {
-    left[j] = x - t[mu + 1 - j];
-    right[j] = t[mu + j] - x;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N[r] / (right[r + 1] + left[j - r]);
-      N[r] = saved + right[r + 1] * temp;
-      saved = left[j - r] * temp;
-    }
-    N[j] = saved;
+// A fixed pseudo-random sequence in [0, 1) (splitmix64), so the noise estimate is reproducible.
+class UniformSequence {
+ public:
+  double next() {
+    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * 0x1.0p-53;
   }
-  return N;
-}
 
-// Knot span of x for the clamped knot vector with n coefficients: degree <= mu <= n - 1.
-int span_of(const std::vector<double>& t, int n, double x) {
-  const auto it = std::upper_bound(t.begin() + degree + 1, t.begin() + n, x);
-  return static_cast<int>(it - t.begin()) - 1;
-}
-
-struct Spline {
-  std::vector<double> breaks;
-  std::vector<std::array<double, 6>> taylor;
+ private:
+  std::uint64_t state_ = 19;
 };
 
-// Interpolating quintic spline through (x_i, y_i), not-a-knot ends, as Taylor coefficients at the
-// left end of each polynomial piece.
-Spline interpolate_quintic(const std::vector<double>& x, const std::vector<double>& y, const std::string& where) {
-  const int n = static_cast<int>(x.size());
-  // Knots: x_0 six times, the rows x_3 .. x_{n-4}, x_{n-1} six times (n + 6 knots, n B-splines).
-  std::vector<double> t;
-  t.reserve(n + degree + 1);
-  for (int k = 0; k <= degree; ++k) t.push_back(x.front());
-  for (int i = 3; i <= n - 4; ++i) t.push_back(x[i]);
-  for (int k = 0; k <= degree; ++k) t.push_back(x.back());
+// Formats a number with `digits` significant digits.
+std::string g(double v, int digits = 3) {
+  std::ostringstream m;
+  m.precision(digits);
+  m << v;
+  return m.str();
+}
 
-  // Collocation B c = y, band storage A(i, j) = band[i][j - i + 5], |j - i| <= 5.
-  constexpr int w = degree;
-  std::vector<std::array<double, 2 * w + 1>> band(n);
-  std::vector<double> c(y);
-  for (int i = 0; i < n; ++i) {
-    band[i].fill(0.0);
-    const int mu = span_of(t, n, x[i]);
-    const auto N = basis(t, mu, degree, x[i]);
-    for (int r = 0; r <= degree; ++r) {
-      const int j = mu - degree + r;
-      if (std::abs(j - i) > w) {
-        if (N[r] != 0.0) throw NodeError("file", where + "internal: collocation outside the band");
-        continue;
-      }
-      band[i][j - i + w] = N[r];
-    }
-  }
-  // Gaussian elimination without pivoting (the collocation matrix is totally positive).
-  for (int k = 0; k < n; ++k) {
-    const double pivot = band[k][w];
-    if (!(std::abs(pivot) > 0.0)) throw NodeError("file", where + "the spline through the table is singular");
-    for (int i = k + 1; i <= std::min(n - 1, k + w); ++i) {
-      const double f = band[i][k - i + w] / pivot;
-      if (f == 0.0) continue;
-      for (int j = k; j <= std::min(n - 1, k + w); ++j) band[i][j - i + w] -= f * band[k][j - k + w];
-      c[i] -= f * c[k];
-    }
-  }
-  for (int k = n - 1; k >= 0; --k) {
-    double sum = c[k];
-    for (int j = k + 1; j <= std::min(n - 1, k + w); ++j) sum -= band[k][j - k + w] * c[j];
-    c[k] = sum / band[k][w];
-  }
-
-  // Coefficients of the derivatives: S^(r) = sum_j c^(r)_j B_{j, 5-r}, with
-  // c^(r)_j = (6 - r)(c^(r-1)_j - c^(r-1)_{j-1}) / (t_{j+6-r} - t_j), j = r .. n-1.
-  std::array<std::vector<double>, degree + 1> d;
-  d[0] = c;
-  for (int r = 1; r <= degree; ++r) {
-    d[r].assign(n, 0.0);
-    for (int j = r; j < n; ++j) d[r][j] = (degree + 1 - r) * (d[r - 1][j] - d[r - 1][j - 1]) / (t[j + degree + 1 - r] - t[j]);
-  }
-
-  // Taylor coefficients at the left end of every piece [t_mu, t_mu+1], mu = 5 .. n-1.
-  Spline out;
-  constexpr double factorial[degree + 1] = {1.0, 1.0, 2.0, 6.0, 24.0, 120.0};
-  for (int mu = degree; mu <= n - 1; ++mu) {
-    const double a = t[mu];
-    std::array<double, 6> coef{};
-    for (int r = 0; r <= degree; ++r) {
-      const int deg = degree - r;
-      const auto N = basis(t, mu, deg, a);
-      double v = 0.0;
-      for (int k = 0; k <= deg; ++k) v += d[r][mu - deg + k] * N[k];
-      coef[r] = v / factorial[r];
-    }
-    out.breaks.push_back(a);
-    out.taylor.push_back(coef);
-  }
-  out.breaks.push_back(t[n]);
-  return out;
+// A length for a note, in um below 0.1 mm, else in mm.
+std::string length_text(double metres) {
+  return std::abs(metres) < 1e-4 ? g(metres * 1e6) + " um" : g(metres * 1e3) + " mm";
 }
 
 }  // namespace
@@ -169,6 +91,7 @@ Spline interpolate_quintic(const std::vector<double>& x, const std::vector<doubl
 LiftTable parse_lift_table(std::string_view text, const std::string& source, double angle_scale, double lift_scale) {
   LiftTable table;
   table.source = source;
+  table.lift_scale = lift_scale;
   bool header_allowed = true;
   int line_number = 0;
   std::size_t pos = 0;
@@ -230,7 +153,25 @@ LiftTable read_lift_table(const std::string& path, double angle_scale, double li
   return parse_lift_table(text, path, angle_scale, lift_scale);
 }
 
-TableLaw::TableLaw(const LiftTable& table, double base_radius) : base_radius_(base_radius) {
+double lift_quantum(const LiftTable& table) {
+  // Every lift as printed (in the file's unit) a whole multiple of 10^-k, k = 0 .. 6, the largest
+  // such quantum; a parsed decimal is within a few ulps of it.
+  int with_lift = 0;
+  for (const LiftTableRow& r : table.rows) with_lift += r.lift > 0.0 ? 1 : 0;
+  if (with_lift < 8 || !(table.lift_scale > 0.0)) return 0.0;
+  for (int k = 0; k <= 6; ++k) {
+    const double q = std::pow(10.0, -k);
+    const bool whole = std::all_of(table.rows.begin(), table.rows.end(), [&](const LiftTableRow& r) {
+      const double units = r.lift / table.lift_scale / q;
+      return std::abs(units - std::round(units)) <= 1e-6;
+    });
+    if (whole) return q * table.lift_scale;
+  }
+  return 0.0;
+}
+
+TableLaw::TableLaw(const LiftTable& table, double base_radius, const TableSmoothingRequest& smoothing)
+    : source_(table.source), method_(smoothing.method), base_radius_(base_radius) {
   const std::string& src = table.source;
   if (!(std::isfinite(base_radius) && base_radius > 0.0))
     throw NodeError("base_radius", "base_radius must be positive and finite");
@@ -275,44 +216,220 @@ TableLaw::TableLaw(const LiftTable& table, double base_radius) : base_radius_(ba
   }
   first_line_ = rows[first].line;
   last_line_ = rows[last - 1].line;
-  std::vector<double> x, y;
+  std::vector<int> lines;
   for (std::size_t i = first; i < last; ++i) {
-    x.push_back(rows[i].angle);
-    y.push_back(rows[i].lift);
+    row_angles_.push_back(rows[i].angle);
+    row_lifts_.push_back(rows[i].lift);
+    lines.push_back(rows[i].line);
   }
-  row_angles_ = x;
-  Spline s = interpolate_quintic(x, y, src + ": ");
-  breaks_ = std::move(s.breaks);
-  taylor_ = std::move(s.taylor);
-  for (const auto& c : taylor_)
-    for (double v : c)
-      if (!std::isfinite(v)) throw NodeError("file", src + ": the interpolation of the table overflowed");
+  const std::vector<double>& x = row_angles_;
+  const std::vector<double>& y = row_lifts_;
+  const int m = static_cast<int>(n);
+  TableDiagnostics& d = diagnostics_;
+  d.rows = m;
+  {
+    std::vector<double> steps;
+    for (int i = 1; i < m; ++i) steps.push_back(x[i] - x[i - 1]);
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    d.row_step = steps[steps.size() / 2];
+  }
+  if (smoothing.resolution < 0.0 || !std::isfinite(smoothing.resolution))
+    throw NodeError("resolution", "resolution must be positive and finite");
+  d.resolution = smoothing.resolution;
+  if (!(d.resolution > 0.0)) {
+    d.resolution = lift_quantum(table);
+    d.resolution_detected = d.resolution > 0.0;
+  }
 
-  // Maximum of the interpolant, over each polynomial piece.
+  if (d.resolution > 0.0) {
+    int same = 0;
+    for (int i = 1; i < m; ++i) same += std::abs(y[i] - y[i - 1]) < 0.5 * d.resolution ? 1 : 0;
+    d.same_lift_share = static_cast<double>(same) / (m - 1);
+  }
+
+  // The law: the interpolant, or the smoothing spline at the chosen lambda.
+  std::optional<QuinticSmoother> smoother;
+  if (method_ == TableSmoothing::none) {
+    pieces_ = interpolate_quintic(x, y, src + ": ");
+  } else {
+    smoother.emplace(x, y);
+    if (method_ == TableSmoothing::resolution) {
+      if (!(d.resolution > 0.0))
+        throw NodeError("resolution",
+                        src + ": smoothing: resolution needs the measuring resolution (the last digit of the lift "
+                              "column, e.g. resolution: 1 um); the lifts are not whole multiples of any of 1 .. 1e-6 "
+                              "file units, so it cannot be read from the file. Set resolution, or use smoothing: gcv");
+      // Discrepancy principle: rounding to r leaves errors uniform in +-r/2, RMS r / sqrt(12).
+      d.lambda = smoother->lambda_for_rms(d.resolution / std::sqrt(12.0), d.lambda_at_limit, d.work);
+    } else {
+      d.lambda = smoother->lambda_by_gcv(d.lambda_at_limit, d.work);
+    }
+    const QuinticSmoother::Fit fit = smoother->fit_nonnegative(d.lambda, d.work);
+    d.dof = fit.dof;
+    d.held_at_zero = fit.held_at_zero;
+    pieces_ = smoother->pieces(fit.coefficients);
+  }
+  for (const auto& c : pieces_.taylor)
+    for (double v : c)
+      if (!std::isfinite(v)) throw NodeError("file", src + ": the spline through the table overflowed");
+
+  // Residuals over the inner rows (the ends are zero by construction).
+  double sum = 0.0;
+  for (int i = 1; i + 1 < m; ++i) {
+    const double r = y[i] - pieces_.at(x[i])[0];
+    sum += r * r;
+    if (std::abs(r) > d.residual_max) {
+      d.residual_max = std::abs(r);
+      d.residual_max_angle = x[i];
+      d.residual_max_line = lines[i];
+    }
+  }
+  d.residual_rms = std::sqrt(sum / (m - 2));
+  d.max_abs_acceleration = pieces_.max_abs_derivative(2);
+  d.max_jerk = pieces_.max_abs_derivative(3);
+
+  // The noise of the resolution in h'' and h''': the same linear operator (interpolant, or the
+  // unconstrained smoother at the same lambda) applied to rounding errors uniform in +-r/2, its
+  // h'' and h''' as RMS over the event (their extremes reach some 2 to 3 times that, more in the
+  // end intervals of the interpolant).
+  d.noise_resolution = d.resolution;
+  if (!(d.noise_resolution > 0.0) && method_ == TableSmoothing::gcv && d.dof < m - 2 - 0.5) {
+    d.noise_resolution = std::sqrt(12.0 * d.residual_rms * d.residual_rms * (m - 2) / (m - 2 - d.dof));
+    d.noise_resolution_estimated = true;
+  }
+  if (d.noise_resolution > 0.0) {
+    UniformSequence uniform;
+    std::vector<double> e(m, 0.0);
+    for (int i = 1; i + 1 < m; ++i) e[i] = d.noise_resolution * (uniform.next() - 0.5);
+    const QuinticPieces noise = smoother ? smoother->pieces(smoother->smooth(e, d.lambda, d.work))
+                                         : interpolate_quintic(x, e, src + ": ");
+    d.acceleration_noise = noise.rms_derivative(2);
+    d.jerk_noise = noise.rms_derivative(3);
+  }
+
+  // Maximum of the law, over each polynomial piece.
   long evaluations = 0;
-  const auto best = numerics::maximize_piecewise([this](double a) { return at(a).lift; }, breaks_, 12, evaluations);
+  const auto best = numerics::maximize_piecewise([this](double a) { return at(a).lift; }, pieces_.breaks, 12, evaluations);
   max_lift_ = best.value;
   max_lift_angle_ = best.x;
 }
 
 LiftDerivatives TableLaw::evaluate_in_event(double phi) const {
-  const auto it = std::upper_bound(breaks_.begin(), breaks_.end() - 1, phi);
-  const std::size_t i = it == breaks_.begin() ? 0 : static_cast<std::size_t>(it - breaks_.begin()) - 1;
-  const double u = phi - breaks_[i];
-  const auto& a = taylor_[i];
-  // h = sum a_r u^r and its first three derivatives, by Horner.
-  const double h = a[0] + u * (a[1] + u * (a[2] + u * (a[3] + u * (a[4] + u * a[5]))));
-  const double v = a[1] + u * (2.0 * a[2] + u * (3.0 * a[3] + u * (4.0 * a[4] + u * 5.0 * a[5])));
-  const double acc = 2.0 * a[2] + u * (6.0 * a[3] + u * (12.0 * a[4] + u * 20.0 * a[5]));
-  const double j = 6.0 * a[3] + u * (24.0 * a[4] + u * 60.0 * a[5]);
-  return {h, v, acc, j};
+  const auto s = pieces_.at(phi);
+  return {s[0], s[1], s[2], s[3]};
 }
+
+std::vector<std::string> TableLaw::notes() const {
+  const TableDiagnostics& d = diagnostics_;
+  std::vector<std::string> out;
+  const std::string step = g(d.row_step * 180.0 / pi) + " deg rows";
+  std::string resolution_said;
+  if (d.resolution > 0.0)
+    resolution_said = length_text(d.resolution) + (d.resolution_detected ? " (every lift a multiple of it)" : " (stated)");
+  // How far the resolution alone moves h'' and h''' (RMS over the event), against their peaks.
+  auto noise_said = [&]() {
+    std::ostringstream m;
+    m << " h'' by " << g(d.acceleration_noise * 1e3) << " mm/rad^2 RMS ("
+      << g(100.0 * d.acceleration_noise / std::max(d.max_abs_acceleration, 1e-300), 2)
+      << " % of its peak; a flat follower's radius of curvature r0 + h + h'' by as much) and h''' by "
+      << g(d.jerk_noise * 1e3) << " mm/rad^3 RMS (" << g(100.0 * d.jerk_noise / std::max(d.max_jerk, 1e-300), 2)
+      << " % of its peak)";
+    return m.str();
+  };
+  if (d.same_lift_share > 0.05) {
+    out.push_back(g(100.0 * d.same_lift_share, 2) + " % of neighbouring rows have the same lift: the rows are closer (" +
+                  step + ") than a resolution of " + length_text(d.resolution) +
+                  " tells apart, so their rounding errors form a staircase rather than independent noise; the " +
+                  "noise estimates assume independent errors and the smoothing may follow the steps. A table with "
+                  "fewer rows (every few rows of this one) would be read more faithfully");
+  }
+  const bool acceleration_noisy = d.acceleration_noise > 0.01 * d.max_abs_acceleration;
+  const bool jerk_noisy = d.jerk_noise > 0.1 * d.max_jerk;
+  if (method_ == TableSmoothing::none) {
+    if (d.resolution > 0.0 && (acceleration_noisy || jerk_noisy)) {
+      std::string meaningless = acceleration_noisy && jerk_noisy ? "the radius of curvature, acceleration and jerk"
+                                : acceleration_noisy             ? "the radius of curvature and acceleration"
+                                                                 : "the jerk";
+      out.push_back("lift table rounded to " + resolution_said + ", " + step + ": the rounding alone moves" +
+                    noise_said() + ", so " + meaningless +
+                    " of the unsmoothed table are not meaningful; set smoothing: resolution (or gcv)");
+    }
+    return out;
+  }
+  std::ostringstream m;
+  m << "lift table smoothed (smoothing: " << (method_ == TableSmoothing::resolution ? "resolution" : "gcv");
+  if (d.resolution > 0.0) m << ", resolution " << resolution_said;
+  m << "): lambda " << g(d.lambda) << ", " << g(d.dof) << " effective degrees of freedom for " << d.rows - 2
+    << " rows (" << step << "); residual RMS " << length_text(d.residual_rms);
+  if (d.resolution > 0.0) m << " (rounding alone: " << length_text(d.resolution / std::sqrt(12.0)) << ")";
+  m << ", max " << length_text(d.residual_max) << " at " << g(d.residual_max_angle * 180.0 / pi, 4) << " deg";
+  if (d.held_at_zero > 0) m << "; " << d.held_at_zero << " B-spline coefficients held at zero to keep the lift >= 0";
+  if (d.noise_resolution > 0.0) {
+    m << "; " << (d.noise_resolution_estimated ? "noise of " + length_text(d.noise_resolution) +
+                                                     " (estimated from the residual, as if rounded to it)"
+                                               : std::string("the resolution"))
+      << " alone moves the smoothed" << noise_said();
+  }
+  out.push_back(m.str());
+  if (d.lambda_at_limit) {
+    const bool lower = d.lambda <= QuinticSmoother::lambda_min;
+    const bool by_resolution = method_ == TableSmoothing::resolution;
+    out.push_back(std::string("the smoothing's lambda is at the ") + (lower ? "lower" : "upper") + " end of its range (" +
+                  g(d.lambda) + "): " +
+                  (lower ? (by_resolution ? "the law interpolates the rows, which scatter more than the resolution "
+                                            "says (is the resolution right?)"
+                                          : "cross-validation finds no noise to remove, the law interpolates the rows")
+                         : (by_resolution ? "the law is as smooth as it goes and still fits the rows closer than the "
+                                            "resolution says they can be (is the resolution right?)"
+                                          : "cross-validation asks for the smoothest law on offer")));
+  }
+  if (d.resolution > 0.0 && d.residual_max > 2.0 * d.resolution) {
+    std::ostringstream s;
+    s << at_line(source_, d.residual_max_line) << "the row at " << g(d.residual_max_angle * 180.0 / pi, 4) << " deg is "
+      << length_text(d.residual_max) << " off the smoothed law, " << g(d.residual_max / d.resolution, 2)
+      << " times the resolution: a step, a bad row or a feature the smoothing does not follow";
+    out.push_back(s.str());
+  }
+  return out;
+}
+
+namespace {
+
+// The law against a master law at the table's angles within one turn (-180 .. 180 deg): the
+// law's deviation and the rows' own, unsmoothed.
+void set_master_deviation(const TableLaw& law, const LiftTable& table, const InputSet& inputs, OutputSet& out) {
+  const auto master = inputs.handle<CamLaw>("master");
+  Table t;
+  t.axis = {"cam_angle", dim::angle, {}, "deg"};
+  Table::Column deviation{"deviation", dim::length, {}, "um"}, row_deviation{"row_deviation", dim::length, {}, "um"};
+  double sum = 0.0, largest = 0.0;
+  for (const LiftTableRow& r : table.rows) {
+    if (r.angle < -pi || r.angle >= pi) continue;
+    const double nominal = master->at(r.angle).lift;
+    const double dev = law.at(r.angle).lift - nominal;
+    t.axis.values.push_back(r.angle);
+    deviation.values.push_back(dev);
+    row_deviation.values.push_back(r.lift - nominal);
+    sum += dev * dev;
+    largest = std::max(largest, std::abs(dev));
+  }
+  if (t.axis.values.empty()) throw NodeError("master", "the table has no row within -180 .. 180 deg to compare");
+  out.set_scalar("master_deviation_rms", std::sqrt(sum / static_cast<double>(t.axis.values.size())));
+  out.set_scalar("master_deviation_max", largest);
+  t.channels = {std::move(deviation), std::move(row_deviation)};
+  out.set("master_deviation", Value::table(std::move(t)));
+}
+
+}  // namespace
 
 CamLawDefinition table_law_definition() {
   CamLawDefinition d;
   d.type = "cam.table";
-  d.version = 1;
-  d.summary = "tabulated lift from a CSV file (cam angle, lift), quintic spline interpolation; lift and event from the file";
+  // 2: smoothing, resolution, the master input, residual and noise outputs
+  d.version = 2;
+  d.summary =
+      "tabulated lift from a CSV file (cam angle, lift), quintic spline interpolation or, for measured tables, a "
+      "penalised quintic smoothing spline; lift and event from the file";
   d.derives_lift_and_action = true;
   d.params = {
       ParamSpec::text("file",
@@ -326,8 +443,56 @@ CamLawDefinition table_law_definition() {
           .with_default("nose"),
       ParamSpec::text("angle_unit", "unit of the table's angle column").with_default(std::string("deg")),
       ParamSpec::text("lift_unit", "unit of the table's lift column").with_default(std::string("mm")),
+      ParamSpec::choice("smoothing", {"none", "resolution", "gcv"},
+                        "none: the quintic spline through every row (for exact or exported tables); resolution: a "
+                        "penalised quintic spline (penalty on the integral of h''''^2, the rate of change of the "
+                        "jerk) whose residual RMS equals the rounding noise resolution/sqrt(12) (for measured "
+                        "tables); gcv: the same spline, its smoothing chosen by generalised cross-validation (when "
+                        "the resolution is not known)")
+          .with_default("none"),
+      ParamSpec::number("resolution", dim::length,
+                        "the measuring machine's last printed digit of the lift (e.g. 1 um); default: read from the "
+                        "file when every lift is a whole multiple of 1, 0.1, ... or 1e-6 of its unit. Sets the "
+                        "smoothing of smoothing: resolution, and the note when the table is too coarse for curvature "
+                        "and jerk",
+                        "um")
+          .optional()
+          .positive()
+          .at_most(1e-3),
   };
-  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet&) -> std::shared_ptr<const CamLaw> {
+  d.extra_inputs = {
+      PortSpec::handle("master", std::string(CamLaw::kind_name),
+                       "a master (design) law to compare the table with, at the table's angles")
+          .optional_port(),
+  };
+  d.extra_outputs = {
+      PortSpec::scalar("residual_rms", dim::length, "RMS of the rows minus the law (inner rows of the event)", "um"),
+      PortSpec::scalar("residual_max", dim::length, "largest |row - law| (inner rows of the event)", "um"),
+      PortSpec::scalar("max_jerk", dim::length / dim::angle.pow(3), "max |d3h/dphi3| over the event"),
+      PortSpec::scalar("smoothing_lambda", dim::none,
+                       "the smoothing's lambda: weight of the integral of h''''^2, in units of the mean row step^7 "
+                       "(smoothing resolution or gcv only)"),
+      PortSpec::scalar("smoothing_dof", dim::none,
+                       "effective degrees of freedom of the smoothing spline, the trace of its influence matrix "
+                       "(smoothing resolution or gcv only)"),
+      PortSpec::scalar("lift_resolution", dim::length, "the resolution used: stated, or read from the file (when known)",
+                       "um"),
+      PortSpec::scalar("acceleration_noise", dim::length / dim::angle.pow(2),
+                       "RMS over the event of the change of h'' that rounding the rows to the resolution alone makes "
+                       "(when a resolution is known or, with gcv, estimated)"),
+      PortSpec::scalar("jerk_noise", dim::length / dim::angle.pow(3),
+                       "RMS over the event of the change of h''' that rounding the rows to the resolution alone makes "
+                       "(when a resolution is known or, with gcv, estimated)"),
+      PortSpec::scalar("master_deviation_rms", dim::length,
+                       "RMS of the law minus the master law at the table's angles (master connected only)", "um"),
+      PortSpec::scalar("master_deviation_max", dim::length,
+                       "largest |law - master| at the table's angles (master connected only)", "um"),
+      PortSpec::table("master_deviation",
+                      "over the table's angles: deviation (law - master) and row_deviation (row - master) (master "
+                      "connected only)"),
+  };
+  d.extra_work_counters = {"solves", "iterations"};
+  d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& out) -> std::shared_ptr<const CamLaw> {
     auto scale_of = [&](const char* name, const char* fallback, Dimension expected, const char* what) {
       const std::string text = params.has(name) ? params.text(name) : std::string(fallback);
       UnitScale u;
@@ -355,7 +520,32 @@ CamLawDefinition table_law_definition() {
         for (LiftTableRow& r : table.rows) r.angle -= middle;
       }
     }
-    auto law = std::make_shared<const TableLaw>(table, basics.base_radius);
+    TableSmoothingRequest smoothing;
+    const std::string method = params.text("smoothing");
+    smoothing.method = method == "resolution" ? TableSmoothing::resolution
+                       : method == "gcv"      ? TableSmoothing::gcv
+                                              : TableSmoothing::none;
+    if (params.has("resolution")) smoothing.resolution = params.number("resolution");
+    auto law = std::make_shared<const TableLaw>(table, basics.base_radius, smoothing);
+    const TableDiagnostics& diag = law->diagnostics();
+    if (basics.context) {
+      basics.context->report_work("solves", static_cast<double>(diag.work.solves));
+      basics.context->report_work("iterations", static_cast<double>(diag.work.iterations));
+    }
+    out.set_scalar("residual_rms", diag.residual_rms);
+    out.set_scalar("residual_max", diag.residual_max);
+    out.set_scalar("max_jerk", diag.max_jerk);
+    if (smoothing.method != TableSmoothing::none) {
+      out.set_scalar("smoothing_lambda", diag.lambda);
+      out.set_scalar("smoothing_dof", diag.dof);
+    }
+    if (diag.resolution > 0.0) out.set_scalar("lift_resolution", diag.resolution);
+    if (diag.noise_resolution > 0.0) {
+      out.set_scalar("acceleration_noise", diag.acceleration_noise);
+      out.set_scalar("jerk_noise", diag.jerk_noise);
+    }
+    for (std::string& note : law->notes()) out.note(path + ": " + note);
+    if (basics.inputs && basics.inputs->count("master") > 0) set_master_deviation(*law, table, *basics.inputs, out);
 
     const double span = law->event_end() - law->event_begin();
     if (basics.has_action_angle && !(std::abs(span - basics.action_angle) <= 1e-4 * pi / 180.0)) {

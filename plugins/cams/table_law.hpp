@@ -1,7 +1,9 @@
 #pragma once
 // cam.table: a tabulated lift (measured, or exported by another tool) read from CSV, interpolated
-// by a quintic spline whose derivatives are the exact derivatives of the interpolant.
-// See docs/methods/valvetrain.md, stage 1 ("a tabulated lift ... read from CSV").
+// by a quintic spline whose derivatives are the exact derivatives of the spline, or, for a measured
+// table, smoothed by a penalised quintic spline (smoothing_spline.hpp). See
+// docs/methods/valvetrain.md, stage 1 ("a tabulated lift ... read from CSV") and "Measured lift
+// tables".
 //
 // File: one row per line, two columns: cam angle from the nose, lift (units from the node's
 // angle_unit / lift_unit, default deg and mm). Columns separated by ',' or ';' (or, with neither,
@@ -11,22 +13,26 @@
 //
 // Lift event: leading and trailing rows of zero lift (the base circle) are dropped except the last
 // leading and the first trailing one; the event runs between those two rows, which must therefore
-// have zero lift, and it must lie within -180 .. 180 deg.
+// have zero lift, and it must lie within -180 .. 180 deg. Needs at least 6 rows in the event.
 //
-// Interpolant: the quintic (degree 5) B-spline interpolating every row, with the not-a-knot end
-// conditions of de Boor (interior knots at rows 3 .. n-4, so the first and last three intervals are
-// one polynomial each): C4 inside the event, so no breakpoints inside it; it reproduces any
-// polynomial of degree <= 5 exactly. Needs at least 6 rows in the event. Built by collocation
-// (de Boor, A Practical Guide to Splines, ch. IX and XIII: the collocation matrix is totally
-// positive, banded elimination without pivoting is stable), converted to Taylor coefficients per
-// interval by differencing the B-spline coefficients. Boost 1.74's interpolators give at most the
-// second derivative, the CamLaw contract needs the third. Between rows the interpolant can
-// overshoot the data slightly (as any smooth interpolant does near a kink in the data).
+// Interpolant (smoothing none): the quintic (degree 5) B-spline interpolating every row, with the
+// not-a-knot end conditions of de Boor (quintic_spline.hpp): C4 inside the event, so no
+// breakpoints inside it; it reproduces any polynomial of degree <= 5 exactly. Boost 1.74's
+// interpolators give at most the second derivative, the CamLaw contract needs the third. Between
+// rows the interpolant can overshoot the data slightly (as any smooth interpolant does near a kink
+// in the data), and it follows every digit of the rows: rounding to a last printed digit r shows in
+// h'' and h''' amplified by about 1/step^2 and 1/step^3.
+//
+// Smoothing (smoothing resolution or gcv): the penalised quintic spline with a knot at every row,
+// zero at the event's ends, B-spline coefficients >= 0 (so the lift is >= 0); lambda from the
+// resolution (residual RMS = r / sqrt(12), the RMS of rounding to r) or by generalised
+// cross-validation. Also C4 inside the event.
 #include "cam_node.hpp"
+#include "quintic_spline.hpp"
+#include "smoothing_spline.hpp"
 
 #include <mechgraph/domain/cam_law.hpp>
 
-#include <array>
 #include <cstddef>
 #include <string>
 #include <string_view>
@@ -44,6 +50,7 @@ struct LiftTableRow {
 struct LiftTable {
   std::string source;  // file name, for messages
   std::vector<LiftTableRow> rows;
+  double lift_scale = 1.0;  // m per unit of the file's lift column (to read its printed digits)
 };
 
 /// Parses the text of a lift table (angles times angle_scale -> rad, lifts times lift_scale -> m).
@@ -58,33 +65,88 @@ inline constexpr std::size_t lift_table_limit = std::size_t{64} << 20;
 /// anything else is NodeError("file", ...) naming the path and why.
 LiftTable read_lift_table(const std::string& path, double angle_scale, double lift_scale);
 
-/// The interpolated table as a CamLaw.
+/// The quantum of the table's lifts as printed: the largest of 1, 0.1, ..., 1e-6 units of the
+/// file's lift column of which every lift is a whole multiple, in m; 0 if none is, or if fewer than
+/// 8 rows have lift (then the resolution cannot be read from the file).
+double lift_quantum(const LiftTable& table);
+
+enum class TableSmoothing { none, resolution, gcv };
+
+struct TableSmoothingRequest {
+  TableSmoothing method = TableSmoothing::none;
+  double resolution = 0.0;  // m, the last printed digit of the lift; 0: not stated (then lift_quantum)
+};
+
+/// What the law found in its data and what the smoothing did. Lengths in m, angles in rad.
+struct TableDiagnostics {
+  int rows = 0;              // rows of the event, its two zero ends included
+  double row_step = 0.0;     // median angle step between the rows
+  double resolution = 0.0;   // stated, else detected (lift_quantum); 0 unknown
+  bool resolution_detected = false;
+  // Share of neighbouring rows of the event whose lifts differ by less than half the resolution
+  // (the same printed value): rows closer than the resolution tells apart, whose rounding errors
+  // are a staircase, not independent noise. 0 when no resolution is known.
+  double same_lift_share = 0.0;
+  // Rows minus law over the inner rows of the event (the ends are held at zero).
+  double residual_rms = 0.0;
+  double residual_max = 0.0;  // largest |row - law|
+  double residual_max_angle = 0.0;
+  int residual_max_line = 0;
+  // Smoothing only: lambda (dimensionless, smoothing_spline.hpp), effective degrees of freedom,
+  // whether lambda sits at an end of its range, B-spline coefficients held at zero for lift >= 0.
+  double lambda = 0.0;
+  double dof = 0.0;
+  bool lambda_at_limit = false;
+  int held_at_zero = 0;
+  // max |h''| and |h'''| of the law over the event.
+  double max_abs_acceleration = 0.0;
+  double max_jerk = 0.0;
+  // The noise the resolution alone puts into h'' and h''': their RMS over the event for the same
+  // interpolant or smoother applied to a pattern of rounding errors (uniform in +-r/2, fixed seed)
+  // at the table's rows. Zero when no resolution is known.
+  double noise_resolution = 0.0;           // r behind them: stated, detected, or GCV's estimate
+  bool noise_resolution_estimated = false;  // r = sqrt(12) sigma, sigma^2 = RSS / (m' - dof) (GCV)
+  double acceleration_noise = 0.0;
+  double jerk_noise = 0.0;
+  SmoothingWork work;
+};
+
+/// The interpolated or smoothed table as a CamLaw.
 class TableLaw final : public CamLaw {
  public:
-  /// Checks and trims the table as described above; throws NodeError("file", "source:line: ...").
-  TableLaw(const LiftTable& table, double base_radius);
+  /// Checks and trims the table as described above; throws NodeError("file", "source:line: ...");
+  /// smoothing resolution with no resolution stated or detectable is NodeError("resolution", ...).
+  TableLaw(const LiftTable& table, double base_radius, const TableSmoothingRequest& smoothing = {});
 
-  double event_begin() const override { return breaks_.front(); }
-  double event_end() const override { return breaks_.back(); }
+  double event_begin() const override { return pieces_.breaks.front(); }
+  double event_end() const override { return pieces_.breaks.back(); }
   LiftDerivatives evaluate_in_event(double phi) const override;
-  /// None: the interpolant is C4 inside the event.
+  /// None: the interpolant and the smoothing spline are C4 inside the event.
   std::vector<double> breakpoints() const override { return {}; }
-  /// Maximum of the interpolant over the event (found by sampling and Brent's method).
+  /// Maximum of the law over the event (found by sampling and Brent's method).
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
 
-  /// Angle where the interpolant is largest.
+  /// Angle where the law is largest.
   double max_lift_angle() const { return max_lift_angle_; }
   /// Lines of the file where the event begins and ends.
   int first_line() const { return first_line_; }
   int last_line() const { return last_line_; }
-  /// Angles of the rows kept (the event's rows), rad.
+  /// Angles (rad) and lifts (m) of the rows kept (the event's rows).
   const std::vector<double>& row_angles() const { return row_angles_; }
+  const std::vector<double>& row_lifts() const { return row_lifts_; }
+  TableSmoothing smoothing() const { return method_; }
+  const TableDiagnostics& diagnostics() const { return diagnostics_; }
+  /// What the diagnostics mean, as lines for out.note(): the smoothing done; a resolution too
+  /// coarse for the curvature and jerk of the unsmoothed table; residuals beyond the resolution.
+  std::vector<std::string> notes() const;
 
  private:
-  std::vector<double> breaks_;               // polynomial pieces: [breaks_[i], breaks_[i+1]]
-  std::vector<std::array<double, 6>> taylor_;  // h^(r)(breaks_[i]) / r!, r = 0..5
-  std::vector<double> row_angles_;
+  std::string source_;
+  QuinticPieces pieces_;  // the law over the event
+  std::vector<double> row_angles_, row_lifts_;
+  TableSmoothing method_ = TableSmoothing::none;
+  TableDiagnostics diagnostics_;
   double base_radius_ = 0.0;
   double max_lift_ = 0.0;
   double max_lift_angle_ = 0.0;
@@ -92,9 +154,12 @@ class TableLaw final : public CamLaw {
   int last_line_ = 0;
 };
 
-/// The cam.table node's law: params `file`, `angle_unit`, `lift_unit`; checks the table against
-/// the common params (the event span must equal action_angle within 1e-4 deg, the interpolant's
+/// The cam.table node's law: params `file`, `angle_origin`, `angle_unit`, `lift_unit`,
+/// `smoothing`, `resolution`, optional input `master` (a cam law to compare with); checks the table
+/// against the common params (the event span must equal action_angle within 1e-4 deg, the law's
 /// maximum must equal max_lift within 0.1 %), each mismatch a NodeError naming that parameter.
+/// Extra outputs: residuals, max_jerk, the smoothing's lambda and degrees of freedom, the noise
+/// estimates, and with a master the deviation from it.
 CamLawDefinition table_law_definition();
 
 }  // namespace mechgraph::cams
