@@ -121,8 +121,13 @@ class TableLaw final : public CamLaw {
   double event_begin() const override { return pieces_.breaks.front(); }
   double event_end() const override { return pieces_.breaks.back(); }
   LiftDerivatives evaluate_in_event(double phi) const override;
-  /// None: the interpolant and the smoothing spline are C4 inside the event.
-  std::vector<double> breakpoints() const override { return {}; }
+  /// The spline's own knots: the interpolant and the smoothing spline are C4 inside the event, but
+  /// their fifth derivative jumps at every knot, so h'' is only C2 there and no single polynomial
+  /// follows it across them. Declared, the certified searches (docs/methods/numerics.md) take each
+  /// quintic piece as its own smooth piece and resolve it exactly.
+  std::vector<double> breakpoints() const override {
+    return std::vector<double>(pieces_.breaks.begin() + 1, pieces_.breaks.end() - 1);
+  }
   /// Maximum of the law over the event (found by sampling and Brent's method).
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }

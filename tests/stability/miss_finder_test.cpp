@@ -112,7 +112,34 @@ Design random_design(std::mt19937_64& rng) {
   // subject here; it has its own test below).
   const double r0 = 40.0 * lift / 8.0 * std::pow(130.0 / angle, 2) + 20.0;
   std::string common = "max_lift: " + mm(lift) + ", action_angle: " + degrees(angle) + ", base_radius: " + mm(r0);
-  const int family = static_cast<int>(u(rng) * 5.0);
+  const int family = static_cast<int>(u(rng) * 7.0);
+  const char* normalised[] = {"cycloidal", "harmonic", "poly345", "poly4567", "modified_trapezoid", "modified_sine"};
+  if (family == 5) {
+    // A program: rise, an optional dwell, return, each with its own law (joints are knots).
+    const double rise = angle * (0.3 + 0.4 * u(rng)), dwell = u(rng) < 0.5 ? 0.0 : 0.1 * angle * u(rng);
+    std::string segs = "[{type: rise, angle: " + degrees(rise) + ", lift: " + mm(lift) + ", law: " +
+                       normalised[static_cast<int>(u(rng) * 6.0) % 6] + "}";
+    if (dwell > 0.0) segs += ", {type: dwell, angle: " + degrees(dwell) + "}";
+    segs += ", {type: return, angle: " + degrees(angle - rise) + ", lift: " + mm(lift) + ", law: " +
+            normalised[static_cast<int>(u(rng) * 6.0) % 6] + "}]";
+    return {"cam.program", "base_radius: " + mm(r0 + 40.0) + ", segments: " + segs};
+  }
+  if (family == 6) {
+    // A table: a cycloidal rise-return sampled every 0.5 to 2 deg (full digits), in a file.
+    static int serial = 0;
+    const std::string file = (std::filesystem::temp_directory_path() /
+                              ("mechgraph_miss_table_" + std::to_string(::getpid()) + "_" + std::to_string(serial++) + ".csv"))
+                                 .string();
+    std::ofstream csv(file);
+    csv << "angle [deg], lift [mm]\n" << std::setprecision(17);
+    const double step = 0.5 + 1.5 * u(rng), half = 0.5 * angle;
+    for (double a = -half - 4 * step; a <= half + 4 * step + 1e-9; a += step) {
+      const double x = std::clamp((a + half) / half, 0.0, 2.0);  // 0..1 rise, 1..2 return
+      const double t = x <= 1.0 ? x : 2.0 - x;
+      csv << a << ", " << lift * (t - std::sin(2.0 * std::numbers::pi * t) / (2.0 * std::numbers::pi)) << "\n";
+    }
+    return {"cam.table", "file: " + file + ", base_radius: " + mm(r0 + 40.0)};
+  }
   if (u(rng) < 0.3) {
     const double ramp_len = std::min(15.0, 0.15 * angle) * (0.3 + 0.7 * u(rng));
     common += std::string(", ramp: ") + (u(rng) < 0.5 ? "cosine" : "constant_velocity") + ", ramp_height: " +

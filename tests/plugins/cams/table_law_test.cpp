@@ -8,6 +8,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -125,7 +127,13 @@ TEST_CASE("lift table: base-circle rows are trimmed to one on each side", "[cams
   CHECK(law.event_end() == Approx(30.0 * deg).epsilon(1e-15).margin(0.0));
   CHECK(law.first_line() == 3);
   CHECK(law.last_line() == 9);
-  CHECK(law.breakpoints().empty());
+  // The spline's interior knots are the breakpoints (each quintic piece a smooth piece for the
+  // searches): strictly inside the event, ascending.
+  const std::vector<double> breaks = law.breakpoints();
+  REQUIRE_FALSE(breaks.empty());
+  CHECK(breaks.front() > law.event_begin());
+  CHECK(breaks.back() < law.event_end());
+  CHECK(std::is_sorted(breaks.begin(), breaks.end()));
   // The interpolant passes through every row.
   CHECK(law.at(-10.0 * deg).lift == Approx(3.0 * mm).epsilon(1e-13).margin(1e-18));
   CHECK(law.at(0.0).lift == Approx(4.0 * mm).epsilon(1e-13).margin(1e-18));
