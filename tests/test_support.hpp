@@ -8,6 +8,8 @@
 #include <mechgraph/testing/node_harness.hpp>
 
 #include <cstdio>
+#include <cstdlib>
+#include <unistd.h>
 #include <map>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +110,24 @@ inline CommandResult run_cli(const std::string& args) { return run_command(std::
 /// The command-line option that loads the arithmetic test plugin alone.
 inline std::string arith_plugin_dir_option() {
   return "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "'";
+}
+
+/// Where `program` is on PATH (absolute entries only, an executable regular file), without a shell;
+/// empty if nowhere. For tests that draw with an optional tool such as gnuplot.
+inline std::filesystem::path find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (!path) return {};
+  std::string rest = path;
+  for (std::size_t start = 0; start <= rest.size();) {
+    const std::size_t end = std::min(rest.find(':', start), rest.size());
+    const std::filesystem::path dir = rest.substr(start, end - start);
+    start = end + 1;
+    if (!dir.is_absolute()) continue;
+    const auto candidate = dir / program;
+    std::error_code ec;
+    if (std::filesystem::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return {};
 }
 
 /// A scratch folder `NAME_PID` under the temporary folder, made if missing.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <sstream>
 
@@ -38,10 +39,13 @@ CamValveMotion::CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaf
       }
     if (!opening || !closing || !(*closing > *opening)) {
       const numerics::Extremum peak = pieces.maximum(0);
-      evaluations += 1;
       std::ostringstream msg;
-      msg << "the valve never opens: rocker_ratio * cam lift reaches " << peak.value * 1e3 << " mm, not more than the lash of "
-          << lash_ * 1e3 << " mm";
+      if (peak.value > lash_)  // the lift passes the lash, yet no rising and later falling crossing was found
+        msg << "the valve's opening and closing at a lash of " << lash_ * 1e3 << " mm could not be told apart (rocker_ratio * cam "
+            << "lift reaches " << peak.value * 1e3 << " mm at " << peak.x * 180.0 / std::numbers::pi << " deg)";
+      else
+        msg << "the valve never opens: rocker_ratio * cam lift reaches " << peak.value * 1e3 << " mm, not more than the lash of "
+            << lash_ * 1e3 << " mm";
       throw NodeError("lash", msg.str());
     }
     open_begin_ = *opening;

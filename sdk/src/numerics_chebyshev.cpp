@@ -18,16 +18,6 @@ namespace {
 
 constexpr int max_n = chebyshev_max_intervals;
 
-// cos(pi m / max_n) for m = 0 .. 2 max_n - 1: every cosine an interpolant of n | max_n intervals needs.
-const std::array<double, 2 * max_n>& cosine_table() {
-  static const std::array<double, 2 * max_n> table = [] {
-    std::array<double, 2 * max_n> t{};
-    for (int m = 0; m < 2 * max_n; ++m) t[static_cast<std::size_t>(m)] = std::cos(std::numbers::pi * m / max_n);
-    return t;
-  }();
-  return table;
-}
-
 bool power_of_two(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
 // Drops trailing coefficients whose sum stays below `budget` (keeps at least one).
@@ -163,8 +153,8 @@ void chebyshev_coefficients(std::span<const double> values, std::vector<double>&
     c.back() *= 0.5;
     return;
   }
-  if (n <= 32) {
-    // Small sizes by a stored matrix (vectorises): row k holds the weights of c_k.
+  {
+    // n <= 32 (the rest went by FFT): a stored matrix (vectorises), row k the weights of c_k.
     static const std::array<std::vector<double>, 6> matrices = [] {
       std::array<std::vector<double>, 6> all;
       for (int level = 0; level < 6; ++level) {
@@ -189,24 +179,7 @@ void chebyshev_coefficients(std::span<const double> values, std::vector<double>&
       for (int j = 0; j <= n; ++j) sum += w[k * (n + 1) + j] * values[static_cast<std::size_t>(j)];
       c[static_cast<std::size_t>(k)] = sum;
     }
-    return;
   }
-  const auto& cosines = cosine_table();
-  const int stride = max_n / n;
-  // DCT-I: c_k = (2/n) sum''_j f_j cos(pi j k / n), the first and last terms (and c_0, c_n) halved.
-  for (int k = 0; k <= n; ++k) {
-    double sum = 0.5 * (values[0] + ((k & 1) ? -values[static_cast<std::size_t>(n)] : values[static_cast<std::size_t>(n)]));
-    int m = 0;
-    const int step = (k * stride) % (2 * max_n);
-    for (int j = 1; j < n; ++j) {
-      m += step;
-      if (m >= 2 * max_n) m -= 2 * max_n;
-      sum += values[static_cast<std::size_t>(j)] * cosines[static_cast<std::size_t>(m)];
-    }
-    c[static_cast<std::size_t>(k)] = 2.0 * sum / n;
-  }
-  c.front() *= 0.5;
-  c.back() *= 0.5;
 }
 
 std::size_t chebyshev_resolved_length(std::span<const double> coefficients, double tolerance) {
@@ -223,13 +196,13 @@ std::size_t chebyshev_resolved_length(std::span<const double> coefficients, doub
   for (double& e : envelope) e /= envelope[0];
   std::size_t plateau = 0, j2 = 0;
   bool found = false;
-  const double log_tol = std::log(tolerance);
+  const double log_tol = std::log(tolerance), tol_2_3 = std::pow(tolerance, 2.0 / 3.0);
   for (std::size_t j = 2; j <= n; ++j) {  // 1-based j as in the paper
     j2 = static_cast<std::size_t>(std::lround(1.25 * static_cast<double>(j) + 5.0));
     if (j2 > n) return 0;  // no plateau
     const double e1 = envelope[j - 1], e2 = envelope[j2 - 1];
-    // r <= 1 needs e1 below tol^(2/3): skip the logarithm above that (e2 / e1 <= 1 < r there).
-    if (e1 > 1e-10 && e2 <= e1) continue;
+    // Above tol^(2/3), r > 1 >= e2 / e1 (the envelope never rises): no plateau, no logarithm needed.
+    if (e1 > tol_2_3) continue;
     const double r = 3.0 * (1.0 - std::log(e1) / log_tol);
     if (e1 == 0.0 || e2 / e1 > r) {
       plateau = j - 1;

@@ -89,7 +89,7 @@ TEST_CASE("mechgraph bench on a Monte Carlo scene: the spread over seeds, advice
   std::string header;
   std::getline(csv, header);
   CHECK_THAT(header, Contains("max_relative_error,error_uncertainty,reference_floor,below_floor,worst_output"));
-  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+  if (!find_on_path("gnuplot").empty()) {
     std::ifstream svg(dir / "bench.svg");
     const std::string text((std::istreambuf_iterator<char>(svg)), {});
     CHECK_THAT(text, Contains("<svg") && Contains("<text>chain.samples</text>"));

@@ -1,6 +1,7 @@
 // The work-precision plot of mechgraph bench: every text literal (no gnuplot markup), in the
 // script and, when gnuplot is installed, in the SVG it draws.
 #include "test_support.hpp"
+#include "hostile/hostile_support.hpp"
 
 #include <mechgraph/bench_plot.hpp>
 
@@ -45,14 +46,15 @@ TEST_CASE("bench plot: titles are literal: curve_points is no subscript, ^ { @ a
   CHECK_THAT(plot.script, Contains("set key outside right noenhanced"));
   CHECK_THAT(plot.script, Contains("set xlabel 'time of the node [s]' noenhanced"));
   CHECK_THAT(plot.data, Contains("0.001 0.0001 0 1\n0.002 5e-05 0 0\n"));
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0) {
+  const auto gnuplot = find_on_path("gnuplot");
+  if (gnuplot.empty()) {
     WARN("gnuplot is not installed: the script is checked, not drawn");
     return;
   }
   const auto dir = scratch_dir("mechgraph_bench_plot");
   std::ofstream(dir / "bench.dat") << plot.data;
   std::ofstream(dir / "bench.gp") << plot.script;
-  REQUIRE(run_command("cd '" + dir.string() + "' && gnuplot bench.gp").exit_code == 0);
+  REQUIRE(hostile::run_argv(gnuplot.string(), {"bench.gp"}, dir).exit_code == 0);
   std::ifstream svg(dir / "bench.svg");
   const std::string text((std::istreambuf_iterator<char>(svg)), {});
   // The legend's text as one run of characters: no <tspan> shifting "points" down as a subscript.

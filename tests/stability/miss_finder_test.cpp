@@ -98,6 +98,7 @@ std::vector<double> reference_crossings(const std::vector<double>& knots, const 
 
 struct Design {
   std::string type, params;
+  std::string file;  // a table's scratch file, removed after the design's runs
 };
 
 std::string mm(double v) { return std::to_string(v) + " mm"; }
@@ -122,7 +123,7 @@ Design random_design(std::mt19937_64& rng) {
     if (dwell > 0.0) segs += ", {type: dwell, angle: " + degrees(dwell) + "}";
     segs += ", {type: return, angle: " + degrees(angle - rise) + ", lift: " + mm(lift) + ", law: " +
             normalised[static_cast<int>(u(rng) * 6.0) % 6] + "}]";
-    return {"cam.program", "base_radius: " + mm(r0 + 40.0) + ", segments: " + segs};
+    return {"cam.program", "base_radius: " + mm(r0 + 40.0) + ", segments: " + segs, ""};
   }
   if (family == 6) {
     // A table: a cycloidal rise-return sampled every 0.5 to 2 deg (full digits), in a file.
@@ -138,7 +139,7 @@ Design random_design(std::mt19937_64& rng) {
       const double t = x <= 1.0 ? x : 2.0 - x;
       csv << a << ", " << lift * (t - std::sin(2.0 * std::numbers::pi * t) / (2.0 * std::numbers::pi)) << "\n";
     }
-    return {"cam.table", "file: " + file + ", base_radius: " + mm(r0 + 40.0)};
+    return {"cam.table", "file: " + file + ", base_radius: " + mm(r0 + 40.0), file};
   }
   if (u(rng) < 0.3) {
     const double ramp_len = std::min(15.0, 0.15 * angle) * (0.3 + 0.7 * u(rng));
@@ -156,14 +157,14 @@ Design random_design(std::mt19937_64& rng) {
     if (e.back() > 1000) return random_design(rng);
     std::string ex = "[";
     for (std::size_t k = 0; k < e.size(); ++k) ex += (k ? ", " : "") + std::to_string(e[k]);
-    return {"cam.polydyne", common + ", exponents: " + ex + "]"};
+    return {"cam.polydyne", common + ", exponents: " + ex + "]", ""};
   }
-  if (family == 1) return {"cam.kurz", common + ", accel_angle: " + degrees(angle * (0.08 + 0.1 * u(rng)))};
+  if (family == 1) return {"cam.kurz", common + ", accel_angle: " + degrees(angle * (0.08 + 0.1 * u(rng))), ""};
   if (family == 2) {
     std::string follower = u(rng) < 0.5 ? "" : ", follower: roller, roller_radius: " + mm(5.0 + 15.0 * u(rng));
-    return {"cam.three_arc", common + ", accel_angle: " + degrees(angle * (0.1 + 0.1 * u(rng))) + follower};
+    return {"cam.three_arc", common + ", accel_angle: " + degrees(angle * (0.1 + 0.1 * u(rng))) + follower, ""};
   }
-  return {standard[static_cast<int>(u(rng) * 6.0) % 6], common};
+  return {standard[static_cast<int>(u(rng) * 6.0) % 6], common, ""};
 }
 
 std::uint64_t seed_from_env(const char* name, std::uint64_t fallback) {
@@ -182,6 +183,13 @@ TEST_CASE("miss-finder: random cam designs, every extremum and event against den
   int checked = 0, refused = 0;
   for (int i = 0; i < designs; ++i) {
     const Design d = random_design(rng);
+    struct RemoveFile {
+      const std::string& file;
+      ~RemoveFile() {
+        std::error_code ignored;
+        if (!file.empty()) std::filesystem::remove(file, ignored);
+      }
+    } remove_file{d.file};
     for (int samples : {8, 16, 64}) {
       const double lash = i % 3 == 0 ? 0.0 : 0.02 + 0.2 * ((i * 7919) % 100) / 100.0;
       const std::string yaml = "nodes:\n  c: { type: " + d.type + ", params: { " + d.params + ", samples: " +
@@ -195,7 +203,7 @@ TEST_CASE("miss-finder: random cam designs, every extremum and event against den
       RunResult r;
       try {
         r = run_yaml(yaml, project_registry());
-      } catch (const EvaluationError& e) {
+      } catch (const EvaluationError&) {
         ++refused;  // a design the law itself refuses (its own limits): nothing to compare
         continue;
       }
