@@ -166,7 +166,8 @@ class CamNodeType final : public NodeType {
     std::shared_ptr<const CamLaw> law = make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
-    CamSummary s = summarize(*law, samples);
+    // A sweep that does not read the curvature radius only needs the contour proven free of undercut.
+    CamSummary s = summarize(*law, samples, ctx.wanted("min_curvature_radius"));
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
     try {
       refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
@@ -183,7 +184,7 @@ class CamNodeType final : public NodeType {
     out.set_scalar("max_acceleration", s.max_acceleration);
     out.set_scalar("min_acceleration", s.min_acceleration);
     out.set_scalar("accel_angle", s.accel_angle);
-    out.set_scalar("min_curvature_radius", s.min_curvature_radius);
+    if (s.curvature_exact) out.set_scalar("min_curvature_radius", s.min_curvature_radius);
     // The curves and events cost hundreds of evaluations: made only when something reads them.
     if (ctx.wanted("svaj")) {
       out.set("svaj", Value::table(svaj_table(*law, static_cast<int>(params.integer("curve_points")))));

@@ -1,5 +1,7 @@
 #include "polydyne.hpp"
 
+#include <mechgraph/numerics/piecewise.hpp>
+
 #include <boost/math/tools/roots.hpp>
 #include <boost/multiprecision/cpp_int.hpp>
 
@@ -132,6 +134,22 @@ std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& expone
       target.push_back(value);
     }
   }
+  // Where the first three derivatives of x change sign on (0, 1): the sign changes of q_1, q_2,
+  // q_3 (the factor (1 - u)^(5-m) keeps its sign there), by the certified search
+  // (numerics/piecewise.hpp) on each polynomial in long double, once per exponent set.
+  for (std::size_t m = 1; m <= 3; ++m) {
+    const std::vector<long double>& q = series->q[m];
+    auto q_at = [&q](double u) {
+      long double sum = 0.0L;
+      for (std::size_t k = q.size(); k-- > 0;) sum = sum * u + q[k];
+      return static_cast<double>(sum);
+    };
+    const double ends[2] = {0.0, 1.0};
+    long search_evaluations = 0;
+    series->sign_changes[m] = numerics::all_sign_changes(q_at, ends, 16, search_evaluations);
+    // A sign change at u = 0 is the nose, a cut anyway.
+    std::erase_if(series->sign_changes[m], [](double u) { return !(u > 0.0 && u < 1.0); });
+  }
   // q_0..q_3 all have degree n_max - 5: one table, four coefficients per power.
   series->interleaved.resize(series->q[0].size());
   for (std::size_t m = 0; m < 4; ++m)
@@ -158,6 +176,18 @@ std::shared_ptr<const PolydyneSeries> series_for(const std::vector<int>& exponen
 PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)),
       series_(series_for(exponents_)) {}
+
+bool PolydyneLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+  if (order < 0 || order > 2) return false;
+  // h^(order) is monotone between the sign changes of h^(order+1) = (h / phi_p^m) x^(m)(|phi| / phi_p)
+  // (mirrored, with the sign of phi for odd m): those of q_m at u = |phi| / phi_p, and the nose.
+  const std::vector<double>& u = series_->sign_changes[static_cast<std::size_t>(order + 1)];
+  breaks.clear();
+  for (auto it = u.rbegin(); it != u.rend(); ++it) breaks.push_back(-*it * half_action_);
+  breaks.push_back(0.0);
+  for (double v : u) breaks.push_back(v * half_action_);
+  return true;
+}
 
 long double PolydyneLaw::normalized_derivative(int m, long double w) const {
   const std::vector<long double>& q = series_->q[static_cast<std::size_t>(m)];

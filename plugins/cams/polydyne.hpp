@@ -43,6 +43,10 @@ struct PolydyneSeries {
   std::array<std::vector<long double>, 6> q;        // monomial coefficients, exact to long double
   std::vector<std::array<double, 4>> interleaved;   // q_0..q_3 in double, power by power
   std::vector<double> coefficients;                 // C2, Cp, Cq, Cr, Cs
+  /// For m = 1..3: every u in (0, 1) where q_m changes sign (so the m-th derivative does),
+  /// ascending: the monotone runs of the (m-1)-th (CamLaw::monotone_breaks), found once per
+  /// exponent set.
+  std::array<std::vector<double>, 4> sign_changes;
 };
 
 class PolydyneLaw final : public CamLaw {
@@ -57,6 +61,8 @@ class PolydyneLaw final : public CamLaw {
   std::vector<double> breakpoints() const override { return {}; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
+  /// The nose and the sign changes of q_(order+1), mirrored (x is even in u).
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
 
   const std::vector<int>& exponents() const { return exponents_; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.

@@ -173,3 +173,16 @@ LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
 }
 
 }  // namespace mechgraph::cams
+
+namespace mechgraph::cams {
+
+bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+  if (order < 0 || order > 2) return false;
+  for (const Piece& p : pieces_)
+    if (!p.shape->monotone()) return false;
+  breaks = breakpoints_;
+  if (!std::binary_search(breaks.begin(), breaks.end(), 0.0)) breaks.insert(std::upper_bound(breaks.begin(), breaks.end(), 0.0), 0.0);
+  return true;
+}
+
+}  // namespace mechgraph::cams

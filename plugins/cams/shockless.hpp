@@ -34,6 +34,8 @@ class AccelShape {
   virtual double integral2(double tau) const = 0;  // I2(tau) = int_0^tau I1
   /// All four at once (the trigonometric shapes share one sine and cosine).
   virtual ShapeValues all(double tau) const { return {value(tau), slope(tau), integral(tau), integral2(tau)}; }
+  /// Whether a(tau) is monotone on [0, 1] (a law of such shapes declares its monotone runs).
+  virtual bool monotone() const { return false; }
 };
 
 /// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
@@ -44,6 +46,7 @@ class QuarterSineRise final : public AccelShape {
   double slope(double tau) const override;
   double integral(double tau) const override;
   double integral2(double tau) const override;
+  bool monotone() const override { return true; }
 };
 
 /// a = cos(pi tau / 2): a quarter cosine falling from 1 to 0 (zero jerk at its start).
@@ -54,6 +57,7 @@ class QuarterCosineFall final : public AccelShape {
   double slope(double tau) const override;
   double integral(double tau) const override;
   double integral2(double tau) const override;
+  bool monotone() const override { return true; }
 };
 
 /// a = 1 - (1 - tau)^2: a parabola from 0 to its vertex 1 at tau = 1 (zero slope there, so a
@@ -64,6 +68,7 @@ class ParabolaToVertex final : public AccelShape {
   double slope(double tau) const override;
   double integral(double tau) const override;
   double integral2(double tau) const override;
+  bool monotone() const override { return true; }
 };
 
 struct ShapeSegment {
@@ -88,6 +93,10 @@ class ShocklessLaw final : public CamLaw {
   std::vector<double> breakpoints() const override { return breakpoints_; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
+  /// With monotone shapes: the junctions and the nose, for every order (the shapes are non-negative
+  /// bumps, A+ > 0 > A-: h'' keeps one sign per phase, so h' rises then falls back to 0 at the
+  /// nose and the lift is monotone on each side of it).
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
 
   double positive_amplitude() const { return amplitude_pos_; }  // A+, m/rad^2
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)

@@ -167,6 +167,22 @@ ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
   }
 }
 
+bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+  // Flat tappet only (the roller's pitch-curve lift has no such simple signs). On the flank
+  // h = e (1 - cos x), x = phi_p - |phi| in [0, phi_1], phi_1 < phi_p < pi: h' ~ sin x and
+  // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
+  // it. On the nose h = a cos t - (r0 - r2), t = |phi| <= alpha <= 90 deg (checked at
+  // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
+  if (roller_radius_ > 0.0 || order < 0 || order > 2) return false;
+  const double alpha = switch_angle_;
+  breaks = {-alpha, 0.0, alpha};
+  if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {
+    const double quarter = g_.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
+    breaks = {-quarter, -alpha, 0.0, alpha, quarter};
+  }
+  return true;
+}
+
 LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
   // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
   const double psi = std::abs(phi);

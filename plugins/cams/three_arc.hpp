@@ -66,6 +66,9 @@ class ThreeArcLaw final : public CamLaw {
   double max_lift() const override { return g_.max_lift; }
   double base_radius() const override { return g_.base_radius; }
   double roller_radius() const override { return roller_radius_; }
+  /// Flat tappet: the flank/nose switches and the nose (plus 90 deg into a long flank for the
+  /// velocity). A roller: false (the generic search).
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
 
   const ThreeArcGeometry& geometry() const { return g_; }
   /// |phi| (from the nose) where the follower passes from flank to nose: alpha for the flat

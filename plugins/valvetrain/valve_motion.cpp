@@ -1,5 +1,6 @@
 #include "valve_motion.hpp"
 
+#include <mechgraph/domain/cam_law_runs.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -22,10 +23,19 @@ CamValveMotion::CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaf
     // The valve moves while g = i h(phi) - lash > 0: the opening is the first crossing of the lash
     // (rising) and the closing the last (falling), found by the certified search over the cam's
     // smooth pieces (numerics/piecewise.hpp), whatever the ramps or the table between them do.
-    numerics::SmoothPieces pieces([&](double phi, double* v, double*) { v[0] = rocker_ratio_ * cam_->at(phi).lift; }, 1,
-                                  cam_knots, samples);
-    const auto crossings = pieces.directed_crossings(0, lash_);
-    evaluations += pieces.work().evaluations;
+    // A law that declares its lift's monotone runs (CamLaw::monotone_breaks) has each crossing
+    // bracketed in its run: TOMS 748 on the law, no interpolation (mechgraph/domain/cam_law_runs.hpp).
+    std::optional<numerics::SmoothPieces> pieces;
+    std::vector<std::pair<double, bool>> crossings;
+    const auto runs = CamLawRuns::of(*cam_, 0);
+    if (runs) {
+      crossings = runs->directed_crossings(lash_ / rocker_ratio_, evaluations);
+    } else {
+      pieces.emplace([&](double phi, double* v, double*) { v[0] = rocker_ratio_ * cam_->at(phi).lift; }, 1, cam_knots,
+                     samples);
+      crossings = pieces->directed_crossings(0, lash_);
+      evaluations += pieces->work().evaluations;
+    }
     std::optional<double> opening, closing;
     for (const auto& [x, rising] : crossings)
       if (rising) {
@@ -38,7 +48,8 @@ CamValveMotion::CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaf
         break;
       }
     if (!opening || !closing || !(*closing > *opening)) {
-      const numerics::Extremum peak = pieces.maximum(0);
+      numerics::Extremum peak = runs ? runs->maximum(evaluations) : pieces->maximum(0);
+      if (runs) peak.value *= rocker_ratio_;
       std::ostringstream msg;
       if (peak.value > lash_)  // the lift passes the lash, yet no rising and later falling crossing was found
         msg << "the valve's opening and closing at a lash of " << lash_ * 1e3 << " mm could not be told apart (rocker_ratio * cam "

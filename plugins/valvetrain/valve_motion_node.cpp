@@ -5,6 +5,7 @@
 #include "valve_motion.hpp"
 
 #include <mechgraph/domain/cam_curves.hpp>
+#include <mechgraph/domain/cam_law_runs.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <cmath>
@@ -71,18 +72,34 @@ class ValveMotionType final : public NodeType {
     // function smooth on each piece; |velocity| is the larger of its two signed extremes). The
     // valve's full lift is the cam's declared one through the rocker, less the lash (the CamLaw
     // contract: max_lift() is the law's maximum, checked against dense sampling by the kit).
-    numerics::SmoothPieces pieces(
-        [&](double x, double* v, double*) {
-          const LiftDerivatives d = motion->at(x);
-          v[0] = d.velocity;
-          v[1] = d.acceleration;
-        },
-        2, knots, samples);
     const numerics::Extremum lift{0.0, motion->rocker_ratio() * motion->cam().max_lift() - motion->lash()};
-    const numerics::Extremum acc_max = pieces.maximum(1), acc_min = pieces.minimum(1);
-    const numerics::Extremum v_max = pieces.maximum(0), v_min = pieces.minimum(0);
+    numerics::Extremum acc_max, acc_min, v_max, v_min;
+    const auto velocity_runs = CamLawRuns::of(motion->cam(), 1);
+    const auto acceleration_runs = CamLawRuns::of(motion->cam(), 2);
+    if (velocity_runs && acceleration_runs) {
+      // The cam's monotone runs (closed form): the valve's peaks over the open period are at the
+      // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp).
+      const double a = motion->open_begin(), b = motion->open_end(), i = motion->rocker_ratio();
+      auto scaled = [i](numerics::Extremum e) { return numerics::Extremum{e.x, i * e.value}; };
+      acc_max = scaled(acceleration_runs->maximum(a, b, evaluations));
+      acc_min = scaled(acceleration_runs->minimum(a, b, evaluations));
+      v_max = scaled(velocity_runs->maximum(a, b, evaluations));
+      v_min = scaled(velocity_runs->minimum(a, b, evaluations));
+    } else {
+      numerics::SmoothPieces pieces(
+          [&](double x, double* v, double*) {
+            const LiftDerivatives d = motion->at(x);
+            v[0] = d.velocity;
+            v[1] = d.acceleration;
+          },
+          2, knots, samples);
+      acc_max = pieces.maximum(1);
+      acc_min = pieces.minimum(1);
+      v_max = pieces.maximum(0);
+      v_min = pieces.minimum(0);
+      evaluations += pieces.work().evaluations;
+    }
     const numerics::Extremum velocity = -v_min.value > v_max.value ? numerics::Extremum{v_min.x, -v_min.value} : v_max;
-    evaluations += pieces.work().evaluations;
     const double w = camshaft_speed;
     if (ctx.wanted("lift_curve")) {  // a few hundred evaluations: only when something reads it
       Series curve;

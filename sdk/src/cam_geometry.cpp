@@ -1,9 +1,11 @@
 #include <mechgraph/domain/cam_geometry.hpp>
 
+#include <mechgraph/domain/cam_law_runs.hpp>
 #include <mechgraph/errors.hpp>
 
 #include <mechgraph/numerics/piecewise.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <limits>
@@ -23,6 +25,11 @@ double phase_end(numerics::SmoothPieces& pieces, std::size_t acceleration, doubl
 }  // namespace
 
 double positive_acceleration_phase(const CamLaw& law, int samples, long& evaluations) {
+  if (const auto runs = CamLawRuns::of(law, 2)) {
+    for (const auto& [x, rising] : runs->directed_crossings(0.0, evaluations))
+      if (!rising) return x - law.event_begin();
+    return 0.0;
+  }
   const std::vector<double> knots = law.knots();
   numerics::SmoothPieces pieces([&](double x, double* v, double*) { v[0] = law.at(x).acceleration; }, 1, knots, samples);
   const double phase = phase_end(pieces, 0, law.event_begin());
@@ -42,28 +49,101 @@ double contour_curvature_radius(const CamLaw& law, double, const LiftDerivatives
   return rho_pitch - rr;
 }
 
-CamSummary summarize(const CamLaw& law, int samples) {
+// A certificate that the flat-follower contour has no undercut, without its minimum: on an interval
+// where h and h'' are both monotone (the law's runs of order 0 and 2), rho = r0 + h + h'' is at
+// least r0 + min(h at the ends) + min(h'' at the ends); intervals whose bound is not positive are
+// halved (the bound tightens with the width). True once every interval is proven, false when the
+// law has no runs, a roller follows it, or 400 evaluations do not settle it (the caller then
+// computes the minimum itself).
+bool flat_contour_certainly_convex(const CamLaw& law, long& evaluations) {
+  if (law.roller_radius() > 0.0) return false;
+  std::vector<double> cuts0, cuts2;
+  if (!law.monotone_breaks(0, cuts0) || !law.monotone_breaks(2, cuts2)) return false;
+  std::vector<double> cuts{law.event_begin(), law.event_end()};
+  cuts.insert(cuts.end(), cuts0.begin(), cuts0.end());
+  cuts.insert(cuts.end(), cuts2.begin(), cuts2.end());
+  std::sort(cuts.begin(), cuts.end());
+  cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  const double r0 = law.base_radius();
+  // The lift may dip to -1e-9 max_lift by the contract: counted against the bound.
+  const double slack = 1e-9 * law.max_lift();
+  struct End {
+    double x, h, a;
+  };
+  long budget = 400;
+  auto read = [&](double x, double inward) {
+    const LiftDerivatives d = law.at(x + inward);
+    --budget;
+    ++evaluations;
+    return End{x, d.lift, d.acceleration};
+  };
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double lo = cuts[k], hi = cuts[k + 1], inset = 1e-13 * (hi - lo);
+    std::vector<std::pair<End, End>> pending{{read(lo, inset), read(hi, -inset)}};
+    while (!pending.empty()) {
+      const auto [l, r] = pending.back();
+      pending.pop_back();
+      if (r0 + std::min(l.h, r.h) + std::min(l.a, r.a) - slack > 0.0) continue;
+      if (budget <= 0) return false;
+      const End m = read(0.5 * (l.x + r.x), 0.0);
+      if (!(r0 + m.h + m.a > 0.0)) return false;  // a point with rho <= 0: not convex, let the caller measure it
+      pending.push_back({l, m});
+      pending.push_back({m, r});
+    }
+  }
+  return true;
+}
+
+CamSummary summarize(const CamLaw& law, int samples) { return summarize(law, samples, true); }
+
+CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature) {
   CamSummary s;
   const std::vector<double> knots = law.knots();
   const std::span<const double> k(knots);
-  // Velocity, acceleration and the contour's curvature from one interpolation of each smooth piece
-  // (certified: numerics/piecewise.hpp); |h'| is the larger of h''s two signed extremes.
-  numerics::SmoothPieces pieces(
-      [&](double x, double* v, double*) {
-        const LiftDerivatives d = law.at(x);
-        v[0] = d.velocity;
-        v[1] = d.acceleration;
-        v[2] = contour_curvature_radius(law, x, d);
-      },
-      3, k, samples);
-  s.max_velocity = std::max(pieces.maximum(0).value, -pieces.minimum(0).value);
-  s.max_acceleration = pieces.maximum(1).value;
-  s.min_acceleration = pieces.minimum(1).value;
-  s.accel_angle = phase_end(pieces, 1, law.event_begin());
+  const auto velocity_runs = CamLawRuns::of(law, 1);
+  const auto acceleration_runs = CamLawRuns::of(law, 2);
+  if (velocity_runs && acceleration_runs) {
+    // The law's monotone runs (closed form, mechgraph/domain/cam_law_runs.hpp): the peaks at run
+    // ends, the end of the positive phase by TOMS 748 in its run; only the contour's curvature
+    // needs the interpolation below.
+    s.max_velocity = std::max(velocity_runs->maximum(s.evaluations).value, -velocity_runs->minimum(s.evaluations).value);
+    s.max_acceleration = acceleration_runs->maximum(s.evaluations).value;
+    s.min_acceleration = acceleration_runs->minimum(s.evaluations).value;
+    s.accel_angle = 0.0;
+    for (const auto& [x, rising] : acceleration_runs->directed_crossings(0.0, s.evaluations))
+      if (!rising) {
+        s.accel_angle = x - law.event_begin();
+        break;
+      }
+    if (!exact_curvature && flat_contour_certainly_convex(law, s.evaluations)) {
+      s.curvature_exact = false;
+      s.min_curvature_radius = law.base_radius();  // proven positive; the minimum itself was not asked for
+    } else {
+      numerics::SmoothPieces curvature(
+          [&](double x, double* v, double*) { v[0] = contour_curvature_radius(law, x, law.at(x)); }, 1, k, samples);
+      s.min_curvature_radius = curvature.minimum(0).value;
+      s.evaluations += curvature.work().evaluations;
+    }
+  } else {
+    // Velocity, acceleration and the contour's curvature from one interpolation of each smooth
+    // piece (certified: numerics/piecewise.hpp); |h'| is the larger of h''s two signed extremes.
+    numerics::SmoothPieces pieces(
+        [&](double x, double* v, double*) {
+          const LiftDerivatives d = law.at(x);
+          v[0] = d.velocity;
+          v[1] = d.acceleration;
+          v[2] = contour_curvature_radius(law, x, d);
+        },
+        3, k, samples);
+    s.max_velocity = std::max(pieces.maximum(0).value, -pieces.minimum(0).value);
+    s.max_acceleration = pieces.maximum(1).value;
+    s.min_acceleration = pieces.minimum(1).value;
+    s.accel_angle = phase_end(pieces, 1, law.event_begin());
+    s.min_curvature_radius = pieces.minimum(2).value;
+    s.evaluations += pieces.work().evaluations;
+  }
   // The contour's curvature is checked around the whole cam: on the base circle it is r0 (flat)
   // or r0 (roller contour) and inside the event it varies.
-  s.min_curvature_radius = pieces.minimum(2).value;
-  s.evaluations += pieces.work().evaluations;
   s.min_curvature_radius = std::min(s.min_curvature_radius, law.base_radius());
   return s;
 }

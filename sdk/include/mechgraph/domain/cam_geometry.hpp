@@ -20,10 +20,18 @@ struct CamSummary {
   double accel_angle = 0.0;           // rad from the start of lift to the first + to - change of h''
   double min_curvature_radius = 0.0;  // m, of the cam contour (flat tappet: r0 + h + h'')
   long evaluations = 0;
+  /// false: min_curvature_radius was not asked for (summarize(..., false)) and the contour was
+  /// only proven free of undercut (min_curvature_radius then holds r0, a placeholder > 0).
+  bool curvature_exact = true;
 };
 
 /// `samples` per smooth piece (the accuracy knob of every cam node).
 CamSummary summarize(const CamLaw& law, int samples);
+/// The same; with exact_curvature = false, a flat-follower law that declares its monotone runs
+/// (CamLaw::monotone_breaks) has its contour proven free of undercut by a bound instead of its
+/// smallest radius of curvature measured (cheaper; the undercut refusal is unchanged, and a law
+/// whose bound does not settle it is measured).
+CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature);
 
 /// The positive-acceleration phase measured from the start of lift: up to the first + to -
 /// change of sign of h'' after the first angle where h'' > 0 (so a constant-velocity ramp, where

@@ -62,6 +62,16 @@ class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
   virtual double roller_radius() const { return 0.0; }
   /// d4h/dphi4 and d5h/dphi5 at event_begin() < phi < event_end(); false if the law cannot give them.
   virtual bool higher_derivatives(double /*phi*/, double& /*d4*/, double& /*d5*/) const { return false; }
+  /// Optional closed-form query: angles strictly inside the event, ascending, that cut it into runs
+  /// on each of which h^(order) (order 0 = lift, 1 = velocity, 2 = acceleration) is continuous and
+  /// monotone (a law knows where its derivative h^(order+1) changes sign; extra cuts are harmless).
+  /// The extrema of h^(order) over any interval are then at its ends and at the cuts inside it, and
+  /// each crossing of a level lies in one run, bracketed: the searches of
+  /// mechgraph/domain/cam_law_runs.hpp need a few evaluations where the generic certified search
+  /// interpolates every piece. Return false (the default) when the law cannot say: the generic
+  /// search is used then. The conformance kit checks the runs against dense sampling and the
+  /// generic search.
+  virtual bool monotone_breaks(int /*order*/, std::vector<double>& /*breaks*/) const { return false; }
 
   /// The checks of the contract above that the host runs on every law a node outputs (sdk/src/cam_law.cpp).
   std::string contract_problem() const final;

@@ -1,0 +1,49 @@
+#pragma once
+// Extrema and crossings of a cam law's lift or derivative from its monotone runs
+// (CamLaw::monotone_breaks; docs/methods/numerics.md, "Closed-form queries").
+//
+// On a run [e_i, e_i+1] the function f = h^(order) is continuous and monotone, so
+//  - its extremes over [a, b] are among f(a), f(b) and the one-sided values at the cuts inside;
+//  - a crossing of a level inside a run is bracketed by the run's ends (one sign change at most)
+//    and found by TOMS 748 on the law itself; where f jumps across the level at a cut, the cut is
+//    the crossing.
+// One-sided values at a cut are read 1e-13 of the run's width inside it, as the generic search
+// reads its knots (numerics/piecewise.hpp), so both paths agree on a jump to rounding.
+// Everything is certified by the law's declaration alone; the conformance kit checks it.
+#include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
+
+#include <optional>
+#include <utility>
+#include <vector>
+
+namespace mechgraph {
+
+class CamLawRuns {
+ public:
+  /// The runs of h^(order) (0: lift, 1: velocity, 2: acceleration) over the whole event, or
+  /// nullopt when the law does not declare them (then use numerics::SmoothPieces).
+  static std::optional<CamLawRuns> of(const CamLaw& law, int order);
+
+  /// Greatest / least h^(order) over [a, b] inside the event (a < b).
+  numerics::Extremum maximum(double a, double b, long& evaluations) const { return extreme(a, b, 1.0, evaluations); }
+  numerics::Extremum minimum(double a, double b, long& evaluations) const { return extreme(a, b, -1.0, evaluations); }
+  /// Over the whole event.
+  numerics::Extremum maximum(long& evaluations) const { return maximum(edges_.front(), edges_.back(), evaluations); }
+  numerics::Extremum minimum(long& evaluations) const { return minimum(edges_.front(), edges_.back(), evaluations); }
+  /// Every angle of the event where h^(order) crosses `level` (its sign of f - level changes,
+  /// zeros skipped), ascending, with true where it rises through it; as
+  /// numerics::SmoothPieces::directed_crossings.
+  std::vector<std::pair<double, bool>> directed_crossings(double level, long& evaluations) const;
+
+ private:
+  CamLawRuns(const CamLaw& law, int order, std::vector<double> edges) : law_(&law), order_(order), edges_(std::move(edges)) {}
+  double value(double x) const;
+  numerics::Extremum extreme(double a, double b, double sign, long& evaluations) const;
+
+  const CamLaw* law_;
+  int order_;
+  std::vector<double> edges_;  // event_begin, the cuts, event_end
+};
+
+}  // namespace mechgraph

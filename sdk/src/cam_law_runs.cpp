@@ -1,0 +1,107 @@
+#include <mechgraph/domain/cam_law_runs.hpp>
+
+#include <boost/math/tools/toms748_solve.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace mechgraph {
+namespace {
+
+// Where a run's one-sided values are read: 1e-13 of its width inside (as numerics/piecewise.hpp).
+double inset(double lo, double hi) { return 1e-13 * (hi - lo); }
+
+int sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
+
+}  // namespace
+
+std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
+  if (order < 0 || order > 2) return std::nullopt;
+  std::vector<double> breaks;
+  if (!law.monotone_breaks(order, breaks)) return std::nullopt;
+  std::vector<double> edges{law.event_begin()};
+  for (double b : breaks)  // a cut outside the event or out of order would void the certificate: refuse it
+    if (!(b > edges.back()) || !(b < law.event_end())) return std::nullopt;
+    else edges.push_back(b);
+  edges.push_back(law.event_end());
+  return CamLawRuns(law, order, std::move(edges));
+}
+
+double CamLawRuns::value(double x) const {
+  const LiftDerivatives d = law_->at(x);
+  return order_ == 0 ? d.lift : order_ == 1 ? d.velocity : d.acceleration;
+}
+
+numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
+  a = std::max(a, edges_.front());
+  b = std::min(b, edges_.back());
+  numerics::Extremum best{a, -std::numeric_limits<double>::infinity()};
+  // The runs that meet [a, b]; on each, the ends of its part of [a, b], read inside the run.
+  const auto first = std::upper_bound(edges_.begin(), edges_.end(), a) - edges_.begin() - 1;
+  for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(edges_.size()); ++k) {
+    const double lo = edges_[static_cast<std::size_t>(k)], hi = edges_[static_cast<std::size_t>(k) + 1];
+    if (lo >= b) break;
+    const double d = inset(lo, hi);
+    for (double x : {std::max(a, lo), std::min(b, hi)}) {
+      const double v = sign * value(std::clamp(x, lo + d, hi - d));
+      ++evaluations;
+      if (v > best.value) best = {x, v};
+    }
+  }
+  best.value *= sign;
+  return best;
+}
+
+std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level, long& evaluations) const {
+  std::vector<std::pair<double, bool>> found;
+  auto g = [&](double x) {
+    ++evaluations;
+    return value(x) - level;
+  };
+  // A left-to-right walk over the runs' one-sided ends; exact zeros are skipped (a touch is no
+  // crossing), and the first of them marks where a crossing through them lies.
+  int last_sign = 0;
+  std::ptrdiff_t last_run = -1;
+  bool last_was_left = false;
+  double last_x = 0.0, last_g = 0.0;
+  double zero_at = 0.0;  // the first exact zero since the last signed point
+  bool zero_since_last = false;
+  for (std::size_t k = 0; k + 1 < edges_.size(); ++k) {
+    const double lo = edges_[k], hi = edges_[k + 1], d = inset(lo, hi);
+    for (const bool left : {true, false}) {
+      const double x = left ? lo + d : hi - d;
+      const double gx = g(x);
+      const int s = sign_of(gx);
+      if (s == 0) {
+        if (!zero_since_last) zero_at = x, zero_since_last = true;
+        continue;
+      }
+      if (last_sign != 0 && s != last_sign) {
+        const bool rising = s > 0;
+        if (zero_since_last) {
+          found.push_back({zero_at, rising});  // the function is at the level exactly there
+        } else if (last_run == static_cast<std::ptrdiff_t>(k) && last_was_left && !left) {
+          // Inside one run: one sign change, bracketed; TOMS 748 on the law itself.
+          double a = last_x, b = x, ga = last_g, gb = gx;
+          std::uintmax_t iterations = 100;
+          const auto r = boost::math::tools::toms748_solve(
+              g, a, b, ga, gb, boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2), iterations);
+          found.push_back({0.5 * (r.first + r.second), rising});
+        } else {
+          found.push_back({lo, rising});  // a jump across the level at the cut that begins this run
+        }
+      }
+      last_sign = s;
+      last_run = static_cast<std::ptrdiff_t>(k);
+      last_was_left = left;
+      last_x = x;
+      last_g = gx;
+      zero_since_last = false;
+    }
+  }
+  return found;
+}
+
+}  // namespace mechgraph
