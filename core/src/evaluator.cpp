@@ -159,6 +159,7 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph) {
   std::vector<std::uint64_t> hashes(graph.nodes.size(), 0);
   for (std::size_t i : graph.order) {
     const GraphNode& node = graph.nodes[i];
+    if (!node.memoised) continue;  // never looked up (and all it feeds is unmemoised too): no key
     Hasher h;
     h.add(node.info().type).add(static_cast<std::uint64_t>(node.info().version));
     for (const auto& [name, value] : node.params.all()) {
@@ -187,7 +188,7 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
                  std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache) {
   const GraphNode& node = graph.nodes[i];
   NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}, {}};
-  if (auto hit = cache.find(hashes[i])) {
+  if (auto hit = node.memoised ? cache.find(hashes[i]) : nullptr) {
     produced[i] = hit;
     run.reused = true;
     run.notes = hit->notes();
@@ -244,7 +245,7 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
                                            "std::exception (a defect of its plugin)");
   }
   run.notes = produced[i]->notes();
-  cache.store(hashes[i], produced[i]);
+  if (node.memoised) cache.store(hashes[i], produced[i]);
   spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
   return run;
 }

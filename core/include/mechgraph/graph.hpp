@@ -41,6 +41,7 @@ struct GraphNode {
   std::vector<std::string> effects_read;   // scene effects this node implements
   std::vector<std::string> wanted;         // its outputs read downstream (mark_wanted_outputs)
   bool needed = false;
+  bool memoised = true;                    // looked up in and stored to the memo cache (a sweep clears it)
   const NodeInfo& info() const { return type->type->info(); }
 };
 

@@ -66,9 +66,22 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
       spdlog::warn("sweep: '{}' only reaches nodes the requested outputs do not need: varying it changes nothing", name);
     rebuild_ = rebuild_ || nested;
     targets_.push_back(std::move(targets));
+    swept_labels_.push_back("(swept " + name + ")");
   }
   if (rebuild_)
     spdlog::info("sweep: a varied parameter sits inside a list or record; each case's graph is built anew from the scene");
+}
+
+void CaseBinder::mark_unmemoised(Graph& graph) const {
+  std::vector<char> varied(graph.nodes.size(), 0);
+  for (const auto& targets : targets_)
+    for (const Target& t : targets)
+      if (t.node < varied.size()) varied[t.node] = 1;
+  // graph.order is topological: a node is varied when it is a target or reads a varied node.
+  for (std::size_t i : graph.order) {
+    for (std::size_t u : graph.nodes[i].upstream) varied[i] = varied[i] || varied[u];
+    graph.nodes[i].memoised = !varied[i];
+  }
 }
 
 void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const {
@@ -81,11 +94,12 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
   }
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const CaseValue& value = values[v];
-    const std::string what = variables_[v].name + " = '" + excerpt(value.text) + "'";
+    // The messages are built only when one is thrown (a sweep applies millions of values).
+    const auto what = [&] { return variables_[v].name + " = '" + excerpt(value.text) + "'"; };
     for (const Target& t : targets_[v]) {
       GraphNode& node = graph.nodes[t.node];
       const ParamSpec& spec = *t.spec;
-      const std::string param = "parameter '" + spec.name + "' of " + owner_of(node);
+      const auto param = [&] { return "parameter '" + spec.name + "' of " + owner_of(node); };
       ParamValue written;
       switch (spec.kind) {
         case ParamKind::number:
@@ -97,21 +111,21 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
             } catch (const UnitError& e) {
               why = e.what();
             }
-            throw SceneError(what + ": " + param + ": " + why);
+            throw SceneError(what() + ": " + param() + ": " + why);
           }
           // Read values are finite already (case_table); a table built by a library caller may not be.
-          if (!std::isfinite(*value.si)) throw SceneError(what + ": " + param + ": not a finite number");
+          if (!std::isfinite(*value.si)) throw SceneError(what() + ": " + param() + ": not a finite number");
           if (!(value.dimension == spec.dimension))
-            throw SceneError(what + ": " + param + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
+            throw SceneError(what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
           if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
-            throw SceneError(what + ": " + param + " " + problem);
+            throw SceneError(what() + ": " + param() + " " + problem);
           written = spec.kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(*value.si)) : ParamValue::of_number(*value.si);
           break;
         }
         case ParamKind::choice:
           if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
-            throw SceneError(what + ": " + param + ": " + unknown_name_message("choice", value.text, spec.choices));
+            throw SceneError(what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
           written = ParamValue::of_choice(value.text);
           break;
         case ParamKind::text: written = ParamValue::of_text(value.text); break;
@@ -119,7 +133,8 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
         case ParamKind::record_list: break;  // rebuilt above
       }
       node.params.set(spec.name, std::move(written));
-      node.param_where[spec.name] = SourceLocation{"(swept " + variables_[v].name + ")", 0, 0};
+      SourceLocation& where = node.param_where[spec.name];
+      if (where.line != 0 || where.column != 0 || where.file != swept_labels_[v]) where = SourceLocation{swept_labels_[v], 0, 0};
     }
   }
 }

@@ -34,6 +34,7 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
 
   auto worker = [&] {
     Graph graph = base;
+    binder.mark_unmemoised(graph);
     while (!stopping()) {
       const std::size_t k = next.fetch_add(1);
       if (k >= n) break;
@@ -45,6 +46,7 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
       result.index = options.cases[k];
       try {
         binder.apply(graph, table.cases[result.index]);
+        if (binder.rebuilds()) binder.mark_unmemoised(graph);
         RunResult run = evaluate(graph, cache, node_threads);
         result.outputs = std::move(run.outputs);
         for (const NodeRun& r : run.runs) ++(r.reused ? result.reused : result.evaluated);

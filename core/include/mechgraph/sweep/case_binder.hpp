@@ -25,6 +25,10 @@ class CaseBinder {
   void apply(Graph& graph, const std::vector<CaseValue>& values) const;
 
   bool rebuilds() const { return rebuild_; }
+  /// Marks the nodes a case changes (the targets of the varied parameters and everything
+  /// downstream of them) as not memoised: in a sweep their results never repeat, so storing and
+  /// looking them up in the memo cache is work for nothing. Call after apply() when rebuilds().
+  void mark_unmemoised(Graph& graph) const;
   const std::vector<SweepVariable>& variables() const { return variables_; }
 
  private:
@@ -37,6 +41,7 @@ class CaseBinder {
   std::vector<Override> overrides_;
   std::vector<SweepVariable> variables_;
   std::vector<std::vector<Target>> targets_;  // per variable
+  std::vector<std::string> swept_labels_;     // per variable: where its values come from, "(swept x)"
   bool rebuild_ = false;
 };
 
