@@ -83,8 +83,15 @@ class Dopri5Backend final : public OdeBackend {
       ChainState& s = self->scratch_;
       s.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) s[i] = q[i] * self->unit(i);
-      self->model_.rhs(self->mode_, t, s, self->derivative_, self->last_drive_);
-      self->last_t_ = t;
+      // Dormand-Prince evaluates twice at the step's end (its sixth stage, c_6 = 1, and the FSAL
+      // stage there): the drive's motion at that time is taken again, not recomputed.
+      if (t == self->last_t_ && self->drive_known_) {
+        self->model_.rhs(self->mode_, self->last_drive_, s, self->derivative_);
+      } else {
+        self->model_.rhs(self->mode_, t, s, self->derivative_, self->last_drive_);
+        self->last_t_ = t;
+        self->drive_known_ = true;
+      }
       dq.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) dq[i] = self->derivative_[i] / self->unit(i);
     }
@@ -106,6 +113,7 @@ class Dopri5Backend final : public OdeBackend {
   Mode mode_{};
   DriveValue last_drive_;  // of the last right-hand side, at last_t_
   double last_t_ = -1.0;
+  bool drive_known_ = false;  // last_drive_ holds the drive at last_t_
   double first_step_ = 0.0;
   long steps_ = 0, rhs_ = 0, initialisations_ = 0;
 };

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -133,6 +134,9 @@ class Driver {
     std::sort(stops.begin(), stops.end());
     std::size_t next_stop = 0;
     outputs_ = &output_times;
+    result_.t.reserve(output_times.size());
+    result_.mode.reserve(output_times.size());
+    result_.state.reset(s.size(), output_times.size());
     while (next_output_ < output_times.size() && output_times[next_output_] <= t0) record(t0, s, mode);
 
     const double seated_step = options_.scan_step > 0.0  ? options_.scan_step
@@ -155,7 +159,8 @@ class Driver {
       if (rigid_seated()) {
         // Nothing moves while a one-mass valve sits: the lift-off is looked for in pieces of the
         // scan step on the excitation alone, nothing integrated.
-        const double pieces = std::ceil((limit - t) / seated_step);
+        // Over a stretch where the drive stands still the force on the valve is constant: one piece.
+        const double pieces = quiet(t, limit) ? 1.0 : std::ceil((limit - t) / seated_step);
         if (pieces > 1.0) end = t + (limit - t) / pieces;
         rest_ = current_.state;
       } else {
@@ -181,6 +186,13 @@ class Driver {
 
  private:
   bool rigid_seated() const { return current_.mode.seated && model_.rigid_when_seated(); }
+  // Is [a, b] inside one of the stretches where the excitation is constant?
+  // (options.quiet is sorted and its stretches do not overlap: the last one beginning at or before a.)
+  bool quiet(double a, double b) const {
+    const auto& q = options_.quiet;
+    auto after = std::upper_bound(q.begin(), q.end(), a, [](double t, const auto& stretch) { return t < stretch.first; });
+    return after != q.begin() && b <= std::prev(after)->second;
+  }
 
   // The state at t inside the interval being looked at: the dense output, or the seated valve's rest.
   void state_at(double t, ChainState& s) {
