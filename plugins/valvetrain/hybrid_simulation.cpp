@@ -201,8 +201,9 @@ class Driver {
   }
   // The snapshot at t; without `full_` only its state (enough for an event function of the state
   // alone, when no monitor looks): the drive and the rates are not computed.
-  void snapshot_at(double t, Snapshot& x) {
-    state_at(t, scratch_state_);
+  void snapshot_at(double t, Snapshot& x, bool at_event = false) {
+    if (at_event && !rigid_seated()) backend_->state_at_event(t, scratch_state_);
+    else state_at(t, scratch_state_);
     if (full_) {
       model_.snapshot(t, scratch_state_, current_.mode, x);
       return;
@@ -259,7 +260,7 @@ class Driver {
       }
     }
     const double t_end = event_time ? *event_time : tb;
-    if (event_time) snapshot_at(t_end, end);
+    if (event_time) snapshot_at(t_end, end, true);
 
     // Outputs inside (an output at the event's time takes the state after it).
     while (next_output_ < outputs_->size() &&
