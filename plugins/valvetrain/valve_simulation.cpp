@@ -82,16 +82,25 @@ IntegratorChoice choose_integrator(const ChainParams& chain, double step) {
   const double decay = scaled_row_sum_bound(B, m);
   choice.fastest_rate = std::max(omega, decay);
   choice.stiffness_ratio = choice.fastest_rate * step;
-  choice.stiff = choice.stiffness_ratio > IntegratorChoice::explicit_limit;
+  choice.overdamped = decay >= omega;
+  // Work per step cap, in multiply-adds of N = 2 P states: the explicit method needs ratio / limit
+  // steps of 6 right-hand sides (O(N) each); BDF one step of a dense solve (N^2) and, every few
+  // tens of steps, a dense LU (N^3 / 3). BDF only takes long steps over fast modes that decay
+  // (real eigenvalues); a lightly damped fast oscillation must be resolved by both.
+  const double N = 2.0 * static_cast<double>(m.size());
+  const double explicit_work = std::max(1.0, choice.stiffness_ratio / IntegratorChoice::explicit_limit) * 6.0 * N;
+  const double implicit_work = N * N + N * N * N / 60.0;
+  choice.stiff = choice.stiffness_ratio > IntegratorChoice::explicit_limit && choice.overdamped && explicit_work > implicit_work;
   return choice;
 }
 
 std::string IntegratorChoice::reason() const {
   char text[320];
   std::snprintf(text, sizeof text,
-                "the fastest mode (|lambda| <= %.3g 1/s) times the step cap is %.3g, %s dopri5's stability interval "
-                "(%.3g): %s",
-                fastest_rate, stiffness_ratio, stiff ? "beyond" : "inside", explicit_limit,
+                "the fastest mode (|lambda| <= %.3g 1/s, %s) times the step cap is %.3g, %s dopri5's stability "
+                "interval (%.3g): %s",
+                fastest_rate, overdamped ? "overdamped" : "oscillating", stiffness_ratio,
+                stiffness_ratio > explicit_limit ? "beyond" : "inside", explicit_limit,
                 stiff ? "stiff, implicit BDF (cvode)" : "not stiff, explicit Dormand-Prince 5(4) (dopri5)");
   return text;
 }

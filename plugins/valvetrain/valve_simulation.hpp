@@ -28,14 +28,17 @@ struct DriveSettings {
 };
 
 /// How stiff the chain is at the integration's step cap, and so which integrator `auto` takes
-/// (docs/methods/valvetrain.md, "Integrators"): the explicit one where the cap step is inside its
-/// stability interval, the implicit one beyond.
+/// (docs/methods/valvetrain.md, "Integrators"): the explicit one unless the cap step is beyond its
+/// stability interval over fast modes that decay, and BDF's linear algebra is the cheaper.
 struct IntegratorChoice {
   /// dopri5's stability interval on the negative real axis reaches about -3.3; a little inside it.
   static constexpr double explicit_limit = 3.0;
   double fastest_rate = 0.0;     // 1/s: bound on the largest |eigenvalue| of the free chain (valve off its seat)
   double stiffness_ratio = 0.0;  // fastest_rate x the step cap
-  bool stiff = false;            // stiffness_ratio > explicit_limit
+  bool overdamped = false;       // the fastest modes decay without oscillating (BDF's case)
+  /// stiffness_ratio > explicit_limit, the fast modes overdamped, and the explicit steps that
+  /// stability then needs cost more than BDF's dense linear algebra on the chain's states.
+  bool stiff = false;
   /// One line: the figures and the choice they make.
   std::string reason() const;
 };
