@@ -56,6 +56,7 @@ void BM_DynamicsPeer(benchmark::State& state, const char* integrator, const char
 }
 BENCHMARK_CAPTURE(BM_DynamicsPeer, cvode_1e-7, "cvode", "1e-7")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_DynamicsPeer, dopri5_1e-7, "dopri5", "1e-7")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DynamicsPeer, auto_1e-7, "auto", "1e-7")->Unit(benchmark::kMillisecond);
 
 // Float, bounces and three revolutions at 7500 rpm.
 void BM_DynamicsOverspeed(benchmark::State& state, const char* integrator) {
