@@ -151,11 +151,13 @@ class DynamicsType final : public NodeType {
     const int revolutions = static_cast<int>(p.integer("revolutions"));
 
     // The curves' cam angles: one revolution from -pi, the nose at 0.
-    std::vector<double> phi(static_cast<std::size_t>(n));
+    // (written straight into the curves' axis, which outlives every use below)
+    Table curves;
+    curves.axis = {"cam_angle", dim::angle, {}, "deg"};
+    std::vector<double>& phi = curves.axis.values;
+    phi.resize(static_cast<std::size_t>(n));
     for (long j = 0; j < n; ++j) phi[static_cast<std::size_t>(j)] = -pi + 2.0 * pi * static_cast<double>(j) / static_cast<double>(n - 1);
 
-    Table curves;
-    curves.axis = {"cam_angle", dim::angle, phi, "deg"};
     curves.channels.reserve(8);  // room for tappet_lift (multi_mass): the references below stay valid
     curves.add_channel("lift", dim::length, "mm");
     curves.add_channel("quasi_static_lift", dim::length, "mm");
@@ -262,7 +264,7 @@ class DynamicsType final : public NodeType {
         watch.pop_back();
       }
 
-      const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
+      ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
       const SimulationResult& run = sim.run;
       if (run.state.size() != phi.size())
         throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
@@ -333,6 +335,7 @@ class DynamicsType final : public NodeType {
       // Bounces: the valve's highest lift after the first landing of the last revolution.
       if (std::isfinite(first_landing)) bounce_height = std::max(0.0, greatest_of(extremes[valve_lift], first_landing).value);
       if (target) out.set_scalar("target_deviation", greatest_of(extremes[target_gap]).value);
+      recycle(std::move(sim.run));  // its buffers serve this thread's next simulation
       out.set_scalar("max_deviation", max_dev);
       out.set_scalar("residual_amplitude", residual);
       if (settings.contact_loss) out.set_scalar("floats", floats);

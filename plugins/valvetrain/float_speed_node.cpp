@@ -105,12 +105,13 @@ class FloatSpeedType final : public NodeType {
                                 if (x.mode.seated) return Reading{0.0, 0.0, false};
                                 return Reading{model.cam_force(x.drive, x.state), model.cam_force_rate(x)};
                               }};
-      const ValveSimulation sim = simulate_valve(at_speed, *design, drive, {}, {cam_force});
+      ValveSimulation sim = simulate_valve(at_speed, *design, drive, {}, {cam_force});
       ++simulations;
       for (const auto& [counter, amount] : sim.run.work)
         if (counter == "steps" || counter == "rhs_evaluations") ctx.report_work(counter, amount);
       ctx.report_work("implicit_simulations", sim.integrator == "cvode" ? 1.0 : 0.0);  // the rest ran dopri5
       const double m = least_of(sim.run.extremes[0]).value;  // +inf: the valve never lifted
+      recycle(std::move(sim.run));
       margin[crank_speed] = m;
       return m;
     };

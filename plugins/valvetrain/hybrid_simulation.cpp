@@ -108,10 +108,27 @@ bool within_rounding(double a, double b) {
   return std::abs(b - a) <= 8.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(a));
 }
 
+// The buffers of the last result recycle() was given on this thread.
+thread_local SimulationResult spare_result;
+
+// A result to fill: the spare one emptied, its capacity kept.
+SimulationResult fresh_result() {
+  SimulationResult r = std::move(spare_result);
+  spare_result = SimulationResult{};
+  r.t.clear();
+  r.mode.clear();
+  r.state.reset(0, 0);
+  r.events.clear();
+  r.extremes.clear();
+  r.work.clear();
+  return r;
+}
+
 class Driver {
  public:
   Driver(const ChainModel& model, const SimulationOptions& options, const std::vector<Monitor>& monitors)
-      : model_(model), options_(options), monitors_(monitors), search_(options.rtol), events_(model, result_) {
+      : model_(model), options_(options), monitors_(monitors), search_(options.rtol), result_(fresh_result()),
+        events_(model, result_) {
     if (options.integrator == "cvode") backend_ = make_cvode_backend(model, options);
     else if (options.integrator == "dopri5") backend_ = make_dopri5_backend(model, options);
     else throw std::invalid_argument("unknown integrator '" + options.integrator + "'");
@@ -367,6 +384,8 @@ SimulationResult simulate(const ChainModel& model, double t0, double t1, const s
   Driver driver(model, options, monitors);
   return driver.run(t0, t1, output_times, knots);
 }
+
+void recycle(SimulationResult&& used) { spare_result = std::move(used); }
 
 Extremum least_of(const std::vector<MonitorSegment>& segments, double from) {
   Extremum e{0.0, std::numeric_limits<double>::infinity()};

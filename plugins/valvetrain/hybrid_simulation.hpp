@@ -108,6 +108,11 @@ SimulationResult simulate(const ChainModel& model, double t0, double t1, const s
                           const std::vector<double>& knots, const SimulationOptions& options,
                           const std::vector<Monitor>& monitors = {});
 
+/// Hands a result's buffers back to this thread's pool: the next simulate() on the same thread
+/// fills them again instead of allocating (and, for large outputs, mapping fresh pages). Per thread,
+/// so simulations on several threads share nothing.
+void recycle(SimulationResult&& used);
+
 /// The least of a monitor's minima over its segments (those starting at or after `from`), or
 /// +inf if it has none.
 Extremum least_of(const std::vector<MonitorSegment>& segments, double from = -std::numeric_limits<double>::infinity());
