@@ -73,6 +73,20 @@ void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& d
 void ChainModel::rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const {
   const std::size_t P = positions_, n = p_.mass.size();
   ds.resize(2 * P);
+  if (P == 1) {
+    // The single mass, forces() written out (the integrators' inner loop; same operations, same
+    // order): M x'' = F_c - P0 - c_s x, F_c = k_d (y - x) + b_d (y' - x') while the cam pushes.
+    if (m.seated) {
+      ds[0] = ds[1] = 0.0;
+      return;
+    }
+    double f = m.contact && pushes(e, s) ? p_.link_stiffness[0] * (e.y - s[0]) + p_.link_damping[0] * (e.rate - s[1]) : 0.0;
+    f -= p_.preload;
+    f -= p_.spring_rate * s[0];
+    ds[0] = s[1];
+    ds[1] = f / p_.mass[0];
+    return;
+  }
   forces(m, e.y, e.rate, s, pushes(e, s), false, ds.data() + P);  // the forces, then / mass
   for (std::size_t i = 0; i < P; ++i) {
     const bool frozen = m.seated && i == valve();

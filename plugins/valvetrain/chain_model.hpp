@@ -100,6 +100,8 @@ class ChainModel {
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const;
   /// The same, and the drive's motion at t that it used.
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds, DriveValue& drive) const;
+  /// The same with the drive's motion already known (an integrator's stages that share a time).
+  void rhs(const Mode& m, const DriveValue& drive, const ChainState& s, ChainState& ds) const { rates(m, drive, s, ds); }
   /// The state's rate and the drive's motion at (t, s) in mode m, into `out` (its buffers reused).
   void snapshot(double t, const ChainState& s, const Mode& m, Snapshot& out) const;
   /// Time derivatives of the forces above along the motion, from a snapshot (exact: the model is

@@ -66,12 +66,30 @@ class Dopri5Backend final : public OdeBackend {
     for (std::size_t i = 0; i < s.size(); ++i) s[i] = scaled_[i] * unit(i);
   }
 
+  // Dormand-Prince's continuous extension is of order 4, one below its steps: where the integration
+  // restarts after an event, the state comes from one step of the method itself from the last
+  // step's beginning to the event (shorter than the accepted step, so within its error).
+  void state_at_event(double t, ChainState& s) override {
+    const double t0 = dense_.previous_time();
+    if (!(t > t0 && t < dense_.current_time())) {
+      state_at(t, s);
+      return;
+    }
+    event_start_ = dense_.previous_state();
+    System system{this};
+    system(event_start_, event_rate_, t0);
+    single_.do_step(system, event_start_, event_rate_, t0, scaled_, event_end_rate_, t - t0);
+    ++event_steps_;
+    s.resize(scaled_.size());
+    for (std::size_t i = 0; i < s.size(); ++i) s[i] = scaled_[i] * unit(i);
+  }
+
   void add_work(std::map<std::string, double>& work) const override {
     work["steps"] += static_cast<double>(steps_);
     work["rhs_evaluations"] += static_cast<double>(rhs_);
     // Each attempted step costs six new stages (the seventh is the next step's first: FSAL), and
     // every initialisation one more evaluation: what is left over are rejected attempts.
-    const long attempts = (rhs_ - initialisations_) / 6;
+    const long attempts = (rhs_ - initialisations_ - 7 * event_steps_) / 6;
     work["rejected_steps"] += static_cast<double>(std::max(0L, attempts - steps_));
   }
 
@@ -83,8 +101,15 @@ class Dopri5Backend final : public OdeBackend {
       ChainState& s = self->scratch_;
       s.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) s[i] = q[i] * self->unit(i);
-      self->model_.rhs(self->mode_, t, s, self->derivative_, self->last_drive_);
-      self->last_t_ = t;
+      // Dormand-Prince evaluates twice at the step's end (its sixth stage, c_6 = 1, and the FSAL
+      // stage there): the drive's motion at that time is taken again, not recomputed.
+      if (t == self->last_t_ && self->drive_known_) {
+        self->model_.rhs(self->mode_, self->last_drive_, s, self->derivative_);
+      } else {
+        self->model_.rhs(self->mode_, t, s, self->derivative_, self->last_drive_);
+        self->last_t_ = t;
+        self->drive_known_ = true;
+      }
       dq.resize(q.size());
       for (std::size_t i = 0; i < q.size(); ++i) dq[i] = self->derivative_[i] / self->unit(i);
     }
@@ -102,12 +127,15 @@ class Dopri5Backend final : public OdeBackend {
   std::size_t positions_;
   ChainState scratch_, derivative_;  // the right-hand side's buffers, kept across calls
   Scaled scaled_;
+  Scaled event_start_, event_rate_, event_end_rate_;  // the step to an event (state_at_event)
+  odeint::runge_kutta_dopri5<Scaled> single_;
   odeint::dense_output_runge_kutta<odeint::controlled_runge_kutta<odeint::runge_kutta_dopri5<Scaled>>> dense_;
   Mode mode_{};
   DriveValue last_drive_;  // of the last right-hand side, at last_t_
   double last_t_ = -1.0;
+  bool drive_known_ = false;  // last_drive_ holds the drive at last_t_
   double first_step_ = 0.0;
-  long steps_ = 0, rhs_ = 0, initialisations_ = 0;
+  long steps_ = 0, rhs_ = 0, initialisations_ = 0, event_steps_ = 0;
 };
 
 }  // namespace

@@ -52,10 +52,11 @@ class DynamicsType final : public NodeType {
             .at_least(1e-13)
             .at_most(1e-2)
             .as_knob(),
-        ParamSpec::choice("integrator", {"cvode", "dopri5"},
-                          "cvode: SUNDIALS CVODE, BDF with root finding (stiff drives); dopri5: explicit Dormand-Prince "
-                          "5(4) with event location")
-            .with_default("cvode")
+        ParamSpec::choice("integrator", {"cvode", "dopri5", "auto"},
+                          "cvode: SUNDIALS CVODE, BDF (stiff drives); dopri5: explicit Dormand-Prince 5(4); auto: "
+                          "dopri5 where the chain is not stiff at the step cap, cvode where it is (the work counters "
+                          "stiffness_ratio and implicit say which ran)")
+            .with_default("auto")
             .as_knob(),
         ParamSpec::integer("curve_points", "points of the curves over the last cam revolution (the scalar extremes are found between them)")
             .with_default(1441.0)
@@ -128,7 +129,8 @@ class DynamicsType final : public NodeType {
          {}, {"coils", "surge_damping_ratio"}},
     };
     info_.work_counters = {"steps", "rhs_evaluations", "jacobian_evaluations", "root_evaluations", "rejected_steps",
-                           "newton_iterations", "events", "monitor_evaluations", "refinements"};
+                           "newton_iterations", "events", "monitor_evaluations", "refinements", "stiffness_ratio",
+                           "implicit"};
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -149,11 +151,13 @@ class DynamicsType final : public NodeType {
     const int revolutions = static_cast<int>(p.integer("revolutions"));
 
     // The curves' cam angles: one revolution from -pi, the nose at 0.
-    std::vector<double> phi(static_cast<std::size_t>(n));
+    // (written straight into the curves' axis, which outlives every use below)
+    Table curves;
+    curves.axis = {"cam_angle", dim::angle, {}, "deg"};
+    std::vector<double>& phi = curves.axis.values;
+    phi.resize(static_cast<std::size_t>(n));
     for (long j = 0; j < n; ++j) phi[static_cast<std::size_t>(j)] = -pi + 2.0 * pi * static_cast<double>(j) / static_cast<double>(n - 1);
 
-    Table curves;
-    curves.axis = {"cam_angle", dim::angle, phi, "deg"};
     curves.channels.reserve(8);  // room for tappet_lift (multi_mass): the references below stay valid
     curves.add_channel("lift", dim::length, "mm");
     curves.add_channel("quasi_static_lift", dim::length, "mm");
@@ -169,6 +173,8 @@ class DynamicsType final : public NodeType {
     auto& velocity = curves.channels[4].values;
     auto& contact = curves.channels[5].values;
     auto& spring = curves.channels[6].values;
+    // Each curve written once, at its final size: nothing reallocates while it fills.
+    for (std::size_t c = 0; c < 7; ++c) curves.channels[c].values.reserve(phi.size());
 
     double min_contact = std::numeric_limits<double>::infinity();
     double seating_velocity = 0.0, bounce_height = 0.0, max_dev = 0.0, residual = 0.0, max_spring = 0.0;
@@ -258,7 +264,7 @@ class DynamicsType final : public NodeType {
         watch.pop_back();
       }
 
-      const ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
+      ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
       const SimulationResult& run = sim.run;
       if (run.state.size() != phi.size())
         throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
@@ -275,8 +281,13 @@ class DynamicsType final : public NodeType {
       if (settings.multi_mass) {
         curves.add_channel("tappet_lift", dim::length, "mm");
         tappet = &curves.channels.back().values;
+        tappet->reserve(phi.size());
       }
       for (const auto& [counter, amount] : run.work) ctx.report_work(counter, amount);
+      // Which integrator ran, and how stiff the chain is at the step cap (what `auto` decides on).
+      ctx.report_work("stiffness_ratio", sim.choice.stiffness_ratio);
+      ctx.report_work("implicit", sim.integrator == "cvode" ? 1.0 : 0.0);
+      if (settings.integrator == "auto") out.note("integrator auto: " + sim.choice.reason());
 
       double first_landing = std::numeric_limits<double>::infinity();
       for (const EventRecord& e : run.events) {
@@ -291,19 +302,25 @@ class DynamicsType final : public NodeType {
           seating_velocity = e.speed;
         }
       }
+      ChainState s;
       for (std::size_t j = 0; j < phi.size(); ++j) {
-        const ChainState& s = run.state[j];
+        s.assign(run.state[j].begin(), run.state[j].end());
         const Mode& mode = run.mode[j];
         const double x = s[v];
-        const double y = motion->drive(phi[j]).lift;
+        // One cam evaluation per point: the drive y = i h - lash, and from it (the ValveMotion
+        // contract) the kinematic lift, max(0, y) over the open period and 0 outside it.
+        const LiftDerivatives cam = motion->drive(phi[j]);
+        const double y = cam.lift;
+        const DriveValue at_point{y, w * cam.velocity, w * w * cam.acceleration};
+        const bool open = phi[j] >= motion->open_begin() && phi[j] <= motion->open_end();
         const double x_qs = std::max(0.0, (k_d * y - P0) / (k_d + c_s));
         // The cam's force: none without contact, none across an open lash while a lone valve sits.
-        const double force = mode.seated && model.rigid_when_seated() ? std::max(0.0, model.pushing_force(run.t[j], s))
+        const double force = mode.seated && model.rigid_when_seated() ? std::max(0.0, model.pushing_force(at_point, s))
                              : !mode.contact                            ? 0.0
-                                                                        : model.pushing_force(run.t[j], s);
+                                                                        : model.pushing_force(at_point, s);
         lift.push_back(x);
         quasi_static.push_back(x_qs);
-        kinematic.push_back(motion->at(phi[j]).lift);
+        kinematic.push_back(open ? std::max(0.0, y) : 0.0);
         drive.push_back(y);
         velocity.push_back(s[P + v]);
         contact.push_back(force);
@@ -318,6 +335,7 @@ class DynamicsType final : public NodeType {
       // Bounces: the valve's highest lift after the first landing of the last revolution.
       if (std::isfinite(first_landing)) bounce_height = std::max(0.0, greatest_of(extremes[valve_lift], first_landing).value);
       if (target) out.set_scalar("target_deviation", greatest_of(extremes[target_gap]).value);
+      recycle(std::move(sim.run));  // its buffers serve this thread's next simulation
       out.set_scalar("max_deviation", max_dev);
       out.set_scalar("residual_amplitude", residual);
       if (settings.contact_loss) out.set_scalar("floats", floats);

@@ -63,7 +63,7 @@ class FloatSpeedType final : public NodeType {
             .at_least(1e-13)
             .at_most(1e-2)
             .as_knob(),
-        ParamSpec::choice("integrator", {"cvode", "dopri5"}, "as in valvetrain.dynamics").with_default("cvode").as_knob(),
+        ParamSpec::choice("integrator", {"cvode", "dopri5", "auto"}, "as in valvetrain.dynamics").with_default("auto").as_knob(),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion (its speed is replaced by each trial's)"),
@@ -77,7 +77,7 @@ class FloatSpeedType final : public NodeType {
         PortSpec::table("contact_margin", "over the crank speeds tried: the least cam force while the valve is off its seat "
                                           "in the last revolution (<= 0: it floats)"),
     };
-    info_.work_counters = {"simulations", "steps", "rhs_evaluations", "refined_intervals"};
+    info_.work_counters = {"simulations", "steps", "rhs_evaluations", "refined_intervals", "implicit_simulations"};
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -105,11 +105,13 @@ class FloatSpeedType final : public NodeType {
                                 if (x.mode.seated) return Reading{0.0, 0.0, false};
                                 return Reading{model.cam_force(x.drive, x.state), model.cam_force_rate(x)};
                               }};
-      const ValveSimulation sim = simulate_valve(at_speed, *design, drive, {}, {cam_force});
+      ValveSimulation sim = simulate_valve(at_speed, *design, drive, {}, {cam_force});
       ++simulations;
       for (const auto& [counter, amount] : sim.run.work)
         if (counter == "steps" || counter == "rhs_evaluations") ctx.report_work(counter, amount);
+      ctx.report_work("implicit_simulations", sim.integrator == "cvode" ? 1.0 : 0.0);  // the rest ran dopri5
       const double m = least_of(sim.run.extremes[0]).value;  // +inf: the valve never lifted
+      recycle(std::move(sim.run));
       margin[crank_speed] = m;
       return m;
     };

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -107,10 +108,27 @@ bool within_rounding(double a, double b) {
   return std::abs(b - a) <= 8.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(a));
 }
 
+// The buffers of the last result recycle() was given on this thread.
+thread_local SimulationResult spare_result;
+
+// A result to fill: the spare one emptied, its capacity kept.
+SimulationResult fresh_result() {
+  SimulationResult r = std::move(spare_result);
+  spare_result = SimulationResult{};
+  r.t.clear();
+  r.mode.clear();
+  r.state.reset(0, 0);
+  r.events.clear();
+  r.extremes.clear();
+  r.work.clear();
+  return r;
+}
+
 class Driver {
  public:
   Driver(const ChainModel& model, const SimulationOptions& options, const std::vector<Monitor>& monitors)
-      : model_(model), options_(options), monitors_(monitors), search_(options.rtol), events_(model, result_) {
+      : model_(model), options_(options), monitors_(monitors), search_(options.rtol), result_(fresh_result()),
+        events_(model, result_) {
     if (options.integrator == "cvode") backend_ = make_cvode_backend(model, options);
     else if (options.integrator == "dopri5") backend_ = make_dopri5_backend(model, options);
     else throw std::invalid_argument("unknown integrator '" + options.integrator + "'");
@@ -133,6 +151,9 @@ class Driver {
     std::sort(stops.begin(), stops.end());
     std::size_t next_stop = 0;
     outputs_ = &output_times;
+    result_.t.reserve(output_times.size());
+    result_.mode.reserve(output_times.size());
+    result_.state.reset(s.size(), output_times.size());
     while (next_output_ < output_times.size() && output_times[next_output_] <= t0) record(t0, s, mode);
 
     const double seated_step = options_.scan_step > 0.0  ? options_.scan_step
@@ -155,7 +176,8 @@ class Driver {
       if (rigid_seated()) {
         // Nothing moves while a one-mass valve sits: the lift-off is looked for in pieces of the
         // scan step on the excitation alone, nothing integrated.
-        const double pieces = std::ceil((limit - t) / seated_step);
+        // Over a stretch where the drive stands still the force on the valve is constant: one piece.
+        const double pieces = quiet(t, limit) ? 1.0 : std::ceil((limit - t) / seated_step);
         if (pieces > 1.0) end = t + (limit - t) / pieces;
         rest_ = current_.state;
       } else {
@@ -181,6 +203,13 @@ class Driver {
 
  private:
   bool rigid_seated() const { return current_.mode.seated && model_.rigid_when_seated(); }
+  // Is [a, b] inside one of the stretches where the excitation is constant?
+  // (options.quiet is sorted and its stretches do not overlap: the last one beginning at or before a.)
+  bool quiet(double a, double b) const {
+    const auto& q = options_.quiet;
+    auto after = std::upper_bound(q.begin(), q.end(), a, [](double t, const auto& stretch) { return t < stretch.first; });
+    return after != q.begin() && b <= std::prev(after)->second;
+  }
 
   // The state at t inside the interval being looked at: the dense output, or the seated valve's rest.
   void state_at(double t, ChainState& s) {
@@ -189,8 +218,9 @@ class Driver {
   }
   // The snapshot at t; without `full_` only its state (enough for an event function of the state
   // alone, when no monitor looks): the drive and the rates are not computed.
-  void snapshot_at(double t, Snapshot& x) {
-    state_at(t, scratch_state_);
+  void snapshot_at(double t, Snapshot& x, bool at_event = false) {
+    if (at_event && !rigid_seated()) backend_->state_at_event(t, scratch_state_);
+    else state_at(t, scratch_state_);
     if (full_) {
       model_.snapshot(t, scratch_state_, current_.mode, x);
       return;
@@ -247,7 +277,7 @@ class Driver {
       }
     }
     const double t_end = event_time ? *event_time : tb;
-    if (event_time) snapshot_at(t_end, end);
+    if (event_time) snapshot_at(t_end, end, true);
 
     // Outputs inside (an output at the event's time takes the state after it).
     while (next_output_ < outputs_->size() &&
@@ -354,6 +384,8 @@ SimulationResult simulate(const ChainModel& model, double t0, double t1, const s
   Driver driver(model, options, monitors);
   return driver.run(t0, t1, output_times, knots);
 }
+
+void recycle(SimulationResult&& used) { spare_result = std::move(used); }
 
 Extremum least_of(const std::vector<MonitorSegment>& segments, double from) {
   Extremum e{0.0, std::numeric_limits<double>::infinity()};

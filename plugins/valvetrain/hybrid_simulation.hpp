@@ -9,7 +9,10 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <span>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mechgraph::valvetrain {
@@ -21,6 +24,10 @@ struct SimulationOptions {
   double atol_v = 1e-8;              // m/s
   double max_step = 0.0;             // s, 0: none; the integrators' largest step
   double scan_step = 0.0;            // s: sampling of a seated valve's lift-off search (0: max_step)
+  // Stretches of time [begin, end], sorted and apart, over which the excitation is constant
+  // (y' = y'' = 0: the cam's base circle). A seated single mass cannot lift off inside one, so its
+  // lift-off is not scanned for there.
+  std::vector<std::pair<double, double>> quiet;
   long max_steps = 2000000;
   long max_events = 100000;
 };
@@ -61,9 +68,31 @@ struct MonitorSegment {
   Extremum least, greatest;
 };
 
+/// The states at the output times: one row of `width` values per time, in one block (one
+/// allocation for all of them, reserved up front).
+class StateRows {
+ public:
+  void reset(std::size_t width, std::size_t rows) {
+    width_ = width;
+    values_.clear();
+    values_.reserve(width * rows);
+  }
+  void push_back(const ChainState& s) { values_.insert(values_.end(), s.begin(), s.begin() + static_cast<std::ptrdiff_t>(width_)); }
+  std::size_t size() const { return width_ ? values_.size() / width_ : 0; }
+  std::span<const double> operator[](std::size_t j) const { return {values_.data() + j * width_, width_}; }
+  std::span<const double> at(std::size_t j) const {
+    if (j >= size()) throw std::out_of_range("StateRows::at: row " + std::to_string(j) + " of " + std::to_string(size()));
+    return (*this)[j];
+  }
+
+ private:
+  std::size_t width_ = 0;
+  std::vector<double> values_;
+};
+
 struct SimulationResult {
   std::vector<double> t;  // at the output times asked for
-  std::vector<ChainState> state;
+  StateRows state;
   std::vector<Mode> mode;
   std::vector<EventRecord> events;
   std::vector<std::vector<MonitorSegment>> extremes;  // per monitor, its segments in time order
@@ -78,6 +107,11 @@ struct SimulationResult {
 SimulationResult simulate(const ChainModel& model, double t0, double t1, const std::vector<double>& output_times,
                           const std::vector<double>& knots, const SimulationOptions& options,
                           const std::vector<Monitor>& monitors = {});
+
+/// Hands a result's buffers back to this thread's pool: the next simulate() on the same thread
+/// fills them again instead of allocating (and, for large outputs, mapping fresh pages). Per thread,
+/// so simulations on several threads share nothing.
+void recycle(SimulationResult&& used);
 
 /// The least of a monitor's minima over its segments (those starting at or after `from`), or
 /// +inf if it has none.

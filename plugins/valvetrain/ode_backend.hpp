@@ -24,6 +24,9 @@ class OdeBackend {
   virtual double step_begin() const = 0;
   /// The state at t in [step_begin(), end of the last step], from the dense output.
   virtual void state_at(double t, ChainState& s) = 0;
+  /// The state at an event at t inside the last step, where the integration restarts: as accurate
+  /// as the step itself (by default the dense output, already of the method's order).
+  virtual void state_at_event(double t, ChainState& s) { state_at(t, s); }
   /// The snapshot at the end of the last step when the integrator has it already (an explicit
   /// method's last stage there), else false: the driver then makes its own.
   virtual bool end_snapshot(Snapshot&) const { return false; }

@@ -6,14 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace mechgraph::valvetrain {
 
 namespace {
 
-// K and M of the chain (positions only), valve off the seat, cam in contact.
-void chain_matrices(const ChainParams& c, Eigen::MatrixXd& K, Eigen::VectorXd& m) {
+// K and M of the chain (positions only), valve off the seat, cam in contact; with `damping` the
+// damping matrix B in place of K (the links' b_j, the coil elements' c_e, the massless spring none).
+void chain_matrices(const ChainParams& c, Eigen::MatrixXd& K, Eigen::VectorXd& m, bool damping = false) {
   const std::size_t n = c.mass.size(), P = n + static_cast<std::size_t>(c.coils);
   K = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(P), static_cast<Eigen::Index>(P));
   m.resize(static_cast<Eigen::Index>(P));
@@ -26,12 +28,13 @@ void chain_matrices(const ChainParams& c, Eigen::MatrixXd& K, Eigen::VectorXd& m
       K(b, ia) -= k;
     }
   };
-  spring(0, -1, c.link_stiffness[0]);  // the cam holds the first mass (bilateral)
-  for (std::size_t j = 1; j < n; ++j) spring(j, static_cast<long>(j - 1), c.link_stiffness[j]);
+  const std::vector<double>& link = damping ? c.link_damping : c.link_stiffness;
+  spring(0, -1, link[0]);  // the cam holds the first mass (bilateral)
+  for (std::size_t j = 1; j < n; ++j) spring(j, static_cast<long>(j - 1), link[j]);
   if (c.coils == 0) {
-    spring(n - 1, -1, c.spring_rate);
+    spring(n - 1, -1, damping ? 0.0 : c.spring_rate);
   } else {
-    const double k_e = (c.coils + 1) * c.spring_rate;
+    const double k_e = damping ? c.coil_damping : (c.coils + 1) * c.spring_rate;
     spring(n - 1, static_cast<long>(n), k_e);
     for (int e = 1; e < c.coils; ++e) spring(n + static_cast<std::size_t>(e) - 1, static_cast<long>(n) + e, k_e);
     spring(n + static_cast<std::size_t>(c.coils) - 1, -1, k_e);
@@ -57,7 +60,50 @@ double link_damping_factor(const ChainParams& drive_alone, double zeta) {
   return 2.0 * zeta * omega_1 / phi.dot(K_links * phi);
 }
 
+// The largest eigenvalue of the symmetric M^-1/2 A M^-1/2 bounded by Gershgorin's circles (the
+// greatest absolute row sum): tight for a chain, where the fastest mode alternates mass by mass.
+double scaled_row_sum_bound(const Eigen::MatrixXd& A, const Eigen::VectorXd& m) {
+  const Eigen::VectorXd r = m.cwiseSqrt().cwiseInverse();
+  return (r.asDiagonal() * A.cwiseAbs() * r.asDiagonal()).rowwise().sum().maxCoeff();
+}
+
 }  // namespace
+
+IntegratorChoice choose_integrator(const ChainParams& chain, double step) {
+  Eigen::MatrixXd K, B;
+  Eigen::VectorXd m;
+  chain_matrices(chain, K, m);
+  chain_matrices(chain, B, m, true);
+  IntegratorChoice choice;
+  // Each mode of M x'' + B x' + K x = 0 has the eigenvalues of lambda^2 + d lambda + w^2 = 0: |lambda| = w
+  // while underdamped, at most d when overdamped (stiffness-proportional damping overdamps the
+  // fastest modes); both bounded from the matrices.
+  const double omega = std::sqrt(std::max(0.0, scaled_row_sum_bound(K, m)));
+  const double decay = scaled_row_sum_bound(B, m);
+  choice.fastest_rate = std::max(omega, decay);
+  choice.stiffness_ratio = choice.fastest_rate * step;
+  choice.overdamped = decay >= omega;
+  // Work per step cap, in multiply-adds of N = 2 P states: the explicit method needs ratio / limit
+  // steps of 6 right-hand sides (O(N) each); BDF one step of a dense solve (N^2) and, every few
+  // tens of steps, a dense LU (N^3 / 3). BDF only takes long steps over fast modes that decay
+  // (real eigenvalues); a lightly damped fast oscillation must be resolved by both.
+  const double N = 2.0 * static_cast<double>(m.size());
+  const double explicit_work = std::max(1.0, choice.stiffness_ratio / IntegratorChoice::explicit_limit) * 6.0 * N;
+  const double implicit_work = N * N + N * N * N / 60.0;
+  choice.stiff = choice.stiffness_ratio > IntegratorChoice::explicit_limit && choice.overdamped && explicit_work > implicit_work;
+  return choice;
+}
+
+std::string IntegratorChoice::reason() const {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the fastest mode (|lambda| <= %.3g 1/s, %s) times the step cap is %.3g, %s dopri5's stability "
+                "interval (%.3g): %s",
+                fastest_rate, overdamped ? "overdamped" : "oscillating", stiffness_ratio,
+                stiffness_ratio > explicit_limit ? "beyond" : "inside", explicit_limit,
+                stiff ? "stiff, implicit BDF (cvode)" : "not stiff, explicit Dormand-Prince 5(4) (dopri5)");
+  return text;
+}
 
 std::vector<double> natural_frequencies(const ChainParams& chain) {
   Eigen::MatrixXd K;
@@ -139,15 +185,18 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
                                         const LiftDerivatives d = motion.drive(-pi + w * t);
                                         return DriveValue{d.lift, w * d.velocity, w * w * d.acceleration};
                                       }),
-                      {}, 2.0 * pi / w, 0.0};
+                      {}, 2.0 * pi / w, 0.0, {}, {}};
   sim.last_start = (drive.revolutions - 1) * sim.period;
   const double h_max = motion.rocker_ratio() * motion.cam().max_lift() - motion.lash();
   SimulationOptions options;
-  options.integrator = drive.integrator;
+  options.max_step = sim.period / 720.0;  // half a cam degree: no two events hide inside one step
+  // `auto`: explicit where the chain is not stiff at that step, implicit where it is.
+  sim.choice = choose_integrator(sim.model.params(), options.max_step);
+  options.integrator = drive.integrator != "auto" ? drive.integrator : sim.choice.stiff ? "cvode" : "dopri5";
+  sim.integrator = options.integrator;
   options.rtol = drive.tolerance;
   options.atol_x = drive.tolerance * h_max;
   options.atol_v = drive.tolerance * h_max * w;
-  options.max_step = sim.period / 720.0;  // half a cam degree: no two events hide inside one step
   options.scan_step = sim.period / 720.0;  // half a cam degree: the seated valve's lift-off cannot hide
   // The excitation is not smooth at the cam's event ends and breakpoints: restart there.
   std::vector<double> cam_knots{motion.cam().event_begin(), motion.cam().event_end()};
@@ -156,6 +205,14 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   for (int r = 0; r < drive.revolutions; ++r)
     for (double k : cam_knots) knots.push_back((r + (k + pi) / (2.0 * pi)) * sim.period);
   std::sort(knots.begin(), knots.end());
+  // The base circle (outside the cam's event the lift is 0 by the CamLaw contract): the drive stands
+  // at -lash there, from each event's end to the next one's beginning (same times as the knots).
+  const auto at_angle = [&](int r, double angle) { return (r + (angle + pi) / (2.0 * pi)) * sim.period; };
+  const double event_begin = motion.cam().event_begin(), event_end = motion.cam().event_end();
+  options.quiet.push_back({0.0, at_angle(0, event_begin)});
+  for (int r = 0; r < drive.revolutions; ++r)
+    options.quiet.push_back({at_angle(r, event_end), r + 1 < drive.revolutions ? at_angle(r + 1, event_begin)
+                                                                               : drive.revolutions * sim.period});
   std::vector<double> times;
   const double end = drive.revolutions * sim.period;
   for (double a : cam_angles) times.push_back(std::min(end, sim.last_start + (a + pi) / w));  // phi = pi: the very end

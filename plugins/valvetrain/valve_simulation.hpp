@@ -20,18 +20,39 @@ struct DriveSettings {
   double surge_damping_ratio = 0.0;
   int revolutions = 2;         // results from the last
   double tolerance = 1e-8;     // relative; absolute: times the full lift (and x w_k for speed)
-  std::string integrator = "cvode";
+  std::string integrator = "auto";  // "auto", "cvode" or "dopri5"
   bool contact_loss = false;
   bool seat_impact = false;
   double restitution = 0.0;
   double seating_speed = 0.0;
 };
 
+/// How stiff the chain is at the integration's step cap, and so which integrator `auto` takes
+/// (docs/methods/valvetrain.md, "Integrators"): the explicit one unless the cap step is beyond its
+/// stability interval over fast modes that decay, and BDF's linear algebra is the cheaper.
+struct IntegratorChoice {
+  /// dopri5's stability interval on the negative real axis reaches about -3.3; a little inside it.
+  static constexpr double explicit_limit = 3.0;
+  double fastest_rate = 0.0;     // 1/s: bound on the largest |eigenvalue| of the free chain (valve off its seat)
+  double stiffness_ratio = 0.0;  // fastest_rate x the step cap
+  bool overdamped = false;       // the fastest modes decay without oscillating (BDF's case)
+  /// stiffness_ratio > explicit_limit, the fast modes overdamped, and the explicit steps that
+  /// stability then needs cost more than BDF's dense linear algebra on the chain's states.
+  bool stiff = false;
+  /// One line: the figures and the choice they make.
+  std::string reason() const;
+};
+
+/// The estimate for a chain at the step `step` (s).
+IntegratorChoice choose_integrator(const ChainParams& chain, double step);
+
 struct ValveSimulation {
   ChainModel model;
   SimulationResult run;  // states at the requested cam angles of the last revolution
   double period = 0.0;   // s, one cam revolution
   double last_start = 0.0;  // s, start of the last revolution
+  IntegratorChoice choice;  // the chain's stiffness at the step cap
+  std::string integrator;   // the one that ran: "cvode" or "dopri5" (`auto` resolved)
 };
 
 /// The chain of masses, stiffnesses and damping the settings describe (valve side). Throws

@@ -86,9 +86,9 @@ TEST_CASE("dynamics extremes: the free vibration after a cycloidal rise peaks at
       CHECK_THAT(least_of(run.extremes[0]).value, WithinAbs(-A, 1e-6 * A + 1e-9 * rise.h));
       // The output grid's own extremes fall short by 2e-4 A and more.
       double top = 0, low = 0;
-      for (const ChainState& s : run.state) {
-        top = std::max(top, s[0] - rise.h);
-        low = std::min(low, s[0] - rise.h);
+      for (std::size_t i = 0; i < run.state.size(); ++i) {
+        top = std::max(top, run.state[i][0] - rise.h);
+        low = std::min(low, run.state[i][0] - rise.h);
       }
       CHECK(A - top > 1e-4 * A);
       CHECK(A + low > 1e-4 * A);

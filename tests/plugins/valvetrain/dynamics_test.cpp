@@ -51,7 +51,7 @@ double simulated_residual(double r, const std::string& integrator) {
   o.atol_v = 1e-11 * h / T;
   // After the rise the motion is free: its amplitude about h is read from the state at T.
   const SimulationResult run = simulate(model, 0.0, 2 * T, {T}, {T}, o);
-  const ChainState s = run.state.at(0);
+  const auto s = run.state.at(0);
   return std::hypot(s[0] - h, s[1] / omega) / h;
 }
 
@@ -72,7 +72,7 @@ TEST_CASE("dynamics: the two integrators agree on the elastic valve train", "[va
       "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ elastic_drive ], "
       "params: { drive_stiffness: 4000 N/mm, tolerance: 1e-10 } }";
   const std::string scene = dynamics_scene(kurz, dyn, "dyn.curves, dyn.max_deviation");
-  const RunResult a = run_scene(scene);
+  const RunResult a = run_scene(scene, {parse_override("dyn.integrator=cvode")});
   const RunResult b = run_scene(scene, {parse_override("dyn.integrator=dopri5")});
   const Table& ta = output(a, "dyn.curves").as_table();
   const Table& tb = output(b, "dyn.curves").as_table();
@@ -97,7 +97,7 @@ TEST_CASE("dynamics: the two integrators agree on a valve that floats and bounce
       "effects: [ elastic_drive, contact_loss, seat_impact ], params: { drive_stiffness: 4000 N/mm, tolerance: 1e-10 } }";
   const std::string scene = dynamics_scene(kurz, dyn, "dyn.curves, dyn.max_deviation, dyn.seating_velocity, dyn.bounces, dyn.floats",
                                            "5600 rpm", "0.25 mm", fast);
-  const RunResult a = run_scene(scene);
+  const RunResult a = run_scene(scene, {parse_override("dyn.integrator=cvode")});
   const RunResult b = run_scene(scene, {parse_override("dyn.integrator=dopri5")});
   CHECK(num(a, "dyn.floats") == 1);
   CHECK(num(a, "dyn.bounces") == num(b, "dyn.bounces"));
