@@ -45,6 +45,7 @@ import tempfile
 import time
 
 sys.dont_write_bytecode = True
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")   # one core, as mechgraph's sweep --threads 1
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import stages123_cases as cases_mod          # noqa: E402
