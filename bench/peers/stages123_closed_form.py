@@ -55,9 +55,10 @@ def three_arc(H, php, phy, i, lash):
 
 
 def _newton(f, x, iterations):
+    """Newton's steps; a zero slope (a root at a double zero: no lash) leaves x where it is."""
     for _ in range(iterations):
         value, slope = f(x)
-        x = x - value / slope
+        x = x - np.where(slope != 0.0, value, 0.0) / np.where(slope != 0.0, slope, 1.0)
     return x
 
 
@@ -163,6 +164,7 @@ def polydyne(H, php, i, lash, tables):
     for _ in range(4):
         un = u[:, None] ** (T.n - 1.0)
         u = u - (1.0 + (un * u[:, None]) @ T.C - g) / (un @ (T.C * T.n))
+    u = np.where(g > 0.0, u, 1.0)       # no lash: open to the event's end (P(1) = P'(1) = 0 there)
     I1 = (u[:, None] ** T.e1) @ T.k1                           # int_0^u P
     I2 = (u[:, None] ** T.e2) @ T.k2                           # int_0^u P^2
     iH = i * H
