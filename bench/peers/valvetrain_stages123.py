@@ -149,8 +149,9 @@ def main():
     print()
     print(f"ratio stages 1-3 vs grid peer (mechgraph whole process / numpy, designs/s): {r_grid:.2f}x "
           f"({rate['mechgraph']:.3g} vs {rate[('grid', grid_batch)]:.3g}; goal >= 5x)")
-    print(f"ratio stages 1-3 vs closed-form peer (mechgraph whole process / numpy, designs/s): {r_closed:.3g}x "
-          f"({rate['mechgraph']:.3g} vs {rate['closed']:.3g}; goal >= 1/3)")
+    print(f"ratio stages 1-3 vs closed-form peer (mechgraph whole process / numpy, designs/s): {r_closed:.3g}x, "
+          f"the peer {1.0 / r_closed:.3g}x faster ({rate['mechgraph']:.3g} vs {rate['closed']:.3g}; goal: within 3x, "
+          f"ratio >= 0.33x)")
 
 
 if __name__ == "__main__":
