@@ -1,15 +1,22 @@
 #!/bin/sh
-# Peer benchmarks: mechgraph against the same calculations written the way an engineer would in
-# Python, run one after the other, each ratio repeated in a summary at the end:
-#   valvetrain_dynamics.py   valvetrain.dynamics (CVODE) against scipy's solve_ivp (Radau)
-#   valvetrain_stages123.py  stages 1-3 of the three-cam study, designs/s, against numpy
-#   backlash_chain_mc.py     the Monte Carlo of backlash.chain, samples/s, against numpy
-# Builds nothing: uses $MECHGRAPH, else build/bin/mechgraph of this checkout, and Debian's
-# /usr/bin/python3 (or $PYTHON) with python3-numpy and python3-scipy.
+# Peer benchmarks: mechgraph against the same calculations written in Python (numpy, scipy), each
+# peer doing exactly mechgraph's work and checked to agree with it before it is timed (a peer that
+# disagrees stops with exit status 1 and is reported FAILED). Each script times its sides in
+# rounds (interleaved: one run of every side per round, the fastest run of each side counts), and
+# each ratio is repeated in a summary at the end:
+#   valvetrain_dynamics.py   valvetrain.dynamics (CVODE, dopri5) against scipy DOP853, RK45, Radau
+#                            at equal error
+#   valvetrain_stages123.py  stages 1-3 of the three-cam study over Latin-hypercube designs,
+#                            designs/s, against the numpy grid peer and the closed-form peer
+#   backlash_chain_mc.py     the Monte Carlo of backlash.chain, samples/s, against numpy with the
+#                            same model (one normal per term, SFC64, blocks of 65,536)
+# docs/peers.md says what each peer does and why it is fair. Builds nothing: uses $MECHGRAPH,
+# else build/bin/mechgraph of this checkout, and Debian's /usr/bin/python3 (or $PYTHON) with
+# python3-numpy and python3-scipy.
 #
-# Options: --quick (every peer: fewer tolerances, cases, samples and repetitions),
-# --repeats N (every peer), --only dynamics|stages123|mc (one peer); anything else goes to the
-# dynamics peer (e.g. --all-methods for scipy's BDF and LSODA as well).
+# Options: --quick (every peer: fewer tolerances, cases, samples and rounds), --repeats N (every
+# peer), --only dynamics|stages123|mc (one peer); anything else goes to the dynamics peer (e.g.
+# --all-methods for scipy's BDF and LSODA as well, --max-step for Radau with mechgraph's step cap).
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -68,7 +75,10 @@ run() {
   shift
   if [ -n "$only" ] && [ "$only" != "$name" ]; then return 0; fi
   echo "=== $name: $*" | sed "s|$root/||g"
-  { "$python" -u "$@" 2>&1; echo $? >"$log.rc"; } | tee "$log.one"
+  # One core for the peers as for mechgraph (OpenBLAS would thread numpy's matrix products), and
+  # OpenBLAS left to detect this CPU itself.
+  { env -u OPENBLAS_CORETYPE -u OPENBLAS_L2_SIZE OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 \
+      "$python" -u "$@" 2>&1; echo $? >"$log.rc"; } | tee "$log.one"
   rc=$(cat "$log.rc")
   if [ "$rc" -eq 0 ]; then
     grep '^ratio' "$log.one" | sed "s|^|$name: |" >>"$log"
@@ -83,7 +93,7 @@ run() {
 # shellcheck disable=SC2086
 run dynamics "$here/valvetrain_dynamics.py" --mechgraph "$mechgraph" --scene "$here/valvetrain_dynamics.yaml" $common "$@"
 # shellcheck disable=SC2086
-run stages123 "$here/valvetrain_stages123.py" --mechgraph "$mechgraph" --scene "$root/scenes/valvetrain_cams.yaml" $common
+run stages123 "$here/valvetrain_stages123.py" --mechgraph "$mechgraph" --scene "$here/stages123_study.yaml" $common
 # shellcheck disable=SC2086
 run mc "$here/backlash_chain_mc.py" --mechgraph "$mechgraph" --scene "$root/scenes/backlash_chain.yaml" $common
 

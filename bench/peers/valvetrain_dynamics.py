@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Peer benchmark: mechgraph's `valvetrain.dynamics` (SUNDIALS CVODE, BDF with root finding)
 against the same model written the way an engineer would in Python, with scipy's
-`solve_ivp(method="Radau", events=...)`.
+`solve_ivp(..., events=...)`: the explicit DOP853 and RK45 (the model has two states and is not
+stiff, an explicit solver's case), and the implicit Radau for reference.
 
 Requirements: Debian's /usr/bin/python3 with python3-numpy and python3-scipy
 (`apt-get install -y python3-numpy python3-scipy`); a built mechgraph CLI.
@@ -9,6 +10,7 @@ Requirements: Debian's /usr/bin/python3 with python3-numpy and python3-scipy
 Usage:
     /usr/bin/python3 bench/peers/valvetrain_dynamics.py [--mechgraph build/bin/mechgraph]
         [--scene bench/peers/valvetrain_dynamics.yaml] [--repeats 5] [--quick] [--all-methods]
+        [--max-step]
 or simply bench/peers/run.sh (same arguments). MECHGRAPH in the environment names the CLI.
 
 The model (plugins/valvetrain/chain_model.hpp; the node's setup in dynamics_node.cpp /
@@ -25,8 +27,12 @@ are simulated; the lift of the last one is read at 1441 points over [-pi, pi]. B
 the integration at the cam's knots (start and end of the event, the nose) and use the same
 tolerances: rtol = tol, atol = tol h_max for x and tol h_max w_k for x' (h_max = i H - lash).
 mechgraph also caps the step at half a cam degree (period/720); scipy runs without a cap
-("scipy Radau", solve_ivp's default, the script an engineer would write, and the faster one) and
-with the same cap ("scipy Radau, max_step 1/2 deg").
+(solve_ivp's default, the script an engineer would write, and the faster one; --max-step adds
+Radau with the same cap).
+
+Sides: mechgraph with each of its integrators (dyn.integrator: cvode, the default, and dopri5);
+scipy DOP853, RK45 and Radau (--max-step: Radau with mechgraph's step cap too; --all-methods: BDF
+and LSODA).
 
 Timing. mechgraph: the node's own time, `nodes.dyn.seconds` of `mechgraph run --json` (process
 start, plugin loading, scene parsing and the other nodes are excluded; the node time does
@@ -34,13 +40,15 @@ include filling its seven output curves). scipy: time.perf_counter around the si
 (the 1441 lift values included). Each point is the fastest of --repeats runs, taken in rounds
 over the whole ladder so that a burst of load elsewhere on the machine spoils no single point.
 
-Error. max |x - x_ref| over the 1441 points, x_ref: mechgraph at tolerance 1e-12, cross-checked
-against scipy Radau at rtol 1e-13 (the difference is printed: errors below about twice it are
-limited by the reference). The speed ratio at equal error interpolates log time over log error
-on each side's Pareto front.
+Error. max |x - x_ref| over the 1441 points, x_ref: mechgraph at tolerance 1e-12. Before anything
+is timed the peer is checked against it: the drive displacement mechgraph reports must be the
+peer's to 1e-12 m, and scipy DOP853 and Radau at rtol 1e-13 must both reproduce x_ref within
+AGREEMENT (2e-9 m, 1.7e-7 of the valve lift; otherwise exit status 1). Errors below about twice the
+printed difference are limited by the reference. The speed ratio at equal error interpolates log
+time over log error on each side's Pareto front.
 
-The scipy side is meant to be the honest, reasonably efficient script: the Jacobian of the
-attached mode is constant and passed to Radau as a matrix (never re-evaluated; scipy refactors
+The scipy side is meant to be the honest, reasonably efficient script: for the implicit methods
+the Jacobian of the attached mode is constant and passed to Radau as a matrix (never re-evaluated; scipy refactors
 only when the step size changes), the right-hand side works on Python floats with `math` (faster
 than numpy on scalars), the outputs come from solve_ivp's t_eval, and the seated phases -- where
 x = x' = 0 exactly and the lift-off condition does not depend on the state -- are not
@@ -56,6 +64,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 import time
 
 import numpy as np
@@ -80,6 +89,7 @@ CURVE_POINTS = 1441
 PERIOD = 2.0 * PI / W
 MAX_STEP = PERIOD / 720.0             # half a cam degree, as dynamics_node.cpp
 H_MAX = RATIO * MAX_LIFT - LASH
+AGREEMENT = 2e-9                      # m: the scipy model at rtol 1e-13 against mechgraph at 1e-12
 
 HALF = 0.5 * ACTION
 KH = 1.0 / HALF
@@ -187,8 +197,12 @@ class Model:
         stops = [k for k in knots if 0.0 < k < t_end] + [t_end]
         kw = {"max_step": max_step} if max_step else {}
         log = []
-        # A constant Jacobian: Radau and BDF take the matrix (and never re-evaluate it); LSODA wants a function.
-        jac = self.jac if method != "LSODA" else (lambda t, s, J=self.jac: J)
+        # A constant Jacobian: Radau and BDF take the matrix (and never re-evaluate it); LSODA wants a
+        # function; the explicit methods take none.
+        if method in ("RK45", "RK23", "DOP853"):
+            kw_jac = {}
+        else:
+            kw_jac = {"jac": self.jac if method != "LSODA" else (lambda t, s, J=self.jac: J)}
         while t < t_end:
             if seated:
                 # x = x' = 0 until the drive pushes harder than the preload; outputs stay 0.
@@ -208,7 +222,7 @@ class Model:
             if n_out == 0 or t_eval[-1] != t_stop:
                 t_eval = np.append(t_eval, t_stop)  # the state at the knot, to restart from
             sol = solve_ivp(self.rhs, (t, t_stop), state, method=method, t_eval=t_eval, events=self.landing,
-                            rtol=tol, atol=atol, jac=jac, **kw)
+                            rtol=tol, atol=atol, **kw_jac, **kw)
             if sol.status < 0:
                 raise RuntimeError(f"solve_ivp failed at t = {t}: {sol.message}")
             nfev += sol.nfev
@@ -232,10 +246,11 @@ class Model:
 
 
 # --- mechgraph side -------------------------------------------------------------------------------
-def run_mechgraph(exe, scene, tol, repeats):
+def run_mechgraph(exe, scene, tol, repeats, integrator="cvode"):
     best, data = math.inf, None
     for _ in range(repeats):
-        proc = subprocess.run([exe, "-q", "run", scene, "--json", "--set", f"dyn.tolerance={tol!r}"],
+        proc = subprocess.run([exe, "-q", "run", scene, "--json", "--set", f"dyn.tolerance={tol!r}",
+                               "--set", f"dyn.integrator={integrator}"],
                               capture_output=True, text=True)
         if proc.returncode != 0:
             raise RuntimeError(f"mechgraph exited with {proc.returncode} at tolerance {tol:g}: {proc.stderr.strip()}")
@@ -293,11 +308,11 @@ def fmt_ratio(num, den):
         return "-"
     r = num[1] / den[1]
     if num[0] == "=" and den[0] == "=":
-        return f"{r:.0f}x"
+        return f"{r:.2g}x"
     if num[0] == "<=" and den[0] == "=":
-        return f"<={r:.0f}x"
+        return f"<={r:.2g}x"
     if num[0] == "=" and den[0] == "<=":
-        return f">={r:.0f}x"
+        return f">={r:.2g}x"
     return "n/a"
 
 
@@ -307,6 +322,7 @@ def main():
     ap.add_argument("--scene", default=os.path.join(HERE, "valvetrain_dynamics.yaml"))
     ap.add_argument("--repeats", type=int, default=5, help="runs per point; the fastest counts (default 5)")
     ap.add_argument("--all-methods", action="store_true", help="also scipy's BDF and LSODA (no max_step)")
+    ap.add_argument("--max-step", action="store_true", help="also scipy Radau with mechgraph's max_step (1/2 cam deg)")
     ap.add_argument("--quick", action="store_true", help="every other tolerance, 2 repetitions")
     args = ap.parse_args()
     if args.quick:
@@ -330,17 +346,25 @@ def main():
     x_ref = ref["lift"]
     print(f"reference: mechgraph at tolerance {ref_tol:g} ({ref['work'].get('steps')} steps, "
           f"{ref['work'].get('events')} events; max lift {x_ref.max() * 1e3:.6f} mm)")
-    x_tight, w_tight = model.simulate(scipy_tight)
-    d = np.abs(x_tight - x_ref)
-    j = int(np.argmax(d))
-    print(f"cross-check: scipy Radau at rtol {scipy_tight:g} against it: max |dx| = {d[j]:.3g} m "
-          f"({d[j] / H_MAX:.2g} h_max) at cam angle {math.degrees(model.phi[j]):.2f} deg, "
-          f"{w_tight['events']} events; errors below ~{2 * d[j]:.1g} m are limited by the reference")
+    drive_diff = float(np.max(np.abs(drive_array((model.phi + PI) / W)[0] - ref["drive"])))
+    agree = drive_diff <= 1e-12 and float(np.max(np.abs(ref["phi"] - model.phi))) <= 1e-12
+    for method in ("DOP853", "Radau"):
+        x_tight, w_tight = model.simulate(scipy_tight, method)
+        d = np.abs(x_tight - x_ref)
+        j = int(np.argmax(d))
+        agree = agree and d[j] <= AGREEMENT
+        print(f"verify:    scipy {method} at rtol {scipy_tight:g} against it: max |dx| = {d[j]:.3g} m "
+              f"({d[j] / H_MAX:.2g} h_max) at cam angle {math.degrees(model.phi[j]):.2f} deg, "
+              f"{w_tight['events']} events (bound {AGREEMENT:g} m)")
     print(f"events:    {', '.join(model.last_events)}")
+    if not agree:
+        print("valvetrain_dynamics: the scipy model disagrees with mechgraph; nothing timed", file=sys.stderr)
+        sys.exit(1)
 
-    sides = [("mechgraph CVODE BDF", None, None),
-             ("scipy Radau, max_step 1/2 deg", "Radau", MAX_STEP),
-             ("scipy Radau", "Radau", None)]
+    sides = [("mechgraph CVODE BDF", None, "cvode"), ("mechgraph dopri5", None, "dopri5"),
+             ("scipy DOP853", "DOP853", None), ("scipy RK45", "RK45", None), ("scipy Radau", "Radau", None)]
+    if args.max_step:
+        sides += [("scipy Radau, max_step 1/2 deg", "Radau", MAX_STEP)]
     if args.all_methods:
         sides += [("scipy BDF", "BDF", None), ("scipy LSODA", "LSODA", None)]
     # The repetitions are rounds over the whole ladder, so a burst of load on the machine spreads
@@ -354,7 +378,7 @@ def main():
                     continue
                 try:
                     if method is None:
-                        m = run_mechgraph(args.mechgraph, args.scene, tol, 1)
+                        m = run_mechgraph(args.mechgraph, args.scene, tol, 1, max_step)
                         secs, x = m["seconds"], m["lift"]
                         work = f"{m['work'].get('steps')} steps, {m['work'].get('rhs_evaluations')} rhs"
                     else:
@@ -382,25 +406,27 @@ def main():
             print(f"{name:30s} {tol:7.0e} {err:10.3e} {err / (tol * H_MAX):15.3g} {secs * 1e3:10.3f}  {work}")
         print()
     fronts = {name: pareto([(r[1], r[2]) for r in rs]) for name, rs in rows.items()}
-    mech = fronts["mechgraph CVODE BDF"]
+    mechs = [name for name, method, _ in sides if method is None]
     others = [name for name, method, _ in sides if method is not None]
-    print("time at equal error (log-log interpolation on each side's Pareto front; <=: every run of that side was "
-          "more accurate, its cheapest run counts) and ratio scipy / mechgraph:")
-    print(f"{'error [m]':>10s} {'mechgraph':>12s}" + "".join(f" {n[6:]:>30s} {'ratio':>7s}" for n in others))
     f = lambda v: "-" if v is None else ("<=" if v[0] == "<=" else "") + f"{v[1] * 1e3:.3f} ms"
-    for err in (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11):
-        tm = time_at_error(mech, err)
-        line = f"{err:10.0e} {f(tm):>12s}"
-        for n in others:
-            t = time_at_error(fronts[n], err)
-            line += f" {f(t):>30s} {fmt_ratio(t, tm):>7s}"
-        print(line)
-    print()
-    tm = time_at_error(mech, 1e-7)
-    t1 = time_at_error(fronts["scipy Radau"], 1e-7)
-    t2 = time_at_error(fronts["scipy Radau, max_step 1/2 deg"], 1e-7)
-    print(f"ratio at equal error 1e-7 m: {fmt_ratio(t1, tm)} (scipy Radau, no max_step; with mechgraph's max_step "
-          f"of half a cam degree: {fmt_ratio(t2, tm)})")
+    for mname in mechs:
+        mech = fronts[mname]
+        print(f"time at equal error, {mname} (log-log interpolation on each side's Pareto front; <=: every run of "
+              "that side was more accurate, its cheapest run counts) and ratio scipy / mechgraph:")
+        print(f"{'error [m]':>10s} {'mechgraph':>12s}" + "".join(f" {n[6:]:>14s} {'ratio':>7s}" for n in others))
+        for err in (1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11):
+            tm = time_at_error(mech, err)
+            line = f"{err:10.0e} {f(tm):>12s}"
+            for n in others:
+                t = time_at_error(fronts[n], err)
+                line += f" {f(t):>14s} {fmt_ratio(t, tm):>7s}"
+            print(line)
+        print()
+    for mname in mechs:
+        tm = time_at_error(fronts[mname], 1e-7)
+        parts = [f"{fmt_ratio(time_at_error(fronts[n], 1e-7), tm)} vs {n[6:]} ({f(time_at_error(fronts[n], 1e-7))})"
+                 for n in others]
+        print(f"ratio dynamics at equal error 1e-7 m, {mname} ({f(tm)}): " + ", ".join(parts) + "; goal >= 10x DOP853")
 
 
 if __name__ == "__main__":
