@@ -280,3 +280,38 @@ TEST_CASE("memo cache: bounded, least recently used dropped first", "[sweep][mem
   one.store(1, entry());
   CHECK(one.size() == 1);
 }
+
+TEST_CASE("sweep fast path: nodes a case changes skip the memo cache; the others are shared; rows as evaluated alone",
+          "[sweep][memo]") {
+  // masses and spring do not depend on the swept values: memoised and shared by every case; the
+  // cam (lift), valve and time-area (rpm downstream) change with every case: never stored.
+  const std::string yaml = R"(title: valve
+params: { rpm: 5600 rpm }
+nodes:
+  cam:   { type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  valve: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: $rpm, rocker_ratio: 1.5, lash: 0.25 mm } }
+  ta:    { type: valvetrain.time_area, inputs: { valve: valve.motion }, params: { seat_diameter: 34 mm, seat_angle: 45 deg } }
+  train: { type: valvetrain.masses, params: { valve_mass: 55 g, retainer_mass: 18 g, tappet_mass: 60 g, pushrod_mass: 50 g,
+                                              rocker_inertia: 4e-5 kg*m^2, arm_valve: 45 mm, arm_pushrod: 30 mm } }
+outputs: [ ta.time_area, valve.max_acceleration, train.mass_without_spring ]
+)";
+  Prepared p = prepare(yaml, make_grid({parse_vary("rpm=3000rpm:7000rpm:3"), parse_vary("cam.max_lift=7mm:9mm:2")}),
+                       project_registry());
+  Graph marked = p.graph;
+  p.binder->mark_unmemoised(marked);
+  for (const GraphNode& n : marked.nodes) CHECK(n.memoised == (n.name == "train"));
+  MemoCache cache;
+  const auto rows = sweep_all(p, 1, cache);
+  REQUIRE(rows.size() == 6);
+  CHECK(cache.size() == 1);  // the masses, once
+  for (const CaseResult& r : rows) {
+    REQUIRE(r.failure == CaseFailure::none);
+    CHECK(r.reused == (r.index == 0 ? 0 : 1));
+    const auto& c = p.table.cases[r.index];
+    const RunResult alone =
+        run_yaml(yaml, project_registry(), {parse_override("rpm=" + c[0].text), parse_override("cam.max_lift=" + c[1].text)});
+    CHECK(r.outputs[0].value.as_scalar() == scalar_output(alone, "ta.time_area"));
+    CHECK(r.outputs[1].value.as_scalar() == scalar_output(alone, "valve.max_acceleration"));
+    CHECK(r.outputs[2].value.as_scalar() == scalar_output(alone, "train.mass_without_spring"));
+  }
+}

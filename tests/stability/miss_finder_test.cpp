@@ -302,3 +302,34 @@ TEST_CASE("miss-finder table: valve opening with lash on a ramped quartic table"
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("undercut refused alike whether the curvature radius is read or only proven positive", "[stability][misses]") {
+  // A node whose min_curvature_radius nobody reads proves the flat contour free of undercut by a
+  // bound on its monotone runs (summarize(..., false)); it must refuse exactly the base radii the
+  // measured minimum refuses, here across each law's limit (polydyne 35.0513 mm and others).
+  const std::vector<std::pair<std::string, std::vector<double>>> laws = {
+      {"type: cam.polydyne, params: { max_lift: 10 mm, action_angle: 120 deg, exponents: [2, 6, 10, 14, 18], base_radius: ",
+       {34.0, 35.0, 35.05, 35.06, 35.2, 36.0, 40.0}},
+      {"type: cam.kurz, params: { max_lift: 9 mm, action_angle: 120 deg, accel_angle: 21 deg, base_radius: ",
+       {20.0, 22.0, 23.0, 23.5, 24.0, 25.0, 30.0}},
+      {"type: cam.three_arc, params: { max_lift: 9 mm, action_angle: 120 deg, accel_angle: 21 deg, base_radius: ",
+       {10.0, 14.0, 16.0, 17.0, 17.5, 18.0, 20.0}}};
+  int refused = 0, accepted = 0;
+  for (const auto& [law, radii] : laws)
+    for (double r0 : radii) {
+      INFO(law << r0 << " mm");
+      auto runs = [&](const std::string& outputs) {
+        try {
+          run_yaml("nodes:\n  c: { " + law + std::to_string(r0) + " mm } }\noutputs: [" + outputs + "]\n", project_registry());
+          return true;
+        } catch (const EvaluationError& e) {
+          return false;
+        }
+      };
+      const bool measured = runs("c.min_curvature_radius"), proven = runs("c.max_lift, c.law");
+      CHECK(measured == proven);
+      ++(measured ? accepted : refused);
+    }
+  CHECK(refused >= 6);
+  CHECK(accepted >= 9);
+}

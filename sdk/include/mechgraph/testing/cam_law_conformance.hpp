@@ -3,8 +3,11 @@
 // host's own contract check (event bounds, breakpoints, radii, a coarse sampling), no NaN and no
 // negative lift under dense sampling, max_lift() against the sampled maximum, continuity at the
 // breakpoints and event ends, and each derivative against Richardson-extrapolated central
-// differences of the one below. `mechgraph plugin-test` runs it on every cam_law a type outputs.
+// differences of the one below, and the monotone runs a law declares (against dense sampling and
+// the generic search). `mechgraph plugin-test` runs it on every cam_law a type outputs.
 #include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/domain/cam_law_runs.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/testing/report.hpp>
 
@@ -192,6 +195,63 @@ inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_l
     } else {
       r.skip(suite, "4th derivative (higher_derivatives)", "the law does not give it");
     }
+  }
+
+  // Monotone runs (CamLaw::monotone_breaks), where the law declares them: each run, sampled
+  // densely, must be monotone (to 1e-12 of the derivative's scale: rounding), and the run-based
+  // extrema and crossings (cam_law_runs.hpp) must equal the generic certified search's.
+  for (int o = 0; o < 3; ++o) {
+    const std::string what = std::string("monotone runs of the ") + detail::derivative_name(o);
+    std::vector<double> cuts;
+    if (!law.monotone_breaks(o, cuts)) {
+      r.skip(suite, what, "the law does not declare them");
+      continue;
+    }
+    const auto runs = CamLawRuns::of(law, o);
+    if (!runs) {
+      r.add(suite, what, false, "the cuts are not ascending and strictly inside the event");
+      continue;
+    }
+    std::vector<double> edges{b};
+    edges.insert(edges.end(), cuts.begin(), cuts.end());
+    edges.push_back(e);
+    const double noise = 1e-12 * S[o] + 1e-300;
+    std::string bad;
+    for (std::size_t p = 0; p + 1 < edges.size() && bad.empty(); ++p) {
+      const double a0 = edges[p], a1 = edges[p + 1], inset = 1e-13 * (a1 - a0);
+      const double first = component(law.at(a0 + inset), o), last = component(law.at(a1 - inset), o);
+      const double direction = last >= first ? 1.0 : -1.0;
+      double previous = first;
+      for (int i = 1; i <= n && bad.empty(); ++i) {
+        const double phi = i == n ? a1 - inset : a0 + (a1 - a0) * i / n;
+        const double v = component(law.at(phi), o);
+        if (direction * (v - previous) < -noise)
+          bad = "not monotone between " + deg(a0) + " and " + deg(a1) + ": " + num(previous) + " then " + num(v) + " at " + deg(phi);
+        previous = v;
+      }
+    }
+    if (bad.empty()) {
+      // Against the generic search (numerics::SmoothPieces) over the law's smooth pieces.
+      numerics::SmoothPieces pieces([&](double x, double* v, double*) { v[0] = component(law.at(x), o); }, 1, knots, 16);
+      long evaluations = 0;
+      const double run_max = runs->maximum(evaluations).value, run_min = runs->minimum(evaluations).value;
+      const double gen_max = pieces.maximum(0).value, gen_min = pieces.minimum(0).value;
+      const double tol = 1e-9 * S[o] + 1e-300;
+      if (std::abs(run_max - gen_max) > tol || std::abs(run_min - gen_min) > tol)
+        bad = "extrema from the runs " + num(run_min) + " .. " + num(run_max) + ", generic search " + num(gen_min) + " .. " + num(gen_max);
+      // Crossings of a level between the extremes (the lift: 0.37 of it, acceleration: zero).
+      const double level = o == 2 ? 0.0 : gen_min + 0.37 * (gen_max - gen_min);
+      const auto from_runs = runs->directed_crossings(level, evaluations);
+      const auto generic = pieces.directed_crossings(0, level);
+      if (bad.empty() && from_runs.size() != generic.size())
+        bad = std::to_string(from_runs.size()) + " crossings of " + num(level) + " from the runs, " +
+              std::to_string(generic.size()) + " by the generic search";
+      for (std::size_t i = 0; bad.empty() && i < generic.size(); ++i)
+        if (std::abs(from_runs[i].first - generic[i].first) > 1e-9 * (e - b) || from_runs[i].second != generic[i].second)
+          bad = "crossing " + std::to_string(i) + " of " + num(level) + " at " + deg(from_runs[i].first) + " from the runs, " +
+                deg(generic[i].first) + " by the generic search";
+    }
+    r.add(suite, what, bad.empty(), bad);
   }
   return r;
 }

@@ -1,0 +1,134 @@
+// CamLawRuns (mechgraph/domain/cam_law_runs.hpp): extrema and crossings from a law's declared
+// monotone runs, against closed forms; the cam summary through them equals the generic search's;
+// the conformance kit catches a law whose declared runs are wrong.
+#include <mechgraph/domain/cam_geometry.hpp>
+#include <mechgraph/domain/cam_law_runs.hpp>
+#include <mechgraph/testing/cam_law_conformance.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+using namespace mechgraph;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+constexpr double deg = std::numbers::pi / 180.0;
+
+// h = H s^3, s = 1 - x^2, x = (phi - c) / w on (c - w, c + w) (an asymmetric event when c != 0):
+//   h'   = -6 H x s^2 / w                   sign change at x = 0
+//   h''  = 6 H s (5 x^2 - 1) / w^2          at x = +-1/sqrt(5)
+//   h''' = 24 H x (3 - 5 x^2) / w^3         at x = 0, +-sqrt(3/5)
+// `declared` says which runs the law gives: 0 none, 1 the true ones, 2 wrong ones (order 2 with
+// the nose only, so h'' would be taken as monotone across its peaks).
+class Bump final : public CamLaw {
+ public:
+  Bump(double c, double w, int declared) : c_(c), w_(w), declared_(declared) {}
+  double event_begin() const override { return c_ - w_; }
+  double event_end() const override { return c_ + w_; }
+  std::vector<double> breakpoints() const override { return {}; }
+  double max_lift() const override { return H; }
+  double base_radius() const override { return 0.04; }
+  LiftDerivatives evaluate_in_event(double phi) const override {
+    const double x = (phi - c_) / w_, s = 1 - x * x;
+    return {H * s * s * s, -6 * H * x * s * s / w_, 6 * H * s * (5 * x * x - 1) / (w_ * w_),
+            24 * H * x * (3 - 5 * x * x) / (w_ * w_ * w_)};
+  }
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    if (declared_ == 0) return false;
+    const double a = w_ / std::sqrt(5.0), b = w_ * std::sqrt(0.6);
+    if (order == 0) breaks = {c_};
+    else if (order == 1) breaks = {c_ - a, c_ + a};
+    else breaks = declared_ == 2 ? std::vector<double>{c_} : std::vector<double>{c_ - b, c_, c_ + b};
+    return true;
+  }
+  static constexpr double H = 0.01;
+
+ private:
+  double c_, w_;
+  int declared_;
+};
+
+}  // namespace
+
+TEST_CASE("monotone runs: extrema and crossings against the closed forms", "[sdk][cam_runs]") {
+  const double c = 7 * deg, w = 55 * deg;
+  const Bump law(c, w, 1);
+  const double H = Bump::H;
+  long evaluations = 0;
+  const auto velocity = CamLawRuns::of(law, 1);
+  const auto acceleration = CamLawRuns::of(law, 2);
+  const auto lift = CamLawRuns::of(law, 0);
+  REQUIRE(velocity);
+  REQUIRE(acceleration);
+  REQUIRE(lift);
+  // h' peaks at x = -+1/sqrt(5): 96 H / (25 sqrt(5) w).
+  const double v_peak = 96 * H / (25 * std::sqrt(5.0) * w);
+  CHECK_THAT(velocity->maximum(evaluations).value, WithinRel(v_peak, 1e-13));
+  CHECK_THAT(velocity->maximum(evaluations).x, WithinAbs(c - w / std::sqrt(5.0), 1e-15));
+  CHECK_THAT(velocity->minimum(evaluations).value, WithinRel(-v_peak, 1e-13));
+  // h'' peaks at x = +-sqrt(3/5): 4.8 H / w^2; least at the nose: -6 H / w^2.
+  CHECK_THAT(acceleration->maximum(evaluations).value, WithinRel(4.8 * H / (w * w), 1e-13));
+  CHECK_THAT(acceleration->minimum(evaluations).value, WithinRel(-6 * H / (w * w), 1e-13));
+  // Over a part of the event: [c - 0.9 w, c - 0.6 w] holds the peak at x = -sqrt(3/5) = -0.7746.
+  CHECK_THAT(acceleration->maximum(c - 0.9 * w, c - 0.6 * w, evaluations).value, WithinRel(4.8 * H / (w * w), 1e-13));
+  // An interval inside one run: the extremes are its ends.
+  const double x1 = -0.5, x2 = -0.3;
+  auto h2 = [&](double x) { const double s = 1 - x * x; return 6 * H * s * (5 * x * x - 1) / (w * w); };
+  CHECK_THAT(acceleration->maximum(c + x1 * w, c + x2 * w, evaluations).value, WithinRel(std::max(h2(x1), h2(x2)), 1e-13));
+  CHECK_THAT(acceleration->minimum(c + x1 * w, c + x2 * w, evaluations).value, WithinRel(std::min(h2(x1), h2(x2)), 1e-13));
+  // Lift crossings of L: s = (L / H)^(1/3), x = -+sqrt(1 - s); rising then falling.
+  const double L = 0.0037;
+  const auto cross = lift->directed_crossings(L, evaluations);
+  REQUIRE(cross.size() == 2);
+  const double xs = std::sqrt(1 - std::cbrt(L / H));
+  CHECK_THAT(cross[0].first, WithinAbs(c - xs * w, 1e-14));
+  CHECK(cross[0].second);
+  CHECK_THAT(cross[1].first, WithinAbs(c + xs * w, 1e-14));
+  CHECK_FALSE(cross[1].second);
+  // h'' through zero: rising at the start? It starts at 0 and is positive just inside: the walk
+  // skips the exact zero, so the first crossing is the fall at x = -1/sqrt(5).
+  const auto zeros = acceleration->directed_crossings(0.0, evaluations);
+  REQUIRE(zeros.size() == 2);
+  CHECK_THAT(zeros[0].first, WithinAbs(c - w / std::sqrt(5.0), 1e-14));
+  CHECK_FALSE(zeros[0].second);
+  CHECK(zeros[1].second);
+  CHECK(evaluations < 200);
+}
+
+TEST_CASE("monotone runs: the cam summary equals the generic search's", "[sdk][cam_runs]") {
+  // w = 80 deg: the contour is convex (rho at the nose r0 + H - 6 H / w^2 = 19 mm).
+  for (double c : {0.0, 11 * deg, -23 * deg}) {
+    const Bump with(c, 80 * deg, 1), without(c, 80 * deg, 0);
+    const CamSummary a = summarize(with, 16), b = summarize(without, 16);
+    CHECK_THAT(a.max_velocity, WithinRel(b.max_velocity, 1e-12));
+    CHECK_THAT(a.max_acceleration, WithinRel(b.max_acceleration, 1e-12));
+    CHECK_THAT(a.min_acceleration, WithinRel(b.min_acceleration, 1e-12));
+    CHECK_THAT(a.accel_angle, WithinRel(b.accel_angle, 1e-12));
+    CHECK_THAT(a.accel_angle, WithinRel(80 * deg * (1 - 1 / std::sqrt(5.0)), 1e-13));
+    CHECK_THAT(a.min_curvature_radius, WithinRel(b.min_curvature_radius, 1e-12));
+    // Without the curvature asked for, the flat contour is proven free of undercut instead.
+    const CamSummary proven = summarize(with, 16, false);
+    CHECK_FALSE(proven.curvature_exact);
+    CHECK(proven.min_curvature_radius > 0.0);
+  }
+  // An undercut one (w = 40 deg: rho = r0 + H - 6 H / w^2 < 0 at the nose) is measured, not proven.
+  const CamSummary undercut = summarize(Bump(0.0, 40 * deg, 1), 16, false);
+  CHECK(undercut.curvature_exact);
+  CHECK_THAT(undercut.min_curvature_radius, WithinRel(0.04 + 0.01 - 6 * 0.01 / std::pow(40 * deg, 2), 1e-12));
+}
+
+TEST_CASE("monotone runs: the conformance kit passes true runs and catches false ones", "[sdk][cam_runs]") {
+  const testing::Report good = testing::check_cam_law(Bump(5 * deg, 50 * deg, 1), "bump");
+  CHECK(good.count(testing::Check::Status::failed) == 0);
+  CHECK(good.count(testing::Check::Status::passed) >= 3);
+  const testing::Report bad = testing::check_cam_law(Bump(5 * deg, 50 * deg, 2), "lying bump");
+  REQUIRE(bad.count(testing::Check::Status::failed) == 1);
+  bool named = false;
+  for (const testing::Check& ch : bad.checks())
+    if (ch.status == testing::Check::Status::failed) named = ch.name == "monotone runs of the acceleration";
+  CHECK(named);
+}
