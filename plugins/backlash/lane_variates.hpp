@@ -95,16 +95,21 @@ class LaneVariates {
   }
 
   /// The slow path of `count` sets of candidates at once: in each lane, in the order of the sets,
-  /// each candidate that missed its core replaced by ziggurat_outside_core on that lane's engine
-  /// (the wedge, the tail, or a fresh normal). The fast draws of later sets were taken before
-  /// these; every draw is still used once, so the variates stay independent.
-  void fix_normals(LaneDoubles* z, const LaneBits* bits, std::size_t count) {
+  /// each candidate that missed its core (`missed`) replaced by ziggurat_outside_core on that
+  /// lane's engine (the wedge, the tail, or a fresh normal); `missed_any` is their union. The fast
+  /// draws of later sets were taken before these; every draw is still used once, so the variates
+  /// stay independent.
+  void fix_normals(LaneDoubles* z, const LaneBits* bits, const LaneMask* missed, const LaneMask& missed_any,
+                   std::size_t count) {
     alignas(64) std::uint64_t state[4][lanes];
+    alignas(64) std::int64_t lanes_missed[lanes];
     std::memcpy(state[0], &s0_, sizeof state[0]);
     std::memcpy(state[1], &s1_, sizeof state[1]);
     std::memcpy(state[2], &s2_, sizeof state[2]);
     std::memcpy(state[3], &s3_, sizeof state[3]);
-    outside_core(state, reinterpret_cast<double*>(z), reinterpret_cast<const std::uint64_t*>(bits), count);
+    std::memcpy(lanes_missed, &missed_any, sizeof lanes_missed);
+    outside_core(state, reinterpret_cast<double*>(z), reinterpret_cast<const std::uint64_t*>(bits),
+                 reinterpret_cast<const std::int64_t*>(missed), lanes_missed, count);
     std::memcpy(&s0_, state[0], sizeof state[0]);
     std::memcpy(&s1_, state[1], sizeof state[1]);
     std::memcpy(&s2_, state[2], sizeof state[2]);
@@ -116,7 +121,7 @@ class LaneVariates {
     LaneBits bits;
     LaneMask missed;
     LaneDoubles z = normal_candidates(bits, missed);
-    if (any(missed)) [[unlikely]] fix_normals(&z, &bits, 1);
+    if (any(missed)) [[unlikely]] fix_normals(&z, &bits, &missed, missed, 1);
     return z;
   }
 
@@ -144,14 +149,12 @@ class LaneVariates {
 
   // The candidates that missed their strip's core, lane by lane, each on its own engine.
   [[gnu::noinline]] static void outside_core(std::uint64_t (&state)[4][lanes], double* z, const std::uint64_t* bits,
-                                             std::size_t count) {
+                                             const std::int64_t* missed, const std::int64_t* lanes_missed, std::size_t count) {
     for (int j = 0; j < lanes; ++j) {
+      if (!lanes_missed[j]) continue;
       Xoshiro256 e = Xoshiro256::from_state({state[0][j], state[1][j], state[2][j], state[3][j]});
-      for (std::size_t k = 0; k < count; ++k) {
-        double x;
-        const std::uint64_t b = bits[k * lanes + j];
-        if (!ziggurat_core(b, x)) z[k * lanes + j] = ziggurat_outside_core(b, e);
-      }
+      for (std::size_t k = 0; k < count; ++k)
+        if (missed[k * lanes + j]) z[k * lanes + j] = ziggurat_outside_core(bits[k * lanes + j], e);
       const auto s = e.state();
       for (int i = 0; i < 4; ++i) state[i][j] = s[i];
     }

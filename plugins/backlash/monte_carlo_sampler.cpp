@@ -74,21 +74,21 @@ template <class Sink>
   LaneVariates v(start);
   std::size_t normal_terms = 0;
   for (const SampledTerm& t : s.terms) normal_terms += t.normal_sigma > 0.0 ? 1 : 0;
-  // The candidates and their draws, one vector per normal term, 64-byte aligned in plain storage
-  // (a std::vector of vector types would not honour their alignment).
-  std::vector<std::uint64_t> storage(2 * lanes * normal_terms + lanes);
+  // The candidates, their draws and whether they missed, one vector per normal term, 64-byte
+  // aligned in plain storage (a std::vector of vector types would not honour their alignment).
+  std::vector<std::uint64_t> storage(3 * lanes * normal_terms + lanes);
   auto* base = reinterpret_cast<std::uint64_t*>((reinterpret_cast<std::uintptr_t>(storage.data()) + 63) & ~std::uintptr_t{63});
   auto* z = reinterpret_cast<LaneDoubles*>(base);
   auto* bits = reinterpret_cast<LaneBits*>(base + lanes * normal_terms);
+  auto* missed = reinterpret_cast<LaneMask*>(base + 2 * lanes * normal_terms);
   const LaneDoubles constant = splat(s.constant), zero{};
   for (std::size_t done = 0; done < n; done += lanes) {
     LaneMask missed_any{};
     for (std::size_t k = 0; k < normal_terms; ++k) {
-      LaneMask missed;
-      z[k] = v.normal_candidates(bits[k], missed);
-      missed_any |= missed;
+      z[k] = v.normal_candidates(bits[k], missed[k]);
+      missed_any |= missed[k];
     }
-    if (any(missed_any)) [[unlikely]] v.fix_normals(z, bits, normal_terms);
+    if (any(missed_any)) [[unlikely]] v.fix_normals(z, bits, missed, missed_any, normal_terms);
     LaneDoubles y = constant;
     std::size_t k = 0;
     for (const SampledTerm& t : s.terms) {
@@ -154,7 +154,10 @@ class TallySink {
     high_ = y > high_ ? y : high_;
     below_ -= y < lower_;  // a true comparison is -1
     above_ -= y > upper_;
-    if (any((y <= t_low_) | (y >= t_high_))) [[unlikely]]
+    // y <= t_low or y >= t_high in some lane, as one comparison (the sign of a difference of
+    // doubles is exact; two comparisons joined would be taken lane by lane on AVX-512).
+    const LaneDoubles below_low = t_low_ - y, above_high = y - t_high_;
+    if (any((below_low > above_high ? below_low : above_high) >= 0.0)) [[unlikely]]
       for (int j = 0; j < lanes; ++j) keep_tail(y[j]);
     if (!t_.histogram.empty())
       for (int j = 0; j < lanes; ++j) t_.histogram.add(y[j]);
