@@ -29,12 +29,13 @@ inline constexpr int lanes = 8;
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef std::uint64_t LaneBits __attribute__((vector_size(64)));
-typedef std::int64_t LaneMask __attribute__((vector_size(64)));  // comparison results: -1 (true) or 0
+typedef std::int64_t LaneMask __attribute__((vector_size(64)));  // flags, non-zero for true
+inline constexpr std::uint64_t sign_bit = 0x8000000000000000ull;
 typedef double LaneDoubles __attribute__((vector_size(64)));
 
 [[gnu::always_inline]] inline LaneDoubles splat(double x) { return LaneDoubles{} + x; }
 
-/// Whether any lane of a comparison is true (a tree of halvings: no lane-by-lane branch).
+/// Whether any lane's flag is set (a tree of halvings: no lane-by-lane branch).
 [[gnu::always_inline]] inline bool any(LaneMask m) {
   m |= __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
   m |= __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
@@ -79,7 +80,7 @@ class LaneVariates {
   }
 
   /// Eight normal candidates: u x[i] of each lane's draw (`bits`), a standard normal in every lane
-  /// whose draw fell inside its strip's core; `missed` true in the others, for fix_normals.
+  /// whose draw fell inside its strip's core; `missed` 1 in the others (0 in these), for fix_normals.
   [[gnu::always_inline]] LaneDoubles normal_candidates(LaneBits& bits, LaneMask& missed) {
     bits = next();
     const LaneDoubles u = symmetric_uniform_of(bits);
@@ -89,8 +90,11 @@ class LaneVariates {
     std::memcpy(strip, &bits, sizeof strip);
     const LaneDoubles strip_x = lookup(ziggurat_table.x.data(), strip);
     const LaneDoubles core_ratio = lookup(ziggurat_table.ratio.data(), strip);
-    const LaneDoubles magnitude = u < 0.0 ? -u : u;
-    missed = magnitude >= core_ratio;
+    // missed = |u| >= ratio, from the sign of |u| - ratio (exact for a difference of doubles):
+    // arithmetic on the bits, which every instruction set has for 64-bit lanes (a comparison of
+    // eight doubles is taken lane by lane without AVX-512).
+    const LaneDoubles magnitude = std::bit_cast<LaneDoubles>(std::bit_cast<LaneBits>(u) & ~sign_bit);
+    missed = std::bit_cast<LaneMask>((std::bit_cast<LaneBits>(magnitude - core_ratio) >> 63) ^ 1u);  // 1 or 0
     return u * strip_x;
   }
 
