@@ -6,9 +6,13 @@
 // equal to the kept samples' where the tails are a point mass; the chain's mean and sigma against
 // the closed form of clipped normals.
 #include "backlash/lane_variates.hpp"
+#include "backlash/node_types.hpp"
 #include "backlash/monte_carlo_sampler.hpp"
 #include "backlash/stacking.hpp"
 #include "backlash/variates.hpp"
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -283,4 +287,36 @@ TEST_CASE("Monte Carlo of the steering chain: mean and sigma against the clipped
   // sigma/sqrt(2(N-1)); 5 of them.
   CHECK_THAT(s.sigma, WithinAbs(std::sqrt(variance), 5.0 * s.sigma_error));
   CHECK(mean == Approx(771.0035257e-6).epsilon(1e-9).margin(0));  // as the numpy peer's closed form gives
+}
+
+TEST_CASE("stack.linear and backlash.chain: the threads parameter changes no output; a bad value names it", "[backlash][sampler]") {
+  auto type = make_stack_linear_type();
+  ParamValue links;
+  links.kind = ParamKind::record_list;
+  for (const char* distribution : {"normal", "uniform", "triangular"})
+    links.records.push_back({{"nominal", ParamValue::of_number(0.010)},
+                             {"upper", ParamValue::of_number(3e-5)},
+                             {"lower", ParamValue::of_number(-2e-5)},
+                             {"distribution", ParamValue::of_choice(distribution)}});
+  auto run = [&](double threads) {
+    OutputSet out;
+    testing::RecordingContext ctx(std::vector<std::string>{"monte_carlo"});
+    type->evaluate(testing::defaults_of(type->info(), {{"links", links},
+                                                       {"samples", ParamValue::of_integer(400000)},
+                                                       {"threads", ParamValue::of_integer(threads)}}),
+                   InputSet{}, out, ctx);
+    CHECK(ctx.work.at("samples") == 400000.0);
+    CHECK(ctx.work.at("chunks") == 7.0);  // ceil(400000 / 65536)
+    return out;
+  };
+  const OutputSet one = run(1);
+  for (const double threads : {0.0, 2.0, 3.0}) {
+    INFO("threads " << threads);
+    const OutputSet other = run(threads);
+    for (const char* port : {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999"})
+      CHECK(other.all().at(port).as_scalar() == one.all().at(port).as_scalar());
+  }
+  CHECK_THROWS_MATCHES(run(300), NodeError,
+                       Catch::Matchers::Predicate<NodeError>([](const NodeError& e) { return e.parameter() == "threads"; }));
+  CHECK(make_backlash_chain_type()->info().find_param("threads") != nullptr);
 }
