@@ -4,14 +4,15 @@
 // (docs/methods/backlash.md, "Monte Carlo sampler").
 //
 // The vectors are GCC's generic vector extension: eight 64-bit lanes, which the compiler maps on
-// whatever the target has (four SSE2 registers on baseline x86-64, two AVX2 ones, one AVX-512
-// one), so the same source gives the same bits everywhere; only additions, shifts, exclusive ors,
-// multiplications and comparisons are used, all exact or correctly rounded.
+// whatever the target has (one AVX-512 register; on baseline x86-64 four SSE2 registers' worth),
+// so the same source gives the same bits everywhere: only integer operations and correctly
+// rounded additions, subtractions and multiplications are used, and a comparison is the sign bit
+// of a difference (exact for doubles; GCC takes vector comparisons lane by lane without AVX-512).
 //
 // Lane j starts where its first engine is advanced by j long jumps (2^192 steps), so the eight
 // streams never overlap. The ziggurat's fast path (a strip's core: one draw, two table loads, a
 // multiplication and a comparison) runs in all lanes at once; a lane whose draw misses its core
-// (about 1 % of the draws) takes the scalar wedge or tail of variates.hpp on its own engine, so
+// (0.43 % of the draws) takes the scalar wedge or tail of variates.hpp on its own engine, so
 // each lane's normals are exactly the scalar algorithm's.
 #include "variates.hpp"
 
