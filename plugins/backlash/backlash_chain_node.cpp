@@ -20,6 +20,7 @@
 #include "node_types.hpp"
 #include "mc_histogram.hpp"
 #include "spec_limits.hpp"
+#include "monte_carlo_sampler.hpp"
 #include "stacking.hpp"
 
 #include <mechgraph/domain/tolerance.hpp>
@@ -74,6 +75,7 @@ class BacklashChainType final : public NodeType {
  public:
   BacklashChainType() {
     info_.type = "backlash.chain";
+    info_.version = 2;  // 2: the fused sampler (other samples for a seed)
     info_.summary = "free play of the chain fixed part - actuator - nozzle, reduced to the rod and to the swivel axis: "
                     "worst case (the source), RSS, Monte Carlo of the truncated play; elastic compliance apart";
     const auto L = dim::length;
@@ -117,6 +119,7 @@ class BacklashChainType final : public NodeType {
             .positive(),
         samples_param(),
         seed_param(),
+        threads_param(),
         spec_param(dim::angle, "arcmin", "the angular backlash"),
         histogram_bins_param(),
     };
@@ -166,13 +169,13 @@ class BacklashChainType final : public NodeType {
          {"rod_backlash_mc_mean", "rod_backlash_mc_sigma", "rod_backlash_mc_q999", "angular_backlash_mc_mean",
           "angular_backlash_mc_q999", "mc_mean_error", "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk",
           "mc_histogram"},
-         {"samples", "seed", "histogram_bins"}},
+         {"samples", "seed", "threads", "histogram_bins"}},
         {compliance_effect, "elastic deflection load/stiffness of the chain under the measuring load, reported apart "
                             "from the free play: measured play = clearance + load/stiffness",
          {"rod_elastic_deflection", "rod_total_under_load", "angular_total_under_load"},
          {"load", "stiffness"}},
     };
-    info_.work_counters = {"samples"};
+    info_.work_counters = {"samples", "chunks"};
     info_.output_dependencies = {{"lever_arm", {}}};
   }
   const NodeInfo& info() const override { return info_; }
@@ -247,11 +250,14 @@ class BacklashChainType final : public NodeType {
       const std::size_t samples = read_samples(p);
       const std::uint64_t seed = read_seed(p);
       const std::size_t bins = ctx.wanted("mc_histogram") ? static_cast<std::size_t>(p.integer("histogram_bins")) : 0;
-      const SampleSummary mc = monte_carlo_play_stack(stack, samples, seed, spec.sample_limits(arm), bins);
+      SamplerWork work;
+      const SampleSummary mc =
+          monte_carlo(sampled_stack(stack), samples, seed, spec.sample_limits(arm), bins, read_threads(p), &work);
       if (bins)
         out.set("mc_histogram", Value::table(mc_histogram_table(mc.histogram, "angular_backlash", dim::angle, "arcmin", spec,
                                                                 out, arm)));
       ctx.report_work("samples", static_cast<double>(samples));
+      ctx.report_work("chunks", static_cast<double>(work.chunks));
       out.note(monte_carlo_note(samples, seed, mc.mean_error));
       if (spec.given()) out.note(spec_note(mc));
       set_spec_outputs(out, spec, mean / arm, sigma / arm, &mc, arm);

@@ -2,10 +2,12 @@
 // The node types of the backlash plugin, and the few things their descriptions share.
 #include <mechgraph/node.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 namespace mechgraph::backlash {
 
@@ -29,11 +31,22 @@ inline ParamSpec samples_param() {
       .as_knob();
 }
 inline ParamSpec seed_param() {
-  return ParamSpec::integer("seed", "Monte Carlo seed of the mt19937_64 engine (with monte_carlo): the same seed gives "
-                                    "the same numbers on every platform")
+  return ParamSpec::integer("seed", "Monte Carlo seed of the xoshiro256++ engine (with monte_carlo): the same seed gives "
+                                    "the same numbers on every platform and for any number of threads")
       .with_default(1.0)
       .non_negative()
       .at_most(9007199254740992.0);
+}
+
+/// Threads the Monte Carlo samples may be drawn on. The node contract gives a node no share of
+/// the host's threads, so the scene decides; 1 by default (a sweep already runs a case per core).
+inline constexpr double max_threads = 256;
+inline ParamSpec threads_param() {
+  return ParamSpec::integer("threads", "threads that draw the Monte Carlo samples (with monte_carlo), 0: one per core; "
+                                       "the results are the same bit for bit for any number")
+      .with_default(1.0)
+      .non_negative()
+      .at_most(max_threads);
 }
 
 /// A number as text for messages, with up to six significant digits.
@@ -62,6 +75,14 @@ inline std::uint64_t read_seed(const ParamSet& p) {
   if (!(s >= 0.0 && s <= 9007199254740992.0) || s != std::floor(s))
     throw NodeError("seed", "seed must be a whole number from 0 to 2^53, got " + number_text(s));
   return static_cast<std::uint64_t>(s);
+}
+
+inline unsigned read_threads(const ParamSet& p) {
+  const double t = p.number("threads");
+  if (!(t >= 0.0 && t <= max_threads) || t != std::floor(t))
+    throw NodeError("threads", "threads must be a whole number from 0 to 256, got " + number_text(t));
+  if (t == 0.0) return std::max(1u, std::thread::hardware_concurrency());
+  return static_cast<unsigned>(t);
 }
 
 /// How a Monte Carlo result was made, for the results' notes: "Monte Carlo: 1000000 samples,

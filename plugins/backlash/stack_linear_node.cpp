@@ -7,6 +7,7 @@
 #include "node_types.hpp"
 #include "mc_histogram.hpp"
 #include "spec_limits.hpp"
+#include "monte_carlo_sampler.hpp"
 #include "stacking.hpp"
 
 #include <mechgraph/domain/tolerance.hpp>
@@ -30,6 +31,7 @@ class StackLinearType final : public NodeType {
  public:
   StackLinearType() {
     info_.type = "stack.linear";
+    info_.version = 2;  // 2: the fused sampler (other samples for a seed)
     info_.summary = "one-dimensional tolerance stack sum s_i X_i: worst case, RSS and Monte Carlo, with each link's share";
     info_.params = {
         ParamSpec::record_list(
@@ -56,6 +58,7 @@ class StackLinearType final : public NodeType {
             "the parts of the stack, each { nominal, upper, lower, sensitivity, distribution, label }"),
         samples_param(),
         seed_param(),
+        threads_param(),
         spec_param(dim::length, "mm", "the stack's result"),
         histogram_bins_param(),
     };
@@ -87,8 +90,8 @@ class StackLinearType final : public NodeType {
                                           "sample statistics with their standard errors and histogram",
                       {"mc_mean", "mc_sigma", "mc_min", "mc_max", "mc_q001", "mc_q999", "mc_mean_error", "mc_sigma_error",
                        "mc_out_of_spec", "mc_out_of_spec_error", "mc_cp", "mc_cpk", "mc_histogram"},
-                      {"samples", "seed", "histogram_bins"}}};
-    info_.work_counters = {"samples"};
+                      {"samples", "seed", "threads", "histogram_bins"}}};
+    info_.work_counters = {"samples", "chunks"};
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -115,9 +118,11 @@ class StackLinearType final : public NodeType {
     const std::size_t n = read_samples(p);
     const std::uint64_t seed = read_seed(p);
     const std::size_t bins = ctx.wanted("mc_histogram") ? static_cast<std::size_t>(p.integer("histogram_bins")) : 0;
-    const SampleSummary mc = monte_carlo_linear_stack(links, n, seed, spec.sample_limits(), bins);
+    SamplerWork work;
+    const SampleSummary mc = monte_carlo(sampled_stack(links), n, seed, spec.sample_limits(), bins, read_threads(p), &work);
     if (bins) out.set("mc_histogram", Value::table(mc_histogram_table(mc.histogram, "stack", dim::length, "mm", spec, out)));
     ctx.report_work("samples", static_cast<double>(n));
+    ctx.report_work("chunks", static_cast<double>(work.chunks));
     out.note(monte_carlo_note(n, seed, mc.mean_error));
     if (spec.given()) out.note(spec_note(mc));
     set_spec_outputs(out, spec, s.mean, s.rss_sigma, &mc);

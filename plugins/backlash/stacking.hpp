@@ -50,7 +50,14 @@ struct Histogram {
   std::size_t under = 0;  // below low
   std::size_t over = 0;   // above top
   bool empty() const { return counts.empty(); }
-  /// Adds n samples.
+  /// Adds one sample, and n samples.
+  void add(double x) {
+    const double u = (x - low) / width;  // bin k holds k <= u < k + 1
+    if (u < 0.0) ++under;
+    else if (u < static_cast<double>(counts.size())) ++counts[static_cast<std::size_t>(u)];
+    else if (x <= top) ++counts.back();  // the top edge itself, when it belongs to the last bin
+    else ++over;
+  }
   void add(const double* x, std::size_t n);
   /// Drops the empty bins at both ends (keeps at least one bin).
   void trim();
@@ -93,8 +100,9 @@ double quantile_of_sorted(const std::vector<double>& sorted, double p);
 /// N draws of the linear stack sum s_i X_i, each X_i drawn independently from its distribution
 /// (normal N(m, h/3), unbounded; uniform U(m - h, m + h); triangular Tri(m - h, m, m + h)).
 /// Reproducible on every platform for a given seed: the engine and distributions of variates.hpp,
-/// whose algorithms are fixed (the standard library's are implementation-defined). The normal
-/// links of a sum are drawn as one normal of their combined variance (exact in distribution).
+/// whose algorithms are fixed (the standard library's are implementation-defined), drawn by the
+/// sampler of monte_carlo_sampler.hpp. The normal links of a sum are drawn as one normal of their
+/// combined variance (exact in distribution).
 std::vector<double> sample_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed);
 
 /// A play term with the weight (transfer ratio) that carries it to the result.
@@ -116,15 +124,16 @@ struct PlayStack {
 std::vector<double> sample_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed);
 
 /// summarize(sample_linear_stack(...)) and summarize(sample_play_stack(...)) without keeping the
-/// samples: the same order statistics, moments summed in one pass about the first sample (equal
-/// to the two-pass ones to rounding); memory for a few percent of them. For many samples.
-/// A histogram (bins > 0) streamed this way cannot wait for the extremes: its bins are laid over
-/// the range of a pilot of the first samples, `bins` across it and a quarter of it more on each
-/// side, the empty end bins then dropped; samples beyond are counted in under and over. (The
-/// samples are independent: a pilot of 65536 equal samples leaves few others to fall outside.)
+/// samples beyond the first 131072 (monte_carlo() of monte_carlo_sampler.hpp): the same order
+/// statistics, extremes and counts, the moments summed about a pilot's mean (equal to the
+/// two-pass ones to rounding); memory for about 1 % of them. A streamed histogram (bins > 0)
+/// cannot wait for the extremes: its bins are laid over the range of a pilot of the first 65536
+/// samples, `bins` across it and a quarter of it more on each side, the empty end bins then
+/// dropped; samples beyond are counted in under and over. `threads` workers share the samples'
+/// chunks; the result is the same bit for bit for any number of them.
 SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, std::size_t count, std::uint64_t seed,
-                                       const SampleLimits& limits = {}, std::size_t bins = 0);
+                                       const SampleLimits& limits = {}, std::size_t bins = 0, unsigned threads = 1);
 SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
-                                     const SampleLimits& limits = {}, std::size_t bins = 0);
+                                     const SampleLimits& limits = {}, std::size_t bins = 0, unsigned threads = 1);
 
 }  // namespace mechgraph::backlash
