@@ -150,6 +150,24 @@ std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& expone
     // A sign change at u = 0 is the nose, a cut anyway.
     std::erase_if(series->sign_changes[m], [](double u) { return !(u > 0.0 && u < 1.0); });
   }
+  // The primitives of x and x^2 from the nose (u = 0) as dense polynomials in u (valvetrain.md,
+  // stage 3 in closed form): int_0^U x = sum_i C_i U^(n_i+1) / (n_i+1), int_0^U x^2 =
+  // sum_ij C_i C_j U^(n_i+n_j+1) / (n_i+n_j+1), with C_0 = 1, n_0 = 0; from the exact fractions.
+  {
+    std::vector<long double> c{1.0L};
+    std::vector<int> n{0};
+    for (std::size_t i = 0; i < exponents.size(); ++i) {
+      c.push_back(static_cast<long double>(exact[i].first) / static_cast<long double>(exact[i].second));
+      n.push_back(exponents[i]);
+    }
+    series->lift_primitive.assign(static_cast<std::size_t>(degree) + 2, 0.0L);
+    series->square_primitive.assign(2 * static_cast<std::size_t>(degree) + 2, 0.0L);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      series->lift_primitive[static_cast<std::size_t>(n[i]) + 1] += c[i] / (n[i] + 1);
+      for (std::size_t j = 0; j < c.size(); ++j)
+        series->square_primitive[static_cast<std::size_t>(n[i] + n[j]) + 1] += c[i] * c[j] / (n[i] + n[j] + 1);
+    }
+  }
   // q_0..q_3 all have degree n_max - 5: one table, four coefficients per power.
   series->interleaved.resize(series->q[0].size());
   for (std::size_t m = 0; m < 4; ++m)
@@ -176,6 +194,24 @@ std::shared_ptr<const PolydyneSeries> series_for(const std::vector<int>& exponen
 PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)),
       series_(series_for(exponents_)) {}
+
+bool PolydyneLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+  // h = H x(|phi| / phi_p): the primitives S(phi) = sign(phi) phi_p F(|phi| / phi_p) with the
+  // polynomial primitives F of x and x^2 (from the nose, so no cancellation near the seat).
+  auto horner = [](const std::vector<long double>& p, long double u) {
+    long double sum = 0.0L;
+    for (std::size_t k = p.size(); k-- > 0;) sum = sum * u + p[k];
+    return sum;
+  };
+  const long double phi_p = half_action_, H = max_lift_;
+  auto S = [&](double phi, const std::vector<long double>& p) {
+    const long double u = std::min<long double>(std::abs(static_cast<long double>(phi)) / phi_p, 1.0L);
+    return (phi < 0.0 ? -1.0L : 1.0L) * phi_p * horner(p, u);
+  };
+  integral = static_cast<double>(H * (S(b, series_->lift_primitive) - S(a, series_->lift_primitive)));
+  integral_of_square = static_cast<double>(H * H * (S(b, series_->square_primitive) - S(a, series_->square_primitive)));
+  return true;
+}
 
 bool PolydyneLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
   if (order < 0 || order > 2) return false;

@@ -47,6 +47,8 @@ struct PolydyneSeries {
   /// ascending: the monotone runs of the (m-1)-th (CamLaw::monotone_breaks), found once per
   /// exponent set.
   std::array<std::vector<double>, 4> sign_changes;
+  /// int_0^U x du and int_0^U x^2 du as polynomials in U (monomial coefficients).
+  std::vector<long double> lift_primitive, square_primitive;
 };
 
 class PolydyneLaw final : public CamLaw {
@@ -63,6 +65,8 @@ class PolydyneLaw final : public CamLaw {
   double base_radius() const override { return base_radius_; }
   /// The nose and the sign changes of q_(order+1), mirrored (x is even in u).
   bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  /// The integrals of h and h^2 from the exact polynomial primitives.
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   const std::vector<int>& exponents() const { return exponents_; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.

@@ -1,5 +1,6 @@
 #include "three_arc.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <memory>
@@ -180,6 +181,66 @@ bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const 
     const double quarter = g_.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
     breaks = {-quarter, -alpha, 0.0, alpha, quarter};
   }
+  return true;
+}
+
+namespace {
+
+// Integrals from 0 to X of m = 1 - cos x and of m^2 (valvetrain.md, stage 3 in closed form):
+//   int m = X - sin X,   int m^2 = 3X/2 - 2 sin X + sin(2X)/4.
+struct ArcIntegrals {
+  double m, m2;
+};
+ArcIntegrals arc_integrals(double X) {
+  const double s = std::sin(X);
+  return {X - s, 1.5 * X - 2.0 * s + 0.25 * std::sin(2.0 * X)};
+}
+
+}  // namespace
+
+bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+  // Flat tappet: flank h = e m(x), x = phi_p - |phi|; nose h = H - A m(t), t = |phi| (A the
+  // nose-centre distance). P(phi) = the integrals from the start of lift to phi, piece by piece;
+  // the answer is P(b) - P(a).
+  if (roller_radius_ > 0.0) return false;
+  const double e = g_.flank_centre, A = g_.nose_centre, H = g_.max_lift, alpha = switch_angle_;
+  const double x1 = g_.half_action - alpha;  // the flank's span
+  auto flank = [&](double x, double& p1, double& p2) {
+    const ArcIntegrals m = arc_integrals(x);
+    p1 = e * m.m;
+    p2 = e * e * m.m2;
+  };
+  auto nose = [&](double t, double& p1, double& p2) {  // from the nose out to t
+    const ArcIntegrals m = arc_integrals(t);
+    p1 = H * t - A * m.m;
+    p2 = H * H * t - 2.0 * H * A * m.m + A * A * m.m2;
+  };
+  double f1, f2, n1, n2;
+  flank(x1, f1, f2);
+  nose(alpha, n1, n2);
+  auto P = [&](double phi, double& p1, double& p2) {
+    double q1, q2;
+    if (phi <= -alpha) {
+      flank(g_.half_action + phi, p1, p2);
+    } else if (phi <= 0.0) {
+      nose(-phi, q1, q2);
+      p1 = f1 + n1 - q1;
+      p2 = f2 + n2 - q2;
+    } else if (phi <= alpha) {
+      nose(phi, q1, q2);
+      p1 = f1 + n1 + q1;
+      p2 = f2 + n2 + q2;
+    } else {
+      flank(g_.half_action - phi, q1, q2);
+      p1 = 2.0 * (f1 + n1) - q1;
+      p2 = 2.0 * (f2 + n2) - q2;
+    }
+  };
+  double pa1, pa2, pb1, pb2;
+  P(std::clamp(a, -g_.half_action, g_.half_action), pa1, pa2);
+  P(std::clamp(b, -g_.half_action, g_.half_action), pb1, pb2);
+  integral = pb1 - pa1;
+  integral_of_square = pb2 - pa2;
   return true;
 }
 

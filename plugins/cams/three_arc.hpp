@@ -69,6 +69,8 @@ class ThreeArcLaw final : public CamLaw {
   /// Flat tappet: the flank/nose switches and the nose (plus 90 deg into a long flank for the
   /// velocity). A roller: false (the generic search).
   bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  /// Flat tappet: the integrals of h and h^2 in closed form (arcs: x - sin x and its square's).
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   const ThreeArcGeometry& geometry() const { return g_; }
   /// |phi| (from the nose) where the follower passes from flank to nose: alpha for the flat

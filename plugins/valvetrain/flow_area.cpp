@@ -43,3 +43,15 @@ double FlowArea::operator()(double lift) const {
 }
 
 }  // namespace mechgraph::valvetrain
+
+namespace mechgraph::valvetrain {
+
+bool FlowArea::quadratic(double& k1, double& k2) const {
+  if (seat_.three_stage) return false;
+  const double a = seat_.seat_angle;
+  k1 = std::numbers::pi * seat_.inner_diameter * std::cos(a);
+  k2 = std::numbers::pi * std::sin(a) * std::cos(a) * std::cos(a);
+  return true;
+}
+
+}  // namespace mechgraph::valvetrain

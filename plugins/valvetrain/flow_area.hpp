@@ -31,6 +31,9 @@ class FlowArea {
   double operator()(double lift) const;
   /// Lifts where the formula changes stage (empty for the conical formula).
   const std::vector<double>& stage_lifts() const { return stage_lifts_; }
+  /// The conical formula as f = k1 L + k2 L^2 (k1 = pi d0 cos a, k2 = pi sin a cos^2 a); false
+  /// for the three-stage formula.
+  bool quadratic(double& k1, double& k2) const;
 
  private:
   SeatGeometry seat_;

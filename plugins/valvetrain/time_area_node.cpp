@@ -1,8 +1,9 @@
 // valvetrain.time_area: the valve's time-area and angle-area (methods/valvetrain.md, stage 3).
 //   A = integral f_v(h_v(phi)) dphi / w_k over the open period.
-// `exact` integrates piece by piece between the law's breakpoints (and the flow-area stage
-// changes) with adaptive Gauss-Kronrod; `rectangle` is the source's sum (dphi/w_k) sum f_v,i
-// on a grid of `step`, kept so its error can be shown.
+// `exact` takes the law's closed-form integrals of h and h^2 where it gives them and the seat is
+// conical (the area is then a quadratic in the lift), else integrates piece by piece between the
+// law's breakpoints (and the flow-area stage changes) with adaptive Gauss-Kronrod; `rectangle` is
+// the source's sum (dphi/w_k) sum f_v,i on a grid of `step`, kept so its error can be shown.
 #include "flow_area.hpp"
 #include "node_types.hpp"
 #include "valve_motion.hpp"
@@ -82,7 +83,16 @@ class TimeAreaType final : public NodeType {
     auto f = [&](double phi) { return area(motion->at(phi).lift); };
     long evaluations = 0;
     double angle_area = 0.0;
-    if (p.text("method") == "exact") {
+    double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
+    const double ob = motion->open_begin(), oe = motion->open_end();
+    if (p.text("method") == "exact" && area.quadratic(k1, k2) && motion->cam().lift_integrals(ob, oe, I1, I2)) {
+      // Closed form (the law's integrals of h and h^2): with the valve lift x = i h - lash over the
+      // open period of width L, int f = k1 int x + k2 int x^2, int x = i I1 - lash L,
+      // int x^2 = i^2 I2 - 2 i lash I1 + lash^2 L.
+      const double i = motion->rocker_ratio(), lash = motion->lash(), L = oe - ob;
+      angle_area = k1 * (i * I1 - lash * L) + k2 * (i * i * I2 - 2.0 * i * lash * I1 + lash * lash * L);
+      evaluations += 2;  // the law's two primitives, at both ends
+    } else if (p.text("method") == "exact") {
       // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
       // the lift joins the search knots: a stage lift just below it is crossed twice close together,
       // and the top keeps those two crossings in different pieces.

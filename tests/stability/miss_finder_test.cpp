@@ -11,6 +11,7 @@
 #include <mechgraph/domain/cam_geometry.hpp>
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/testing/cam_law_conformance.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -332,4 +333,58 @@ TEST_CASE("undercut refused alike whether the curvature radius is read or only p
     }
   CHECK(refused >= 6);
   CHECK(accepted >= 9);
+}
+
+TEST_CASE("miss-finder: the closed-form queries of random polydyne, Kurz and flat three-arc laws pass the conformance kit",
+          "[stability][misses]") {
+  // Each law's declared monotone runs (dense sampling, extrema and crossings against the generic
+  // search) and closed-form integrals (against Gauss-Kronrod) over random shapes: exponent sets
+  // up to 1000, action angles 40-170 deg, accel angles over their feasible range.
+  std::mt19937_64 rng(seed_from_env("MECHGRAPH_MISS_SEED", 20261126));
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int checked = 0;
+  for (int k = 0; k < 45; ++k) {
+    const double angle = 40.0 + 130.0 * u(rng), lift = 2.0 + 10.0 * u(rng);
+    const std::string common = "max_lift: " + mm(lift) + ", action_angle: " + degrees(angle) + ", base_radius: " +
+                               mm(40.0 * lift / 8.0 * std::pow(130.0 / angle, 2) + 30.0);
+    std::string type;
+    std::string params = common;
+    switch (k % 3) {
+      case 0: {
+        std::vector<int> e{2};
+        const int top = u(rng) < 0.25 ? 990 : 4 + 2 * static_cast<int>(u(rng) * 100.0);
+        const int step = 2 + 2 * static_cast<int>(u(rng) * 20.0);
+        for (int j = 0; j < 4; ++j) e.push_back(std::min(1000 - 2 * (3 - j), top + j * step));
+        for (std::size_t j = 1; j < e.size(); ++j) e[j] = std::max(e[j], e[j - 1] + 2);
+        std::string ex = "[";
+        for (std::size_t j = 0; j < e.size(); ++j) ex += (j ? ", " : "") + std::to_string(e[j]);
+        type = "cam.polydyne";
+        params += ", exponents: " + ex + "]";
+        break;
+      }
+      case 1:
+        type = "cam.kurz";
+        params += ", accel_angle: " + degrees(angle * (0.06 + 0.3 * u(rng)));
+        break;
+      default:
+        type = "cam.three_arc";
+        params += ", accel_angle: " + degrees(angle * (0.08 + 0.25 * u(rng)));
+        break;
+    }
+    INFO(type << " { " << params << " }");
+    std::shared_ptr<const CamLaw> law;
+    try {
+      const RunResult r = run_yaml("nodes:\n  c: { type: " + type + ", params: { " + params + " } }\noutputs: [c.law]\n",
+                                   project_registry());
+      law = std::dynamic_pointer_cast<const CamLaw>(output(r, "c.law").as_handle());
+    } catch (const EvaluationError&) {
+      continue;  // a shape the law refuses (its own limits)
+    }
+    REQUIRE(law);
+    const mechgraph::testing::Report report = mechgraph::testing::check_cam_law(*law, type);
+    INFO(report.str());
+    CHECK(report.count(mechgraph::testing::Check::Status::failed) == 0);
+    ++checked;
+  }
+  CHECK(checked >= 30);
 }

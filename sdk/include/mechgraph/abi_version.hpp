@@ -10,5 +10,5 @@
 // 4: the entry is a plain C function `mechgraph_plugin_entry` (no Boost.DLL alias); the descriptor
 //    carries the SDK version; DomainObject::contract_problem (the host checks interface contracts);
 //    ParamSpec::example_value; out-of-line destructors (key functions) for every shared interface.
-// 7: CamLaw::monotone_breaks (closed-form monotone runs of the lift and its derivatives).
+// 7: CamLaw::monotone_breaks and CamLaw::lift_integrals (closed-form queries).
 #define MECHGRAPH_PLUGIN_ABI_VERSION 7

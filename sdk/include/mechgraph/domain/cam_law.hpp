@@ -72,6 +72,13 @@ class MECHGRAPH_INTERFACE CamLaw : public DomainObject {
   /// search is used then. The conformance kit checks the runs against dense sampling and the
   /// generic search.
   virtual bool monotone_breaks(int /*order*/, std::vector<double>& /*breaks*/) const { return false; }
+  /// Optional closed-form query: the integrals of the lift and of its square over [a, b],
+  /// event_begin() <= a <= b <= event_end(), in m*rad and m^2*rad (a time-area through a conical
+  /// seat is a polynomial of degree 2 in the lift). Return false (the default) when the law has no
+  /// closed form: quadrature is used then. The conformance kit checks them against quadrature.
+  virtual bool lift_integrals(double /*a*/, double /*b*/, double& /*integral*/, double& /*integral_of_square*/) const {
+    return false;
+  }
 
   /// The checks of the contract above that the host runs on every law a node outputs (sdk/src/cam_law.cpp).
   std::string contract_problem() const final;

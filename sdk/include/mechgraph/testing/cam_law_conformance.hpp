@@ -253,6 +253,38 @@ inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_l
     }
     r.add(suite, what, bad.empty(), bad);
   }
+
+  // Closed-form integrals of h and h^2 (CamLaw::lift_integrals), where the law gives them: against
+  // adaptive Gauss-Kronrod over the whole event and over two parts of it, to 1e-11 of the whole.
+  {
+    double i1 = 0.0, i2 = 0.0;
+    if (!law.lift_integrals(b, e, i1, i2)) {
+      r.skip(suite, "integrals of the lift and its square", "the law does not give them in closed form");
+    } else {
+      std::string bad;
+      long evaluations = 0;
+      const double whole1 = numerics::integrate_piecewise([&](double x) { return law.at(x).lift; }, knots, 1e-13, evaluations);
+      const double whole2 =
+          numerics::integrate_piecewise([&](double x) { const double h = law.at(x).lift; return h * h; }, knots, 1e-13, evaluations);
+      const double parts[3][2] = {{b, e}, {b + 0.13 * (e - b), b + 0.71 * (e - b)}, {b + 0.002 * (e - b), e - 0.3 * (e - b)}};
+      for (const auto& part : parts) {
+        std::vector<double> k{part[0]};
+        for (double x : knots)
+          if (x > part[0] && x < part[1]) k.push_back(x);
+        k.push_back(part[1]);
+        const double q1 = numerics::integrate_piecewise([&](double x) { return law.at(x).lift; }, k, 1e-13, evaluations);
+        const double q2 =
+            numerics::integrate_piecewise([&](double x) { const double h = law.at(x).lift; return h * h; }, k, 1e-13, evaluations);
+        if (!law.lift_integrals(part[0], part[1], i1, i2) || !(std::abs(i1 - q1) <= 1e-11 * std::abs(whole1)) ||
+            !(std::abs(i2 - q2) <= 1e-11 * std::abs(whole2))) {
+          bad = "over " + deg(part[0]) + " .. " + deg(part[1]) + ": closed form " + num(i1) + ", " + num(i2) + "; quadrature " +
+                num(q1) + ", " + num(q2);
+          break;
+        }
+      }
+      r.add(suite, "integrals of the lift and its square", bad.empty(), bad);
+    }
+  }
   return r;
 }
 
