@@ -188,12 +188,30 @@ namespace {
 
 // Integrals from 0 to X of m = 1 - cos x and of m^2 (valvetrain.md, stage 3 in closed form):
 //   int m = X - sin X,   int m^2 = 3X/2 - 2 sin X + sin(2X)/4.
+// Both cancel for small X (they go as X^3/6 and X^5/20); below X = 1 they are summed as their
+// Taylor series instead, from the series of sin X and sin 2X:
+//   X - sin X   = sum_{k>=1} (-1)^(k+1) X^(2k+1) / (2k+1)!
+//   int m^2     = sum_{k>=2} (-1)^k (2^(2k-1) - 2) X^(2k+1) / (2k+1)!
+// (at X = 1 the 12th terms are below 1e-19 of the first).
 struct ArcIntegrals {
   double m, m2;
 };
 ArcIntegrals arc_integrals(double X) {
-  const double s = std::sin(X);
-  return {X - s, 1.5 * X - 2.0 * s + 0.25 * std::sin(2.0 * X)};
+  if (std::abs(X) >= 1.0) {
+    const double s = std::sin(X);
+    return {X - s, 1.5 * X - 2.0 * s + 0.25 * std::sin(2.0 * X)};
+  }
+  double m = 0.0, m2 = 0.0;
+  double term = X;          // X^(2k+1) / (2k+1)!
+  double four_power = 0.5;  // 2^(2k-1)
+  for (int k = 1; k <= 14; ++k) {
+    term *= X * X / ((2.0 * k) * (2.0 * k + 1.0));
+    four_power *= 4.0;
+    const double sign = k % 2 == 0 ? 1.0 : -1.0;
+    m -= sign * term;
+    if (k >= 2) m2 += sign * (four_power - 2.0) * term;
+  }
+  return {m, m2};
 }
 
 }  // namespace
