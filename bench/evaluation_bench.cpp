@@ -66,7 +66,8 @@ void BM_SweepRpm50(benchmark::State& state) {
 BENCHMARK(BM_SweepRpm50)->Unit(benchmark::kMillisecond);
 
 // Stages 1-3 of the three cams (profile summary, valve kinematics, time-area) over a Latin
-// hypercube of lift and base radius: every node runs for every case. One "design" is one cam
+// hypercube of lift, action and accel angle, base radius, rpm and lash: every node runs for every
+// case. One "design" is one cam
 // through the three stages, so a case is three designs; designs/s is the figure the goal
 // and bench/peers compare. Arg: threads.
 void BM_SweepStages123(benchmark::State& state) {
@@ -81,7 +82,11 @@ void BM_SweepStages123(benchmark::State& state) {
       scene.outputs.push_back(parse_port_ref(port, {}));
   }
   const Graph g = build_graph(scene, registry());
-  const CaseTable cases = make_latin_hypercube({parse_sample("lift=7mm:9mm"), parse_sample("r0=15mm:19mm")}, 1000, 1);
+  // Every law changes shape from case to case (bench/peers/ draws the same box).
+  const CaseTable cases = make_latin_hypercube({parse_sample("lift=7mm:9mm"), parse_sample("action=120deg:140deg"),
+                                                parse_sample("accel=15deg:21deg"), parse_sample("r0=24mm:28mm"),
+                                                parse_sample("rpm=4000rpm:7000rpm"), parse_sample("lash=0.1mm:0.4mm")},
+                                               1000, 1);
   const CaseBinder binder(g, scene, registry(), {}, cases.variables);
   SweepOptions options;
   options.threads = static_cast<unsigned>(state.range(0));

@@ -122,9 +122,8 @@ void check_series_shape(const GraphNode& node, const std::string& port, const Se
 }
 
 // Checks what a node produced against what it declared, and ties handles to the plugin's library.
-std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const OutputSet& produced) {
-  auto checked = std::make_shared<OutputSet>();
-  for (const std::string& n : produced.notes()) checked->note(n);
+std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, OutputSet&& produced) {
+  std::vector<std::pair<std::string, Value>> handles;  // kept alive with their plugin (below)
   for (const auto& [port, value] : produced.all()) {
     const PortSpec* spec = node.info().find_output(port);
     if (!spec) throw EvaluationError(where_of(node) + " produced output '" + port + "', which it does not declare");
@@ -145,11 +144,12 @@ std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, const Ou
       if (const std::string problem = value.as_handle()->contract_problem(); !problem.empty())
         throw EvaluationError(node.where.str() + where_of(node) + " produced a " + spec->handle_kind + " at output '" +
                               port + "' that breaks the " + spec->handle_kind + " contract: " + problem);
-      checked->set(port, Value::handle(node.type->keep_alive(value.as_handle())));
-    } else {
-      checked->set(port, value);
+      handles.emplace_back(port, Value::handle(node.type->keep_alive(value.as_handle())));
     }
   }
+  // Everything checked: the node's own set is kept (moved, not copied), its handles wrapped.
+  auto checked = std::make_shared<OutputSet>(std::move(produced));
+  for (auto& [port, value] : handles) checked->set(std::move(port), std::move(value));
   return checked;
 }
 
@@ -235,7 +235,7 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
   // The checks call plugin code too (a domain object's kind() and contract_problem()): whatever
   // it throws is this node's evaluation error, never the end of the host.
   try {
-    produced[i] = checked_outputs(node, outputs);
+    produced[i] = checked_outputs(node, std::move(outputs));
   } catch (const EvaluationError&) {
     throw;
   } catch (const std::exception& e) {

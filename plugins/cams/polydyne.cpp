@@ -48,28 +48,29 @@ std::vector<cpp_rational> divide_by_one_minus_u(const std::vector<cpp_rational>&
 }  // namespace
 
 std::vector<int> validate_polydyne_exponents(const std::vector<double>& e) {
-  const std::string given = "exponents = " + list_text(e);
+  // The message prefix only when a refusal is thrown (a sweep validates every design).
+  const auto given = [&e] { return "exponents = " + list_text(e); };
   if (e.size() != 5) {
-    throw NodeError("exponents", given + ": give exactly five exponents 2, p, q, r, s (the five end conditions "
+    throw NodeError("exponents", given() + ": give exactly five exponents 2, p, q, r, s (the five end conditions "
                                          "x = x' = x'' = x''' = x'''' = 0 fix five coefficients)");
   }
   std::vector<int> n;
   for (double v : e) {
     if (!(std::abs(v - std::round(v)) == 0.0) || !std::isfinite(v)) {
-      throw NodeError("exponents", given + ": every exponent must be an integer");
+      throw NodeError("exponents", given() + ": every exponent must be an integer");
     }
     if (std::round(v) > kMaxExponent || std::round(v) < 0.0) {
-      throw NodeError("exponents", given + ": exponents must lie in [2, " + std::to_string(kMaxExponent) + "]");
+      throw NodeError("exponents", given() + ": exponents must lie in [2, " + std::to_string(kMaxExponent) + "]");
     }
     n.push_back(static_cast<int>(std::round(v)));
   }
-  if (n.front() != 2) throw NodeError("exponents", given + ": the first exponent must be 2");
+  if (n.front() != 2) throw NodeError("exponents", given() + ": the first exponent must be 2");
   for (std::size_t i = 0; i < n.size(); ++i) {
     if (n[i] % 2 != 0) {
-      throw NodeError("exponents", given + ": every exponent must be even (the lift is symmetric about the nose); " +
+      throw NodeError("exponents", given() + ": every exponent must be even (the lift is symmetric about the nose); " +
                                        std::to_string(n[i]) + " is odd");
     }
-    if (i > 0 && n[i] <= n[i - 1]) throw NodeError("exponents", given + ": exponents must increase strictly");
+    if (i > 0 && n[i] <= n[i - 1]) throw NodeError("exponents", given() + ": exponents must increase strictly");
   }
   return n;
 }
