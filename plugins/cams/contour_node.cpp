@@ -159,7 +159,8 @@ class ContourNodeType final : public NodeType {
     };
     info_.outputs = {
         PortSpec::table("contour", "closed contour: x, y (and pitch_x, pitch_y for a roller) in the cam frame over "
-                                   "cam_angle, within chord_error; written as CSV and DXF"),
+                                   "cam_angle_ccw or cam_angle_cw (named for the way the cam turns, seen from the "
+                                   "front), within chord_error; written as CSV and DXF"),
         PortSpec::table("contact", "over the event: pressure_angle, curvature_radius (of the contour), face_offset "
                                    "(flat), load and contact_stress (with a load)"),
         PortSpec::scalar("points", dim::none, "points of the contour"),
@@ -209,7 +210,9 @@ class ContourNodeType final : public NodeType {
       const ContourPoints c = trace_contour(*law, f, p.number("chord_error"), evaluations);
       Table t;
       t.closed_curve = true;
-      t.axis = {"cam_angle", dim::angle, c.phi, "deg"};
+      // The axis names the direction the cam turns, so that a CSV of the contour says it too (its
+      // header: cam_angle_ccw [deg] or cam_angle_cw [deg]).
+      t.axis = {f.clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
       auto& x = t.add_channel("x", dim::length, "mm").values;
       x.reserve(c.points.size());
       for (const auto& g : c.points) x.push_back(g.x);

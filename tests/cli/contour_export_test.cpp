@@ -40,4 +40,11 @@ TEST_CASE("contours go out as CSV and DXF; ezdxf reads the DXF back with the CSV
   };
   CHECK_THAT(text_of(dir / "flat.contour.dxf"), Contains("999\ncontour: the cam turns counterclockwise seen from the front"));
   CHECK_THAT(text_of(dir / "results.json"), Contains("contour: the cam turns counterclockwise seen from the front"));
+  // ... and the CSV's first column is named for it.
+  CHECK(text_of(dir / "flat.contour.csv").rfind("cam_angle_ccw [deg],x [mm],y [mm]", 0) == 0);
+  const auto cw = run_cli("-q run '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/cam_contour.yaml' --set flat.rotation=cw --out '" +
+                          (dir / "cw").string() + "'");
+  REQUIRE(cw.exit_code == 0);
+  CHECK(text_of(dir / "cw" / "flat.contour.csv").rfind("cam_angle_cw [deg],x [mm],y [mm]", 0) == 0);
+  CHECK_THAT(text_of(dir / "cw" / "flat.contour.dxf"), Contains("999\ncontour: the cam turns clockwise seen from the front"));
 }
