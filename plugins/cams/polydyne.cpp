@@ -248,22 +248,34 @@ bool PolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
 
 namespace {
 
-// q_0..q_3 at u by Horner, the four as the lanes of one vector (GCC vector extensions: two SSE2
-// operations per step on any x86-64, one AVX operation where the processor has it; NEON on ARM).
-// On x86-64 a second version for processors with AVX2 and FMA is chosen at load time; it rounds
-// each step once (fused multiply-add) instead of twice.
+// q_0..q_3 at u by split Horner, the four as the lanes of one vector (GCC vector extensions: two
+// SSE2 operations per step on any x86-64, one AVX operation where the processor has it; NEON on
+// ARM): q(u) = E(u^2) + u O(u^2) with E and O the even and odd coefficients, two independent
+// chains of n/2 steps instead of one of n (a degree-45 chain is latency, not arithmetic). For q_0
+// (positive coefficients) and q_1 (negative) both halves keep one sign, so the lift and velocity
+// stay free of cancellation. On x86-64 a second version for processors with AVX2 and FMA is
+// chosen at load time; it rounds each step once (fused multiply-add) instead of twice.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s) {
   typedef double lanes __attribute__((vector_size(32)));
-  const lanes uu = {u, u, u, u};
-  lanes acc = {0.0, 0.0, 0.0, 0.0};
-  for (std::size_t k = n; k-- > 0;) {
-    lanes ck;
-    std::memcpy(&ck, c[k].data(), sizeof ck);
-    acc = acc * uu + ck;
+  const double v = u * u;
+  const lanes uu = {u, u, u, u}, vv = {v, v, v, v};
+  lanes even = {0.0, 0.0, 0.0, 0.0}, odd = {0.0, 0.0, 0.0, 0.0};
+  std::size_t top = n;
+  if (n % 2 == 1) {  // the highest power is even: the even chain starts with it
+    std::memcpy(&even, c[n - 1].data(), sizeof even);
+    top = n - 1;
   }
+  for (std::size_t k = top; k >= 2; k -= 2) {
+    lanes ce, co;
+    std::memcpy(&ce, c[k - 2].data(), sizeof ce);
+    std::memcpy(&co, c[k - 1].data(), sizeof co);
+    even = even * vv + ce;
+    odd = odd * vv + co;
+  }
+  const lanes acc = even + uu * odd;
   std::memcpy(s, &acc, sizeof acc);
 }
 
