@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -70,17 +71,21 @@ void require_finite(double x, const std::string& context) {
   if (!std::isfinite(x)) throw SceneError(context + ": a generated value is not a finite number");
 }
 
+// printf's %.15g, by std::to_chars (the same text by the standard's definition, without the
+// locale and format parsing: a sweep writes millions of these).
 std::string format_shown(double x) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.15g", x);
-  return buffer;
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 15);
+  return std::string(buffer, end);
 }
 
-// A number in SI as text that parses back to the same double.
+// A number in SI as text that parses back to the same double (%.17g, by std::to_chars).
 std::string exact_text(double x, Dimension d) {
   char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return d.dimensionless() ? std::string(buffer) : std::string(buffer) + " " + d.si_unit();
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
+  std::string text(buffer, end);
+  if (!d.dimensionless()) text += " " + d.si_unit();
+  return text;
 }
 
 // splitmix64: a small generator whose output is fixed by its definition on every platform.
