@@ -81,10 +81,11 @@ class ValveMotionType final : public NodeType {
       // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp).
       const double a = motion->open_begin(), b = motion->open_end(), i = motion->rocker_ratio();
       auto scaled = [i](numerics::Extremum e) { return numerics::Extremum{e.x, i * e.value}; };
-      acc_max = scaled(acceleration_runs->maximum(a, b, evaluations));
-      acc_min = scaled(acceleration_runs->minimum(a, b, evaluations));
-      v_max = scaled(velocity_runs->maximum(a, b, evaluations));
-      v_min = scaled(velocity_runs->minimum(a, b, evaluations));
+      const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, a, b, evaluations);
+      v_min = scaled(peaks[0].min);
+      v_max = scaled(peaks[0].max);
+      acc_min = scaled(peaks[1].min);
+      acc_max = scaled(peaks[1].max);
     } else {
       numerics::SmoothPieces pieces(
           [&](double x, double* v, double*) {

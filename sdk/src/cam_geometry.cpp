@@ -106,9 +106,11 @@ CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature) {
     // The law's monotone runs (closed form, mechgraph/domain/cam_law_runs.hpp): the peaks at run
     // ends, the end of the positive phase by TOMS 748 in its run; only the contour's curvature
     // needs the interpolation below.
-    s.max_velocity = std::max(velocity_runs->maximum(s.evaluations).value, -velocity_runs->minimum(s.evaluations).value);
-    s.max_acceleration = acceleration_runs->maximum(s.evaluations).value;
-    s.min_acceleration = acceleration_runs->minimum(s.evaluations).value;
+    const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, law.event_begin(), law.event_end(),
+                                         s.evaluations);
+    s.max_velocity = std::max(peaks[0].max.value, -peaks[0].min.value);
+    s.max_acceleration = peaks[1].max.value;
+    s.min_acceleration = peaks[1].min.value;
     s.accel_angle = 0.0;
     for (const auto& [x, rising] : acceleration_runs->directed_crossings(0.0, s.evaluations))
       if (!rising) {

@@ -54,6 +54,38 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
   return best;
 }
 
+std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
+                                                 long& evaluations) {
+  // The points each run set reads (as extreme() does), evaluated once each across the sets.
+  std::vector<std::pair<double, LiftDerivatives>> read;
+  auto at = [&](const CamLaw& law, double x) -> const LiftDerivatives& {
+    for (const auto& [y, d] : read)
+      if (y == x) return d;
+    ++evaluations;
+    read.emplace_back(x, law.at(x));
+    return read.back().second;
+  };
+  std::vector<Peaks> out;
+  for (const CamLawRuns* r : runs) {
+    const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
+    Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
+    const auto first = std::upper_bound(r->edges_.begin(), r->edges_.end(), lo_end) - r->edges_.begin() - 1;
+    for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r->edges_.size()); ++k) {
+      const double lo = r->edges_[static_cast<std::size_t>(k)], hi = r->edges_[static_cast<std::size_t>(k) + 1];
+      if (lo >= hi_end) break;
+      const double d = inset(lo, hi);
+      for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
+        const LiftDerivatives& v = at(*r->law_, std::clamp(x, lo + d, hi - d));
+        const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
+        if (f < p.min.value) p.min = {x, f};
+        if (f > p.max.value) p.max = {x, f};
+      }
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
 std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level, long& evaluations) const {
   std::vector<std::pair<double, bool>> found;
   auto g = [&](double x) {

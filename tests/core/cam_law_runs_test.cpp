@@ -132,3 +132,21 @@ TEST_CASE("monotone runs: the conformance kit passes true runs and catches false
     if (ch.status == testing::Check::Status::failed) named = ch.name == "monotone runs of the acceleration";
   CHECK(named);
 }
+
+TEST_CASE("monotone runs: several orders' peaks from one evaluation per point equal each order's own", "[sdk][cam_runs]") {
+  const Bump law(3 * deg, 70 * deg, 1);
+  const auto velocity = CamLawRuns::of(law, 1);
+  const auto acceleration = CamLawRuns::of(law, 2);
+  REQUIRE(velocity);
+  REQUIRE(acceleration);
+  for (const auto& [a, b] : std::vector<std::pair<double, double>>{{-67 * deg, 73 * deg}, {-40 * deg, 10 * deg}, {5 * deg, 6 * deg}}) {
+    long shared = 0, alone = 0;
+    const auto p = CamLawRuns::peaks({&*velocity, &*acceleration}, a, b, shared);
+    REQUIRE(p.size() == 2);
+    CHECK(p[0].max.value == velocity->maximum(a, b, alone).value);
+    CHECK(p[0].min.value == velocity->minimum(a, b, alone).value);
+    CHECK(p[1].max.value == acceleration->maximum(a, b, alone).value);
+    CHECK(p[1].min.value == acceleration->minimum(a, b, alone).value);
+    CHECK(shared < alone);
+  }
+}

@@ -13,6 +13,7 @@
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
+#include <initializer_list>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -31,6 +32,13 @@ class CamLawRuns {
   /// Over the whole event.
   numerics::Extremum maximum(long& evaluations) const { return maximum(edges_.front(), edges_.back(), evaluations); }
   numerics::Extremum minimum(long& evaluations) const { return minimum(edges_.front(), edges_.back(), evaluations); }
+  /// The least and greatest value over [a, b] of each of several run sets of one law (e.g. the
+  /// velocity's and the acceleration's), from one evaluation per distinct point read: the orders
+  /// share their cuts more often than not, and one evaluation gives every derivative.
+  struct Peaks {
+    numerics::Extremum min, max;
+  };
+  static std::vector<Peaks> peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations);
   /// Every angle of the event where h^(order) crosses `level` (its sign of f - level changes,
   /// zeros skipped), ascending, with true where it rises through it; as
   /// numerics::SmoothPieces::directed_crossings.
