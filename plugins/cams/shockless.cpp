@@ -72,6 +72,91 @@ double ParabolaToVertex::slope(double tau) const { return 2.0 * (1.0 - tau); }
 double ParabolaToVertex::integral(double tau) const { return tau * tau * (1.0 - tau / 3.0); }
 double ParabolaToVertex::integral2(double tau) const { return tau * tau * tau * (4.0 - tau) / 12.0; }
 
+// Moments for the closed-form integrals of h and h^2 (ShocklessLaw::lift_integrals):
+// I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt. With k = pi/2, theta = k tau:
+//   quarter sine   (I2 = (theta - sin theta)/k^2):  I3 = (theta^2/2 - (1 - cos theta))/k^3,
+//                  J1 = (theta^3/3 - sin theta + theta cos theta)/k^4,
+//                  J2 = (theta^3/3 - 2 (sin theta - theta cos theta) + theta/2 - sin(2 theta)/4)/k^5;
+//   quarter cosine (I2 = (1 - cos theta)/k^2):       I3 = (theta - sin theta)/k^3,
+//                  J1 = (theta^2/2 - (cos theta + theta sin theta - 1))/k^4,
+//                  J2 = (3 theta/2 - 2 sin theta + sin(2 theta)/4)/k^5;
+//   parabola       (I2 = tau^3/3 - tau^4/12):         I3 = tau^4/12 - tau^5/60, J1 = tau^5/15 - tau^6/72,
+//                  J2 = tau^7/63 - tau^8/144 + tau^9/1296.
+// The trigonometric forms cancel for small theta, but only within terms of the size of the lift
+// (every term of h is O(h_max)), so their absolute error stays at rounding of the whole integral.
+bool QuarterSineRise::moments(double tau, double& i3, double& j1, double& j2) const {
+  const double k = 0.5 * pi, t = k * tau;
+  double s, c;
+  ::sincos(t, &s, &c);
+  const double k3 = k * k * k;
+  i3 = (0.5 * t * t - one_minus_cos(t)) / k3;
+  j1 = (t * t * t / 3.0 - s + t * c) / (k3 * k);
+  j2 = (t * t * t / 3.0 - 2.0 * (s - t * c) + 0.5 * t - 0.25 * std::sin(2.0 * t)) / (k3 * k * k);
+  return true;
+}
+bool QuarterCosineFall::moments(double tau, double& i3, double& j1, double& j2) const {
+  const double k = 0.5 * pi, t = k * tau;
+  double s, c;
+  ::sincos(t, &s, &c);
+  const double k3 = k * k * k;
+  i3 = x_minus_sin(t, s) / k3;
+  j1 = (0.5 * t * t - (c + t * s - 1.0)) / (k3 * k);
+  j2 = (1.5 * t - 2.0 * s + 0.25 * std::sin(2.0 * t)) / (k3 * k * k);
+  return true;
+}
+bool ParabolaToVertex::moments(double tau, double& i3, double& j1, double& j2) const {
+  const double t2 = tau * tau, t4 = t2 * t2;
+  i3 = t4 * (1.0 / 12.0 - tau / 60.0);
+  j1 = t4 * tau * (1.0 / 15.0 - tau / 72.0);
+  j2 = t4 * t2 * tau * (1.0 / 63.0 - tau / 144.0 + t2 / 1296.0);
+  return true;
+}
+
+bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+  // Per piece, from its start over y = L tau (h = h_k + v_k y + A L^2 I2(tau)):
+  //   F1 = L [h_k tau + v_k L tau^2/2 + A L^2 I3],
+  //   F2 = L [h_k^2 tau + h_k v_k L tau^2 + v_k^2 L^2 tau^3/3 + 2 h_k A L^2 I3 + 2 v_k A L^3 J1 + A^2 L^4 J2];
+  // G(x) sums them from the start of lift to x; P(phi) = G(phi_p + phi) before the nose and
+  // 2 G(phi_p) - G(phi_p - phi) after it (the law is symmetric); the answer is P(b) - P(a).
+  auto piece_integrals = [](const Piece& p, double tau, double& f1, double& f2) {
+    double i3, j1, j2;
+    if (!p.shape->moments(tau, i3, j1, j2)) return false;
+    const double L = p.length, A = p.amplitude, h = p.lift0, v = p.velocity0;
+    f1 = L * (h * tau + 0.5 * v * L * tau * tau + A * L * L * i3);
+    f2 = L * (h * h * tau + h * v * L * tau * tau + v * v * L * L * tau * tau * tau / 3.0 + 2.0 * h * A * L * L * i3 +
+              2.0 * v * A * L * L * L * j1 + A * A * L * L * L * L * j2);
+    return true;
+  };
+  auto G = [&](double x, double& g1, double& g2) {
+    g1 = g2 = 0.0;
+    for (const Piece& p : pieces_) {
+      const double tau = std::clamp((x - p.start) / p.length, 0.0, 1.0);
+      if (tau <= 0.0) break;
+      double f1, f2;
+      if (!piece_integrals(p, tau, f1, f2)) return false;
+      g1 += f1;
+      g2 += f2;
+    }
+    return true;
+  };
+  double half1, half2;
+  if (!G(half_action_, half1, half2)) return false;
+  auto P = [&](double phi, double& p1, double& p2) {
+    phi = std::clamp(phi, -half_action_, half_action_);
+    if (phi <= 0.0) return G(half_action_ + phi, p1, p2);
+    double g1, g2;
+    const bool ok = G(half_action_ - phi, g1, g2);
+    p1 = 2.0 * half1 - g1;
+    p2 = 2.0 * half2 - g2;
+    return ok;
+  };
+  double a1, a2, b1, b2;
+  if (!P(a, a1, a2) || !P(b, b1, b2)) return false;
+  integral = b1 - a1;
+  integral_of_square = b2 - a2;
+  return true;
+}
+
 ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_radius,
                            std::vector<ShapeSegment> positive, std::vector<ShapeSegment> negative)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {

@@ -36,6 +36,9 @@ class AccelShape {
   virtual ShapeValues all(double tau) const { return {value(tau), slope(tau), integral(tau), integral2(tau)}; }
   /// Whether a(tau) is monotone on [0, 1] (a law of such shapes declares its monotone runs).
   virtual bool monotone() const { return false; }
+  /// I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt in closed form (a law
+  /// of such shapes gives the integrals of h and h^2); false if the shape has none.
+  virtual bool moments(double /*tau*/, double& /*i3*/, double& /*j1*/, double& /*j2*/) const { return false; }
 };
 
 /// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
@@ -47,6 +50,7 @@ class QuarterSineRise final : public AccelShape {
   double integral(double tau) const override;
   double integral2(double tau) const override;
   bool monotone() const override { return true; }
+  bool moments(double tau, double& i3, double& j1, double& j2) const override;
 };
 
 /// a = cos(pi tau / 2): a quarter cosine falling from 1 to 0 (zero jerk at its start).
@@ -58,6 +62,7 @@ class QuarterCosineFall final : public AccelShape {
   double integral(double tau) const override;
   double integral2(double tau) const override;
   bool monotone() const override { return true; }
+  bool moments(double tau, double& i3, double& j1, double& j2) const override;
 };
 
 /// a = 1 - (1 - tau)^2: a parabola from 0 to its vertex 1 at tau = 1 (zero slope there, so a
@@ -69,6 +74,7 @@ class ParabolaToVertex final : public AccelShape {
   double integral(double tau) const override;
   double integral2(double tau) const override;
   bool monotone() const override { return true; }
+  bool moments(double tau, double& i3, double& j1, double& j2) const override;
 };
 
 struct ShapeSegment {
@@ -97,6 +103,8 @@ class ShocklessLaw final : public CamLaw {
   /// bumps, A+ > 0 > A-: h'' keeps one sign per phase, so h' rises then falls back to 0 at the
   /// nose and the lift is monotone on each side of it).
   bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  /// With shapes that give their moments: the integrals of h and h^2 in closed form.
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   double positive_amplitude() const { return amplitude_pos_; }  // A+, m/rad^2
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)

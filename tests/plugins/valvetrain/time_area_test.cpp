@@ -332,9 +332,10 @@ outputs: [ta.time_area]
 }
 
 TEST_CASE("time-area in closed form (the law's integrals of h and h^2) equals quadrature of the flow area", "[valvetrain]") {
-  // Polydyne and flat three-arc give lift_integrals: the node takes the closed form; Kurz does not:
-  // quadrature. Either way it must equal Gauss-Kronrod at 1e-13 of the flow area over the motion,
-  // with and without lash, for several rocker ratios (the lash crossing on the flank and the nose).
+  // Polydyne, flat three-arc and Kurz give lift_integrals: the node takes the closed form (a law
+  // without them, the cosine bump above, takes quadrature). It must equal Gauss-Kronrod at 1e-13 of
+  // the flow area over the motion, with and without lash, for several rocker ratios (the lash
+  // crossing on the flank and on the nose).
   const char* cams[] = {
       "type: cam.polydyne, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 25 mm, exponents: [2, 14, 26, 38, 50] }",
       "type: cam.polydyne, params: { max_lift: 6 mm, action_angle: 95 deg, base_radius: 40 mm, exponents: [2, 100, 300, 600, 994] }",
