@@ -162,27 +162,3 @@ void BM_LawEvaluation(benchmark::State& state) {
 BENCHMARK(BM_LawEvaluation)->DenseRange(0, 2);
 
 }  // namespace
-
-namespace {
-
-// Monte Carlo of the five-hinge chain (scenes/backlash_chain.yaml): the chain node alone with
-// 1e6 samples, its fits and joints cached; samples/s is the figure bench/peers compares.
-void BM_MonteCarloChain(benchmark::State& state) {
-  using namespace mechgraph;
-  SceneSpec scene = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/backlash_chain.yaml");
-  scene.report.clear();
-  scene.outputs = {parse_port_ref("chain.rod_backlash_mc_q999", {})};
-  const long samples = state.range(0);
-  const Graph g = build_graph(scene, bench::project_plugins(), {parse_override("chain.samples=" + std::to_string(samples))});
-  MemoCache cache;
-  evaluate(g, cache);
-  const std::uint64_t chain = node_hashes(g)[*g.find("chain")];
-  for (auto _ : state) {
-    cache.erase(chain);  // the fits and joints stay cached: the chain alone runs
-    benchmark::DoNotOptimize(evaluate(g, cache));
-  }
-  state.counters["samples/s"] = benchmark::Counter(static_cast<double>(samples) * state.iterations(), benchmark::Counter::kIsRate);
-}
-BENCHMARK(BM_MonteCarloChain)->Arg(1000000)->Arg(10000000)->Unit(benchmark::kMillisecond)->UseRealTime();
-
-}  // namespace

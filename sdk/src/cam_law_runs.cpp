@@ -35,23 +35,8 @@ double CamLawRuns::value(double x) const {
 }
 
 numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
-  a = std::max(a, edges_.front());
-  b = std::min(b, edges_.back());
-  numerics::Extremum best{a, -std::numeric_limits<double>::infinity()};
-  // The runs that meet [a, b]; on each, the ends of its part of [a, b], read inside the run.
-  const auto first = std::upper_bound(edges_.begin(), edges_.end(), a) - edges_.begin() - 1;
-  for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(edges_.size()); ++k) {
-    const double lo = edges_[static_cast<std::size_t>(k)], hi = edges_[static_cast<std::size_t>(k) + 1];
-    if (lo >= b) break;
-    const double d = inset(lo, hi);
-    for (double x : {std::max(a, lo), std::min(b, hi)}) {
-      const double v = sign * value(std::clamp(x, lo + d, hi - d));
-      ++evaluations;
-      if (v > best.value) best = {x, v};
-    }
-  }
-  best.value *= sign;
-  return best;
+  const Peaks p = peaks({this}, a, b, evaluations).front();
+  return sign > 0.0 ? p.max : p.min;
 }
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
