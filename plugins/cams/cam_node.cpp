@@ -167,7 +167,10 @@ class CamNodeType final : public NodeType {
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
     // A sweep that does not read the curvature radius only needs the contour proven free of undercut.
-    CamSummary s = summarize(*law, samples, ctx.wanted("min_curvature_radius"));
+    // So do the peaks and the phase: each is computed only when something reads it.
+    const CamSummaryParts parts{ctx.wanted("max_velocity") || ctx.wanted("max_acceleration") || ctx.wanted("min_acceleration"),
+                                ctx.wanted("accel_angle"), ctx.wanted("min_curvature_radius")};
+    CamSummary s = summarize(*law, samples, parts);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
     try {
       refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
@@ -180,10 +183,12 @@ class CamNodeType final : public NodeType {
     }
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
-    out.set_scalar("max_velocity", s.max_velocity);
-    out.set_scalar("max_acceleration", s.max_acceleration);
-    out.set_scalar("min_acceleration", s.min_acceleration);
-    out.set_scalar("accel_angle", s.accel_angle);
+    if (s.peaks_known) {
+      out.set_scalar("max_velocity", s.max_velocity);
+      out.set_scalar("max_acceleration", s.max_acceleration);
+      out.set_scalar("min_acceleration", s.min_acceleration);
+    }
+    if (s.phase_known) out.set_scalar("accel_angle", s.accel_angle);
     if (s.curvature_exact) out.set_scalar("min_curvature_radius", s.min_curvature_radius);
     // The curves and events cost hundreds of evaluations: made only when something reads them.
     if (ctx.wanted("svaj")) {

@@ -97,6 +97,11 @@ bool flat_contour_certainly_convex(const CamLaw& law, long& evaluations) {
 CamSummary summarize(const CamLaw& law, int samples) { return summarize(law, samples, true); }
 
 CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature) {
+  return summarize(law, samples, CamSummaryParts{true, true, exact_curvature});
+}
+
+CamSummary summarize(const CamLaw& law, int samples, const CamSummaryParts& parts) {
+  const bool exact_curvature = parts.curvature;
   CamSummary s;
   const std::vector<double> knots = law.knots();
   const std::span<const double> k(knots);
@@ -106,17 +111,26 @@ CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature) {
     // The law's monotone runs (closed form, mechgraph/domain/cam_law_runs.hpp): the peaks at run
     // ends, the end of the positive phase by TOMS 748 in its run; only the contour's curvature
     // needs the interpolation below.
-    const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, law.event_begin(), law.event_end(),
-                                         s.evaluations);
-    s.max_velocity = std::max(peaks[0].max.value, -peaks[0].min.value);
-    s.max_acceleration = peaks[1].max.value;
-    s.min_acceleration = peaks[1].min.value;
+    // Only the parts asked for (a sweep that reads none of them still gets its undercut check).
+    if (parts.peaks) {
+      const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, law.event_begin(), law.event_end(),
+                                           s.evaluations);
+      s.max_velocity = std::max(peaks[0].max.value, -peaks[0].min.value);
+      s.max_acceleration = peaks[1].max.value;
+      s.min_acceleration = peaks[1].min.value;
+    } else {
+      s.peaks_known = false;
+    }
     s.accel_angle = 0.0;
-    for (const auto& [x, rising] : acceleration_runs->directed_crossings(0.0, s.evaluations))
-      if (!rising) {
-        s.accel_angle = x - law.event_begin();
-        break;
-      }
+    if (parts.phase) {
+      for (const auto& [x, rising] : acceleration_runs->directed_crossings(0.0, s.evaluations))
+        if (!rising) {
+          s.accel_angle = x - law.event_begin();
+          break;
+        }
+    } else {
+      s.phase_known = false;
+    }
     if (!exact_curvature && flat_contour_certainly_convex(law, s.evaluations)) {
       s.curvature_exact = false;
       s.min_curvature_radius = law.base_radius();  // proven positive; the minimum itself was not asked for

@@ -150,3 +150,24 @@ TEST_CASE("monotone runs: several orders' peaks from one evaluation per point eq
     CHECK(shared < alone);
   }
 }
+
+TEST_CASE("cam summary parts: only what is asked for is computed; the undercut figure always is", "[sdk][cam_runs]") {
+  const Bump law(0.0, 80 * deg, 1);
+  const CamSummary all = summarize(law, 16);
+  const CamSummary none = summarize(law, 16, CamSummaryParts{false, false, false});
+  CHECK_FALSE(none.peaks_known);
+  CHECK_FALSE(none.phase_known);
+  CHECK_FALSE(none.curvature_exact);
+  CHECK(none.min_curvature_radius > 0.0);
+  CHECK(none.evaluations < all.evaluations);
+  const CamSummary peaks_only = summarize(law, 16, CamSummaryParts{true, false, true});
+  CHECK(peaks_only.peaks_known);
+  CHECK(peaks_only.max_velocity == all.max_velocity);
+  CHECK(peaks_only.min_acceleration == all.min_acceleration);
+  CHECK(peaks_only.min_curvature_radius == all.min_curvature_radius);
+  // A law without runs gets every part from its one interpolation.
+  const CamSummary generic = summarize(Bump(0.0, 80 * deg, 0), 16, CamSummaryParts{false, false, false});
+  CHECK(generic.peaks_known);
+  CHECK(generic.phase_known);
+  CHECK(generic.curvature_exact);
+}

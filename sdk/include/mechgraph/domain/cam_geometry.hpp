@@ -23,6 +23,17 @@ struct CamSummary {
   /// false: min_curvature_radius was not asked for (summarize(..., false)) and the contour was
   /// only proven free of undercut (min_curvature_radius then holds r0, a placeholder > 0).
   bool curvature_exact = true;
+  /// false: the peaks (max_velocity, max/min_acceleration) or the phase (accel_angle) were not
+  /// asked for (summarize with CamSummaryParts) and hold 0.
+  bool peaks_known = true;
+  bool phase_known = true;
+};
+
+/// Which parts of a summary a caller reads (a node asks for what is wanted downstream).
+struct CamSummaryParts {
+  bool peaks = true;      // max_velocity, max_acceleration, min_acceleration
+  bool phase = true;      // accel_angle
+  bool curvature = true;  // min_curvature_radius measured (else only proven positive where possible)
 };
 
 /// `samples` per smooth piece (the accuracy knob of every cam node).
@@ -32,6 +43,9 @@ CamSummary summarize(const CamLaw& law, int samples);
 /// smallest radius of curvature measured (cheaper; the undercut refusal is unchanged, and a law
 /// whose bound does not settle it is measured).
 CamSummary summarize(const CamLaw& law, int samples, bool exact_curvature);
+/// Only the parts asked for, where the law declares its monotone runs (a law without them gets
+/// every part: one interpolation serves them all). The undercut check's figure is always there.
+CamSummary summarize(const CamLaw& law, int samples, const CamSummaryParts& parts);
 
 /// The positive-acceleration phase measured from the start of lift: up to the first + to -
 /// change of sign of h'' after the first angle where h'' > 0 (so a constant-velocity ramp, where
