@@ -313,17 +313,6 @@ std::optional<double> tail_quantile(Tail& tail, std::size_t count, double p) {
   return *a + (h - static_cast<double>(lo)) * (*b - *a);
 }
 
-// The p-quantile of the pilot (type 7; the order of `v` is changed).
-double pilot_quantile(std::vector<double>& v, double p) {
-  const double h = static_cast<double>(v.size() - 1) * p;
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(lo), v.end());
-  const double a = v[lo];
-  if (lo + 1 >= v.size()) return a;
-  const double b = *std::min_element(v.begin() + static_cast<std::ptrdiff_t>(lo) + 1, v.end());
-  return a + (h - static_cast<double>(lo)) * (b - a);
-}
-
 // One pass over all the samples with the given thresholds; nothing when a tail missed its ranks.
 std::optional<SampleSummary> stream_pass(const SampledStack& stack, const std::vector<Xoshiro256>& starts, std::size_t count,
                                          const PassSettings& settings, const Histogram& bins_laid, double tail_share,
@@ -466,8 +455,8 @@ SampleSummary monte_carlo(const SampledStack& stack, std::size_t count, std::uin
   }
   for (const double factor : {4.0, 32.0}) {
     const double share = factor * probability_minus_3_sigma;
-    settings.t_low = pilot_quantile(pilot, share);
-    settings.t_high = pilot_quantile(pilot, 1.0 - share);
+    settings.t_low = quantile_by_selection(pilot, share);
+    settings.t_high = quantile_by_selection(pilot, 1.0 - share);
     std::optional<SampleSummary> s = stream_pass(stack, starts, count, settings, bins_laid, share, workers);
     if (work) {
       work->samples += count;

@@ -59,17 +59,6 @@ double quantile_of_sorted(const std::vector<double>& sorted, double p) {
 
 namespace {
 
-// The quantile quantile_of_sorted would give, by selection instead of a full sort (O(n), the
-// order of `v` is changed): nth_element places rank lo, the next rank is the least above it.
-double quantile_by_selection(std::vector<double>& v, double p) {
-  const double h = static_cast<double>(v.size() - 1) * std::clamp(p, 0.0, 1.0);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(lo), v.end());
-  const double a = v[lo];
-  if (lo + 1 >= v.size()) return a;
-  const double b = *std::min_element(v.begin() + static_cast<std::ptrdiff_t>(lo) + 1, v.end());
-  return a + (h - static_cast<double>(lo)) * (b - a);
-}
 
 // The same quantile by selection among the samples beyond `threshold` only: one pass copies the
 // tail (the samples above it for p > 1/2, below it otherwise) and, when the tail holds both order
@@ -178,6 +167,18 @@ SampleSummary monte_carlo_linear_stack(const std::vector<ToleranceLink>& links, 
 SampleSummary monte_carlo_play_stack(const PlayStack& stack, std::size_t count, std::uint64_t seed,
                                      const SampleLimits& limits, std::size_t bins, unsigned threads) {
   return monte_carlo(sampled_stack(stack), count, seed, limits, bins, threads);
+}
+
+// The quantile quantile_of_sorted would give, by selection instead of a full sort (O(n), the
+// order of `v` is changed): nth_element places rank lo, the next rank is the least above it.
+double quantile_by_selection(std::vector<double>& v, double p) {
+  const double h = static_cast<double>(v.size() - 1) * std::clamp(p, 0.0, 1.0);
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(lo), v.end());
+  const double a = v[lo];
+  if (lo + 1 >= v.size()) return a;
+  const double b = *std::min_element(v.begin() + static_cast<std::ptrdiff_t>(lo) + 1, v.end());
+  return a + (h - static_cast<double>(lo)) * (b - a);
 }
 
 }  // namespace mechgraph::backlash

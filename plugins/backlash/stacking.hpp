@@ -93,6 +93,10 @@ struct SampleLimits {
 /// with bins > 0 also a histogram of that many bins from the smallest sample to the largest.
 SampleSummary summarize(std::vector<double> samples, const SampleLimits& limits = {}, std::size_t bins = 0);
 
+/// The type-7 p-quantile of `v` (as of sorted samples), by selection in O(n); the order of `v`
+/// is changed.
+double quantile_by_selection(std::vector<double>& v, double p);
+
 /// Quantile p of sorted samples, linear between order statistics (Hyndman-Fan type 7):
 /// h = (N - 1) p, x_(floor h) + (h - floor h)(x_(floor h + 1) - x_(floor h)).
 double quantile_of_sorted(const std::vector<double>& sorted, double p);
