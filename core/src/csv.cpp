@@ -53,6 +53,27 @@ bool formula_start(char c) { return c == '=' || c == '+' || c == '-' || c == '@'
 
 }  // namespace
 
+void append_csv_field(std::string& out, std::string_view text) {
+  // Most cells (numbers, plain words) need nothing: appended as they are, without a copy.
+  const bool breaks = text.find_first_of("\n\r") != std::string_view::npos;
+  // As csv_text decides it: on the text with its line breaks already spaces.
+  const char front = text.empty() ? ' ' : (text.front() == '\n' || text.front() == '\r') ? ' ' : text.front();
+  const bool formula = text != "-" && formula_start(front) && !number_cell(text);
+  const bool quote = text.find_first_of(",\"") != std::string_view::npos;
+  if (!breaks && !formula && !quote) {
+    out.append(text);
+    return;
+  }
+  if (quote) out += '"';
+  if (formula) out += '\'';
+  for (char c : text) {
+    if (c == '\n' || c == '\r') c = ' ';
+    if (c == '"') out += '"';
+    out += c;
+  }
+  if (quote) out += '"';
+}
+
 std::string csv_text(std::string_view text) {
   std::string out(text);
   for (char& c : out)
@@ -63,21 +84,16 @@ std::string csv_text(std::string_view text) {
 }
 
 std::string csv_field(std::string_view text) {
-  const std::string plain = csv_text(text);
-  if (plain.find_first_of(",\"") == std::string::npos) return plain;
-  std::string out = "\"";
-  for (char c : plain) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
+  std::string out;
+  append_csv_field(out, text);
+  return out;
 }
 
 std::string csv_row(const std::vector<std::string>& fields) {
   std::string out;
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (i) out += ',';
-    out += csv_field(fields[i]);
+    append_csv_field(out, fields[i]);
   }
   return out;
 }

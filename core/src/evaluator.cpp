@@ -59,7 +59,8 @@ void hash_file(Hasher& h, const std::string& path) {
 
 class NodeContext final : public EvalContext {
  public:
-  NodeContext(const GraphNode& node, NodeRun& run) : node_(node), run_(run) {}
+  // `run` null: a sweep's lean run, which keeps no counters but still refuses a non-finite one.
+  NodeContext(const GraphNode& node, NodeRun* run) : node_(node), run_(run) {}
   bool effect(std::string_view name) const override {
     for (const std::string& e : node_.effects_read)
       if (e == name) return true;
@@ -72,14 +73,22 @@ class NodeContext final : public EvalContext {
       case LogLevel::warn: spdlog::warn("[{}] {}", node_.name, message); break;
     }
   }
-  void report_work(std::string_view counter, double amount) override { run_.work[std::string(counter)] += amount; }
+  void report_work(std::string_view counter, double amount) override {
+    if (run_) {
+      run_->work[std::string(counter)] += amount;
+    } else if (!std::isfinite(amount) && !bad_counter_) {
+      bad_counter_ = std::pair<std::string, double>(counter, amount);
+    }
+  }
   bool wanted(std::string_view output) const override {
     return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
   }
+  const std::optional<std::pair<std::string, double>>& bad_counter() const { return bad_counter_; }
 
  private:
   const GraphNode& node_;
-  NodeRun& run_;
+  NodeRun* run_;
+  std::optional<std::pair<std::string, double>> bad_counter_;
 };
 
 std::string format_double(double x) {
@@ -183,17 +192,27 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph) {
 
 namespace {
 
-// Evaluates node i (or takes it from the cache); its producers are in `produced` already.
-NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
-                 std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache) {
+// Work counters are numbers like the outputs: a NaN one would reach the JSON writer mid-print.
+[[noreturn]] void refuse_counter(const GraphNode& node, const std::string& counter, double amount) {
+  throw EvaluationError(node.where.str() + where_of(node) + " reported work counter '" + counter + "' as " +
+                        (std::isnan(amount) ? "NaN" : "infinite") + " (a work counter is a finite count; a defect of its plugin)");
+}
+
+// Evaluates node i (or takes it from the cache); its producers are in `produced` already. Fills
+// `record` (name, time, counters, notes) when given; a sweep's lean run passes none. Returns
+// whether the node was taken from the cache.
+bool run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
+              std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache, NodeRun* record) {
   const GraphNode& node = graph.nodes[i];
-  NodeRun run{node.name, node.info().type, hashes[i], false, 0.0, {}, {}};
+  if (record) *record = NodeRun{node.name, node.info().type, hashes[i], false, 0.0, {}, {}};
   if (auto hit = node.memoised ? cache.find(hashes[i]) : nullptr) {
     produced[i] = hit;
-    run.reused = true;
-    run.notes = hit->notes();
+    if (record) {
+      record->reused = true;
+      record->notes = hit->notes();
+    }
     spdlog::debug("{} reused from the memo cache", where_of(node));
-    return run;
+    return true;
   }
   InputSet inputs;
   for (const GraphNode::Input& in : node.inputs)
@@ -207,8 +226,9 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
       inputs.add(in.port, it->second);
     }
   OutputSet outputs;
-  NodeContext context(node, run);
-  const auto start = std::chrono::steady_clock::now();
+  NodeContext context(node, record);
+  std::chrono::steady_clock::time_point start;
+  if (record) start = std::chrono::steady_clock::now();
   try {
     node.type->type->evaluate(node.params, inputs, outputs, context);
   } catch (const NodeError& e) {
@@ -225,13 +245,13 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
   } catch (...) {
     throw EvaluationError(where_of(node) + " threw something that is not a std::exception (a defect of its plugin)");
   }
-  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // Work counters are numbers like the outputs: a NaN one would reach the JSON writer mid-print.
-  for (const auto& [counter, amount] : run.work)
-    if (!std::isfinite(amount))
-      throw EvaluationError(node.where.str() + where_of(node) + " reported work counter '" + counter + "' as " +
-                            (std::isnan(amount) ? "NaN" : "infinite") +
-                            " (a work counter is a finite count; a defect of its plugin)");
+  if (record) {
+    record->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (const auto& [counter, amount] : record->work)
+      if (!std::isfinite(amount)) refuse_counter(node, counter, amount);
+  } else if (const auto& bad = context.bad_counter()) {
+    refuse_counter(node, bad->first, bad->second);
+  }
   // The checks call plugin code too (a domain object's kind() and contract_problem()): whatever
   // it throws is this node's evaluation error, never the end of the host.
   try {
@@ -244,10 +264,10 @@ NodeRun run_node(const Graph& graph, std::size_t i, const std::vector<std::uint6
     throw EvaluationError(where_of(node) + ": checking its outputs, its plugin threw something that is not a "
                                            "std::exception (a defect of its plugin)");
   }
-  run.notes = produced[i]->notes();
+  if (record) record->notes = produced[i]->notes();
   if (node.memoised) cache.store(hashes[i], produced[i]);
-  spdlog::debug("{} evaluated in {:.3g} s", where_of(node), run.seconds);
-  return run;
+  if (record) spdlog::debug("{} evaluated in {:.3g} s", where_of(node), record->seconds);
+  return false;
 }
 
 // Runs the needed nodes on `threads` workers: a node starts as soon as all its producers are done.
@@ -291,7 +311,7 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
       NodeRun run;
       std::exception_ptr error;
       try {
-        run = run_node(graph, i, hashes, produced, cache);
+        run_node(graph, i, hashes, produced, cache, &run);
       } catch (...) {
         error = std::current_exception();
       }
@@ -317,7 +337,8 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
 // Every number of a requested output must stay finite in the unit it is shown in: 1e300 m is
 // finite in metres but not in nanometres (units: {length: nm}), and a writer would print "inf".
 // Refused here, naming the output and the unit, before anything is printed.
-void check_displayable(const GraphNode& node, const OutputValue& o, const DisplayUnits& units) {
+void check_displayable(const GraphNode& node, const std::string& label, const Value& value, Dimension dimension,
+                       const std::string& display_unit, const DisplayUnits& units) {
   auto check = [&](const std::vector<double>& xs, Dimension d, const std::string& own_unit, const std::string& what) {
     if (xs.empty()) return;
     const std::string unit = units.unit_for(d, own_unit);
@@ -339,18 +360,18 @@ void check_displayable(const GraphNode& node, const OutputValue& o, const Displa
     double largest = 0.0;
     for (double x : xs) largest = std::max(largest, std::abs(x));
     if (!std::isfinite(largest / u.scale - u.offset) || !std::isfinite(-largest / u.scale - u.offset))
-      throw EvaluationError(node.where.str() + where_of(node) + " output '" + o.label + "'" + what + ": " +
+      throw EvaluationError(node.where.str() + where_of(node) + " output '" + label + "'" + what + ": " +
                             format_double(largest) + " " + d.si_unit() + " is beyond the range of a double in " + unit +
                             " (the display unit); show it in a larger unit (the scene's units:) or check the inputs");
   };
-  switch (o.value.kind()) {
-    case ValueKind::scalar: check({o.value.as_scalar()}, o.dimension, o.display_unit, ""); break;
+  switch (value.kind()) {
+    case ValueKind::scalar: check({value.as_scalar()}, dimension, display_unit, ""); break;
     case ValueKind::series:
-      check(o.value.as_series().values, o.dimension, o.display_unit, "");
-      check(o.value.as_series().axis, o.value.as_series().axis_dimension, "", ", its axis");
+      check(value.as_series().values, dimension, display_unit, "");
+      check(value.as_series().axis, value.as_series().axis_dimension, "", ", its axis");
       break;
     case ValueKind::table: {
-      const Table& t = o.value.as_table();
+      const Table& t = value.as_table();
       check(t.axis.values, t.axis.dimension, t.axis.display_unit, ", axis '" + t.axis.name + "'");
       for (const Table::Column& c : t.channels) check(c.values, c.dimension, c.display_unit, ", channel '" + c.name + "'");
       break;
@@ -361,26 +382,60 @@ void check_displayable(const GraphNode& node, const OutputValue& o, const Displa
 
 }  // namespace
 
+namespace {
+
+// The value of requested output o, once every node has run.
+const Value& requested_value(const Graph& graph, const RequestedOutput& o,
+                             const std::vector<std::shared_ptr<const OutputSet>>& produced) {
+  const auto& outs = produced[o.node]->all();
+  auto it = outs.find(o.port);
+  if (it == outs.end())
+    throw EvaluationError(where_of(graph.nodes[o.node]) + " did not produce the requested output '" + o.label +
+                          "': that output needs an effect or parameters this node was not given (see 'mechgraph "
+                          "describe " + graph.nodes[o.node].info().type + "')");
+  return it->second;
+}
+
+}  // namespace
+
 RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
   RunResult result;
   const std::vector<std::uint64_t> hashes = node_hashes(graph);
   std::vector<std::shared_ptr<const OutputSet>> produced(graph.nodes.size());
   if (threads <= 1 || graph.order.size() <= 1) {
-    for (std::size_t i : graph.order) result.runs.push_back(run_node(graph, i, hashes, produced, cache));
+    for (std::size_t i : graph.order) run_node(graph, i, hashes, produced, cache, &result.runs.emplace_back());
   } else {
     run_parallel(graph, hashes, produced, cache, std::min<unsigned>(threads, static_cast<unsigned>(graph.order.size())),
                  result.runs);
   }
   for (const RequestedOutput& o : graph.outputs) {
-    const auto& outs = produced[o.node]->all();
-    auto it = outs.find(o.port);
-    if (it == outs.end())
-      throw EvaluationError(where_of(graph.nodes[o.node]) + " did not produce the requested output '" + o.label +
-                            "': that output needs an effect or parameters this node was not given (see 'mechgraph "
-                            "describe " + graph.nodes[o.node].info().type + "')");
+    const Value& value = requested_value(graph, o, produced);
     result.outputs.push_back(
-        {o.label, it->second, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
-    check_displayable(graph.nodes[o.node], result.outputs.back(), graph.display_units);
+        {o.label, value, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
+    const OutputValue& out = result.outputs.back();
+    check_displayable(graph.nodes[o.node], o.label, out.value, out.dimension, out.display_unit, graph.display_units);
+  }
+  return result;
+}
+
+RunValues evaluate_values(const Graph& graph, MemoCache& cache, unsigned threads) {
+  RunValues result;
+  if (threads > 1 && graph.order.size() > 1) {
+    RunResult full = evaluate(graph, cache, threads);
+    for (OutputValue& o : full.outputs) result.values.push_back(std::move(o.value));
+    for (const NodeRun& r : full.runs) ++(r.reused ? result.reused : result.evaluated);
+    return result;
+  }
+  const std::vector<std::uint64_t> hashes = node_hashes(graph);
+  std::vector<std::shared_ptr<const OutputSet>> produced(graph.nodes.size());
+  for (std::size_t i : graph.order) ++(run_node(graph, i, hashes, produced, cache, nullptr) ? result.reused : result.evaluated);
+  result.values.reserve(graph.outputs.size());
+  for (const RequestedOutput& o : graph.outputs) {
+    const Value& value = requested_value(graph, o, produced);
+    // As evaluate(): every number must stay finite in the unit it is shown in.
+    check_displayable(graph.nodes[o.node], o.label, value, o.spec->dimension,
+                      graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit), graph.display_units);
+    result.values.push_back(value);
   }
   return result;
 }

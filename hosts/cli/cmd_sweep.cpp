@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
 #include <atomic>
 #include <csignal>
 #include <cstdlib>
@@ -259,10 +260,20 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const std::size_t total = written + options.cases.size();
   SweepProgress progress(total, spdlog::get_level() <= spdlog::level::info);
   std::vector<CaseResult> waiting;  // rows before the header is known
+  // Rows go out in blocks (64 KiB, or every quarter second when cases are slow), whole rows only:
+  // what a killed sweep leaves is still a prefix of whole rows for --resume.
+  std::string pending;
+  auto last_flush = std::chrono::steady_clock::now();
+  auto flush = [&] {
+    if (!pending.empty()) file.write(pending);
+    pending.clear();
+    last_flush = std::chrono::steady_clock::now();
+  };
   auto put = [&](const CaseResult& r) {
-    file.write(rows.line(r, exit_code_of(r.failure)));
+    rows.append_line(pending, r, exit_code_of(r.failure));
     ++written;
     if (r.failure != CaseFailure::none) ++failed;
+    if (pending.size() >= (std::size_t{1} << 16) || std::chrono::steady_clock::now() - last_flush > std::chrono::milliseconds(250)) flush();
   };
   auto settle = [&](const CaseResult* success) {
     rows.settle(success);
@@ -287,6 +298,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     });
   }
   if (!rows.settled()) settle(nullptr);
+  flush();
   progress.finish(written, failed);
   const bool complete = written == total;
   file.finish(complete, written, failed);

@@ -247,7 +247,7 @@ std::vector<std::string> SweepRows::output_headers(const CaseResult* success, st
       names.push_back(with_unit(o.label, unit_of(o)));
       columns.push_back(column(j, std::nullopt));
     } else if (o.spec->kind == ValueKind::series && success) {
-      const Series& s = success->outputs[j].value.as_series();
+      const Series& s = success->outputs[j].as_series();
       for (std::size_t e = 0; e < s.values.size(); ++e) {
         const std::string element = e < s.labels.size() ? s.labels[e] : std::to_string(e);
         names.push_back(with_unit(o.label + "[" + element + "]", unit_of(o)));
@@ -326,50 +326,80 @@ std::string SweepRows::format(const std::vector<std::string>& cells, const std::
   return os.str() + "\n";
 }
 
+std::string SweepRows::shape_problem(const CaseResult& result) const {
+  // A series must have as many elements as the header gave it columns (fixed by the first success).
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    if (!columns_[c].element) continue;
+    const std::size_t j = columns_[c].output;
+    const bool last_of_series = c + 1 == columns_.size() || columns_[c + 1].output != j;
+    const std::size_t have = result.outputs[j].as_series().values.size();
+    if (have <= *columns_[c].element)
+      return "output '" + graph_.outputs[j].label + "' has " + std::to_string(have) +
+             " elements in this case, fewer than the sweep's columns";
+    if (last_of_series && have != *columns_[c].element + 1)
+      return "output '" + graph_.outputs[j].label + "' has " + std::to_string(have) + " elements in this case, the sweep's columns have " +
+             std::to_string(*columns_[c].element + 1);
+  }
+  return {};
+}
+
+double SweepRows::cell_value(const CaseResult& result, const Column& c) const {
+  const Value& value = result.outputs[c.output];
+  return shown(c.element ? value.as_series().values[*c.element] : value.as_scalar(), c);
+}
+
+void SweepRows::append_line(std::string& out, const CaseResult& result, int exit_code) const {
+  if (format_ != RowFormat::csv) {
+    out += line(result, exit_code);
+    return;
+  }
+  // The same cells as line(), written straight into `out`: numbers by std::to_chars, every cell
+  // through append_csv_field, no string per cell.
+  std::string error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
+  if (result.failure == CaseFailure::none && !error.empty()) exit_code = evaluation_error;
+  char buffer[32];
+  auto number = [&](auto x) {
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+    append_csv_field(out, std::string_view(buffer, static_cast<std::size_t>(end - buffer)));
+  };
+  number(result.index);
+  thread_local std::string input;
+  for (std::size_t v = 0; v < table_.variables.size(); ++v) {
+    input.clear();
+    table_.append_shown(input, result.index, v);
+    out += ',';
+    append_csv_field(out, input);
+  }
+  const bool values = result.failure == CaseFailure::none && error.empty();
+  for (const Column& c : columns_) {
+    out += ',';
+    if (values) number(cell_value(result, c));
+  }
+  out += ',';
+  number(exit_code);
+  out += ',';
+  append_csv_field(out, error);
+  out += '\n';
+}
+
 std::string SweepRows::line(const CaseResult& result, int exit_code) const {
+  if (format_ == RowFormat::csv) {
+    std::string out;
+    append_line(out, result, exit_code);
+    return out;
+  }
   std::vector<std::string> cells = {std::to_string(result.index)};
   std::vector<bool> numeric = {true};
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
     cells.push_back(table_.shown(result.index, v));
     numeric.push_back(table_.cases[result.index][v].si.has_value());
   }
-  std::string error = result.error;
-  if (result.failure == CaseFailure::none) {
-    std::vector<std::string> values;
-    for (const Column& c : columns_) {
-      const Value& value = result.outputs[c.output].value;
-      const RequestedOutput& o = graph_.outputs[c.output];
-      if (!c.element) {
-        values.push_back(exact(shown(value.as_scalar(), c)));
-      } else if (*c.element < value.as_series().values.size()) {
-        values.push_back(exact(shown(value.as_series().values[*c.element], c)));
-      } else {
-        error = "output '" + o.label + "' has " + std::to_string(value.as_series().values.size()) +
-                " elements in this case, fewer than the sweep's columns";
-        exit_code = evaluation_error;
-        break;
-      }
-    }
-    if (error.empty()) {
-      for (std::size_t c = 0; c < columns_.size(); ++c) {
-        const std::size_t j = columns_[c].output;
-        const bool last_of_series = columns_[c].element && (c + 1 == columns_.size() || columns_[c + 1].output != j);
-        if (last_of_series && result.outputs[j].value.as_series().values.size() != *columns_[c].element + 1) {
-          error = "output '" + graph_.outputs[j].label + "' has " + std::to_string(result.outputs[j].value.as_series().values.size()) +
-                  " elements in this case, the sweep's columns have " + std::to_string(*columns_[c].element + 1);
-          exit_code = evaluation_error;
-        }
-      }
-    }
-    if (error.empty()) {
-      cells.insert(cells.end(), values.begin(), values.end());
-      numeric.insert(numeric.end(), values.size(), true);
-    }
-  }
-  if (!error.empty() || result.failure != CaseFailure::none) {
-    cells.resize(1 + table_.variables.size());
-    cells.insert(cells.end(), columns_.size(), "");
-    numeric.resize(cells.size(), true);
+  std::string error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
+  if (result.failure == CaseFailure::none && !error.empty()) exit_code = evaluation_error;
+  const bool values = result.failure == CaseFailure::none && error.empty();
+  for (const Column& c : columns_) {
+    cells.push_back(values ? exact(cell_value(result, c)) : std::string());
+    numeric.push_back(true);
   }
   cells.push_back(std::to_string(exit_code));
   numeric.push_back(true);

@@ -45,6 +45,8 @@ class SweepRows {
   const std::vector<std::string>& header() const { return header_; }
   /// The row of one case; a success whose shape differs from the header becomes a failed row.
   std::string line(const CaseResult& result, int exit_code) const;
+  /// line(result, exit_code) appended to `out` (CSV rows without a string per cell).
+  void append_line(std::string& out, const CaseResult& result, int exit_code) const;
 
  private:
   struct Column {
@@ -55,6 +57,8 @@ class SweepRows {
   static double shown(double si, const Column& c) { return si / c.scale - c.offset; }
   Column column(std::size_t output, std::optional<std::size_t> element) const;
   std::vector<std::string> output_headers(const CaseResult* success, std::vector<Column>& columns) const;
+  std::string shape_problem(const CaseResult& result) const;  // "" when its series fit the header
+  double cell_value(const CaseResult& result, const Column& c) const;
   std::string format(const std::vector<std::string>& cells, const std::vector<bool>& numeric) const;
   std::vector<std::string> input_headers() const;
   static void make_unique(std::vector<std::string>& names, const std::vector<std::string>& taken, const std::string& prefix);

@@ -142,10 +142,10 @@ TEST_CASE("case values set on the built graph equal a graph built with --set (se
     REQUIRE(r.failure == CaseFailure::none);
     const auto& c = p.table.cases[r.index];
     const RunResult direct = run_yaml(two_constants, arith_registry(), {parse_override("len=" + c[0].text), parse_override("s.gain=" + c[1].text)});
-    CHECK(r.outputs[0].value.as_scalar() == scalar_output(direct, "s.sum"));
-    CHECK(r.outputs[1].value.as_scalar() == scalar_output(direct, "a.out"));
+    CHECK(r.outputs[0].as_scalar() == scalar_output(direct, "s.sum"));
+    CHECK(r.outputs[1].as_scalar() == scalar_output(direct, "a.out"));
   }
-  CHECK_THAT(rows[7].outputs[0].value.as_scalar(), WithinRel(3 * (4e-3 + 5e-3), 1e-15));
+  CHECK_THAT(rows[7].outputs[0].as_scalar(), WithinRel(3 * (4e-3 + 5e-3), 1e-15));
   // b never changes: evaluated once, then reused by every case.
   CHECK(cache.hits() >= 7);
 }
@@ -207,7 +207,7 @@ outputs: [ stack.mean ]
   for (const CaseResult& r : rows) {
     REQUIRE(r.failure == CaseFailure::none);
     // mean = (w + 0.05 mm) - (10 mm - 0.05 mm)
-    CHECK_THAT(r.outputs[0].value.as_scalar(), WithinAbs(*p.table.cases[r.index][0].si + 0.1e-3 - 10e-3, 1e-15));
+    CHECK_THAT(r.outputs[0].as_scalar(), WithinAbs(*p.table.cases[r.index][0].si + 0.1e-3 - 10e-3, 1e-15));
   }
 }
 
@@ -231,11 +231,11 @@ outputs: [ ta.time_area, valve.max_acceleration ]
     for (std::size_t i = 0; i < rows.size(); ++i) {
       REQUIRE(rows[i].index == i);
       REQUIRE(rows[i].failure == CaseFailure::none);
-      for (std::size_t j = 0; j < 2; ++j) CHECK(rows[i].outputs[j].value.as_scalar() == runs[0][i].outputs[j].value.as_scalar());
+      for (std::size_t j = 0; j < 2; ++j) CHECK(rows[i].outputs[j].as_scalar() == runs[0][i].outputs[j].as_scalar());
     }
   }
   // Time-area scales as 1/rpm for one cam: a check that each case really got its speed.
-  CHECK_THAT(runs[0][0].outputs[0].value.as_scalar() * 3000, WithinRel(runs[0][18].outputs[0].value.as_scalar() * 7000, 1e-12));
+  CHECK_THAT(runs[0][0].outputs[0].as_scalar() * 3000, WithinRel(runs[0][18].outputs[0].as_scalar() * 7000, 1e-12));
 }
 
 TEST_CASE("stopping: started cases finish and every finished row is handed over, in order", "[sweep]") {
@@ -310,8 +310,8 @@ outputs: [ ta.time_area, valve.max_acceleration, train.mass_without_spring ]
     const auto& c = p.table.cases[r.index];
     const RunResult alone =
         run_yaml(yaml, project_registry(), {parse_override("rpm=" + c[0].text), parse_override("cam.max_lift=" + c[1].text)});
-    CHECK(r.outputs[0].value.as_scalar() == scalar_output(alone, "ta.time_area"));
-    CHECK(r.outputs[1].value.as_scalar() == scalar_output(alone, "valve.max_acceleration"));
-    CHECK(r.outputs[2].value.as_scalar() == scalar_output(alone, "train.mass_without_spring"));
+    CHECK(r.outputs[0].as_scalar() == scalar_output(alone, "ta.time_area"));
+    CHECK(r.outputs[1].as_scalar() == scalar_output(alone, "valve.max_acceleration"));
+    CHECK(r.outputs[2].as_scalar() == scalar_output(alone, "train.mass_without_spring"));
   }
 }

@@ -34,12 +34,12 @@ outputs: [s.sum]
   run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { rows.push_back(std::move(r)); });
   REQUIRE(rows.size() == 5);
   CHECK(rows[0].failure == CaseFailure::none);
-  CHECK(rows[0].outputs[0].value.as_scalar() > 0.0);
+  CHECK(rows[0].outputs[0].as_scalar() > 0.0);
   for (std::size_t i : {1u, 2u, 4u}) {
     INFO("case " << i);
     CHECK(rows[i].failure == CaseFailure::scene);
     CHECK_THAT(rows[i].error, Contains("parameter 'gain' of node 's'") && Contains("must be > 0"));
   }
   CHECK(rows[3].failure == CaseFailure::none);  // 1e300 x 2 mm is finite
-  CHECK(std::isfinite(rows[3].outputs[0].value.as_scalar()));
+  CHECK(std::isfinite(rows[3].outputs[0].as_scalar()));
 }

@@ -21,6 +21,8 @@ std::vector<std::string> split_csv_line(std::string_view line);
 /// One field, quoted when it has to be; line breaks become spaces; a formula-like text cell gets a
 /// leading ' (see above). split_csv_line(csv_field(t)) gives csv_text(t).
 std::string csv_field(std::string_view text);
+/// csv_field(text) appended to `out` (the one escaping function; csv_field and csv_row are it).
+void append_csv_field(std::string& out, std::string_view text);
 
 /// The text a reader gets back from csv_field(text): line breaks (CR, LF) as spaces, then a
 /// leading ' when the text is not a number and starts with = + - @ or TAB.

@@ -47,4 +47,16 @@ std::vector<std::uint64_t> node_hashes(const Graph& graph);
 /// graph may then both be evaluated instead of one being reused.
 RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads = 1);
 
+/// What a sweep keeps of a run: the requested outputs' values in the order of Graph::outputs
+/// (their labels, dimensions and display units are the graph's), and how many nodes ran.
+struct RunValues {
+  std::vector<Value> values;
+  std::size_t evaluated = 0, reused = 0;  // nodes run, nodes taken from the memo cache
+};
+
+/// evaluate() without the per-node records a sweep does not print (names, times, work counters,
+/// notes): the same values, refused the same way (a NaN output or work counter, an undisplayable
+/// value), for less work per case.
+RunValues evaluate_values(const Graph& graph, MemoCache& cache, unsigned threads = 1);
+
 }  // namespace mechgraph

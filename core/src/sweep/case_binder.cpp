@@ -84,6 +84,20 @@ void CaseBinder::mark_unmemoised(Graph& graph) const {
   }
 }
 
+CaseBinder::Slots CaseBinder::bind(Graph& graph) const {
+  Slots slots;
+  for (std::size_t v = 0; v < variables_.size(); ++v) {
+    std::vector<ParamValue*>& of = slots.of_variable.emplace_back();
+    for (const Target& t : targets_[v]) {
+      GraphNode& node = graph.nodes[t.node];
+      // A parameter the scene left to its default gets its slot now; every case writes it.
+      of.push_back(&node.params.slot(t.spec->name));
+      node.param_where[t.spec->name] = SourceLocation{swept_labels_[v], 0, 0};
+    }
+  }
+  return slots;
+}
+
 void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const {
   if (rebuild_) {
     std::vector<Override> overrides = overrides_;
@@ -92,15 +106,20 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
     graph = build_graph(scene_, registry_, overrides);
     return;
   }
+  apply(bind(graph), graph, values);
+}
+
+void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector<CaseValue>& values) const {
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const CaseValue& value = values[v];
     // The messages are built only when one is thrown (a sweep applies millions of values).
     const auto what = [&] { return variables_[v].name + " = '" + excerpt(value.text) + "'"; };
-    for (const Target& t : targets_[v]) {
-      GraphNode& node = graph.nodes[t.node];
+    for (std::size_t k = 0; k < targets_[v].size(); ++k) {
+      const Target& t = targets_[v][k];
+      const GraphNode& node = graph.nodes[t.node];
       const ParamSpec& spec = *t.spec;
       const auto param = [&] { return "parameter '" + spec.name + "' of " + owner_of(node); };
-      ParamValue written;
+      ParamValue& slot = *slots.of_variable[v][k];
       switch (spec.kind) {
         case ParamKind::number:
         case ParamKind::integer: {
@@ -120,21 +139,20 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
           if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
             throw SceneError(what() + ": " + param() + " " + problem);
-          written = spec.kind == ParamKind::integer ? ParamValue::of_integer(static_cast<long>(*value.si)) : ParamValue::of_number(*value.si);
+          // Written in place: a number needs no new ParamValue.
+          slot.kind = spec.kind;
+          slot.number = spec.kind == ParamKind::integer ? static_cast<double>(static_cast<long>(*value.si)) : *value.si;
           break;
         }
         case ParamKind::choice:
           if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
             throw SceneError(what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
-          written = ParamValue::of_choice(value.text);
+          slot = ParamValue::of_choice(value.text);
           break;
-        case ParamKind::text: written = ParamValue::of_text(value.text); break;
+        case ParamKind::text: slot = ParamValue::of_text(value.text); break;
         case ParamKind::number_list:
-        case ParamKind::record_list: break;  // rebuilt above
+        case ParamKind::record_list: break;  // rebuilt, never bound
       }
-      node.params.set(spec.name, std::move(written));
-      SourceLocation& where = node.param_where[spec.name];
-      if (where.line != 0 || where.column != 0 || where.file != swept_labels_[v]) where = SourceLocation{swept_labels_[v], 0, 0};
     }
   }
 }

@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -73,10 +74,26 @@ void require_finite(double x, const std::string& context) {
 
 // printf's %.15g, by std::to_chars (the same text by the standard's definition, without the
 // locale and format parsing: a sweep writes millions of these).
-std::string format_shown(double x) {
+void append_shown_number(std::string& out, double x) {
   char buffer[40];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 15);
-  return std::string(buffer, end);
+  out.append(buffer, end);
+}
+
+// A variable's unit, parsed once per thread (every row shows every input in its unit); nullopt for
+// a unit that does not parse (the value is then shown as written).
+const std::optional<UnitScale>& parsed_unit(const std::string& unit) {
+  thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
+  auto at = parsed.find(unit);
+  if (at == parsed.end()) {
+    std::optional<UnitScale> scale;
+    try {
+      scale = parse_unit(unit);
+    } catch (const UnitError&) {
+    }
+    at = parsed.emplace(unit, scale).first;
+  }
+  return at->second;
 }
 
 // A number in SI as text that parses back to the same double (%.17g, by std::to_chars).
@@ -140,19 +157,34 @@ std::string read_user_file(const std::filesystem::path& file, std::size_t limit,
   }
 }
 
-std::string CaseTable::shown(std::size_t i, std::size_t v) const {
+void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) const {
   const CaseValue& value = cases[i][v];
-  if (!value.si) return value.text;
-  const std::string& unit = variables[v].unit;
-  if (!unit.empty()) {
-    try {
-      const double x = to_unit(*value.si, value.dimension, unit);
-      return std::isfinite(x) ? format_shown(x) : value.text;  // 1e308 m in mm overflows: shown as written
-    } catch (const UnitError&) {
-      return value.text;  // a cell in another unit than its column: shown as written
+  if (!value.si) {
+    out += value.text;
+    return;
+  }
+  double x = *value.si;
+  if (const std::string& unit = variables[v].unit; !unit.empty()) {
+    // As to_unit: the value in the column's unit, else as written (a cell in another unit than
+    // its column, or 1e308 m in mm, which overflows).
+    const std::optional<UnitScale>& u = parsed_unit(unit);
+    if (!u || !(u->dimension == value.dimension)) {
+      out += value.text;
+      return;
+    }
+    x = *value.si / u->scale - u->offset;
+    if (!std::isfinite(x)) {
+      out += value.text;
+      return;
     }
   }
-  return format_shown(*value.si);
+  append_shown_number(out, x);
+}
+
+std::string CaseTable::shown(std::size_t i, std::size_t v) const {
+  std::string out;
+  append_shown(out, i, v);
+  return out;
 }
 
 VarySpec parse_vary(std::string_view text) {

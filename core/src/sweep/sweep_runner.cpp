@@ -35,6 +35,8 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
   auto worker = [&] {
     Graph graph = base;
     binder.mark_unmemoised(graph);
+    std::optional<CaseBinder::Slots> slots;  // the varied parameters of this worker's graph
+    if (!binder.rebuilds()) slots = binder.bind(graph);
     while (!stopping()) {
       const std::size_t k = next.fetch_add(1);
       if (k >= n) break;
@@ -45,11 +47,13 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
       CaseResult result;
       result.index = options.cases[k];
       try {
-        binder.apply(graph, table.cases[result.index]);
+        if (slots) binder.apply(*slots, graph, table.cases[result.index]);
+        else binder.apply(graph, table.cases[result.index]);
         if (binder.rebuilds()) binder.mark_unmemoised(graph);
-        RunResult run = evaluate(graph, cache, node_threads);
-        result.outputs = std::move(run.outputs);
-        for (const NodeRun& r : run.runs) ++(r.reused ? result.reused : result.evaluated);
+        RunValues run = evaluate_values(graph, cache, node_threads);
+        result.outputs = std::move(run.values);
+        result.evaluated = run.evaluated;
+        result.reused = run.reused;
       } catch (const SceneError& e) {
         result.failure = CaseFailure::scene;
         result.error = e.what();

@@ -32,6 +32,12 @@ struct ParamValue {
 class ParamSet {
  public:
   void set(std::string name, ParamValue value) { values_[std::move(name)] = std::move(value); }
+  /// The value stored under `name`, made (as a default ParamValue) when absent: a host writes a
+  /// swept parameter through it case after case. The reference lives as long as this set.
+  ParamValue& slot(std::string_view name) {
+    auto it = values_.find(name);
+    return it != values_.end() ? it->second : values_.emplace(std::string(name), ParamValue{}).first->second;
+  }
   bool has(std::string_view name) const { return values_.find(name) != values_.end(); }
   const ParamValue& get(std::string_view name) const;
 

@@ -24,6 +24,16 @@ class CaseBinder {
   /// SceneError naming the variable, the node parameter and the limit it breaks.
   void apply(Graph& graph, const std::vector<CaseValue>& values) const;
 
+  /// Where one graph keeps each varied parameter's value, found once (a sweep's worker binds its
+  /// copy of the graph, then writes every case without a lookup by name). Only for a binder that
+  /// does not rebuild(); valid while that graph lives and is not rebuilt.
+  struct Slots {
+    std::vector<std::vector<ParamValue*>> of_variable;  // per variable, per target
+  };
+  Slots bind(Graph& graph) const;
+  /// apply() through slots bound on the graph: the same checks and messages.
+  void apply(const Slots& slots, const Graph& graph, const std::vector<CaseValue>& values) const;
+
   bool rebuilds() const { return rebuild_; }
   /// Marks the nodes a case changes (the targets of the varied parameters and everything
   /// downstream of them) as not memoised: in a sweep their results never repeat, so storing and

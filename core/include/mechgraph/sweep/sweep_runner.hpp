@@ -19,7 +19,7 @@ enum class CaseFailure { none, scene, evaluation };
 
 struct CaseResult {
   std::size_t index = 0;             // the case's number in its CaseTable
-  std::vector<OutputValue> outputs;  // in the order of Graph::outputs, when it succeeded
+  std::vector<Value> outputs;  // in the order of Graph::outputs (their labels and units), when it succeeded
   CaseFailure failure = CaseFailure::none;
   std::string error;
   std::size_t evaluated = 0, reused = 0;  // nodes run, nodes taken from the memo cache
