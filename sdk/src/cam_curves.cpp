@@ -73,9 +73,11 @@ double nose_angle(const std::function<double(double)>& lift, std::span<const dou
   const numerics::Extremum top = pieces.maximum(0);
   double nose = top.x;
   if (top.value > 0.0) {
-    // A plateau or a second equal maximum: the middle of where the lift is within 1e-9 of the top.
-    const std::vector<double> near = pieces.crossings(0, top.value * (1.0 - 1e-9));
-    if (near.size() >= 2) nose = 0.5 * (near.front() + near.back());
+    // A plateau (a dwell at full lift) or a second equal maximum: the middle of where the lift is
+    // within 1e-12 of the top, when that spans more than 1e-3 rad (a smooth top, even one as flat
+    // as a cubic's, is narrower, and its maximum is the search's own).
+    const std::vector<double> near = pieces.crossings(0, top.value * (1.0 - 1e-12));
+    if (near.size() >= 2 && near.back() - near.front() > 1e-3) nose = 0.5 * (near.front() + near.back());
   }
   evaluations += pieces.work().evaluations;
   return nose;
@@ -208,7 +210,7 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
   std::optional<LiftEvents> e;
   if (!table.axis.values.empty() && table.axis.values.front() == checking_lift)
     e = LiftEvents{table.channels[0].values[0], table.channels[1].values[0], table.channels[2].values[0],
-                   table.channels[3].values[0]};
+                   table.channels[3].values[0]};  // centreline from the nose (opening, closing from the law's zero)
   if (ctx.wanted("events")) out.set("events", Value::table(std::move(table)));
   if (!e) {
     char m[240];
@@ -223,7 +225,7 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
   out.set_scalar("closing_angle", e->closing);
   out.set_scalar("duration", e->duration);
   out.set_scalar("crank_duration", 2.0 * e->duration);
-  out.set_scalar("centreline", e->centreline - nose);
+  out.set_scalar("centreline", e->centreline);  // the table's, already from the nose
   if (nose_timing) {
     char at[64];
     std::snprintf(at, sizeof at, " at %g mm %s lift", checking_lift * 1e3, whose.c_str());

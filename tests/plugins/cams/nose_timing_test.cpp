@@ -4,6 +4,8 @@
 // centre), in closed form; the events from TDC follow from it.
 #include "cam_test_support.hpp"
 
+#include <mechgraph/domain/cam_law.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -10,7 +10,11 @@
 #include "contour.hpp"
 #include "rise_law.hpp"
 
+#include "test_support.hpp"
+
 #include <followers/follower_types.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/testing/cam_law_conformance.hpp>
 #include <mechgraph/testing/follower_conformance.hpp>
 
 #include <catch2/catch.hpp>
@@ -141,14 +145,18 @@ TEST_CASE("pivoted roller on an eccentric circle: pitch circle and contour in cl
     }
 }
 
-// The cam for the envelope tests: cycloidal, 7 mm over 140 deg on a 20 mm base circle.
+// The cam for the envelope tests: cycloidal, 7 mm over 140 deg on a 40 mm base circle. A translating
+// flat face needs r0 > 2 pi H / beta^2 - h(3/4 of the rise) = 29.5 - 6.4 = 23 mm; a pivoted one
+// more (its face turns as well): with the pivot at (-50, 45) mm and the face 2 mm from it, its
+// smallest radius of curvature is 3.8 mm at r0 = 40 mm and negative at 30 mm. Every follower here
+// follows it.
 std::shared_ptr<const CamLaw> cycloidal() {
-  return std::make_shared<const cams::SymmetricRiseReturnLaw>(cams::RiseShape::cycloidal, 7e-3, 140 * deg, 20e-3, 0.0);
+  return std::make_shared<const cams::SymmetricRiseReturnLaw>(cams::RiseShape::cycloidal, 7e-3, 140 * deg, 40e-3, 0.0);
 }
 
 TEST_CASE("pivoted flat face: the contour is the envelope of the face's positions (brute force)", "[followers][pivoted]") {
   const auto law = cycloidal();
-  const double px = -40e-3, py = 26e-3, f = 1.5e-3, tol = 1e-6;
+  const double px = -50e-3, py = 45e-3, f = 2e-3, tol = 1e-6;
   for (const bool clockwise : {false, true}) {
     const double sigma = clockwise ? -1.0 : 1.0;
     const auto follower = make_pivoted_flat(px, py, f);
@@ -216,7 +224,7 @@ TEST_CASE("pivoted roller: the contour is the envelope of the roller's positions
 TEST_CASE("every follower passes the conformance kit on a cycloidal cam", "[followers][conformance]") {
   const auto law = cycloidal();
   const std::shared_ptr<const Follower> all[] = {make_flat(), make_roller(9e-3, 0.0), make_roller(9e-3, 3e-3),
-                                                 make_pivoted_flat(-40e-3, 26e-3, 1.5e-3),
+                                                 make_pivoted_flat(-50e-3, 45e-3, 2e-3),
                                                  make_pivoted_roller(-38e-3, 24e-3, 37e-3, 8e-3),
                                                  make_pivoted_roller(38e-3, 24e-3, 37e-3, 8e-3)};
   for (const auto& f : all)
@@ -246,6 +254,53 @@ TEST_CASE("translating followers keep their closed forms; names and refusals say
                     Catch::Contains("arm must lie between") && Catch::Contains("follower.pivoted_roller"));
   CHECK_THROWS_WITH(make_pivoted_flat(-10e-3, 5e-3, 0.0)->contact(0.0, d, 20e-3, false),
                     Catch::Contains("the pivot must lie farther"));
+}
+
+OutputSet run_valve_lift(std::shared_ptr<const CamLaw> law, std::shared_ptr<const Follower> follower,
+                         const std::map<std::string, ParamValue>& given) {
+  const auto type = make_valve_lift_type();
+  InputSet in;
+  in.add("cam", Value::handle(std::move(law)));
+  in.add("follower", Value::handle(std::move(follower)));
+  OutputSet out;
+  mechgraph::testing::RecordingContext ctx;
+  type->evaluate(mechgraph::testing::defaults_of(type->info(), given), in, out, ctx);
+  return out;
+}
+
+TEST_CASE("follower.valve_lift: the valve lift of a finger in closed form, its derivatives through the cam-law kit",
+          "[followers][pivoted]") {
+  const auto law = cycloidal();
+  const double arm = 37e-3, Lv = 50e-3, a = 5 * deg;
+  const OutputSet out = run_valve_lift(law, make_pivoted_roller(-38e-3, 24e-3, arm, 8e-3),
+                                       {{"valve_arm", ParamValue::of_number(Lv)}, {"valve_arm_angle", ParamValue::of_number(a)}});
+  const auto valve = std::dynamic_pointer_cast<const CamLaw>(out.all().at("law").as_handle());
+  REQUIRE(valve);
+  // v = Lv (sin(h / L - a) + sin a): the pad centre's travel along the valve axis.
+  for (double phi = -80 * deg; phi <= 80 * deg; phi += 4 * deg) {
+    const double h = law->at(phi).lift;
+    CHECK_THAT(valve->at(phi).lift, WithinRel(Lv * (std::sin(h / arm - a) + std::sin(a)), 1e-12) || WithinAbs(0.0, 1e-18));
+  }
+  CHECK_THAT(valve->max_lift(), WithinRel(Lv * (std::sin(7e-3 / arm - a) + std::sin(a)), 1e-14));
+  CHECK_THAT(out.all().at("ratio_closed").as_scalar(), WithinRel(Lv / arm * std::cos(a), 1e-14));
+  CHECK_THAT(out.all().at("ratio_at_nose").as_scalar(), WithinRel(Lv / arm * std::cos(7e-3 / arm - a), 1e-14));
+  // Velocity, acceleration and jerk by the chain rule, against Richardson differences (the kit).
+  mechgraph::testing::CamLawCheckOptions options;
+  options.continuity = 2;
+  const auto report = mechgraph::testing::check_cam_law(*valve, "valve side", options);
+  INFO(report.str());
+  CHECK(report.passed());
+  // A translating follower acts on the valve directly: the law passes through.
+  const OutputSet bucket = run_valve_lift(law, make_flat(), {});
+  CHECK(bucket.all().at("law").as_handle() == law);
+  CHECK_THROWS_WITH(run_valve_lift(law, make_flat(), {{"valve_arm", ParamValue::of_number(Lv)}}),
+                    Catch::Contains("acts on the valve directly"));
+  CHECK_THROWS_WITH(run_valve_lift(law, make_pivoted_roller(-38e-3, 24e-3, 150e-3, 8e-3), {{"valve_arm", ParamValue::of_number(Lv)}}),
+                    Catch::Contains("cannot reach the base circle"));
+  // An arm that would pass 90 deg from square: the valve would fall back.
+  CHECK_THROWS_WITH(run_valve_lift(law, make_pivoted_roller(-38e-3, 24e-3, arm, 8e-3),
+                                   {{"valve_arm", ParamValue::of_number(Lv)}, {"valve_arm_angle", ParamValue::of_number(-85 * deg)}}),
+                    Catch::Contains("valve_arm_angle") || Catch::Contains("fall back"));
 }
 
 }  // namespace

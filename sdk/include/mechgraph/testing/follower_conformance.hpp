@@ -23,6 +23,7 @@ namespace mechgraph::testing {
 struct FollowerCheckOptions {
   int samples = 720;                      // cam angles over the turn
   double curvature_tolerance = 1e-4;      // relative, stated radius against the circumradius
+  double curvature_floor = 1e-7;          // m, absolute floor of that (where the radius nears zero)
   double position_tolerance = 1e-9;       // m, base circle and roller distances
   double step = 1e-5;                     // rad, neighbours for the circumradius and tangent
 };
@@ -36,7 +37,7 @@ inline Report check_follower(const Follower& follower, const CamLaw& law, bool c
   const double pi = std::numbers::pi;
   auto at = [&](double phi) { return follower.contact(phi, law.at(phi), r0, clockwise); };
   bool finite = true, base_ok = true, roller_ok = true, pressure_ok = true, turn_ok = true;
-  double worst_curvature = 0.0, worst_tangent = 0.0, worst_pressure = 0.0;
+  double worst_curvature = 0.0, worst_curvature_at = 0.0, worst_tangent = 0.0, worst_pressure = 0.0;
   std::ostringstream where;
   const double lever = follower.pivoted() ? follower.cam_lever(r0) : 0.0;
   for (int i = 0; i < o.samples; ++i) {
@@ -65,8 +66,11 @@ inline Report check_follower(const Follower& follower, const CamLaw& law, bool c
     const double area2 = std::abs((c.x - a.x) * (b.y - a.y) - (c.y - a.y) * (b.x - a.x));
     if (area2 > 0.0 && ab > 0.0) {
       const double circum = ab * ac * cb / (2.0 * area2);
-      const double err = std::abs(std::abs(c.curvature_radius) - circum) / circum;
-      if (err > worst_curvature) worst_curvature = err;
+      const double err = std::abs(std::abs(c.curvature_radius) - circum) / (o.curvature_tolerance * circum + o.curvature_floor);
+      if (err > worst_curvature) {
+        worst_curvature = err;
+        worst_curvature_at = phi;
+      }
     }
     if (rr > 0.0 && ab > 0.0) {
       // The contour's tangent is perpendicular to the line from the contact to the roller centre.
@@ -101,8 +105,9 @@ inline Report check_follower(const Follower& follower, const CamLaw& law, bool c
     r.add(name, "pressure angle against the roller centre's path", worst_pressure <= 1e-6,
           "worst difference " + std::to_string(worst_pressure) + " rad");
   }
-  r.add(name, "radius of curvature against three neighbouring contact points", worst_curvature <= o.curvature_tolerance,
-        "worst relative error " + std::to_string(worst_curvature));
+  r.add(name, "radius of curvature against three neighbouring contact points", worst_curvature <= 1.0,
+        "worst error " + std::to_string(worst_curvature) + " of the tolerance, at cam angle " +
+            std::to_string(worst_curvature_at * 180.0 / pi) + " deg");
   r.add(name, "pressure angle within +-90 deg", pressure_ok);
   if (follower.pivoted()) r.add(name, "the arm turns by h / cam_lever", turn_ok);
   return r;
