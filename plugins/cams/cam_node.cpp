@@ -85,6 +85,7 @@ class CamNodeType final : public NodeType {
                           "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
                           "mm")
             .positive()
+            .at_most(1e3)  // 1 km: the square of a lift (time-area, energies) stays far inside a double
             .with_example(9e-3),
         ParamSpec::number("action_angle", dim::angle,
                           "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "

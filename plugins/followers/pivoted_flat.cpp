@@ -65,7 +65,7 @@ class PivotedFlat final : public Follower {
 
  private:
   void check(double r0) const {
-    if (!(norm(pivot_) > r0 + f_))
+    if (!(norm(pivot_) > std::abs(r0 + f_)))
       throw NodeError("pivot_y", "the " + named() + ": the pivot must lie farther than base radius + face_offset " +
                                      mm(r0 + f_) + " from the cam centre (it is " + mm(norm(pivot_)) + ")");
   }

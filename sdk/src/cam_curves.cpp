@@ -74,9 +74,10 @@ double nose_angle(const std::function<double(double)>& lift, std::span<const dou
   double nose = top.x;
   if (top.value > 0.0) {
     // A plateau (a dwell at full lift) or a second equal maximum: the middle of where the lift is
-    // within 1e-12 of the top, when that spans more than 1e-3 rad (a smooth top, even one as flat
-    // as a cubic's, is narrower, and its maximum is the search's own).
-    const std::vector<double> near = pieces.crossings(0, top.value * (1.0 - 1e-12));
+    // within 1e-13 of the top (above the interpolation's rounding), when that spans more than 1e-3 rad (a
+    // smooth top, even one as flat as a cubic's, is far narrower, and its maximum is the search's
+    // own). Flanks that leave a dwell as flat as a cubic widen it by some 1e-5 rad, unevenly.
+    const std::vector<double> near = pieces.crossings(0, top.value * (1.0 - 1e-13));
     if (near.size() >= 2 && near.back() - near.front() > 1e-3) nose = 0.5 * (near.front() + near.back());
   }
   evaluations += pieces.work().evaluations;

@@ -42,7 +42,7 @@ std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift
 
 /// The nose: the cam angle of the maximum lift (from the law's zero). Where the maximum is a
 /// plateau (a dwell at full lift) or is reached more than once, the middle between the first and
-/// the last angle at which the lift is within 1e-12 of its maximum, when they lie more than 1e-3 rad
+/// the last angle at which the lift is within 1e-13 of its maximum, when they lie more than 1e-3 rad
 /// apart. A symmetric lobe's is 0; an
 /// asymmetric one's is not (a steep opening and a slow closing put it before the event's middle).
 double nose_angle(const std::function<double(double)>& lift, std::span<const double> knots, int samples, long& evaluations);
