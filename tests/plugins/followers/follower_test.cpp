@@ -22,6 +22,7 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <regex>
 
 namespace mechgraph::followers {
 namespace {
@@ -301,6 +302,42 @@ TEST_CASE("follower.valve_lift: the valve lift of a finger in closed form, its d
   CHECK_THROWS_WITH(run_valve_lift(law, make_pivoted_roller(-38e-3, 24e-3, arm, 8e-3),
                                    {{"valve_arm", ParamValue::of_number(Lv)}, {"valve_arm_angle", ParamValue::of_number(-85 * deg)}}),
                     Catch::Contains("valve_arm_angle") || Catch::Contains("fall back"));
+}
+
+}  // namespace
+}  // namespace mechgraph::followers
+
+namespace mechgraph::followers {
+namespace {
+
+TEST_CASE("a law a flat face undercuts is made, and reaches cam.contour with a roller; the flat face is refused by name",
+          "[followers][undercut]") {
+  // Cycloidal 9 mm over 130 deg on 17 mm: a flat face's contour radius r0 + h + h'' goes to
+  // -18.78 mm (the cam node says so), so a flat face needs r0 >= 17 + 18.78 = 35.78 mm with this
+  // lift; a 6 mm roller follows it as it is.
+  const std::string scene =
+      "nodes:\n"
+      "  cam: { type: cam.cycloidal, params: { max_lift: 9 mm, action_angle: 130 deg, base_radius: 17 mm } }\n"
+      "  roller: { type: follower.roller, params: { roller_radius: 6 mm } }\n"
+      "  flat: { type: follower.flat }\n"
+      "  cut_roller: { type: cam.contour, inputs: { cam: cam.law, follower: roller.follower } }\n"
+      "  cut_flat: { type: cam.contour, inputs: { cam: cam.law, follower: flat.follower } }\n";
+  using mechgraph::testing::project_registry;
+  const auto ok = mechgraph::testing::run_yaml(scene + "outputs: [cam.min_curvature_radius, cut_roller.max_pressure_angle]\n",
+                                               project_registry());
+  const double rho = mechgraph::testing::scalar_output(ok, "cam.min_curvature_radius");
+  CHECK(rho < -18e-3);
+  CHECK(mechgraph::testing::scalar_output(ok, "cut_roller.max_pressure_angle") > 0.0);
+  try {
+    mechgraph::testing::run_yaml(scene + "outputs: [cut_flat.max_pressure_angle]\n", project_registry());
+    FAIL("the flat face was not refused");
+  } catch (const EvaluationError& e) {
+    const std::string text = e.what();
+    CHECK_THAT(text, Catch::Contains("follower.flat (flat-faced tappet) cannot follow this law") && Catch::Contains("node 'cut_flat'"));
+    std::smatch m;
+    REQUIRE(std::regex_search(text, m, std::regex("base_radius must be at least ([0-9.eE+-]+) mm")));
+    CHECK_THAT(std::stod(m[1]) * 1e-3, WithinAbs(17e-3 - rho, 2e-6));  // message digits and the 1 um bisection
+  }
 }
 
 }  // namespace
