@@ -6,8 +6,8 @@
 // three neighbouring contact points (a second method); the contour tangent perpendicular to the
 // roller's normal; a roller's pressure angle against the path of its centre; the pressure angle
 // within +-90 deg; the arm's turn h / cam_lever on a pivoted one.
-// Header-only: a plugin's own tests can run it (`mechgraph plugin-test` does not yet: it has no
-// cam law to pair a follower with).
+// Header-only: a plugin's own tests run it on their own cams; `mechgraph plugin-test` runs it on
+// every follower a node outputs, paired with the reference cam below (check_follower_on_reference).
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/domain/follower.hpp>
 #include <mechgraph/testing/report.hpp>
@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace mechgraph::testing {
 
@@ -110,6 +111,51 @@ inline Report check_follower(const Follower& follower, const CamLaw& law, bool c
             std::to_string(worst_curvature_at * 180.0 / pi) + " deg");
   r.add(name, "pressure angle within +-90 deg", pressure_ok);
   if (follower.pivoted()) r.add(name, "the arm turns by h / cam_lever", turn_ok);
+  return r;
+}
+
+/// The reference cam of `mechgraph plugin-test`: a gentle cosine lobe, 2 mm over +-70 deg, on a
+/// 20 mm base circle, h = H (1 + cos(pi phi / 70 deg)) / 2 (its acceleration steps at the ends,
+/// which the suite leaves out).
+class ReferenceCam final : public CamLaw {
+ public:
+  double event_begin() const override { return -half_; }
+  double event_end() const override { return half_; }
+  std::vector<double> breakpoints() const override { return {}; }
+  double max_lift() const override { return lift_; }
+  double base_radius() const override { return 20e-3; }
+  LiftDerivatives evaluate_in_event(double phi) const override {
+    const double w = std::numbers::pi / half_, c = std::cos(w * phi), s = std::sin(w * phi);
+    return {0.5 * lift_ * (1.0 + c), -0.5 * lift_ * w * s, -0.5 * lift_ * w * w * c, 0.5 * lift_ * w * w * w * s};
+  }
+
+ private:
+  double lift_ = 2e-3, half_ = 70.0 * std::numbers::pi / 180.0;
+};
+
+/// The suite on the reference cam, both ways round; skipped (with the follower's own words) when
+/// the follower cannot sit on a 20 mm base circle or cannot follow that lobe.
+inline Report check_follower_on_reference(const Follower& follower, const std::string& suite = "follower") {
+  Report r;
+  const ReferenceCam cam;
+  try {
+    bool follows = true;
+    for (int i = 0; i < 720 && follows; ++i) {
+      const double phi = -std::numbers::pi + std::numbers::pi * i / 360.0;
+      follows = follower.follow_margin(follower.contact(phi, cam.at(phi), cam.base_radius(), false)) < 0.0;
+    }
+    if (!follows) {
+      r.skip(suite + " " + std::string(follower.type_name()), "interface suite",
+             "the follower cannot follow the reference cam (2 mm cosine lobe over 140 deg on 20 mm)");
+      return r;
+    }
+  } catch (const std::exception& e) {
+    r.skip(suite + " " + std::string(follower.type_name()), "interface suite",
+           std::string("the follower cannot sit on the reference cam's 20 mm base circle: ") + e.what());
+    return r;
+  }
+  r.append(check_follower(follower, cam, false, suite));
+  r.append(check_follower(follower, cam, true, suite + " (cw)"));
   return r;
 }
 
