@@ -243,7 +243,12 @@ class ContourNodeType final : public NodeType {
         for (const auto& g : c.points) py.push_back(g.pitch_y);
       }
       // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
-      out.note(clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
+      if (f.pivoted())
+        out.note(std::string("contour: the cam turns ") + (clockwise ? "clockwise" : "counterclockwise") +
+                 " seen from the front under the " + f.named() +
+                 "; the drawing is the cam at cam angle 0 with the follower above it on +y");
+      else
+        out.note(clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
                              "cam angle phi lies phi counterclockwise from +y (nose at phi = 0)"
                            : "contour: the cam turns counterclockwise seen from the front; in the drawing the follower "
                              "axis at cam angle phi lies phi clockwise from +y (nose at phi = 0)");
