@@ -2,7 +2,8 @@
 //  - a circular-arc (eccentric circle) cam under a pivoted flat face and a pivoted roller: the arm's
 //    angle in closed form from the circle centre's distance to the pivot gives the lift law; the
 //    contour the follower makes from it must be that circle again (every contact point at the
-//    circle's radius from its centre, the stated radius of curvature the circle's);
+//    circle's radius from its centre, the stated radius of curvature the circle's), and the
+//    pressure angle the one between the circle's normal and the arm's motion there;
 //  - a cycloidal cam under each pivoted follower: the contour against the brute-force envelope of
 //    the follower's positions (every face or roller at 3600 cam angles: none cuts the contour, each
 //    touches it to the chord error);
@@ -104,6 +105,13 @@ TEST_CASE("pivoted flat face on an eccentric circle: the arm angle in closed for
         const double psi = psi0 + k * turn(phi);
         const double mx = -k * std::sin(psi), my = k * std::cos(psi);
         CHECK_THAT(mx * (x.x - px) + my * (x.y - py), WithinAbs(-f, 1e-10));
+        // The pressure angle: between the circle's normal at the contact (from its centre) and the
+        // way the arm's point there moves as it lifts, k J (x - P).
+        const Vec centre = to_fixed({0.0, eps}, phi, sigma);
+        const double nx = x.x - centre.x, ny = x.y - centre.y;
+        const double vx = -k * (x.y - py), vy = k * (x.x - px);
+        const double expected = std::atan2(std::abs(nx * vy - ny * vx), nx * vx + ny * vy);
+        CHECK_THAT(std::abs(c.pressure_angle), WithinAbs(expected, 1e-9));
       }
       const auto report = mechgraph::testing::check_follower(*follower, law, clockwise);
       INFO(report.str());
@@ -139,6 +147,13 @@ TEST_CASE("pivoted roller on an eccentric circle: pitch circle and contour in cl
         // The roller centre in the fixed frame is on the arm's circle about the pivot.
         const Vec centre = to_fixed({c.pitch_x, c.pitch_y}, phi, sigma);
         CHECK_THAT(std::hypot(centre.x - px, centre.y - py), WithinAbs(arm, 1e-12));
+        // The pressure angle: between the circle's normal through the roller centre and the way the
+        // roller centre moves as the arm lifts, k J (C - P).
+        const Vec circle = to_fixed({0.0, eps}, phi, sigma);
+        const double nx = centre.x - circle.x, ny = centre.y - circle.y;
+        const double vx = -k * (centre.y - py), vy = k * (centre.x - px);
+        const double expected = std::atan2(std::abs(nx * vy - ny * vx), nx * vx + ny * vy);
+        CHECK_THAT(std::abs(c.pressure_angle), WithinAbs(expected, 1e-9));
       }
       const auto report = mechgraph::testing::check_follower(*follower, law, clockwise);
       INFO(report.str());
