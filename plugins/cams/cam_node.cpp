@@ -85,6 +85,7 @@ class CamNodeType final : public NodeType {
                           "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
                           "mm")
             .positive()
+            .at_most(1e3)  // 1 km: the square of a lift (time-area, energies) stays far inside a double
             .with_example(9e-3),
         ParamSpec::number("action_angle", dim::angle,
                           "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
@@ -142,7 +143,11 @@ class CamNodeType final : public NodeType {
         PortSpec::scalar("max_acceleration", dim::length / dim::angle.pow(2), "max d2h/dphi2"),
         PortSpec::scalar("min_acceleration", dim::length / dim::angle.pow(2), "min (most negative) d2h/dphi2"),
         PortSpec::scalar("accel_angle", dim::angle, "achieved positive-acceleration phase from the start of lift", "deg"),
-        PortSpec::scalar("min_curvature_radius", dim::length, "smallest radius of curvature of the cam contour", "mm"),
+        PortSpec::scalar("min_curvature_radius", dim::length,
+                         "smallest radius of curvature of the contour for the law's own follower (a flat face unless "
+                         "the law was made for a roller); negative where that follower would undercut: cam.contour "
+                         "checks the cam with its follower",
+                         "mm"),
     };
     info_.outputs.push_back(PortSpec::table(
         "svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
@@ -170,17 +175,10 @@ class CamNodeType final : public NodeType {
     // So do the peaks and the phase: each is computed only when something reads it.
     const CamSummaryParts parts{ctx.wanted("max_velocity") || ctx.wanted("max_acceleration") || ctx.wanted("min_acceleration"),
                                 ctx.wanted("accel_angle"), ctx.wanted("min_curvature_radius")};
-    CamSummary s = summarize(*law, samples, parts);
+    // No undercut check here: whether a contour can be followed depends on the follower, and is
+    // checked where cam and follower meet (cam.contour, docs/methods/followers.md).
+    const CamSummary s = summarize(*law, samples, parts);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
-    try {
-      refuse_undercut(s, basics.base_radius, [&](double r0) { return law_for_base_radius(params, ramp, basics, r0); }, samples);
-    } catch (const NodeError& e) {
-      // The law's own notes may explain it (a measured table whose curvature is rounding noise).
-      if (out.notes().empty()) throw;
-      std::string message = e.what();
-      for (const std::string& note : out.notes()) message += "; " + note;
-      throw NodeError(e.parameter(), message);
-    }
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
     if (s.peaks_known) {
@@ -204,19 +202,6 @@ class CamNodeType final : public NodeType {
   }
 
  private:
-  // The same request with another base radius (a three-arc cam's arcs depend on it), for the
-  // undercut message's smallest base radius.
-  std::shared_ptr<const CamLaw> law_for_base_radius(const ParamSet& params, const RampSpec& ramp, const CamBasics& basics,
-                                                    double r0) const {
-    OutputSet scratch;
-    std::shared_ptr<const CamLaw> law =
-        make_(CamBasics{basics.max_lift, basics.action_angle, r0, basics.has_max_lift, basics.has_action_angle, basics.inputs,
-                        basics.context},
-              params, scratch);
-    if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
-    return law;
-  }
-
   NodeInfo info_;
   CamLawFactory make_;
   bool derived_ = false;

@@ -10,41 +10,6 @@
 
 namespace mechgraph::cams {
 
-double Follower::pitch_base() const {
-  const double R = base_radius + roller_radius;
-  return std::sqrt(std::max(0.0, R * R - offset * offset));
-}
-
-ContactGeometry contact_at(const Follower& f, double phi, const LiftDerivatives& d) {
-  // The follower axis in the cam's frame (docs/methods/valvetrain.md, "The cam contour"): a cam
-  // turned by phi ccw carries u(phi) = (sin phi, cos phi) onto the fixed axis +y, one turned cw
-  // u(phi) = (-sin phi, cos phi); t = du/dphi, and t' = -u in both cases.
-  const double sigma = f.clockwise ? -1.0 : 1.0;
-  const double ux = sigma * std::sin(phi), uy = std::cos(phi);
-  const double tx = sigma * std::cos(phi), ty = -std::sin(phi);
-  ContactGeometry g;
-  if (f.kind == Follower::Kind::flat) {
-    const double s = f.base_radius + d.lift;
-    g.x = s * ux + d.velocity * tx;
-    g.y = s * uy + d.velocity * ty;
-    g.curvature_radius = s + d.acceleration;
-    g.face_offset = d.velocity;
-  } else {
-    const double s = f.pitch_base() + d.lift;
-    const double a = d.velocity - f.offset;  // C' = a u + s t
-    const double speed = std::hypot(a, s);
-    g.pitch_x = s * ux + f.offset * tx;
-    g.pitch_y = s * uy + f.offset * ty;
-    const double nx = (s * ux - a * tx) / speed, ny = (s * uy - a * ty) / speed;
-    g.x = g.pitch_x - f.roller_radius * nx;
-    g.y = g.pitch_y - f.roller_radius * ny;
-    g.pressure_angle = std::atan2(a, s);
-    const double cross = a * (2.0 * d.velocity - f.offset) + s * s - s * d.acceleration;
-    g.curvature_radius = speed * speed * speed / cross - f.roller_radius;
-  }
-  return g;
-}
-
 double distance_to_segment(double px, double py, double ax, double ay, double bx, double by) {
   const double dx = bx - ax, dy = by - ay;
   const double L2 = dx * dx + dy * dy;
@@ -58,33 +23,34 @@ namespace {
 struct Tracer {
   const CamLaw& law;
   const Follower& f;
+  bool clockwise;
   double tol;
   long& evaluations;
   ContourPoints& out;
 
-  ContactGeometry at(double phi) {
+  FollowerContact at(double phi) {
     ++evaluations;
-    return contact_at(f, phi, law.at(phi));
+    return f.contact(phi, law.at(phi), law.base_radius(), clockwise);
   }
 
   // How far the chord a-b strays from the curve at `m` (contour, and pitch curve for a roller).
-  double stray(const ContactGeometry& a, const ContactGeometry& b, const ContactGeometry& m) const {
+  double stray(const FollowerContact& a, const FollowerContact& b, const FollowerContact& m) const {
     double e = distance_to_segment(m.x, m.y, a.x, a.y, b.x, b.y);
-    if (f.kind == Follower::Kind::roller)
+    if (f.roller_radius() > 0.0)
       e = std::max(e, distance_to_segment(m.pitch_x, m.pitch_y, a.pitch_x, a.pitch_y, b.pitch_x, b.pitch_y));
     return e;
   }
 
   // Appends the points strictly after `pa` up to and including `pb`.
-  void refine(double pa, const ContactGeometry& a, double pb, const ContactGeometry& b, int depth) {
+  void refine(double pa, const FollowerContact& a, double pb, const FollowerContact& b, int depth) {
     const double pm = 0.5 * (pa + pb);
-    const ContactGeometry m = at(pm);
+    const FollowerContact m = at(pm);
     const double e = stray(a, b, m);
     if (!std::isfinite(e)) throw NodeError("chord_error", "the contour is not finite near cam angle " + std::to_string(pm * 180.0 / std::numbers::pi) + " deg");
     bool fine = depth >= 40 || e <= tol;
     if (fine && depth < 40) {
       // The midpoint alone can sit on the chord of an S-shaped stretch: look at the quarters too.
-      const ContactGeometry q1 = at(0.5 * (pa + pm)), q3 = at(0.5 * (pm + pb));
+      const FollowerContact q1 = at(0.5 * (pa + pm)), q3 = at(0.5 * (pm + pb));
       fine = stray(a, b, q1) <= tol && stray(a, b, q3) <= tol;
     }
     if (fine) {
@@ -105,7 +71,7 @@ struct Tracer {
 
 }  // namespace
 
-ContourPoints trace_contour(const CamLaw& law, const Follower& f, double chord_error, long& evaluations) {
+ContourPoints trace_contour(const CamLaw& law, const Follower& f, bool clockwise, double chord_error, long& evaluations) {
   constexpr double pi = std::numbers::pi;
   // Start pieces: the base circle cut in eight (a chord across a whole arc could look straight to
   // a midpoint test only if the arc were tiny), the event's ends and its breakpoints.
@@ -118,12 +84,12 @@ ContourPoints trace_contour(const CamLaw& law, const Follower& f, double chord_e
   knots.erase(std::unique(knots.begin(), knots.end(), [](double a, double b) { return std::abs(a - b) < 1e-12; }),
               knots.end());
   ContourPoints out;
-  Tracer tracer{law, f, chord_error, evaluations, out};
-  ContactGeometry a = tracer.at(knots.front());
+  Tracer tracer{law, f, clockwise, chord_error, evaluations, out};
+  FollowerContact a = tracer.at(knots.front());
   out.phi.push_back(knots.front());
   out.points.push_back(a);
   for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
-    const ContactGeometry b = tracer.at(knots[k + 1]);
+    const FollowerContact b = tracer.at(knots[k + 1]);
     tracer.refine(knots[k], a, knots[k + 1], b, 0);
     a = b;
   }

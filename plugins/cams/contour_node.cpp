@@ -1,9 +1,13 @@
-// cam.contour: the contour a follower needs from any cam law, for manufacturing (points with a
+// cam.contour: where a cam law meets its follower (any follower of the followers plugin, or the
+// flat or roller tappet its own parameters describe). The contour for manufacturing (points with a
 // chord-error knob, written as CSV and DXF by the host), and what the follower sees at the contact:
 // pressure angle, radius of curvature, Hertz line-contact stress under a load, the face a flat
-// tappet needs (docs/methods/valvetrain.md, "The cam contour" and "Contact stress").
+// face needs; and the refusal of a pair the follower cannot follow (undercut), naming the follower
+// (docs/methods/followers.md, docs/methods/valvetrain.md "Contact stress").
 #include "contour.hpp"
 #include "registration.hpp"
+
+#include <followers/follower_types.hpp>
 
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -91,21 +95,27 @@ class ContourNodeType final : public NodeType {
     info_.type = "cam.contour";
     // 2: a forces table over less than a revolution loads only its span; 3: the contour turned
     // the stated way (it was mirrored: an asymmetric lobe ran backwards)
-    info_.version = 3;
+    // 4: the follower is a Follower (a connected follower node, or the parameters below); the
+    // undercut check lives here, for the pair, with the smallest base radius that removes it
+    info_.version = 4;
     info_.summary =
-        "cam contour (x, y) in the cam frame for a flat or roller follower, with its pitch curve, pressure angle, "
-        "Hertz contact stress and the face a flat tappet needs";
+        "cam contour (x, y) in the cam frame for any follower (flat, roller, offset roller, pivoted flat or roller), "
+        "with its pitch curve, pressure angle, Hertz contact stress, the face a flat face needs and the undercut check "
+        "of the pair";
     info_.inputs = {
         PortSpec::handle("cam", std::string(CamLaw::kind_name), "the lift law to cut (a cam node's law)"),
         PortSpec::table("forces", "a table with a contact_force channel over cam_angle (valvetrain.dynamics' curves, "
                                   "or spring_design's force_curve: no load outside its open period), times load_ratio, "
                                   "as the load on the cam; instead of load")
             .optional_port(),
+        PortSpec::handle("follower", std::string(Follower::kind_name),
+                         "the follower (a follower.* node); instead of the follower, roller_radius and offset parameters")
+            .optional_port(),
     };
     info_.params = {
         ParamSpec::choice("follower", {"flat", "roller"},
-                          "flat-faced tappet or roller; default: the law's own follower (roller when the law was "
-                          "made for one)")
+                          "without a connected follower: flat-faced tappet or translating roller; default: the law's "
+                          "own follower (roller when the law was made for one)")
             .optional(),
         ParamSpec::number("roller_radius", dim::length, "roller radius (roller; default the law's)", "mm")
             .optional()
@@ -162,13 +172,16 @@ class ContourNodeType final : public NodeType {
                                    "cam_angle_ccw or cam_angle_cw (named for the way the cam turns, seen from the "
                                    "front), within chord_error; written as CSV and DXF"),
         PortSpec::table("contact", "over the event: pressure_angle, curvature_radius (of the contour), face_offset "
-                                   "(flat), load and contact_stress (with a load)"),
+                                   "(flat face: where the contact lies on it), follower_angle (pivoted), load and "
+                                   "contact_stress (with a load)"),
         PortSpec::scalar("points", dim::none, "points of the contour"),
         PortSpec::scalar("max_pressure_angle", dim::angle, "largest |pressure angle| (0 for a flat face)", "deg"),
         PortSpec::scalar("min_face_width", dim::length,
-                         "flat face: travel of the contact across the face, max h' - min h' (add a margin)", "mm"),
+                         "flat face: travel of the contact across the face (translating: max h' - min h'; add a margin)", "mm"),
         PortSpec::scalar("min_face_diameter", dim::length,
-                         "flat face: a round face centred on the follower axis needs 2 max |h'| (add a margin)", "mm"),
+                         "translating flat face: a round face centred on the follower axis needs 2 max |h'| (add a margin)",
+                         "mm"),
+        PortSpec::scalar("max_follower_angle", dim::angle, "pivoted follower: the arm's largest turn", "deg"),
         PortSpec::scalar("max_contact_stress", dim::stress, "largest Hertz contact pressure p0 (with a load)", "MPa"),
         PortSpec::scalar("max_stress_angle", dim::angle, "cam angle of the largest contact pressure", "deg"),
     };
@@ -179,13 +192,17 @@ class ContourNodeType final : public NodeType {
 
   void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
     const auto law = in.handle<CamLaw>("cam");
-    const Follower f = follower_of(*law, p);
+    const std::shared_ptr<const Follower> follower = follower_of(*law, p, in);
+    const Follower& f = *follower;
+    const bool clockwise = p.text("rotation") == "cw";
+    const double r0 = law->base_radius();
     long evaluations = 0;
     std::vector<double> knots = law->knots();
     knots.insert(knots.begin(), -pi);
     knots.push_back(pi);
     const int samples = static_cast<int>(p.integer("samples"));
-    refuse_undercut(*law, f, knots, samples, evaluations);
+    refuse_undercut(*law, f, clockwise, knots, samples, evaluations);
+    const auto contact_at = [&](double phi, const LiftDerivatives& d) { return f.contact(phi, d, r0, clockwise); };
 
     ContactLoad load;
     if (in.count("forces")) {
@@ -201,31 +218,37 @@ class ContourNodeType final : public NodeType {
     const double nu_fol = p.has("follower_poisson_ratio") ? p.number("follower_poisson_ratio") : nu_cam;
     const double e_star = 1.0 / ((1.0 - nu_cam * nu_cam) / e_cam + (1.0 - nu_fol * nu_fol) / e_fol);
     const double length = p.has("contact_length") ? p.number("contact_length") : 1.0;
-    auto stress = [&](double phi, const ContactGeometry& g) {
-      const double inv_r = 1.0 / g.curvature_radius + (f.kind == Follower::Kind::roller ? 1.0 / f.roller_radius : 0.0);
+    const bool roller = f.roller_radius() > 0.0;
+    auto stress = [&](double phi, const FollowerContact& g) {
+      const double inv_r = 1.0 / g.curvature_radius + (roller ? 1.0 / f.roller_radius() : 0.0);
       return hertz_line_stress(load.at(phi), inv_r, length, e_star);
     };
 
     if (ctx.wanted("contour") || ctx.wanted("points")) {
-      const ContourPoints c = trace_contour(*law, f, p.number("chord_error"), evaluations);
+      const ContourPoints c = trace_contour(*law, f, clockwise, p.number("chord_error"), evaluations);
       Table t;
       t.closed_curve = true;
       // The axis names the direction the cam turns, so that a CSV of the contour says it too (its
       // header: cam_angle_ccw [deg] or cam_angle_cw [deg]).
-      t.axis = {f.clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
+      t.axis = {clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
       auto& x = t.add_channel("x", dim::length, "mm").values;
       x.reserve(c.points.size());
       for (const auto& g : c.points) x.push_back(g.x);
       auto& y = t.add_channel("y", dim::length, "mm").values;
       for (const auto& g : c.points) y.push_back(g.y);
-      if (f.kind == Follower::Kind::roller) {
+      if (roller) {
         auto& px = t.add_channel("pitch_x", dim::length, "mm").values;
         for (const auto& g : c.points) px.push_back(g.pitch_x);
         auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
         for (const auto& g : c.points) py.push_back(g.pitch_y);
       }
       // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
-      out.note(f.clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
+      if (f.pivoted())
+        out.note(std::string("contour: the cam turns ") + (clockwise ? "clockwise" : "counterclockwise") +
+                 " seen from the front under the " + f.named() +
+                 "; the drawing is the cam at cam angle 0 with the follower above it on +y");
+      else
+        out.note(clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
                              "cam angle phi lies phi counterclockwise from +y (nose at phi = 0)"
                            : "contour: the cam turns counterclockwise seen from the front; in the drawing the follower "
                              "axis at cam angle phi lies phi clockwise from +y (nose at phi = 0)");
@@ -242,11 +265,10 @@ class ContourNodeType final : public NodeType {
     // Each function is smooth on each piece (|pressure angle| is not: both of its signs are searched).
     numerics::SmoothPieces pieces(
         [&](double phi, double* v, double*) {
-          const LiftDerivatives d = law->at(phi);
-          const ContactGeometry g = contact_at(f, phi, d);
+          const FollowerContact g = contact_at(phi, law->at(phi));
           v[0] = g.pressure_angle;
           v[1] = load.given() ? stress(phi, g) : 0.0;
-          v[2] = d.velocity;
+          v[2] = g.face_position;
         },
         3, knots, samples);
     const numerics::Extremum pa_max = pieces.maximum(0), pa_min = pieces.minimum(0);
@@ -258,10 +280,11 @@ class ContourNodeType final : public NodeType {
         {v_min.x, -v_min.value}};
     evaluations += pieces.work().evaluations;
     out.set_scalar("max_pressure_angle", peaks[0].value);
-    if (f.kind == Follower::Kind::flat) {
+    if (!roller) {
       out.set_scalar("min_face_width", peaks[2].value + peaks[3].value);
-      out.set_scalar("min_face_diameter", 2.0 * std::max(peaks[2].value, peaks[3].value));
+      if (!f.pivoted()) out.set_scalar("min_face_diameter", 2.0 * std::max(peaks[2].value, peaks[3].value));
     }
+    if (f.pivoted()) out.set_scalar("max_follower_angle", law->max_lift() / f.cam_lever(r0));
     if (load.given()) {
       out.set_scalar("max_contact_stress", peaks[1].value);
       out.set_scalar("max_stress_angle", peaks[1].x);
@@ -275,7 +298,8 @@ class ContourNodeType final : public NodeType {
       t.axis = {"cam_angle", dim::angle, std::vector<double>(n), "deg"};
       t.add_channel("pressure_angle", dim::angle, "deg");
       t.add_channel("curvature_radius", dim::length, "mm");
-      if (f.kind == Follower::Kind::flat) t.add_channel("face_offset", dim::length, "mm");
+      if (!roller) t.add_channel("face_offset", dim::length, "mm");
+      if (f.pivoted()) t.add_channel("follower_angle", dim::angle, "deg");
       if (load.given()) {
         t.add_channel("load", dim::force, "N");
         t.add_channel("contact_stress", dim::stress, "MPa");
@@ -283,13 +307,14 @@ class ContourNodeType final : public NodeType {
       for (auto& c : t.channels) c.values.resize(n);
       for (std::size_t i = 0; i < n; ++i) {
         const double phi = i + 1 == n ? to : from + (to - from) * static_cast<double>(i) / static_cast<double>(n - 1);
-        const ContactGeometry g = contact_at(f, phi, law->at(phi));
+        const FollowerContact g = contact_at(phi, law->at(phi));
         ++evaluations;
         t.axis.values[i] = phi;
         std::size_t k = 0;
         t.channels[k++].values[i] = g.pressure_angle;
         t.channels[k++].values[i] = g.curvature_radius;
-        if (f.kind == Follower::Kind::flat) t.channels[k++].values[i] = g.face_offset;
+        if (!roller) t.channels[k++].values[i] = g.face_position;
+        if (f.pivoted()) t.channels[k++].values[i] = g.follower_angle;
         if (load.given()) {
           t.channels[k++].values[i] = load.at(phi);
           t.channels[k++].values[i] = stress(phi, g);
@@ -301,64 +326,102 @@ class ContourNodeType final : public NodeType {
   }
 
  private:
-  static Follower follower_of(const CamLaw& law, const ParamSet& p) {
-    Follower f;
-    f.base_radius = law.base_radius();
-    f.clockwise = p.text("rotation") == "cw";
+  // The connected follower, or the flat or translating roller the parameters describe; a law made
+  // for a roller (a three-arc cam's lift is its roller centre's) must be cut for that roller.
+  static std::shared_ptr<const Follower> follower_of(const CamLaw& law, const ParamSet& p, const InputSet& in) {
     const double law_roller = law.roller_radius();
+    std::shared_ptr<const Follower> f;
+    if (in.count("follower")) {
+      for (const char* name : {"follower", "roller_radius", "offset"})
+        if (p.has(name) && !(std::string(name) == "offset" && p.number("offset") == 0.0))
+          throw NodeError(name, std::string(name) + " is set but a follower is connected: give the follower's "
+                                                    "dimensions on its own node");
+      f = in.handle<Follower>("follower");
+      if (law_roller > 0.0 && (f->pivoted() || std::abs(f->roller_radius() - law_roller) > 1e-9 * law_roller))
+        throw NodeError("follower", "the law's lift is that of a translating roller of radius " + mm(law_roller) +
+                                        " (its cam node's follower); the " + f->named() + " cannot follow it");
+      return f;
+    }
     const std::string kind = p.has("follower") ? p.text("follower") : (law_roller > 0.0 ? "roller" : "flat");
     if (kind == "flat") {
       if (law_roller > 0.0)
         throw NodeError("follower", "the law's lift is that of a roller of radius " + mm(law_roller) +
                                         " (its cam node's follower); cut it for that roller, or make the law for a flat face");
       if (p.has("roller_radius")) throw NodeError("roller_radius", "roller_radius is set but follower is flat");
-      return f;
+      return followers::make_flat();
     }
-    f.kind = Follower::Kind::roller;
+    double rr = 0.0;
     if (p.has("roller_radius")) {
-      f.roller_radius = p.number("roller_radius");
-      if (law_roller > 0.0 && std::abs(f.roller_radius - law_roller) > 1e-9 * law_roller)
-        throw NodeError("roller_radius", "roller_radius " + mm(f.roller_radius) + " differs from the " + mm(law_roller) +
+      rr = p.number("roller_radius");
+      if (law_roller > 0.0 && std::abs(rr - law_roller) > 1e-9 * law_roller)
+        throw NodeError("roller_radius", "roller_radius " + mm(rr) + " differs from the " + mm(law_roller) +
                                              " the law was made for");
     } else if (law_roller > 0.0) {
-      f.roller_radius = law_roller;
+      rr = law_roller;
     } else {
       throw NodeError("roller_radius", "follower roller needs roller_radius");
     }
-    f.offset = p.number("offset");
-    if (!(std::abs(f.offset) < f.base_radius + f.roller_radius))
-      throw NodeError("offset", "|offset| " + mm(std::abs(f.offset)) + " must stay below base radius + roller radius " +
-                                    mm(f.base_radius + f.roller_radius));
-    return f;
+    const double offset = p.number("offset");
+    if (!(std::abs(offset) < law.base_radius() + rr))
+      throw NodeError("offset", "|offset| " + mm(std::abs(offset)) + " must stay below base radius + roller radius " +
+                                    mm(law.base_radius() + rr));
+    return followers::make_roller(rr, offset);
+  }
+
+  // The worst follow margin of the pair over the turn (Follower::follow_margin: >= 0 undercut) for
+  // base radius r0, the lift law unchanged.
+  static numerics::Extremum worst_margin(const CamLaw& law, const Follower& f, bool clockwise, double r0,
+                                         const std::vector<double>& knots, int samples, long& evaluations) {
+    numerics::Extremum worst[1];
+    numerics::maximize_piecewise_together(
+        [&](double phi, double* v, double* slope) {
+          v[0] = f.follow_margin(f.contact(phi, law.at(phi), r0, clockwise));
+          slope[0] = std::numeric_limits<double>::quiet_NaN();
+        },
+        1, knots, samples, evaluations, worst);
+    return worst[0];
   }
 
   // Undercut: a flat face needs rho > 0 everywhere; a roller needs its pitch curve's convex radius
   // above the roller's (rho_p > rr), and at a concave stretch |rho| above it too, or it cannot follow.
-  static void refuse_undercut(const CamLaw& law, const Follower& f, const std::vector<double>& knots, int samples,
-                              long& evaluations) {
-    numerics::Extremum worst[1];
-    numerics::maximize_piecewise_together(
-        [&](double phi, double* v, double* slope) {
-          const ContactGeometry g = contact_at(f, phi, law.at(phi));
-          // Flat: -rho (>= 0 is an undercut). Roller: pitch curvature 1/(rho + rr) - 1/rr, >= 0
-          // where the convex pitch radius is not above the roller's (a concave pitch curve is
-          // always followed: its contour is concave by |rho_p| + rr > rr).
-          v[0] = f.kind == Follower::Kind::flat ? -g.curvature_radius
-                                                : 1.0 / (g.curvature_radius + f.roller_radius) - 1.0 / f.roller_radius;
-          slope[0] = std::numeric_limits<double>::quiet_NaN();
-        },
-        1, knots, samples, evaluations, worst);
-    if (!(worst[0].value >= 0.0)) return;
-    std::ostringstream m;
-    const ContactGeometry g = contact_at(f, worst[0].x, law.at(worst[0].x));
-    m << "the " << (f.kind == Follower::Kind::flat ? "flat face" : "roller") << " cannot follow this law: at cam angle "
-      << worst[0].x * 180.0 / pi << " deg the contour's radius of curvature is " << mm(g.curvature_radius);
-    if (f.kind == Follower::Kind::flat) {
-      m << " (undercut); raise the base radius or soften the law";
-      throw NodeError("follower", m.str());
+  // The refusal names the follower and the smallest base radius that works with this lift law
+  // (grown by 1.5x, then bisected to 0.001 mm; a base radius the follower cannot sit on counts as
+  // too small).
+  static void refuse_undercut(const CamLaw& law, const Follower& f, bool clockwise, const std::vector<double>& knots,
+                              int samples, long& evaluations) {
+    const double r0 = law.base_radius();
+    const numerics::Extremum worst = worst_margin(law, f, clockwise, r0, knots, samples, evaluations);
+    if (!(worst.value >= 0.0)) return;
+    const auto works = [&](double r) {
+      try {
+        return !(worst_margin(law, f, clockwise, r, knots, samples, evaluations).value >= 0.0);
+      } catch (const NodeError&) {
+        return false;
+      }
+    };
+    std::optional<double> smallest;
+    double low = r0, high = r0 * 1.5;
+    while (high < 1000.0 * r0 && !works(high)) low = high, high *= 1.5;
+    if (high < 1000.0 * r0) {
+      while (high - low > 1e-6) {
+        const double mid = 0.5 * (low + high);
+        (works(mid) ? high : low) = mid;
+      }
+      smallest = high;
     }
-    m << " (the pitch curve's radius there is not above the roller's: undercut); use a smaller roller or a larger base radius";
-    throw NodeError("roller_radius", m.str());
+    std::ostringstream m;
+    const FollowerContact g = f.contact(worst.x, law.at(worst.x), r0, clockwise);
+    m << "the " << f.named() << " cannot follow this law: at cam angle " << worst.x * 180.0 / pi
+      << " deg the contour's radius of curvature is " << mm(g.curvature_radius);
+    if (f.roller_radius() > 0.0)
+      m << " (the pitch curve's radius there is not above the roller's: undercut)";
+    else
+      m << " (undercut)";
+    if (smallest)
+      m << "; with this lift the cam's base_radius must be at least " << mm(*smallest) << " for this follower (it is "
+        << mm(r0) << ")";
+    m << (f.roller_radius() > 0.0 ? "; or use a smaller roller, or soften the law" : "; or soften the law");
+    throw NodeError(f.roller_radius() > 0.0 ? "roller_radius" : "follower", m.str());
   }
 
   NodeInfo info_;

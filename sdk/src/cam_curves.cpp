@@ -68,9 +68,25 @@ std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift
   return events_at_lift([&](double phi) { return law.at(phi).lift; }, law.knots(), checking_lift, samples, evaluations);
 }
 
+double nose_angle(const std::function<double(double)>& lift, std::span<const double> knots, int samples, long& evaluations) {
+  numerics::SmoothPieces pieces([&](double phi, double* v, double*) { v[0] = lift(phi); }, 1, knots, samples);
+  const numerics::Extremum top = pieces.maximum(0);
+  double nose = top.x;
+  if (top.value > 0.0) {
+    // A plateau (a dwell at full lift) or a second equal maximum: the middle of where the lift is
+    // within 1e-13 of the top (above the interpolation's rounding), when that spans more than 1e-3 rad (a
+    // smooth top, even one as flat as a cubic's, is far narrower, and its maximum is the search's
+    // own). Flanks that leave a dwell as flat as a cubic widen it by some 1e-5 rad, unevenly.
+    const std::vector<double> near = pieces.crossings(0, top.value * (1.0 - 1e-13));
+    if (near.size() >= 2 && near.back() - near.front() > 1e-3) nose = 0.5 * (near.front() + near.back());
+  }
+  evaluations += pieces.work().evaluations;
+  return nose;
+}
+
 Table events_table(const std::function<double(double)>& lift, std::span<const double> knots,
                    const std::vector<double>& checking_lifts, int samples, long& evaluations,
-                   std::optional<double> nose_timing) {
+                   std::optional<double> nose_timing, double nose) {
   Table t;
   t.axis = {"checking_lift", dim::length, {}, "mm"};
   const char* names[8] = {"opening",       "closing",       "duration",       "centreline",
@@ -90,16 +106,16 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
     }
     if (!e) continue;
     t.axis.values.push_back(h);
-    const double cam[4] = {e->opening, e->closing, e->duration, e->centreline};
+    const double cam[4] = {e->opening, e->closing, e->duration, e->centreline - nose};
     for (std::size_t k = 0; k < 4; ++k) {
       t.channels[k].values.push_back(cam[k]);
       t.channels[k + 4].values.push_back(2.0 * cam[k]);
     }
     if (nose_timing) {
       // Crank angle after the overlap TDC: the nose's, plus twice the cam angle from the nose.
-      t.channels[8].values.push_back(*nose_timing + 2.0 * e->opening);
-      t.channels[9].values.push_back(*nose_timing + 2.0 * e->closing);
-      t.channels[10].values.push_back(*nose_timing + 2.0 * e->centreline);
+      t.channels[8].values.push_back(*nose_timing + 2.0 * (e->opening - nose));
+      t.channels[9].values.push_back(*nose_timing + 2.0 * (e->closing - nose));
+      t.channels[10].values.push_back(*nose_timing + 2.0 * (e->centreline - nose));
     }
   }
   if (pieces) evaluations += pieces->work().evaluations;
@@ -122,9 +138,9 @@ std::string about(double after_tdc, double dead_centre, const char* centre) {
 
 }  // namespace
 
-std::string quote_events(const LiftEvents& e, double nose_timing) {
+std::string quote_events(const LiftEvents& e, double nose_timing, double nose) {
   const double pi = std::numbers::pi;
-  const double opening = nose_timing + 2.0 * e.opening, closing = nose_timing + 2.0 * e.closing;
+  const double opening = nose_timing + 2.0 * (e.opening - nose), closing = nose_timing + 2.0 * (e.closing - nose);
   // An intake opens about the overlap TDC and closes about the BDC after it; an exhaust opens about
   // the BDC before that TDC and closes about the TDC.
   if (nose_timing >= 0.0) return "intake: opens " + about(opening, 0.0, "TDC") + ", closes " + about(closing, pi, "BDC");
@@ -142,9 +158,10 @@ ParamSpec checking_lift_param(const std::string& whose) {
 
 ParamSpec nose_timing_param() {
   return ParamSpec::number("nose_timing", dim::angle,
-                           "installed lobe: crank angle of the nose after the overlap TDC (intake positive, about 100 "
-                           "to 115 deg; exhaust negative); the events table then adds opening_atdc, closing_atdc, "
-                           "centreline_atdc and a note quotes the events from TDC and BDC",
+                           "installed lobe: crank angle of the nose (the maximum lift, also on an asymmetric lobe) "
+                           "after the overlap TDC (intake positive, about 100 to 115 deg; exhaust negative); the events "
+                           "table then adds opening_atdc, closing_atdc, centreline_atdc and a note quotes the events "
+                           "from TDC and BDC",
                            "deg")
       .optional()
       .at_least(-2.0 * std::numbers::pi)
@@ -160,12 +177,20 @@ std::vector<PortSpec> lift_event_ports(const std::string& whose) {
       PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg"),
       PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg"),
       PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg"),
-      PortSpec::scalar("centreline", dim::angle, "halfway between opening and closing (cam angle from the nose)", "deg"),
+      PortSpec::scalar("centreline", dim::angle,
+                       "halfway between opening and closing at checking_lift, cam angle from the nose (0 on a symmetric "
+                       "lobe)",
+                       "deg"),
+      PortSpec::scalar("nose_angle", dim::angle,
+                       "cam angle of the maximum " + whose + " lift (the nose), from the law's zero (the svaj axis)", "deg"),
+      PortSpec::scalar("event_centre", dim::angle,
+                       "halfway between the ends of the lift event (seat to seat), cam angle from the nose", "deg"),
   };
 }
 
 bool lift_events_wanted(const EvalContext& ctx) {
-  for (const char* port : {"events", "opening_angle", "closing_angle", "duration", "crank_duration", "centreline"})
+  for (const char* port : {"events", "opening_angle", "closing_angle", "duration", "crank_duration", "centreline",
+                           "nose_angle", "event_centre"})
     if (ctx.wanted(port)) return true;
   return false;
 }
@@ -179,11 +204,14 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
   // The last row (0) is seat to seat: the event's ends. The first, when reached, is the checking
   // lift's: the scalars are read from it (one root search each, not two).
   const std::vector<double> lifts{checking_lift, checking_lift_0050_in, 0.0};
-  Table table = events_table(lift, knots, lifts, samples, evaluations, nose_timing);
+  const double nose = nose_angle(lift, knots, samples, evaluations);
+  out.set_scalar("nose_angle", nose);
+  out.set_scalar("event_centre", 0.5 * (knots.front() + knots.back()) - nose);
+  Table table = events_table(lift, knots, lifts, samples, evaluations, nose_timing, nose);
   std::optional<LiftEvents> e;
   if (!table.axis.values.empty() && table.axis.values.front() == checking_lift)
     e = LiftEvents{table.channels[0].values[0], table.channels[1].values[0], table.channels[2].values[0],
-                   table.channels[3].values[0]};
+                   table.channels[3].values[0]};  // centreline from the nose (opening, closing from the law's zero)
   if (ctx.wanted("events")) out.set("events", Value::table(std::move(table)));
   if (!e) {
     char m[240];
@@ -198,11 +226,11 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
   out.set_scalar("closing_angle", e->closing);
   out.set_scalar("duration", e->duration);
   out.set_scalar("crank_duration", 2.0 * e->duration);
-  out.set_scalar("centreline", e->centreline);
+  out.set_scalar("centreline", e->centreline);  // the table's, already from the nose
   if (nose_timing) {
     char at[64];
     std::snprintf(at, sizeof at, " at %g mm %s lift", checking_lift * 1e3, whose.c_str());
-    out.note(quote_events(*e, *nose_timing) + at);
+    out.note(quote_events(*e, *nose_timing, nose) + at);
   }
 }
 

@@ -4,6 +4,7 @@
 // in a plugin work whatever the plugin's visibility settings.
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/domain/fit.hpp>
+#include <mechgraph/domain/follower.hpp>
 #include <mechgraph/domain/spring.hpp>
 #include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
@@ -18,6 +19,7 @@ EvalContext::~EvalContext() = default;
 NodeType::~NodeType() = default;
 CamLaw::~CamLaw() = default;
 Fit::~Fit() = default;
+Follower::~Follower() = default;
 Spring::~Spring() = default;
 SpringModel::~SpringModel() = default;
 JointPlay::~JointPlay() = default;

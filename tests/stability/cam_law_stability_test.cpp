@@ -81,10 +81,10 @@ TEST_CASE("stability: shapes out of reach are refused naming the parameter and t
       {"nodes:\n  c: { type: cam.kurz, params: { max_lift: 8 mm, base_radius: 17 mm, action_angle: 130 deg, "
        "accel_angle: 65 deg } }\noutputs: [c.max_lift]\n",
        "accel_angle"},
-      // A base circle far too small for the lift: the flat follower undercuts.
-      {"nodes:\n  c: { type: cam.kurz, params: { max_lift: 8 mm, base_radius: 0.5 mm, action_angle: 130 deg, "
-       "accel_angle: 18 deg } }\noutputs: [c.max_lift]\n",
-       "base_radius"},
+      // A base circle far too small for the lift: the flat follower undercuts (refused by the pair).
+      {"nodes:\n  k: { type: cam.kurz, params: { max_lift: 8 mm, base_radius: 0.5 mm, action_angle: 130 deg, "
+       "accel_angle: 18 deg } }\n  c: { type: cam.contour, inputs: { cam: k.law } }\noutputs: [c.max_pressure_angle]\n",
+       "base_radius must be at least"},
       // An action angle a hair below a full turn leaves no base circle to rest on.
       {"nodes:\n  c: { type: cam.three_arc, params: { max_lift: 8 mm, base_radius: 17 mm, action_angle: 359.999 deg, "
        "accel_angle: 18 deg } }\noutputs: [c.max_lift]\n",

@@ -15,6 +15,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <optional>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -263,14 +265,18 @@ TEST_CASE("miss-finder table: the polydyne whose curvature minima straddle its n
     if (first == 0.0) first = rho;
     CHECK_THAT(rho, Catch::Matchers::WithinRel(first, 1e-12));
   }
-  // At base_radius 35 mm the same law is undercut by 0.051 mm: refused, naming the base radius.
+  // At base_radius 35 mm the same law is undercut by 0.051 mm under a flat face: the law is made
+  // with that negative radius, and cam.contour refuses the pair, naming the follower and the radius.
+  const RunResult small = run_yaml(base + "16 } }\noutputs: [c.min_curvature_radius]\n", project_registry(),
+                                   {parse_override("c.base_radius=35mm")});
+  CHECK_THAT(scalar_output(small, "c.min_curvature_radius"), Catch::Matchers::WithinAbs(-0.05075e-3, 0.00005e-3));
   try {
-    run_yaml(base + "16 } }\noutputs: [c.min_curvature_radius]\n", project_registry(),
-             {parse_override("c.base_radius=35mm")});
-    FAIL("an undercut cam ran");
+    run_yaml(base + "16 } }\n  k: { type: cam.contour, inputs: { cam: c.law } }\noutputs: [k.max_pressure_angle]\n",
+             project_registry(), {parse_override("c.base_radius=35mm")});
+    FAIL("an undercut pair ran");
   } catch (const EvaluationError& e) {
-    CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("undercut"));
-    CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("-0.0507"));
+    CHECK_THAT(std::string(e.what()), Catch::Matchers::Contains("undercut") && Catch::Matchers::Contains("follower.flat") &&
+                                          Catch::Matchers::Contains("-0.0507"));
   }
 }
 
@@ -304,10 +310,10 @@ TEST_CASE("miss-finder table: valve opening with lash on a ramped quartic table"
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("undercut refused alike whether the curvature radius is read or only proven positive", "[stability][misses]") {
-  // A node whose min_curvature_radius nobody reads proves the flat contour free of undercut by a
-  // bound on its monotone runs (summarize(..., false)); it must refuse exactly the base radii the
-  // measured minimum refuses, here across each law's limit (polydyne 35.0513 mm and others).
+TEST_CASE("undercut: the pair refuses exactly where the measured flat-tappet curvature is not positive", "[stability][misses]") {
+  // The cam node only proves or measures the flat contour's curvature; cam.contour refuses the pair
+  // (flat tappet) by its own search. Both must agree across each law's limit (polydyne 35.0513 mm
+  // and others).
   const std::vector<std::pair<std::string, std::vector<double>>> laws = {
       {"type: cam.polydyne, params: { max_lift: 10 mm, action_angle: 120 deg, exponents: [2, 6, 10, 14, 18], base_radius: ",
        {34.0, 35.0, 35.05, 35.06, 35.2, 36.0, 40.0}},
@@ -319,17 +325,22 @@ TEST_CASE("undercut refused alike whether the curvature radius is read or only p
   for (const auto& [law, radii] : laws)
     for (double r0 : radii) {
       INFO(law << r0 << " mm");
-      auto runs = [&](const std::string& outputs) {
-        try {
-          run_yaml("nodes:\n  c: { " + law + std::to_string(r0) + " mm } }\noutputs: [" + outputs + "]\n", project_registry());
-          return true;
-        } catch (const EvaluationError& e) {
-          return false;
-        }
-      };
-      const bool measured = runs("c.min_curvature_radius"), proven = runs("c.max_lift, c.law");
-      CHECK(measured == proven);
-      ++(measured ? accepted : refused);
+      const std::string cam = "nodes:\n  c: { " + law + std::to_string(r0) + " mm } }\n";
+      std::optional<double> rho;
+      try {
+        rho = scalar_output(run_yaml(cam + "outputs: [c.min_curvature_radius]\n", project_registry()), "c.min_curvature_radius");
+      } catch (const EvaluationError&) {
+        // a design the law itself refuses (a three-arc cam without solution)
+      }
+      bool pair_runs = true;
+      try {
+        run_yaml(cam + "  k: { type: cam.contour, inputs: { cam: c.law } }\noutputs: [k.max_pressure_angle]\n",
+                 project_registry());
+      } catch (const EvaluationError&) {
+        pair_runs = false;
+      }
+      CHECK(pair_runs == (rho && *rho > 0.0));
+      ++(pair_runs ? accepted : refused);
     }
   CHECK(refused >= 6);
   CHECK(accepted >= 9);

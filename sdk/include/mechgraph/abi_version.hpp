@@ -11,4 +11,5 @@
 //    carries the SDK version; DomainObject::contract_problem (the host checks interface contracts);
 //    ParamSpec::example_value; out-of-line destructors (key functions) for every shared interface.
 // 7: CamLaw::monotone_breaks and CamLaw::lift_integrals (closed-form queries).
-#define MECHGRAPH_PLUGIN_ABI_VERSION 7
+// 8: the Follower domain interface (mechgraph/domain/follower.hpp); cam.contour takes a follower.
+#define MECHGRAPH_PLUGIN_ABI_VERSION 8

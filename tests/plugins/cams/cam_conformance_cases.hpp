@@ -154,9 +154,6 @@ inline const std::vector<Scenario>& conformance_scenarios() {
     v.push_back(make("huge_lift_1m", 1.0, 130.0 * deg, 10.0));
     v.push_back(make("tiny_angle_0.5deg", 1e-6, 0.5 * deg, 1.0));
     v.push_back(make("huge_angle_350deg", 9.0 * mm, 350.0 * deg, 17.0 * mm));
-    Scenario undercut = make("undercut_0.5deg_9mm", 9.0 * mm, 0.5 * deg, 17.0 * mm);
-    undercut.must_fail = true;
-    v.push_back(undercut);
     Scenario ramp_too_high = nominal;
     ramp_too_high.name = "ramp_taller_than_lift";
     ramp_too_high.ramp = {RampType::constant_velocity, 9.0 * mm, 20.0 * deg};

@@ -6,6 +6,8 @@
 #include "contour.hpp"
 #include "rise_law.hpp"
 
+#include <followers/follower_types.hpp>
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -63,22 +65,19 @@ TEST_CASE("flat-face contour: base circle at r0, and its support function is r0 
 
 TEST_CASE("the chord error holds between every pair of points, and the point count follows tol^-1/2") {
   const auto law = cycloidal(10e-3);
-  Follower f;
-  f.kind = Follower::Kind::roller;
-  f.base_radius = 40e-3;
-  f.roller_radius = 10e-3;
-  f.offset = 3e-3;
+  const auto roller = followers::make_roller(10e-3, 3e-3);
+  const auto contact_at = [&](double phi, const LiftDerivatives& d) { return roller->contact(phi, d, 40e-3, false); };
   std::size_t previous = 0;
   for (double tol : {1e-4, 1e-5, 1e-6}) {
     long evaluations = 0;
-    const ContourPoints c = trace_contour(*law, f, tol, evaluations);
+    const ContourPoints c = trace_contour(*law, *roller, false, tol, evaluations);
     double worst = 0.0;
     for (std::size_t i = 0; i < c.phi.size(); ++i) {
       const std::size_t j = (i + 1) % c.phi.size();
       const double b = j == 0 ? c.phi[0] + 2.0 * pi : c.phi[j];
       for (int k = 1; k < 16; ++k) {
         const double phi = c.phi[i] + (b - c.phi[i]) * k / 16.0;
-        const ContactGeometry g = contact_at(f, phi, law->at(phi));
+        const FollowerContact g = contact_at(phi, law->at(phi));
         worst = std::max(worst, distance_to_segment(g.x, g.y, c.points[i].x, c.points[i].y, c.points[j].x, c.points[j].y));
         worst = std::max(worst, distance_to_segment(g.pitch_x, g.pitch_y, c.points[i].pitch_x, c.points[i].pitch_y,
                                                     c.points[j].pitch_x, c.points[j].pitch_y));
@@ -122,15 +121,12 @@ TEST_CASE("roller contour: the roller centred on the pitch curve touches the con
 
 TEST_CASE("pressure angle and radius of curvature agree with the contour's own geometry (offset roller)") {
   const auto law = cycloidal();
-  Follower f;
-  f.kind = Follower::Kind::roller;
-  f.base_radius = 40e-3;
-  f.roller_radius = 9e-3;
-  f.offset = -2.5e-3;
+  const auto roller = followers::make_roller(9e-3, -2.5e-3);
+  const auto contact_at = [&](double phi, const LiftDerivatives& d) { return roller->contact(phi, d, 40e-3, false); };
   const double h = 1e-5;
   for (double phi = -60 * deg; phi <= 60 * deg; phi += 7 * deg) {
-    const ContactGeometry g = contact_at(f, phi, law->at(phi));
-    const ContactGeometry a = contact_at(f, phi - h, law->at(phi - h)), b = contact_at(f, phi + h, law->at(phi + h));
+    const FollowerContact g = contact_at(phi, law->at(phi));
+    const FollowerContact a = contact_at(phi - h, law->at(phi - h)), b = contact_at(phi + h, law->at(phi + h));
     // The contact normal is perpendicular to the pitch curve's tangent; the pressure angle is the
     // angle between that normal and the follower axis u.
     const double tx = b.pitch_x - a.pitch_x, ty = b.pitch_y - a.pitch_y;
@@ -148,7 +144,7 @@ TEST_CASE("pressure angle and radius of curvature agree with the contour's own g
   // Norton's formula by hand at one angle: tan(alpha) = (h' - e)/(s0 + h).
   const LiftDerivatives d = law->at(-30 * deg);
   const double s0 = std::sqrt(49e-3 * 49e-3 - 2.5e-3 * 2.5e-3);
-  CHECK_THAT(contact_at(f, -30 * deg, d).pressure_angle,
+  CHECK_THAT(contact_at(-30 * deg, d).pressure_angle,
              Catch::Matchers::WithinAbs(std::atan((d.velocity + 2.5e-3) / (s0 + d.lift)), 1e-15));
 }
 

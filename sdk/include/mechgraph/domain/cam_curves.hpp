@@ -40,25 +40,37 @@ std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& li
 /// The same for a cam law (its event and breakpoints as knots).
 std::optional<LiftEvents> events_at_lift(const CamLaw& law, double checking_lift, int samples, long& evaluations);
 
+/// The nose: the cam angle of the maximum lift (from the law's zero). Where the maximum is a
+/// plateau (a dwell at full lift) or is reached more than once, the middle between the first and
+/// the last angle at which the lift is within 1e-13 of its maximum, when they lie more than 1e-3 rad
+/// apart. A symmetric lobe's is 0; an
+/// asymmetric one's is not (a steep opening and a slow closing put it before the event's middle).
+double nose_angle(const std::function<double(double)>& lift, std::span<const double> knots, int samples, long& evaluations);
+
 /// One row per checking lift the lift reaches (in the order given; lifts it never reaches are
-/// left out; 0 stands for the seat: the ends of the knots, i.e. of the event): axis checking_lift [m]; channels opening, closing, duration, centreline (cam angle,
-/// rad) and crank_opening, crank_closing, crank_duration, crank_centreline (crank angle, rad).
+/// left out; 0 stands for the seat: the ends of the knots, i.e. of the event): axis checking_lift
+/// [m]; channels opening, closing (cam angle from the law's zero, as the svaj axis), duration,
+/// centreline (cam angle from the nose `nose`) and crank_opening, crank_closing, crank_duration,
+/// crank_centreline (crank angle, twice those).
 /// With `nose_timing` (the installed lobe: the crank angle of its nose after the overlap TDC),
-/// also opening_atdc, closing_atdc, centreline_atdc: crank angle after that TDC, nose_timing + 2 phi.
+/// also opening_atdc, closing_atdc, centreline_atdc: crank angle after that TDC,
+/// nose_timing + 2 (phi - nose).
 Table events_table(const std::function<double(double)>& lift, std::span<const double> knots,
                    const std::vector<double>& checking_lifts, int samples, long& evaluations,
-                   std::optional<double> nose_timing = std::nullopt);
+                   std::optional<double> nose_timing = std::nullopt, double nose = 0.0);
 
-/// Events quoted the engine way from the installed lobe's crank angles after the overlap TDC:
+/// Events quoted the engine way from the installed lobe's crank angles after the overlap TDC
+/// (the nose, at cam angle `nose`, stands at crank angle nose_timing):
 /// a lobe whose nose stands after that TDC (nose_timing > 0) is an intake: "opens 12.0 deg BTDC,
 /// closes 52.0 deg ABDC"; one before it an exhaust: "opens 52.0 deg BBDC, closes 12.0 deg ATDC".
-std::string quote_events(const LiftEvents& e, double nose_timing);
+std::string quote_events(const LiftEvents& e, double nose_timing, double nose = 0.0);
 
 // The events every node with a lift curve gives (built-in cams, valve motion): a `checking_lift`
 // parameter (default 1 mm), an optional `nose_timing` parameter, and the ports below.
 ParamSpec checking_lift_param(const std::string& whose);
 ParamSpec nose_timing_param();
-/// The events table and the scalars opening_angle, closing_angle, duration, crank_duration, centreline.
+/// The events table and the scalars opening_angle, closing_angle, duration, crank_duration,
+/// centreline (from the nose), nose_angle and event_centre (seat to seat, from the nose).
 std::vector<PortSpec> lift_event_ports(const std::string& whose);
 /// Whether anything reads one of lift_event_ports (they cost a root search each: skipped otherwise).
 bool lift_events_wanted(const EvalContext& ctx);

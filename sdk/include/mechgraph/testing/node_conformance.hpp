@@ -1,7 +1,7 @@
 #pragma once
 // The node conformance suite: any node type, evaluated with its own declared defaults (plus the
 // values an author adds), against the node contract of mechgraph/node.hpp, then every domain object
-// it outputs against its interface's suite (cam_law, spring_model, spring, fit, joint_play).
+// it outputs against its interface's suite (cam_law, spring_model, spring, fit, joint_play, follower).
 //
 //   mechgraph::testing::NodeCheckOptions options;
 //   options.values = {{"max_lift", "9 mm"}};                  // scene text, as in a scene
@@ -18,6 +18,7 @@
 #include <mechgraph/node.hpp>
 #include <mechgraph/testing/cam_law_conformance.hpp>
 #include <mechgraph/testing/domain_conformance.hpp>
+#include <mechgraph/testing/follower_conformance.hpp>
 #include <mechgraph/testing/node_harness.hpp>
 #include <mechgraph/testing/report.hpp>
 #include <mechgraph/units.hpp>
@@ -126,6 +127,7 @@ inline Report check_domain_object(const DomainObject& object, const std::string&
   if (const auto* law = dynamic_cast<const CamLaw*>(&object)) return check_cam_law(*law, suite, options.cam_law);
   if (const auto* model = dynamic_cast<const SpringModel*>(&object)) return check_spring_model(*model, suite);
   if (const auto* spring = dynamic_cast<const Spring*>(&object)) return check_spring(*spring, suite);
+  if (const auto* follower = dynamic_cast<const Follower*>(&object)) return check_follower_on_reference(*follower, suite);
   if (const auto* fit = dynamic_cast<const Fit*>(&object)) return check_fit(*fit, suite);
   if (const auto* play = dynamic_cast<const JointPlay*>(&object)) return check_joint_play(*play, suite);
   r.skip(suite, "interface suite", "no conformance suite for kind '" + std::string(object.kind()) + "'");
