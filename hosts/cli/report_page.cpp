@@ -409,9 +409,9 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
   for (std::size_t t = 0; t < graph.reports.size(); ++t) {
     const ResolvedReport& r = graph.reports[t];
     const std::string csv = "table_" + std::to_string(t + 1) + ".csv";
-    write_report_csv(dir / csv, r, result, graph.display_units);
+    write_report_csv(dir / csv, r, result, graph);
     html << "<h2>" << html_text(r.title.empty() ? "Table " + std::to_string(t + 1) : r.title) << "</h2>\n";
-    html_table(html, report_cells(r, result, graph.display_units), csv);
+    html_table(html, report_cells(r, result, graph), csv);
   }
 
   std::vector<const OutputValue*> small;
