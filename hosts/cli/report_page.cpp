@@ -93,7 +93,10 @@ Column shown(const std::string& title, const Dimension& d, const std::vector<dou
   if (c.unit.empty()) c.unit = d.si_unit() == "1" ? std::string() : d.si_unit();
   c.values.reserve(si.size());
   for (double v : si) c.values.push_back(convert ? to_unit(v, d, c.unit) : v);
-  c.unit = with_angle(c.unit, angle_reference);
+  // Which angle: for an angle axis (cam angle, crank angle ...) and for a rate per angle (mm/deg);
+  // an angle that is a result (a pressure angle) is just degrees.
+  const bool angle_axis = d == dim::angle && (title.rfind("cam", 0) == 0 || title.rfind("crank", 0) == 0);
+  if (angle_axis || d.angle < 0) c.unit = with_angle(c.unit, angle_reference);
   c.name = spoken(title) + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
   return c;
 }
@@ -201,7 +204,7 @@ void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
     for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
   const double top = 0.93, bottom = 0.08, gap = 0.012, height = (top - bottom) / static_cast<double>(panels);
   s << "set multiplot title " << gnuplot_string(f.title) << "\nset xrange [" << lo << ":" << hi << "]\n"
-    << "set lmargin at screen 0.11\nset rmargin at screen 0.80\n";
+    << "set lmargin at screen 0.11\nset rmargin at screen 0.76\n";
   for (std::size_t p = 0; p < panels; ++p) {
     s << "set tmargin at screen " << top - height * static_cast<double>(p) << "\nset bmargin at screen "
       << top - height * static_cast<double>(p + 1) + gap << "\n";
@@ -239,7 +242,8 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
     s << std::setprecision(17) << "set terminal svg size 860," << height << " dynamic noenhanced font 'sans,11' background rgb 'white'\n"
       << "set output " << gnuplot_string(svg) << "\n"
       << "set datafile separator ','\nset datafile missing ''\n"
-      << "set xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel " << gnuplot_string(f.ylabel) << "\n"
+      << "set xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel " << gnuplot_string(f.ylabel)
+      << (f.ylabel.size() > 40 ? " font ',9'" : "") << "\n"
       << "set grid\nset key outside right top\n";
     if (f.kind != Figure::Kind::panel) s << "set title " << gnuplot_string(f.title) << "\n";
     if (f.kind == Figure::Kind::bars) {
@@ -406,7 +410,9 @@ Figure svaj_panel(const Graph& graph, const RunResult& result, const std::vector
   std::vector<std::string> nodes;
   std::string who;
   for (std::size_t k = 0; k < outs.size(); ++k) who += (k ? ", " : "") + legend(node_of(*outs[k]));
-  f.title = "Lift, velocity, acceleration and jerk of " + who;
+  std::string ids;
+  for (std::size_t k = 0; k < outs.size(); ++k) ids += (k ? ", " : "") + node_of(*outs[k]);
+  f.title = "Lift, velocity, acceleration and jerk of " + who + (who == ids ? "" : " (" + ids + ")");
   std::vector<double> timing;  // rad, per node, when every node has one
   for (const OutputValue* o : outs) {
     const auto n = graph.find(node_of(*o));
@@ -558,7 +564,7 @@ Figure contour_figure(const OutputValue& o, const DisplayUnits& units) {
     cy.values.push_back(cy.values.front());
     f.xlabel = cx.name;
     f.ylabel = cy.name;
-    f.curve_titles.push_back(prefix.empty() ? "contour" : spoken(prefix));
+    f.curve_titles.push_back(prefix.empty() || prefix == "contour" ? "contour" : spoken(prefix) + " curve");
     f.curve_styles.push_back(prefix.empty() || prefix == "contour" ? "with lines lw 2 lc rgb '#204080'" : "with lines lw 1 dt 3 lc rgb '#808080'");
     f.curves.emplace_back(std::move(cx), std::move(cy));
   }
@@ -621,9 +627,10 @@ Figure contour_figure(const OutputValue& o, const DisplayUnits& units) {
     follower = circle(PX[far], PY[far], roller, 90);
     follower.first.name = "follower x [" + unit + "]";
     follower.second.name = "follower y [" + unit + "]";
-    const double r = std::hypot(PX[far], PY[far]);
-    const double vx = PX[far] / r, vy = PY[far] / r;
-    stem = segment("stem", {PX[far], PX[far] + vx * 0.8 * r_base}, {PY[far], PY[far] + vy * 0.8 * r_base});
+    // Its centre marked (the axis of an offset follower does not pass through the cam's centre,
+    // so no stem is drawn along a guess).
+    stem = segment("roller centre", {PX[far] - 0.1 * roller, PX[far] + 0.1 * roller, PX[far], PX[far], PX[far]},
+                   {PY[far], PY[far], PY[far], PY[far] - 0.1 * roller, PY[far] + 0.1 * roller});
   } else {
     // A flat face through the nose, square to the follower's axis, and its stem.
     const double half = 0.6 * r_base;
@@ -829,8 +836,8 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         if (channel.name == "crank_angle" || is_curvature_radius(channel.name) || shared_dimension(channel)) continue;
         Figure f;
         f.name = file_safe(stem + "_" + channel.name);
-        f.title = spoken(port) + ": " + spoken(channel.name);
-        f.title = spoken(channel.name) + " of " + who(outs);
+        const std::string all = who(outs);
+        f.title = spoken(channel.name) + (all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
         std::vector<std::string> nodes;
         for (const OutputValue* o : outs) {
           const Table& t = o->value.as_table();
@@ -869,12 +876,12 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
           f.curves.emplace_back(std::move(x), std::move(y));
         }
         if (f.curves.empty()) continue;
-        // The y axis names what is drawn: the channels when they are few, else the quantity.
-        const std::string what = spoken_names.size() <= 2 ? names : quantity(dims[g]);
+        // The y axis names what is drawn: the channels, else (too many to read) the quantity.
+        const std::string what = names.size() <= 60 ? names : quantity(dims[g]);
         f.ylabel = f.ylabel.empty() ? what : what + " [" + f.ylabel + "]";
         const std::string name = legend(node_of(*o));
         f.title = names + " of " + name + (name == node_of(*o) ? "" : " (" + node_of(*o) + ")");
-        f.name = file_safe(o->label + "_" + t.channels.front().name + "_" + std::to_string(g));
+        f.name = file_safe(o->label + "_" + f.curve_titles.front());
         figures.push_back(std::move(f));
       }
     }

@@ -117,6 +117,21 @@ std::string unit_with_reference(const std::string& unit, const std::string& refe
   return unit + " (" + reference + ")";
 }
 
+std::string reader_unit(const Dimension& d) {
+  // A cam's lift and its derivatives over cam angle, lengths, angles and areas the way a drawing
+  // gives them; everything else stays SI (N, m/s, Hz ...).
+  const Dimension per_angle[] = {dim::length / dim::angle, dim::length / dim::angle.pow(2), dim::length / dim::angle.pow(3)};
+  const char* per_angle_unit[] = {"mm/deg", "mm/deg^2", "mm/deg^3"};
+  for (std::size_t n = 0; n < 3; ++n)
+    if (d == per_angle[n]) return per_angle_unit[n];
+  if (d == dim::length) return "mm";
+  if (d == dim::angle) return "deg";
+  if (d == dim::area) return "mm^2";
+  if (d == dim::area * dim::angle) return "mm^2*deg";
+  if (d == dim::area * dim::time) return "mm^2*s";
+  return {};
+}
+
 std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result, const Graph& graph) {
   const DisplayUnits& units = graph.display_units;
   std::vector<std::vector<std::string>> rows;
@@ -128,10 +143,14 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
   // never stand one under the other.
   std::vector<std::pair<Dimension, std::string>> chosen;
   auto unit_of = [&](const OutputValue& o, const std::string& row_unit) {
-    if (!row_unit.empty()) return row_unit;
-    for (const auto& [d, u] : chosen)
-      if (d == o.dimension) return u;
+    const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
+    if (!row_unit.empty()) {
+      if (known == chosen.end()) chosen.emplace_back(o.dimension, row_unit);
+      return row_unit;
+    }
+    if (known != chosen.end()) return known->second;
     std::string u = units.unit_for(o.dimension, o.display_unit);
+    if (u.empty()) u = reader_unit(o.dimension);
     chosen.emplace_back(o.dimension, u);
     return u;
   };
