@@ -66,6 +66,7 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
     return ok;
   const std::filesystem::path dir = vm["out"].as<std::string>();
   check_results_folder(dir, vm.count("force") > 0);
+  if (vm.count("pdf")) require_pdf_printer();
   const PluginRegistry registry = load_plugins(g);
   const RunInputs inputs{vm["scene"].as<std::string>(),
                          vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};

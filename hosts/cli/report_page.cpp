@@ -208,7 +208,7 @@ void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
   for (std::size_t p = 0; p < panels; ++p) {
     s << "set tmargin at screen " << top - height * static_cast<double>(p) << "\nset bmargin at screen "
       << top - height * static_cast<double>(p + 1) + gap << "\n";
-    s << "unset arrow\nunset label\nset ylabel " << gnuplot_string(f.panel_ylabels[p]) << "\n";
+    s << "unset arrow\nunset label\nset ylabel " << gnuplot_string(f.panel_ylabels[p]) << " font ',9'\n";
     if (p + 1 < panels) s << "set format x ''\nunset xlabel\n";
     else s << "set format x '%g'\nset xlabel " << gnuplot_string(f.xlabel) << "\n";
     if (p == 0) s << "set key outside right top\n";
@@ -912,7 +912,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
        << "</title>\n<style>\nbody{font-family:sans-serif;margin:2em auto;max-width:960px;color:#222}\n"
           "table{border-collapse:collapse;margin:0.5em 0;font-size:90%}td,th{border:1px solid #bbb;padding:2px 6px}"
           "th{background:#eef;font-weight:600;vertical-align:bottom}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
-          "table.narrow th{font-size:85%;max-width:7em}.u{font-weight:normal;color:#555}.scroll{max-width:100%;overflow-x:auto}\n"
+          "table.narrow th{font-size:85%;max-width:7em}.u{font-weight:normal;color:#555;white-space:nowrap}.scroll{max-width:100%;overflow-x:auto}\n"
           ".csv{color:#666;font-size:90%}figure{margin:1em 0;break-inside:avoid}svg{max-width:100%;height:auto}\n"
           "@page{size:A4;margin:12mm}@media print{body{margin:0;max-width:none;font-size:10pt}h2{break-after:avoid}"
           "table{font-size:8pt}}\n</style></head><body>\n"

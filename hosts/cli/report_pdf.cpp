@@ -25,15 +25,22 @@ std::string log_excerpt(const std::filesystem::path& log) {
   return utf8_sanitized(text);
 }
 
-}  // namespace
-
-void print_report_pdf(const std::filesystem::path& dir) {
-  namespace fs = std::filesystem;
-  std::optional<fs::path> chromium = find_program("chromium");
+std::filesystem::path pdf_printer() {
+  std::optional<std::filesystem::path> chromium = find_program("chromium");
   if (!chromium) chromium = find_program("chromium-browser");
   if (!chromium)
     throw IoError("mechgraph report --pdf prints the page with chromium, which is not installed (apt-get install chromium); "
-                  "the HTML report was not written either");
+                  "without --pdf the HTML report needs only gnuplot");
+  return *chromium;
+}
+
+}  // namespace
+
+void require_pdf_printer() { (void)pdf_printer(); }
+
+void print_report_pdf(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  const fs::path chromium = pdf_printer();
   const fs::path page = fs::absolute(dir / "report.html");
   const fs::path pdf = fs::absolute(dir / "report.pdf");
   // A profile of its own, outside the report folder, removed afterwards.
@@ -53,7 +60,7 @@ void print_report_pdf(const std::filesystem::path& dir) {
                                       "--user-data-dir=" + profile.string(),
                                       "--print-to-pdf=" + pdf.string(),
                                       "file://" + page.string()};
-  const SpawnOutcome run = run_program(*chromium, args, dir, log, std::chrono::minutes(2));
+  const SpawnOutcome run = run_program(chromium, args, dir, log, std::chrono::minutes(2));
   const std::string why = run.succeeded() ? std::string() : log_excerpt(log);
   std::error_code ignored;
   fs::remove_all(profile, ignored);

@@ -7,6 +7,10 @@
 
 namespace mechgraph::cli {
 
+/// Throws IoError (naming the package to install) when no chromium is on PATH: `report --pdf`
+/// asks before it runs the scene.
+void require_pdf_printer();
+
 /// Prints `dir`/report.html to `dir`/report.pdf. Throws IoError when chromium is not installed (with
 /// the package to install), fails, runs past its time limit or writes no PDF.
 void print_report_pdf(const std::filesystem::path& dir);

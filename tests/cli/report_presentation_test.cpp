@@ -84,7 +84,7 @@ report:
   CHECK_THAT(r.out, !Contains("m/rad^2"));
 }
 
-TEST_CASE("report: the page's numbers and notes are the run's; panel, spring and contour figures", "[cli][report]") {
+TEST_CASE("report: the page's numbers and notes are the run's, with the panel, spring and contour figures", "[cli][report]") {
   const fs::path dir = fresh_folder("cams");
   const auto report = run_cli("-q report '" + scene("valvetrain_cams.yaml") + "' --out '" + dir.string() + "'");
   INFO(report.err);
@@ -131,7 +131,7 @@ TEST_CASE("report: the page's numbers and notes are the run's; panel, spring and
   CHECK_THAT(page, Contains("<div class=\"scroll\">"));
 }
 
-TEST_CASE("report: contour with base circle, follower and rotation; curvature as 1/rho", "[cli][report]") {
+TEST_CASE("report: contour with base circle, follower and rotation, curvature as 1/rho", "[cli][report]") {
   const fs::path dir = fresh_folder("contour");
   const auto r = run_cli("-q report '" + scene("cam_contour.yaml") + "' --out '" + dir.string() + "'");
   INFO(r.err);
@@ -174,4 +174,14 @@ TEST_CASE("describe cam.program says its lift and event come from the segments",
   CHECK_THAT(r.out, !Contains("taken from the data"));
   const auto table = run_cli("describe cam.table");
   CHECK_THAT(table.out, Contains("taken from the data"));
+}
+
+TEST_CASE("report --pdf without chromium: exit 5 naming the package, nothing written", "[cli][report][pdf]") {
+  const fs::path dir = fresh_folder("no_chromium");
+  // A PATH with neither chromium nor gnuplot: the PDF printer is asked for first, before the run.
+  const auto r = run_command("env PATH=/nonexistent '" + std::string(MECHGRAPH_CLI) + "' -q report '" + scene("cam_contour.yaml") +
+                             "' --out '" + dir.string() + "' --pdf");
+  CHECK(r.exit_code == 5);
+  CHECK_THAT(r.err, Contains("apt-get install chromium"));
+  CHECK(!fs::exists(dir));
 }
