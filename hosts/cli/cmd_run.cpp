@@ -88,7 +88,16 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
       const OutputValue& o = result.outputs[i];
       std::cout << o.label << " = ";
-      if (o.value.kind() == ValueKind::scalar) std::cout << format_value(o.value.as_scalar(), o.dimension, o.display_unit);
+      if (o.value.kind() == ValueKind::scalar) {
+        // The reader's unit when neither the scene nor the port names one (mm/deg^2, not m/rad^2),
+        // and which angle a unit of degrees counts.
+        const std::string unit = o.display_unit.empty() ? reader_unit(o.dimension) : o.display_unit;
+        const PortSpec* spec = graph.outputs[i].spec;
+        std::cout << format_value(o.value.as_scalar(), o.dimension, unit)
+                  << (spec && unit.find("deg") != std::string::npos && !angle_reference(*spec).empty()
+                          ? " (" + angle_reference(*spec) + ")"
+                          : std::string());
+      }
       else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
       else if (o.value.kind() == ValueKind::table)
         std::cout << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()

@@ -92,6 +92,29 @@ report:
   CHECK_THAT(r.out, Contains("mm^2*deg (cam)"));
   CHECK_THAT(r.out, Contains("deg (crank)"));
   CHECK_THAT(r.out, !Contains("m/rad^2"));
+
+  // The outputs run prints one by one: the same reader's units, and which angle.
+  const fs::path listed = dir / "listed.yaml";
+  std::ofstream(listed) << R"(title: outputs in the reader's units
+nodes:
+  cam: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  valve: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 5600 rpm } }
+  ta: { type: valvetrain.time_area, inputs: { valve: valve.motion }, params: { seat_diameter: 34 mm } }
+outputs: [ cam.max_acceleration, ta.angle_area ]
+)";
+  const auto plain = run_cli("-q run '" + listed.string() + "'");
+  INFO(plain.err);
+  REQUIRE(plain.exit_code == 0);
+  const std::regex peak(R"(cam.max_acceleration = ([0-9.e+-]+) mm/deg\^2)");
+  REQUIRE(std::regex_search(plain.out, m, peak));
+  // Against the same value in SI from --json: m/rad^2 x 1000 / (180/pi)^2.
+  const auto json = run_cli("-q run --json '" + listed.string() + "'");
+  const std::regex si(R"("cam.max_acceleration":\{"value":([0-9.e+-]+))");
+  std::smatch n;
+  REQUIRE(std::regex_search(json.out, n, si));
+  const double deg = 180.0 / 3.14159265358979323846;
+  CHECK(std::stod(m[1]) == Approx(std::stod(n[1]) * 1e3 / (deg * deg)).epsilon(1e-5).margin(1e-12));
+  CHECK_THAT(plain.out, Contains("mm^2*deg (cam)"));
 }
 
 TEST_CASE("report: the page's numbers and notes are the run's, with the panel, spring and contour figures", "[cli][report]") {
