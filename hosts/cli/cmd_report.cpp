@@ -22,11 +22,14 @@ constexpr const char* marked_scalars[] = {"preload_deflection", "free_length", "
 
 // The scene as written plus, as outputs, every table and series output of every node (the curves
 // and shares a report plots) and the scalars those plots mark, leaving out those of an effect the
-// node does not run with.
-SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry) {
+// node does not run with. Only the nodes the scene itself needs (`needed`, from its outputs and
+// report tables; every node when it asks for nothing) are drawn: a node the scene culls
+// (culling_demo.yaml's undercut cam) stays culled.
+SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry, const std::vector<std::string>& needed) {
   std::vector<std::string> scene_effects;
   for (const auto& [name, where] : scene.effects) scene_effects.push_back(name);
   for (const NodeSpec& n : scene.nodes) {
+    if (std::find(needed.begin(), needed.end(), n.name) == needed.end()) continue;
     const RegisteredType* type = registry.find(n.type);
     if (!type) continue;  // build_graph names it
     const NodeInfo& info = type->type->info();
@@ -72,7 +75,16 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
                          vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};
   std::vector<Override> overrides;
   for (const std::string& s : inputs.overrides) overrides.push_back(parse_override(s));
-  const Graph graph = build_graph(with_every_curve(load_scene(inputs.scene_file), registry), registry, overrides);
+  const SceneSpec scene = load_scene(inputs.scene_file);
+  // A scene that asks for nothing (no outputs, no report) is drawn whole.
+  std::vector<std::string> needed;
+  if (scene.outputs.empty() && scene.report.empty()) {
+    for (const NodeSpec& n : scene.nodes) needed.push_back(n.name);
+  } else {
+    for (const GraphNode& n : build_graph(scene, registry, overrides).nodes)
+      if (n.needed) needed.push_back(n.name);
+  }
+  const Graph graph = build_graph(with_every_curve(scene, registry, needed), registry, overrides);
   check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, true);
   unsigned threads = vm["threads"].as<unsigned>();
   if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));

@@ -218,3 +218,15 @@ TEST_CASE("report --pdf without chromium: exit 5 naming the package, nothing wri
   CHECK_THAT(r.err, Contains("apt-get install chromium"));
   CHECK(!fs::exists(dir));
 }
+
+TEST_CASE("report draws only the nodes the scene needs: a culled node stays culled", "[cli][report]") {
+  // culling_demo.yaml keeps an undercut cycloidal cam that nothing asks for: run culls it, and so
+  // must the report (drawing its curves would evaluate it and fail on the undercut).
+  const fs::path dir = fresh_folder("culled");
+  const auto r = run_cli("-q report '" + scene("culling_demo.yaml") + "' --out '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string json = read(dir / "results.json");
+  CHECK_THAT(json, !Contains("\"cyc."));
+  CHECK_THAT(json, Contains("\"kurz.svaj\""));
+}
