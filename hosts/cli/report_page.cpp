@@ -219,7 +219,7 @@ void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
       if (f.panel_of[k] == p) which.push_back(k);
     if (p == 0 && !f.points.empty()) {
       s << "$events << EOD\n";
-      for (const auto& [x, y, label] : f.points) s << x << " " << y << "\n";
+      for (const auto& [x, y, label] : f.points) s << x << "," << y << "\n";  // the CSV separator holds here too
       s << "EOD\n";
       for (const auto& [x, y, label] : f.points)
         if (!label.empty()) s << "set label " << gnuplot_string(label) << " at " << x << ", " << y << " offset 0.8,0.6 font ',9'\n";

@@ -143,6 +143,8 @@ TEST_CASE("report: the page's numbers and notes are the run's, with the panel, s
   CHECK_THAT(page, Contains("Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (arc, kurz, poly)"));
   CHECK_THAT(page, Contains("crank angle after the overlap TDC [deg (crank)]"));
   CHECK_THAT(page, Contains("events at 1 mm lift: three-arc opens 0.4 ATDC, closes 35.6 ABDC"));
+  // The events are drawn too: the legend entry of their points in the panel's SVG.
+  CHECK_THAT(page, Contains("<text>events at 1 mm lift</text>"));
   CHECK_THAT(page, !Contains("axis [rad]"));
   CHECK_THAT(page, !Contains("length [mm]"));
   std::size_t panels = 0;
@@ -229,4 +231,27 @@ TEST_CASE("report draws only the nodes the scene needs: a culled node stays cull
   const std::string json = read(dir / "results.json");
   CHECK_THAT(json, !Contains("\"cyc."));
   CHECK_THAT(json, Contains("\"kurz.svaj\""));
+}
+
+TEST_CASE("report: one installed exhaust valve's events labelled from the dead centres", "[cli][report]") {
+  const fs::path dir = fresh_folder("exhaust");
+  fs::create_directories(dir.parent_path());
+  const fs::path file = dir.parent_path() / "exhaust.yaml";
+  std::ofstream(file) << R"(title: one exhaust valve
+nodes:
+  cam: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  valve: { type: valvetrain.valve_motion, inputs: { cam: cam.law }, params: { rpm: 5600 rpm, nose_timing: -112 deg } }
+outputs: [ valve.max_lift ]
+)";
+  const auto r = run_cli("-q report '" + file.string() + "' --out '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  const std::string page = read(dir / "report.html");
+  // The plot's labels (quoted by the report from the events table) agree with the node's own note
+  // (quoted by the SDK from its events): the same angles, the same dead centres.
+  CHECK_THAT(page, Contains("valve: exhaust: opens 35.9 deg BBDC, closes 8.1 deg BTDC at 1 mm valve lift"));
+  CHECK_THAT(page, Contains("<text>opens 35.9 BBDC</text>"));
+  CHECK_THAT(page, Contains("<text>closes 8.1 BTDC</text>"));
+  CHECK_THAT(page, Contains("<text>BDC</text>"));
+  CHECK_THAT(page, Contains("<text>TDC</text>"));
 }
