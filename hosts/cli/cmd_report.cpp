@@ -1,7 +1,8 @@
-// mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N]
+// mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]
 #include "cli.hpp"
 #include "options.hpp"
 #include "report_page.hpp"
+#include "report_pdf.hpp"
 #include "results_folder.hpp"
 
 #include <mechgraph/evaluator.hpp>
@@ -15,17 +16,30 @@
 namespace mechgraph::cli {
 namespace {
 
+// Scalars a plot marks when the node has them: a spring's free length, installed deflection and
+// solid length on its force-over-lift plot.
+constexpr const char* marked_scalars[] = {"preload_deflection", "free_length", "solid_length"};
+
 // The scene as written plus, as outputs, every table and series output of every node (the curves
-// and shares a report plots), leaving out those of an effect the node does not run with.
-SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry) {
+// and shares a report plots) and the scalars those plots mark, leaving out those of an effect the
+// node does not run with. Only the nodes the scene itself needs (`needed`, from its outputs and
+// report tables; every node when it asks for nothing) are drawn: a node the scene culls
+// (culling_demo.yaml's undercut cam) stays culled.
+SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry, const std::vector<std::string>& needed) {
   std::vector<std::string> scene_effects;
   for (const auto& [name, where] : scene.effects) scene_effects.push_back(name);
   for (const NodeSpec& n : scene.nodes) {
+    if (std::find(needed.begin(), needed.end(), n.name) == needed.end()) continue;
     const RegisteredType* type = registry.find(n.type);
     if (!type) continue;  // build_graph names it
     const NodeInfo& info = type->type->info();
+    const bool has_curves = std::any_of(info.outputs.begin(), info.outputs.end(), [](const PortSpec& p) {
+      return p.kind == ValueKind::table || p.kind == ValueKind::series;
+    });
     for (const PortSpec& port : info.outputs) {
-      if (port.kind != ValueKind::table && port.kind != ValueKind::series) continue;
+      const bool marked = has_curves && port.kind == ValueKind::scalar &&
+                          std::any_of(std::begin(marked_scalars), std::end(marked_scalars), [&](const char* m) { return port.name == m; });
+      if (port.kind != ValueKind::table && port.kind != ValueKind::series && !marked) continue;
       if (const EffectSpec* e = info.effect_of_output(port.name)) {
         const bool on = std::find(scene_effects.begin(), scene_effects.end(), e->name) != scene_effects.end() ||
                         std::any_of(n.effects.begin(), n.effects.end(), [&](const auto& ne) { return ne.first == e->name; });
@@ -48,18 +62,29 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
                         "write report.html, results.json and the CSV of every plot and table into DIR "
                         "(whole or not at all; an existing DIR needs --force)")(
       "force", "replace the report in an existing --out DIR")(
+      "pdf", "also print the page to report.pdf with Debian's headless chromium (file:// only, no network)")(
       "threads", po::value<unsigned>()->default_value(1), "evaluate independent nodes on this many threads (0: one per core)");
   po::variables_map vm;
-  if (!parse_scene_command(args, visible, vm, "mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N]"))
+  if (!parse_scene_command(args, visible, vm, "mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]"))
     return ok;
   const std::filesystem::path dir = vm["out"].as<std::string>();
   check_results_folder(dir, vm.count("force") > 0);
+  if (vm.count("pdf")) require_pdf_printer();
   const PluginRegistry registry = load_plugins(g);
   const RunInputs inputs{vm["scene"].as<std::string>(),
                          vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{}};
   std::vector<Override> overrides;
   for (const std::string& s : inputs.overrides) overrides.push_back(parse_override(s));
-  const Graph graph = build_graph(with_every_curve(load_scene(inputs.scene_file), registry), registry, overrides);
+  const SceneSpec scene = load_scene(inputs.scene_file);
+  // A scene that asks for nothing (no outputs, no report) is drawn whole.
+  std::vector<std::string> needed;
+  if (scene.outputs.empty() && scene.report.empty()) {
+    for (const NodeSpec& n : scene.nodes) needed.push_back(n.name);
+  } else {
+    for (const GraphNode& n : build_graph(scene, registry, overrides).nodes)
+      if (n.needed) needed.push_back(n.name);
+  }
+  const Graph graph = build_graph(with_every_curve(scene, registry, needed), registry, overrides);
   check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, true);
   unsigned threads = vm["threads"].as<unsigned>();
   if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));
@@ -68,6 +93,7 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
   const RunResult result = evaluate(graph, cache, threads);
   write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
     write_report_page(staging, graph, result, registry, inputs);
+    if (vm.count("pdf")) print_report_pdf(staging);
   });
   std::cout << (dir / "report.html").string() << "\n";
   spdlog::info("report written to {}", (dir / "report.html").string());

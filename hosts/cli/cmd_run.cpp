@@ -22,6 +22,22 @@
 #include <thread>
 
 namespace mechgraph::cli {
+namespace {
+
+// An installed lobe (a node given nose_timing) quotes its events from TDC and BDC in a note
+// ("intake: opens 3.4 deg ATDC, ..."); the node makes that note while it finds its events, so the
+// events are wanted of every such node, whether or not the scene lists them as an output.
+void want_timing_notes(Graph& graph) {
+  for (GraphNode& n : graph.nodes) {
+    if (!n.needed || !n.params.has("nose_timing")) continue;
+    const auto& outputs = n.info().outputs;
+    const bool has_events = std::any_of(outputs.begin(), outputs.end(), [](const PortSpec& p) { return p.name == "events"; });
+    if (!has_events || std::find(n.wanted.begin(), n.wanted.end(), "events") != n.wanted.end()) continue;
+    n.wanted.insert(std::upper_bound(n.wanted.begin(), n.wanted.end(), std::string("events")), "events");
+  }
+}
+
+}  // namespace
 
 int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("run options");
@@ -40,7 +56,8 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
 
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
-  const Graph graph = load_scene_graph(vm, registry);
+  Graph graph = load_scene_graph(vm, registry);
+  want_timing_notes(graph);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();
   if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));
@@ -62,7 +79,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   } else {
     for (std::size_t t = 0; t < graph.reports.size(); ++t) {
       if (t) std::cout << "\n";
-      print_report(std::cout, graph.reports[t], result, graph.display_units);
+      print_report(std::cout, graph.reports[t], result, graph);
     }
     if (!graph.reports.empty() && graph.scene_output_count) std::cout << "\n";
     if (graph.reports.empty() && !graph.title.empty()) {
@@ -71,7 +88,16 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
       const OutputValue& o = result.outputs[i];
       std::cout << o.label << " = ";
-      if (o.value.kind() == ValueKind::scalar) std::cout << format_value(o.value.as_scalar(), o.dimension, o.display_unit);
+      if (o.value.kind() == ValueKind::scalar) {
+        // The reader's unit when neither the scene nor the port names one (mm/deg^2, not m/rad^2),
+        // and which angle a unit of degrees counts.
+        const std::string unit = o.display_unit.empty() ? reader_unit(o.dimension) : o.display_unit;
+        const PortSpec* spec = graph.outputs[i].spec;
+        std::cout << format_value(o.value.as_scalar(), o.dimension, unit)
+                  << (spec && unit.find("deg") != std::string::npos && !angle_reference(*spec).empty()
+                          ? " (" + angle_reference(*spec) + ")"
+                          : std::string());
+      }
       else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
       else if (o.value.kind() == ValueKind::table)
         std::cout << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()

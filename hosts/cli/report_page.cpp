@@ -17,8 +17,12 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
+#include <numbers>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 #ifndef MECHGRAPH_VERSION
 #define MECHGRAPH_VERSION "0"
@@ -36,7 +40,14 @@ std::string file_safe(std::string text) {
   return text;
 }
 
-// A column to plot: values converted to the unit shown.
+// A channel or port name as a reader says it: "opening_atdc" -> "opening after TDC", "cam_angle" ->
+// "cam angle".
+std::string spoken(std::string name) {
+  if (name.size() > 5 && name.compare(name.size() - 5, 5, "_atdc") == 0) name = name.substr(0, name.size() - 5) + " after TDC";
+  std::replace(name.begin(), name.end(), '_', ' ');
+  return name;
+}
+
 // A plot's axis title for a dimension: the quantity's name where it has one ("force", not
 // "mass*length/time^2"), else the dimension in base quantities.
 std::string quantity(const Dimension& d) {
@@ -45,12 +56,29 @@ std::string quantity(const Dimension& d) {
       {dim::velocity, "velocity"},     {dim::acceleration, "acceleration"},
       {dim::stiffness, "stiffness"},   {dim::length / dim::time.pow(3), "jerk"},
       {dim::frequency, "frequency"},   {dim::angular_speed, "angular speed"},
-      {dim::force * dim::length, "moment"}};
+      {dim::force * dim::length, "moment"}, {dim::length, "length"}, {dim::angle, "angle"}};
   for (const auto& [known, name] : named)
     if (known == d) return name;
   return d.describe();
 }
 
+// The unit a value of dimension `d` is shown in: the scene's `units:`, else the port's or
+// channel's own, else degrees for an angle and millimetres for a length; "" keeps SI.
+std::string display_unit(const Dimension& d, const std::string& own_unit, const DisplayUnits& units) {
+  std::string unit = units.unit_for(d, own_unit);
+  if (unit.empty() && d == dim::angle) unit = "deg";
+  if (unit.empty() && d == dim::length) unit = "mm";
+  return unit;
+}
+
+// Which angle a unit of degrees counts: "mm/deg" -> "mm/deg (cam)" when the derivative is over cam
+// angle. Units without degrees are unchanged.
+std::string with_angle(const std::string& unit, const std::string& reference) { return unit_with_reference(unit, reference); }
+
+// A unit without the angle it counts: "deg (crank)" -> "deg".
+std::string bare_unit(const std::string& unit) { return unit.substr(0, unit.find(" (")); }
+
+// A column to plot: values converted to the unit shown.
 struct Column {
   std::string name;   // CSV header: "kurz lift [mm]"
   std::string unit;
@@ -58,25 +86,57 @@ struct Column {
 };
 
 Column shown(const std::string& title, const Dimension& d, const std::vector<double>& si, const std::string& own_unit,
-             const DisplayUnits& units) {
+             const DisplayUnits& units, const std::string& angle_reference = {}) {
   Column c;
-  c.unit = units.unit_for(d, own_unit);
+  c.unit = display_unit(d, own_unit, units);
+  const bool convert = !c.unit.empty();
   if (c.unit.empty()) c.unit = d.si_unit() == "1" ? std::string() : d.si_unit();
   c.values.reserve(si.size());
-  const bool convert = !units.unit_for(d, own_unit).empty();
   for (double v : si) c.values.push_back(convert ? to_unit(v, d, c.unit) : v);
-  c.name = title + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
+  // Which angle: for an angle axis (cam angle, crank angle ...) and for a rate per angle (mm/deg);
+  // an angle that is a result (a pressure angle) is just degrees.
+  const bool angle_axis = d == dim::angle && (title.rfind("cam", 0) == 0 || title.rfind("crank", 0) == 0);
+  if (angle_axis || d.angle < 0) c.unit = with_angle(c.unit, angle_reference);
+  c.name = spoken(title) + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
   return c;
 }
 
+// Curvature 1/rho in 1/mm from a radius of curvature (in m): an inflection (rho -> +-infinity) is a
+// zero crossing instead of a spike, so the plot keeps the scale of the sharp places that matter.
+// Points where rho is zero (a cusp, which no node should leave) are left out.
+std::pair<Column, Column> curvature_of(const Column& x, const std::vector<double>& radius_si, const std::string& title) {
+  std::pair<Column, Column> out;
+  out.first.name = x.name;
+  out.first.unit = x.unit;
+  out.second.name = spoken(title) + " [1/mm]";
+  out.second.unit = "1/mm";
+  for (std::size_t i = 0; i < std::min(x.values.size(), radius_si.size()); ++i) {
+    const double rho_mm = radius_si[i] * 1e3;
+    if (!(std::abs(rho_mm) > 1e-12) || !std::isfinite(rho_mm)) continue;
+    out.first.values.push_back(x.values[i]);
+    out.second.values.push_back(1.0 / rho_mm);
+  }
+  return out;
+}
+
+bool is_curvature_radius(const std::string& channel) { return channel.find("curvature_radius") != std::string::npos; }
+
 struct Figure {
-  enum class Kind { lines, bars, to_scale, histogram } kind = Kind::lines;
+  enum class Kind { lines, bars, to_scale, histogram, panel } kind = Kind::lines;
   std::string name;  // file stem
   std::string title, xlabel, ylabel;
   std::vector<std::pair<Column, Column>> curves;  // (x, y) per curve; bars: x unused, labels below
-  std::vector<std::string> curve_titles;
+  std::vector<std::string> curve_titles;          // legend entries ("" : none)
+  std::vector<std::string> curve_styles;          // gnuplot "with ..." per curve ("" : a line)
   std::vector<std::string> labels;  // bars
   std::vector<std::pair<std::string, double>> marks;  // vertical lines at x (histogram: spec limits), in x's unit
+  // panel: the curves' panel (0 on top) and each panel's y label; points with a label on panel 0
+  std::vector<std::size_t> panel_of;
+  std::vector<std::string> panel_ylabels;
+  std::vector<std::tuple<double, double, std::string>> points;  // (x, y, label) drawn on the top panel
+  std::string points_title;
+  std::vector<std::string> arrows;  // "x0 y0 x1 y1" in the plot's units, drawn with a head (rotation)
+  std::string caption;              // said under the plot
 };
 
 // Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
@@ -92,7 +152,7 @@ void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
   } else {
     std::size_t rows = 0;
     for (std::size_t k = 0; k < f.curves.size(); ++k) {
-      const std::string prefix = f.curves.size() > 1 ? f.curve_titles[k] + " " : "";
+      const std::string prefix = f.curves.size() > 1 && !f.curve_titles[k].empty() ? f.curve_titles[k] + " " : "";
       out << (k ? "," : "") << csv_field(prefix + f.curves[k].first.name) << "," << csv_field(prefix + f.curves[k].second.name);
       rows = std::max(rows, std::min(f.curves[k].first.values.size(), f.curves[k].second.values.size()));
     }
@@ -112,16 +172,80 @@ void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
   check_written(out, file);
 }
 
+// Vertical marks with their labels, staggered down the plot so that neighbours do not overprint.
+void write_marks(std::ostream& s, const std::vector<std::pair<std::string, double>>& marks) {
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    const auto& [label, at] = marks[k];
+    if (!std::isfinite(at)) continue;
+    s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 1 dt 2 lc rgb '#c03030'\n"
+      << "set label " << gnuplot_string(label) << " at " << at << ", graph " << 0.95 - 0.07 * static_cast<double>(k % 4)
+      << " offset 0.4,0 font ',9' textcolor rgb '#c03030'\n";
+  }
+}
+
+void write_curves(std::ostream& s, const Figure& f, const std::string& csv, const std::vector<std::size_t>& which) {
+  s << "plot";
+  bool first = true;
+  for (std::size_t k : which) {
+    const std::string style = k < f.curve_styles.size() && !f.curve_styles[k].empty() ? f.curve_styles[k] : "with lines lw 1.5";
+    s << (first ? " " : ", \\\n    ") << gnuplot_string(csv) << " skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2 << " " << style
+      << (f.curve_titles[k].empty() ? std::string(" notitle") : " title " + gnuplot_string(f.curve_titles[k]));
+    first = false;
+  }
+}
+
+// The SVAJ panel: one plot per quantity stacked on one angle axis, the x tics only under the
+// bottom one, the legend once, the marks (dead centres) through every panel and the events as
+// labelled points on the top one.
+void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
+  const std::size_t panels = f.panel_ylabels.size();
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const auto& [x, y] : f.curves)
+    for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
+  const double top = 0.93, bottom = 0.08, gap = 0.012, height = (top - bottom) / static_cast<double>(panels);
+  s << "set multiplot title " << gnuplot_string(f.title) << "\nset xrange [" << lo << ":" << hi << "]\n"
+    << "set lmargin at screen 0.11\nset rmargin at screen 0.76\n";
+  for (std::size_t p = 0; p < panels; ++p) {
+    s << "set tmargin at screen " << top - height * static_cast<double>(p) << "\nset bmargin at screen "
+      << top - height * static_cast<double>(p + 1) + gap << "\n";
+    s << "unset arrow\nunset label\nset ylabel " << gnuplot_string(f.panel_ylabels[p]) << " font ',9'\n";
+    if (p + 1 < panels) s << "set format x ''\nunset xlabel\n";
+    else s << "set format x '%g'\nset xlabel " << gnuplot_string(f.xlabel) << "\n";
+    if (p == 0) s << "set key outside right top\n";
+    else s << "unset key\n";
+    write_marks(s, f.marks);
+    std::vector<std::size_t> which;
+    for (std::size_t k = 0; k < f.curves.size(); ++k)
+      if (f.panel_of[k] == p) which.push_back(k);
+    if (p == 0 && !f.points.empty()) {
+      s << "$events << EOD\n";
+      for (const auto& [x, y, label] : f.points) s << x << "," << y << "\n";  // the CSV separator holds here too
+      s << "EOD\n";
+      for (const auto& [x, y, label] : f.points)
+        if (!label.empty()) s << "set label " << gnuplot_string(label) << " at " << x << ", " << y << " offset 0.8,0.6 font ',9'\n";
+      write_curves(s, f, csv, which);
+      s << ", \\\n    $events using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title " << gnuplot_string(f.points_title) << "\n";
+    } else {
+      write_curves(s, f, csv, which);
+      s << "\n";
+    }
+  }
+  s << "unset multiplot\n";
+}
+
 std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
   const std::string csv = f.name + ".csv", svg = f.name + ".svg", script_file = f.name + ".gp";
   {
     std::ofstream s(dir / script_file);
-    s << "set terminal svg size 860,420 dynamic noenhanced font 'sans,11' background rgb 'white'\n"
+    const int height = f.kind == Figure::Kind::panel ? 160 * static_cast<int>(f.panel_ylabels.size()) + 90
+                       : f.kind == Figure::Kind::to_scale ? 640 : 420;
+    s << std::setprecision(17) << "set terminal svg size 860," << height << " dynamic noenhanced font 'sans,11' background rgb 'white'\n"
       << "set output " << gnuplot_string(svg) << "\n"
       << "set datafile separator ','\nset datafile missing ''\n"
-      << "set title " << gnuplot_string(f.title) << "\nset xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel "
-      << gnuplot_string(f.ylabel) << "\n"
+      << "set xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel " << gnuplot_string(f.ylabel)
+      << (f.ylabel.size() > 40 ? " font ',9'" : "") << "\n"
       << "set grid\nset key outside right top\n";
+    if (f.kind != Figure::Kind::panel) s << "set title " << gnuplot_string(f.title) << "\n";
     if (f.kind == Figure::Kind::bars) {
       s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
         << "plot " << gnuplot_string(csv) << " skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
@@ -151,18 +275,36 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
       }
       const double pad = 0.04 * (hi - lo);
       if (!off_plot.empty()) s << "set title " << gnuplot_string(f.title + " (off the plot: " + off_plot + ")") << "\n";
-      s << std::setprecision(17) << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
+      s << "set style fill solid 0.5 border rgb '#3060a0'\nset boxwidth " << width
         << " absolute\nset yrange [0:*]\nset xrange [" << lo - pad << ":" << hi + pad << "]\nunset key\n";
       for (const auto& [label, at] : drawn)
         s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 2 dt 2 lc rgb '#c03030'\n"
           << "set label " << gnuplot_string(label) << " at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
       s << "plot " << gnuplot_string(csv) << " skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
+    } else if (f.kind == Figure::Kind::panel) {
+      write_panel(s, f, csv);
     } else {
       if (f.kind == Figure::Kind::to_scale) s << "set size ratio -1\n";
-      s << "plot";
-      for (std::size_t k = 0; k < f.curves.size(); ++k)
-        s << (k ? ", \\\n    " : " ") << gnuplot_string(csv) << " skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2
-          << " with lines lw 1.5 title " << gnuplot_string(f.curve_titles[k]);
+      for (const std::string& a : f.arrows) {
+        std::istringstream in(a);
+        double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        in >> x0 >> y0 >> x1 >> y1;
+        s << "set arrow from " << x0 << "," << y0 << " to " << x1 << "," << y1 << " head filled size screen 0.02,20 lw 1.5 lc rgb '#404040'\n";
+      }
+      if (!f.marks.empty()) {
+        // The x range holds the curves and every mark.
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (const auto& [x, y] : f.curves)
+          for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
+        for (const auto& [label, at] : f.marks)
+          if (std::isfinite(at)) lo = std::min(lo, at), hi = std::max(hi, at);
+        const double pad = 0.06 * (hi - lo);
+        s << "set xrange [" << lo - pad << ":" << hi + pad << "]\n";
+        write_marks(s, f.marks);
+      }
+      std::vector<std::size_t> all(f.curves.size());
+      for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+      write_curves(s, f, csv, all);
       s << "\n";
     }
     s.close();
@@ -190,9 +332,345 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
   return text.substr(begin);
 }
 
+// The names legends use: a node's column title in the scene's report tables ("three-arc" for arc,
+// v_arc and ta_arc), else the node's own name. Two curves of one figure that would read alike
+// (three-arc by the source's rule and by the free-length rule) get the node's name beside.
+class Legend {
+ public:
+  explicit Legend(const Graph& graph) {
+    for (const ResolvedReport& r : graph.reports)
+      for (const auto& row : r.rows)
+        for (std::size_t c = 0; c < row.cells.size() && c < r.columns.size(); ++c) {
+          if (!row.cells[c] || row.cells[c]->output >= graph.outputs.size()) continue;
+          const std::string& node = graph.nodes[graph.outputs[row.cells[c]->output].node].name;
+          column_of_.emplace(node, r.columns[c]);
+        }
+  }
+  std::string operator()(const std::string& node) const {
+    const auto it = column_of_.find(node);
+    return it == column_of_.end() ? node : it->second;
+  }
+  // Curve titles made unique within a figure: a title that two nodes share (three-arc by the
+  // source's rule and by the free-length rule) gets each node's name beside it.
+  void disambiguate(Figure& f, const std::vector<std::string>& nodes) const {
+    std::map<std::string, std::vector<std::string>> nodes_of;
+    for (std::size_t k = 0; k < f.curve_titles.size() && k < nodes.size(); ++k) {
+      auto& list = nodes_of[f.curve_titles[k]];
+      if (std::find(list.begin(), list.end(), nodes[k]) == list.end()) list.push_back(nodes[k]);
+    }
+    for (std::size_t k = 0; k < f.curve_titles.size() && k < nodes.size(); ++k)
+      if (nodes_of[f.curve_titles[k]].size() > 1 && f.curve_titles[k] != nodes[k]) f.curve_titles[k] += " (" + nodes[k] + ")";
+  }
+
+ private:
+  std::map<std::string, std::string> column_of_;
+};
+
+std::string node_of(const OutputValue& o) { return o.label.substr(0, o.label.find('.')); }
+
+const OutputValue* find_output(const RunResult& result, const std::string& label) {
+  for (const OutputValue& o : result.outputs)
+    if (o.label == label) return &o;
+  return nullptr;
+}
+
+std::optional<double> scalar_output(const RunResult& result, const std::string& label) {
+  const OutputValue* o = find_output(result, label);
+  if (!o || o->value.kind() != ValueKind::scalar) return std::nullopt;
+  return o->value.as_scalar();
+}
+
+// A crank angle after the overlap TDC (deg) quoted from the nearest dead centre: "3.4 ATDC",
+// "52.0 BBDC".
+std::string from_dead_centre(double after_tdc) {
+  const double centre = 180.0 * std::round(after_tdc / 180.0);
+  const bool bdc = std::fmod(std::abs(centre), 360.0) == 180.0;
+  const double from = after_tdc - centre;
+  char text[48];
+  std::snprintf(text, sizeof text, "%.1f %s%s", std::abs(from), from < 0.0 ? "B" : "A", bdc ? "BDC" : "TDC");
+  return text;
+}
+
+bool has_channels(const Table& t, std::initializer_list<const char*> names) {
+  for (const char* n : names)
+    if (!t.find(n)) return false;
+  return true;
+}
+
+// The SVAJ panel of one port's tables (every cam's or every valve's lift, velocity, acceleration
+// and jerk): on crank angle after the overlap TDC when every node is installed (nose_timing), with
+// the dead centres marked and each node's opening and closing at its checking lift as labelled
+// points; else on cam angle.
+Figure svaj_panel(const Graph& graph, const RunResult& result, const std::vector<const OutputValue*>& outs,
+                  const std::string& stem, const Legend& legend) {
+  const DisplayUnits& units = graph.display_units;
+  Figure f;
+  f.kind = Figure::Kind::panel;
+  f.name = file_safe(stem + "_svaj");
+  std::vector<std::string> nodes;
+  std::string who;
+  for (std::size_t k = 0; k < outs.size(); ++k) who += (k ? ", " : "") + legend(node_of(*outs[k]));
+  std::string ids;
+  for (std::size_t k = 0; k < outs.size(); ++k) ids += (k ? ", " : "") + node_of(*outs[k]);
+  f.title = "Lift, velocity, acceleration and jerk of " + who + (who == ids ? "" : " (" + ids + ")");
+  std::vector<double> timing;  // rad, per node, when every node has one
+  for (const OutputValue* o : outs) {
+    const auto n = graph.find(node_of(*o));
+    if (!n || !graph.nodes[*n].params.has("nose_timing") || !o->value.as_table().find("crank_angle")) {
+      timing.clear();
+      break;
+    }
+    timing.push_back(graph.nodes[*n].params.number("nose_timing"));
+  }
+  const bool crank = timing.size() == outs.size();
+  f.xlabel = crank ? "crank angle after the overlap TDC [deg (crank)]" : "cam angle [deg (cam)]";
+  const char* channels[] = {"lift", "velocity", "acceleration", "jerk"};
+  for (std::size_t p = 0; p < 4; ++p) {
+    std::string ylabel;
+    for (std::size_t k = 0; k < outs.size(); ++k) {
+      const Table& t = outs[k]->value.as_table();
+      const Table::Column* c = t.find(channels[p]);
+      Column x;
+      if (crank) {
+        std::vector<double> after_tdc = t.find("crank_angle")->values;
+        for (double& v : after_tdc) v += timing[k];
+        x = shown("crank angle after TDC", dim::angle, after_tdc, "deg", units, "crank");
+      } else {
+        x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, "cam");
+      }
+      // Derivatives over cam angle say so ("mm/deg (cam)"); those in time (m/s) have no degrees.
+      Column y = shown(c->name, c->dimension, c->values, c->display_unit, units, "cam");
+      ylabel = y.name;
+      f.curves.emplace_back(std::move(x), std::move(y));
+      f.curve_titles.push_back(legend(node_of(*outs[k])));
+      f.curve_styles.emplace_back();
+      f.panel_of.push_back(p);
+      nodes.push_back(node_of(*outs[k]));
+    }
+    f.panel_ylabels.push_back(ylabel);
+  }
+  legend.disambiguate(f, nodes);
+  if (crank) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& [x, y] : f.curves)
+      for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
+    const double half_turn = to_unit(std::numbers::pi, dim::angle, bare_unit(f.curves.front().first.unit));
+    for (double centre = half_turn * std::ceil(lo / half_turn); centre <= hi; centre += half_turn)
+      f.marks.emplace_back(std::lround(centre / half_turn) % 2 != 0 ? "BDC" : "TDC", centre);
+    // Each node's events at its checking lift, from its events table (first row).
+    const std::string lift_unit = bare_unit(f.curves.front().second.unit), angle_unit = bare_unit(f.curves.front().first.unit);
+    for (std::size_t k = 0; k < outs.size(); ++k) {
+      const OutputValue* events = find_output(result, node_of(*outs[k]) + ".events");
+      if (!events || events->value.kind() != ValueKind::table) continue;
+      const Table& e = events->value.as_table();
+      const Table::Column* opening = e.find("opening_atdc");
+      const Table::Column* closing = e.find("closing_atdc");
+      if (!opening || !closing || e.axis.values.empty() || opening->values.empty() || closing->values.empty()) continue;
+      const double at_lift = to_unit(e.axis.values.front(), dim::length, lift_unit.empty() ? "m" : lift_unit);
+      const double opens = opening->values.front(), closes = closing->values.front();
+      const double deg = 180.0 / std::numbers::pi;
+      const std::string quote = "opens " + from_dead_centre(opens * deg) + ", closes " + from_dead_centre(closes * deg);
+      // One node's events are labelled on the plot; several nodes' are said in the caption.
+      f.points.emplace_back(to_unit(opens, dim::angle, angle_unit), at_lift, outs.size() == 1 ? "opens " + from_dead_centre(opens * deg) : "");
+      f.points.emplace_back(to_unit(closes, dim::angle, angle_unit), at_lift, outs.size() == 1 ? "closes " + from_dead_centre(closes * deg) : "");
+      char title[64];
+      std::snprintf(title, sizeof title, "events at %g mm lift", e.axis.values.front() * 1e3);
+      f.points_title = title;
+      f.caption += (f.caption.empty() ? std::string(title) + ": " : "; ") + f.curve_titles[k] + " " + quote;
+    }
+  }
+  return f;
+}
+
+// Spring force over valve lift (a spring design's force_curve): the spring line from the free-length
+// point, the force the rule asks for and the force the drive carries, with free length, installed
+// height, full lift and solid height marked on the lift axis.
+Figure spring_over_lift(const RunResult& result, const OutputValue& o, const DisplayUnits& units, const Legend& legend) {
+  const Table& t = o.value.as_table();
+  const std::string node = node_of(o);
+  Figure f;
+  f.name = file_safe(o.label + "_over_lift");
+  f.title = "Spring force over valve lift: " + legend(node) + (legend(node) == node ? "" : " (" + node + ")");
+  const Table::Column* lift = t.find("valve_lift");
+  const Column x = shown("valve lift", lift->dimension, lift->values, lift->display_unit, units);
+  f.xlabel = x.name;
+  const std::optional<double> f0 = scalar_output(result, node + ".preload_deflection");
+  const std::optional<double> free_length = scalar_output(result, node + ".free_length");
+  const std::optional<double> solid_length = scalar_output(result, node + ".solid_length");
+  const std::string lift_unit = x.unit.empty() ? "m" : x.unit;
+  for (const Table::Column& c : t.channels) {
+    if (!(c.dimension == dim::force) || c.name == "inertia_force") continue;
+    Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
+    f.ylabel = "force [" + y.unit + "]";
+    Column cx = x;
+    if (c.name == "required_force") {
+      // Only where the valve decelerates (elsewhere the rule asks nothing).
+      Column keep_x = cx, keep_y = y;
+      keep_x.values.clear();
+      keep_y.values.clear();
+      for (std::size_t i = 0; i < y.values.size(); ++i)
+        if (y.values[i] > 0.0) keep_x.values.push_back(cx.values[i]), keep_y.values.push_back(y.values[i]);
+      cx = std::move(keep_x);
+      y = std::move(keep_y);
+      f.curve_styles.push_back("with lines lw 1.5 dt 2");
+    } else if (c.name == "spring_force" && f0) {
+      // The spring line is straight: drawn from the free-length point (-f0, 0) to full lift.
+      std::size_t top = 0;
+      for (std::size_t i = 0; i < cx.values.size(); ++i)
+        if (cx.values[i] > cx.values[top]) top = i;
+      const double low = to_unit(-*f0, dim::length, lift_unit);
+      cx.values = {low, cx.values[top]};
+      y.values = {0.0, y.values[top]};
+      f.curve_styles.push_back("with linespoints lw 2 pt 7 ps 0.5");
+    } else {
+      f.curve_styles.emplace_back();
+    }
+    if (cx.values.empty()) {
+      f.curve_styles.pop_back();
+      continue;
+    }
+    f.curve_titles.push_back(spoken(c.name));
+    f.curves.emplace_back(std::move(cx), std::move(y));
+  }
+  double full = 0.0;
+  for (double v : x.values) full = std::max(full, v);
+  if (f0) f.marks.emplace_back("free length", to_unit(-*f0, dim::length, lift_unit));
+  f.marks.emplace_back("installed", 0.0);
+  f.marks.emplace_back("full lift", full);
+  if (f0 && free_length && solid_length)
+    f.marks.emplace_back("solid", to_unit(*free_length - *solid_length - *f0, dim::length, lift_unit));
+  f.caption = "lift measured from the installed height; free length and solid height at the lifts where the spring "
+              "would reach them";
+  return f;
+}
+
+// A closed curve to scale (a cam's contour) with its base circle (the least radius of the
+// contour), the follower where it stands at the nose (a roller from the pitch curve, else a flat
+// face through the contact point) and an arrow showing the way the cam turns.
+Figure contour_figure(const OutputValue& o, const DisplayUnits& units) {
+  const Table& t = o.value.as_table();
+  Figure f;
+  f.kind = Figure::Kind::to_scale;
+  f.name = file_safe(o.label);
+  f.title = o.label + " (to scale)";
+  for (const Table::Column& c : t.channels) {
+    if (c.name.size() < 1 || c.name.back() != 'x' || (c.name != "x" && c.name.size() > 2 && c.name.substr(c.name.size() - 2) != "_x")) continue;
+    const std::string prefix = c.name == "x" ? "" : c.name.substr(0, c.name.size() - 2);
+    const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
+    if (!y) continue;
+    Column cx = shown("x", c.dimension, c.values, c.display_unit, units), cy = shown("y", y->dimension, y->values, y->display_unit, units);
+    // Close the drawing: the first point again at the end.
+    cx.values.push_back(cx.values.front());
+    cy.values.push_back(cy.values.front());
+    f.xlabel = cx.name;
+    f.ylabel = cy.name;
+    f.curve_titles.push_back(prefix.empty() || prefix == "contour" ? "contour" : spoken(prefix) + " curve");
+    f.curve_styles.push_back(prefix.empty() || prefix == "contour" ? "with lines lw 2 lc rgb '#204080'" : "with lines lw 1 dt 3 lc rgb '#808080'");
+    f.curves.emplace_back(std::move(cx), std::move(cy));
+  }
+  if (f.curves.empty()) return f;
+  // The contour proper is the curve named x/y or contour_x/contour_y, else the first.
+  std::size_t contour = 0;
+  for (std::size_t k = 0; k < f.curve_titles.size(); ++k)
+    if (f.curve_titles[k] == "contour") contour = k;
+  const std::vector<double> X = f.curves[contour].first.values;  // copies: f.curves grows below
+  const std::vector<double> Y = f.curves[contour].second.values;
+  const std::string unit = f.curves[contour].first.unit;
+  double r_base = std::numeric_limits<double>::infinity(), r_max = 0.0;
+  std::size_t nose = 0;
+  for (std::size_t i = 0; i < X.size(); ++i) {
+    const double r = std::hypot(X[i], Y[i]);
+    r_base = std::min(r_base, r);
+    if (r > r_max) r_max = r, nose = i;
+  }
+  auto circle = [&](double cx, double cy, double r, std::size_t n) {
+    std::pair<Column, Column> c;
+    c.first.name = "x [" + unit + "]";
+    c.second.name = "y [" + unit + "]";
+    c.first.unit = c.second.unit = unit;
+    for (std::size_t i = 0; i <= n; ++i) {
+      const double a = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
+      c.first.values.push_back(cx + r * std::cos(a));
+      c.second.values.push_back(cy + r * std::sin(a));
+    }
+    return c;
+  };
+  char base_title[64];
+  std::snprintf(base_title, sizeof base_title, "base circle r = %.4g %s", r_base, unit.c_str());
+  f.curves.push_back(circle(0.0, 0.0, r_base, 180));
+  f.curve_titles.push_back(base_title);
+  f.curve_styles.push_back("with lines lw 1 dt 2 lc rgb '#a0a0a0'");
+  // The follower at the nose: along the line from the cam centre through the nose point.
+  const double ux = X[nose] / r_max, uy = Y[nose] / r_max;
+  std::optional<std::size_t> pitch_curve;
+  for (std::size_t k = 0; k < f.curve_titles.size(); ++k)
+    if (f.curve_titles[k].find("pitch") != std::string::npos) pitch_curve = k;
+  auto segment = [&](const std::string& name, std::vector<double> xs, std::vector<double> ys) {
+    std::pair<Column, Column> c;
+    c.first.name = name + " x [" + unit + "]";
+    c.second.name = name + " y [" + unit + "]";
+    c.first.unit = c.second.unit = unit;
+    c.first.values = std::move(xs);
+    c.second.values = std::move(ys);
+    return c;
+  };
+  std::pair<Column, Column> follower, stem;
+  if (pitch_curve) {
+    // A roller: centred on the pitch curve where it is furthest out, touching the contour there.
+    const std::vector<double> PX = f.curves[*pitch_curve].first.values;
+    const std::vector<double> PY = f.curves[*pitch_curve].second.values;
+    std::size_t far = 0;
+    for (std::size_t i = 0; i < PX.size(); ++i)
+      if (std::hypot(PX[i], PY[i]) > std::hypot(PX[far], PY[far])) far = i;
+    double roller = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < X.size(); ++i) roller = std::min(roller, std::hypot(X[i] - PX[far], Y[i] - PY[far]));
+    follower = circle(PX[far], PY[far], roller, 90);
+    follower.first.name = "follower x [" + unit + "]";
+    follower.second.name = "follower y [" + unit + "]";
+    // Its centre marked (the axis of an offset follower does not pass through the cam's centre,
+    // so no stem is drawn along a guess).
+    stem = segment("roller centre", {PX[far] - 0.1 * roller, PX[far] + 0.1 * roller, PX[far], PX[far], PX[far]},
+                   {PY[far], PY[far], PY[far], PY[far] - 0.1 * roller, PY[far] + 0.1 * roller});
+  } else {
+    // A flat face through the nose, square to the follower's axis, and its stem.
+    const double half = 0.6 * r_base;
+    follower = segment("follower", {X[nose] - uy * half, X[nose] + uy * half}, {Y[nose] + ux * half, Y[nose] - ux * half});
+    stem = segment("stem", {X[nose], X[nose] + ux * 0.8 * r_base}, {Y[nose], Y[nose] + uy * 0.8 * r_base});
+  }
+  f.curves.push_back(std::move(follower));
+  f.curve_titles.push_back("follower at the nose");
+  f.curve_styles.push_back("with lines lw 2 lc rgb '#c03030'");
+  f.curves.push_back(std::move(stem));
+  f.curve_titles.emplace_back();
+  f.curve_styles.push_back("with lines lw 2 lc rgb '#c03030'");
+  // The rotation: an arc of a third of a turn at half the base radius, its head the way the cam
+  // turns (the contour's axis says cw or ccw: cam_angle_cw).
+  const bool clockwise = t.axis.name.find("_cw") != std::string::npos;
+  const double r_arrow = 0.5 * r_base;
+  std::pair<Column, Column> arc;
+  arc.first.name = "rotation x [" + unit + "]";
+  arc.second.name = "rotation y [" + unit + "]";
+  arc.first.unit = arc.second.unit = unit;
+  const double from = clockwise ? 2.4 : 0.7, to = clockwise ? 0.7 : 2.4;
+  for (int i = 0; i <= 30; ++i) {
+    const double a = from + (to - from) * i / 30.0;
+    arc.first.values.push_back(r_arrow * std::cos(a));
+    arc.second.values.push_back(r_arrow * std::sin(a));
+  }
+  std::ostringstream head;
+  head << std::setprecision(12) << arc.first.values[28] << " " << arc.second.values[28] << " " << arc.first.values[30] << " "
+       << arc.second.values[30];
+  f.arrows.push_back(head.str());
+  f.curves.push_back(std::move(arc));
+  f.curve_titles.push_back(clockwise ? "rotation (clockwise)" : "rotation (counter-clockwise)");
+  f.curve_styles.push_back("with lines lw 1.5 lc rgb '#404040'");
+  return f;
+}
+
 // The figures a run's outputs call for.
 std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, std::vector<const OutputValue*>& small) {
   const DisplayUnits& units = graph.display_units;
+  const Legend legend(graph);
   std::vector<Figure> figures;
   std::map<std::string, std::vector<const OutputValue*>> by_port, series_by_port;  // grouped by port name
   std::vector<std::string> port_order, series_order;
@@ -200,28 +678,11 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
   std::map<std::string, int> groups_of_port;
   for (const OutputValue& o : result.outputs) {
     const std::string port = o.label.substr(o.label.find('.') + 1);
-    const std::string node = o.label.substr(0, o.label.find('.'));
+    const std::string node = node_of(o);
     if (o.value.kind() == ValueKind::table) {
       const Table& t = o.value.as_table();
       if (t.closed_curve) {
-        Figure f;
-        f.kind = Figure::Kind::to_scale;
-        f.name = file_safe(o.label);
-        f.title = o.label + " (to scale)";
-        for (const Table::Column& c : t.channels) {
-          if (c.name.size() < 1 || c.name.back() != 'x' || (c.name != "x" && c.name.size() > 2 && c.name.substr(c.name.size() - 2) != "_x")) continue;
-          const std::string prefix = c.name == "x" ? "" : c.name.substr(0, c.name.size() - 2);
-          const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
-          if (!y) continue;
-          Column cx = shown("x", c.dimension, c.values, c.display_unit, units), cy = shown("y", y->dimension, y->values, y->display_unit, units);
-          // Close the drawing: the first point again at the end.
-          cx.values.push_back(cx.values.front());
-          cy.values.push_back(cy.values.front());
-          f.xlabel = cx.name;
-          f.ylabel = cy.name;
-          f.curve_titles.push_back(prefix.empty() ? "contour" : prefix + " curve");
-          f.curves.emplace_back(std::move(cx), std::move(cy));
-        }
+        Figure f = contour_figure(o, units);
         if (!f.curves.empty()) figures.push_back(std::move(f));
         continue;
       }
@@ -278,19 +739,27 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       }
     }
   }
-  // Series of one port name (every valve's lift curve): one plot, a curve per node.
+  // Series of one port name (every valve's lift curve): one plot, a curve per node. A series over
+  // an angle is over cam angle (the ports say so) and is drawn in degrees.
   for (const std::string& port : series_order) {
     Figure f;
     f.name = file_safe(port);
-    f.title = port;
+    std::string base = port;
+    if (base.size() > 6 && base.compare(base.size() - 6, 6, "_curve") == 0) base = base.substr(0, base.size() - 6);
+    f.title = spoken(port);
+    std::vector<std::string> nodes;
     for (const OutputValue* o : series_by_port[port]) {
       const Series& s = o->value.as_series();
-      Column x = shown("axis", s.axis_dimension, s.axis, "", units), y = shown(port, o->dimension, s.values, o->display_unit, units);
+      const bool angle = s.axis_dimension == dim::angle;
+      Column x = shown(angle ? "cam angle from the nose" : "axis", s.axis_dimension, s.axis, angle ? "deg" : "", units, angle ? "cam" : "");
+      Column y = shown(base, o->dimension, s.values, o->display_unit, units);
       f.xlabel = x.name;
       f.ylabel = y.name;
-      f.curve_titles.push_back(o->label.substr(0, o->label.find('.')));
+      f.curve_titles.push_back(legend(node_of(*o)));
+      nodes.push_back(node_of(*o));
       f.curves.emplace_back(std::move(x), std::move(y));
     }
+    legend.disambiguate(f, nodes);
     figures.push_back(std::move(f));
   }
   for (const std::string& group : port_order) {
@@ -300,13 +769,24 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     const bool named = groups_of_port[port] > 1;
     const std::string stem = named ? port + "_" + first_node_of[group] : port;
     const Table& first = outs.front()->value.as_table();
+    if (has_channels(first, {"lift", "velocity", "acceleration", "jerk"})) {
+      figures.push_back(svaj_panel(graph, result, outs, stem, legend));
+      continue;
+    }
+    const bool spring_curve = has_channels(first, {"valve_lift", "spring_force"});
+    if (spring_curve) {
+      for (const OutputValue* o : outs) figures.push_back(spring_over_lift(result, *o, units, legend));
+      continue;
+    }
+    const std::string axis_reference = first.axis.name.rfind("cam_angle", 0) == 0 ? "cam" : first.axis.name.rfind("crank", 0) == 0 ? "crank" : "";
     // Channels that share a dimension with another channel of the table are compared within one
     // node's table (a spring line against its requirement, dynamic against kinematic lift); a
     // channel with a dimension of its own is compared across nodes (every cam's acceleration).
+    // A radius of curvature is drawn as curvature, on its own.
     std::vector<Dimension> dims;
     std::map<std::size_t, int> channels_of;  // index in dims -> channels of that dimension
     for (const Table::Column& c : first.channels) {
-      if (c.name == "crank_angle") continue;  // the axis again, doubled
+      if (c.name == "crank_angle" || is_curvature_radius(c.name)) continue;  // the axis again, doubled; curvature apart
       auto it = std::find(dims.begin(), dims.end(), c.dimension);
       if (it == dims.end()) it = dims.insert(dims.end(), c.dimension);
       ++channels_of[static_cast<std::size_t>(it - dims.begin())];
@@ -315,29 +795,63 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       const auto it = std::find(dims.begin(), dims.end(), c.dimension);
       return it != dims.end() && channels_of[static_cast<std::size_t>(it - dims.begin())] > 1;
     };
+    auto who = [&](const std::vector<const OutputValue*>& list) {
+      std::string text;
+      for (std::size_t k = 0; k < list.size(); ++k) text += (k ? ", " : "") + legend(node_of(*list[k]));
+      return text;
+    };
+    // Curvature of every node's table together.
+    for (const Table::Column& channel : first.channels) {
+      if (!is_curvature_radius(channel.name)) continue;
+      Figure f;
+      f.name = file_safe(stem + "_curvature");
+      f.title = "Curvature 1/rho of " + who(outs) + " (0 at an inflection; least radius ";
+      std::vector<std::string> nodes;
+      std::string least;
+      for (const OutputValue* o : outs) {
+        const Table& t = o->value.as_table();
+        const Table::Column* c = t.find(channel.name);
+        if (!c) continue;
+        const Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
+        auto curve = curvature_of(x, c->values, "curvature");
+        double rho = std::numeric_limits<double>::infinity();
+        for (double v : c->values)
+          if (v > 0.0) rho = std::min(rho, v);
+        char text[64];
+        std::snprintf(text, sizeof text, "%s%.4g mm", least.empty() ? "" : ", ", rho * 1e3);
+        least += (outs.size() > 1 ? legend(node_of(*o)) + " " : std::string()) + text;
+        f.xlabel = curve.first.name;
+        f.ylabel = curve.second.name;
+        f.curve_titles.push_back(legend(node_of(*o)));
+        nodes.push_back(node_of(*o));
+        f.curves.push_back(std::move(curve));
+      }
+      f.title += least + ")";
+      legend.disambiguate(f, nodes);
+      if (!f.curves.empty()) figures.push_back(std::move(f));
+    }
     if (outs.size() > 1) {
       // Several nodes' tables: a plot per lone channel, a curve per node.
       for (const Table::Column& channel : first.channels) {
-        if (channel.name == "crank_angle" || shared_dimension(channel)) continue;
+        if (channel.name == "crank_angle" || is_curvature_radius(channel.name) || shared_dimension(channel)) continue;
         Figure f;
         f.name = file_safe(stem + "_" + channel.name);
-        f.title = port + ": " + channel.name;
-        if (named) {
-          f.title = port + " of ";
-          for (std::size_t k = 0; k < outs.size(); ++k) f.title += (k ? ", " : "") + outs[k]->label.substr(0, outs[k]->label.find('.'));
-          f.title += ": " + channel.name;
-        }
+        const std::string all = who(outs);
+        f.title = spoken(channel.name) + (all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
+        std::vector<std::string> nodes;
         for (const OutputValue* o : outs) {
           const Table& t = o->value.as_table();
           const Table::Column* c = t.find(channel.name);
           if (!c) continue;
-          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units);
-          Column y = shown(channel.name, c->dimension, c->values, c->display_unit, units);
+          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
+          Column y = shown(channel.name, c->dimension, c->values, c->display_unit, units, axis_reference);
           f.xlabel = x.name;
           f.ylabel = y.name;
-          f.curve_titles.push_back(o->label.substr(0, o->label.find('.')));
+          f.curve_titles.push_back(legend(node_of(*o)));
+          nodes.push_back(node_of(*o));
           f.curves.emplace_back(std::move(x), std::move(y));
         }
+        legend.disambiguate(f, nodes);
         figures.push_back(std::move(f));
       }
     }
@@ -348,20 +862,25 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       for (std::size_t g = 0; g < dims.size(); ++g) {
         if (outs.size() > 1 && channels_of[g] < 2) continue;
         Figure f;
-        f.title = o->label;
         std::string names;
+        std::vector<std::string> spoken_names;
         for (const Table::Column& c : t.channels) {
-          if (c.name == "crank_angle" || !(c.dimension == dims[g])) continue;
-          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units);
-          Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
+          if (c.name == "crank_angle" || is_curvature_radius(c.name) || !(c.dimension == dims[g])) continue;
+          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
+          Column y = shown(c.name, c.dimension, c.values, c.display_unit, units, axis_reference);
           f.xlabel = x.name;
-          f.ylabel = y.unit.empty() ? quantity(dims[g]) : quantity(dims[g]) + " [" + y.unit + "]";
-          f.curve_titles.push_back(c.name);
-          names += (names.empty() ? "" : ", ") + c.name;
+          spoken_names.push_back(spoken(c.name));
+          f.ylabel = y.unit;
+          f.curve_titles.push_back(spoken(c.name));
+          names += (names.empty() ? "" : ", ") + spoken(c.name);
           f.curves.emplace_back(std::move(x), std::move(y));
         }
         if (f.curves.empty()) continue;
-        f.title += ": " + names;
+        // The y axis names what is drawn: the channels, else (too many to read) the quantity.
+        const std::string what = names.size() <= 60 ? names : quantity(dims[g]);
+        f.ylabel = f.ylabel.empty() ? what : what + " [" + f.ylabel + "]";
+        const std::string name = legend(node_of(*o));
+        f.title = names + " of " + name + (name == node_of(*o) ? "" : " (" + node_of(*o) + ")");
         f.name = file_safe(o->label + "_" + f.curve_titles.front());
         figures.push_back(std::move(f));
       }
@@ -371,7 +890,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
 }
 
 void html_table(std::ostream& html, const std::vector<std::vector<std::string>>& rows, const std::string& csv) {
-  html << "<table>\n<tr>";
+  html << "<div class=\"scroll\"><table>\n<tr>";
   for (const std::string& h : rows.front()) html << "<th>" << html_text(h) << "</th>";
   html << "</tr>\n";
   for (std::size_t r = 1; r < rows.size(); ++r) {
@@ -379,7 +898,7 @@ void html_table(std::ostream& html, const std::vector<std::vector<std::string>>&
     for (std::size_t i = 0; i < rows[r].size(); ++i) html << (i < 2 ? "<td>" : "<td class=\"n\">") << html_text(rows[r][i]) << "</td>";
     html << "</tr>\n";
   }
-  html << "</table>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
+  html << "</table></div>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
 }
 
 }  // namespace
@@ -391,9 +910,12 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" << html_text(graph.title)
        << "</title>\n<style>\nbody{font-family:sans-serif;margin:2em auto;max-width:960px;color:#222}\n"
-          "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px 8px}"
-          "th{background:#eef}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
-          ".csv{color:#666;font-size:90%}figure{margin:1em 0}svg{max-width:100%;height:auto}\n</style></head><body>\n"
+          "table{border-collapse:collapse;margin:0.5em 0;font-size:90%}td,th{border:1px solid #bbb;padding:2px 6px}"
+          "th{background:#eef;font-weight:600;vertical-align:bottom}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
+          "table.narrow th{font-size:85%;max-width:7em}.u{font-weight:normal;color:#555;white-space:nowrap}.scroll{max-width:100%;overflow-x:auto}\n"
+          ".csv{color:#666;font-size:90%}figure{margin:1em 0;break-inside:avoid}svg{max-width:100%;height:auto}\n"
+          "@page{size:A4;margin:12mm}@media print{body{margin:0;max-width:none;font-size:10pt}h2{break-after:avoid}"
+          "table{font-size:8pt}}\n</style></head><body>\n"
        << "<h1>" << html_text(graph.title.empty() ? inputs.scene_file : graph.title) << "</h1>\n";
   html << "<p>mechgraph " << MECHGRAPH_VERSION << ", scene <code>" << html_text(inputs.scene_file) << "</code> (SHA-1 "
        << file_sha1(inputs.scene_file) << ")";
@@ -409,9 +931,9 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
   for (std::size_t t = 0; t < graph.reports.size(); ++t) {
     const ResolvedReport& r = graph.reports[t];
     const std::string csv = "table_" + std::to_string(t + 1) + ".csv";
-    write_report_csv(dir / csv, r, result, graph.display_units);
+    write_report_csv(dir / csv, r, result, graph);
     html << "<h2>" << html_text(r.title.empty() ? "Table " + std::to_string(t + 1) : r.title) << "</h2>\n";
-    html_table(html, report_cells(r, result, graph.display_units), csv);
+    html_table(html, report_cells(r, result, graph), csv);
   }
 
   std::vector<const OutputValue*> small;
@@ -421,7 +943,8 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     Figure f = figures[i];
     f.name = "plot_" + std::to_string(i + 1) + "_" + f.name;
     write_figure_csv(dir / (f.name + ".csv"), f);
-    html << "<figure>" << run_gnuplot(dir, f) << "<figcaption class=\"csv\">data: " << html_text(f.name) << ".csv</figcaption></figure>\n";
+    html << "<figure>" << run_gnuplot(dir, f) << "<figcaption class=\"csv\">" << (f.caption.empty() ? "" : html_text(f.caption) + "; ")
+         << "data: " << html_text(f.name) << ".csv</figcaption></figure>\n";
   }
   for (const OutputValue* o : small) {
     const std::string csv = file_safe(o->label) + ".csv";
@@ -430,10 +953,17 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     std::vector<std::vector<std::string>> rows(1);
     std::vector<const Table::Column*> cols{&t.axis};
     for (const Table::Column& c : t.channels) cols.push_back(&c);
-    std::vector<std::string> unit;
+    // Angles in degrees and lengths in millimetres unless the scene says otherwise; a table with
+    // crank angles (crank_*, *_atdc) says of each angle column which angle it is.
+    bool crank_columns = false;
+    for (const Table::Column* c : cols) crank_columns = crank_columns || c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
+    std::vector<std::string> unit, header_unit;
     for (const Table::Column* c : cols) {
-      unit.push_back(graph.display_units.unit_for(c->dimension, c->display_unit));
-      rows[0].push_back(c->name + " [" + (unit.back().empty() ? c->dimension.si_unit() : unit.back()) + "]");
+      unit.push_back(display_unit(c->dimension, c->display_unit, graph.display_units));
+      const bool crank = c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
+      header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(),
+                                       crank_columns && c->dimension == dim::angle ? (crank ? "crank" : "cam") : ""));
+      rows[0].push_back(spoken(c->name));
     }
     for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
       std::vector<std::string> row;
@@ -445,15 +975,16 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
       }
       rows.push_back(std::move(row));
     }
-    html << "<h2>" << html_text(o->label) << "</h2>\n<table>\n<tr>";
-    for (const std::string& h : rows[0]) html << "<th>" << html_text(h) << "</th>";
+    html << "<h2>" << html_text(o->label) << "</h2>\n<div class=\"scroll\"><table class=\"narrow\">\n<tr>";
+    for (std::size_t k = 0; k < rows[0].size(); ++k)
+      html << "<th>" << html_text(rows[0][k]) << "<br><span class=\"u\">[" << html_text(header_unit[k]) << "]</span></th>";
     html << "</tr>\n";
     for (std::size_t r = 1; r < rows.size(); ++r) {
       html << "<tr>";
       for (const std::string& c : rows[r]) html << "<td class=\"n\">" << c << "</td>";
       html << "</tr>\n";
     }
-    html << "</table>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
+    html << "</table></div>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
   }
   // How the results were made.
   bool first = true;

@@ -101,12 +101,59 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
   os << "\n";
 }
 
-std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result,
-                                                   const DisplayUnits& units) {
+std::string angle_reference(const PortSpec& port) {
+  if (port.dimension.angle == 0) return {};
+  // The port says which angle it is measured in: its name (crank_duration) or its description
+  // ("... over cam angle", "in crank degrees"), whichever of the two it names first.
+  if (port.name.rfind("crank", 0) == 0) return "crank";
+  const auto crank = std::min(port.doc.find("crank angle"), port.doc.find("crank degree"));
+  const auto cam = std::min(port.doc.find("cam angle"), port.doc.find("cam degree"));
+  if (crank == std::string::npos && cam == std::string::npos) return {};
+  return crank < cam ? "crank" : "cam";
+}
+
+std::string unit_with_reference(const std::string& unit, const std::string& reference) {
+  if (reference.empty() || unit.find("deg") == std::string::npos) return unit;
+  return unit + " (" + reference + ")";
+}
+
+std::string reader_unit(const Dimension& d) {
+  // A cam's lift and its derivatives over cam angle, lengths, angles and areas the way a drawing
+  // gives them; everything else stays SI (N, m/s, Hz ...).
+  const Dimension per_angle[] = {dim::length / dim::angle, dim::length / dim::angle.pow(2), dim::length / dim::angle.pow(3)};
+  const char* per_angle_unit[] = {"mm/deg", "mm/deg^2", "mm/deg^3"};
+  for (std::size_t n = 0; n < 3; ++n)
+    if (d == per_angle[n]) return per_angle_unit[n];
+  if (d == dim::length) return "mm";
+  if (d == dim::angle) return "deg";
+  if (d == dim::area) return "mm^2";
+  if (d == dim::area * dim::angle) return "mm^2*deg";
+  if (d == dim::area * dim::time) return "mm^2*s";
+  return {};
+}
+
+std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result, const Graph& graph) {
+  const DisplayUnits& units = graph.display_units;
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header{"", "unit"};
   for (const std::string& c : report.columns) header.push_back(c);
   rows.push_back(std::move(header));
+  // A dimension is shown in one unit throughout the table: the scene's `units:`, else the unit of
+  // the first row of that dimension (its own or its port's), so 0.0085 mm/deg^2 and 0.0439 m/rad^2
+  // never stand one under the other.
+  std::vector<std::pair<Dimension, std::string>> chosen;
+  auto unit_of = [&](const OutputValue& o, const std::string& row_unit) {
+    const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
+    if (!row_unit.empty()) {
+      if (known == chosen.end()) chosen.emplace_back(o.dimension, row_unit);
+      return row_unit;
+    }
+    if (known != chosen.end()) return known->second;
+    std::string u = units.unit_for(o.dimension, o.display_unit);
+    if (u.empty()) u = reader_unit(o.dimension);
+    chosen.emplace_back(o.dimension, u);
+    return u;
+  };
   for (const auto& row : report.rows) {
     std::vector<std::string> cells{row.label, row.unit};
     for (const auto& cell : row.cells) {
@@ -125,8 +172,11 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
       } else {
         value = o.value.as_scalar();
       }
-      const std::string unit = row.unit.empty() ? units.unit_for(o.dimension) : row.unit;
-      if (cells[1].empty() && o.dimension.si_unit() != "1") cells[1] = unit.empty() ? o.dimension.si_unit() : unit;
+      const std::string unit = unit_of(o, row.unit);
+      if (cells[1] == row.unit && o.dimension.si_unit() != "1") {
+        const PortSpec* spec = cell->output < graph.outputs.size() ? graph.outputs[cell->output].spec : nullptr;
+        cells[1] = unit_with_reference(unit.empty() ? o.dimension.si_unit() : unit, spec ? angle_reference(*spec) : "");
+      }
       const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
       char buffer[32];
       std::snprintf(buffer, sizeof buffer, "%.6g", shown);
@@ -137,9 +187,9 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
   return rows;
 }
 
-void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units) {
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const Graph& graph) {
   // Labels are the scene's text: no control sequence reaches the terminal.
-  auto rows = report_cells(report, result, units);
+  auto rows = report_cells(report, result, graph);
   for (auto& r : rows)
     for (std::string& cell : r) cell = terminal_text(cell);
   std::vector<std::size_t> width(rows.front().size(), 0);
@@ -164,8 +214,8 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
 std::string csv_cell(const std::string& text) { return csv_field(text); }
 
 void write_report_csv(const std::filesystem::path& file, const ResolvedReport& report, const RunResult& result,
-                      const DisplayUnits& units) {
-  auto rows = report_cells(report, result, units);
+                      const Graph& graph) {
+  auto rows = report_cells(report, result, graph);
   rows.front()[0] = "quantity";
   std::ofstream out(file);
   if (!out) throw IoError("cannot write '" + file.string() + "'");

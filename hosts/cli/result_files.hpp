@@ -19,15 +19,27 @@ namespace mechgraph::cli {
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs);
 
+/// "cam" or "crank" for a port of an angle dimension that says which angle it is measured in
+/// (its name starts with crank, or its description names cam or crank angle first); "" otherwise.
+std::string angle_reference(const PortSpec& port);
+/// `unit` with the angle named when it holds degrees: "mm^2*deg (cam)".
+std::string unit_with_reference(const std::string& unit, const std::string& reference);
+
+/// The unit a report row without one shows a dimension in when the scene has no `units:` for it
+/// and the port no unit of its own: mm, deg, mm/deg^n, mm^2, mm^2*deg, mm^2*s; "" (SI) otherwise.
+std::string reader_unit(const Dimension& d);
+
 /// A report table as cells: the header row (label, unit, the columns), then a row per report row,
-/// values formatted with 6 significant digits in the row's unit (or the scene's display unit).
-std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result,
-                                                   const DisplayUnits& units);
+/// values formatted with 6 significant digits in the row's unit; a row without one shows its
+/// dimension in the scene's display unit, else in the unit the table's first row of that
+/// dimension used (its port's own, else reader_unit), one unit per dimension. Units of degrees
+/// say cam or crank.
+std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result, const Graph& graph);
 /// The same as aligned text under its title.
-void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const DisplayUnits& units);
+void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const Graph& graph);
 /// The same as CSV: "name [unit]" is not used here, the unit is its own column.
 void write_report_csv(const std::filesystem::path& file, const ResolvedReport& report, const RunResult& result,
-                      const DisplayUnits& units);
+                      const Graph& graph);
 
 /// Short series inline ([a, b, c] unit), labelled ones by name, long ones as a count.
 void print_series(std::ostream& os, const OutputValue& o);

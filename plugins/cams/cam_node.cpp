@@ -76,6 +76,7 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
 class CamNodeType final : public NodeType {
  public:
   explicit CamNodeType(CamLawDefinition d) : make_(std::move(d.make)), derived_(d.derives_lift_and_action) {
+    const std::string derived_from = d.derived_from;
     info_.type = std::move(d.type);
     info_.version = d.version;
     info_.summary = std::move(d.summary);
@@ -99,7 +100,7 @@ class CamNodeType final : public NodeType {
     if (derived_) {
       for (std::size_t i = 0; i < 2; ++i) {
         info_.params[i].optional();
-        info_.params[i].doc += " (taken from the data; give it only to check the data against it)";
+        info_.params[i].doc += " (taken from " + derived_from + "; give it only to check " + derived_from + " against it)";
       }
     }
     for (auto& p : d.params) info_.params.push_back(std::move(p));

@@ -44,6 +44,9 @@ struct CamLawDefinition {
   CamLawFactory make;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.
   bool derives_lift_and_action = false;
+  /// Where such a law's lift and event come from, for the parameters' descriptions ("the data",
+  /// "the segments").
+  std::string derived_from = "the data";
 };
 
 std::shared_ptr<const NodeType> make_cam_node_type(CamLawDefinition definition);

@@ -137,6 +137,7 @@ CamLawDefinition program_law_definition() {
   d.summary = "a cam built from segments (rise, dwell, return), each with its own angle and law; continuity "
               "reported at every joint; lift and event from the segments";
   d.derives_lift_and_action = true;
+  d.derived_from = "the segments";
   std::vector<std::string> laws;
   for (RiseShape s : all_rise_shapes) laws.emplace_back(rise_shape_name(s));
   d.params = {ParamSpec::record_list(

@@ -35,8 +35,9 @@ TEST_CASE("mechgraph report: a self-contained page with every curve plotted, ren
   };
   const std::vector<Case> cases{
       {"valvetrain_cams.yaml", "cams", 5,
-       {"svaj of arc, kurz, poly: acceleration", "svaj of v_arc, v_kurz, v_poly: acceleration", "Stage 4 by the source",
-        "kurz.events", "v_kurz.events", "sd_kurz.force_curve: spring_force, inertia_force, required_force, contact_force",
+       {"Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (arc, kurz, poly)",
+        "Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (v_arc, v_kurz, v_poly)",
+        "Stage 4 by the source", "kurz.events", "v_kurz.events", "Spring force over valve lift: Kurz (sd_kurz)",
         "intake: opens"}},
       {"backlash_chain.yaml", "chain", 3,
        {"chain.joint_contribution_rss", "Against the specification", "samples outside spec",
