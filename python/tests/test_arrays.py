@@ -1,0 +1,56 @@
+"""A lift law from numpy arrays in memory: cam.table's angles and lifts, the file's checks."""
+import math
+
+import numpy as np
+import pytest
+
+import mechgraph
+
+SCENE = """
+nodes:
+  ref:   { type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  table: { type: cam.table, params: { base_radius: 17 mm } }
+outputs: [ table.max_lift, table.action_angle, ref.svaj ]
+"""
+
+
+def kurz_rows(scene, n=721):
+    r = scene.run(outputs=["ref.svaj"])
+    t = r["ref.svaj"]
+    return t
+
+
+def test_a_table_from_arrays_follows_the_law_it_samples(tmp_path):
+    scene = mechgraph.Scene.from_text(SCENE)
+    svaj = scene.run(outputs=["ref.svaj"]).table("ref.svaj")
+    angle = svaj.iloc[:, 0].to_numpy()
+    lift = svaj.iloc[:, 1].to_numpy()
+    lift[0] = lift[-1] = 0.0
+    r = scene.run(set={"table.angles": angle, "table.lifts": lift},
+                  outputs=["table.max_lift", "table.action_angle"])
+    assert math.isclose(r["table.max_lift"], 0.008, rel_tol=1e-6)
+    assert math.isclose(r["table.action_angle"], math.radians(130), rel_tol=1e-9)
+
+    # the same rows through a file give the same law
+    csv = tmp_path / "lift.csv"
+    csv.write_text("".join(f"{math.degrees(a)!r},{h * 1e3!r}\n" for a, h in zip(angle, lift)))
+    f = mechgraph.Scene.from_text(SCENE).run(set={"table.file": str(csv)}, outputs=["table.max_lift"])
+    assert math.isclose(f["table.max_lift"], r["table.max_lift"], rel_tol=1e-12)
+
+
+def test_the_file_checks_apply_to_arrays():
+    scene = mechgraph.Scene.from_text(SCENE)
+    angle = np.radians(np.linspace(-65, 65, 41))
+    lift = 0.008 * np.cos(np.linspace(-np.pi / 2, np.pi / 2, 41)) ** 2
+    with pytest.raises(mechgraph.EvaluationError, match="increase"):
+        scene.run(set={"table.angles": angle[::-1], "table.lifts": lift}, outputs=["table.max_lift"])
+    bad = lift.copy()
+    bad[5] = -1e-6
+    with pytest.raises(mechgraph.EvaluationError, match="negative"):
+        scene.run(set={"table.angles": angle, "table.lifts": bad}, outputs=["table.max_lift"])
+    with pytest.raises(mechgraph.EvaluationError, match="as long"):
+        scene.run(set={"table.angles": angle, "table.lifts": lift[:-1]}, outputs=["table.max_lift"])
+    with pytest.raises(mechgraph.EvaluationError, match="no table"):
+        scene.run(outputs=["table.max_lift"])
+    with pytest.raises(mechgraph.SceneError):
+        scene.run(set={"table.angles": angle * np.nan, "table.lifts": lift}, outputs=["table.max_lift"])
