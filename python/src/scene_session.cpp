@@ -45,6 +45,7 @@ void SceneSession::validate() {
 }
 
 std::optional<Dimension> SceneSession::dimension_of(const std::string& name) {
+  std::lock_guard lock(plain_mutex_);
   if (!plain_) plain_ = build_graph(scene_, *registry_);
   return target_dimension(*plain_, name);
 }

@@ -87,6 +87,7 @@ class SceneSession {
   SceneSpec scene_;
   std::mutex mutex_;  // runs one at a time: they write into prepared graphs
   std::map<std::string, Prepared> prepared_;
+  std::mutex plain_mutex_;      // dimension_of is called from runs and from sweeps' case tables
   std::optional<Graph> plain_;  // the scene as written (dimension_of)
   std::unique_ptr<MemoCache> cache_ = std::make_unique<MemoCache>();
 };

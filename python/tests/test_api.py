@@ -154,3 +154,34 @@ def test_plugins_follow_the_command_line_rules(tmp_path):
     assert e.value.exit_code == 4
     mechgraph.load_plugins()  # back to the built-in folder
     assert "cam.kurz" in mechgraph.node_types()
+
+
+def test_the_stub_names_what_the_module_has():
+    import ast
+    import pathlib
+
+    stub = pathlib.Path(mechgraph.__file__).with_name("__init__.pyi")
+    tree = ast.parse(stub.read_text())
+    names = {n.name for n in tree.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    assert names >= {"Scene", "Result", "describe", "node_types", "plugins", "SceneError"}
+    for name in names:
+        assert hasattr(mechgraph, name), name
+    for cls in (n for n in tree.body if isinstance(n, ast.ClassDef)):
+        for member in cls.body:
+            if isinstance(member, ast.FunctionDef) and not member.name.startswith("__"):
+                assert hasattr(getattr(mechgraph, cls.name), member.name), f"{cls.name}.{member.name}"
+
+
+def test_bad_yaml_text_is_a_scene_error_with_its_location():
+    with pytest.raises(mechgraph.SceneError) as e:
+        mechgraph.Scene.from_text("nodes:\n  k: { type: cam.kurz\n", name="mine.yaml")
+    assert e.value.location is not None and e.value.location[0] == "mine.yaml"
+
+
+def test_a_scene_pickles_and_runs_where_it_lands(scenes):
+    import pickle
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    again = pickle.loads(pickle.dumps(scene))
+    a = scene.run(outputs=["ta_kurz.time_area"])["ta_kurz.time_area"]
+    assert again.run(outputs=["ta_kurz.time_area"])["ta_kurz.time_area"] == a

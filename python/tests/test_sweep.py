@@ -70,3 +70,13 @@ def test_bad_cases_are_scene_errors(scenes):
         scene.sweep({"rmp [rpm]": [5000.0]})
     with pytest.raises(mechgraph.SceneError):
         scene.sweep({"rpm [rpm]": [5000.0, 6000.0], "lift [mm]": [8.0]})
+
+
+def test_no_cases_give_an_empty_frame_and_nan_is_refused(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    empty = scene.sweep({"rpm [rpm]": np.array([], dtype=float)}, outputs=["v_kurz.max_acceleration"])
+    assert len(empty) == 0 and "case" in empty.columns
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"rpm [rpm]": [5000.0, float("nan")]}, outputs=["v_kurz.max_acceleration"])
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"lift": [0.008, float("inf")]}, outputs=["v_kurz.max_acceleration"])
