@@ -554,7 +554,13 @@ CamLawDefinition table_law_definition() {
                        : method == "gcv"      ? TableSmoothing::gcv
                                               : TableSmoothing::none;
     if (params.has("resolution")) smoothing.resolution = params.number("resolution");
-    auto law = std::make_shared<const TableLaw>(table, basics.base_radius, smoothing);
+    std::shared_ptr<const TableLaw> law;
+    try {
+      law = std::make_shared<const TableLaw>(table, basics.base_radius, smoothing);
+    } catch (const NodeError& e) {
+      if (!listed || e.parameter() != "file") throw;
+      throw NodeError("lifts", e.what());  // the rows came from the lists: name them, not the file
+    }
     const TableDiagnostics& diag = law->diagnostics();
     if (basics.context) {
       basics.context->report_work("solves", static_cast<double>(diag.work.solves));
