@@ -448,6 +448,23 @@ CamLawDefinition table_law_definition() {
       "tabulated lift from a CSV file (cam angle, lift), quintic spline interpolation or, for measured tables, a "
       "penalised quintic smoothing spline; lift and event from the file";
   d.derives_lift_and_action = true;
+  // An example table for the conformance kit (`mechgraph plugin-test`), which evaluates the type
+  // with its defaults and examples: h = 9 mm cos^2(pi phi / 130 deg) over -65 .. 65 deg, every
+  // 2.5 deg (smooth, zero with zero slope at both ends; the common examples' lift and action angle).
+  std::vector<double> example_angles, example_lifts;
+  for (int i = -26; i <= 26; ++i) {
+    const double phi = 2.5 * i * pi / 180.0, c = std::cos(pi * phi / (130.0 * pi / 180.0));
+    example_angles.push_back(phi);
+    example_lifts.push_back(std::abs(i) == 26 ? 0.0 : 9e-3 * c * c);
+  }
+  ParamSpec angles = ParamSpec::number_list("angles", dim::angle,
+                                            "the table's cam angles as a list instead of a file (with lifts; the Python module "
+                                            "passes numpy arrays here); the same checks as the file's rows",
+                                            "deg")
+                         .optional();
+  angles.example_value = ParamValue::of_list(std::move(example_angles));
+  ParamSpec lifts = ParamSpec::number_list("lifts", dim::length, "the table's lifts, one per angle (with angles)", "mm").optional();
+  lifts.example_value = ParamValue::of_list(std::move(example_lifts));
   d.params = {
       ParamSpec::text("file",
                       "CSV lift table: cam angle, lift; ',' ';' or blank separated, '#' comments, one header line "
@@ -455,12 +472,8 @@ CamLawDefinition table_law_definition() {
                       "from it; if given they must agree (0.1 %, 1e-4 deg). Give file, or angles and lifts")
           .as_path()
           .optional(),
-      ParamSpec::number_list("angles", dim::angle,
-                             "the table's cam angles as a list instead of a file (with lifts; the Python module "
-                             "passes numpy arrays here); the same checks as the file's rows",
-                             "deg")
-          .optional(),
-      ParamSpec::number_list("lifts", dim::length, "the table's lifts, one per angle (with angles)", "mm").optional(),
+      angles,
+      lifts,
       ParamSpec::choice("angle_origin", {"nose", "start_of_lift"},
                         "where the table's angles are counted from: nose (0 at the top, the lift event around it), or "
                         "start_of_lift (0 where the lift begins; the event is then centred on 0)")
