@@ -51,15 +51,4 @@ CaseValue value_from_si(double si, Dimension d, const std::string& context) {
   return CaseValue{si_text(si, d), si, d};
 }
 
-std::string si_list_text(const std::vector<double>& si, Dimension d, const std::string& context) {
-  std::string text = "[";
-  for (std::size_t i = 0; i < si.size(); ++i) {
-    if (!std::isfinite(si[i]))
-      throw SceneError(context + ": element " + std::to_string(i) + " is " + (std::isnan(si[i]) ? "NaN" : "infinite"));
-    if (i) text += ", ";
-    text += si_text(si[i], d);
-  }
-  return text + "]";
-}
-
 }  // namespace mechgraph::python

@@ -27,8 +27,4 @@ CaseValue value_from_text(const std::string& text, const std::string& context);
 /// A number in SI for a parameter of dimension `d`; non-finite is a SceneError naming `context`.
 CaseValue value_from_si(double si, Dimension d, const std::string& context);
 
-/// `[a unit, b unit, ...]`: a list parameter's value as the scene's YAML writes it, every number in
-/// SI and parsing back to the same double.
-std::string si_list_text(const std::vector<double>& si, Dimension d, const std::string& context);
-
 }  // namespace mechgraph::python

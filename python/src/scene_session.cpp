@@ -5,10 +5,12 @@
 #include <cli.hpp>
 #include <sweep_rows.hpp>
 
+#include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/work_estimate.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <thread>
 
@@ -56,27 +58,67 @@ void SceneSession::clear_cache() {
 }
 
 SceneSession::Prepared& SceneSession::prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
-                                               const std::vector<Override>& list_overrides) {
-  std::string key = joined(outputs, ',') + '\n' + joined(names, ',');
-  for (const Override& o : list_overrides) key += '\n' + o.text;
+                                               const std::vector<std::string>& list_names) {
+  const std::string key = joined(outputs, ',') + '\n' + joined(names, ',') + '\n' + joined(list_names, ',');
   if (auto it = prepared_.find(key); it != prepared_.end()) return it->second;
   if (prepared_.size() >= max_prepared) prepared_.clear();
   Prepared p;
   p.scene = std::make_unique<SceneSpec>(with_outputs(outputs));
-  p.graph = build_graph(*p.scene, *registry_, list_overrides);
+  p.graph = build_graph(*p.scene, *registry_);
   check_work_budget(p.graph, estimate_work(p.graph), WorkBudget{}, 1, false);
   std::vector<SweepVariable> variables;
   for (const std::string& n : names) variables.push_back({n, ""});
-  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, list_overrides, variables);
+  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables);
   return prepared_.emplace(std::move(key), std::move(p)).first->second;
 }
+
+namespace {
+
+// Writes a list parameter (`table.angles`) straight into the built graph, each element checked as
+// the scene loader checks a list's numbers: finite, within the parameter's range. No YAML: a table
+// of a million rows costs its copy.
+void write_list(Graph& graph, const std::string& name, const std::vector<double>& values) {
+  const auto dot = name.find('.');
+  const std::string context = "set " + name;
+  if (dot == std::string::npos)
+    throw SceneError(context + ": an array goes to a node's list parameter (node.param), not to a scene parameter");
+  const std::string node_name = name.substr(0, dot), param = name.substr(dot + 1);
+  const auto node = graph.find(node_name);
+  if (!node) {
+    std::vector<std::string> valid;
+    for (const GraphNode& n : graph.nodes) valid.push_back(n.name);
+    throw SceneError(context + ": " + unknown_name_message("node", node_name, valid));
+  }
+  GraphNode& target = graph.nodes[*node];
+  const ParamSpec* spec = target.info().find_param(param);
+  if (!spec || spec->kind != ParamKind::number_list) {
+    std::vector<std::string> lists;
+    for (const ParamSpec& p : target.info().params)
+      if (p.kind == ParamKind::number_list) lists.push_back(p.name);
+    const std::string type = " (" + target.info().type + ")";
+    if (!spec) throw SceneError(context + type + ": " + unknown_name_message("list parameter", param, lists));
+    std::string valid;
+    for (const std::string& l : lists) valid += (valid.empty() ? "" : " ") + l;
+    throw SceneError(context + type + ": '" + param + "' takes one value, not an array (its list parameters: " +
+                     (valid.empty() ? "none" : valid) + ")");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i]))
+      throw SceneError(context + ": element " + std::to_string(i) + " is " + (std::isnan(values[i]) ? "NaN" : "infinite"));
+    if (const std::string problem = spec->value_problem(values[i]); !problem.empty())
+      throw SceneError(context + ": element " + std::to_string(i) + " = " + si_text(values[i], spec->dimension) + " " + problem);
+  }
+  target.params.set(param, ParamValue::of_list(values));
+}
+
+}  // namespace
 
 SessionRun SceneSession::run(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs, unsigned threads) {
   std::lock_guard lock(mutex_);
   SessionRun run;
-  std::vector<std::string> names;
+  std::vector<std::string> names, list_names;
   std::vector<CaseValue> values;
-  std::vector<Override> list_overrides;
+  std::vector<const SetValue*> lists;
   for (const SetValue& s : sets) {
     const std::string context = "set " + s.name;
     if (const auto* text = std::get_if<std::string>(&s.value)) {
@@ -88,16 +130,16 @@ SessionRun SceneSession::run(const std::vector<SetValue>& sets, const std::vecto
       values.push_back(value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), context));
       run.overrides.push_back(s.name + "=" + values.back().text);
     } else {
-      // A list (a lift table's angles) is written into the scene as --set would: the graph is built
-      // again for it (and kept while the same list comes back).
-      const auto& list = std::get<std::vector<double>>(s.value);
-      const std::string text = s.name + "=" + si_list_text(list, dimension_of(s.name).value_or(Dimension{}), context);
-      list_overrides.push_back(parse_override(text));
-      run.overrides.push_back(text);
+      list_names.push_back(s.name);
+      lists.push_back(&s);
+      run.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, SI>");
     }
   }
-  Prepared& p = prepared(outputs, names, list_overrides);
+  // The graph for this choice of outputs and names: every run with it writes all of its names, so
+  // nothing of an earlier run's values stays behind.
+  Prepared& p = prepared(outputs, names, list_names);
   p.binder->apply(p.graph, values);
+  for (const SetValue* l : lists) write_list(p.graph, l->name, std::get<std::vector<double>>(l->value));
   const auto start = std::chrono::steady_clock::now();
   run.result = evaluate(p.graph, *cache_, threads);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -154,7 +196,8 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<std::
 Graph SceneSession::graph_for(const std::vector<std::string>& overrides, const std::vector<std::string>& outputs) const {
   const SceneSpec scene = with_outputs(outputs);
   std::vector<Override> parsed;
-  for (const std::string& o : overrides) parsed.push_back(parse_override(o));
+  for (const std::string& o : overrides)
+    if (o.find("=<") == std::string::npos) parsed.push_back(parse_override(o));  // arrays are not kept as text
   return build_graph(scene, *registry_, parsed);
 }
 

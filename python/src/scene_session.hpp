@@ -30,7 +30,7 @@ struct SetValue {
 
 struct SessionRun {
   RunResult result;
-  std::vector<std::string> overrides;  // "name=value" as --set would write each value (provenance)
+  std::vector<std::string> overrides;  // "name=value" as --set would write each value; an array "name=<N values, SI>"
   std::size_t scene_output_count = 0;  // the first outputs of result are the ones asked for
   double seconds = 0.0;                // wall time of the evaluation
 };
@@ -80,7 +80,7 @@ class SceneSession {
     std::unique_ptr<CaseBinder> binder;
   };
   Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
-                     const std::vector<Override>& list_overrides);
+                     const std::vector<std::string>& list_names);
   SceneSpec with_outputs(const std::vector<std::string>& outputs) const;
 
   std::shared_ptr<const PluginRegistry> registry_;
