@@ -4,7 +4,9 @@ set -euo pipefail
 packages=(cmake g++ ninja-build ccache pkg-config
           libboost-dev libboost-program-options-dev libboost-filesystem-dev
           libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2 libbenchmark-dev
-          libsundials-dev gnuplot-nox libdxflib-dev python3-ezdxf chromium python3-pil graphviz)
+          libsundials-dev gnuplot-nox libdxflib-dev python3-ezdxf chromium python3-pil graphviz
+          pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
+          python3-pytest python3-distributed python3-nbclient python3-ipykernel python3-nbformat)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -36,6 +36,13 @@ PluginRegistry load_plugins(const GlobalOptions& options, const std::vector<std:
 /// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
 Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);
 
+/// The graph a sweep runs: `outputs` ("a.b,c.d", --outputs) replace the scene's outputs and report;
+/// without them, tables and handles (not one number per case) are left out of the scene's own
+/// outputs with a note. Updates `scene.outputs` to what the graph requests. Throws UsageError for
+/// a chosen output that is not a scalar or a series.
+Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                        const std::optional<std::string>& outputs);
+
 /// "12.5 mm" from an SI value, in `unit` when given (else SI), 6 significant digits.
 std::string format_value(double si, Dimension dimension, const std::string& unit);
 

@@ -133,43 +133,6 @@ std::string fingerprint(const std::string& scene_file, const std::vector<std::st
   return hex;
 }
 
-// Builds the graph to sweep: --outputs replace the scene's outputs and report; tables and
-// handles (not one number per case) are left out of a scene's own outputs with a note.
-Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
-                        const po::variables_map& vm) {
-  const bool chosen = vm.count("outputs") > 0;
-  if (chosen) {
-    scene.outputs.clear();
-    scene.report.clear();
-    const std::string list = vm["outputs"].as<std::string>();
-    std::size_t start = 0;
-    for (std::size_t comma;; start = comma + 1) {
-      comma = list.find(',', start);
-      const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      scene.outputs.push_back(parse_port_ref(item, {"--outputs " + item, 0, 0}));
-      if (comma == std::string::npos) break;
-    }
-  }
-  Graph graph = build_graph(scene, registry, overrides);
-  std::vector<PortRef> kept;
-  for (std::size_t j = 0; j < graph.scene_output_count; ++j) {
-    const RequestedOutput& o = graph.outputs[j];
-    if (o.spec->kind == ValueKind::scalar || o.spec->kind == ValueKind::series) {
-      kept.push_back(scene.outputs[j]);
-      continue;
-    }
-    if (chosen)
-      throw UsageError("--outputs: '" + o.label + "' is a " + std::string(to_string(o.spec->kind)) +
-                       ", not one value per case; mechgraph run --out writes it for one design");
-    spdlog::info("sweep: '{}' is a {}, not a column; left out (mechgraph run --out writes it)", o.label, to_string(o.spec->kind));
-  }
-  if (kept.size() != graph.scene_output_count) {
-    scene.outputs = kept;
-    graph = build_graph(scene, registry, overrides);
-  }
-  return graph;
-}
-
 }  // namespace
 
 int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) {
@@ -213,7 +176,8 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  const Graph graph = build_sweep_graph(scene, registry, overrides, vm);
+  const Graph graph = build_sweep_graph(scene, registry, overrides,
+                                       vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt);
   const CaseTable table = make_cases(vm);
   const CaseBinder binder(graph, scene, registry, overrides, table.variables);
 

@@ -153,6 +153,22 @@ LiftTable read_lift_table(const std::string& path, double angle_scale, double li
   return parse_lift_table(text, path, angle_scale, lift_scale);
 }
 
+LiftTable listed_lift_table(const ParamSet& params) {
+  if (!params.has("angles") || !params.has("lifts"))
+    throw NodeError(params.has("angles") ? "lifts" : "angles", "angles and lifts go together: give both lists");
+  const std::vector<double>& angles = params.numbers("angles");
+  const std::vector<double>& lifts = params.numbers("lifts");
+  if (angles.size() != lifts.size())
+    throw NodeError("lifts", "lifts has " + std::to_string(lifts.size()) + " values, angles " + std::to_string(angles.size()) +
+                                 "; they must be as long");
+  LiftTable table;
+  table.source = "lifts";
+  table.lift_scale = 0.0;  // numbers, not printed digits: no resolution to read from them
+  for (std::size_t i = 0; i < angles.size(); ++i)  // "line" i + 1 of the lists: the (i + 1)-th pair
+    table.rows.push_back({angles[i], lifts[i], static_cast<int>(i + 1)});
+  return table;
+}
+
 double lift_quantum(const LiftTable& table) {
   // Every lift as printed (in the file's unit) a whole multiple of 10^-k, k = 0 .. 6, the largest
   // such quantum; a parsed decimal is within a few ulps of it.
@@ -425,18 +441,39 @@ void set_master_deviation(const TableLaw& law, const LiftTable& table, const Inp
 CamLawDefinition table_law_definition() {
   CamLawDefinition d;
   d.type = "cam.table";
-  // 2: smoothing, resolution, the master input, residual and noise outputs
-  d.version = 2;
+  // 2: smoothing, resolution, the master input, residual and noise outputs; 3: angles and lifts
+  // (the table as lists, e.g. numpy arrays from the Python module) instead of the file
+  d.version = 3;
   d.summary =
       "tabulated lift from a CSV file (cam angle, lift), quintic spline interpolation or, for measured tables, a "
       "penalised quintic smoothing spline; lift and event from the file";
   d.derives_lift_and_action = true;
+  // An example table for the conformance kit (`mechgraph plugin-test`), which evaluates the type
+  // with its defaults and examples: h = 9 mm cos^2(pi phi / 130 deg) over -65 .. 65 deg, every
+  // 2.5 deg (smooth, zero with zero slope at both ends; the common examples' lift and action angle).
+  std::vector<double> example_angles, example_lifts;
+  for (int i = -26; i <= 26; ++i) {
+    const double phi = 2.5 * i * pi / 180.0, c = std::cos(pi * phi / (130.0 * pi / 180.0));
+    example_angles.push_back(phi);
+    example_lifts.push_back(std::abs(i) == 26 ? 0.0 : 9e-3 * c * c);
+  }
+  ParamSpec angles = ParamSpec::number_list("angles", dim::angle,
+                                            "the table's cam angles as a list instead of a file (with lifts; the Python module "
+                                            "passes numpy arrays here); the same checks as the file's rows",
+                                            "deg")
+                         .optional();
+  angles.example_value = ParamValue::of_list(std::move(example_angles));
+  ParamSpec lifts = ParamSpec::number_list("lifts", dim::length, "the table's lifts, one per angle (with angles)", "mm").optional();
+  lifts.example_value = ParamValue::of_list(std::move(example_lifts));
   d.params = {
       ParamSpec::text("file",
                       "CSV lift table: cam angle, lift; ',' ';' or blank separated, '#' comments, one header line "
                       "allowed; a relative path is taken from the scene file's folder. max_lift and action_angle come "
-                      "from it; if given they must agree (0.1 %, 1e-4 deg)")
-          .as_path(),
+                      "from it; if given they must agree (0.1 %, 1e-4 deg). Give file, or angles and lifts")
+          .as_path()
+          .optional(),
+      angles,
+      lifts,
       ParamSpec::choice("angle_origin", {"nose", "start_of_lift"},
                         "where the table's angles are counted from: nose (0 at the top, the lift event around it), or "
                         "start_of_lift (0 where the lift begins; the event is then centred on 0)")
@@ -508,8 +545,12 @@ CamLawDefinition table_law_definition() {
     };
     const double angle_scale = scale_of("angle_unit", "deg", dim::angle, "an angle");
     const double lift_scale = scale_of("lift_unit", "mm", dim::length, "a length");
-    const std::string& path = params.text("file");
-    LiftTable table = read_lift_table(path, angle_scale, lift_scale);
+    const bool listed = params.has("angles") || params.has("lifts");
+    if (listed == params.has("file"))
+      throw NodeError("file", listed ? "give the table once: file, or angles and lifts, not both"
+                                     : "no table: give file, or angles and lifts");
+    const std::string path = listed ? std::string("lifts") : params.text("file");
+    LiftTable table = listed ? listed_lift_table(params) : read_lift_table(path, angle_scale, lift_scale);
     if (params.text("angle_origin") == "start_of_lift" && !table.rows.empty()) {
       // Centre the lift event (between the last zero row before it and the first after) on 0.
       std::size_t first = 0, last = table.rows.size() - 1;
@@ -526,7 +567,13 @@ CamLawDefinition table_law_definition() {
                        : method == "gcv"      ? TableSmoothing::gcv
                                               : TableSmoothing::none;
     if (params.has("resolution")) smoothing.resolution = params.number("resolution");
-    auto law = std::make_shared<const TableLaw>(table, basics.base_radius, smoothing);
+    std::shared_ptr<const TableLaw> law;
+    try {
+      law = std::make_shared<const TableLaw>(table, basics.base_radius, smoothing);
+    } catch (const NodeError& e) {
+      if (!listed || e.parameter() != "file") throw;
+      throw NodeError("lifts", e.what());  // the rows came from the lists: name them, not the file
+    }
     const TableDiagnostics& diag = law->diagnostics();
     if (basics.context) {
       basics.context->report_work("solves", static_cast<double>(diag.work.solves));

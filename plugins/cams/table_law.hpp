@@ -57,6 +57,10 @@ struct LiftTable {
 /// Throws NodeError("file", "source:line: ...") on a bad row, non-increasing angle or negative lift.
 LiftTable parse_lift_table(std::string_view text, const std::string& source, double angle_scale, double lift_scale);
 
+/// The table given as lists (params `angles` in rad and `lifts` in m, as long as each other): row
+/// i is "line" i + 1 in messages. TableLaw makes the same checks as for a file's rows.
+LiftTable listed_lift_table(const ParamSet& params);
+
 /// The largest lift table read: 64 MiB (a million rows are some 20 MB).
 inline constexpr std::size_t lift_table_limit = std::size_t{64} << 20;
 

@@ -268,3 +268,61 @@ TEST_CASE("cam.table checks the table against max_lift and action_angle, units",
   CHECK(r.law->at(0.0).lift == Approx(H).epsilon(1e-9).margin(0.0));
   CHECK(r.law->event_end() == Approx(85.0 * deg).epsilon(1e-14).margin(0.0));
 }
+
+TEST_CASE("cam.table from lists (angles, lifts): the file's law and the file's checks", "[cams][table][node]") {
+  // The rows of a file, parsed to SI, given instead as the lists the Python module passes: the same
+  // rows make the same quintic spline, so the laws agree to rounding everywhere in the event.
+  const SymmetricRiseReturnLaw exact(RiseShape::harmonic, 9.0 * mm, 130.0 * deg, 0.06);
+  const std::string csv = sampled_csv(exact, 1.0 * deg);
+  const TempFile file("listed_harmonic.csv", csv);
+  const LiftTable rows = parse_lift_table(csv, "t.csv", deg, mm);
+  std::vector<double> angles, lifts;
+  for (const LiftTableRow& r : rows.rows) {
+    angles.push_back(r.angle);
+    lifts.push_back(r.lift);
+  }
+  auto evaluate_lists = [&](std::vector<double> a, std::vector<double> h, bool with_file = false) {
+    ParamSet p = make_params(table_type().info(), with_file ? std::map<std::string, std::string>{{"base_radius", "60 mm"}, {"file", file.path()}}
+                                                            : std::map<std::string, std::string>{{"base_radius", "60 mm"}});
+    p.set("angles", ParamValue::of_list(std::move(a)));
+    p.set("lifts", ParamValue::of_list(std::move(h)));
+    Evaluation e;
+    table_type().evaluate(p, {}, e.outputs, e.context);
+    e.law = std::dynamic_pointer_cast<const CamLaw>(e.outputs.all().at("law").as_handle());
+    return e;
+  };
+  auto error_of = [&](std::vector<double> a, std::vector<double> h, bool with_file = false) -> std::pair<std::string, std::string> {
+    try {
+      evaluate_lists(std::move(a), std::move(h), with_file);
+    } catch (const NodeError& e) {
+      return {e.parameter(), e.what()};
+    }
+    return {"(no error)", ""};
+  };
+
+  const Evaluation listed = evaluate_lists(angles, lifts);
+  const Evaluation filed = evaluate_node(table_type(), {{"file", file.path()}, {"base_radius", "60 mm"}});
+  for (int i = 1; i < 400; ++i) {
+    const double phi = listed.law->event_begin() + (listed.law->event_end() - listed.law->event_begin()) * i / 400.0;
+    const LiftDerivatives a = listed.law->at(phi), b = filed.law->at(phi);
+    CHECK(a.lift == Approx(b.lift).epsilon(1e-14).margin(1e-18));
+    CHECK(a.acceleration == Approx(b.acceleration).epsilon(1e-12).margin(1e-15));
+  }
+  CHECK(listed.law->max_lift() == Approx(9.0 * mm).epsilon(1e-10).margin(0.0));
+
+  // The file's checks, naming the lists and the pair at fault ("lifts:N").
+  auto reversed = angles;
+  std::reverse(reversed.begin(), reversed.end());
+  const auto decreasing = error_of(reversed, lifts);
+  CHECK(decreasing.first == "lifts");
+  CHECK_THAT(decreasing.second, Catch::Contains("lifts:2:") && Catch::Contains("increase"));
+  auto negative = lifts;
+  negative[10] = -1e-6;
+  const auto below = error_of(angles, negative);
+  CHECK(below.first == "lifts");
+  CHECK_THAT(below.second, Catch::Contains("lifts:11:"));
+  CHECK(error_of(angles, std::vector<double>(lifts.begin(), lifts.end() - 1)).first == "lifts");  // not as long
+  CHECK(error_of(std::vector<double>(angles.begin(), angles.begin() + 4), std::vector<double>(lifts.begin(), lifts.begin() + 4)).first == "lifts");  // too few
+  CHECK(error_of(angles, lifts, true).first == "file");  // a file and lists: which one?
+  CHECK(node_error({{"base_radius", "60 mm"}}) == "file");  // neither
+}

@@ -1,0 +1,130 @@
+"""A scene held in memory: built once, evaluated many times."""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, Iterable, Mapping, Optional, Sequence, Union
+
+from . import _core
+from ._cases import case_columns
+from ._result import Result
+
+SetValue = Union[str, float, int, Sequence[float]]
+
+# A run slower than this is run on a worker thread the next time, so Ctrl-C interrupts it; faster
+# runs stay on the calling thread (a thread start would cost more than the 50 us overhead budget).
+_INTERRUPTIBLE_AFTER_S = 0.01
+
+
+class Scene:
+    """A mechgraph scene. Make one with :meth:`load`, :meth:`from_text` or :meth:`from_dict`.
+
+    The scene is parsed once; each choice of outputs and of the names given to ``set=`` builds its
+    graph once, and a memo cache is kept across runs, so a run that changes one parameter evaluates
+    only what depends on it."""
+
+    def __init__(self, session: "_core.Session", source: tuple):
+        self._session = session
+        self._source = source  # ("file", path) or ("text", yaml, label): enough to rebuild it elsewhere
+        self._interruptible = True
+
+    # ---- making one --------------------------------------------------------------------------
+    @classmethod
+    def load(cls, path: Union[str, os.PathLike]) -> "Scene":
+        """Reads a scene file (YAML, units in strings); errors name file:line:column."""
+        path = os.fspath(path)
+        return cls(_core.Session.load(path), ("file", path))
+
+    @classmethod
+    def from_text(cls, yaml: str, name: str = "<text>") -> "Scene":
+        """A scene from YAML text; `name` stands for the file in messages (relative files a node
+        names are taken from the working directory)."""
+        return cls(_core.Session.from_text(yaml, name), ("text", yaml, name))
+
+    @classmethod
+    def from_dict(cls, scene: Mapping[str, Any], name: str = "<dict>") -> "Scene":
+        """A scene from a dict shaped like the YAML (``{"params": ..., "nodes": ..., "outputs": [...]}``)."""
+        return cls.from_text(json.dumps(scene, indent=1), name)
+
+    # pickling (dask): the scene travels as its text and is built again where it lands
+    def __reduce__(self):
+        if self._source[0] == "file":
+            return (_rebuild, ("file", self._source[1]))
+        return (_rebuild, self._source)
+
+    # ---- what it is --------------------------------------------------------------------------
+    @property
+    def title(self) -> str:
+        return self._session.title
+
+    @property
+    def file(self) -> str:
+        return self._session.file
+
+    @property
+    def params(self) -> list:
+        """The scene's parameters (names ``set=`` takes, besides ``node.param``)."""
+        return self._session.params
+
+    @property
+    def outputs(self) -> list:
+        """The outputs the scene asks for (``node.port``)."""
+        return self._session.outputs
+
+    def validate(self) -> None:
+        """Builds the scene against the loaded plugins and checks it, evaluating nothing
+        (``mechgraph validate``). Raises SceneError."""
+        self._session.validate()
+
+    # ---- evaluating --------------------------------------------------------------------------
+    def run(self, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
+            threads: int = 1) -> Result:
+        """Evaluates the scene.
+
+        set: ``{"rpm": "6500 rpm", "arc.follower": "roller", "cam.max_lift": 0.009}``: text with
+            its unit (or a word) as ``--set`` takes, a number in SI, or a 1-D array in SI for a
+            list parameter (``table.angles``, ``table.lifts``).
+        outputs: ``node.port`` labels instead of the scene's outputs and report.
+        threads: independent nodes evaluated at once.
+        """
+        outcome = self._session.run(dict(set or {}), list(outputs or []), threads, self._interruptible)
+        result = Result(outcome)
+        self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
+        return result
+
+    def sweep(self, cases: Any, set: Optional[Mapping[str, str]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0):
+        """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
+        threads (0: one per core) with the GIL released, and returns the rows of
+        ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
+        ``name [unit]``, values in that unit), ``exit`` and ``error``; a failed case is a row with
+        its exit class (2 scene, 3 evaluation) and message. Column names carry units as on the
+        command line (``cam.max_lift [mm]``); a column without one holds numbers in SI.
+
+        set: fixed overrides for every case, as text (``{"rpm": "6000 rpm"}``).
+        """
+        import pandas as pd
+
+        names, units, columns = case_columns(cases)
+        sets = [f"{k}={v}" for k, v in (set or {}).items()]
+        header, lines, summary = self._session.sweep(names, units, columns, sets, list(outputs or []), int(threads))
+        frame = pd.DataFrame([json.loads(line) for line in lines], columns=header)
+        frame.attrs["summary"] = summary
+        return frame
+
+    def cache_info(self) -> Dict[str, int]:
+        """Memo cache lookups of this scene's runs: hits and misses."""
+        hits, misses = self._session.cache_counters()
+        return {"hits": hits, "misses": misses}
+
+    def clear_cache(self) -> None:
+        self._session.clear_cache()
+
+    def __repr__(self) -> str:
+        return f"Scene({self.title or self.file!r})"
+
+
+def _rebuild(kind: str, *args: str) -> Scene:
+    if kind == "file":
+        return Scene.load(args[0])
+    return Scene.from_text(*args)

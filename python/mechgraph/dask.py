@@ -1,0 +1,60 @@
+"""Sweeps beyond one machine from Python: chunks of cases mapped over a dask.distributed cluster.
+
+Each worker builds the scene once (the first chunk it gets) and keeps it, with its memo cache, for
+the chunks after; the rows come back in case order and equal ``Scene.sweep`` row for row (``case``
+numbers count over all the cases). From the command line, the same job is a Slurm job array
+(``mechgraph sweep --shard``)."""
+from __future__ import annotations
+
+from typing import Any, Dict, Iterable, Mapping, Optional, Tuple
+
+from ._cases import case_columns
+from ._scene import Scene
+
+# Scenes built on this worker process, by their source (the scene travels as its text or path).
+_worker_scenes: Dict[Tuple[str, ...], Scene] = {}
+
+
+def _worker_scene(source: Tuple[str, ...]) -> Scene:
+    scene = _worker_scenes.get(source)
+    if scene is None:
+        scene = Scene.load(source[1]) if source[0] == "file" else Scene.from_text(source[1], source[2])
+        _worker_scenes[source] = scene
+    return scene
+
+
+def _run_chunk(source: Tuple[str, ...], first: int, chunk: Dict[str, Any], sets: Optional[Mapping[str, str]],
+               outputs: Optional[list], threads: int):
+    frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads)
+    frame["case"] = frame["case"] + first
+    return frame
+
+
+def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, str]] = None,
+          outputs: Optional[Iterable[str]] = None, threads: int = 1):
+    """Runs `cases` (a DataFrame or dict of arrays, as :meth:`Scene.sweep` takes) on the workers of
+    `client` (a ``dask.distributed.Client``) in chunks of `chunk` cases, `threads` threads per
+    chunk, and returns one DataFrame in case order. The columns of a series output are fixed per
+    chunk; a chunk whose cases all fail has only the scalar columns (its rows are aligned to the
+    others by name)."""
+    import pandas as pd
+
+    if chunk < 1:
+        raise ValueError("chunk must be at least 1")
+    names, units, columns = case_columns(cases)
+    headers = [f"{n} [{u}]" if u else n for n, u in zip(names, units)]
+    total = len(columns[0]) if columns else 0
+    source = scene._source
+    sets = dict(set or {})
+    outs = list(outputs or [])
+    futures = []
+    for first in range(0, total, chunk):
+        part = {h: c[first:first + chunk] for h, c in zip(headers, columns)}
+        futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, pure=False))
+    frames = client.gather(futures)
+    if not frames:
+        return scene.sweep(cases, set=set, outputs=outputs, threads=threads)
+    result = pd.concat(frames, ignore_index=True)
+    widest = max(frames, key=lambda f: len(f.columns))
+    ordered = list(widest.columns) + [c for c in result.columns if c not in widest.columns]
+    return result[ordered]

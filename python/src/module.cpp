@@ -1,0 +1,345 @@
+// mechgraph._core: the pybind11 extension behind the Python package `mechgraph` (python/mechgraph).
+// It holds the plugin registry (loaded by the command line's rules: --plugin-dir folders given to
+// load_plugins(), MECHGRAPH_PLUGIN_PATH, the built-in folder beside libmechgraph), the scene
+// sessions, and the conversions; the Pythonic surface (Result, DataFrames, errors) is Python code.
+#include "case_values.hpp"
+#include "interruptible.hpp"
+#include "scene_session.hpp"
+#include "value_arrays.hpp"
+
+#include <cli.hpp>
+#include <node_info_format.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/json_writer.hpp>
+#include <mechgraph/units.hpp>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <mutex>
+#include <sstream>
+
+namespace py = pybind11;
+using namespace mechgraph;
+using namespace mechgraph::python;
+
+namespace {
+
+// ---- plugins ------------------------------------------------------------------------------------
+
+std::mutex registry_mutex;
+std::shared_ptr<const PluginRegistry> current_registry;
+
+std::shared_ptr<const PluginRegistry> load_registry(const std::vector<std::string>& dirs, bool only) {
+  cli::GlobalOptions options;
+  options.plugin_dirs = dirs;
+  options.only_plugin_dirs = only;
+  auto registry = std::make_shared<const PluginRegistry>(cli::load_plugins(options));
+  std::lock_guard lock(registry_mutex);
+  current_registry = registry;
+  return registry;
+}
+
+std::shared_ptr<const PluginRegistry> registry() {
+  {
+    std::lock_guard lock(registry_mutex);
+    if (current_registry) return current_registry;
+  }
+  return load_registry({}, false);
+}
+
+py::list plugin_list(const PluginRegistry& r) {
+  py::list out;
+  for (const PluginInfo& p : r.plugins()) {
+    py::dict d;
+    d["id"] = p.id;
+    d["version"] = p.version;
+    d["sdk_version"] = p.sdk_version;
+    d["fingerprint"] = p.fingerprint;
+    d["file"] = p.path.string();
+    d["node_types"] = p.node_types;
+    out.append(d);
+  }
+  return out;
+}
+
+// ---- values from Python -------------------------------------------------------------------------
+
+SetValue set_value(const std::string& name, const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return {name, value.cast<std::string>()};
+  if (py::isinstance<py::bool_>(value))
+    throw SceneError("set " + name + ": True/False is not a value (give a number in SI or text with its unit)");
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
+      (py::hasattr(value, "__float__") && !py::hasattr(value, "__len__")))
+    return {name, value.cast<double>()};
+  py::array_t<double, py::array::c_style | py::array::forcecast> array;
+  try {
+    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  } catch (const py::error_already_set&) {
+  }
+  if (!array || array.ndim() != 1)
+    throw SceneError("set " + name + ": expected text with its unit ('6500 rpm'), a number in SI or a 1-D array of numbers in SI, got " +
+                     std::string(py::str(py::type::of(value).attr("__name__"))));
+  return {name, std::vector<double>(array.data(), array.data() + array.size())};
+}
+
+std::string number_text(double x) {
+  char buffer[40];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
+  return std::string(buffer, end);
+}
+
+// A sweep's cases from columns: numbers (a numpy array) in the column's unit, or in SI without
+// one; or text cells read as a cases file's are (a bare number takes the column's unit).
+CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
+                     const py::list& columns) {
+  CaseTable table;
+  table.origin = "python";
+  const std::size_t n = names.empty() ? 0 : py::len(columns[0]);
+  if (n > max_sweep_cases) throw SceneError("more than 10^7 cases in one sweep; split it into several sweeps");
+  if (n * std::max<std::size_t>(names.size(), 1) > max_case_cells)
+    throw SceneError("more than " + std::to_string(max_case_cells) + " values in one sweep; split it into several sweeps");
+  table.cases.assign(n, std::vector<CaseValue>(names.size()));
+  for (std::size_t v = 0; v < names.size(); ++v) {
+    const std::string& name = names[v];
+    const std::string& unit = units[v];
+    table.variables.push_back({name, unit});
+    py::handle column = columns[v];
+    if (py::len(column) != n)
+      throw SceneError("cases: column '" + excerpt(name) + "' has " + std::to_string(py::len(column)) + " values, the first " + std::to_string(n));
+    const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
+    if (py::isinstance<py::array>(column) && py::array(py::reinterpret_borrow<py::object>(column)).dtype().kind() == 'f') {
+      const auto numbers = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(column);
+      const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double x = numbers.data()[i];
+        table.cases[i][v] = unit.empty() ? value_from_si(x, d.value_or(Dimension{}), context(i))
+                                         : value_from_text(number_text(x) + " " + unit, context(i));
+        if (!std::isfinite(x)) throw SceneError(context(i) + ": not a finite number");
+      }
+    } else {
+      const auto cells = column.cast<std::vector<std::string>>();
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::string& cell = cells[i];
+        CaseValue value = value_from_text(cell, context(i));
+        if (!unit.empty() && value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos)
+          value = value_from_text(cell + " " + unit, context(i));
+        table.cases[i][v] = std::move(value);
+      }
+    }
+  }
+  return table;
+}
+
+// ---- results ------------------------------------------------------------------------------------
+
+struct RunOutcome {
+  std::shared_ptr<SceneSession> session;
+  std::shared_ptr<const SessionRun> run;
+  std::vector<std::string> outputs;
+
+  const OutputValue& find(const std::string& label) const {
+    for (const OutputValue& o : run->result.outputs)
+      if (o.label == label) return o;
+    std::vector<std::string> valid;
+    for (const OutputValue& o : run->result.outputs) valid.push_back(o.label);
+    throw py::key_error(unknown_name_message("output", label, valid));
+  }
+};
+
+py::dict provenance(const RunOutcome& r) {
+  const Graph graph = r.session->graph_for(r.run->overrides, r.outputs);
+  const SceneSpec& scene = r.session->scene();
+  py::dict out;
+  out["program"] = py::dict(py::arg("name") = "mechgraph (Python)", py::arg("version") = MECHGRAPH_VERSION);
+  out["scene"] = py::dict(py::arg("file") = scene.file, py::arg("title") = graph.title);
+  out["overrides"] = r.run->overrides;
+  py::dict nodes;
+  for (std::size_t index : graph.order) {
+    const GraphNode& n = graph.nodes[index];
+    py::dict node;
+    node["type"] = n.info().type;
+    node["type_version"] = n.info().version;
+    node["plugin"] = n.type->plugin_id;
+    for (const PluginInfo& p : r.session->registry().plugins())
+      if (p.id == n.type->plugin_id) node["plugin_version"] = p.version;
+    py::dict used;
+    for (const auto& [name, value] : n.params.all()) {
+      switch (value.kind) {
+        case ParamKind::number: used[name.c_str()] = value.number; break;
+        case ParamKind::integer: used[name.c_str()] = static_cast<long>(value.number); break;
+        case ParamKind::choice:
+        case ParamKind::text: used[name.c_str()] = value.text; break;
+        case ParamKind::number_list: used[name.c_str()] = to_array(value.numbers); break;
+        case ParamKind::record_list: used[name.c_str()] = py::str("<" + std::to_string(value.records.size()) + " records>"); break;
+      }
+    }
+    node["used_si"] = used;
+    nodes[n.name.c_str()] = node;
+  }
+  out["nodes"] = nodes;
+  out["plugins"] = plugin_list(r.session->registry());
+  return out;
+}
+
+// ---- errors -------------------------------------------------------------------------------------
+
+void raise_as(const char* class_name, const std::string& message) {
+  const py::object cls = py::module_::import("mechgraph._errors").attr(class_name);
+  PyErr_SetObject(cls.ptr(), py::str(message).ptr());
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "mechgraph's C++ core (libmechgraph and its plugins); use the package `mechgraph`.";
+  m.attr("__version__") = MECHGRAPH_VERSION;
+  spdlog::set_level(spdlog::level::warn);  // a notebook wants results, not progress; set_log_level() changes it
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SceneError& e) {
+      raise_as("SceneError", e.what());
+    } catch (const cli::UsageError& e) {
+      raise_as("SceneError", e.what());
+    } catch (const EvaluationError& e) {
+      raise_as("EvaluationError", e.what());
+    } catch (const PluginError& e) {
+      raise_as("PluginError", e.what());
+    } catch (const IoError& e) {
+      raise_as("MechgraphError", e.what());
+    }
+  });
+
+  m.def("load_plugins", [](const std::vector<std::string>& dirs, bool only) { return plugin_list(*load_registry(dirs, only)); },
+        py::arg("plugin_dirs") = std::vector<std::string>{}, py::arg("only") = false);
+  m.def("plugins", [] { return plugin_list(*registry()); });
+  m.def("node_types", [] { return registry()->type_names(); });
+  m.def("describe", [](const std::string& type) {
+    const auto r = registry();
+    const RegisteredType* t = r->find(type);
+    if (!t) throw cli::UsageError(unknown_name_message("node type", type, r->type_names()));
+    std::ostringstream json_text, text;
+    JsonWriter json(json_text);
+    cli::write_node_info_json(json, t->type->info());
+    cli::write_node_info_text(text, t->type->info());
+    return py::make_tuple(json_text.str(), text.str());
+  });
+  m.def("set_log_level", [](const std::string& level) {
+    const auto l = spdlog::level::from_str(level);
+    if (l == spdlog::level::off && level != "off")
+      throw SceneError("log level '" + level + "': valid levels are trace, debug, info, warn, error, critical, off");
+    spdlog::set_level(l);
+  });
+  m.def("to_unit", [](double si, const std::string& unit) {
+    // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
+    const UnitScale u = parse_unit(unit);
+    return si / u.scale - u.offset;
+  });
+
+  py::class_<RunOutcome>(m, "RunOutcome")
+      .def("labels", [](const RunOutcome& r) {
+        std::vector<std::string> labels;
+        for (std::size_t i = 0; i < r.run->result.outputs.size(); ++i) labels.push_back(r.run->result.outputs[i].label);
+        return py::make_tuple(labels, r.run->scene_output_count);
+      })
+      .def("value", [](const RunOutcome& r, const std::string& label) { return output_value(r.find(label)); })
+      .def("kind", [](const RunOutcome& r, const std::string& label) { return std::string(to_string(r.find(label).value.kind())); })
+      .def("unit", [](const RunOutcome& r, const std::string& label) { return si_unit_label(r.find(label).dimension); })
+      .def("display_unit", [](const RunOutcome& r, const std::string& label) { return r.find(label).display_unit; })
+      .def("in_unit", [](const RunOutcome& r, const std::string& label, const std::string& unit) {
+        const OutputValue& o = r.find(label);
+        if (o.value.kind() != ValueKind::scalar) throw SceneError("output '" + label + "' is not a scalar");
+        return to_unit(o.value.as_scalar(), o.dimension, unit);
+      })
+      .def("series_axis", [](const RunOutcome& r, const std::string& label) {
+        const OutputValue& o = r.find(label);
+        if (o.value.kind() != ValueKind::series) throw SceneError("output '" + label + "' is not a series");
+        const Series& s = o.value.as_series();
+        return py::make_tuple(to_array(s.axis), si_unit_label(s.axis_dimension), s.labels);
+      })
+      .def("notes", [](const RunOutcome& r) {
+        std::vector<std::pair<std::string, std::string>> notes;
+        for (const NodeRun& n : r.run->result.runs)
+          for (const std::string& note : n.notes) notes.emplace_back(n.node, note);
+        return notes;
+      })
+      .def("work", [](const RunOutcome& r) {
+        py::dict work;
+        for (const NodeRun& n : r.run->result.runs) {
+          py::dict node;
+          node["type"] = n.type;
+          node["reused"] = n.reused;
+          node["seconds"] = n.seconds;
+          node["work"] = n.work;
+          work[n.node.c_str()] = node;
+        }
+        return work;
+      })
+      .def_property_readonly("seconds", [](const RunOutcome& r) { return r.run->seconds; })
+      .def("provenance", &provenance);
+
+  py::class_<SceneSession, std::shared_ptr<SceneSession>>(m, "Session")
+      .def_static("load", [](const std::string& path) {
+        return std::make_shared<SceneSession>(registry(), load_scene(path));
+      })
+      .def_static("from_text", [](const std::string& yaml, const std::string& label) {
+        return std::make_shared<SceneSession>(registry(), parse_scene(yaml, label));
+      })
+      .def("validate", [](SceneSession& s) {
+        py::gil_scoped_release released;
+        s.validate();
+      })
+      .def_property_readonly("title", [](const SceneSession& s) { return s.scene().title; })
+      .def_property_readonly("file", [](const SceneSession& s) { return s.scene().file; })
+      .def_property_readonly("params", [](const SceneSession& s) {
+        std::vector<std::string> names;
+        for (const auto& [name, value] : s.scene().params) names.push_back(name);
+        return names;
+      })
+      .def_property_readonly("outputs", [](const SceneSession& s) {
+        std::vector<std::string> labels;
+        for (const PortRef& o : s.scene().outputs) labels.push_back(o.str());
+        return labels;
+      })
+      .def("cache_counters", [](const SceneSession& s) { return py::make_tuple(s.cache_hits(), s.cache_misses()); })
+      .def("clear_cache", &SceneSession::clear_cache)
+      .def("run", [](const std::shared_ptr<SceneSession>& session, const py::dict& sets, const std::vector<std::string>& outputs,
+                     unsigned threads, bool interruptible) {
+        std::vector<SetValue> values;
+        for (const auto& [key, value] : sets) values.push_back(set_value(py::str(key), value));
+        auto run = std::make_shared<SessionRun>();
+        if (interruptible) {
+          // The work owns what it touches: on Ctrl-C it may finish after this call has raised.
+          run_interruptibly([session, values, outputs, threads, run] { *run = session->run(values, outputs, threads); }, [] {},
+                            OnInterrupt::detach);
+        } else {
+          py::gil_scoped_release released;
+          *run = session->run(values, outputs, threads);
+        }
+        return RunOutcome{session, run, outputs};
+      }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
+      .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
+                       const std::vector<std::string>& units, const py::list& columns, const std::vector<std::string>& sets,
+                       const std::vector<std::string>& outputs, unsigned threads) {
+        const CaseTable table = case_table(*session, names, units, columns);
+        auto stop = std::make_shared<std::atomic<bool>>(false);
+        SessionSweep result;
+        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get()); }, [&] { *stop = true; },
+                          OnInterrupt::wait);
+        py::dict summary;
+        summary["cases"] = result.summary.run;
+        summary["failed"] = result.failed;
+        summary["seconds"] = result.summary.seconds;
+        return py::make_tuple(result.header, result.lines, summary);
+      });
+}

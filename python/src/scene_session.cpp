@@ -1,0 +1,204 @@
+#include "scene_session.hpp"
+
+#include "case_values.hpp"
+
+#include <cli.hpp>
+#include <sweep_rows.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/work_estimate.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <thread>
+
+namespace mechgraph::python {
+namespace {
+
+// Built graphs kept per choice of outputs and varied names; more than this and they are dropped.
+constexpr std::size_t max_prepared = 64;
+
+std::string joined(const std::vector<std::string>& items, char separator) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? std::string(1, separator) : std::string()) + items[i];
+  return out;
+}
+
+}  // namespace
+
+SceneSession::SceneSession(std::shared_ptr<const PluginRegistry> registry, SceneSpec scene)
+    : registry_(std::move(registry)), scene_(std::move(scene)) {}
+
+SceneSpec SceneSession::with_outputs(const std::vector<std::string>& outputs) const {
+  SceneSpec scene = scene_;
+  if (!outputs.empty()) {
+    scene.outputs.clear();
+    scene.report.clear();
+    for (const std::string& o : outputs) scene.outputs.push_back(parse_port_ref(o, {"outputs=" + o, 0, 0}));
+  }
+  return scene;
+}
+
+void SceneSession::validate() {
+  std::lock_guard lock(mutex_);
+  prepared({}, {}, {});
+}
+
+std::optional<Dimension> SceneSession::dimension_of(const std::string& name) {
+  std::lock_guard lock(plain_mutex_);
+  if (!plain_) plain_ = build_graph(scene_, *registry_);
+  return target_dimension(*plain_, name);
+}
+
+void SceneSession::clear_cache() {
+  std::lock_guard lock(mutex_);
+  cache_ = std::make_unique<MemoCache>();
+}
+
+SceneSession::Prepared& SceneSession::prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
+                                               const std::vector<std::string>& list_names) {
+  const std::string key = joined(outputs, ',') + '\n' + joined(names, ',') + '\n' + joined(list_names, ',');
+  if (auto it = prepared_.find(key); it != prepared_.end()) return it->second;
+  if (prepared_.size() >= max_prepared) prepared_.clear();
+  Prepared p;
+  p.scene = std::make_unique<SceneSpec>(with_outputs(outputs));
+  p.graph = build_graph(*p.scene, *registry_);
+  check_work_budget(p.graph, estimate_work(p.graph), WorkBudget{}, 1, false);
+  std::vector<SweepVariable> variables;
+  for (const std::string& n : names) variables.push_back({n, ""});
+  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables);
+  return prepared_.emplace(std::move(key), std::move(p)).first->second;
+}
+
+namespace {
+
+// Writes a list parameter (`table.angles`) straight into the built graph, each element checked as
+// the scene loader checks a list's numbers: finite, within the parameter's range. No YAML: a table
+// of a million rows costs its copy.
+void write_list(Graph& graph, const std::string& name, const std::vector<double>& values) {
+  const auto dot = name.find('.');
+  const std::string context = "set " + name;
+  if (dot == std::string::npos)
+    throw SceneError(context + ": an array goes to a node's list parameter (node.param), not to a scene parameter");
+  const std::string node_name = name.substr(0, dot), param = name.substr(dot + 1);
+  const auto node = graph.find(node_name);
+  if (!node) {
+    std::vector<std::string> valid;
+    for (const GraphNode& n : graph.nodes) valid.push_back(n.name);
+    throw SceneError(context + ": " + unknown_name_message("node", node_name, valid));
+  }
+  GraphNode& target = graph.nodes[*node];
+  const ParamSpec* spec = target.info().find_param(param);
+  if (!spec || spec->kind != ParamKind::number_list) {
+    std::vector<std::string> lists;
+    for (const ParamSpec& p : target.info().params)
+      if (p.kind == ParamKind::number_list) lists.push_back(p.name);
+    const std::string type = " (" + target.info().type + ")";
+    if (!spec) throw SceneError(context + type + ": " + unknown_name_message("list parameter", param, lists));
+    std::string valid;
+    for (const std::string& l : lists) valid += (valid.empty() ? "" : " ") + l;
+    throw SceneError(context + type + ": '" + param + "' takes one value, not an array (its list parameters: " +
+                     (valid.empty() ? "none" : valid) + ")");
+  }
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i]))
+      throw SceneError(context + ": element " + std::to_string(i) + " is " + (std::isnan(values[i]) ? "NaN" : "infinite"));
+    if (const std::string problem = spec->value_problem(values[i]); !problem.empty())
+      throw SceneError(context + ": element " + std::to_string(i) + " = " + si_text(values[i], spec->dimension) + " " + problem);
+  }
+  target.params.set(param, ParamValue::of_list(values));
+}
+
+}  // namespace
+
+SessionRun SceneSession::run(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs, unsigned threads) {
+  std::lock_guard lock(mutex_);
+  SessionRun run;
+  std::vector<std::string> names, list_names;
+  std::vector<CaseValue> values;
+  std::vector<const SetValue*> lists;
+  for (const SetValue& s : sets) {
+    const std::string context = "set " + s.name;
+    if (const auto* text = std::get_if<std::string>(&s.value)) {
+      names.push_back(s.name);
+      values.push_back(value_from_text(*text, context));
+      run.overrides.push_back(s.name + "=" + *text);
+    } else if (const auto* number = std::get_if<double>(&s.value)) {
+      names.push_back(s.name);
+      values.push_back(value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), context));
+      run.overrides.push_back(s.name + "=" + values.back().text);
+    } else {
+      list_names.push_back(s.name);
+      lists.push_back(&s);
+      run.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, SI>");
+    }
+  }
+  // The graph for this choice of outputs and names: every run with it writes all of its names, so
+  // nothing of an earlier run's values stays behind.
+  Prepared& p = prepared(outputs, names, list_names);
+  p.binder->apply(p.graph, values);
+  for (const SetValue* l : lists) write_list(p.graph, l->name, std::get<std::vector<double>>(l->value));
+  const auto start = std::chrono::steady_clock::now();
+  run.result = evaluate(p.graph, *cache_, threads);
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.scene_output_count = p.graph.scene_output_count;
+  return run;
+}
+
+SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<std::string>& sets_text,
+                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop) {
+  SceneSpec scene = scene_;
+  std::vector<Override> overrides;
+  for (const std::string& s : sets_text) overrides.push_back(parse_override(s));
+  const Graph graph = cli::build_sweep_graph(scene, *registry_, overrides,
+                                             outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
+  const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
+  WorkBudget budget;
+  budget.max_work = sweep_default_max_work;
+  check_work_budget(graph, estimate_work(graph), budget, static_cast<double>(std::max<std::size_t>(table.cases.size(), 1)), false);
+
+  SweepOptions options;
+  for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
+  options.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  options.stop = stop;
+
+  // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.
+  SessionSweep out;
+  cli::SweepRows rows(graph, table, cli::RowFormat::jsonl);
+  std::vector<CaseResult> waiting;
+  auto put = [&](const CaseResult& r) {
+    out.lines.push_back(rows.line(r, cli::exit_code_of(r.failure)));
+    if (r.failure != CaseFailure::none) ++out.failed;
+  };
+  auto settle = [&](const CaseResult* success) {
+    rows.settle(success);
+    for (const CaseResult& r : waiting) put(r);
+    waiting.clear();
+  };
+  MemoCache cache;
+  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
+    if (!rows.settled()) {
+      if (r.failure != CaseFailure::none) {
+        waiting.push_back(std::move(r));
+        return;
+      }
+      settle(&r);
+    }
+    put(r);
+  });
+  if (!rows.settled()) settle(nullptr);
+  out.header = rows.header();
+  return out;
+}
+
+Graph SceneSession::graph_for(const std::vector<std::string>& overrides, const std::vector<std::string>& outputs) const {
+  const SceneSpec scene = with_outputs(outputs);
+  std::vector<Override> parsed;
+  for (const std::string& o : overrides)
+    if (o.find("=<") == std::string::npos) parsed.push_back(parse_override(o));  // arrays are not kept as text
+  return build_graph(scene, *registry_, parsed);
+}
+
+}  // namespace mechgraph::python

@@ -1,0 +1,95 @@
+#pragma once
+// One scene held by Python: parsed once, its graph built once per choice of outputs and varied
+// names, and a memo cache kept across runs, so a second run that changes one parameter writes that
+// value into the built graph (CaseBinder, as a sweep does) and evaluates only the nodes downstream
+// of it. Nothing in here knows Python: module.cpp converts.
+//
+// Thread-safety: a session serialises its runs (a run writes into its built graph); sweeps work on
+// their own copies and may run beside runs.
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/graph.hpp>
+#include <mechgraph/sweep/case_binder.hpp>
+#include <mechgraph/sweep/sweep_runner.hpp>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace mechgraph::python {
+
+/// One `set=` entry: text with its unit ("6500 rpm", a word), a number in SI, or a list in SI.
+struct SetValue {
+  std::string name;
+  std::variant<std::string, double, std::vector<double>> value;
+};
+
+struct SessionRun {
+  RunResult result;
+  std::vector<std::string> overrides;  // "name=value" as --set would write each value; an array "name=<N values, SI>"
+  std::size_t scene_output_count = 0;  // the first outputs of result are the ones asked for
+  double seconds = 0.0;                // wall time of the evaluation
+};
+
+/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header.
+struct SessionSweep {
+  std::vector<std::string> header;
+  std::vector<std::string> lines;  // one JSON object per case, in case order
+  SweepSummary summary;
+  std::size_t failed = 0;
+};
+
+class SceneSession {
+ public:
+  SceneSession(std::shared_ptr<const PluginRegistry> registry, SceneSpec scene);
+
+  /// Builds the scene as written and checks it and its work estimate, evaluating nothing.
+  void validate();
+
+  /// Evaluates `outputs` (empty: the scene's outputs and report) with `sets` applied; the memo
+  /// cache is kept. Throws SceneError or EvaluationError.
+  SessionRun run(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs, unsigned threads);
+
+  /// Runs one case per row of `table` on `threads` workers (0: one per core) with the rows of
+  /// `mechgraph sweep`; `stop` set: no new case starts.
+  SessionSweep sweep(const CaseTable& table, const std::vector<std::string>& sets_text,
+                     const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+
+  /// The nodes, parameters and plugins behind a run's result (as `run --json`'s provenance holds,
+  /// minus the file's hash for a scene given as text), rebuilt from its override texts.
+  Graph graph_for(const std::vector<std::string>& overrides, const std::vector<std::string>& outputs) const;
+
+  const SceneSpec& scene() const { return scene_; }
+  const PluginRegistry& registry() const { return *registry_; }
+  /// The dimension a `set=` name reaches (see case_values.hpp), from the scene's own graph.
+  std::optional<Dimension> dimension_of(const std::string& name);
+
+  /// Memo cache counters: hits, misses, entries dropped.
+  std::size_t cache_hits() const { return cache_->hits(); }
+  std::size_t cache_misses() const { return cache_->misses(); }
+  void clear_cache();
+
+ private:
+  struct Prepared {
+    std::unique_ptr<SceneSpec> scene;  // the binder keeps a reference: a stable address
+    Graph graph;                        // written case after case
+    std::unique_ptr<CaseBinder> binder;
+  };
+  Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
+                     const std::vector<std::string>& list_names);
+  SceneSpec with_outputs(const std::vector<std::string>& outputs) const;
+
+  std::shared_ptr<const PluginRegistry> registry_;
+  SceneSpec scene_;
+  std::mutex mutex_;  // runs one at a time: they write into prepared graphs
+  std::map<std::string, Prepared> prepared_;
+  std::mutex plain_mutex_;      // dimension_of is called from runs and from sweeps' case tables
+  std::optional<Graph> plain_;  // the scene as written (dimension_of)
+  std::unique_ptr<MemoCache> cache_ = std::make_unique<MemoCache>();
+};
+
+}  // namespace mechgraph::python

@@ -1,0 +1,26 @@
+"""mechgraph.dask.sweep on a LocalCluster of two worker processes equals Scene.sweep row for row."""
+import numpy as np
+import pandas as pd
+import pytest
+
+import mechgraph
+import mechgraph.dask
+
+distributed = pytest.importorskip("distributed")
+
+
+def test_dask_sweep_equals_the_single_process_sweep(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    rpm = np.linspace(4000, 8000, 37)
+    r0 = np.where(np.arange(37) == 11, 3.0, 17.0)  # one infeasible case, a failed row
+    cases = pd.DataFrame({"rpm [rpm]": rpm, "r0 [mm]": r0})
+    outputs = ["arc.min_curvature_radius", "v_kurz.max_acceleration", "ta_kurz.time_area"]
+    local = scene.sweep(cases, outputs=outputs, threads=1)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            distributed.Client(cluster) as client:
+        remote = mechgraph.dask.sweep(client, scene, cases, chunk=8, outputs=outputs)
+        workers = client.run(lambda: sorted(__import__("mechgraph.dask").dask._worker_scenes.keys()))
+    assert len(workers) == 2
+    assert list(remote.columns) == list(local.columns)
+    pd.testing.assert_frame_equal(remote.reset_index(drop=True), local.reset_index(drop=True), check_exact=True)
+    assert (remote["exit"] != 0).sum() == 1

@@ -1,0 +1,82 @@
+"""Scene.sweep: the rows of `mechgraph sweep`, as a DataFrame, failed cases included."""
+import json
+import math
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import mechgraph
+
+OUTPUTS = ["arc.min_curvature_radius", "v_kurz.max_acceleration", "ta_poly.time_area"]
+
+
+def cli_rows(cli, scene, csv_file, outputs, threads=2):
+    out = subprocess.run([str(cli), "-q", "sweep", str(scene), "--cases", str(csv_file), "--format", "jsonl",
+                          "--outputs", ",".join(outputs), "--threads", str(threads)],
+                         capture_output=True, text=True, check=True).stdout
+    return [json.loads(line) for line in out.splitlines() if line.strip()]
+
+
+def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
+    rpm = [5000, 5600, 6200, 7000, 7600]
+    r0 = [17, 16, 3, 18, 17.5]  # 3 mm: the three-arc cam cannot be made (a failed row)
+    csv_file = tmp_path / "cases.csv"
+    csv_file.write_text("rpm [rpm],r0 [mm]\n" + "".join(f"{a},{b}\n" for a, b in zip(rpm, r0)))
+    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep(pd.DataFrame({"rpm [rpm]": rpm, "r0 [mm]": r0}), outputs=OUTPUTS, threads=2)
+    assert isinstance(frame, pd.DataFrame)
+    assert list(frame.columns) == list(expected[0].keys())
+    assert len(frame) == len(expected) == 5
+    for row, want in zip(frame.to_dict("records"), expected):
+        for key, value in want.items():
+            got = row[key]
+            if isinstance(value, float) or (isinstance(value, int) and not isinstance(value, bool)):
+                assert got == value, (key, got, value)  # bit for bit: the same text, the same double
+            elif value is None:
+                assert got is None or (isinstance(got, float) and math.isnan(got))
+            else:
+                assert got == value, key
+    failed = frame[frame["exit"] != 0]
+    assert len(failed) == 1 and int(failed["exit"].iloc[0]) == 3 and "arc" in failed["error"].iloc[0]
+    assert frame.attrs["summary"]["failed"] == 1
+
+
+def test_si_numbers_and_dict_of_arrays(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    rpm_si = np.array([5000.0, 6000.0]) * 2 * math.pi / 60
+    a = scene.sweep({"rpm": rpm_si}, outputs=["v_kurz.max_acceleration"])
+    b = scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["v_kurz.max_acceleration"])
+    col = [c for c in a.columns if c.startswith("v_kurz.max_acceleration")][0]
+    assert np.allclose(a[col].to_numpy(dtype=float), b[col].to_numpy(dtype=float), rtol=1e-14, atol=0)
+    # and a single run gives the same number (SI)
+    r = scene.run(set={"rpm": "6000 rpm"}, outputs=["v_kurz.max_acceleration"])
+    assert math.isclose(float(b[col].iloc[1]), r["v_kurz.max_acceleration"], rel_tol=1e-15)
+
+
+def test_words_as_text_cells(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep({"arc.follower": ["flat", "roller"], "arc.roller_radius [mm]": [12.0, 12.0]},
+                        outputs=["arc.min_curvature_radius"])
+    assert list(frame["exit"]) == [0, 0] or set(frame["exit"]) <= {0, 2, 3}
+
+
+def test_bad_cases_are_scene_errors(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"rmp [rpm]": [5000.0]})
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"rpm [rpm]": [5000.0, 6000.0], "lift [mm]": [8.0]})
+
+
+def test_no_cases_give_an_empty_frame_and_nan_is_refused(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    empty = scene.sweep({"rpm [rpm]": np.array([], dtype=float)}, outputs=["v_kurz.max_acceleration"])
+    assert len(empty) == 0 and "case" in empty.columns
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"rpm [rpm]": [5000.0, float("nan")]}, outputs=["v_kurz.max_acceleration"])
+    with pytest.raises(mechgraph.SceneError):
+        scene.sweep({"lift": [0.008, float("inf")]}, outputs=["v_kurz.max_acceleration"])
