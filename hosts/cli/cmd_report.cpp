@@ -45,6 +45,14 @@ SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry, cons
                         std::any_of(n.effects.begin(), n.effects.end(), [&](const auto& ne) { return ne.first == e->name; });
         if (!on) continue;
       }
+      // An output made only with inputs this node is not given (cam.table's deviation from a
+      // master law) is not there to draw.
+      if (const auto deps = info.output_dependencies.find(port.name); deps != info.output_dependencies.end()) {
+        const bool given = std::all_of(deps->second.begin(), deps->second.end(), [&](const std::string& in) {
+          return std::any_of(n.inputs.begin(), n.inputs.end(), [&](const NodeSpec::InputSpec& i) { return i.port == in; });
+        });
+        if (!given) continue;
+      }
       const bool listed = std::any_of(scene.outputs.begin(), scene.outputs.end(),
                                       [&](const PortRef& r) { return r.node == n.name && r.port == port.name; });
       if (!listed) scene.outputs.push_back(PortRef{n.name, port.name, n.where});

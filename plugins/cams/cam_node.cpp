@@ -155,6 +155,7 @@ class CamNodeType final : public NodeType {
     for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
     for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
     info_.inputs = std::move(d.extra_inputs);
+    info_.output_dependencies = std::move(d.output_dependencies);
     info_.work_counters = {"evaluations"};
     for (auto& c : d.extra_work_counters) info_.work_counters.push_back(std::move(c));
   }

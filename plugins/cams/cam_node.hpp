@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <memory>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,8 @@ struct CamLawDefinition {
   std::vector<ParamSpec> params;        // law-specific parameters only
   std::vector<PortSpec> extra_outputs;  // law-specific outputs only
   std::vector<PortSpec> extra_inputs;   // law-specific inputs (CamBasics::inputs)
+  /// Outputs made only when these inputs are connected (NodeInfo::output_dependencies).
+  std::map<std::string, std::vector<std::string>> output_dependencies;
   std::vector<std::string> extra_work_counters;
   CamLawFactory make;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.

@@ -528,6 +528,7 @@ CamLawDefinition table_law_definition() {
                       "over the table's angles: deviation (law - master) and row_deviation (row - master) (master "
                       "connected only)"),
   };
+  d.output_dependencies = {{"master_deviation_rms", {"master"}}, {"master_deviation_max", {"master"}}, {"master_deviation", {"master"}}};
   d.extra_work_counters = {"solves", "iterations"};
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& out) -> std::shared_ptr<const CamLaw> {
     auto scale_of = [&](const char* name, const char* fallback, Dimension expected, const char* what) {

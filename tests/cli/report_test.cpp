@@ -92,3 +92,24 @@ nodes:
   CHECK(again.exit_code == 2);
   CHECK_THAT(again.err, Contains("--force"));
 }
+
+TEST_CASE("mechgraph report: every example scene makes its report", "[cli][report]") {
+  // A report draws more than the scene lists (every curve of the nodes it needs): an output made
+  // only with an optional input (cam.table's deviation from a master law) must not be asked for
+  // when that input is not connected.
+  namespace fs = std::filesystem;
+  const fs::path base = fs::temp_directory_path() / ("mg_report_all_" + std::to_string(::getpid()));
+  fs::remove_all(base);
+  std::size_t scenes = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(MECHGRAPH_SOURCE_DIR) / "scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path().filename().string());
+    const auto r = run_cli("-q report '" + entry.path().string() + "' --out '" + (base / entry.path().stem()).string() + "'");
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(fs::exists(base / entry.path().stem() / "report.html"));
+    ++scenes;
+  }
+  CHECK(scenes >= 10);
+  fs::remove_all(base);
+}
