@@ -1,5 +1,7 @@
 #include <mechgraph/display_units.hpp>
 
+#include <map>
+
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
@@ -89,6 +91,21 @@ std::string DisplayUnits::unit_for(Dimension d) const {
 std::string DisplayUnits::unit_for(Dimension d, const std::string& fallback) const {
   std::string u = unit_for(d);
   return u.empty() ? fallback : u;
+}
+
+const std::optional<UnitScale>& parse_unit_cached(std::string_view unit) {
+  thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
+  auto at = parsed.find(unit);
+  if (at == parsed.end()) {
+    std::optional<UnitScale> scale;
+    try {
+      scale = parse_unit(unit);
+    } catch (const UnitError&) {
+      // nullopt: the caller decides (a writer refuses the unit, a row shows the value as written)
+    }
+    at = parsed.emplace(std::string(unit), scale).first;
+  }
+  return at->second;
 }
 
 }  // namespace mechgraph

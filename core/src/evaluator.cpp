@@ -343,20 +343,9 @@ void check_displayable(const GraphNode& node, const std::string& label, const Va
     if (xs.empty()) return;
     const std::string unit = units.unit_for(d, own_unit);
     if (unit.empty()) return;
-    // Each unit parsed once per thread: a sweep asks the same few units for every case.
-    thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
-    auto at = parsed.find(unit);
-    if (at == parsed.end()) {
-      std::optional<UnitScale> scale;
-      try {
-        scale = parse_unit(unit);
-      } catch (const UnitError&) {
-        // the writers refuse a unit they cannot read; nothing to check against here
-      }
-      at = parsed.emplace(unit, scale).first;
-    }
-    if (!at->second) return;
-    const UnitScale& u = *at->second;
+    const std::optional<UnitScale>& parsed = parse_unit_cached(unit);
+    if (!parsed) return;  // the writers refuse a unit they cannot read; nothing to check against here
+    const UnitScale& u = *parsed;
     double largest = 0.0;
     for (double x : xs) largest = std::max(largest, std::abs(x));
     if (!std::isfinite(largest / u.scale - u.offset) || !std::isfinite(-largest / u.scale - u.offset))

@@ -33,18 +33,7 @@ std::string si_text(double si, Dimension d) {
   return text;
 }
 
-CaseValue value_from_text(const std::string& text, const std::string& context) {
-  CaseValue v{text, std::nullopt, {}};
-  try {
-    const Quantity q = parse_quantity(text);
-    v.si = q.value;
-    v.dimension = q.dimension;
-  } catch (const UnitError&) {
-    // a word: a choice such as "roller"
-  }
-  if (v.si && !std::isfinite(*v.si)) throw SceneError(context + ": '" + excerpt(text) + "' is not a finite number");
-  return v;
-}
+CaseValue value_from_text(const std::string& text, const std::string& context) { return read_case_value(text, context); }
 
 CaseValue value_from_si(double si, Dimension d, const std::string& context) {
   if (!std::isfinite(si)) throw SceneError(context + ": " + (std::isnan(si) ? "NaN" : "an infinite value") + " is not a value");

@@ -6,7 +6,9 @@
 // mm/deg^2); anything else stays SI.
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/scene.hpp>
+#include <mechgraph/units.hpp>
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -33,5 +35,9 @@ class DisplayUnits {
  private:
   std::vector<std::pair<Dimension, std::string>> named_;  // dimension -> unit, as written
 };
+
+/// parse_unit(unit), parsed once per thread and kept (a sweep shows the same few units in every
+/// case); nullopt for a unit that does not parse. The reference lives as long as the thread.
+const std::optional<UnitScale>& parse_unit_cached(std::string_view unit);
 
 }  // namespace mechgraph

@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/case_table.hpp>
 
 #include <mechgraph/csv.hpp>
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/text_escape.hpp>
@@ -45,9 +46,9 @@ bool bare_number(const std::string& text) {
   return end != begin && trim(std::string_view(end)).empty();
 }
 
-// A number with its unit if it reads as one, else a word. An infinite or NaN number ("1e400 m",
-// "nan") is refused here, naming `context`: no such value may reach a node.
-CaseValue read_value(const std::string& text, const std::string& context) {
+}  // namespace
+
+CaseValue read_case_value(const std::string& text, const std::string& context) {
   CaseValue v{text, std::nullopt, {}};
   try {
     const Quantity q = parse_quantity(text);
@@ -58,6 +59,8 @@ CaseValue read_value(const std::string& text, const std::string& context) {
   if (v.si && !std::isfinite(*v.si)) throw SceneError(context + ": '" + excerpt(text) + "' is not a finite number");
   return v;
 }
+
+namespace {
 
 // The point a fraction `t` of the way from `low` to `high`. The plain form when the span is a
 // finite number (the points sweeps always had); the weighted form when `high - low` overflows
@@ -78,22 +81,6 @@ void append_shown_number(std::string& out, double x) {
   char buffer[40];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 15);
   out.append(buffer, end);
-}
-
-// A variable's unit, parsed once per thread (every row shows every input in its unit); nullopt for
-// a unit that does not parse (the value is then shown as written).
-const std::optional<UnitScale>& parsed_unit(const std::string& unit) {
-  thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
-  auto at = parsed.find(unit);
-  if (at == parsed.end()) {
-    std::optional<UnitScale> scale;
-    try {
-      scale = parse_unit(unit);
-    } catch (const UnitError&) {
-    }
-    at = parsed.emplace(unit, scale).first;
-  }
-  return at->second;
 }
 
 // A number in SI as text that parses back to the same double (%.17g, by std::to_chars).
@@ -167,7 +154,7 @@ void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
   if (const std::string& unit = variables[v].unit; !unit.empty()) {
     // As to_unit: the value in the column's unit, else as written (a cell in another unit than
     // its column, or 1e308 m in mm, which overflows).
-    const std::optional<UnitScale>& u = parsed_unit(unit);
+    const std::optional<UnitScale>& u = parse_unit_cached(unit);
     if (!u || !(u->dimension == value.dimension)) {
       out += value.text;
       return;
@@ -222,7 +209,7 @@ VarySpec parse_vary(std::string_view text) {
     comma = rhs.find(',', start);
     const std::string item = trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (item.empty()) throw SceneError(context + ": an empty value in the list");
-    spec.values.push_back(read_value(item, context));
+    spec.values.push_back(read_case_value(item, context));
     if (spec.unit.empty() && spec.values.back().si) spec.unit = unit_of(item);
     if (comma == std::string::npos) break;
   }
@@ -345,7 +332,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
                          excerpt(table.variables[v].name) + "' has no value");
       const std::string& unit = header_units[v];
       const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
-      CaseValue value = read_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell, at);
+      CaseValue value = read_case_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell, at);
       if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell) + "' is not a number in " + excerpt(unit));
       if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell);
       row.push_back(std::move(value));

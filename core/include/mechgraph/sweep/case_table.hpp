@@ -40,6 +40,10 @@ struct CaseValue {
   Dimension dimension;             // of the number
 };
 
+/// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
+/// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.
+CaseValue read_case_value(const std::string& text, const std::string& context);
+
 struct SweepVariable {
   std::string name;  // "rpm", "cam.max_lift"
   std::string unit;  // the unit its values are shown in ("" = SI, or a word)
