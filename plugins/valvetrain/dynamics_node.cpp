@@ -4,7 +4,9 @@
 // integrated. Results are taken from the last of `revolutions` cam revolutions, so the start-up
 // transient has died out when the drive is damped. The curves are read at their points; the scalar
 // extremes (deviations, least contact force, greatest spring force, bounce height) are followed on
-// the integrator's dense output between them ("Extremes and events from the dense output").
+// the integrator's dense output between them ("Extremes and events from the dense output"). The
+// spring's coil bind (always, with elastic_drive) and a travel stop are stiff contacts on the valve;
+// the events table lists every departure from the cam's law with its cam angle, speed and force.
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
@@ -106,8 +108,8 @@ class DynamicsType final : public NodeType {
   DynamicsType() {
     info_.type = "valvetrain.dynamics";
     info_.version = 3;
-    info_.summary = "valve motion on an elastic drive (single mass), cam contact and seat as located events; rigid when "
-                    "elastic_drive is off";
+    info_.summary = "valve motion on an elastic drive (single mass), cam contact, seat, coil bind and travel stop as "
+                    "located events; rigid when elastic_drive is off";
     info_.params = {
         ParamSpec::number("drive_stiffness", dim::stiffness,
                           "k_d: the drive's stiffness reduced to the valve (elastic_drive; from 1 N/mm: softer, the "
