@@ -340,7 +340,11 @@ class DynamicsType final : public NodeType {
       settings.seat_impact = ctx.effect("seat_impact");
       settings.restitution = p.number("restitution");
       settings.seating_speed = p.number("seating_speed");
-      settings.coil_bind = true;
+      // Coil bind: a valve that can leave the cam is watched for it throughout. A bilateral drive
+      // holds the valve on the cam, so its run watches only for the greatest lift and is repeated
+      // with the coil-bind contact if that reaches the solid length (no cost where it does not).
+      settings.coil_bind = settings.contact_loss;
+      const double solid_lift = design->spring->solid_deflection();
       settings.coil_bind_stiffness = p.number("coil_bind_stiffness");
       settings.coil_bind_restitution = p.number("coil_bind_restitution");
       settings.stop = ctx.effect("travel_stop");
@@ -390,7 +394,8 @@ class DynamicsType final : public NodeType {
                                 }
                               return r;
                             }};
-      watch[valve_lift] = {last, period * revolutions, false, settings.seat_impact, [](const ChainModel& model, const Snapshot& x) {
+      watch[valve_lift] = {last, period * revolutions, false, settings.seat_impact || !settings.coil_bind,
+                           [](const ChainModel& model, const Snapshot& x) {
                              return Reading{x.state[model.valve()], x.state[model.positions() + model.valve()]};
                            }};
       std::shared_ptr<const ValveMotion> target;
@@ -408,6 +413,11 @@ class DynamicsType final : public NodeType {
       }
 
       ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
+      if (!settings.coil_bind && greatest_of(sim.run.extremes[valve_lift]).value >= solid_lift) {
+        settings.coil_bind = true;
+        recycle(std::move(sim.run));
+        sim = simulate_valve(*motion, *design, settings, phi, watch);
+      }
       const SimulationResult& run = sim.run;
       if (run.state.size() != phi.size())
         throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
@@ -445,7 +455,7 @@ class DynamicsType final : public NodeType {
           seating_velocity = e.speed;
         }
       }
-      if (std::isfinite(sim.solid_lift)) out.set_scalar("solid_lift", sim.solid_lift);
+      if (std::isfinite(solid_lift)) out.set_scalar("solid_lift", solid_lift);
       out.set("events", Value::table(events_table(run, run.extremes[limit_force], last, w, period)));
       describe_events(run, last, w, out);
       ChainState s;

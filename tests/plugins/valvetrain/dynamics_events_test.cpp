@@ -168,3 +168,24 @@ TEST_CASE("dynamics: travel_stop without stop_lift names the parameter", "[valve
   CHECK_THROWS_WITH(run_scene(dynamics_scene(kurz, dyn_node("v", "elastic_drive, travel_stop"), "dyn.events")),
                     Catch::Contains("stop_lift"));
 }
+
+TEST_CASE("dynamics: a bilateral drive that vibrates the valve into coil bind is run again with the solid spring",
+          "[valvetrain][dynamics][events]") {
+  // A soft drive (1000 N/mm), spring for 4000 rpm, 7500 rpm, the cam allowed to pull: the valve's
+  // vibration overshoots the 0.5 mm coil clearance. The first run finds the greatest lift beyond
+  // the solid length; the run reported has the coil-bind contact and stays at it.
+  const std::string dyn = "{ type: valvetrain.dynamics, inputs: { valve: fast.motion, design: sd.design }, effects: [ "
+                          "elastic_drive ], params: { drive_stiffness: 1000 N/mm } }";
+  const RunResult r = run_scene(dynamics_scene(kurz, dyn, "dyn.events, dyn.curves, dyn.solid_lift", "4000 rpm", "0.25 mm",
+                                               fast_valve(7500)));
+  const Table& events = output(r, "dyn.events").as_table();
+  REQUIRE(count_code(events, 5.0) >= 1);
+  CHECK(count_code(events, 1.0) == 0);  // bilateral: the cam is never left
+  const auto& peak = channel(events, "peak_force");
+  const double greatest_peak = *std::max_element(peak.begin(), peak.end());
+  const auto& lift = channel(output(r, "dyn.curves").as_table(), "lift");
+  const double highest = *std::max_element(lift.begin(), lift.end());
+  CHECK(highest <= num(r, "dyn.solid_lift") + greatest_peak / 1e8 * (1.0 + 1e-9));
+  CHECK(has_note(r, "dyn", "coil bind"));
+  CHECK(has_note(r, "dyn", "bilateral drive"));
+}
