@@ -394,7 +394,9 @@ class DynamicsType final : public NodeType {
                                 }
                               return r;
                             }};
-      watch[valve_lift] = {last, period * revolutions, false, settings.seat_impact || !settings.coil_bind,
+      // (a massless spring's force gives the greatest lift; coil masses need the lift followed)
+      const bool follow_lift = settings.seat_impact || (!settings.coil_bind && settings.coils > 0);
+      watch[valve_lift] = {last, period * revolutions, false, follow_lift,
                            [](const ChainModel& model, const Snapshot& x) {
                              return Reading{x.state[model.valve()], x.state[model.positions() + model.valve()]};
                            }};
@@ -413,7 +415,9 @@ class DynamicsType final : public NodeType {
       }
 
       ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
-      if (!settings.coil_bind && greatest_of(sim.run.extremes[valve_lift]).value >= solid_lift) {
+      const double greatest_lift = settings.coils > 0 ? greatest_of(sim.run.extremes[valve_lift]).value
+                                                      : (greatest_of(sim.run.extremes[spring_force]).value - P0) / c_s;
+      if (!settings.coil_bind && greatest_lift >= solid_lift) {
         settings.coil_bind = true;
         recycle(std::move(sim.run));
         sim = simulate_valve(*motion, *design, settings, phi, watch);
