@@ -189,3 +189,19 @@ TEST_CASE("dynamics: a bilateral drive that vibrates the valve into coil bind is
   CHECK(has_note(r, "dyn", "coil bind"));
   CHECK(has_note(r, "dyn", "bilateral drive"));
 }
+
+TEST_CASE("dynamics hard cases: coil bind from the softest to the stiffest contact, restitution 1 and nearly 0",
+          "[valvetrain][dynamics][events][stability]") {
+  for (const std::string params : {", coil_bind_stiffness: 1e9 N/mm", ", coil_bind_stiffness: 10 N/mm",
+                                   ", coil_bind_restitution: 1", ", coil_bind_restitution: 1e-12"}) {
+    INFO(params);
+    const RunResult r = run_scene(dynamics_scene(kurz, dyn_node("fast", "elastic_drive, contact_loss, seat_impact", params),
+                                                 "dyn.events, dyn.curves, dyn.max_deviation, dyn.max_spring_force",
+                                                 "5600 rpm", "0.25 mm", fast_valve(7500)));
+    CHECK(count_code(output(r, "dyn.events").as_table(), 5.0) >= 1);
+    CHECK(std::isfinite(num(r, "dyn.max_deviation")));
+    CHECK(std::isfinite(num(r, "dyn.max_spring_force")));
+    for (const auto& c : output(r, "dyn.curves").as_table().channels)
+      for (double x : c.values) REQUIRE(std::isfinite(x));
+  }
+}
