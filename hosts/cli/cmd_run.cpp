@@ -39,6 +39,43 @@ void want_timing_notes(Graph& graph) {
 
 }  // namespace
 
+namespace {
+
+// A table short enough to read on the terminal (an events table) is printed row by row, each
+// column in its display unit; longer ones (curves) go to the CSV files of --out.
+constexpr std::size_t printed_table_rows = 40;
+
+void print_short_table(std::ostream& os, const Table& t) {
+  std::vector<const Table::Column*> columns{&t.axis};
+  for (const Table::Column& c : t.channels) columns.push_back(&c);
+  const auto unit_of = [](const Table::Column& c) {
+    if (!c.display_unit.empty()) return c.display_unit;
+    const std::string si = c.dimension.si_unit();
+    return si == "1" ? std::string() : si;
+  };
+  std::vector<std::string> head;
+  std::vector<std::size_t> width;
+  for (const Table::Column* c : columns) {
+    const std::string unit = unit_of(*c);
+    head.push_back(terminal_text(c->name) + (unit.empty() ? "" : " [" + terminal_text(unit) + "]"));
+    width.push_back(std::max<std::size_t>(head.back().size(), 12));
+  }
+  for (std::size_t k = 0; k < columns.size(); ++k) os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << head[k];
+  os << "\n";
+  for (std::size_t j = 0; j < t.axis.values.size(); ++j) {
+    for (std::size_t k = 0; k < columns.size(); ++k) {
+      const Table::Column& c = *columns[k];
+      const double shown = c.display_unit.empty() ? c.values[j] : to_unit(c.values[j], c.dimension, c.display_unit);
+      char cell[32];
+      std::snprintf(cell, sizeof cell, "%.6g", shown);
+      os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << cell;
+    }
+    os << "\n";
+  }
+}
+
+}  // namespace
+
 int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   po::options_description visible("run options");
   add_scene_options(visible);
@@ -99,9 +136,16 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
                           : std::string());
       }
       else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
-      else if (o.value.kind() == ValueKind::table)
+      else if (o.value.kind() == ValueKind::table) {
         std::cout << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()
                   << " points (see --out for the CSV)";
+        const std::size_t rows = o.value.as_table().axis.values.size();
+        if (rows > 0 && rows <= printed_table_rows) {
+          std::cout << "\n";
+          print_short_table(std::cout, o.value.as_table());
+          continue;
+        }
+      }
       else std::cout << "<" << o.value.as_handle()->kind() << ">";
       std::cout << "\n";
     }

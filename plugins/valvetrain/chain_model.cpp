@@ -2,11 +2,25 @@
 #include "chain_model.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
 
 namespace mechgraph::valvetrain {
 
+// A linear spring-damper contact entered at speed v by a free mass: delta'' + 2 zeta w delta' +
+// w^2 delta = 0 from delta = 0, delta' = v; it leaves at delta = 0 after half a damped period with
+// speed v exp(-pi zeta / sqrt(1 - zeta^2)) = e v, so zeta = -ln e / sqrt(pi^2 + ln^2 e), c = 2 zeta sqrt(k m).
+double restitution_damping(double restitution, double stiffness, double mass) {
+  const double log_e = std::log(restitution);
+  const double zeta = -log_e / std::sqrt(std::numbers::pi * std::numbers::pi + log_e * log_e);
+  return 2.0 * zeta * std::sqrt(stiffness * mass);
+}
+
 ChainModel::ChainModel(ChainParams p, Excitation y) : p_(std::move(p)), y_(std::move(y)) {
   positions_ = p_.mass.size() + static_cast<std::size_t>(p_.coils);
+  if (p_.limits.size() > ChainParams::max_limits)
+    throw std::invalid_argument("ChainModel: at most " + std::to_string(ChainParams::max_limits) + " lift limits");
   list_roots();
 }
 
@@ -47,7 +61,22 @@ void ChainModel::forces(const Mode& m, double y, double dy, const ChainState& s,
       if (!to_head) f[b] += compression;
     }
   }
+  for (std::size_t i = 0; i < p_.limits.size(); ++i)
+    if (m.engaged & (1u << i)) {
+      const LiftLimit& l = p_.limits[i];
+      f[v] -= l.stiffness * (s[v] - (rates ? 0.0 : l.lift)) + l.damping * s[P + v];
+    }
   if (m.seated) f[v] = 0.0;  // the seat takes whatever pushes the valve down
+}
+
+double ChainModel::limit_force(std::size_t i, const ChainState& s) const {
+  const LiftLimit& l = p_.limits[i];
+  return l.stiffness * (s[valve()] - l.lift) + l.damping * s[positions_ + valve()];
+}
+
+double ChainModel::limit_force_rate(std::size_t i, const Snapshot& x) const {
+  const LiftLimit& l = p_.limits[i];
+  return l.stiffness * x.rate[valve()] + l.damping * x.rate[positions_ + valve()];
 }
 
 double ChainModel::force_on_valve(const DriveValue& e, const ChainState& s) const {
@@ -57,10 +86,13 @@ double ChainModel::force_on_valve(const DriveValue& e, const ChainState& s) cons
   return f[valve()];
 }
 
-double ChainModel::spring_force(const ChainState& s) const {
+double ChainModel::spring_force(const ChainState& s, unsigned engaged) const {
   const std::size_t v = valve(), P = positions_, z = p_.mass.size();
-  if (p_.coils == 0) return p_.preload + p_.spring_rate * s[v];
-  return p_.preload + (p_.coils + 1) * p_.spring_rate * (s[v] - s[z]) + p_.coil_damping * (s[P + v] - s[P + z]);
+  double bind = 0.0;
+  for (std::size_t i = 0; i < p_.limits.size(); ++i)
+    if ((engaged & (1u << i)) && p_.limits[i].in_spring) bind += limit_force(i, s);
+  if (p_.coils == 0) return p_.preload + p_.spring_rate * s[v] + bind;
+  return p_.preload + (p_.coils + 1) * p_.spring_rate * (s[v] - s[z]) + p_.coil_damping * (s[P + v] - s[P + z]) + bind;
 }
 
 void ChainModel::rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const { rates(m, y_(t), s, ds); }
@@ -83,6 +115,9 @@ void ChainModel::rates(const Mode& m, const DriveValue& e, const ChainState& s, 
     double f = m.contact && pushes(e, s) ? p_.link_stiffness[0] * (e.y - s[0]) + p_.link_damping[0] * (e.rate - s[1]) : 0.0;
     f -= p_.preload;
     f -= p_.spring_rate * s[0];
+    if (m.engaged)
+      for (std::size_t i = 0; i < p_.limits.size(); ++i)
+        if (m.engaged & (1u << i)) f -= p_.limits[i].stiffness * (s[0] - p_.limits[i].lift) + p_.limits[i].damping * s[1];
     ds[0] = s[1];
     ds[1] = f / p_.mass[0];
     return;
@@ -123,26 +158,41 @@ double ChainModel::force_on_valve_rate(const Snapshot& x) const {
 
 double ChainModel::spring_force_rate(const Snapshot& x) const {
   const std::size_t v = valve(), P = positions_, z = p_.mass.size();
-  if (p_.coils == 0) return p_.spring_rate * x.rate[v];
-  return (p_.coils + 1) * p_.spring_rate * (x.rate[v] - x.rate[z]) + p_.coil_damping * (x.rate[P + v] - x.rate[P + z]);
+  double bind = 0.0;
+  for (std::size_t i = 0; i < p_.limits.size(); ++i)
+    if ((x.mode.engaged & (1u << i)) && p_.limits[i].in_spring) bind += limit_force_rate(i, x);
+  if (p_.coils == 0) return p_.spring_rate * x.rate[v] + bind;
+  return (p_.coils + 1) * p_.spring_rate * (x.rate[v] - x.rate[z]) + p_.coil_damping * (x.rate[P + v] - x.rate[P + z]) + bind;
 }
 
 // The event functions of each mode, listed once (they are asked for at every step).
 void ChainModel::list_roots() {
-  for (int i = 0; i < 4; ++i) {
-    const Mode m{(i & 1) != 0, (i & 2) != 0};
-    std::vector<RootKind>& k = kinds_[i];
-    if (p_.seat) k.push_back(m.seated ? RootKind::lift_off : RootKind::landing);
-    if (p_.contact_loss && !(m.seated && rigid_when_seated())) {
-      if (m.contact) {
-        k.push_back(RootKind::contact_loss);
-      } else {
-        k.push_back(RootKind::contact_by_position);
-        k.push_back(RootKind::contact_by_force);
+  const unsigned limit_states = 1u << p_.limits.size();
+  for (unsigned engaged = 0; engaged < limit_states; ++engaged)
+    for (int i = 0; i < 4; ++i) {
+      const Mode m{(i & 1) != 0, (i & 2) != 0, engaged};
+      if (m.seated && engaged) continue;  // the limits sit above the seat
+      const int at = index(m);
+      std::vector<RootKind>& k = kinds_[at];
+      std::vector<int>& limit = limit_of_root_[at];
+      if (p_.seat) k.push_back(m.seated ? RootKind::lift_off : RootKind::landing);
+      if (p_.contact_loss && !(m.seated && rigid_when_seated())) {
+        if (m.contact) {
+          k.push_back(RootKind::contact_loss);
+        } else {
+          k.push_back(RootKind::contact_by_position);
+          k.push_back(RootKind::contact_by_force);
+        }
       }
+      limit.assign(k.size(), -1);
+      if (!m.seated)
+        for (std::size_t j = 0; j < p_.limits.size(); ++j) {
+          k.push_back((engaged & (1u << j)) ? RootKind::limit_release : RootKind::limit_engage);
+          limit.push_back(static_cast<int>(j));
+        }
+      for (RootKind r : k)
+        directions_[at].push_back(r == RootKind::landing || r == RootKind::contact_loss || r == RootKind::limit_release ? -1 : +1);
     }
-    for (RootKind r : k) directions_[i].push_back(r == RootKind::landing || r == RootKind::contact_loss ? -1 : +1);
-  }
 }
 
 void ChainModel::roots(const Snapshot& x, double* g, double* dg) const {
@@ -167,6 +217,13 @@ void ChainModel::roots(const Snapshot& x, double* g, double* dg) const {
         g[i] = x.drive.y - x.state[0];
         if (dg) dg[i] = x.drive.rate - x.state[P];
         break;
+      case RootKind::limit_engage:
+      case RootKind::limit_release: {
+        const double lift = p_.limits[static_cast<std::size_t>(root_limits(x.mode)[i])].lift;
+        g[i] = x.state[v] - lift;
+        if (dg) dg[i] = x.state[P + v];
+        break;
+      }
     }
   }
 }

@@ -21,12 +21,33 @@
 //   cam contact   bilateral unless contact_loss: then contact is lost when F_c falls to 0 and
 //                 regained when the cam catches up (y - x_0 crosses 0 upward, or F_c turns
 //                 positive while y > x_0).
+//   lift limits   the spring's coil bind and an optional travel stop: stiff one-sided contacts on
+//                 the valve at lift a_i, engaged while x_v > a_i (entered when x_v - a_i rises
+//                 through 0, left when it falls through 0), pushing back with
+//                   F_i = k_i (x_v - a_i) + c_i x_v'
+//                 c_i from the contact's restitution e_i (a free mass entering at speed v leaves
+//                 at e_i v: c_i = 2 zeta_i sqrt(k_i m_v), zeta_i = -ln e_i / sqrt(pi^2 + ln^2 e_i)).
+//                 The coil bind's force goes through the solid spring: it counts as spring force.
 // hybrid_simulation.hpp integrates it; the event functions and the forces come with their exact
 // time derivatives, so extremes and crossings can be refined inside a step.
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace mechgraph::valvetrain {
+
+/// A stiff one-sided contact that stops the valve at a lift (the spring's coil bind, a travel stop).
+struct LiftLimit {
+  double lift = 0.0;       // a_i, m (valve side, > 0)
+  double stiffness = 0.0;  // k_i, N/m
+  double damping = 0.0;    // c_i, N*s/m
+  bool in_spring = false;  // its force goes through the spring (coil bind): part of spring_force()
+  std::string name;        // for the events: "coil_bind", "stop"
+};
+
+/// c_i of a contact of stiffness k on mass m whose rebound speed is e times the impact speed
+/// (0 < e <= 1; e = 1: no damping).
+double restitution_damping(double restitution, double stiffness, double mass);
 
 struct ChainParams {
   std::vector<double> mass;            // m_0 .. m_{n-1}, cam side first; the last is the valve
@@ -43,6 +64,8 @@ struct ChainParams {
   double restitution = 0.0;
   double seating_speed = 0.0;          // m/s
   int max_bounces = 100;               // per landing: then the valve is seated
+  std::vector<LiftLimit> limits;       // at most max_limits
+  static constexpr std::size_t max_limits = 2;
 };
 
 /// The drive's displacement y, velocity y' and acceleration y'' at one time.
@@ -59,10 +82,11 @@ using Excitation = std::function<DriveValue(double t)>;
 struct Mode {
   bool seated = true;
   bool contact = true;
+  unsigned engaged = 0;  // bit i: lift limit i engaged
   friend bool operator==(const Mode&, const Mode&) = default;
 };
 
-enum class RootKind { lift_off, landing, contact_loss, contact_by_position, contact_by_force };
+enum class RootKind { lift_off, landing, contact_loss, contact_by_position, contact_by_force, limit_engage, limit_release };
 
 /// Positions then velocities: x_0..x_{n-1}, z_1..z_p, x_0'..., z_p'.
 using ChainState = std::vector<double>;
@@ -95,8 +119,9 @@ class ChainModel {
   /// Net force on the valve from the chain and the spring (without the seat's reaction).
   double force_on_valve(double t, const ChainState& s) const { return force_on_valve(y_(t), s); }
   double force_on_valve(const DriveValue& e, const ChainState& s) const;
-  /// The spring's force on the valve: P0 + c_s x_v, or the first coil element's with spring_surge.
-  double spring_force(const ChainState& s) const;
+  /// The spring's force on the valve: P0 + c_s x_v, or the first coil element's with spring_surge;
+  /// plus the coil bind's while it is engaged (bit i of `engaged`: lift limit i).
+  double spring_force(const ChainState& s, unsigned engaged = 0) const;
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds) const;
   /// The same, and the drive's motion at t that it used.
   void rhs(const Mode& m, double t, const ChainState& s, ChainState& ds, DriveValue& drive) const;
@@ -111,6 +136,13 @@ class ChainModel {
   double force_on_valve_rate(const Snapshot& x) const;
   double spring_force_rate(const Snapshot& x) const;
   const std::vector<RootKind>& root_kinds(const Mode& m) const { return kinds_[index(m)]; }
+  /// For each root of root_kinds(m): the lift limit it concerns (limit_engage, limit_release), else -1.
+  const std::vector<int>& root_limits(const Mode& m) const { return limit_of_root_[index(m)]; }
+  /// Lift limit i's force on the valve while engaged, and its time derivative from a snapshot.
+  double limit_force(std::size_t i, const ChainState& s) const;
+  double limit_force_rate(std::size_t i, const Snapshot& x) const;
+  /// True for roots that read the state alone (no drive, no rates): landing and the lift limits.
+  static bool state_only(RootKind k) { return k == RootKind::landing || k == RootKind::limit_engage || k == RootKind::limit_release; }
   /// +1: the event is the function's rise through 0, -1: its fall.
   const std::vector<int>& root_directions(const Mode& m) const { return directions_[index(m)]; }
   /// The event functions of the snapshot's mode, and their rates when `dg` is not null.
@@ -127,12 +159,14 @@ class ChainModel {
   bool pushes(const DriveValue& e, const ChainState& s) const;
   void rates(const Mode& m, const DriveValue& e, const ChainState& s, ChainState& ds) const;
   void list_roots();
-  static int index(const Mode& m) { return (m.seated ? 1 : 0) + (m.contact ? 2 : 0); }
+  static int index(const Mode& m) { return (m.seated ? 1 : 0) + (m.contact ? 2 : 0) + 4 * static_cast<int>(m.engaged); }
+  static constexpr int modes = 4 << ChainParams::max_limits;
   ChainParams p_;
   Excitation y_;
   std::size_t positions_;
-  std::vector<RootKind> kinds_[4];  // per mode (index())
-  std::vector<int> directions_[4];
+  std::vector<RootKind> kinds_[modes];  // per mode (index())
+  std::vector<int> directions_[modes];
+  std::vector<int> limit_of_root_[modes];
 };
 
 }  // namespace mechgraph::valvetrain

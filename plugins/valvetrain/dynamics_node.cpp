@@ -4,7 +4,9 @@
 // integrated. Results are taken from the last of `revolutions` cam revolutions, so the start-up
 // transient has died out when the drive is damped. The curves are read at their points; the scalar
 // extremes (deviations, least contact force, greatest spring force, bounce height) are followed on
-// the integrator's dense output between them ("Extremes and events from the dense output").
+// the integrator's dense output between them ("Extremes and events from the dense output"). The
+// spring's coil bind (always, with elastic_drive) and a travel stop are stiff contacts on the valve;
+// the events table lists every departure from the cam's law with its cam angle, speed and force.
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
@@ -12,21 +14,102 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <map>
 #include <numbers>
+#include <string>
 
 namespace mechgraph::valvetrain {
 namespace {
 
 constexpr double pi = std::numbers::pi;
 
+// The code of an event in the events table (its port's description lists them), 0: not listed.
+// Lift-off and the ordinary seating (with the cam in contact, no bounce before) follow the law
+// and are left out.
+double event_code(const EventRecord& e, bool after_bounce) {
+  if (e.kind == "contact_loss") return 1.0;
+  if (e.kind == "contact_regain") return 2.0;
+  if (e.kind == "bounce") return 3.0;
+  if (e.kind == "landing") return !e.cam_contact || after_bounce ? 4.0 : 0.0;
+  if (e.kind == "coil_bind") return 5.0;
+  if (e.kind == "coil_bind_release") return 6.0;
+  if (e.kind == "stop") return 7.0;
+  if (e.kind == "stop_release") return 8.0;
+  return 0.0;
+}
+
+// The events of the last revolution (from `last`, s) as a table over cam angle; the peak force of
+// a lift limit's engagement from the limit-force monitor's segment that begins with it.
+Table events_table(const SimulationResult& run, const std::vector<MonitorSegment>& limit_segments, double last, double w,
+                   double period) {
+  Table t;
+  t.axis = {"cam_angle", dim::angle, {}, "deg"};
+  t.add_channel("event", dim::none);
+  t.add_channel("speed", dim::velocity, "m/s");
+  t.add_channel("cam_force", dim::force, "N");
+  t.add_channel("peak_force", dim::force, "N");
+  bool after_bounce = false;
+  for (const EventRecord& e : run.events) {
+    const double code = event_code(e, after_bounce);
+    after_bounce = e.kind == "bounce";
+    if (e.t < last || code == 0.0) continue;
+    double peak = 0.0;
+    if (code == 5.0 || code == 7.0)
+      for (const MonitorSegment& m : limit_segments)
+        if (std::abs(m.begin - e.t) <= 1e-12 * period) peak = std::max(peak, m.greatest.value);
+    t.axis.values.push_back(-pi + w * (e.t - last));
+    t.channels[0].values.push_back(code);
+    t.channels[1].values.push_back(e.speed);
+    t.channels[2].values.push_back(e.cam_force);
+    t.channels[3].values.push_back(peak);
+  }
+  return t;
+}
+
+std::string degrees(double radians) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", radians * 180.0 / pi);
+  return text;
+}
+
+// One note per kind of departure in the last revolution, in words: where it began, how often.
+void describe_events(const SimulationResult& run, double last, double w, OutputSet& out) {
+  struct Seen {
+    int count = 0;
+    double first = 0.0, speed = 0.0;
+  };
+  std::map<std::string, Seen> seen;
+  for (const EventRecord& e : run.events) {
+    if (e.t < last) continue;
+    Seen& s = seen[e.kind];
+    if (s.count++ == 0) {
+      s.first = -pi + w * (e.t - last);
+      s.speed = e.speed;
+    }
+  }
+  const auto say = [&](const std::string& kind, const std::string& what) {
+    const auto it = seen.find(kind);
+    if (it == seen.end()) return;
+    char text[200];
+    std::snprintf(text, sizeof text, "%s: %d time%s in the last revolution, first at cam angle %s deg (%.3g m/s)", what.c_str(),
+                  it->second.count, it->second.count == 1 ? "" : "s", degrees(it->second.first).c_str(), it->second.speed);
+    out.note(text);
+  };
+  say("contact_loss", "the follower leaves the cam (valve float)");
+  say("bounce", "the valve bounces on its seat");
+  say("coil_bind", "the spring goes solid (coil bind)");
+  say("stop", "the valve hits the travel stop");
+}
+
 class DynamicsType final : public NodeType {
  public:
   DynamicsType() {
     info_.type = "valvetrain.dynamics";
-    info_.version = 2;
-    info_.summary = "valve motion on an elastic drive (single mass), cam contact and seat as located events; rigid when "
-                    "elastic_drive is off";
+    info_.version = 3;
+    info_.summary = "valve motion on an elastic drive (single mass), cam contact, seat, coil bind and travel stop as "
+                    "located events; rigid when elastic_drive is off";
     info_.params = {
         ParamSpec::number("drive_stiffness", dim::stiffness,
                           "k_d: the drive's stiffness reduced to the valve (elastic_drive; from 1 N/mm: softer, the "
@@ -87,6 +170,29 @@ class DynamicsType final : public NodeType {
             .with_default(0.01)
             .positive()
             .at_most(100.0),
+        ParamSpec::number("coil_bind_stiffness", dim::stiffness,
+                          "stiffness of the solid spring (coil bind at the spring's solid length, elastic_drive)", "N/mm")
+            .with_default(1e8)
+            .at_least(1e4)
+            .at_most(1e12),
+        ParamSpec::number("coil_bind_restitution", dim::none,
+                          "coefficient of restitution of the valve on the solid spring (rebound speed / impact speed)")
+            .with_default(0.5)
+            .above(0.0)
+            .at_most(1.0),
+        ParamSpec::number("stop_lift", dim::length, "travel_stop: the valve lift at which the stop is met", "mm")
+            .optional()
+            .positive()
+            .at_most(1.0),
+        ParamSpec::number("stop_stiffness", dim::stiffness, "travel_stop: stiffness of the stop", "N/mm")
+            .with_default(1e8)
+            .at_least(1e4)
+            .at_most(1e12),
+        ParamSpec::number("stop_restitution", dim::none,
+                          "travel_stop: coefficient of restitution of the valve on the stop (rebound speed / impact speed)")
+            .with_default(0.3)
+            .above(0.0)
+            .at_most(1.0),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's kinematic motion at the speed simulated"),
@@ -101,23 +207,39 @@ class DynamicsType final : public NodeType {
         PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the last revolution (dense output)", "mm"),
         PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
         PortSpec::scalar("min_contact_force", dim::force,
-                         "least cam force while the valve is off its seat (0 if contact is lost; negative: the bilateral "
-                         "drive would have to pull)",
+                         "least cam force while the valve is off its seat (0 if contact is lost). Without contact_loss "
+                         "the drive is bilateral: a negative value is a pull no real cam can give, the valve would "
+                         "leave the cam there",
                          "N"),
         PortSpec::scalar("seating_velocity", dim::velocity, "speed of the first landing in the last revolution", "m/s"),
         PortSpec::scalar("floats", dim::none, "1 if the valve lost cam contact in the last revolution, else 0"),
         PortSpec::scalar("bounces", dim::none, "bounces on the seat in the last revolution"),
         PortSpec::scalar("bounce_height", dim::length, "highest lift after the first landing of the last revolution", "mm"),
         PortSpec::scalar("target_deviation", dim::length, "max |x - target lift| over the last revolution (with a target)", "mm"),
-        PortSpec::scalar("max_spring_force", dim::force, "greatest spring force on the valve over the last revolution", "N"),
+        PortSpec::scalar("max_spring_force", dim::force,
+                         "greatest spring force on the valve over the last revolution (with the solid spring's force at "
+                         "coil bind)",
+                         "N"),
+        PortSpec::scalar("solid_lift", dim::length,
+                         "valve lift at which the spring goes solid (coil bind), from the spring's coil geometry", "mm"),
+        PortSpec::table("events", "every departure from the cam's law in the last revolution, one row each at its cam "
+                                  "angle: event 1 contact lost, 2 contact regained (the follower lands on the cam), "
+                                  "3 bounce on the seat, 4 seated off the cam or after bounces, 5 coil bind (the spring "
+                                  "goes solid), 6 coil bind left, 7 travel stop hit, 8 stop left; speed: of approach or "
+                                  "separation; cam_force: the cam's force just after; peak_force: the contact's greatest "
+                                  "force until it is left (coil bind, stop)"),
         PortSpec::series("natural_frequencies", dim::frequency,
                          "of the drive (valve off its seat, cam in contact), lowest first; with spring_surge the coils' too",
                          "Hz"),
     };
     info_.effects = {
-        {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass); off: rigid drive",
-         {"max_deviation", "residual_amplitude", "natural_frequencies"},
-         {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions"}},
+        {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass), the spring's coil bind as a "
+                          "stiff contact; off: rigid drive",
+         {"max_deviation", "residual_amplitude", "natural_frequencies", "events", "solid_lift"},
+         {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions", "coil_bind_stiffness",
+          "coil_bind_restitution"}},
+        {"travel_stop", "a stop at stop_lift: a stiff contact with its own restitution (needs elastic_drive)", {},
+         {"stop_lift", "stop_stiffness", "stop_restitution"}},
         {"contact_loss", "unilateral cam contact: the valve flies free while the drive would pull it (needs elastic_drive)",
          {"floats"}, {}},
         {"seat_impact", "the valve bounces on its seat with a coefficient of restitution (needs elastic_drive)",
@@ -138,7 +260,7 @@ class DynamicsType final : public NodeType {
     const auto motion = in.handle<ValveMotion>("valve");
     const auto design = in.handle<SpringDesign>("design");
     const bool elastic = ctx.effect("elastic_drive");
-    for (const char* effect : {"contact_loss", "seat_impact", "multi_mass", "spring_surge"})
+    for (const char* effect : {"contact_loss", "seat_impact", "multi_mass", "spring_surge", "travel_stop"})
       if (ctx.effect(effect) && !elastic)
         throw NodeError("drive_stiffness", std::string(effect) + " needs the elastic_drive effect as well (a rigid drive "
                                            "has no vibration to show)");
@@ -218,6 +340,20 @@ class DynamicsType final : public NodeType {
       settings.seat_impact = ctx.effect("seat_impact");
       settings.restitution = p.number("restitution");
       settings.seating_speed = p.number("seating_speed");
+      // Coil bind: a valve that can leave the cam is watched for it throughout. A bilateral drive
+      // holds the valve on the cam, so its run watches only for the greatest lift and is repeated
+      // with the coil-bind contact if that reaches the solid length (no cost where it does not).
+      settings.coil_bind = settings.contact_loss;
+      const double solid_lift = design->spring->solid_deflection();
+      settings.coil_bind_stiffness = p.number("coil_bind_stiffness");
+      settings.coil_bind_restitution = p.number("coil_bind_restitution");
+      settings.stop = ctx.effect("travel_stop");
+      if (settings.stop) {
+        if (!p.has("stop_lift")) throw NodeError("stop_lift", "travel_stop needs stop_lift (the valve lift of the stop)");
+        settings.stop_lift = p.number("stop_lift");
+        settings.stop_stiffness = p.number("stop_stiffness");
+        settings.stop_restitution = p.number("stop_restitution");
+      }
       // The drive's stiffness in series, for the quasi-static lift
       //   x_qs = max(0, (k_d y - P0) / (k_d + c_s)),  x_qs' = k_d y' / (k_d + c_s) where positive.
       double compliance = 0.0;
@@ -226,7 +362,7 @@ class DynamicsType final : public NodeType {
       const double last = (revolutions - 1) * period, nose = last + pi / w;
 
       // What is followed on the dense output over the last revolution (hybrid_simulation.hpp).
-      enum Watched { deviation, closing_deviation, contact_force, spring_force, valve_lift, target_gap };
+      enum Watched { deviation, closing_deviation, contact_force, spring_force, valve_lift, limit_force, target_gap };
       auto deviation_reading = [=](const ChainModel& model, const Snapshot& x) {
         const std::size_t valve = model.valve(), P = model.positions();
         const double y = x.drive.y, above = k_d * y - P0;
@@ -235,7 +371,7 @@ class DynamicsType final : public NodeType {
         const double d = x.state[valve] - x_qs, d_rate = x.state[P + valve] - x_qs_rate;
         return Reading{std::abs(d), d < 0.0 ? -d_rate : d_rate};
       };
-      std::vector<Monitor> watch(6);
+      std::vector<Monitor> watch(7);
       watch[deviation] = {last, period * revolutions, false, true, deviation_reading};
       watch[closing_deviation] = {nose, period * revolutions, false, true, deviation_reading};
       // The cam's force while the valve is off its seat: none without contact.
@@ -245,9 +381,23 @@ class DynamicsType final : public NodeType {
                                 return Reading{model.pushing_force(x.drive, x.state), model.pushing_force_rate(x)};
                               }};
       watch[spring_force] = {last, period * revolutions, false, true, [](const ChainModel& model, const Snapshot& x) {
-                               return Reading{model.spring_force(x.state), model.spring_force_rate(x)};
+                               return Reading{model.spring_force(x.state, x.mode.engaged), model.spring_force_rate(x)};
                              }};
-      watch[valve_lift] = {last, period * revolutions, false, settings.seat_impact, [](const ChainModel& model, const Snapshot& x) {
+      // The lift limits' force while one is engaged: its peak per engagement for the events table.
+      watch[limit_force] = {last, period * revolutions, false, true, [](const ChainModel& model, const Snapshot& x) {
+                              if (!x.mode.engaged) return Reading{0.0, 0.0, false};
+                              Reading r;
+                              for (std::size_t i = 0; i < model.params().limits.size(); ++i)
+                                if (x.mode.engaged & (1u << i)) {
+                                  r.value += model.limit_force(i, x.state);
+                                  r.rate += model.limit_force_rate(i, x);
+                                }
+                              return r;
+                            }};
+      // (a massless spring's force gives the greatest lift; coil masses need the lift followed)
+      const bool follow_lift = settings.seat_impact || (!settings.coil_bind && settings.coils > 0);
+      watch[valve_lift] = {last, period * revolutions, false, follow_lift,
+                           [](const ChainModel& model, const Snapshot& x) {
                              return Reading{x.state[model.valve()], x.state[model.positions() + model.valve()]};
                            }};
       std::shared_ptr<const ValveMotion> target;
@@ -265,6 +415,13 @@ class DynamicsType final : public NodeType {
       }
 
       ValveSimulation sim = simulate_valve(*motion, *design, settings, phi, watch);
+      const double greatest_lift = settings.coils > 0 ? greatest_of(sim.run.extremes[valve_lift]).value
+                                                      : (greatest_of(sim.run.extremes[spring_force]).value - P0) / c_s;
+      if (!settings.coil_bind && greatest_lift >= solid_lift) {
+        settings.coil_bind = true;
+        recycle(std::move(sim.run));
+        sim = simulate_valve(*motion, *design, settings, phi, watch);
+      }
       const SimulationResult& run = sim.run;
       if (run.state.size() != phi.size())
         throw std::logic_error("the simulation returned " + std::to_string(run.state.size()) + " states for " +
@@ -302,6 +459,9 @@ class DynamicsType final : public NodeType {
           seating_velocity = e.speed;
         }
       }
+      if (std::isfinite(solid_lift)) out.set_scalar("solid_lift", solid_lift);
+      out.set("events", Value::table(events_table(run, run.extremes[limit_force], last, w, period)));
+      describe_events(run, last, w, out);
       ChainState s;
       for (std::size_t j = 0; j < phi.size(); ++j) {
         s.assign(run.state[j].begin(), run.state[j].end());
@@ -324,7 +484,7 @@ class DynamicsType final : public NodeType {
         drive.push_back(y);
         velocity.push_back(s[P + v]);
         contact.push_back(force);
-        spring.push_back(model.spring_force(s));
+        spring.push_back(model.spring_force(s, mode.engaged));
         if (tappet) tappet->push_back(s[0]);
       }
       const auto& extremes = run.extremes;
@@ -351,6 +511,14 @@ class DynamicsType final : public NodeType {
       out.set_scalar("target_deviation", worst);
     }
     if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat
+    if (min_contact < 0.0 && !ctx.effect("contact_loss")) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "bilateral drive: the least cam force, %.0f N, is a pull that no real cam can give; there the valve "
+                    "would leave the cam (switch on contact_loss to simulate it)",
+                    min_contact);
+      out.note(text);
+    }
     if (!elastic) max_spring = *std::max_element(spring.begin(), spring.end());
     out.set_scalar("max_spring_force", max_spring);
     out.set_scalar("min_contact_force", min_contact);

@@ -21,30 +21,49 @@ class EventHandler {
  public:
   EventHandler(const ChainModel& model, SimulationResult& result) : model_(model), p_(model.params()), result_(result) {}
 
-  void handle(RootKind kind, double t, Mode& mode, ChainState& s) {
+  void handle(RootKind kind, int limit, double t, Mode& mode, ChainState& s) {
+    const bool contact_before = mode.contact;
+    const std::size_t events_before = result_.events.size();
+    const std::size_t v = model_.valve(), P = model_.positions();
+    const DriveValue drive = model_.excitation(t);
     switch (kind) {
       case RootKind::lift_off:
         result_.events.push_back({t, "lift_off", 0.0});
         mode.seated = false;
         if (model_.rigid_when_seated()) mode.contact = true;  // it lifts because the cam pushes
         bounces_ = 0;
-        return;
-      case RootKind::landing: land(t, mode, s); return;
+        break;
+      case RootKind::landing: land(t, mode, s); break;
       case RootKind::contact_loss:
-        result_.events.push_back({t, "contact_loss", 0.0});
+        result_.events.push_back({t, "contact_loss", std::abs(drive.rate - s[P])});
         mode.contact = false;
-        return;
+        break;
       case RootKind::contact_by_position:
-        result_.events.push_back({t, "contact_regain", 0.0});
+        result_.events.push_back({t, "contact_regain", std::abs(drive.rate - s[P])});
         mode.contact = true;
-        return;
+        break;
       case RootKind::contact_by_force:
         // The force turns positive while the cam is still clear of the chain: no contact yet.
-        if (model_.excitation(t).y - s[0] > 0.0) {
-          result_.events.push_back({t, "contact_regain", 0.0});
+        if (drive.y - s[0] > 0.0) {
+          result_.events.push_back({t, "contact_regain", std::abs(drive.rate - s[P])});
           mode.contact = true;
         }
-        return;
+        break;
+      case RootKind::limit_engage:
+      case RootKind::limit_release: {
+        const bool engage = kind == RootKind::limit_engage;
+        const std::string& name = p_.limits[static_cast<std::size_t>(limit)].name;
+        result_.events.push_back({t, engage ? name : name + "_release", std::abs(s[P + v])});
+        result_.events.back().limit = limit;
+        if (engage) mode.engaged |= 1u << limit;
+        else mode.engaged &= ~(1u << limit);
+        break;
+      }
+    }
+    for (std::size_t j = events_before; j < result_.events.size(); ++j) {
+      EventRecord& e = result_.events[j];
+      e.cam_contact = contact_before;
+      e.cam_force = mode.contact ? model_.pushing_force(drive, s) : 0.0;
     }
   }
 
@@ -231,7 +250,7 @@ class Driver {
   }
   bool roots_need_snapshot(const Mode& m) const {
     for (RootKind k : model_.root_kinds(m))
-      if (k != RootKind::landing) return true;
+      if (!ChainModel::state_only(k)) return true;
     return false;
   }
 
@@ -297,18 +316,19 @@ class Driver {
       return tb;
     }
     std::swap(current_, end_);  // the state just before the event
-    fire(model_.root_kinds(current_.mode)[static_cast<std::size_t>(event)], t_end);
+    fire(model_.root_kinds(current_.mode)[static_cast<std::size_t>(event)], t_end,
+         model_.root_limits(current_.mode)[static_cast<std::size_t>(event)]);
     return t_end;
   }
 
   // Handles an event at t on the current state: the monitors' segments end, the backend restarts.
-  void fire(RootKind kind, double t) {
+  void fire(RootKind kind, double t, int limit = -1) {
     if (++event_count_ > options_.max_events)
       throw std::runtime_error("more than " + std::to_string(options_.max_events) + " contact events (chattering)");
     for (std::size_t k = 0; k < trackers_.size(); ++k) trackers_[k].finish(result_.extremes[k]);
     ChainState s = current_.state;
     Mode mode = current_.mode;
-    events_.handle(kind, t, mode, s);
+    events_.handle(kind, limit, t, mode, s);
     backend_->restart(t, s, mode);
     set_current(t, s, mode);
   }

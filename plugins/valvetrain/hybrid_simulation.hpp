@@ -34,8 +34,15 @@ struct SimulationOptions {
 
 struct EventRecord {
   double t = 0.0;
-  std::string kind;    // lift_off, landing, bounce, contact_loss, contact_regain
-  double speed = 0.0;  // |x_v'| at a landing or bounce
+  // lift_off, landing, bounce, contact_loss, contact_regain, and for each lift limit its name
+  // (coil_bind, stop: the valve runs into it) and name + "_release" (it leaves it)
+  std::string kind;
+  // The approach or separation speed: |x_v'| at the seat and the lift limits, |y' - x_0'| between
+  // cam and follower at contact loss and regain; 0 at lift-off.
+  double speed = 0.0;
+  double cam_force = 0.0;   // N, the cam's force on the follower just after the event
+  bool cam_contact = true;  // the cam touched the follower just before the event
+  int limit = -1;           // the lift limit of a limit event
 };
 
 /// A watched quantity's value and rate in a snapshot, or `defined = false` where it has none (in

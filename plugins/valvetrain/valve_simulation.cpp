@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 #include <numbers>
 
 namespace mechgraph::valvetrain {
@@ -179,13 +181,26 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   mp.seat_impact = drive.seat_impact;
   mp.restitution = drive.restitution;
   mp.seating_speed = drive.seating_speed;
+  // The lift limits act on the valve, the last mass of the chain.
+  const double solid_lift = drive.coil_bind ? design.spring->solid_deflection() : std::numeric_limits<double>::infinity();
+  if (drive.coil_bind && std::isfinite(solid_lift)) {
+    if (!(solid_lift > 0.0))
+      throw NodeError("design", "the spring is solid at the installed length (solid deflection " +
+                                    std::to_string(solid_lift * 1e3) + " mm): the valve cannot open");
+    mp.limits.push_back({solid_lift, drive.coil_bind_stiffness,
+                         restitution_damping(drive.coil_bind_restitution, drive.coil_bind_stiffness, mp.mass.back()), true,
+                         "coil_bind"});
+  }
+  if (drive.stop)
+    mp.limits.push_back({drive.stop_lift, drive.stop_stiffness,
+                         restitution_damping(drive.stop_restitution, drive.stop_stiffness, mp.mass.back()), false, "stop"});
   // t = 0 at cam angle -pi (the base circle, valve seated).
   ValveSimulation sim{ChainModel(std::move(mp),
                                       [&motion, w](double t) {
                                         const LiftDerivatives d = motion.drive(-pi + w * t);
                                         return DriveValue{d.lift, w * d.velocity, w * w * d.acceleration};
                                       }),
-                      {}, 2.0 * pi / w, 0.0, {}, {}};
+                      {}, 2.0 * pi / w, 0.0, {}, {}, solid_lift};
   sim.last_start = (drive.revolutions - 1) * sim.period;
   const double h_max = motion.rocker_ratio() * motion.cam().max_lift() - motion.lash();
   SimulationOptions options;

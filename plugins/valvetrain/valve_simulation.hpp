@@ -25,6 +25,14 @@ struct DriveSettings {
   bool seat_impact = false;
   double restitution = 0.0;
   double seating_speed = 0.0;
+  // Lift limits (chain_model.hpp): the spring's coil bind at its solid deflection, a travel stop.
+  bool coil_bind = false;
+  double coil_bind_stiffness = 0.0;    // N/m
+  double coil_bind_restitution = 1.0;  // (0, 1]
+  bool stop = false;
+  double stop_lift = 0.0;              // m, valve lift
+  double stop_stiffness = 0.0;         // N/m
+  double stop_restitution = 1.0;
 };
 
 /// How stiff the chain is at the integration's step cap, and so which integrator `auto` takes
@@ -53,6 +61,7 @@ struct ValveSimulation {
   double last_start = 0.0;  // s, start of the last revolution
   IntegratorChoice choice;  // the chain's stiffness at the step cap
   std::string integrator;   // the one that ran: "cvode" or "dopri5" (`auto` resolved)
+  double solid_lift = 0.0;  // m, valve lift at coil bind (+inf: no coil bind modelled)
 };
 
 /// The chain of masses, stiffnesses and damping the settings describe (valve side). Throws

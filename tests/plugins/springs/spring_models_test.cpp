@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -152,5 +153,23 @@ TEST_CASE("conformance: every spring model, lines from tiny to huge", "[springs]
         CHECK(c.free_length - line.preload / line.rate - line.stroke >= c.solid_length + 0.5e-3 - 1e-12);
       }
     }
+  }
+}
+
+TEST_CASE("solid deflection: where the first coil goes solid, from the installed length the design rule sets",
+          "[springs]") {
+  // Without installed_length the models install the spring at solid + clearance + stroke, so it
+  // goes solid at stroke + clearance (0.5 mm by default) past the closed valve; with a given
+  // installed length L at L - (longest solid length).
+  const SpringLine line{300.0, 25e3, 10e-3};
+  for (const char* type : {"spring.helical", "spring.dual"}) {
+    INFO(type);
+    const auto shortest = spring_model(type)->size(line);
+    CHECK_THAT(shortest->solid_deflection(), WithinRel(10.5e-3, 1e-12));
+    const auto roomy = spring_model(type, {{"installed_length", ParamValue::of_number(60e-3)}})->size(line);
+    double longest_solid = 0.0;
+    for (const CoilGeometry& c : roomy->coils()) longest_solid = std::max(longest_solid, c.solid_length);
+    CHECK_THAT(roomy->solid_deflection(), WithinRel(60e-3 - longest_solid, 1e-12));
+    CHECK(roomy->solid_deflection() > line.stroke);
   }
 }

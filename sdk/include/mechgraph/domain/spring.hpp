@@ -22,6 +22,8 @@
 // the allowable over the stroke and that the coil geometry is consistent.
 #include <mechgraph/value.hpp>
 
+#include <algorithm>
+#include <limits>
 #include <memory>
 #include <string_view>
 #include <vector>
@@ -65,6 +67,22 @@ class MECHGRAPH_INTERFACE Spring : public DomainObject {
 
   double preload() const { return force(0.0); }
   double max_force() const { return force(stroke()); }
+  /// The deflection (from the installed length) at which the first coil goes solid, from the coil
+  /// geometry: the coils share one installed length L = (sum c_k L0_k - P0) / sum c_k (free
+  /// lengths L0_k, rates c_k), and coil k is solid at L - Ls_k. +inf for a spring without coils.
+  double solid_deflection() const {
+    double rate_sum = 0.0, weighted_free = 0.0;
+    const std::vector<CoilGeometry> all = coils();
+    for (const CoilGeometry& c : all) {
+      rate_sum += c.rate;
+      weighted_free += c.rate * c.free_length;
+    }
+    if (all.empty() || !(rate_sum > 0.0)) return std::numeric_limits<double>::infinity();
+    const double installed = (weighted_free - preload()) / rate_sum;
+    double solid = std::numeric_limits<double>::infinity();
+    for (const CoilGeometry& c : all) solid = std::min(solid, installed - c.solid_length);
+    return solid;
+  }
 };
 
 class MECHGRAPH_INTERFACE SpringModel : public DomainObject {

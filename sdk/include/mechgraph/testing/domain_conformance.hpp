@@ -61,6 +61,10 @@ inline Report check_spring(const Spring& s, const std::string& suite = "spring")
       bad_coil = "wire " + num(c.wire_diameter) + " m, mean diameter " + num(c.mean_diameter) + " m, " + num(c.active_coils) +
                  " active coils, solid " + num(c.solid_length) + " m, free " + num(c.free_length) + " m";
   r.add(suite, "coil geometry consistent", !coils.empty() && bad_coil.empty(), coils.empty() ? "no coils" : bad_coil);
+  // The dynamics stop the valve where the first coil goes solid: never inside the working stroke.
+  const double solid = s.solid_deflection();
+  r.add(suite, "not solid before full stroke", !(solid <= stroke),
+        "solid at " + num(solid) + " m of deflection, stroke " + num(stroke) + " m");
   return r;
 }
 
