@@ -705,7 +705,9 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         figures.push_back(std::move(f));
         continue;
       }
-      if (t.axis.values.size() <= table_rows_shown) {
+      // A list of events (a cam's timing, the dynamics' contact losses and landings) is read as
+      // a table however long it is: a plot of event codes over angle says nothing.
+      if (t.axis.values.size() <= table_rows_shown || port == "events") {
         small.push_back(&o);
         continue;
       }
