@@ -986,7 +986,12 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
       for (const std::string& c : rows[r]) html << "<td class=\"n\">" << c << "</td>";
       html << "</tr>\n";
     }
-    html << "</table></div>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
+    // What the table is, in its port's own words (an events table's codes are explained there).
+    std::string doc;
+    for (const RequestedOutput& r : graph.outputs)
+      if (r.label == o->label && r.spec) doc = r.spec->doc;
+    html << "</table></div>\n<p class=\"csv\">" << (doc.empty() ? "" : html_text(doc) + "; ") << "data: " << html_text(csv)
+         << "</p>\n";
   }
   // How the results were made.
   bool first = true;
