@@ -48,18 +48,19 @@ void print_report_pdf(const std::filesystem::path& dir) {
   fs::remove_all(profile);
   fs::create_directories(profile);
   const fs::path log = profile / "chromium.log";
-  const std::vector<std::string> args{"--headless",
-                                      "--no-sandbox",  // root in containers; the page is our own file
-                                      "--disable-gpu",
-                                      "--disable-extensions",
-                                      "--disable-background-networking",
-                                      "--disable-sync",
-                                      "--disable-default-apps",
-                                      "--no-first-run",
-                                      "--no-pdf-header-footer",
-                                      "--user-data-dir=" + profile.string(),
-                                      "--print-to-pdf=" + pdf.string(),
-                                      "file://" + page.string()};
+  std::vector<std::string> args{"--headless",
+                                "--disable-gpu",
+                                "--disable-extensions",
+                                "--disable-background-networking",
+                                "--disable-sync",
+                                "--disable-default-apps",
+                                "--no-first-run",
+                                "--no-pdf-header-footer",
+                                "--user-data-dir=" + profile.string(),
+                                "--print-to-pdf=" + pdf.string(),
+                                file_url(page.string())};
+  // Chromium's sandbox cannot start as root (a container's usual user); the page is our own file.
+  if (::geteuid() == 0) args.insert(args.begin() + 1, "--no-sandbox");
   const SpawnOutcome run = run_program(chromium, args, dir, log, std::chrono::minutes(2));
   const std::string why = run.succeeded() ? std::string() : log_excerpt(log);
   std::error_code ignored;

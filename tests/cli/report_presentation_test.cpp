@@ -188,7 +188,11 @@ TEST_CASE("report --pdf prints the page through headless chromium", "[cli][repor
     WARN("chromium is not installed: the PDF is not checked");
     return;
   }
-  const fs::path dir = fresh_folder("pdf");
+  // A folder name a URL would misread (a fragment, a query, an escape, a space): the page is
+  // still found, because its path goes to chromium percent-encoded.
+  const fs::path parent = fresh_folder("pdf");
+  fs::create_directories(parent);
+  const fs::path dir = parent / "a #b?c%d";
   const auto r = run_cli("-q report '" + scene("cam_contour.yaml") + "' --out '" + dir.string() + "' --pdf");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);

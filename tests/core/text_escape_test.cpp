@@ -82,3 +82,10 @@ TEST_CASE("escaping random bytes always gives valid text of the format", "[escap
     for (char c : e) CHECK((c >= 0x20 && c < 0x7f));
   }
 }
+
+TEST_CASE("file URLs: a path stays a path, whatever its folder names hold", "[escape]") {
+  CHECK(file_url("/tmp/report/report.html") == "file:///tmp/report/report.html");
+  CHECK(file_url("/tmp/a#b?c%d e/r.html") == "file:///tmp/a%23b%3Fc%25d%20e/r.html");
+  CHECK(file_url("/tmp/\xC3\xA9t\xC3\xA9") == "file:///tmp/%C3%A9t%C3%A9");  // UTF-8 bytes, each encoded
+  CHECK(file_url("/x\n\"<>") == "file:///x%0A%22%3C%3E");
+}

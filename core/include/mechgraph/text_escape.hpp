@@ -27,6 +27,10 @@ std::string utf8_sanitized(std::string_view text);
 /// C0 controls other than tab and line feed (and DEL) dropped.
 std::string html_text(std::string_view text);
 
+/// A file:// URL for an absolute path: every byte outside RFC 3986's unreserved set and '/' is
+/// percent-encoded (a folder named "a#b?c%d e" stays a path, never a fragment or a query).
+std::string file_url(std::string_view absolute_path);
+
 /// A gnuplot string constant, quotes included: single-quoted (gnuplot performs no backslash,
 /// backquote or macro processing inside single quotes), a quote doubled, line breaks and other
 /// controls as spaces (a line break would end the command), backquotes and '@' replaced by look-
