@@ -223,7 +223,6 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
 
   const std::size_t total = written + options.cases.size();
   SweepProgress progress(total, spdlog::get_level() <= spdlog::level::info);
-  std::vector<CaseResult> waiting;  // rows before the header is known
   // Rows go out in blocks (64 KiB, or every quarter second when cases are slow), whole rows only:
   // what a killed sweep leaves is still a prefix of whole rows for --resume.
   std::string pending;
@@ -239,29 +238,17 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     if (r.failure != CaseFailure::none) ++failed;
     if (pending.size() >= (std::size_t{1} << 16) || std::chrono::steady_clock::now() - last_flush > std::chrono::milliseconds(250)) flush();
   };
-  auto settle = [&](const CaseResult* success) {
-    rows.settle(success);
-    if (format == RowFormat::csv) file.write(csv_row(rows.header()) + "\n");
-    for (const CaseResult& r : waiting) put(r);
-    waiting.clear();
-  };
+  RowSequencer sequence(rows, [&] { if (format == RowFormat::csv) file.write(csv_row(rows.header()) + "\n"); }, put);
   MemoCache cache(cache_size);
   SweepSummary summary;
   {
     StopOnSignal on_signal;
     summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
-      if (!rows.settled()) {
-        if (r.failure != CaseFailure::none) {
-          waiting.push_back(std::move(r));
-          return;
-        }
-        settle(&r);
-      }
-      put(r);
+      sequence(std::move(r));
       progress.update(written, failed);
     });
   }
-  if (!rows.settled()) settle(nullptr);
+  sequence.finish();
   flush();
   progress.finish(written, failed);
   const bool complete = written == total;

@@ -326,6 +326,28 @@ std::string SweepRows::format(const std::vector<std::string>& cells, const std::
   return os.str() + "\n";
 }
 
+void RowSequencer::settle(const CaseResult* success) {
+  rows_.settle(success);
+  header_fixed_();
+  for (const CaseResult& r : waiting_) row_(r);
+  waiting_.clear();
+}
+
+void RowSequencer::operator()(CaseResult&& result) {
+  if (!rows_.settled()) {
+    if (result.failure != CaseFailure::none) {
+      waiting_.push_back(std::move(result));
+      return;
+    }
+    settle(&result);
+  }
+  row_(result);
+}
+
+void RowSequencer::finish() {
+  if (!rows_.settled()) settle(nullptr);
+}
+
 std::string SweepRows::shape_problem(const CaseResult& result) const {
   // A series must have as many elements as the header gave it columns (fixed by the first success).
   for (std::size_t c = 0; c < columns_.size(); ++c) {

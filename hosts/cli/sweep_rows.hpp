@@ -71,6 +71,27 @@ class SweepRows {
   std::vector<Column> columns_;
 };
 
+/// run_sweep's results (in case order) handed on as rows: a result before the first success waits,
+/// because the columns of a series are known only once a case has produced it. `header_fixed` is
+/// called once, when the columns are fixed here (not when the rows adopted a resumed header);
+/// `row` with every result, in case order.
+class RowSequencer {
+ public:
+  RowSequencer(SweepRows& rows, std::function<void()> header_fixed, std::function<void(const CaseResult&)> row)
+      : rows_(rows), header_fixed_(std::move(header_fixed)), row_(std::move(row)) {}
+  void operator()(CaseResult&& result);
+  /// After the sweep: fixes the columns from the scalar outputs alone when no case succeeded, and
+  /// hands on what waited.
+  void finish();
+
+ private:
+  void settle(const CaseResult* success);
+  SweepRows& rows_;
+  std::function<void()> header_fixed_;
+  std::function<void(const CaseResult&)> row_;
+  std::vector<CaseResult> waiting_;
+};
+
 /// The rules a row read back must follow.
 struct RowRules {
   RowFormat format = RowFormat::csv;

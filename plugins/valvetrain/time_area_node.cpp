@@ -11,6 +11,7 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -127,6 +128,12 @@ class TimeAreaType final : public NodeType {
     }
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     const double open_angle = motion->open_end() - motion->open_begin();
+    // The flow area grows as the square of the lift: a lift too large for that square (far beyond
+    // any valve, but a law can be given one) overflows; refused here, naming the input.
+    if (!std::isfinite(angle_area) || !std::isfinite(angle_area / motion->camshaft_speed()))
+      throw NodeError("valve", "the time-area of this valve motion (cam lift " + std::to_string(motion->cam().max_lift()) +
+                                   " m, rocker ratio " + std::to_string(motion->rocker_ratio()) +
+                                   ") is beyond the range of a double");
     out.set_scalar("angle_area", angle_area);
     out.set_scalar("time_area", angle_area / motion->camshaft_speed());
     out.set_scalar("mean_flow_area", angle_area / open_angle);

@@ -167,28 +167,15 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<std::
   // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.
   SessionSweep out;
   cli::SweepRows rows(graph, table, cli::RowFormat::jsonl);
-  std::vector<CaseResult> waiting;
-  auto put = [&](const CaseResult& r) {
-    out.lines.push_back(rows.line(r, cli::exit_code_of(r.failure)));
-    if (r.failure != CaseFailure::none) ++out.failed;
-  };
-  auto settle = [&](const CaseResult* success) {
-    rows.settle(success);
-    for (const CaseResult& r : waiting) put(r);
-    waiting.clear();
-  };
+  cli::RowSequencer sequence(
+      rows, [] {},
+      [&](const CaseResult& r) {
+        out.lines.push_back(rows.line(r, cli::exit_code_of(r.failure)));
+        if (r.failure != CaseFailure::none) ++out.failed;
+      });
   MemoCache cache;
-  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
-    if (!rows.settled()) {
-      if (r.failure != CaseFailure::none) {
-        waiting.push_back(std::move(r));
-        return;
-      }
-      settle(&r);
-    }
-    put(r);
-  });
-  if (!rows.settled()) settle(nullptr);
+  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { sequence(std::move(r)); });
+  sequence.finish();
   out.header = rows.header();
   return out;
 }

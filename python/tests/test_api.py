@@ -166,6 +166,11 @@ def test_the_stub_names_what_the_module_has():
     assert names >= {"Scene", "Result", "describe", "node_types", "plugins", "SceneError"}
     for name in names:
         assert hasattr(mechgraph, name), name
+    # And the other way: everything the package exports is typed in the stub.
+    typed = names | {t.id for n in tree.body if isinstance(n, (ast.Assign, ast.AnnAssign))
+                     for t in (n.targets if isinstance(n, ast.Assign) else [n.target]) if isinstance(t, ast.Name)}
+    typed |= {a.asname or a.name for n in tree.body if isinstance(n, ast.ImportFrom) for a in n.names}
+    assert set(mechgraph.__all__) <= typed, set(mechgraph.__all__) - typed
     for cls in (n for n in tree.body if isinstance(n, ast.ClassDef)):
         for member in cls.body:
             if isinstance(member, ast.FunctionDef) and not member.name.startswith("__"):

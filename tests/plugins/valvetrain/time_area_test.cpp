@@ -364,3 +364,21 @@ TEST_CASE("time-area in closed form (the law's integrals of h and h^2) equals qu
         CHECK_THAT(scalar_output(r, "ta.angle_area"), WithinRel(quadrature, 1e-12));
       }
 }
+
+TEST_CASE("time-area: a lift whose square overflows is refused naming the input, never infinite", "[valvetrain][hard]") {
+  Study s;
+  s.H = 1e160;  // the flow area grows as the lift squared: 1e320 m^2 is beyond a double
+  // (a checking lift the valve reaches at that scale: 1 mm is lost in the rounding of 1e160 m)
+  const OutputSet m = run_motion(s, 1.0, 0.0, {{"checking_lift", ParamValue::of_number(s.H / 10)}});
+  REQUIRE(std::isfinite(scalar(m, "max_lift")));
+  for (const char* method : {"exact", "rectangle"}) {
+    INFO(method);
+    try {
+      run_time_area(m, {{"seat_diameter", ParamValue::of_number(s.d0)}, {"method", ParamValue::of_choice(method)}});
+      FAIL("no refusal");
+    } catch (const NodeError& e) {
+      CHECK(e.parameter() == "valve");
+      CHECK_THAT(e.what(), Contains("beyond the range of a double"));
+    }
+  }
+}
