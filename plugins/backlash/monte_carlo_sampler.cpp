@@ -2,6 +2,8 @@
 
 #include "lane_variates.hpp"
 
+#include <mechgraph/worker_threads.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <atomic>
@@ -261,10 +263,9 @@ void for_each_chunk(std::size_t chunks, unsigned threads, const Work& work) {
       if (!failed.exchange(true)) failure = std::current_exception();
     }
   };
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < threads; ++w) pool.emplace_back(worker, w);
-  worker(0);
-  for (std::thread& t : pool) t.join();
+  // Chunks are taken from a shared counter, so workers that cannot start (a process or memory
+  // limit) leave theirs to the others; the samples do not depend on which worker drew them.
+  run_on_workers(threads, worker);
   if (failure) std::rethrow_exception(failure);
 }
 
