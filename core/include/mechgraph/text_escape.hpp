@@ -2,7 +2,7 @@
 // One escaping function per output format. Every piece of text that came from a user (a scene, a
 // file it names, the command line) or from a plugin passes through the function of the format it
 // is written into, and through nothing else: no writer builds its own quoting. CSV has its own
-// header (csv.hpp: csv_field), JSON its writer (json_writer.hpp, which calls utf8_sanitized).
+// header (csv.hpp: csv_field), JSON json_string (used by json_writer.hpp for keys and values).
 //
 // Error messages quote user text with quoted_text_excerpt (bounded_read.hpp, in the SDK so that
 // plugins use the same).
@@ -22,6 +22,11 @@ std::optional<std::size_t> first_invalid_utf8(std::string_view text);
 
 /// `text` with every ill-formed UTF-8 byte replaced by U+FFFD.
 std::string utf8_sanitized(std::string_view text);
+
+/// A JSON string, quotes included (RFC 8259): '"' and '\\' escaped, every C0 control (U+0000 to
+/// U+001F) escaped (\\n, \\t, \\r, else \\u00XX), ill-formed UTF-8 replaced by U+FFFD. DEL and C1
+/// controls are valid JSON and kept. The one escaper of every string JsonWriter writes.
+std::string json_string(std::string_view text);
 
 /// HTML text or a double-quoted attribute value: & < > " ' as entities, ill-formed UTF-8 replaced,
 /// C0 controls other than tab and line feed (and DEL) dropped.
