@@ -92,7 +92,11 @@ JsonWriter& JsonWriter::numbers(const std::vector<double>& values) {
   return end_array();
 }
 
-std::vector<std::string> distinct_keys(const std::vector<std::string>& names) {
+std::vector<std::string> distinct_keys(const std::vector<std::string>& given) {
+  // Compared as they will be written: two names that differ only in ill-formed bytes are one key.
+  std::vector<std::string> names;
+  names.reserve(given.size());
+  for (const std::string& n : given) names.push_back(utf8_sanitized(n));
   std::map<std::string, std::size_t> count;
   for (const std::string& n : names) ++count[n];
   std::unordered_set<std::string> taken;

@@ -134,7 +134,14 @@ std::string gnuplot_string(std::string_view text) {
   for_each_character(text, [&](std::string_view c) {
     if (c.size() == 1) {
       const char ch = c[0];
-      if (ch == '\'') { out += "''"; return; }
+      if (ch == '\'') {
+        // gnuplot 5.4's scanner loses a doubled quote right after the opening quote or after
+        // another doubled quote ('''a', 'it''''s': the label vanishes); a zero-width space
+        // (U+200B) between them keeps the text as it reads.
+        if (out.back() == '\'') out += "\xE2\x80\x8B";
+        out += "''";
+        return;
+      }
       if (ch == '`') { out += "\xCA\xBB"; return; }   // U+02BB, a turned comma: not a backquote
       if (ch == '@') { out += "\xEF\xBC\xA0"; return; }  // U+FF20, the full-width commercial at
       if (is_control(static_cast<unsigned char>(ch))) { out += ' '; return; }

@@ -48,8 +48,9 @@ class JsonWriter {
 /// Object keys for `names` that may repeat (e.g. the labels of a tolerance chain's links): a name
 /// given once is its own key; each of n > 1 equal names is numbered in order, "sleeve #1" ...
 /// "sleeve #n", so no reader mistakes one of them for all of them; a numbered key that is already
-/// taken (a link really named "sleeve #2") is numbered on until it is free. The result has the
-/// size and order of `names` and no two equal keys.
+/// taken (a link really named "sleeve #2") is numbered on until it is free. Names are compared as
+/// JSON writes them (ill-formed UTF-8 replaced by U+FFFD). The result has the size and order of
+/// `names` and no two keys JsonWriter would write alike.
 std::vector<std::string> distinct_keys(const std::vector<std::string>& names);
 
 }  // namespace mechgraph

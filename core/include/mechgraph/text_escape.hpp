@@ -37,8 +37,9 @@ std::string html_text(std::string_view text);
 std::string file_url(std::string_view absolute_path);
 
 /// A gnuplot string constant, quotes included: single-quoted (gnuplot performs no backslash,
-/// backquote or macro processing inside single quotes), a quote doubled, line breaks and other
-/// controls as spaces (a line break would end the command), backquotes and '@' replaced by look-
+/// backquote or macro processing inside single quotes), a quote doubled (with a zero-width space,
+/// U+200B, before a doubled quote that follows the opening quote or another doubled quote: gnuplot
+/// 5.4 drops such a string), line breaks and other controls as spaces (a line break would end the command), backquotes and '@' replaced by look-
 /// alikes so that no later edit to double quotes can turn them into command substitution.
 std::string gnuplot_string(std::string_view text);
 
