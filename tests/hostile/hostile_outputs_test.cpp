@@ -411,3 +411,24 @@ TEST_CASE("hostile names: a 240-byte --out works, a name too long for FILE.part 
   CHECK(r.exit_code == 2);
   CHECK_THAT(r.err, Contains("at most 250"));
 }
+
+TEST_CASE("hostile JSON: every command's JSON is strict JSON", "[hostile][json]") {
+  const fs::path dir = fresh_dir("json_writers");
+  const std::string scenes = std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/";
+  const std::vector<std::string> commands = {"plugins --json", "describe stack.linear --json", "describe cam.table --json",
+                                             "plugin-test stack.linear --json",
+                                             "bench '" + scenes + "culling_demo.yaml' --node ta_kurz --steps 1 --repeats 1 --json",
+                                             "run '" + scenes + "backlash_chain.yaml' --json"};
+  for (const std::string& c : commands) {
+    const auto r = run_cli(plugins() + "-q " + c);
+    INFO(c << "\n" << r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(strict_json_text_problem(r.out).empty());
+  }
+  // A sweep's manifest, and the rows as JSON Lines.
+  const std::string scene = write_file(dir / "scene.yaml", arith_scene);
+  REQUIRE(run_cli(arith_plugin_dir_option() + " -q sweep " + q(scene) + " --vary len=1mm:3mm:3 --format jsonl --out " + q(dir / "r.jsonl"))
+              .exit_code == 0);
+  CHECK(strict_json_problem(dir / "r.jsonl.json").empty());
+  CHECK(strict_json_problem(dir / "r.jsonl", true).empty());
+}
