@@ -213,6 +213,9 @@ void SweepFile::write(const std::string& text) {
 
 void SweepFile::finish(bool complete, std::size_t rows, std::size_t failed) {
   if (!file_) return;
+  // On the disk before FILE.part takes FILE's name: a crash after the rename never leaves a FILE
+  // whose last rows were still in the page cache.
+  if (::fsync(file_.get()) != 0) io_failure("write", part_, errno);
   if (::close(file_.release()) != 0) io_failure("close", part_, errno);
   manifest_.rows = rows;
   manifest_.failed = failed;
