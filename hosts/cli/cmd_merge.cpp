@@ -37,9 +37,6 @@ namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-/// The longest row merge reads (a row of 10^5 inputs and series elements is a few MiB).
-constexpr std::size_t max_row_bytes = std::size_t{256} << 20;
-
 struct Shard {
   std::string file;
   SweepManifest manifest;

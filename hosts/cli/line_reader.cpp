@@ -14,8 +14,11 @@
 
 namespace mechgraph::cli {
 
-LineReader::LineReader(std::filesystem::path path, std::size_t max_line, std::size_t buffer_bytes)
-    : path_(std::move(path)), max_line_(max_line), buffer_(buffer_bytes, '\0') {
+LineReader::LineReader(int fd, std::filesystem::path path, std::size_t max_line, LastLine last, std::size_t buffer_bytes)
+    : path_(std::move(path)), max_line_(max_line), last_(last), fd_(fd), buffer_(buffer_bytes, '\0') {}
+
+LineReader::LineReader(std::filesystem::path path, std::size_t max_line, LastLine last, std::size_t buffer_bytes)
+    : path_(std::move(path)), max_line_(max_line), last_(last), buffer_(buffer_bytes, '\0') {
   int fd = -1;
   do fd = ::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
   while (fd < 0 && errno == EINTR);
@@ -23,7 +26,8 @@ LineReader::LineReader(std::filesystem::path path, std::size_t max_line, std::si
     if (errno == ENOENT) throw UsageError(path_.string() + ": no such file");
     io_failure("open", path_, errno);
   }
-  fd_ = FileHandle(fd);
+  owned_ = FileHandle(fd);
+  fd_ = fd;
   struct stat st {};
   if (::fstat(fd, &st) != 0) io_failure("examine", path_, errno);
   if (!S_ISREG(st.st_mode)) throw UsageError(path_.string() + " is " + kind_of(path_) + ", not a rows file; it is not read");
@@ -40,11 +44,12 @@ bool LineReader::fill() {
   }
   if (end_ == buffer_.size()) buffer_.resize(buffer_.size() * 2);  // a line longer than the buffer
   for (;;) {
-    const ssize_t n = ::read(fd_.get(), buffer_.data() + end_, buffer_.size() - end_);
+    const ssize_t n = ::pread(fd_, buffer_.data() + end_, buffer_.size() - end_, static_cast<off_t>(read_));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) io_failure("read", path_, errno);
     if (n == 0) eof_ = true;
     end_ += static_cast<std::size_t>(n);
+    read_ += static_cast<std::uint64_t>(n);
     return n > 0;
   }
 }
@@ -57,6 +62,7 @@ bool LineReader::next(std::string& line) {
       const std::size_t at = static_cast<std::size_t>(static_cast<const char*>(found) - buffer_.data());
       if (at - begin_ > max_line_) break;
       line.assign(buffer_, begin_, at - begin_);
+      whole_ += at + 1 - begin_;
       begin_ = at + 1;
       ++number_;
       return true;
@@ -65,6 +71,11 @@ bool LineReader::next(std::string& line) {
     const std::size_t offset = end_ - begin_;
     if (!fill()) {
       if (end_ == begin_) return false;
+      if (last_ == LastLine::keep) {
+        tail_.assign(buffer_, begin_, end_ - begin_);
+        begin_ = end_;
+        return false;
+      }
       throw UsageError(excerpt(path_.string()) + ":" + std::to_string(number_ + 1) +
                        ": the last line has no line break; not a complete rows file mechgraph wrote");
     }

@@ -7,6 +7,7 @@
 #include "output_file.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -14,11 +15,21 @@ namespace mechgraph::cli {
 
 class LineReader {
  public:
+  /// What a last line without a line break is: refused (a finished rows file ends with one), or
+  /// kept apart for the caller (a rows file a kill cut: unterminated()).
+  enum class LastLine { refuse, keep };
   /// Opens `path`; `max_line` bytes at most per line (the line break not counted).
-  LineReader(std::filesystem::path path, std::size_t max_line, std::size_t buffer_bytes = std::size_t{1} << 14);
-  /// The next line, without its '\n', into `line`; false at the end. A last line without a line
-  /// break is refused (a rows file mechgraph wrote ends with one).
+  LineReader(std::filesystem::path path, std::size_t max_line, LastLine last = LastLine::refuse,
+             std::size_t buffer_bytes = std::size_t{1} << 14);
+  /// Reads an open regular file from its start (pread: the descriptor's offset is not moved).
+  LineReader(int fd, std::filesystem::path path, std::size_t max_line, LastLine last = LastLine::refuse,
+             std::size_t buffer_bytes = std::size_t{1} << 14);
+  /// The next line, without its '\n', into `line`; false at the end.
   bool next(std::string& line);
+  /// LastLine::keep, after next() gave false: the text after the last line break ("" if none),
+  /// and the bytes before it (the whole lines).
+  const std::string& unterminated() const { return tail_; }
+  std::uint64_t whole_bytes() const { return whole_; }
   /// The 1-based number of the line `next` gave last.
   std::size_t number() const { return number_; }
   const std::filesystem::path& path() const { return path_; }
@@ -27,7 +38,11 @@ class LineReader {
   bool fill();
   std::filesystem::path path_;
   std::size_t max_line_;
-  FileHandle fd_;
+  LastLine last_;
+  FileHandle owned_;
+  int fd_ = -1;
+  std::uint64_t read_ = 0, whole_ = 0;
+  std::string tail_;
   std::string buffer_;
   std::size_t begin_ = 0, end_ = 0;
   std::size_t number_ = 0;

@@ -1,6 +1,7 @@
 #include "sweep_file.hpp"
 
 #include "cli.hpp"
+#include "line_reader.hpp"
 #include "output_file.hpp"
 
 #include <mechgraph/csv.hpp>
@@ -30,22 +31,6 @@ std::size_t count_field(const YAML::Node& node, const std::string& key, std::siz
   const std::size_t value = std::stoull(text);
   if (value > limit) throw UsageError("'" + key + "' is " + text + ", more than " + std::to_string(limit));
   return value;
-}
-
-// All of an open file, from its start, at most `limit` bytes (the size fstat gives is not trusted).
-std::string read_all(int fd, std::size_t limit, const fs::path& path) {
-  std::string text;
-  char buffer[1 << 16];
-  for (off_t at = 0;;) {
-    const ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) io_failure("read", path, errno);
-    if (n == 0) return text;
-    if (text.size() + static_cast<std::size_t>(n) > limit)
-      throw UsageError(path.string() + ": more than " + std::to_string(limit >> 20) + " MiB of rows; not read back");
-    text.append(buffer, static_cast<std::size_t>(n));
-    at += n;
-  }
 }
 
 }  // namespace
@@ -156,14 +141,12 @@ void SweepFile::resume_part(const RowRules& rules) {
     throw UsageError(part_.string() + " holds rows of another sweep (scene, a file it reads, --set, cases, outputs or shard "
                      "differ); remove it or use --force to start over");
   file_ = open_existing_regular(part_);
-  const std::string text = read_all(file_.get(), max_rows_file_bytes, part_);
-  const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  // A line at a time (memory: one row, whatever the file's size), the cut last line kept apart.
+  LineReader reader(file_.get(), part_, max_row_bytes, LineReader::LastLine::keep);
   RowChecker checker(rules, part_.string());
+  std::string line;
   std::size_t number = 1;
-  for (std::size_t at = 0; at < keep; ++number) {
-    const std::size_t end = text.find('\n', at);
-    const std::string_view line(text.data() + at, end - at);
-    at = end + 1;
+  for (; reader.next(line); ++number) {
     if (number == 1 && manifest_.format == RowFormat::csv) {
       checker.header(line, number);
       resumed_header_ = checker.header_cells();
@@ -173,9 +156,10 @@ void SweepFile::resume_part(const RowRules& rules) {
     resumed_cases_.push_back(row.index);
     if (row.failed) ++resumed_failed_;
   }
-  const std::string_view tail(text.data() + keep, text.size() - keep);
+  const std::string& tail = reader.unterminated();
+  const std::uint64_t keep = reader.whole_bytes();
   if (!plausible_cut_line(tail, manifest_.format, manifest_.format == RowFormat::csv && number == 1))
-    throw UsageError(excerpt(part_.string()) + ":" + std::to_string(number) + ": the unfinished last line '" + excerpt(std::string(tail), 40) +
+    throw UsageError(excerpt(part_.string()) + ":" + std::to_string(number) + ": the unfinished last line '" + excerpt(tail, 40) +
                      "' is not the start of a row mechgraph writes; refused (edited or damaged?), the file is left as it is");
   if (!tail.empty() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure("cut the half-written last line of", part_, errno);
 }
