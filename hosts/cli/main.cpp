@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -76,6 +77,9 @@ int stdout_written(int code) {
 
 int main(int argc, char** argv) {
   using namespace mechgraph;
+  // A file-size limit (ulimit -f) is a full disk to mechgraph: the write fails with EFBIG and is
+  // refused like ENOSPC (exit 5, nothing published), instead of SIGXFSZ ending the process midway.
+  std::signal(SIGXFSZ, SIG_IGN);
   auto logger = spdlog::stderr_color_mt("mechgraph");
   spdlog::set_default_logger(logger);
   spdlog::set_pattern("%^[%l]%$ %v");
