@@ -2,6 +2,7 @@
 // knob's own converged reference, or its spread over seeds for a Monte Carlo node, and the time it
 // cost), as a table, JSON, or CSV + JSON + SVG files. docs/bench.md says what the columns mean.
 #include "cli.hpp"
+#include "terminal_output.hpp"
 #include "results_folder.hpp"
 #include "spawn.hpp"
 #include "options.hpp"
@@ -251,7 +252,8 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::ostringstream shown;
   if (vm.count("json")) write_json(shown, bench, advice, options.tolerance);
   else write_table(shown, bench, advice);
-  std::cout << shown.str();
+  if (vm.count("json")) std::cout << shown.str();
+  else print_text(shown.str());  // node names and knob notes: shown through terminal_text
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
