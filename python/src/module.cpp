@@ -192,7 +192,7 @@ py::dict provenance(const RunOutcome& r) {
 
 void raise_as(const char* class_name, const std::string& message) {
   const py::object cls = py::module_::import("mechgraph._errors").attr(class_name);
-  PyErr_SetObject(cls.ptr(), py::str(message).ptr());
+  PyErr_SetObject(cls.ptr(), python_text(message).ptr());  // a message may quote a plugin's bytes
 }
 
 }  // namespace
@@ -255,7 +255,7 @@ PYBIND11_MODULE(_core, m) {
       .def("value", [](const RunOutcome& r, const std::string& label) { return output_value(r.find(label)); })
       .def("kind", [](const RunOutcome& r, const std::string& label) { return std::string(to_string(r.find(label).value.kind())); })
       .def("unit", [](const RunOutcome& r, const std::string& label) { return si_unit_label(r.find(label).dimension); })
-      .def("display_unit", [](const RunOutcome& r, const std::string& label) { return r.find(label).display_unit; })
+      .def("display_unit", [](const RunOutcome& r, const std::string& label) { return python_text(r.find(label).display_unit); })
       .def("in_unit", [](const RunOutcome& r, const std::string& label, const std::string& unit) {
         const OutputValue& o = r.find(label);
         if (o.value.kind() != ValueKind::scalar) throw SceneError("output '" + label + "' is not a scalar");
@@ -265,12 +265,14 @@ PYBIND11_MODULE(_core, m) {
         const OutputValue& o = r.find(label);
         if (o.value.kind() != ValueKind::series) throw SceneError("output '" + label + "' is not a series");
         const Series& s = o.value.as_series();
-        return py::make_tuple(to_array(s.axis), si_unit_label(s.axis_dimension), s.labels);
+        py::list labels;
+        for (const std::string& l : s.labels) labels.append(python_text(l));
+        return py::make_tuple(to_array(s.axis), si_unit_label(s.axis_dimension), labels);
       })
       .def("notes", [](const RunOutcome& r) {
-        std::vector<std::pair<std::string, std::string>> notes;
+        py::list notes;
         for (const NodeRun& n : r.run->result.runs)
-          for (const std::string& note : n.notes) notes.emplace_back(n.node, note);
+          for (const std::string& note : n.notes) notes.append(py::make_tuple(n.node, python_text(note)));
         return notes;
       })
       .def("work", [](const RunOutcome& r) {

@@ -6,6 +6,7 @@ import datetime
 import decimal
 import fractions
 import math
+import os
 import time
 
 import numpy as np
@@ -157,3 +158,27 @@ def test_scenes_from_text_and_dicts_are_bounded_as_files_are():
     assert time.monotonic() - start < 10  # was 47 s for the 300 MB title alone
     # just under the bound still loads
     assert mechgraph.Scene.from_text("title: " + "x" * 1_000_000 + "\nnodes: {}\n").title.startswith("xxx")
+
+
+def test_log_messages_and_descriptions_hold_no_control_sequence(capfd):
+    """The module's log messages pass through the same terminal-safe sink as the command line's
+    (issue 28, class 7): a plugin's warning quoting ESC, OSC and CSI reaches stderr as text."""
+    binary = os.environ.get("MECHGRAPH_BINARY_DIR", os.path.join(os.path.dirname(__file__), "..", "..", "build"))
+    mechgraph.load_plugins([os.path.join(binary, "test_plugins", "test_hostile_values")])
+    try:
+        scene = mechgraph.Scene.from_text("nodes:\n  t: { type: hostile.evil_text }\noutputs: [ t.curve ]\n")
+        capfd.readouterr()
+        r = scene.run(set={"t.label": "L\x1b]0;PWNED\x07\u009b31m"})
+        err = capfd.readouterr().err
+        assert "a warning" in err and "PWNED" in err
+        assert not any(c in err for c in "\x1b\x07\x9b\u009b\u202e\x7f\r\b")
+        text = str(mechgraph.describe("hostile.evil_text"))
+        assert "PWNED" in text and not any(c in text for c in "\x1b\x07\u009b\u202e\x7f\r\b")
+        # Results are data: the plugin's bytes that are not UTF-8 (a raw 0x9B) arrive as U+FFFD
+        # instead of a UnicodeDecodeError, in notes, labels and error messages alike.
+        assert any("\ufffd" in note for _, note in r.notes)
+        assert r.axis("t.curve")[2][0] == "L\x1b]0;PWNED\x07\u009b31m" and "\ufffd" in r.axis("t.curve")[2][1]
+        with pytest.raises(mechgraph.EvaluationError, match="refused .*\ufffd"):
+            scene.run(set={"t.label": "fail"})
+    finally:
+        mechgraph.load_plugins()
