@@ -135,8 +135,12 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
     }
   }
 
+  const int threads = vm["threads"].as<int>();
+  if (threads < 0 || threads > testing::max_check_threads)
+    throw UsageError("--threads must be from 0 (skip the thread-safety check) to " +
+                     std::to_string(testing::max_check_threads) + ", got " + std::to_string(threads));
   std::map<std::string, testing::NodeCheckOptions> options;
-  for (const std::string& t : types) options[t].threads = vm["threads"].as<int>();
+  for (const std::string& t : types) options[t].threads = threads;
   if (vm.count("set"))
     for (const std::string& s : vm["set"].as<std::vector<std::string>>()) {
       const auto eq = s.find('=');

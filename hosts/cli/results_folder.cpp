@@ -153,4 +153,11 @@ void write_results_folder(const fs::path& given, bool replace, const std::functi
   fs::remove_all(staging, ec);
 }
 
+bool is_own_results_folder(const fs::path& given, const fs::path& file) {
+  const fs::path dir = results_folder_path(given);
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return false;
+  return has_marker(dir) && ::lstat((dir / file).c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
 }  // namespace mechgraph::cli
