@@ -63,6 +63,33 @@ std::string utf8_sanitized(std::string_view text) {
   return out;
 }
 
+std::string json_string(std::string_view text) {
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string out = "\"";
+  out.reserve(text.size() + 2);
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      const auto ch = static_cast<unsigned char>(c[0]);
+      switch (ch) {
+        case '"': out += "\\\""; return;
+        case '\\': out += "\\\\"; return;
+        case '\n': out += "\\n"; return;
+        case '\t': out += "\\t"; return;
+        case '\r': out += "\\r"; return;
+        default:
+          if (ch < 0x20) {
+            out += "\\u00";
+            out += hex[ch >> 4];
+            out += hex[ch & 0xF];
+            return;
+          }
+      }
+    }
+    out += c;
+  });
+  return out + "\"";
+}
+
 std::string html_text(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -107,7 +134,14 @@ std::string gnuplot_string(std::string_view text) {
   for_each_character(text, [&](std::string_view c) {
     if (c.size() == 1) {
       const char ch = c[0];
-      if (ch == '\'') { out += "''"; return; }
+      if (ch == '\'') {
+        // gnuplot 5.4's scanner loses a doubled quote right after the opening quote or after
+        // another doubled quote ('''a', 'it''''s': the label vanishes); a zero-width space
+        // (U+200B) between them keeps the text as it reads.
+        if (out.back() == '\'') out += "\xE2\x80\x8B";
+        out += "''";
+        return;
+      }
       if (ch == '`') { out += "\xCA\xBB"; return; }   // U+02BB, a turned comma: not a backquote
       if (ch == '@') { out += "\xEF\xBC\xA0"; return; }  // U+FF20, the full-width commercial at
       if (is_control(static_cast<unsigned char>(ch))) { out += ' '; return; }

@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -75,6 +76,9 @@ int stdout_written(int code) {
 
 int main(int argc, char** argv) {
   using namespace mechgraph;
+  // A file-size limit (ulimit -f) is a full disk to mechgraph: the write fails with EFBIG and is
+  // refused like ENOSPC (exit 5, nothing published), instead of SIGXFSZ ending the process midway.
+  std::signal(SIGXFSZ, SIG_IGN);
   // Every log message passes through terminal_text (a message may quote a label or a file name).
   cli::use_terminal_safe_logger("mechgraph");
   spdlog::set_pattern("%^[%l]%$ %v");

@@ -32,6 +32,9 @@ TEST_CASE("HTML text: markup characters as entities, controls dropped", "[escape
 
 TEST_CASE("gnuplot strings: single-quoted, quote doubled, nothing that ends or substitutes a command", "[escape]") {
   CHECK(gnuplot_string("it's") == "'it''s'");
+  // gnuplot 5.4 drops a string whose doubled quote follows the opening quote or another one.
+  CHECK(gnuplot_string("it''s") == "'it''\xE2\x80\x8B''s'");
+  CHECK(gnuplot_string("'a") == "'\xE2\x80\x8B''a'");
   CHECK(gnuplot_string("a\nsystem(\"id\")\n#") == "'a system(\"id\") #'");
   CHECK(gnuplot_string("`id` @m") == "'\xCA\xBBid\xCA\xBB \xEF\xBC\xA0m'");
 }
@@ -77,6 +80,8 @@ TEST_CASE("escaping random bytes always gives valid text of the format", "[escap
     CHECK(inner.find_first_of("`@\n\r") == std::string::npos);
     // Quotes inside come in pairs: the string cannot be closed early.
     for (std::size_t q = inner.find('\''); q != std::string::npos; q = inner.find('\'', q + 2)) CHECK(inner[q + 1] == '\'');
+    CHECK(inner.rfind("''", 0) != 0);
+    CHECK(inner.find("''''") == std::string::npos);
     const std::string d = dot_string(text);
     CHECK_FALSE(first_invalid_utf8(d));
     for (std::size_t i = 1; i + 1 < d.size(); ++i) {

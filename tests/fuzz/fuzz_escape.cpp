@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 #include <string>
 
 namespace {
@@ -32,6 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   require(inner.find_first_of("`@\n\r") == std::string::npos);
   for (std::size_t q = inner.find('\''); q != std::string::npos; q = inner.find('\'', q + 2))
     require(q + 1 < inner.size() && inner[q + 1] == '\'');
+  // What gnuplot 5.4 misreads: a doubled quote first, or two doubled quotes in a row.
+  require(inner.rfind("''", 0) != 0 && inner.find("''''") == std::string::npos);
 
   const std::string d = dot_string(text);
   require(!first_invalid_utf8(d) && d.size() >= 2 && d.front() == '"' && d.back() == '"');
@@ -75,6 +79,27 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(terminal_text(t, lines) == t);
     if (is_terminal_safe(text, lines)) require(t == text);
   }
+
+  // Keys from user text that may repeat (link labels), split at NUL: distinct_keys makes them
+  // unique, and an object of them is written without the writer refusing a key twice.
+  std::vector<std::string> names;
+  for (std::size_t from = 0;;) {
+    const std::size_t at = text.find('\0', from);
+    names.push_back(text.substr(from, at == std::string::npos ? std::string::npos : at - from));
+    if (at == std::string::npos || names.size() > 64) break;
+    from = at + 1;
+  }
+  const std::vector<std::string> keys = distinct_keys(names);
+  require(keys.size() == names.size());
+  std::ostringstream object;
+  JsonWriter writer(object);
+  writer.begin_object();
+  try {
+    for (const std::string& k : keys) writer.key(k).value(1.0);
+  } catch (const std::logic_error&) {
+    require(false);  // distinct_keys gave two keys JSON writes alike
+  }
+  writer.end_object();
 
   const std::string e = quoted_text_excerpt(text);
   require(e.size() <= 2 + 4 * 80 + 3);
