@@ -96,6 +96,7 @@ TEST_CASE("hostile: no control sequence from a scene, a cases file, the command 
       {{"--plugin-dir", dir, "plugins"}, 0, "PWNED"},
       {{"--plugin-dir", dir, "-v", "sweep", plain, "--cases", cases, "--out", (s.dir / "rows.csv").string()}, 0, "PWNED"},
       {{"--plugin-dir", dir, "plugin-test", "hostile.evil_text"}, -2, ""},
+      {{"--plugin-dir", dir, "bench", plain}, 0, ""},
       {{"--plugin-dir", dir, evil_raw}, 2, "PWNED"},
   };
   for (const Case& c : cases_run) {
