@@ -4,6 +4,7 @@
 #include "cli.hpp"
 #include "gnuplot_data.hpp"
 #include "output_file.hpp"
+#include "terminal_output.hpp"
 #include "results_folder.hpp"
 #include "spawn.hpp"
 #include "options.hpp"
@@ -272,7 +273,8 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::ostringstream shown;
   if (vm.count("json")) write_json(shown, bench, advice, options.tolerance);
   else write_table(shown, bench, advice);
-  std::cout << shown.str();
+  if (vm.count("json")) std::cout << shown.str();
+  else print_text(shown.str());  // node names and knob notes: shown through terminal_text
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {

@@ -3,6 +3,7 @@
 // or against named types, each evaluated with its own declared defaults. Handle inputs (a cam_law
 // for a valve-motion node) come from another loaded type that makes one from its defaults alone.
 #include "cli.hpp"
+#include "terminal_output.hpp"
 #include "options.hpp"
 
 #include <mechgraph/did_you_mean.hpp>
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace mechgraph::cli {
 namespace {
@@ -196,9 +198,11 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
             .key("detail").value(c.detail).end_object();
       json.end_array().end_object();
     } else {
-      std::cout << report.str();
-      std::cout << t << ": " << report.count(Check::Status::passed) << " passed, " << report.failed() << " failed, "
-                << report.count(Check::Status::skipped) << " skipped\n\n";
+      // The checks' details quote the plugin's text: shown through terminal_text.
+      std::ostringstream text;
+      text << report.str() << t << ": " << report.count(Check::Status::passed) << " passed, " << report.failed() << " failed, "
+           << report.count(Check::Status::skipped) << " skipped\n\n";
+      print_text(text.str());
     }
   }
   if (as_json) {

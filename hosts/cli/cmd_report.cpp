@@ -1,5 +1,6 @@
 // mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]
 #include "cli.hpp"
+#include "terminal_output.hpp"
 #include "options.hpp"
 #include "report_page.hpp"
 #include "report_pdf.hpp"
@@ -107,8 +108,9 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
     write_report_page(staging, graph, result, registry, inputs);
     if (vm.count("pdf")) print_report_pdf(staging);
   });
-  std::cout << (dir / "report.html").string() << "\n";
-  if (vm.count("pdf")) std::cout << (dir / "report.pdf").string() << "\n";
+  // The user's folder name: through terminal_text.
+  print_text((dir / "report.html").string() + "\n");
+  if (vm.count("pdf")) print_text((dir / "report.pdf").string() + "\n");
   spdlog::info("report written to {}{}", (dir / "report.html").string(),
                vm.count("pdf") ? " and " + (dir / "report.pdf").string() : std::string());
   return ok;

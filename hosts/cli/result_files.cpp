@@ -201,7 +201,7 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
   // Labels are the scene's text: no control sequence reaches the terminal.
   auto rows = report_cells(report, result, graph);
   for (auto& r : rows)
-    for (std::string& cell : r) cell = terminal_text(cell);
+    for (std::string& cell : r) cell = terminal_text(cell, TerminalLines::one);
   std::vector<std::size_t> width(rows.front().size(), 0);
   for (const auto& r : rows)
     for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
@@ -242,7 +242,7 @@ void print_series(std::ostream& os, const OutputValue& o) {
   if (labels.size() == values.size() && !values.empty()) {
     // Named elements: "shaft 9.4 %, retaining ring 7.8 %, ...".
     for (std::size_t i = 0; i < values.size(); ++i)
-      os << (i ? ", " : "") << labels[i] << " " << format_value(values[i], o.dimension, o.display_unit);
+      os << (i ? ", " : "") << terminal_text(labels[i], TerminalLines::one) << " " << format_value(values[i], o.dimension, o.display_unit);
     return;
   }
   if (values.size() > 12) {

@@ -60,6 +60,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(j[i] != '"' && static_cast<unsigned char>(j[i]) >= 0x20);
   }
 
+  // Terminal text: well-formed UTF-8 without C0 (but tab and line feed), DEL, C1 (U+0080..U+009F)
+  // or bidi controls, checked byte by byte here (not with the escaper's own is_terminal_safe);
+  // unchanged when it was safe already, and unchanged by a second pass.
+  for (const TerminalLines lines : {TerminalLines::kept, TerminalLines::one}) {
+    const std::string t = terminal_text(text, lines);
+    require(!first_invalid_utf8(t));
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const auto c = static_cast<unsigned char>(t[i]);
+      const auto next = [&](std::size_t k) { return i + k < t.size() ? static_cast<unsigned char>(t[i + k]) : 0; };
+      const bool line = c == '\n' || c == '\t';
+      require(!(c < 0x20 || c == 0x7F) || (line && lines == TerminalLines::kept));
+      require(!(c == 0xC2 && next(1) < 0xA0));
+      require(!(c == 0xE2 && next(1) == 0x80 && next(2) >= 0xAA && next(2) <= 0xAE));
+      require(!(c == 0xE2 && next(1) == 0x81 && next(2) >= 0xA6 && next(2) <= 0xA9));
+    }
+    require(is_terminal_safe(t, lines));
+    require(terminal_text(t, lines) == t);
+    if (is_terminal_safe(text, lines)) require(t == text);
+  }
+
   // Keys from user text that may repeat (link labels), split at NUL: distinct_keys makes them
   // unique, and an object of them is written without the writer refusing a key twice.
   std::vector<std::string> names;

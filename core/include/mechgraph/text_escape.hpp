@@ -47,8 +47,22 @@ std::string gnuplot_string(std::string_view text);
 /// as "\n" (DOT's own line break in labels), other controls dropped, ill-formed UTF-8 replaced.
 std::string dot_string(std::string_view text);
 
-/// Text for a terminal: C0 and C1 controls other than tab and line feed (an escape sequence could
-/// rewrite the screen or hide lines) and DEL shown as '?', ill-formed UTF-8 replaced.
-std::string terminal_text(std::string_view text);
+/// Whether terminal_text keeps line feed and tab (text of several lines: a report, a node type's
+/// description) or shows them as '?' too (one cell, label or name inside a line: a label cannot
+/// then start a line of its own that looks like a result).
+enum class TerminalLines { kept, one };
+
+/// Text for a terminal, the one function every piece of text shown on a terminal passes through
+/// (the command line's text output as a whole, and every log message: hosts/cli/terminal_output.hpp).
+/// Shown as '?': C0 controls other than tab and line feed (with TerminalLines::one those too), DEL,
+/// C1 controls U+0080..U+009F (an escape sequence, ESC or the single-byte CSI, could rewrite the
+/// screen, set the window title or hide lines), and the bidirectional embedding, override and
+/// isolate controls U+202A..U+202E, U+2066..U+2069 (they reorder what follows, so text could read
+/// other than it is). Bytes that are not well-formed UTF-8 (a raw 0x9B among them) become U+FFFD.
+std::string terminal_text(std::string_view text, TerminalLines lines = TerminalLines::kept);
+
+/// Whether `text` is safe to show as terminal_text makes it: well-formed UTF-8 holding none of the
+/// characters above. The tests and the fuzz target check output with it.
+bool is_terminal_safe(std::string_view text, TerminalLines lines = TerminalLines::kept);
 
 }  // namespace mechgraph
