@@ -77,13 +77,26 @@ std::string json_string(std::string_view text) {
         case '\t': out += "\\t"; return;
         case '\r': out += "\\r"; return;
         default:
-          if (ch < 0x20) {
+          if (ch < 0x20 || ch == 0x7f) {
             out += "\\u00";
             out += hex[ch >> 4];
             out += hex[ch & 0xF];
             return;
           }
       }
+    }
+    // Characters a terminal acts on or a reader may misplace stay, but as \u escapes (lossless):
+    // C1 controls U+0080..U+009F (U+009B is CSI), the bidirectional embeddings, overrides and
+    // isolates, and the line and paragraph separators. Printed raw JSON then moves no cursor.
+    const auto u = [&](std::size_t i) { return static_cast<unsigned char>(c[i]); };
+    unsigned code = 0;
+    if (c.size() == 2) code = ((u(0) & 0x1Fu) << 6) | (u(1) & 0x3Fu);
+    if (c.size() == 3) code = ((u(0) & 0x0Fu) << 12) | ((u(1) & 0x3Fu) << 6) | (u(2) & 0x3Fu);
+    if ((code >= 0x80 && code <= 0x9F) || (code >= 0x202A && code <= 0x202E) || (code >= 0x2066 && code <= 0x2069) ||
+        code == 0x2028 || code == 0x2029) {
+      out += "\\u";
+      for (int shift = 12; shift >= 0; shift -= 4) out += hex[(code >> shift) & 0xFu];
+      return;
     }
     out += c;
   });
@@ -151,20 +164,6 @@ std::string gnuplot_string(std::string_view text) {
   return out + "'";
 }
 
-std::string dot_string(std::string_view text) {
-  std::string out = "\"";
-  for_each_character(text, [&](std::string_view c) {
-    if (c.size() == 1) {
-      const char ch = c[0];
-      if (ch == '"' || ch == '\\') { out += '\\'; out += ch; return; }
-      if (ch == '\n') { out += "\\n"; return; }
-      if (is_control(static_cast<unsigned char>(ch))) return;
-    }
-    out += c;
-  });
-  return out + "\"";
-}
-
 namespace {
 
 // Whether the character `c` (one well-formed UTF-8 sequence) may reach a terminal.
@@ -183,6 +182,21 @@ bool terminal_shows(std::string_view c, TerminalLines lines) {
 }
 
 }  // namespace
+
+std::string dot_string(std::string_view text) {
+  std::string out = "\"";
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      const char ch = c[0];
+      if (ch == '"' || ch == '\\') { out += '\\'; out += ch; return; }
+      if (ch == '\n') { out += "\\n"; return; }
+    }
+    // What a terminal would act on is dropped (graph's DOT goes to stdout): C0, DEL, C1, bidi.
+    if (!terminal_shows(c, TerminalLines::one)) return;
+    out += c;
+  });
+  return out + "\"";
+}
 
 std::string terminal_text(std::string_view text, TerminalLines lines) {
   std::string out;

@@ -37,7 +37,7 @@ TEST_CASE("distinct_keys numbers repeated names and never gives two alike", "[js
   for (const std::string& k : keys) CHECK_NOTHROW(json.key(k).value(1.0));
 }
 
-TEST_CASE("json_string escapes every C0 control and keeps the rest", "[json]") {
+TEST_CASE("json_string escapes every C0 control, DEL, C1 and bidi controls, and keeps the rest", "[json]") {
   for (int c = 0; c < 0x20; ++c) {
     const std::string s = json_string(std::string(1, static_cast<char>(c)));
     INFO(c);
@@ -46,6 +46,13 @@ TEST_CASE("json_string escapes every C0 control and keeps the rest", "[json]") {
   }
   CHECK(json_string("a\"b\\c") == "\"a\\\"b\\\\c\"");
   CHECK(json_string("\x1b[31m") == "\"\\u001b[31m\"");
-  CHECK(json_string("\xC2\x9B") == "\"\xC2\x9B\"");  // C1 CSI: valid JSON, kept
+  // What a terminal acts on is written as \u escapes (lossless): DEL, C1 (CSI), bidi, separators.
+  CHECK(json_string("\x7f") == "\"\\u007f\"");
+  CHECK(json_string("\xC2\x9B") == "\"\\u009b\"");
+  CHECK(json_string("\xE2\x80\xAE") == "\"\\u202e\"");
+  CHECK(json_string("\xE2\x81\xA6x") == "\"\\u2066x\"");
+  CHECK(json_string("\xE2\x80\xA8") == "\"\\u2028\"");
+  CHECK(json_string("\xC2\xA0\xC3\xA9") == "\"\xC2\xA0\xC3\xA9\"");  // other text stays as it is
+  CHECK(is_terminal_safe(json_string("a\x1b]0;x\x07\xC2\x9B\xE2\x80\xAE\x7f")));
   CHECK(json_string("\xff") == "\"\xEF\xBF\xBD\"");
 }

@@ -24,8 +24,10 @@ std::optional<std::size_t> first_invalid_utf8(std::string_view text);
 std::string utf8_sanitized(std::string_view text);
 
 /// A JSON string, quotes included (RFC 8259): '"' and '\\' escaped, every C0 control (U+0000 to
-/// U+001F) escaped (\\n, \\t, \\r, else \\u00XX), ill-formed UTF-8 replaced by U+FFFD. DEL and C1
-/// controls are valid JSON and kept. The one escaper of every string JsonWriter writes.
+/// U+001F) escaped (\\n, \\t, \\r, else \\u00XX), ill-formed UTF-8 replaced by U+FFFD. DEL, the C1
+/// controls, the bidirectional controls and U+2028/U+2029 are written as \\uXXXX too: valid JSON
+/// either way, but so raw JSON on a terminal moves no cursor (lossless: a parser reads them back).
+/// The one escaper of every string JsonWriter writes.
 std::string json_string(std::string_view text);
 
 /// HTML text or a double-quoted attribute value: & < > " ' as entities, ill-formed UTF-8 replaced,

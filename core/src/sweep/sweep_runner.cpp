@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/text_escape.hpp>
 #include <mechgraph/worker_threads.hpp>
 
 #include <algorithm>
@@ -33,6 +34,8 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
 
   auto stopping = [&] { return abort.load() || (options.stop && options.stop->load()); };
 
+  // A failed case's message is text for people, shown in its row (on stdout, in a DataFrame): one
+  // line with nothing a terminal acts on, whatever a plugin or a scene put in it.
   auto worker = [&] {
     Graph graph = base;
     binder.mark_unmemoised(graph);
@@ -57,11 +60,11 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
         result.reused = run.reused;
       } catch (const SceneError& e) {
         result.failure = CaseFailure::scene;
-        result.error = e.what();
+        result.error = terminal_text(e.what(), TerminalLines::one);
         if (binder.rebuilds()) graph = base;
       } catch (const std::exception& e) {
         result.failure = CaseFailure::evaluation;
-        result.error = e.what();
+        result.error = terminal_text(e.what(), TerminalLines::one);
       }
       std::unique_lock lock(mutex);
       ring[k % window] = std::move(result);
