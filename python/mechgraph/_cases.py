@@ -30,9 +30,10 @@ def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
     else:
         raise TypeError("cases: expected a pandas DataFrame or a dict of arrays, got " + type(cases).__name__)
     names, units, columns = [], [], []
+    seen = set()  # a set, not the list: a frame may have hundreds of thousands of columns
     for header, values in items:
         name, unit = split_header(header)
-        if name in names:
+        if name in seen:
             from ._errors import SceneError
 
             raise SceneError(f"cases: column '{name}' appears twice")
@@ -46,6 +47,7 @@ def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
         else:
             columns.append([str(v) for v in array.tolist()])
         names.append(name)
+        seen.add(name)
         units.append(unit)
     if names and len({len(c) for c in columns}) != 1:
         from ._errors import SceneError
