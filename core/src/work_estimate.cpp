@@ -39,6 +39,7 @@ void count_by_conventions(const GraphNode& n, NodeEstimate& e, double& rows, boo
   struct Count {
     std::string what;
     double work;
+    double row_memory = 0;  // a count of points: the rows of a curve it keeps (not times revolutions)
   };
   std::vector<Count> counts;
   // Parameters of an effect that is off are not read: they cost nothing.
@@ -52,7 +53,8 @@ void count_by_conventions(const GraphNode& n, NodeEstimate& e, double& rows, boo
     if (value.kind == ParamKind::integer) {
       if (name == "revolutions") revolutions = std::max(1.0, value.number);
       if (ends_with(name, "points") || ends_with(name, "samples") || ends_with(name, "bins")) {
-        counts.push_back({with_terms ? what() + " = " + amount(value.number) : std::string(), value.number});
+        counts.push_back({with_terms ? what() + " = " + amount(value.number) : std::string(), value.number,
+                          ends_with(name, "points") ? value.number * memory_per_row : 0.0});
         if (ends_with(name, "points")) rows = std::max(rows, value.number);
       }
     } else if (value.kind == ParamKind::record_list && !value.records.empty()) {
@@ -64,12 +66,11 @@ void count_by_conventions(const GraphNode& n, NodeEstimate& e, double& rows, boo
     }
   }
   for (Count& c : counts) {
-    const double work = c.work * revolutions;
+    const double work = c.work * revolutions, memory = std::max(work * memory_per_item, c.row_memory);
     e.work += work;
-    e.memory += work * memory_per_item;
+    e.memory += memory;
     if (with_terms)
-      e.terms.push_back({revolutions > 1 ? c.what + " x " + amount(revolutions) + " revolutions" : c.what, work, 0,
-                         work * memory_per_item});
+      e.terms.push_back({revolutions > 1 ? c.what + " x " + amount(revolutions) + " revolutions" : c.what, work, 0, memory});
   }
 }
 

@@ -12,7 +12,8 @@
 // `samples` or `bins` counts work items of its node, `revolutions` multiplies them, every record of
 // a record list and every number of a number list counts as work items, and every piece of an
 // input beyond the first costs inputs_items_per_piece items (a certified search resolves it); its
-// memory is memory_per_item bytes a work item and its output is as large as its largest input. A
+// memory is memory_per_item bytes a work item (a count of points: memory_per_row a point, at least)
+// and its output is as large as its largest input. A
 // node's curves are written with a row per point. The estimate is an upper bound of the order of
 // magnitude, not a prediction of seconds: its use is to refuse what is absurd, naming the term that
 // makes it so. tests/core/work_estimate_calibration_test.cpp holds every built-in node type to
@@ -43,6 +44,7 @@ inline constexpr double sweep_default_max_work = 1e12;
 /// Conventions for a node type without a forecast (see above).
 inline constexpr double inputs_items_per_piece = 200.0;
 inline constexpr double memory_per_item = 16.0;
+inline constexpr double memory_per_row = 128.0;  // a curve's row: up to 16 channels of 8 bytes
 inline constexpr double memory_per_input_piece = 4096.0;
 
 struct WorkBudget {
