@@ -179,11 +179,12 @@ class CamNodeType final : public NodeType {
     if (params.has("ramp") && params.text("ramp") != "none") law.pieces += 4.0;  // a ramp's pieces each side
     const double samples = params.has("samples") ? static_cast<double>(params.integer("samples")) : 16.0;
     const double per_piece = summary_items_per_piece * std::max(1.0, samples / 32.0);
-    const double searches = law.pieces * per_piece;
+    const double searches = law.pieces * law.search_factor * per_piece;
     const double points = params.has("curve_points") ? static_cast<double>(params.integer("curve_points")) : 0.0;
     WorkForecast f;
     f.items = law.items + searches + points;
-    f.memory = law.memory + law.pieces * summary_bytes_per_piece * std::max(1.0, samples / 32.0) + points * svaj_bytes_per_point;
+    f.memory = law.memory + law.pieces * law.search_factor * summary_bytes_per_piece * std::max(1.0, samples / 32.0) +
+               points * svaj_bytes_per_point;
     f.output_size = law.pieces;
     if (!law.driver.empty() && law.items + searches >= points) {
       f.driver = law.driver;

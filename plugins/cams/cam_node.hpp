@@ -38,7 +38,10 @@ using CamLawFactory =
 /// anything runs (NodeType::forecast): every search over the law (this node's summary, the valve
 /// motion's, a contour's) resolves each piece.
 struct CamLawCost {
-  double pieces = 16.0;  // smooth pieces of the law (a closed form: a handful)
+  double pieces = 16.0;  // smooth pieces of the law (a closed form: a handful); what downstream searches resolve
+  /// How many pieces a search may cut each into before it resolves it (a rough table's: 16, the
+  /// certified searches' 4 halvings): this node's own summary is counted at that worst case.
+  double search_factor = 1.0;
   double items = 0.0;    // work items of making it (reading and fitting a table)
   double memory = 0.0;   // bytes held while making it and by the law
   std::string driver;    // the parameter behind a large cost: "file (about 80000 rows, smoothing none)"

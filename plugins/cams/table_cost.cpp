@@ -64,7 +64,8 @@ CamLawCost table_cost(const ParamSet& params) {
   const std::string method = params.has("smoothing") ? params.text("smoothing") : std::string("none");
   const double solves = method == "none" ? 0.0 : QuinticSmoother::most_solves(method == "gcv", rows);
   CamLawCost cost;
-  cost.pieces = table_pieces_per_row * rows;
+  cost.pieces = rows;
+  cost.search_factor = table_pieces_per_row;
   cost.items = rows * (read_items_per_row + 2.0 * interpolate_items_per_row + solves * solve_items_per_row);
   cost.memory = rows * (method == "none" ? bytes_per_row_read : bytes_per_row_read + bytes_per_row_smoothed);
   const std::string source = params.has("angles") ? "angles" : "file";

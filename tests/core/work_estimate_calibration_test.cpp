@@ -41,6 +41,8 @@ constexpr double most_items_measured = 4e5;
 // finely rounded table does reach it; a smooth one costs a hundredth).
 double over_factor(const std::string& type) {
   if (type == "cam.table") return 1000.0;
+  // A Monte Carlo sample of a linear stack is a few multiplications a link (10 ns), counted as an item.
+  if (type == "stack.linear") return 300.0;
   if (type.rfind("cam.", 0) == 0 || type.rfind("follower.", 0) == 0) return 300.0;
   if (type == "valvetrain.valve_motion" || type == "valvetrain.time_area" || type == "valvetrain.resonance" ||
       type == "valvetrain.spring_design" || type == "valvetrain.polydyne_cam")
@@ -61,7 +63,14 @@ bool is_count(const std::string& name) {
   return ends("points") || ends("samples") || ends("bins") || name == "revolutions";
 }
 
-// Every node of `graph` that ran, with its estimate in the same graph (sizes propagated).
+bool within(const Point& p) {
+  const double measured = std::max(p.measured, floor_seconds), estimated = std::max(p.estimated, floor_seconds);
+  return measured <= under_factor * estimated && estimated <= over_factor(p.type) * measured;
+}
+
+// Every node of `graph` that ran, with its estimate in the same graph (sizes propagated). A graph
+// with a node outside its factors is run twice more and each node keeps its least time: a machine
+// busy with something else makes a node slow, never fast.
 void measure(const std::string& scene, const std::string& set, const Graph& graph, std::vector<Point>& points) {
   const std::vector<char> writing = writing_nodes(graph);
   std::vector<double> sizes(graph.nodes.size(), 1.0);
@@ -71,10 +80,22 @@ void measure(const std::string& scene, const std::string& set, const Graph& grap
     sizes[i] = e.output_size;
     estimate[graph.nodes[i].name] = e.work;
   }
-  MemoCache cache;
-  const RunResult r = evaluate(graph, cache);
-  for (const NodeRun& run : r.runs)
-    if (!run.reused) points.push_back({scene, set, run.node, run.type, run.seconds, estimate[run.node] * seconds_per_item});
+  std::vector<Point> mine;
+  for (int attempt = 0; attempt < 3; ++attempt) {
+    MemoCache cache;
+    const RunResult r = evaluate(graph, cache);
+    std::map<std::string, double> seconds;
+    for (const NodeRun& run : r.runs)
+      if (!run.reused) seconds[run.node] = run.seconds;
+    if (attempt == 0) {
+      for (const NodeRun& run : r.runs)
+        if (!run.reused) mine.push_back({scene, set, run.node, run.type, run.seconds, estimate[run.node] * seconds_per_item});
+    } else {
+      for (Point& p : mine) p.measured = std::min(p.measured, seconds[p.node]);
+    }
+    if (std::all_of(mine.begin(), mine.end(), within)) break;
+  }
+  points.insert(points.end(), mine.begin(), mine.end());
 }
 
 std::vector<std::filesystem::path> scenes() {
@@ -112,7 +133,8 @@ TEST_CASE("work estimate: every node type's estimate is within its stated factor
     }
     for (const std::string& set : sets) {
       Graph g = set.empty() ? base : build_graph(scene, project_registry(), {parse_override(set)});
-      if (estimate_work(g).work > most_items_measured * 20) continue;  // the test stays fast
+      // The scene as written always runs; a raised count only while it stays small (the test stays fast).
+      if (!set.empty() && estimate_work(g).work > most_items_measured * 20) continue;
       bool small = true;
       std::vector<double> sizes(g.nodes.size(), 1.0);
       const std::vector<char> writing = writing_nodes(g);
@@ -121,7 +143,7 @@ TEST_CASE("work estimate: every node type's estimate is within its stated factor
         sizes[i] = e.output_size;
         small = small && e.work <= most_items_measured * 4;
       }
-      if (!small) continue;
+      if (!small && !set.empty()) continue;
       try {
         measure(file.filename().string(), set, g, points);
       } catch (const std::exception&) {
