@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
-# Installs mechgraph's build dependencies from Debian 12 packages (only what is missing).
+# Installs mechgraph's dependencies from Debian 12 packages (only what is missing): everything, or
+# with --study only what building the program and its plugins needs.
 set -euo pipefail
+# What building `mechgraph` and its plugins needs (scripts/run-study.sh installs only these) ...
 packages=(cmake g++ ninja-build ccache pkg-config
           libboost-dev libboost-program-options-dev libboost-filesystem-dev
-          libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2 libbenchmark-dev
-          libsundials-dev gnuplot-nox libdxflib-dev python3-ezdxf chromium python3-pil graphviz
-          pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
-          python3-pytest python3-distributed python3-nbclient python3-ipykernel python3-nbformat)
+          libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2 libsundials-dev libdxflib-dev)
+# ... and what the reports, the Python module, the benchmarks and the whole test suite add.
+if [ "${1:-}" != "--study" ]; then
+  packages+=(libbenchmark-dev gnuplot-nox python3-ezdxf chromium python3-pil graphviz poppler-utils
+             pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
+             python3-pytest python3-venv python3-pip python3-setuptools python3-wheel python3-distributed python3-nbclient python3-ipykernel python3-nbformat)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table fuzz_cases fuzz_sweep_rows fuzz_csv_field fuzz_escape)
+((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table fuzz_cases fuzz_sweep_rows fuzz_csv_field fuzz_escape fuzz_gnuplot_data)
 
 scripts/install-deps.sh
 missing=()

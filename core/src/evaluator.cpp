@@ -3,6 +3,7 @@
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/hash.hpp>
 #include <mechgraph/units.hpp>
+#include <mechgraph/worker_threads.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -327,9 +328,17 @@ void run_parallel(const Graph& graph, const std::vector<std::uint64_t>& hashes,
       changed.notify_all();
     }
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
+  // The calling thread works too; threads that cannot start leave their nodes to the others.
+  // Whatever escapes a worker (no memory) ends the run as an error, never std::terminate.
+  run_on_workers(threads, [&](unsigned) {
+    try {
+      worker();
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!failure) failure = std::current_exception();
+      changed.notify_all();
+    }
+  });
   if (failure) std::rethrow_exception(failure);
   for (std::size_t i : graph.order) runs.push_back(std::move(by_node[i]));
 }

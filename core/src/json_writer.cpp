@@ -3,7 +3,9 @@
 
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <stdexcept>
+#include <unordered_set>
 
 namespace mechgraph {
 
@@ -12,62 +14,53 @@ void JsonWriter::separate() {
     after_key_ = false;
     return;
   }
-  if (!first_.empty()) {
-    if (!first_.back()) out_ << ',';
-    first_.back() = false;
+  if (!open_.empty()) {
+    if (open_.back().object) throw std::logic_error("JSON: a value in an object needs a key first");
+    if (!open_.back().empty) out_ << ',';
+    open_.back().empty = false;
   }
 }
 
 JsonWriter& JsonWriter::begin_object() {
   separate();
   out_ << '{';
-  first_.push_back(true);
+  open_.push_back({true, true, {}});
   return *this;
 }
 JsonWriter& JsonWriter::end_object() {
-  first_.pop_back();
+  if (open_.empty() || !open_.back().object || after_key_) throw std::logic_error("JSON: end_object without an open object");
+  open_.pop_back();
   out_ << '}';
   return *this;
 }
 JsonWriter& JsonWriter::begin_array() {
   separate();
   out_ << '[';
-  first_.push_back(true);
+  open_.push_back({false, true, {}});
   return *this;
 }
 JsonWriter& JsonWriter::end_array() {
-  first_.pop_back();
+  if (open_.empty() || open_.back().object) throw std::logic_error("JSON: end_array without an open array");
+  open_.pop_back();
   out_ << ']';
   return *this;
 }
 JsonWriter& JsonWriter::key(std::string_view name) {
-  value(name);
-  out_ << ':';
+  if (open_.empty() || !open_.back().object || after_key_) throw std::logic_error("JSON: a key outside an object");
+  Open& object = open_.back();
+  // Compared as written (after U+FFFD replacement): two byte strings that sanitise alike are one key.
+  std::string written = json_string(name);
+  if (!object.keys.insert(written).second)
+    throw std::logic_error("JSON: the key " + written + " would appear twice in one object");
+  if (!object.empty) out_ << ',';
+  object.empty = false;
+  out_ << written << ':';
   after_key_ = true;
   return *this;
 }
 JsonWriter& JsonWriter::value(std::string_view text) {
   separate();
-  out_ << '"';
-  // Ill-formed UTF-8 (a plugin's message, bytes from a file) becomes U+FFFD: the output stays JSON.
-  const std::string clean = utf8_sanitized(text);
-  for (char c : clean) {
-    switch (c) {
-      case '"': out_ << "\\\""; break;
-      case '\\': out_ << "\\\\"; break;
-      case '\n': out_ << "\\n"; break;
-      case '\t': out_ << "\\t"; break;
-      case '\r': out_ << "\\r"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          const char* hex = "0123456789abcdef";
-          out_ << "\\u00" << hex[(c >> 4) & 0xf] << hex[c & 0xf];
-        } else {
-          out_ << c;
-        }
-    }
-  }
-  out_ << '"';
+  out_ << json_string(text);
   return *this;
 }
 JsonWriter& JsonWriter::value(double number) {
@@ -97,6 +90,32 @@ JsonWriter& JsonWriter::numbers(const std::vector<double>& values) {
   begin_array();
   for (double v : values) value(v);
   return end_array();
+}
+
+std::vector<std::string> distinct_keys(const std::vector<std::string>& given) {
+  // Compared as they will be written: two names that differ only in ill-formed bytes are one key.
+  std::vector<std::string> names;
+  names.reserve(given.size());
+  for (const std::string& n : given) names.push_back(utf8_sanitized(n));
+  std::map<std::string, std::size_t> count;
+  for (const std::string& n : names) ++count[n];
+  std::unordered_set<std::string> taken;
+  for (const std::string& n : names)
+    if (count[n] == 1) taken.insert(n);
+  std::map<std::string, std::size_t> next;  // per repeated name: the number its next key gets
+  std::vector<std::string> keys;
+  keys.reserve(names.size());
+  for (const std::string& n : names) {
+    if (count[n] == 1) {
+      keys.push_back(n);
+      continue;
+    }
+    std::string key;
+    do key = n + " #" + std::to_string(++next[n]);
+    while (!taken.insert(key).second);
+    keys.push_back(std::move(key));
+  }
+  return keys;
 }
 
 }  // namespace mechgraph

@@ -272,6 +272,10 @@ RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
 }
 
 SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label) {
+  // The bound of a scene file holds for a scene given as text (Python's Scene.from_text) as well.
+  if (yaml_text.size() > max_scene_bytes)
+    throw SceneError(file_label + ": a scene of " + std::to_string(yaml_text.size()) + " bytes is more than the limit of " +
+                     std::to_string(max_scene_bytes) + " bytes (1 MiB); nothing of it was read");
   detail::check_utf8(yaml_text, file_label);
   detail::check_yaml_events(yaml_text, file_label);
   YAML::Node root;

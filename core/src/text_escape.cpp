@@ -63,6 +63,33 @@ std::string utf8_sanitized(std::string_view text) {
   return out;
 }
 
+std::string json_string(std::string_view text) {
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string out = "\"";
+  out.reserve(text.size() + 2);
+  for_each_character(text, [&](std::string_view c) {
+    if (c.size() == 1) {
+      const auto ch = static_cast<unsigned char>(c[0]);
+      switch (ch) {
+        case '"': out += "\\\""; return;
+        case '\\': out += "\\\\"; return;
+        case '\n': out += "\\n"; return;
+        case '\t': out += "\\t"; return;
+        case '\r': out += "\\r"; return;
+        default:
+          if (ch < 0x20) {
+            out += "\\u00";
+            out += hex[ch >> 4];
+            out += hex[ch & 0xF];
+            return;
+          }
+      }
+    }
+    out += c;
+  });
+  return out + "\"";
+}
+
 std::string html_text(std::string_view text) {
   std::string out;
   out.reserve(text.size());
@@ -107,7 +134,14 @@ std::string gnuplot_string(std::string_view text) {
   for_each_character(text, [&](std::string_view c) {
     if (c.size() == 1) {
       const char ch = c[0];
-      if (ch == '\'') { out += "''"; return; }
+      if (ch == '\'') {
+        // gnuplot 5.4's scanner loses a doubled quote right after the opening quote or after
+        // another doubled quote ('''a', 'it''''s': the label vanishes); a zero-width space
+        // (U+200B) between them keeps the text as it reads.
+        if (out.back() == '\'') out += "\xE2\x80\x8B";
+        out += "''";
+        return;
+      }
       if (ch == '`') { out += "\xCA\xBB"; return; }   // U+02BB, a turned comma: not a backquote
       if (ch == '@') { out += "\xEF\xBC\xA0"; return; }  // U+FF20, the full-width commercial at
       if (is_control(static_cast<unsigned char>(ch))) { out += ' '; return; }
@@ -131,16 +165,39 @@ std::string dot_string(std::string_view text) {
   return out + "\"";
 }
 
-std::string terminal_text(std::string_view text) {
+namespace {
+
+// Whether the character `c` (one well-formed UTF-8 sequence) may reach a terminal.
+bool terminal_shows(std::string_view c, TerminalLines lines) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(c[k]); };
+  if (c.size() == 1) {
+    if (c[0] == '\n' || c[0] == '\t') return lines == TerminalLines::kept;
+    return !is_control(byte(0));
+  }
+  if (c.size() == 2) return !(byte(0) == 0xC2 && byte(1) < 0xA0);  // U+0080..U+009F, the C1 controls
+  if (c.size() == 3 && byte(0) == 0xE2) {
+    if (byte(1) == 0x80 && byte(2) >= 0xAA && byte(2) <= 0xAE) return false;  // U+202A..U+202E
+    if (byte(1) == 0x81 && byte(2) >= 0xA6 && byte(2) <= 0xA9) return false;  // U+2066..U+2069
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string terminal_text(std::string_view text, TerminalLines lines) {
   std::string out;
   out.reserve(text.size());
-  for_each_character(text, [&](std::string_view c) {
-    const auto first = static_cast<unsigned char>(c[0]);
-    const bool c0 = c.size() == 1 && is_control(first) && c[0] != '\t' && c[0] != '\n';
-    const bool c1 = c.size() == 2 && first == 0xC2 && static_cast<unsigned char>(c[1]) < 0xA0;  // U+0080..U+009F
-    out += c0 || c1 ? std::string_view("?") : c;
-  });
+  for_each_character(text, [&](std::string_view c) { out += terminal_shows(c, lines) ? c : std::string_view("?"); });
   return out;
+}
+
+bool is_terminal_safe(std::string_view text, TerminalLines lines) {
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = sequence_length(text, i);
+    if (n == 0 || !terminal_shows(text.substr(i, n), lines)) return false;
+    i += n;
+  }
+  return true;
 }
 
 }  // namespace mechgraph

@@ -2,11 +2,15 @@
 // knob's own converged reference, or its spread over seeds for a Monte Carlo node, and the time it
 // cost), as a table, JSON, or CSV + JSON + SVG files. docs/bench.md says what the columns mean.
 #include "cli.hpp"
+#include "gnuplot_data.hpp"
+#include "output_file.hpp"
+#include "terminal_output.hpp"
 #include "results_folder.hpp"
 #include "spawn.hpp"
 #include "options.hpp"
 
 #include <mechgraph/bench_plot.hpp>
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
@@ -15,7 +19,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -174,18 +182,14 @@ void write_table(std::ostream& os, const KnobBench& bench, const std::vector<Kno
 }
 
 // The work-precision plot: bench.dat and bench.gp from the core, drawn by gnuplot (Debian's
-// gnuplot-nox) as SVG.
+// gnuplot-nox) as SVG. Without gnuplot there is no bench.svg (a warning says so); with it, the SVG
+// must come out whole, or nothing is published (IoError, exit 5): a full disk never leaves an
+// empty or cut plot behind an exit 0.
 void write_plot(const std::filesystem::path& dir, const KnobBench& bench) {
   const BenchPlot plot = bench_plot(bench);
   if (plot.script.empty()) return;  // no knob was measured
-  std::ofstream data(dir / "bench.dat");
-  data << plot.data;
-  data.close();
-  check_written(data, dir / "bench.dat");
-  std::ofstream script(dir / "bench.gp");
-  script << plot.script;
-  script.close();
-  check_written(script, dir / "bench.gp");
+  write_file_whole(dir / "bench.dat", true, [&](std::ostream& data) { data << plot.data; });
+  write_file_whole(dir / "bench.gp", true, [&](std::ostream& script) { script << plot.script; });
   const std::optional<std::filesystem::path> gnuplot = find_program("gnuplot");
   if (!gnuplot) {
     spdlog::warn("bench: gnuplot is not installed (apt-get install gnuplot-nox): no bench.svg, its data is in bench.dat");
@@ -193,8 +197,26 @@ void write_plot(const std::filesystem::path& dir, const KnobBench& bench) {
   }
   // From an argument vector in the results folder: no shell reads the folder's name.
   const SpawnOutcome run = run_program(*gnuplot, {"bench.gp"}, dir, dir / "gnuplot.log", std::chrono::minutes(2));
-  if (!run.succeeded()) spdlog::warn("bench: gnuplot failed ({}); bench.gp, bench.dat and gnuplot.log are in the folder", run.describe());
-  else std::filesystem::remove(dir / "gnuplot.log");
+  std::string svg;
+  try {
+    svg = read_bounded_file(dir / "bench.svg", std::size_t{256} << 20);
+  } catch (const FileReadError&) {
+  }
+  if (!run.succeeded() || !is_whole_svg(svg)) {
+    std::string log;
+    try {
+      log = read_bounded_file(dir / "gnuplot.log", 2048);
+    } catch (const FileReadError&) {
+    }
+    throw IoError("bench: gnuplot could not draw bench.svg whole (" + (run.succeeded() ? std::string("the SVG is cut short") : run.describe()) +
+                  "; disk full?): " + utf8_sanitized(log) + "; nothing was published");
+  }
+  // On the disk before the folder is put in place, as write_file_whole does for the others.
+  const int fd = ::open((dir / "bench.svg").c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) io_failure("open", dir / "bench.svg", errno);
+  const FileHandle handle(fd);
+  if (::fsync(fd) != 0) io_failure("write", dir / "bench.svg", errno);
+  std::filesystem::remove(dir / "gnuplot.log");
 }
 
 }  // namespace
@@ -251,18 +273,13 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::ostringstream shown;
   if (vm.count("json")) write_json(shown, bench, advice, options.tolerance);
   else write_table(shown, bench, advice);
-  std::cout << shown.str();
+  if (vm.count("json")) std::cout << shown.str();
+  else print_text(shown.str());  // node names and knob notes: shown through terminal_text
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();
     write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
-      std::ofstream csv(staging / "bench.csv"), json(staging / "bench.json");
-      if (!csv || !json) throw IoError("cannot write into '" + staging.string() + "'");
-      write_csv(csv, bench);
-      write_json(json, bench, advice, options.tolerance);
-      csv.close();
-      json.close();
-      check_written(csv, dir / "bench.csv");
-      check_written(json, dir / "bench.json");
+      write_file_whole(staging / "bench.csv", true, [&](std::ostream& csv) { write_csv(csv, bench); });
+      write_file_whole(staging / "bench.json", true, [&](std::ostream& json) { write_json(json, bench, advice, options.tolerance); });
       write_plot(staging, bench);
     });
   }

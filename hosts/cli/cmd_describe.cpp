@@ -2,6 +2,7 @@
 #include "cli.hpp"
 #include "node_info_format.hpp"
 #include "options.hpp"
+#include "terminal_output.hpp"
 
 #include <mechgraph/did_you_mean.hpp>
 
@@ -29,7 +30,9 @@ int describe_command(const GlobalOptions& g, const std::vector<std::string>& arg
     write_node_info_json(json, t->type->info());
     std::cout << text.str() << "\n";
   } else {
-    write_node_info_text(std::cout, t->type->info());
+    std::ostringstream text;  // a plugin's words: shown through terminal_text
+    write_node_info_text(text, t->type->info());
+    print_text(text.str());
   }
   return ok;
 }

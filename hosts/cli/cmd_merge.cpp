@@ -1,12 +1,20 @@
 // mechgraph merge FILE... [--out FILE]: the shards of one sweep (--shard I/N, e.g. a Slurm job
 // array) put back together in case order, after checking that they belong to the same sweep
-// (their manifests' fingerprints agree) and cover its cases exactly once. Every row is checked as
+// (their manifests' fingerprints agree, and their columns: the CSV headers, the JSON Lines keys)
+// and cover its cases exactly once.
+
+// Streaming: each shard's rows are in case order already (RowChecker refuses any other), so the
+// shards are merged like sorted runs, one line of each in memory at a time (LineReader). Memory
+// is bounded by the number of shards times the longest row, whatever the number of rows. On
+// stdout nothing may come out before everything is checked, so the shards are read twice (once
+// to check, once to write); `--out` is written once, into a temporary that a refusal removes. Every row is checked as
 // --resume checks it (RowChecker: cells, case number in range, in order, this shard's, numbers
 // finite) and each manifest's case count is capped (10^7), so an edited or hostile file is refused
 // naming FILE:line instead of being carried over or spun on. `--out FILE` is written whole (a
 // temporary renamed over it), locked against a second writer, with a manifest of its own (one
 // shard of one: a merged file can be resumed from, merged again, or replaced with --force).
 #include "cli.hpp"
+#include "line_reader.hpp"
 #include "options.hpp"
 #include "output_file.hpp"
 #include "sweep_file.hpp"
@@ -17,51 +25,148 @@
 
 #include <spdlog/spdlog.h>
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <iostream>
-#include <map>
+#include <memory>
+#include <queue>
 #include <sstream>
 
 namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-struct Merged {
-  std::optional<SweepManifest> first;
-  std::string first_file, header_line;
-  std::map<std::size_t, std::string> rows;        // case -> line
-  std::map<std::size_t, std::string> row_file;    // case -> the file it came from
-  std::size_t failed = 0;
+struct Shard {
+  std::string file;
+  SweepManifest manifest;
 };
 
-// Reads one complete shard into `merged`, checking every row.
-void read_shard(const std::string& f, Merged& merged) {
-  const SweepManifest m = read_manifest(f);
-  if (!m.complete) throw UsageError(f + ": this shard is not complete (its manifest says so); finish it with --resume first");
-  // Without the count of input columns the outputs could not be told from inputs and checked.
-  if (!m.inputs) throw UsageError(f + ": its manifest does not say how many input columns the rows have; run the shard again");
-  if (!merged.first) {
-    merged.first = m;
-    merged.first_file = f;
-  } else if (m.sweep != merged.first->sweep || m.cases != merged.first->cases || m.format != merged.first->format) {
-    throw UsageError(f + " belongs to another sweep than " + merged.first_file + " (scene, --set, cases or columns differ)");
-  }
-  std::istringstream in(read_user_file(f, max_rows_file_bytes, "merge"));
-  RowChecker checker({m.format, m.cases, m.shard, m.shards, m.inputs, {}}, f);
-  std::string line;
-  for (std::size_t number = 1; std::getline(in, line); ++number) {
-    if (number == 1 && m.format == RowFormat::csv) {
-      checker.header(line, number);
-      if (merged.header_line.empty()) merged.header_line = line;
-      else if (line != merged.header_line) throw UsageError(f + ": its columns differ from " + merged.first_file + "'s");
-      continue;
+// The manifests: every shard complete, of one sweep, saying how many input columns its rows have.
+std::vector<Shard> read_manifests(const std::vector<std::string>& files) {
+  std::vector<Shard> shards;
+  for (const std::string& f : files) {
+    const SweepManifest m = read_manifest(f);
+    if (!m.complete) throw UsageError(f + ": this shard is not complete (its manifest says so); finish it with --resume first");
+    // Without the count of input columns the outputs could not be told from inputs and checked.
+    if (!m.inputs) throw UsageError(f + ": its manifest does not say how many input columns the rows have; run the shard again");
+    if (!shards.empty()) {
+      const SweepManifest& first = shards.front().manifest;
+      if (m.sweep != first.sweep || m.cases != first.cases || m.format != first.format || m.inputs != first.inputs)
+        throw UsageError(f + " belongs to another sweep than " + shards.front().file + " (scene, a file it reads, --set, cases or columns differ)");
     }
-    const RowChecker::Row row = checker.row(line, number);
-    auto [it, fresh] = merged.rows.emplace(row.index, line);
-    if (!fresh) throw UsageError("case " + std::to_string(row.index) + " is in both " + merged.row_file[row.index] + " and " + f);
-    merged.row_file[row.index] = f;
-    if (row.failed) ++merged.failed;
+    shards.push_back({f, m});
   }
+  return shards;
+}
+
+// One shard being read: its checker and the row it is at.
+struct Cursor {
+  const Shard* shard;
+  LineReader reader;
+  RowChecker checker;
+  std::string line;
+  std::size_t index = 0;  // the case of `line`
+  bool failed = false;
+  Cursor(const Shard& s)
+      : shard(&s),
+        reader(s.file, max_row_bytes),
+        checker({s.manifest.format, s.manifest.cases, s.manifest.shard, s.manifest.shards, s.manifest.inputs, {}}, s.file) {}
+  // The next row, checked; false at the end.
+  bool advance() {
+    if (!reader.next(line)) return false;
+    const RowChecker::Row row = checker.row(line, reader.number());
+    index = row.index;
+    failed = row.failed;
+    return true;
+  }
+};
+
+struct Counts {
+  std::size_t rows = 0, failed = 0;
+};
+
+// Every row of every shard, checked, in case order to `out`; refuses (UsageError) a shard whose
+// columns differ from the first's, a case in two shards, or a case in none.
+Counts merge_rows(const std::vector<Shard>& shards, std::ostream& out) {
+  std::vector<std::unique_ptr<Cursor>> cursors;
+  std::string header;           // CSV: the first shard's header line
+  std::vector<std::string> keys;  // JSON Lines: the first row's keys
+  std::string keys_file;
+  using Entry = std::pair<std::size_t, std::size_t>;  // (case, cursor)
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> next;
+  for (const Shard& s : shards) {
+    auto& c = *cursors.emplace_back(std::make_unique<Cursor>(s));
+    if (s.manifest.format == RowFormat::csv) {
+      std::string line;
+      if (!c.reader.next(line)) throw UsageError(s.file + ": empty; a rows file starts with its header");
+      c.checker.header(line, 1);
+      if (header.empty()) {
+        header = line;
+        out << header << "\n";
+      } else if (line != header) {
+        throw UsageError(s.file + ": its columns differ from " + shards.front().file + "'s");
+      }
+    }
+    if (!c.advance()) continue;
+    if (s.manifest.format == RowFormat::jsonl) {
+      // The keys of a shard's rows are its columns (RowChecker holds every row to its first).
+      if (keys_file.empty()) {
+        keys = c.checker.header_cells();
+        keys_file = s.file;
+      } else if (c.checker.header_cells() != keys) {
+        throw UsageError(s.file + ": its rows have other keys (columns) than " + keys_file + "'s; not shards of one sweep");
+      }
+    }
+    next.emplace(c.index, cursors.size() - 1);
+  }
+  const std::size_t cases = shards.front().manifest.cases;
+  Counts counts;
+  std::size_t expected = 0, missing_count = 0;
+  std::string missing, previous_file;
+  auto note_missing = [&](std::size_t from, std::size_t to) {  // cases [from, to) in no shard
+    for (std::size_t c = from; c < to && missing_count < 10; ++c) missing += (missing.empty() ? "" : ", ") + std::to_string(c);
+    missing_count += to - from;
+  };
+  while (!next.empty()) {
+    const auto [index, k] = next.top();
+    next.pop();
+    Cursor& c = *cursors[k];
+    if (counts.rows > 0 && index + 1 == expected)
+      throw UsageError("case " + std::to_string(index) + " is in both " + previous_file + " and " + c.shard->file);
+    if (index > expected) note_missing(expected, index);
+    expected = index + 1;
+    previous_file = c.shard->file;
+    out << c.line << "\n";
+    ++counts.rows;
+    if (c.failed) ++counts.failed;
+    if (c.advance()) next.emplace(c.index, k);
+  }
+  note_missing(expected, cases);
+  if (missing_count)
+    throw UsageError("the files hold " + std::to_string(counts.rows) + " of the sweep's " + std::to_string(cases) +
+                     " cases; missing: " + missing + (missing_count > 10 ? ", ..." : "") + " (is a shard absent?)");
+  return counts;
+}
+
+// A stream that keeps nothing: merge's checking pass.
+class NullBuffer final : public std::streambuf {
+ protected:
+  int_type overflow(int_type c) override { return traits_type::not_eof(c); }
+  std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+};
+
+// Every shard is open at once: as many descriptors as the process may have, raised to the hard limit.
+void allow_open_files(std::size_t files) {
+  rlimit limit{};
+  if (::getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
+  const rlim_t wanted = static_cast<rlim_t>(files) + 32;
+  if (limit.rlim_cur >= wanted) return;
+  limit.rlim_cur = limit.rlim_max == RLIM_INFINITY ? wanted : std::min(wanted, limit.rlim_max);
+  ::setrlimit(RLIMIT_NOFILE, &limit);
+  if (::getrlimit(RLIMIT_NOFILE, &limit) == 0 && limit.rlim_cur < wanted)
+    throw UsageError("merge reads its " + std::to_string(files) + " files at once, and this process may open " +
+                     std::to_string(limit.rlim_cur) + " (ulimit -n); merge them in groups, then merge the results");
 }
 
 }  // namespace
@@ -83,6 +188,7 @@ int merge_command(const GlobalOptions&, const std::vector<std::string>& args) {
   const bool force = vm.count("force") > 0;
   if (vm.count("out")) {
     const fs::path out = vm["out"].as<std::string>();
+    prepare_output_file(out, "--out");
     lock.emplace(out);
     if (kind_of(out) != "absent") {
       if (kind_of(out) == "a regular file" && !force) throw UsageError(out.string() + " exists; use --force to replace it");
@@ -93,38 +199,28 @@ int merge_command(const GlobalOptions&, const std::vector<std::string>& args) {
   }
 
   const auto files = vm["files"].as<std::vector<std::string>>();
-  Merged merged;
-  for (const std::string& f : files) read_shard(f, merged);
-  const SweepManifest& first = *merged.first;
-  if (merged.rows.size() != first.cases) {
-    std::string missing;
-    std::size_t count = 0;
-    for (std::size_t c = 0; c < first.cases && count <= 10; ++c)
-      if (!merged.rows.count(c) && count++ < 10) missing += (missing.empty() ? "" : ", ") + std::to_string(c);
-    throw UsageError("the files hold " + std::to_string(merged.rows.size()) + " of the sweep's " + std::to_string(first.cases) +
-                     " cases; missing: " + missing + (count > 10 ? ", ..." : "") + " (is a shard absent?)");
-  }
-
-  auto write = [&](std::ostream& os) {
-    if (!merged.header_line.empty()) os << merged.header_line << "\n";
-    for (const auto& [c, line] : merged.rows) os << line << "\n";
-  };
+  const std::vector<Shard> shards = read_manifests(files);
+  allow_open_files(shards.size());
+  Counts counts;
   if (!vm.count("out")) {
-    write(std::cout);
+    NullBuffer nothing;
+    std::ostream check(&nothing);
+    merge_rows(shards, check);  // everything refused before a byte reaches stdout
+    counts = merge_rows(shards, std::cout);
     std::cout.flush();
     if (!std::cout) throw IoError("standard output: cannot write");
   } else {
     const fs::path out = vm["out"].as<std::string>();
-    write_file_whole(out, force, write);
-    SweepManifest m = first;
+    write_file_whole(out, force, [&](std::ostream& os) { counts = merge_rows(shards, os); });
+    SweepManifest m = shards.front().manifest;
     m.shard = 0;
     m.shards = 1;
     m.complete = true;
-    m.rows = merged.rows.size();
-    m.failed = merged.failed;
+    m.rows = counts.rows;
+    m.failed = counts.failed;
     write_manifest(out, m);
   }
-  spdlog::info("merge: {} cases from {} files, each once", merged.rows.size(), files.size());
+  spdlog::info("merge: {} cases from {} files, each once", counts.rows, files.size());
   return ok;
 }
 

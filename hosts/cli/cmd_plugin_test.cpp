@@ -3,6 +3,7 @@
 // or against named types, each evaluated with its own declared defaults. Handle inputs (a cam_law
 // for a valve-motion node) come from another loaded type that makes one from its defaults alone.
 #include "cli.hpp"
+#include "terminal_output.hpp"
 #include "options.hpp"
 
 #include <mechgraph/did_you_mean.hpp>
@@ -15,6 +16,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <sstream>
 
 namespace mechgraph::cli {
 namespace {
@@ -133,8 +135,12 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
     }
   }
 
+  const int threads = vm["threads"].as<int>();
+  if (threads < 0 || threads > testing::max_check_threads)
+    throw UsageError("--threads must be from 0 (skip the thread-safety check) to " +
+                     std::to_string(testing::max_check_threads) + ", got " + std::to_string(threads));
   std::map<std::string, testing::NodeCheckOptions> options;
-  for (const std::string& t : types) options[t].threads = vm["threads"].as<int>();
+  for (const std::string& t : types) options[t].threads = threads;
   if (vm.count("set"))
     for (const std::string& s : vm["set"].as<std::vector<std::string>>()) {
       const auto eq = s.find('=');
@@ -192,9 +198,11 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
             .key("detail").value(c.detail).end_object();
       json.end_array().end_object();
     } else {
-      std::cout << report.str();
-      std::cout << t << ": " << report.count(Check::Status::passed) << " passed, " << report.failed() << " failed, "
-                << report.count(Check::Status::skipped) << " skipped\n\n";
+      // The checks' details quote the plugin's text: shown through terminal_text.
+      std::ostringstream text;
+      text << report.str() << t << ": " << report.count(Check::Status::passed) << " passed, " << report.failed() << " failed, "
+           << report.count(Check::Status::skipped) << " skipped\n\n";
+      print_text(text.str());
     }
   }
   if (as_json) {

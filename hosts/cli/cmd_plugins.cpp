@@ -2,6 +2,9 @@
 #include "cli.hpp"
 #include "node_info_format.hpp"
 #include "options.hpp"
+#include "terminal_output.hpp"
+
+#include <mechgraph/text_escape.hpp>
 
 #include <iostream>
 #include <sstream>
@@ -32,14 +35,19 @@ int plugins_command(const GlobalOptions& g, const std::vector<std::string>& args
     std::cout << text.str() << "\n";
     return ok;
   }
+  // Ids, paths, summaries and reasons are the plugins' and the file system's text: shown through
+  // terminal_text, one line each.
+  std::ostringstream text;
+  const auto line = [](const std::string& s) { return terminal_text(s, TerminalLines::one); };
   for (const PluginInfo& p : registry.plugins()) {
-    std::cout << p.id << " " << p.version << "  (" << p.path.string() << ")\n";
+    text << line(p.id) << " " << line(p.version) << "  (" << line(p.path.string()) << ")\n";
     for (const auto& t : p.node_types) {
       const NodeInfo& info = registry.find(t)->type->info();
-      std::cout << "  " << t << std::string(t.size() < 30 ? 30 - t.size() : 1, ' ') << info.summary << "\n";
+      text << "  " << line(t) << std::string(t.size() < 30 ? 30 - t.size() : 1, ' ') << line(info.summary) << "\n";
     }
   }
-  for (const SkippedPlugin& s : registry.skipped()) std::cout << "skipped  " << s.reason << "\n";
+  for (const SkippedPlugin& s : registry.skipped()) text << "skipped  " << line(s.reason) << "\n";
+  print_text(text.str());
   return ok;
 }
 

@@ -1,5 +1,6 @@
 // mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]
 #include "cli.hpp"
+#include "terminal_output.hpp"
 #include "options.hpp"
 #include "report_page.hpp"
 #include "report_pdf.hpp"
@@ -68,15 +69,19 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
   add_scene_options(visible);
   visible.add_options()("out", po::value<std::string>()->default_value("report"),
                         "write report.html, results.json and the CSV of every plot and table into DIR "
-                        "(whole or not at all; an existing DIR needs --force)")(
-      "force", "replace the report in an existing --out DIR")(
+                        "(whole or not at all; a report this command wrote there before is replaced, any other "
+                        "existing DIR needs --force)")(
+      "force", "replace other results mechgraph wrote in an existing --out DIR")(
       "pdf", "also print the page to report.pdf with Debian's headless chromium (file:// only, no network)")(
       "threads", po::value<unsigned>()->default_value(1), "evaluate independent nodes on this many threads (0: one per core)");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm, "mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]"))
     return ok;
   const std::filesystem::path dir = vm["out"].as<std::string>();
-  check_results_folder(dir, vm.count("force") > 0);
+  // Running the same report again regenerates it: its own folder (mechgraph's marker and a
+  // report.html) is replaced without --force; anything else as for every results folder.
+  const bool replace = vm.count("force") > 0 || is_own_results_folder(dir, "report.html");
+  check_results_folder(dir, replace);
   if (vm.count("pdf")) require_pdf_printer();
   const PluginRegistry registry = load_plugins(g);
   const RunInputs inputs{vm["scene"].as<std::string>(),
@@ -99,12 +104,15 @@ int report_command(const GlobalOptions& g, const std::vector<std::string>& args)
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
   MemoCache cache;
   const RunResult result = evaluate(graph, cache, threads);
-  write_results_folder(dir, vm.count("force") > 0, [&](const std::filesystem::path& staging) {
+  write_results_folder(dir, replace, [&](const std::filesystem::path& staging) {
     write_report_page(staging, graph, result, registry, inputs);
     if (vm.count("pdf")) print_report_pdf(staging);
   });
-  std::cout << (dir / "report.html").string() << "\n";
-  spdlog::info("report written to {}", (dir / "report.html").string());
+  // The user's folder name: through terminal_text.
+  print_text((dir / "report.html").string() + "\n");
+  if (vm.count("pdf")) print_text((dir / "report.pdf").string() + "\n");
+  spdlog::info("report written to {}{}", (dir / "report.html").string(),
+               vm.count("pdf") ? " and " + (dir / "report.pdf").string() : std::string());
   return ok;
 }
 

@@ -3,6 +3,7 @@
 #include "options.hpp"
 #include "result_files.hpp"
 #include "results_folder.hpp"
+#include "terminal_output.hpp"
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
@@ -57,7 +58,8 @@ void print_short_table(std::ostream& os, const Table& t) {
   std::vector<std::size_t> width;
   for (const Table::Column* c : columns) {
     const std::string unit = unit_of(*c);
-    head.push_back(terminal_text(c->name) + (unit.empty() ? "" : " [" + terminal_text(unit) + "]"));
+    head.push_back(terminal_text(c->name, TerminalLines::one) +
+                   (unit.empty() ? "" : " [" + terminal_text(unit, TerminalLines::one) + "]"));
     width.push_back(std::max<std::size_t>(head.back().size(), 12));
   }
   for (std::size_t k = 0; k < columns.size(); ++k) os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << head[k];
@@ -115,49 +117,53 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     write_json(json, graph, result, registry, inputs);
     std::cout << json.str();
   } else {
+    // Built whole, then shown through terminal_text (print_text): labels, names and notes are the
+    // scene's and the plugins' text.
+    std::ostringstream text;
     for (std::size_t t = 0; t < graph.reports.size(); ++t) {
-      if (t) std::cout << "\n";
-      print_report(std::cout, graph.reports[t], result, graph);
+      if (t) text << "\n";
+      print_report(text, graph.reports[t], result, graph);
     }
-    if (!graph.reports.empty() && graph.scene_output_count) std::cout << "\n";
+    if (!graph.reports.empty() && graph.scene_output_count) text << "\n";
     if (graph.reports.empty() && !graph.title.empty()) {
-      std::cout << terminal_text(graph.title) << "\n\n";
+      text << terminal_text(graph.title) << "\n\n";
     }
     for (std::size_t i = 0; i < graph.scene_output_count; ++i) {
       const OutputValue& o = result.outputs[i];
-      std::cout << o.label << " = ";
+      text << terminal_text(o.label, TerminalLines::one) << " = ";
       if (o.value.kind() == ValueKind::scalar) {
         // The reader's unit when neither the scene nor the port names one (mm/deg^2, not m/rad^2),
         // and which angle a unit of degrees counts.
         const std::string unit = o.display_unit.empty() ? reader_unit(o.dimension) : o.display_unit;
         const PortSpec* spec = graph.outputs[i].spec;
-        std::cout << format_value(o.value.as_scalar(), o.dimension, unit)
-                  << (spec && unit.find("deg") != std::string::npos && !angle_reference(*spec).empty()
-                          ? " (" + angle_reference(*spec) + ")"
-                          : std::string());
+        text << format_value(o.value.as_scalar(), o.dimension, unit)
+             << (spec && unit.find("deg") != std::string::npos && !angle_reference(*spec).empty()
+                     ? " (" + angle_reference(*spec) + ")"
+                     : std::string());
       }
-      else if (o.value.kind() == ValueKind::series) print_series(std::cout, o);
+      else if (o.value.kind() == ValueKind::series) print_series(text, o);
       else if (o.value.kind() == ValueKind::table) {
-        std::cout << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()
-                  << " points (see --out for the CSV)";
+        text << "table of " << o.value.as_table().channels.size() << " curves over " << o.value.as_table().axis.values.size()
+             << " points (see --out for the CSV)";
         const std::size_t rows = o.value.as_table().axis.values.size();
         if (rows > 0 && rows <= printed_table_rows) {
-          std::cout << "\n";
-          print_short_table(std::cout, o.value.as_table());
+          text << "\n";
+          print_short_table(text, o.value.as_table());
           continue;
         }
       }
-      else std::cout << "<" << o.value.as_handle()->kind() << ">";
-      std::cout << "\n";
+      else text << "<" << o.value.as_handle()->kind() << ">";
+      text << "\n";
     }
     // How results were made (Monte Carlo samples and seed, ...), under everything they belong to.
     bool first_note = true;
     for (const NodeRun& r : result.runs)
       for (const std::string& n : r.notes) {
-        if (first_note) std::cout << "\n";
+        if (first_note) text << "\n";
         first_note = false;
-        std::cout << r.node << ": " << terminal_text(n) << "\n";
+        text << r.node << ": " << terminal_text(n) << "\n";
       }
+    print_text(text.str());
   }
   if (vm.count("out")) {
     const std::filesystem::path dir = vm["out"].as<std::string>();

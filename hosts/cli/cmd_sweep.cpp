@@ -7,6 +7,7 @@
 #include "sweep_progress.hpp"
 #include "sweep_rows.hpp"
 
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/csv.hpp>
 #include <mechgraph/hash.hpp>
@@ -23,6 +24,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -118,11 +120,50 @@ CaseTable make_cases(const po::variables_map& vm) {
   return make_latin_hypercube(specs, n, vm.count("seed") ? vm["seed"].as<std::uint64_t>() : 1);
 }
 
-// Which sweep a file of rows belongs to: the scene's text, the --set values, every case, the columns.
+// Every file the sweep reads, by the path its nodes are given: the files the scene names (a lift
+// table) and, where a varied input is such a parameter, the file of each case's value.
+std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
+  std::set<std::string> files;
+  for (std::size_t i : graph.order) {
+    const GraphNode& node = graph.nodes[i];
+    for (const auto& [name, value] : node.params.all())
+      if (const ParamSpec* spec = node.info().find_param(name); spec && spec->is_path && !value.text.empty()) files.insert(value.text);
+  }
+  for (std::size_t v = 0; v < table.variables.size(); ++v) {
+    const std::string& name = table.variables[v].name;
+    bool names_file = false;
+    const auto is_path = [&](std::size_t node, const std::string& param) {
+      const ParamSpec* spec = graph.nodes[node].info().find_param(param);
+      return spec && spec->is_path;
+    };
+    if (const auto dot = name.find('.'); dot != std::string::npos) {
+      if (const auto node = graph.find(name.substr(0, dot))) names_file = is_path(*node, name.substr(dot + 1));
+    } else if (const auto uses = graph.scene_param_uses.find(name); uses != graph.scene_param_uses.end()) {
+      for (const SceneParamUse& use : uses->second) names_file = names_file || is_path(use.node, use.param);
+    }
+    if (names_file)
+      for (const auto& row : table.cases)
+        if (!row[v].text.empty()) files.insert(row[v].text);
+  }
+  return files;
+}
+
+// Which sweep a file of rows belongs to: the scene's text, the contents of every file it reads,
+// the --set values, every case, the columns. A lift table edited between a stopped sweep and its
+// --resume is another sweep: its rows are not mixed with the old table's.
 std::string fingerprint(const std::string& scene_file, const std::vector<std::string>& sets, const CaseTable& table,
                         const Graph& graph, RowFormat format) {
   Hasher h;
   h.add(read_user_file(scene_file, max_scene_bytes, "scene"));
+  for (const std::string& file : files_read(graph, table)) {
+    h.add(file);
+    // Bounded as the nodes read it; a file that cannot be read counts as such (the case fails).
+    try {
+      h.add(std::string_view("contents")).add(read_bounded_file(file));
+    } catch (const FileReadError&) {
+      h.add(std::string_view("unreadable"));
+    }
+  }
   for (const std::string& s : sets) h.add(s);
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
   for (const auto& row : table.cases)

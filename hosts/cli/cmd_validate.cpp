@@ -1,8 +1,11 @@
 // mechgraph validate SCENE: load and check everything, evaluate nothing.
 #include "cli.hpp"
 #include "options.hpp"
+#include "terminal_output.hpp"
 
-#include <iostream>
+#include <mechgraph/text_escape.hpp>
+
+#include <sstream>
 
 namespace mechgraph::cli {
 
@@ -13,8 +16,10 @@ int validate_command(const GlobalOptions& g, const std::vector<std::string>& arg
   if (!parse_scene_command(args, visible, vm, "mechgraph validate SCENE [--set NAME=VALUE ...]")) return ok;
   const PluginRegistry registry = load_plugins(g);
   const Graph graph = load_scene_graph(vm, registry);
-  std::cout << vm["scene"].as<std::string>() << ": valid; " << graph.nodes.size() << " nodes, " << graph.order.size()
-            << " needed for " << graph.outputs.size() << " outputs\n";
+  std::ostringstream text;  // the scene's path is the user's text: shown through terminal_text
+  text << terminal_text(vm["scene"].as<std::string>(), TerminalLines::one) << ": valid; " << graph.nodes.size() << " nodes, "
+       << graph.order.size() << " needed for " << graph.outputs.size() << " outputs\n";
+  print_text(text.str());
   return ok;
 }
 

@@ -1,14 +1,14 @@
 // mechgraph: the command-line host. Subcommands live in one file each (cmd_*.cpp).
 #include "cli.hpp"
+#include "terminal_output.hpp"
 
 #include <mechgraph/abi_version.hpp>
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
-#include <mechgraph/text_escape.hpp>
 
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -52,11 +52,11 @@ exit codes: 0 success, 2 bad scene or usage, 3 evaluation error, 4 plugin load e
             5 results could not be written, 6 a plugin-test check failed, 130 stopped by Ctrl-C/SIGTERM (rows so far kept)
 )";
 
-// An error message as printed: valid UTF-8 without control sequences (a message may quote bytes a
-// user gave), and at most 4000 bytes (a 1 MB value must not become a 1 MB message).
+// An error message as printed: at most 4000 bytes (a 1 MB value must not become a 1 MB message);
+// the log sink makes it valid UTF-8 without control sequences.
 std::string bounded(std::string_view message) {
   constexpr std::size_t limit = 4000;
-  std::string text = mechgraph::terminal_text(message.substr(0, std::min(message.size(), limit)));
+  std::string text(message.substr(0, std::min(message.size(), limit)));
   if (message.size() > limit) text += "... (message cut: " + std::to_string(message.size() - limit) + " more bytes)";
   return text;
 }
@@ -76,8 +76,11 @@ int stdout_written(int code) {
 
 int main(int argc, char** argv) {
   using namespace mechgraph;
-  auto logger = spdlog::stderr_color_mt("mechgraph");
-  spdlog::set_default_logger(logger);
+  // A file-size limit (ulimit -f) is a full disk to mechgraph: the write fails with EFBIG and is
+  // refused like ENOSPC (exit 5, nothing published), instead of SIGXFSZ ending the process midway.
+  std::signal(SIGXFSZ, SIG_IGN);
+  // Every log message passes through terminal_text (a message may quote a label or a file name).
+  cli::use_terminal_safe_logger("mechgraph");
   spdlog::set_pattern("%^[%l]%$ %v");
   spdlog::set_level(spdlog::level::info);
 

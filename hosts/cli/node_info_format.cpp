@@ -2,7 +2,10 @@
 
 #include "cli.hpp"
 
+#include <mechgraph/text_escape.hpp>
+
 #include <cmath>
+#include <sstream>
 
 namespace mechgraph::cli {
 namespace {
@@ -135,9 +138,8 @@ void write_ports_json(JsonWriter& json, const std::vector<PortSpec>& ports) {
   json.end_array();
 }
 
-}  // namespace
-
-void write_node_info_text(std::ostream& os, const NodeInfo& info) {
+// The description as written by the plugin, before terminal_text.
+void write_node_info_raw(std::ostream& os, const NodeInfo& info) {
   os << info.type << " (version " << info.version << ")\n  " << info.summary << "\n\nparameters:\n";
   write_params_text(os, info.params, "  ");
   os << "\ninputs:\n";
@@ -169,6 +171,14 @@ void write_node_info_text(std::ostream& os, const NodeInfo& info) {
   os << "\nwork counters:";
   for (const auto& w : info.work_counters) os << " " << w;
   os << "\n";
+}
+
+}  // namespace
+
+void write_node_info_text(std::ostream& os, const NodeInfo& info) {
+  std::ostringstream raw;
+  write_node_info_raw(raw, info);
+  os << terminal_text(raw.str());
 }
 
 void write_node_info_json(JsonWriter& json, const NodeInfo& info) {

@@ -7,6 +7,7 @@
 
 namespace mechgraph::cli {
 
+/// Text for people, through terminal_text (a plugin's words hold no control sequence when shown).
 void write_node_info_text(std::ostream& os, const NodeInfo& info);
 void write_node_info_json(JsonWriter& json, const NodeInfo& info);
 

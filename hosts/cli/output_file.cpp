@@ -3,6 +3,7 @@
 #include "cli.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/hash.hpp>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -168,7 +169,7 @@ void write_file_whole(const fs::path& target, bool replace, const std::function<
   fs::path temporary;
   int fd = -1;
   for (int attempt = 0; fd < 0; ++attempt) {
-    temporary = folder / ("." + target.filename().string() + ".tmp-" + random_suffix());
+    temporary = folder / ("." + bounded_name(target.filename().string()) + ".tmp-" + random_suffix());
     fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (fd < 0 && (errno != EEXIST || attempt > 100)) io_failure("create a temporary file", temporary, errno);
   }
@@ -191,6 +192,31 @@ void write_file_whole(const fs::path& target, bool replace, const std::function<
     discard();
     throw;
   }
+}
+
+std::string bounded_name(const std::string& name) {
+  if (name.size() <= 160) return name;
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(Hasher().add(name).value()));
+  return name.substr(0, 96) + "~" + hex;
+}
+
+void prepare_output_file(const fs::path& path, const std::string& option) {
+  const std::string text = path.string();
+  const std::string name = path.filename().string();
+  if (text.empty() || text.back() == '/' || name.empty() || name == "." || name == "..")
+    throw UsageError(option + " '" + text + "': name a file (e.g. " + option + " rows.csv), not a folder");
+  if (name.size() > 250)
+    throw UsageError(option + ": the file name is " + std::to_string(name.size()) + " bytes; at most 250 (FILE.part, FILE.lock and " +
+                     "FILE.json beside it must fit the system's limit of 255)");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    throw UsageError(option + " " + text + " is a folder: name a file in it (e.g. " + option + " " + (path / "rows.csv").string() +
+                     "); the folder is left alone");
+  if (!path.has_parent_path()) return;
+  std::error_code ec;
+  fs::create_directories(path.parent_path(), ec);
+  if (ec) io_failure("make the folder", path.parent_path(), ec.value());
 }
 
 fs::path OutputLock::lock_path(const fs::path& target) { return fs::path(target.string() + ".lock"); }

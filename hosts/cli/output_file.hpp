@@ -71,6 +71,20 @@ std::string kind_of(const std::filesystem::path& path);
 /// names the option ("--out"). The message names the thing and why it is left alone.
 void refuse_unless_ours(const std::filesystem::path& path, bool ours, const std::string& what);
 
+/// `name` when it is at most 160 bytes, else its first 96 bytes, '~' and a 16-digit hash of all of
+/// it: a name for a temporary or staging entry made from an output's name ("." NAME ".tmp-" and
+/// 12 random characters) that stays under the file-name limit of 255 bytes however long the
+/// output's name is, and is the same for the same name (stale staging folders are found again).
+std::string bounded_name(const std::string& name);
+
+/// Checks that `path` (given as `option`, e.g. "--out") names a file and makes the folders it
+/// lies in, as `run --out a/b/DIR` does. Refused (UsageError, exit 2) before anything is created:
+/// a path ending in '/', an empty name, ".", "..", a name longer than 250 bytes (FILE.part, FILE.lock
+/// and FILE.json must fit the 255-byte limit beside it), or a folder (or a symlink to one) at `path`.
+/// Called before the output's lock is taken, so a refused `--out DIR/` leaves no DIR/.lock.
+/// IoError (exit 5) when a folder cannot be made.
+void prepare_output_file(const std::filesystem::path& path, const std::string& option);
+
 /// An advisory lock on an output: flock(LOCK_EX|LOCK_NB) on `TARGET.lock` beside it (created
 /// O_NOFOLLOW, holding the writer's pid). Held until destroyed. A lock held by another process is
 /// refused (UsageError) naming that process's pid. The lock file itself is left in place:

@@ -1,6 +1,8 @@
 #include "report_page.hpp"
 
 #include "result_files.hpp"
+#include "gnuplot_data.hpp"
+#include "output_file.hpp"
 #include "results_folder.hpp"
 #include "spawn.hpp"
 
@@ -141,9 +143,7 @@ struct Figure {
 
 // Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
 // Headers and labels are user text: through csv_field, the one CSV quoting.
-void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
-  std::ofstream out(file);
-  if (!out) throw IoError("cannot write '" + file.string() + "'");
+void write_figure_rows(std::ostream& out, const Figure& f) {
   out << std::setprecision(12);
   if (f.kind == Figure::Kind::bars) {
     const std::vector<double>& v = f.curves.front().second.values;
@@ -168,8 +168,10 @@ void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
       out << "\n";
     }
   }
-  out.close();
-  check_written(out, file);
+}
+
+void write_figure_csv(const std::filesystem::path& file, const Figure& f) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_figure_rows(out, f); });
 }
 
 // Vertical marks with their labels, staggered down the plot so that neighbours do not overprint.
@@ -183,12 +185,13 @@ void write_marks(std::ostream& s, const std::vector<std::pair<std::string, doubl
   }
 }
 
-void write_curves(std::ostream& s, const Figure& f, const std::string& csv, const std::vector<std::size_t>& which) {
+// Curve k is the datablock $curveK (x y), written by write_curve_data.
+void write_curves(std::ostream& s, const Figure& f, const std::vector<std::size_t>& which) {
   s << "plot";
   bool first = true;
   for (std::size_t k : which) {
     const std::string style = k < f.curve_styles.size() && !f.curve_styles[k].empty() ? f.curve_styles[k] : "with lines lw 1.5";
-    s << (first ? " " : ", \\\n    ") << gnuplot_string(csv) << " skip 1 using " << 2 * k + 1 << ":" << 2 * k + 2 << " " << style
+    s << (first ? " " : ", \\\n    ") << "$curve" << k << " using 1:2 " << style
       << (f.curve_titles[k].empty() ? std::string(" notitle") : " title " + gnuplot_string(f.curve_titles[k]));
     first = false;
   }
@@ -197,7 +200,7 @@ void write_curves(std::ostream& s, const Figure& f, const std::string& csv, cons
 // The SVAJ panel: one plot per quantity stacked on one angle axis, the x tics only under the
 // bottom one, the legend once, the marks (dead centres) through every panel and the events as
 // labelled points on the top one.
-void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
+void write_panel(std::ostream& s, const Figure& f) {
   const std::size_t panels = f.panel_ylabels.size();
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& [x, y] : f.curves)
@@ -218,15 +221,15 @@ void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
     for (std::size_t k = 0; k < f.curves.size(); ++k)
       if (f.panel_of[k] == p) which.push_back(k);
     if (p == 0 && !f.points.empty()) {
-      s << "$events << EOD\n";
-      for (const auto& [x, y, label] : f.points) s << x << "," << y << "\n";  // the CSV separator holds here too
-      s << "EOD\n";
+      std::vector<double> xs, ys;
+      for (const auto& [x, y, label] : f.points) xs.push_back(x), ys.push_back(y);
+      write_gnuplot_datablock(s, "events", {&xs, &ys});
       for (const auto& [x, y, label] : f.points)
         if (!label.empty()) s << "set label " << gnuplot_string(label) << " at " << x << ", " << y << " offset 0.8,0.6 font ',9'\n";
-      write_curves(s, f, csv, which);
+      write_curves(s, f, which);
       s << ", \\\n    $events using 1:2 with points pt 7 ps 0.5 lc rgb 'black' title " << gnuplot_string(f.points_title) << "\n";
     } else {
-      write_curves(s, f, csv, which);
+      write_curves(s, f, which);
       s << "\n";
     }
   }
@@ -234,21 +237,30 @@ void write_panel(std::ostream& s, const Figure& f, const std::string& csv) {
 }
 
 std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
-  const std::string csv = f.name + ".csv", svg = f.name + ".svg", script_file = f.name + ".gp";
-  {
-    std::ofstream s(dir / script_file);
+  const std::string svg = f.name + ".svg", script_file = f.name + ".gp";
+  write_file_whole(dir / script_file, true, [&](std::ostream& s) {
     const int height = f.kind == Figure::Kind::panel ? 160 * static_cast<int>(f.panel_ylabels.size()) + 90
                        : f.kind == Figure::Kind::to_scale ? 640 : 420;
     s << std::setprecision(17) << "set terminal svg size 860," << height << " dynamic noenhanced font 'sans,11' background rgb 'white'\n"
       << "set output " << gnuplot_string(svg) << "\n"
-      << "set datafile separator ','\nset datafile missing ''\n"
       << "set xlabel " << gnuplot_string(f.xlabel) << "\nset ylabel " << gnuplot_string(f.ylabel)
       << (f.ylabel.size() > 40 ? " font ',9'" : "") << "\n"
       << "set grid\nset key outside right top\n";
     if (f.kind != Figure::Kind::panel) s << "set title " << gnuplot_string(f.title) << "\n";
+    // The data as numbers inside the script (gnuplot_data.hpp): gnuplot never reads the CSV
+    // beside the plot, whose labels are the user's text.
     if (f.kind == Figure::Kind::bars) {
-      s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nset xtics rotate by -30\nunset key\n"
-        << "plot " << gnuplot_string(csv) << " skip 1 using 0:2:xtic(1) with boxes lc rgb '#3060a0'\n";
+      std::vector<double> v = f.curves.front().second.values;
+      v.resize(std::min(f.labels.size(), v.size()));
+      write_gnuplot_datablock(s, "bars", {&v});
+      s << "set style fill solid 0.6\nset boxwidth 0.6\nset yrange [0:*]\nunset key\n";
+      write_gnuplot_xtic_labels(s, "rotate by -30", std::vector<std::string>(f.labels.begin(), f.labels.begin() + static_cast<long>(v.size())));
+      s << "plot $bars using 0:1 with boxes lc rgb '#3060a0'\n";
+    } else {
+      for (std::size_t k = 0; k < f.curves.size(); ++k)
+        write_gnuplot_datablock(s, "curve" + std::to_string(k), {&f.curves[k].first.values, &f.curves[k].second.values});
+    }
+    if (f.kind == Figure::Kind::bars) {
     } else if (f.kind == Figure::Kind::histogram) {
       // Bars that touch, one per bin, and the marks as dashed vertical lines. The x range holds the
       // bars and the marks within two data spans of them; a mark further out (a spec far from the
@@ -280,9 +292,9 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
       for (const auto& [label, at] : drawn)
         s << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead lw 2 dt 2 lc rgb '#c03030'\n"
           << "set label " << gnuplot_string(label) << " at " << at << ", graph 0.95 offset 0.5,0 textcolor rgb '#c03030'\n";
-      s << "plot " << gnuplot_string(csv) << " skip 1 using 1:2 with boxes lc rgb '#3060a0'\n";
+      s << "plot $curve0 using 1:2 with boxes lc rgb '#3060a0'\n";
     } else if (f.kind == Figure::Kind::panel) {
-      write_panel(s, f, csv);
+      write_panel(s, f);
     } else {
       if (f.kind == Figure::Kind::to_scale) s << "set size ratio -1\n";
       for (const std::string& a : f.arrows) {
@@ -304,12 +316,10 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
       }
       std::vector<std::size_t> all(f.curves.size());
       for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
-      write_curves(s, f, csv, all);
+      write_curves(s, f, all);
       s << "\n";
     }
-    s.close();
-    check_written(s, dir / script_file);
-  }
+  });
   // gnuplot runs from an argument vector in the report's folder: no shell reads any name.
   const std::optional<std::filesystem::path> gnuplot = find_program("gnuplot");
   if (!gnuplot) throw IoError("mechgraph report draws its plots with gnuplot, which is not installed (apt-get install gnuplot-nox)");
@@ -321,11 +331,16 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
     why.resize(static_cast<std::size_t>(log.gcount()));
     throw IoError("gnuplot failed on the plot " + quoted_text_excerpt(f.title) + " (" + run.describe() + "): " + utf8_sanitized(why));
   }
-  std::ifstream in(dir / svg);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  try {
+    text = read_bounded_file(dir / svg, std::size_t{256} << 20);
+  } catch (const FileReadError& e) {
+    throw IoError("gnuplot wrote no SVG for the plot " + quoted_text_excerpt(f.title) + ": " + e.what());
+  }
+  // A plot cut short (a full disk) is refused, not inlined half.
+  if (!is_whole_svg(text)) throw IoError("gnuplot wrote no whole SVG for the plot " + quoted_text_excerpt(f.title) + " (disk full?)");
   // Inline: drop the XML declaration and the DOCTYPE, keep <svg ...> ... </svg>.
   const auto begin = text.find("<svg");
-  if (begin == std::string::npos) throw IoError("gnuplot wrote no SVG for the plot " + quoted_text_excerpt(f.title));
   std::filesystem::remove(dir / svg);
   std::filesystem::remove(dir / script_file);
   std::filesystem::remove(dir / (f.name + ".log"));
@@ -1004,14 +1019,8 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
   if (!first) html << "</ul>\n";
   html << "</body></html>\n";
 
-  std::ofstream page(dir / "report.html");
-  page << html.str();
-  page.close();
-  check_written(page, dir / "report.html");
-  std::ofstream json(dir / "results.json");
-  write_json(json, graph, result, registry, inputs);
-  json.close();
-  check_written(json, dir / "results.json");
+  write_file_whole(dir / "report.html", true, [&](std::ostream& page) { page << html.str(); });
+  write_file_whole(dir / "results.json", true, [&](std::ostream& json) { write_json(json, graph, result, registry, inputs); });
   spdlog::info("report: {} plots, {} tables", figures.size(), graph.reports.size() + small.size());
 }
 

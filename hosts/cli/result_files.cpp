@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "dxf_writer.hpp"
+#include "output_file.hpp"
 #include "results_folder.hpp"
 
 #include <mechgraph/errors.hpp>
@@ -17,6 +18,10 @@
 #include <iomanip>
 
 namespace mechgraph::cli {
+
+// The text of a table's and a series' CSV (below), written whole by write_table_csv / write_csv.
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units);
+void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units);
 
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs) {
@@ -38,10 +43,12 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
           json.end_array();
           // Named elements (a chain's contributions) also by name, in the display unit (percent).
           if (o.value.as_series().labels.size() == o.value.as_series().values.size()) {
+            // Labels may repeat (two links named "bearing"): numbered then, never a key twice.
+            const std::vector<std::string> keys = distinct_keys(o.value.as_series().labels);
             json.key("by_label").begin_object();
             for (std::size_t i = 0; i < o.value.as_series().values.size(); ++i) {
               const double v = o.value.as_series().values[i];
-              json.key(o.value.as_series().labels[i]).value(o.display_unit.empty() ? v : to_unit(v, o.dimension, o.display_unit));
+              json.key(keys[i]).value(o.display_unit.empty() ? v : to_unit(v, o.dimension, o.display_unit));
             }
             json.end_object();
             json.key("by_label_unit").value(o.display_unit.empty() ? o.dimension.si_unit() : o.display_unit);
@@ -52,12 +59,15 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
       case ValueKind::table: {
         // {"axis": name, "columns": {name: {"unit": SI unit, "values": [...]}, ...}}, axis first.
         const Table& t = o.value.as_table();
-        json.key("value").begin_object().key("axis").value(t.axis.name).key("columns").begin_object();
-        auto column = [&](const Table::Column& c) {
-          json.key(c.name).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values).end_object();
+        std::vector<std::string> names{t.axis.name};
+        for (const Table::Column& c : t.channels) names.push_back(c.name);
+        const std::vector<std::string> keys = distinct_keys(names);  // a channel named like the axis
+        json.key("value").begin_object().key("axis").value(keys[0]).key("columns").begin_object();
+        auto column = [&](const Table::Column& c, const std::string& key) {
+          json.key(key).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values).end_object();
         };
-        column(t.axis);
-        for (const Table::Column& c : t.channels) column(c);
+        column(t.axis, keys[0]);
+        for (std::size_t k = 0; k < t.channels.size(); ++k) column(t.channels[k], keys[k + 1]);
         json.end_object().end_object();
         break;
       }
@@ -191,7 +201,7 @@ void print_report(std::ostream& os, const ResolvedReport& report, const RunResul
   // Labels are the scene's text: no control sequence reaches the terminal.
   auto rows = report_cells(report, result, graph);
   for (auto& r : rows)
-    for (std::string& cell : r) cell = terminal_text(cell);
+    for (std::string& cell : r) cell = terminal_text(cell, TerminalLines::one);
   std::vector<std::size_t> width(rows.front().size(), 0);
   for (const auto& r : rows)
     for (std::size_t i = 0; i < r.size(); ++i) width[i] = std::max(width[i], r[i].size());
@@ -217,14 +227,12 @@ void write_report_csv(const std::filesystem::path& file, const ResolvedReport& r
                       const Graph& graph) {
   auto rows = report_cells(report, result, graph);
   rows.front()[0] = "quantity";
-  std::ofstream out(file);
-  if (!out) throw IoError("cannot write '" + file.string() + "'");
-  for (const auto& r : rows) {
-    for (std::size_t i = 0; i < r.size(); ++i) out << (i ? "," : "") << csv_cell(r[i]);
-    out << "\n";
-  }
-  out.close();
-  check_written(out, file);
+  write_file_whole(file, true, [&](std::ostream& out) {
+    for (const auto& r : rows) {
+      for (std::size_t i = 0; i < r.size(); ++i) out << (i ? "," : "") << csv_cell(r[i]);
+      out << "\n";
+    }
+  });
 }
 
 // Short series inline ([a, b, c] unit), long ones as a count (their CSV is in --out).
@@ -234,7 +242,7 @@ void print_series(std::ostream& os, const OutputValue& o) {
   if (labels.size() == values.size() && !values.empty()) {
     // Named elements: "shaft 9.4 %, retaining ring 7.8 %, ...".
     for (std::size_t i = 0; i < values.size(); ++i)
-      os << (i ? ", " : "") << labels[i] << " " << format_value(values[i], o.dimension, o.display_unit);
+      os << (i ? ", " : "") << terminal_text(labels[i], TerminalLines::one) << " " << format_value(values[i], o.dimension, o.display_unit);
     return;
   }
   if (values.size() > 12) {
@@ -253,8 +261,10 @@ void print_series(std::ostream& os, const OutputValue& o) {
 // One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
 // units (SI where the scene names none).
 void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units) {
-  std::ofstream out(file);
-  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units); });
+}
+
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
   std::vector<std::string> unit(columns.size());
@@ -270,13 +280,13 @@ void write_table_csv(const std::filesystem::path& file, const Table& t, const Di
     }
     out << "\n";
   }
-  out.close();
-  check_written(out, file);
 }
 
 void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units) {
-  std::ofstream out(file);
-  if (!out) throw IoError("cannot write '" + file.string() + "'");
+  write_file_whole(file, true, [&](std::ostream& out) { write_series_rows(out, o, units); });
+}
+
+void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units) {
   const Series& s = o.value.as_series();
   const std::string axis_unit = units.unit_for(s.axis_dimension), value_unit = units.unit_for(o.dimension);
   out << csv_field("axis [" + (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) + "]") << ","
@@ -285,18 +295,12 @@ void write_csv(const std::filesystem::path& file, const OutputValue& o, const Di
   for (std::size_t i = 0; i < s.values.size(); ++i)
     out << (axis_unit.empty() ? s.axis[i] : to_unit(s.axis[i], s.axis_dimension, axis_unit)) << ","
         << (value_unit.empty() ? s.values[i] : to_unit(s.values[i], o.dimension, value_unit)) << "\n";
-  out.close();
-  check_written(out, file);
 }
 
 
 void write_result_files(const std::filesystem::path& dir, const Graph& graph, const RunResult& result,
                         const PluginRegistry& registry, const RunInputs& inputs) {
-  std::ofstream json_file(dir / "results.json");
-  if (!json_file) throw IoError("cannot write '" + (dir / "results.json").string() + "'");
-  write_json(json_file, graph, result, registry, inputs);
-  json_file.close();
-  check_written(json_file, dir / "results.json");
+  write_file_whole(dir / "results.json", true, [&](std::ostream& os) { write_json(os, graph, result, registry, inputs); });
   for (const OutputValue& o : result.outputs)
     if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units);
     else if (o.value.kind() == ValueKind::table) {

@@ -21,8 +21,10 @@ namespace mechgraph::cli {
 namespace fs = std::filesystem;
 namespace {
 
-// The prefix of every staging folder of `dir`: ".NAME.staging-" (mkdtemp adds six random characters).
-std::string staging_prefix(const fs::path& dir) { return "." + dir.filename().string() + ".staging-"; }
+// The prefix of every staging folder of `dir`: ".NAME.staging-" (mkdtemp adds six random
+// characters), a long NAME shortened (bounded_name) so that the folder's name stays within the
+// system's 255 bytes for any DIR that fits itself.
+std::string staging_prefix(const fs::path& dir) { return "." + bounded_name(dir.filename().string()) + ".staging-"; }
 
 // Whether a folder holds mechgraph's marker as a regular file (lstat: a symlink named so does not count).
 bool has_marker(const fs::path& dir) {
@@ -151,6 +153,13 @@ void write_results_folder(const fs::path& given, bool replace, const std::functi
     io_failure("replace the results in", dir, error);
   }
   fs::remove_all(staging, ec);
+}
+
+bool is_own_results_folder(const fs::path& given, const fs::path& file) {
+  const fs::path dir = results_folder_path(given);
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return false;
+  return has_marker(dir) && ::lstat((dir / file).c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
 }  // namespace mechgraph::cli

@@ -32,6 +32,10 @@ void check_results_folder(const std::filesystem::path& dir, bool replace);
 void write_results_folder(const std::filesystem::path& dir, bool replace,
                           const std::function<void(const std::filesystem::path& staging)>& write);
 
+/// Whether `dir` is a real folder (not a link to one) holding mechgraph's marker and `file` as a
+/// regular file: results this program wrote, of the kind `file` names (report.html: a report).
+bool is_own_results_folder(const std::filesystem::path& dir, const std::filesystem::path& file);
+
 /// Checks that a stream wrote everything (after closing it); throws IoError naming `file` otherwise.
 void check_written(const std::ostream& stream, const std::filesystem::path& file);
 

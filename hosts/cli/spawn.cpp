@@ -1,5 +1,6 @@
 #include "spawn.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -43,8 +44,20 @@ std::string SpawnOutcome::describe() const {
 
 SpawnOutcome run_program(const std::filesystem::path& program, const std::vector<std::string>& args,
                          const std::filesystem::path& cwd, const std::filesystem::path& log,
-                         std::chrono::milliseconds limit) {
+                         std::chrono::milliseconds limit, const std::vector<std::pair<std::string, std::string>>& environment) {
   SpawnOutcome outcome;
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e) {
+    const std::string_view entry(*e);
+    const bool replaced = std::any_of(environment.begin(), environment.end(), [&](const auto& kv) {
+      return entry.size() > kv.first.size() && entry.substr(0, kv.first.size()) == kv.first && entry[kv.first.size()] == '=';
+    });
+    if (!replaced) env_text.emplace_back(entry);
+  }
+  for (const auto& [name, value] : environment) env_text.push_back(name + "=" + value);
+  std::vector<char*> envp;
+  for (std::string& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -67,7 +80,7 @@ SpawnOutcome run_program(const std::filesystem::path& program, const std::vector
   for (std::string& a : argv_text) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t child = 0;
-  const int started = ::posix_spawn(&child, program.c_str(), &actions, &attributes, argv.data(), environ);
+  const int started = ::posix_spawn(&child, program.c_str(), &actions, &attributes, argv.data(), envp.data());
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   if (started != 0) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace mechgraph::cli {
@@ -29,8 +30,11 @@ struct SpawnOutcome {
 /// Runs `program` (a path, from find_program) with `args` (argv[1..]) in the folder `cwd`, standard
 /// input from /dev/null, standard output and error appended to `log` (created, never followed
 /// through a symbolic link). Waits at most `limit`, then kills it (SIGKILL) and reports timed_out.
+/// The child's environment is this process's with each NAME of `environment` set to its VALUE
+/// (e.g. a HOME of its own for chromium).
 SpawnOutcome run_program(const std::filesystem::path& program, const std::vector<std::string>& args,
                          const std::filesystem::path& cwd, const std::filesystem::path& log,
-                         std::chrono::milliseconds limit);
+                         std::chrono::milliseconds limit,
+                         const std::vector<std::pair<std::string, std::string>>& environment = {});
 
 }  // namespace mechgraph::cli

@@ -1,6 +1,7 @@
 #include "sweep_file.hpp"
 
 #include "cli.hpp"
+#include "line_reader.hpp"
 #include "output_file.hpp"
 
 #include <mechgraph/csv.hpp>
@@ -30,22 +31,6 @@ std::size_t count_field(const YAML::Node& node, const std::string& key, std::siz
   const std::size_t value = std::stoull(text);
   if (value > limit) throw UsageError("'" + key + "' is " + text + ", more than " + std::to_string(limit));
   return value;
-}
-
-// All of an open file, from its start, at most `limit` bytes (the size fstat gives is not trusted).
-std::string read_all(int fd, std::size_t limit, const fs::path& path) {
-  std::string text;
-  char buffer[1 << 16];
-  for (off_t at = 0;;) {
-    const ssize_t n = ::pread(fd, buffer, sizeof buffer, at);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) io_failure("read", path, errno);
-    if (n == 0) return text;
-    if (text.size() + static_cast<std::size_t>(n) > limit)
-      throw UsageError(path.string() + ": more than " + std::to_string(limit >> 20) + " MiB of rows; not read back");
-    text.append(buffer, static_cast<std::size_t>(n));
-    at += n;
-  }
 }
 
 }  // namespace
@@ -121,6 +106,7 @@ void write_manifest(const fs::path& file, const SweepManifest& m) {
 SweepFile::SweepFile(const fs::path& out, SweepManifest manifest, bool resume, bool force, const RowRules& rules)
     : out_(out), manifest_(std::move(manifest)) {
   if (out_.empty()) return;
+  prepare_output_file(out_, "--out");  // `--out DIR/` refused before its lock is made; a/b/ made
   lock_.emplace(out_);  // before anything is read or written: one writer per FILE
   part_ = fs::path(out_.string() + ".part");
   if (resume && kind_of(part_) != "absent") resume_part(rules);
@@ -130,20 +116,37 @@ SweepFile::SweepFile(const fs::path& out, SweepManifest manifest, bool resume, b
   if (!file_) file_ = create_exclusive(part_);
 }
 
-// --resume: the rows in FILE.part are checked one by one; a half-written last line is cut.
+namespace {
+
+// Whether `tail`, the text after the last line break of FILE.part, can be the start of a line this
+// sweep writes, cut by a kill: a prefix of the header, of a CSV row (its case number first) or of
+// a JSON Lines row.
+bool plausible_cut_line(std::string_view tail, RowFormat format, bool header_next) {
+  if (tail.empty()) return true;
+  const auto starts = [&](std::string_view start) {
+    return tail.size() <= start.size() ? start.substr(0, tail.size()) == tail : tail.substr(0, start.size()) == start;
+  };
+  if (format == RowFormat::jsonl) return starts("{\"case\":");
+  if (header_next) return starts("case,");
+  return tail[0] >= '0' && tail[0] <= '9';
+}
+
+}  // namespace
+
+// --resume: every whole line in FILE.part is checked first; only then is a half-written last line
+// cut (a file that is not this sweep's rows is refused untouched).
 void SweepFile::resume_part(const RowRules& rules) {
   const SweepManifest before = read_manifest(out_);
   if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
-    throw UsageError(part_.string() + " holds rows of another sweep (scene, --set, cases, outputs or shard differ); "
-                     "remove it or use --force to start over");
+    throw UsageError(part_.string() + " holds rows of another sweep (scene, a file it reads, --set, cases, outputs or shard "
+                     "differ); remove it or use --force to start over");
   file_ = open_existing_regular(part_);
-  const std::string text = read_all(file_.get(), max_rows_file_bytes, part_);
-  const std::size_t keep = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
-  if (keep != text.size() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure("cut the half-written last line of", part_, errno);
+  // A line at a time (memory: one row, whatever the file's size), the cut last line kept apart.
+  LineReader reader(file_.get(), part_, max_row_bytes, LineReader::LastLine::keep);
   RowChecker checker(rules, part_.string());
-  std::istringstream lines(text.substr(0, keep));
   std::string line;
-  for (std::size_t number = 1; std::getline(lines, line); ++number) {
+  std::size_t number = 1;
+  for (; reader.next(line); ++number) {
     if (number == 1 && manifest_.format == RowFormat::csv) {
       checker.header(line, number);
       resumed_header_ = checker.header_cells();
@@ -153,6 +156,12 @@ void SweepFile::resume_part(const RowRules& rules) {
     resumed_cases_.push_back(row.index);
     if (row.failed) ++resumed_failed_;
   }
+  const std::string& tail = reader.unterminated();
+  const std::uint64_t keep = reader.whole_bytes();
+  if (!plausible_cut_line(tail, manifest_.format, manifest_.format == RowFormat::csv && number == 1))
+    throw UsageError(excerpt(part_.string()) + ":" + std::to_string(number) + ": the unfinished last line '" + excerpt(tail, 40) +
+                     "' is not the start of a row mechgraph writes; refused (edited or damaged?), the file is left as it is");
+  if (!tail.empty() && ::ftruncate(file_.get(), static_cast<off_t>(keep)) != 0) io_failure("cut the half-written last line of", part_, errno);
 }
 
 // A fresh start: FILE and FILE.part are removed first, but only when mechgraph wrote them.
@@ -188,6 +197,9 @@ void SweepFile::write(const std::string& text) {
 
 void SweepFile::finish(bool complete, std::size_t rows, std::size_t failed) {
   if (!file_) return;
+  // On the disk before FILE.part takes FILE's name: a crash after the rename never leaves a FILE
+  // whose last rows were still in the page cache.
+  if (::fsync(file_.get()) != 0) io_failure("write", part_, errno);
   if (::close(file_.release()) != 0) io_failure("close", part_, errno);
   manifest_.rows = rows;
   manifest_.failed = failed;

@@ -15,7 +15,7 @@
 // through a temporary with an unpredictable name (write_file_whole). `--force` replaces FILE only
 // when its manifest says mechgraph wrote it, and never anything but a regular file. Every row
 // --resume carries over is checked (RowChecker). Reads are bounded: a manifest at most 64 KiB, a
-// rows file at most max_rows_file_bytes, regular files only.
+// row at most max_row_bytes (rows files are read a line at a time), regular files only.
 #include "output_file.hpp"
 #include "sweep_rows.hpp"
 
@@ -38,8 +38,9 @@ struct SweepManifest {
   std::optional<std::size_t> inputs;  // varied-input columns (absent in manifests before issue 18)
 };
 
-/// The largest rows file --resume and merge read back (4 GiB).
-inline constexpr std::size_t max_rows_file_bytes = std::size_t{4} << 30;
+/// The longest row --resume and merge read back (256 MiB: a row of 10^5 inputs and series
+/// elements is a few MiB). Rows files are read a line at a time, so their size is not limited.
+inline constexpr std::size_t max_row_bytes = std::size_t{256} << 20;
 
 /// Reads FILE.json beside `file`; throws UsageError naming it when absent, unreadable, larger than
 /// 64 KiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N

@@ -511,11 +511,21 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
     if (!plain.front() || !plain[plain.size() - 2]) refuse(number, "the case or exit is not a number");
   }
   const std::size_t index = case_number(cells.front(), number);
-  if (rules_.format == RowFormat::csv && rules_.shown_input && rules_.inputs)
-    for (std::size_t v = 0; v < *rules_.inputs && 1 + v < cells.size(); ++v)
-      if (cells[1 + v] != csv_text(rules_.shown_input(index, v)))
-        refuse(number, "column '" + excerpt(header_[1 + v], 60) + "' holds '" + excerpt(cells[1 + v], 40) + "', case " +
-                           std::to_string(index) + " of this sweep has '" + excerpt(rules_.shown_input(index, v), 40) + "'");
+  // --resume knows the cases: every row must carry the inputs of its case, as this sweep writes
+  // them (CSV: the cell's text; JSON Lines: the same number, or the same text, or null for none).
+  if (rules_.shown_input && rules_.inputs)
+    for (std::size_t v = 0; v < *rules_.inputs && 1 + v < cells.size(); ++v) {
+      const std::string expected = rules_.shown_input(index, v);
+      const std::string& cell = cells[1 + v];
+      bool same = false;
+      if (rules_.format == RowFormat::csv) same = cell == csv_text(expected);
+      else if (!plain[1 + v]) same = cell == expected;
+      else if (cell.empty()) same = expected.empty();
+      else same = finite_number_cell(expected) && std::strtod(cell.c_str(), nullptr) == std::strtod(expected.c_str(), nullptr);
+      if (!same)
+        refuse(number, "column '" + excerpt(header_[1 + v], 60) + "' holds '" + excerpt(cell, 40) + "', case " + std::to_string(index) +
+                           " of this sweep has '" + excerpt(expected, 40) + "'");
+    }
   check_exit_and_outputs(cells, plain, number);
   return {index, cells[cells.size() - 2] != "0"};
 }

@@ -2,6 +2,8 @@
 
 #include "lane_variates.hpp"
 
+#include <mechgraph/worker_threads.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <atomic>
@@ -20,7 +22,9 @@
 // baseline: 0.28 s of CPU for the steering chain's 10^7 samples against 0.15 s), with AVX2 by
 // reassembling 128-bit pieces through the stack (0.60 s), so there is no AVX2 version. A kernel
 // written on packs of the target's own width would lift both; not done yet.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// Not under ThreadSanitizer: the dispatching resolver runs while the dynamic loader relocates the
+// program, before TSan's runtime is set up, and its instrumented code crashes there.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(__SANITIZE_THREAD__)
 #define MECHGRAPH_LANE_KERNEL __attribute__((target_clones("avx512f", "default")))
 #else
 #define MECHGRAPH_LANE_KERNEL
@@ -261,10 +265,9 @@ void for_each_chunk(std::size_t chunks, unsigned threads, const Work& work) {
       if (!failed.exchange(true)) failure = std::current_exception();
     }
   };
-  std::vector<std::thread> pool;
-  for (unsigned w = 1; w < threads; ++w) pool.emplace_back(worker, w);
-  worker(0);
-  for (std::thread& t : pool) t.join();
+  // Chunks are taken from a shared counter, so workers that cannot start (a process or memory
+  // limit) leave theirs to the others; the samples do not depend on which worker drew them.
+  run_on_workers(threads, worker);
   if (failure) std::rethrow_exception(failure);
 }
 

@@ -20,11 +20,14 @@ def split_header(column: str) -> Tuple[str, str]:
 
 
 def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
-    """Names, units and columns (float64 arrays, or lists of text) of `cases`: a DataFrame, a dict
-    of arrays or lists, or anything with ``items()``. Numbers are in the column's unit, or SI
-    when the column names none; text cells are read as a cases file's ('6500 rpm', 'roller')."""
+    """Names, units and columns of `cases`: a DataFrame, a dict of arrays or lists, or anything
+    with ``items()``. The columns go to the C++ side as they are, where one conversion
+    (python_values.cpp) reads every kind of value the same way as ``set=`` does: numbers in the
+    column's unit, or SI when the column names none; text cells read as a cases file's ('6500 rpm',
+    'roller'). Refused there, naming the column: True/False, complex numbers, dates, times and
+    durations (numpy datetime64/timedelta64, pandas), bytes, None and NA."""
     if hasattr(cases, "columns") and hasattr(cases, "__getitem__"):  # a DataFrame
-        items = [(c, cases[c].to_numpy()) for c in cases.columns]
+        items = [(c, cases[c]) for c in cases.columns]
     elif hasattr(cases, "items"):
         items = list(cases.items())
     else:
@@ -37,20 +40,19 @@ def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
             from ._errors import SceneError
 
             raise SceneError(f"cases: column '{name}' appears twice")
-        array = np.asarray(values)
-        if array.ndim != 1:
-            raise TypeError(f"cases: column '{header}' is not one-dimensional")
-        if array.dtype.kind in "iuf":
-            columns.append(np.ascontiguousarray(array, dtype=np.float64))
-        elif array.dtype.kind == "b":
-            raise TypeError(f"cases: column '{header}' holds True/False, not values")
-        else:
-            columns.append([str(v) for v in array.tolist()])
+        columns.append(_as_column(values))
         names.append(name)
         seen.add(name)
         units.append(unit)
-    if names and len({len(c) for c in columns}) != 1:
-        from ._errors import SceneError
-
-        raise SceneError("cases: the columns are not all as long")
     return names, units, columns
+
+
+def _as_column(values: Any) -> Any:
+    """A column that can be sliced (dask's chunks) with its cells' kinds kept: a list, a tuple or a
+    numpy array as it is (a list mixing True and 1.0 must not become floats); a pandas Series as its
+    numpy values (datetime64 stays datetime64, to be refused); anything else through numpy."""
+    if isinstance(values, (list, tuple, np.ndarray)):
+        return values
+    if hasattr(values, "to_numpy"):
+        return values.to_numpy()
+    return np.asarray(values)

@@ -38,12 +38,14 @@ class Scene:
     @classmethod
     def from_text(cls, yaml: str, name: str = "<text>") -> "Scene":
         """A scene from YAML text; `name` stands for the file in messages (relative files a node
-        names are taken from the working directory)."""
+        names are taken from the working directory). Bounded as a scene file is: more than 1 MiB
+        of text (UTF-8) is refused with SceneError before any of it is read."""
         return cls(_core.Session.from_text(yaml, name), ("text", yaml, name))
 
     @classmethod
     def from_dict(cls, scene: Mapping[str, Any], name: str = "<dict>") -> "Scene":
-        """A scene from a dict shaped like the YAML (``{"params": ..., "nodes": ..., "outputs": [...]}``)."""
+        """A scene from a dict shaped like the YAML (``{"params": ..., "nodes": ..., "outputs": [...]}``),
+        bounded as :meth:`from_text` is (the dict written as indented JSON, at most 1 MiB)."""
         return cls.from_text(json.dumps(scene, indent=1), name)
 
     # pickling (dask): the scene travels as its text and is built again where it lands
@@ -82,8 +84,10 @@ class Scene:
         """Evaluates the scene.
 
         set: ``{"rpm": "6500 rpm", "arc.follower": "roller", "cam.max_lift": 0.009}``: text with
-            its unit (or a word) as ``--set`` takes, a number in SI, or a 1-D array in SI for a
-            list parameter (``table.angles``, ``table.lifts``).
+            its unit (or a word) as ``--set`` takes, a number in SI (int, float, numpy integers and
+            floats), or a 1-D array in SI for a list parameter (``table.angles``, ``table.lifts``).
+            Refused (SceneError): True/False and numpy/bool arrays, complex numbers, dates, times
+            and durations (datetime, numpy datetime64/timedelta64, pandas), bytes, None.
         outputs: ``node.port`` labels instead of the scene's outputs and report.
         threads: independent nodes evaluated at once.
         """
@@ -92,7 +96,7 @@ class Scene:
         self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
         return result
 
-    def sweep(self, cases: Any, set: Optional[Mapping[str, str]] = None, outputs: Optional[Iterable[str]] = None,
+    def sweep(self, cases: Any, set: Optional[Mapping[str, Union[str, float, int]]] = None, outputs: Optional[Iterable[str]] = None,
               threads: int = 0):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
@@ -101,13 +105,14 @@ class Scene:
         its exit class (2 scene, 3 evaluation) and message. Column names carry units as on the
         command line (``cam.max_lift [mm]``); a column without one holds numbers in SI.
 
-        set: fixed overrides for every case, as text (``{"rpm": "6000 rpm"}``).
+        set: fixed overrides for every case, text with its unit or a number in SI
+            (``{"rpm": "6000 rpm"}``); a text is taken as it is, never read as YAML.
         """
         import pandas as pd
 
         names, units, columns = case_columns(cases)
-        sets = [f"{k}={v}" for k, v in (set or {}).items()]
-        header, lines, summary = self._session.sweep(names, units, columns, sets, list(outputs or []), int(threads))
+        header, lines, summary = self._session.sweep(names, units, columns, dict(set or {}), list(outputs or []),
+                                                     int(threads))
         frame = pd.DataFrame([json.loads(line) for line in lines], columns=header)
         frame.attrs["summary"] = summary
         return frame

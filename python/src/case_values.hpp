@@ -20,6 +20,10 @@ std::optional<Dimension> target_dimension(const Graph& graph, std::string_view n
 /// A number that parses back to the same double, with the SI unit of `d` ("0.0090000000000000011 m").
 std::string si_text(double si, Dimension d);
 
+/// `text` as one YAML double-quoted scalar that reads back as exactly `text` (for the places that
+/// take YAML: an override): '"' and '\\' escaped, C0, DEL and C1 controls as escapes.
+std::string yaml_quoted(std::string_view text);
+
 /// "6500 rpm" (or a word such as "roller"), read as a cases file's cell is; a non-finite number is
 /// a SceneError naming `context`.
 CaseValue value_from_text(const std::string& text, const std::string& context);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <future>
 #include <memory>
+#include <system_error>
 #include <thread>
 
 namespace mechgraph::python {
@@ -13,14 +14,27 @@ void run_interruptibly(std::function<void()> work, const std::function<void()>& 
   namespace py = pybind11;
   auto done = std::make_shared<std::promise<void>>();
   std::future<void> finished = done->get_future();
-  std::thread worker([work = std::move(work), done]() {
+  auto body = [work, done]() {
     try {
       work();
       done->set_value();
     } catch (...) {
       done->set_exception(std::current_exception());
     }
-  });
+  };
+  std::thread worker;
+  try {
+    worker = std::thread(body);
+  } catch (const std::system_error&) {
+    // No thread to be had (a process or memory limit): the work runs here, without the GIL, and
+    // Ctrl-C is seen when it returns. Slower to interrupt, never an abort.
+    {
+      py::gil_scoped_release released;
+      body();
+    }
+    finished.get();
+    return;
+  }
   for (;;) {
     std::future_status status;
     {

@@ -4,11 +4,13 @@
 // sessions, and the conversions; the Pythonic surface (Result, DataFrames, errors) is Python code.
 #include "case_values.hpp"
 #include "interruptible.hpp"
+#include "python_values.hpp"
 #include "scene_session.hpp"
 #include "value_arrays.hpp"
 
 #include <cli.hpp>
 #include <node_info_format.hpp>
+#include <terminal_output.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
@@ -73,62 +75,57 @@ py::list plugin_list(const PluginRegistry& r) {
 
 // ---- values from Python -------------------------------------------------------------------------
 
+// A `set=` entry through the one conversion of Python values (python_values.hpp): text, a number
+// in SI, or a 1-D array of numbers in SI for a list parameter.
 SetValue set_value(const std::string& name, const py::handle& value) {
-  if (py::isinstance<py::str>(value)) return {name, value.cast<std::string>()};
-  if (py::isinstance<py::bool_>(value))
-    throw SceneError("set " + name + ": True/False is not a value (give a number in SI or text with its unit)");
-  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value) ||
-      (py::hasattr(value, "__float__") && !py::hasattr(value, "__len__")))
-    return {name, value.cast<double>()};
-  py::array_t<double, py::array::c_style | py::array::forcecast> array;
-  try {
-    array = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
-  } catch (const py::error_already_set&) {
+  const std::string context = "set " + name;
+  if (is_sequence(value)) {
+    ColumnValues column = column_values(value, context);
+    if (column.text) throw SceneError(context + ": an array goes to a list parameter as numbers in SI, not as text");
+    return {name, std::move(column.numbers)};
   }
-  if (!array || array.ndim() != 1)
-    throw SceneError("set " + name + ": expected text with its unit ('6500 rpm'), a number in SI or a 1-D array of numbers in SI, got " +
-                     std::string(py::str(py::type::of(value).attr("__name__"))));
-  return {name, std::vector<double>(array.data(), array.data() + array.size())};
+  ScalarValue scalar = scalar_value(value, context);
+  if (auto* text = std::get_if<std::string>(&scalar)) return {name, std::move(*text)};
+  return {name, std::get<double>(scalar)};
 }
 
-std::string number_text(double x) {
-  char buffer[40];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
-  return std::string(buffer, end);
-}
-
-// A sweep's cases from columns: numbers (a numpy array) in the column's unit, or in SI without
-// one; or text cells read as a cases file's are (a bare number takes the column's unit).
+// A sweep's cases from columns, each through the one conversion of Python values: numbers in the
+// column's unit, or in SI without one; or text cells read as a cases file's are (a bare number
+// takes the column's unit).
 CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
                      const py::list& columns) {
   CaseTable table;
   table.origin = "python";
-  const std::size_t n = names.empty() ? 0 : py::len(columns[0]);
-  if (n > max_sweep_cases) throw SceneError("more than 10^7 cases in one sweep; split it into several sweeps");
-  if (n * std::max<std::size_t>(names.size(), 1) > max_case_cells)
-    throw SceneError("more than " + std::to_string(max_case_cells) + " values in one sweep; split it into several sweeps");
-  table.cases.assign(n, std::vector<CaseValue>(names.size()));
+  if (py::len(columns) != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
+                                                         std::to_string(py::len(columns)) + " columns");
+  std::size_t n = 0;
   for (std::size_t v = 0; v < names.size(); ++v) {
     const std::string& name = names[v];
     const std::string& unit = units[v];
     table.variables.push_back({name, unit});
-    py::handle column = columns[v];
-    if (py::len(column) != n)
-      throw SceneError("cases: column '" + excerpt(name) + "' has " + std::to_string(py::len(column)) + " values, the first " + std::to_string(n));
+    const ColumnValues column = column_values(columns[v], "cases: column '" + excerpt(name) + "'");
+    if (v == 0) {
+      n = column.size();
+      if (n > max_sweep_cases) throw SceneError("more than 10^7 cases in one sweep; split it into several sweeps");
+      if (n * names.size() > max_case_cells)
+        throw SceneError("more than " + std::to_string(max_case_cells) + " values in one sweep; split it into several sweeps");
+      table.cases.assign(n, std::vector<CaseValue>(names.size()));
+    } else if (column.size() != n) {
+      throw SceneError("cases: column '" + excerpt(name) + "' has " + std::to_string(column.size()) + " values, the first " +
+                       std::to_string(n));
+    }
     const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
-    if (py::isinstance<py::array>(column) && py::array(py::reinterpret_borrow<py::object>(column)).dtype().kind() == 'f') {
-      const auto numbers = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(column);
+    if (!column.text) {
       const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
       for (std::size_t i = 0; i < n; ++i) {
-        const double x = numbers.data()[i];
-        table.cases[i][v] = unit.empty() ? value_from_si(x, d.value_or(Dimension{}), context(i))
-                                         : value_from_text(number_text(x) + " " + unit, context(i));
+        const double x = column.numbers[i];
         if (!std::isfinite(x)) throw SceneError(context(i) + ": not a finite number");
+        table.cases[i][v] = unit.empty() ? value_from_si(x, d.value_or(Dimension{}), context(i))
+                                         : value_from_text(si_text(x, Dimension{}) + " " + unit, context(i));
       }
     } else {
-      const auto cells = column.cast<std::vector<std::string>>();
       for (std::size_t i = 0; i < n; ++i) {
-        const std::string& cell = cells[i];
+        const std::string& cell = column.cells[i];
         CaseValue value = value_from_text(cell, context(i));
         if (!unit.empty() && value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos)
           value = value_from_text(cell + " " + unit, context(i));
@@ -156,7 +153,8 @@ struct RunOutcome {
 };
 
 py::dict provenance(const RunOutcome& r) {
-  const Graph graph = r.session->graph_for(r.run->overrides, r.outputs);
+  // The run's own values given again to a graph built as the run's was: what was really used.
+  const Graph graph = r.session->graph_for(*r.run->sets, r.outputs);
   const SceneSpec& scene = r.session->scene();
   py::dict out;
   out["program"] = py::dict(py::arg("name") = "mechgraph (Python)", py::arg("version") = MECHGRAPH_VERSION);
@@ -194,7 +192,7 @@ py::dict provenance(const RunOutcome& r) {
 
 void raise_as(const char* class_name, const std::string& message) {
   const py::object cls = py::module_::import("mechgraph._errors").attr(class_name);
-  PyErr_SetObject(cls.ptr(), py::str(message).ptr());
+  PyErr_SetObject(cls.ptr(), python_text(message).ptr());  // a message may quote a plugin's bytes
 }
 
 }  // namespace
@@ -202,6 +200,8 @@ void raise_as(const char* class_name, const std::string& message) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "mechgraph's C++ core (libmechgraph and its plugins); use the package `mechgraph`.";
   m.attr("__version__") = MECHGRAPH_VERSION;
+  // Log messages quote scene and plugin text: through terminal_text, as the command line's are.
+  cli::use_terminal_safe_logger("mechgraph");
   spdlog::set_level(spdlog::level::warn);  // a notebook wants results, not progress; set_log_level() changes it
 
   py::register_exception_translator([](std::exception_ptr p) {
@@ -255,7 +255,7 @@ PYBIND11_MODULE(_core, m) {
       .def("value", [](const RunOutcome& r, const std::string& label) { return output_value(r.find(label)); })
       .def("kind", [](const RunOutcome& r, const std::string& label) { return std::string(to_string(r.find(label).value.kind())); })
       .def("unit", [](const RunOutcome& r, const std::string& label) { return si_unit_label(r.find(label).dimension); })
-      .def("display_unit", [](const RunOutcome& r, const std::string& label) { return r.find(label).display_unit; })
+      .def("display_unit", [](const RunOutcome& r, const std::string& label) { return python_text(r.find(label).display_unit); })
       .def("in_unit", [](const RunOutcome& r, const std::string& label, const std::string& unit) {
         const OutputValue& o = r.find(label);
         if (o.value.kind() != ValueKind::scalar) throw SceneError("output '" + label + "' is not a scalar");
@@ -265,12 +265,14 @@ PYBIND11_MODULE(_core, m) {
         const OutputValue& o = r.find(label);
         if (o.value.kind() != ValueKind::series) throw SceneError("output '" + label + "' is not a series");
         const Series& s = o.value.as_series();
-        return py::make_tuple(to_array(s.axis), si_unit_label(s.axis_dimension), s.labels);
+        py::list labels;
+        for (const std::string& l : s.labels) labels.append(python_text(l));
+        return py::make_tuple(to_array(s.axis), si_unit_label(s.axis_dimension), labels);
       })
       .def("notes", [](const RunOutcome& r) {
-        std::vector<std::pair<std::string, std::string>> notes;
+        py::list notes;
         for (const NodeRun& n : r.run->result.runs)
-          for (const std::string& note : n.notes) notes.emplace_back(n.node, note);
+          for (const std::string& note : n.notes) notes.append(py::make_tuple(n.node, python_text(note)));
         return notes;
       })
       .def("work", [](const RunOutcome& r) {
@@ -315,8 +317,8 @@ PYBIND11_MODULE(_core, m) {
       .def("clear_cache", &SceneSession::clear_cache)
       .def("run", [](const std::shared_ptr<SceneSession>& session, const py::dict& sets, const std::vector<std::string>& outputs,
                      unsigned threads, bool interruptible) {
-        std::vector<SetValue> values;
-        for (const auto& [key, value] : sets) values.push_back(set_value(py::str(key), value));
+        auto values = std::make_shared<std::vector<SetValue>>();
+        for (const auto& [key, value] : sets) values->push_back(set_value(py::str(key), value));
         auto run = std::make_shared<SessionRun>();
         if (interruptible) {
           // The work owns what it touches: on Ctrl-C it may finish after this call has raised.
@@ -329,9 +331,11 @@ PYBIND11_MODULE(_core, m) {
         return RunOutcome{session, run, outputs};
       }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
-                       const std::vector<std::string>& units, const py::list& columns, const std::vector<std::string>& sets,
+                       const std::vector<std::string>& units, const py::list& columns, const py::dict& set,
                        const std::vector<std::string>& outputs, unsigned threads) {
         const CaseTable table = case_table(*session, names, units, columns);
+        std::vector<SetValue> sets;
+        for (const auto& [key, value] : set) sets.push_back(set_value(py::str(key), value));
         auto stop = std::make_shared<std::atomic<bool>>(false);
         SessionSweep result;
         run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get()); }, [&] { *stop = true; },

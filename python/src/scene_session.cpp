@@ -63,6 +63,10 @@ SceneSession::Prepared& SceneSession::prepared(const std::vector<std::string>& o
   const std::string key = joined(outputs, ',') + '\n' + joined(names, ',') + '\n' + joined(list_names, ',');
   if (auto it = prepared_.find(key); it != prepared_.end()) return it->second;
   if (prepared_.size() >= max_prepared) prepared_.clear();
+  return prepared_.emplace(std::move(key), prepare(outputs, names)).first->second;
+}
+
+SceneSession::Prepared SceneSession::prepare(const std::vector<std::string>& outputs, const std::vector<std::string>& names) const {
   Prepared p;
   p.scene = std::make_unique<SceneSpec>(with_outputs(outputs));
   p.graph = build_graph(*p.scene, *registry_);
@@ -70,7 +74,7 @@ SceneSession::Prepared& SceneSession::prepared(const std::vector<std::string>& o
   std::vector<SweepVariable> variables;
   for (const std::string& n : names) variables.push_back({n, ""});
   p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables);
-  return prepared_.emplace(std::move(key), std::move(p)).first->second;
+  return p;
 }
 
 namespace {
@@ -114,45 +118,64 @@ void write_list(Graph& graph, const std::string& name, const std::vector<double>
 
 }  // namespace
 
-SessionRun SceneSession::run(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs, unsigned threads) {
-  std::lock_guard lock(mutex_);
-  SessionRun run;
-  std::vector<std::string> names, list_names;
-  std::vector<CaseValue> values;
-  std::vector<const SetValue*> lists;
+SceneSession::BoundSets SceneSession::bound_sets(const std::vector<SetValue>& sets) {
+  BoundSets b;
   for (const SetValue& s : sets) {
     const std::string context = "set " + s.name;
     if (const auto* text = std::get_if<std::string>(&s.value)) {
-      names.push_back(s.name);
-      values.push_back(value_from_text(*text, context));
-      run.overrides.push_back(s.name + "=" + *text);
+      b.names.push_back(s.name);
+      b.values.push_back(value_from_text(*text, context));
+      b.overrides.push_back(s.name + "=" + *text);
     } else if (const auto* number = std::get_if<double>(&s.value)) {
-      names.push_back(s.name);
-      values.push_back(value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), context));
-      run.overrides.push_back(s.name + "=" + values.back().text);
+      b.names.push_back(s.name);
+      b.values.push_back(value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), context));
+      b.overrides.push_back(s.name + "=" + b.values.back().text);
     } else {
-      list_names.push_back(s.name);
-      lists.push_back(&s);
-      run.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, SI>");
+      b.list_names.push_back(s.name);
+      b.lists.push_back(&s);
+      b.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, SI>");
     }
   }
+  return b;
+}
+
+void SceneSession::give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const {
+  binder.apply(graph, sets.values);
+  for (const SetValue* l : sets.lists) write_list(graph, l->name, std::get<std::vector<double>>(l->value));
+}
+
+SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs,
+                             unsigned threads) {
+  std::lock_guard lock(mutex_);
+  SessionRun run;
+  BoundSets bound = bound_sets(*sets);
   // The graph for this choice of outputs and names: every run with it writes all of its names, so
   // nothing of an earlier run's values stays behind.
-  Prepared& p = prepared(outputs, names, list_names);
-  p.binder->apply(p.graph, values);
-  for (const SetValue* l : lists) write_list(p.graph, l->name, std::get<std::vector<double>>(l->value));
+  Prepared& p = prepared(outputs, bound.names, bound.list_names);
+  give(*p.binder, p.graph, bound);
   const auto start = std::chrono::steady_clock::now();
   run.result = evaluate(p.graph, *cache_, threads);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   run.scene_output_count = p.graph.scene_output_count;
+  run.overrides = std::move(bound.overrides);
+  run.sets = std::move(sets);
   return run;
 }
 
-SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<std::string>& sets_text,
+SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
                                  const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop) {
   SceneSpec scene = scene_;
   std::vector<Override> overrides;
-  for (const std::string& s : sets_text) overrides.push_back(parse_override(s));
+  for (const SetValue& s : sets) {
+    // An override is read as YAML (as --set's are); a value from Python goes in as one quoted
+    // scalar, so its text is the value whatever it holds ("*x", "[1, 2]", "~").
+    std::string text;
+    if (const auto* t = std::get_if<std::string>(&s.value)) text = *t;
+    else if (const auto* number = std::get_if<double>(&s.value))
+      text = value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), "set " + s.name).text;
+    else throw SceneError("set " + s.name + ": an array is not a sweep's fixed value (give it to Scene.run, or vary it)");
+    overrides.push_back({s.name, yaml_quoted(text), s.name + "=" + text});
+  }
   const Graph graph = cli::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
@@ -181,12 +204,13 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<std::
   return out;
 }
 
-Graph SceneSession::graph_for(const std::vector<std::string>& overrides, const std::vector<std::string>& outputs) const {
-  const SceneSpec scene = with_outputs(outputs);
-  std::vector<Override> parsed;
-  for (const std::string& o : overrides)
-    if (o.find("=<") == std::string::npos) parsed.push_back(parse_override(o));  // arrays are not kept as text
-  return build_graph(scene, *registry_, parsed);
+Graph SceneSession::graph_for(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs) {
+  const BoundSets bound = bound_sets(sets);
+  std::lock_guard lock(mutex_);
+  const Prepared& p = prepared(outputs, bound.names, bound.list_names);
+  Graph graph = p.graph;  // a copy: the prepared graph belongs to the runs
+  give(*p.binder, graph, bound);
+  return graph;
 }
 
 }  // namespace mechgraph::python

@@ -31,6 +31,7 @@ struct SetValue {
 struct SessionRun {
   RunResult result;
   std::vector<std::string> overrides;  // "name=value" as --set would write each value; an array "name=<N values, SI>"
+  std::shared_ptr<const std::vector<SetValue>> sets;  // what the run was given: its provenance is made from these
   std::size_t scene_output_count = 0;  // the first outputs of result are the ones asked for
   double seconds = 0.0;                // wall time of the evaluation
 };
@@ -52,16 +53,19 @@ class SceneSession {
 
   /// Evaluates `outputs` (empty: the scene's outputs and report) with `sets` applied; the memo
   /// cache is kept. Throws SceneError or EvaluationError.
-  SessionRun run(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs, unsigned threads);
+  SessionRun run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs, unsigned threads);
 
   /// Runs one case per row of `table` on `threads` workers (0: one per core) with the rows of
-  /// `mechgraph sweep`; `stop` set: no new case starts.
-  SessionSweep sweep(const CaseTable& table, const std::vector<std::string>& sets_text,
+  /// `mechgraph sweep`; `stop` set: no new case starts. `sets` are fixed for every case (text or
+  /// a number in SI; each goes to the scene as the text it is, never read as YAML).
+  SessionSweep sweep(const CaseTable& table, const std::vector<SetValue>& sets,
                      const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
 
-  /// The nodes, parameters and plugins behind a run's result (as `run --json`'s provenance holds,
-  /// minus the file's hash for a scene given as text), rebuilt from its override texts.
-  Graph graph_for(const std::vector<std::string>& overrides, const std::vector<std::string>& outputs) const;
+  /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
+  /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()
+  /// gives them (values bound in place, arrays written into their list parameters), so nothing is
+  /// read as YAML and nothing of the scene's own rows stays where an array replaced them.
+  Graph graph_for(const std::vector<SetValue>& sets, const std::vector<std::string>& outputs);
 
   const SceneSpec& scene() const { return scene_; }
   const PluginRegistry& registry() const { return *registry_; }
@@ -79,6 +83,16 @@ class SceneSession {
     Graph graph;                        // written case after case
     std::unique_ptr<CaseBinder> binder;
   };
+  // What a run's `set=` entries become: the binder's names and values, the arrays for list
+  // parameters, and the override texts.
+  struct BoundSets {
+    std::vector<std::string> names, list_names, overrides;
+    std::vector<CaseValue> values;
+    std::vector<const SetValue*> lists;
+  };
+  BoundSets bound_sets(const std::vector<SetValue>& sets);
+  Prepared prepare(const std::vector<std::string>& outputs, const std::vector<std::string>& names) const;
+  void give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const;
   Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
                      const std::vector<std::string>& list_names);
   SceneSpec with_outputs(const std::vector<std::string>& outputs) const;

@@ -1,5 +1,7 @@
 #include "value_arrays.hpp"
 
+#include <mechgraph/text_escape.hpp>
+
 #include <algorithm>
 
 namespace mechgraph::python {
@@ -11,15 +13,17 @@ py::array_t<double> to_array(const std::vector<double>& values) {
   return out;
 }
 
+py::str python_text(std::string_view text) { return py::str(utf8_sanitized(text)); }
+
 std::string si_unit_label(Dimension d) { return d.dimensionless() ? std::string() : d.si_unit(); }
 
 namespace {
 
 py::dict column_dict(const Table::Column& c) {
   py::dict d;
-  d["name"] = c.name;
+  d["name"] = python_text(c.name);
   d["unit"] = si_unit_label(c.dimension);
-  d["display_unit"] = c.display_unit;
+  d["display_unit"] = python_text(c.display_unit);
   d["values"] = to_array(c.values);
   return d;
 }
@@ -35,7 +39,7 @@ py::dict table_dict(const Table& table) {
   d["histogram"] = table.histogram;
   d["closed_curve"] = table.closed_curve;
   py::list marks;
-  for (const Table::Mark& m : table.axis_marks) marks.append(py::make_tuple(m.label, m.value));
+  for (const Table::Mark& m : table.axis_marks) marks.append(py::make_tuple(python_text(m.label), m.value));
   d["marks"] = marks;
   return d;
 }
@@ -46,7 +50,7 @@ py::object output_value(const OutputValue& output) {
     case ValueKind::scalar: return py::float_(v.as_scalar());
     case ValueKind::series: return to_array(v.as_series().values);
     case ValueKind::table: return table_dict(v.as_table());
-    case ValueKind::handle: return py::str("<" + std::string(v.as_handle()->kind()) + ">");
+    case ValueKind::handle: return python_text("<" + std::string(v.as_handle()->kind()) + ">");
   }
   return py::none();
 }

@@ -19,6 +19,10 @@ pybind11::object output_value(const OutputValue& output);
 /// "marks": [(label, si), ...]}, a column being {"name", "unit" (SI), "display_unit", "values"}.
 pybind11::dict table_dict(const Table& table);
 
+/// Text from a plugin or a scene as a Python str: bytes that are not UTF-8 (a plugin may make
+/// any) become U+FFFD instead of failing the conversion with UnicodeDecodeError.
+pybind11::str python_text(std::string_view text);
+
 /// The SI unit of a dimension as results carry it ("" when dimensionless).
 std::string si_unit_label(Dimension d);
 

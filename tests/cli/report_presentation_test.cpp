@@ -197,6 +197,7 @@ TEST_CASE("report --pdf prints the page through headless chromium", "[cli][repor
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   REQUIRE(fs::exists(dir / "report.pdf"));
+  CHECK_THAT(r.out, Contains((dir / "report.pdf").string()));  // it says where the PDF is
   std::ifstream pdf(dir / "report.pdf", std::ios::binary);
   char magic[5] = {};
   pdf.read(magic, 4);

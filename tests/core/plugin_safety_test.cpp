@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 
 using namespace mechgraph;
@@ -101,4 +102,105 @@ TEST_CASE("a library that crashes in its static constructors is refused; the hos
   // Loading it alone is a PluginError naming it, not the end of this process.
   CHECK_THROWS_WITH(PluginRegistry().load_file(dir / "mechgraph_test_crash_ctor.so"), Contains("crashed"));
   fs::remove_all(dir);
+}
+
+namespace {
+
+// The process ids a marker library wrote when its constructors ran (empty: its code never ran).
+std::vector<long> marks(const fs::path& marker) {
+  std::vector<long> pids;
+  std::ifstream in(marker);
+  for (long pid = 0; in >> pid;) pids.push_back(pid);
+  return pids;
+}
+
+// Sets MECHGRAPH_TEST_MARKER for the scope and removes the file it names.
+struct MarkerFile {
+  fs::path path;
+  explicit MarkerFile(const std::string& name)
+      : path(fs::temp_directory_path() / ("mg_marker_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove(path);
+    ::setenv("MECHGRAPH_TEST_MARKER", path.c_str(), 1);
+  }
+  ~MarkerFile() {
+    ::unsetenv("MECHGRAPH_TEST_MARKER");
+    std::error_code ec;
+    fs::remove(path, ec);
+  }
+};
+
+}  // namespace
+
+// The trust model (README, "Plugins are code"): the probe protects against crashes and broken files,
+// not against malice; but no code of a file that does not declare itself a plugin ever runs, and a
+// file the probe refused is never loaded in the host.
+TEST_CASE("a library without the plugin entry never runs, not even in the probe's child", "[plugins][safety][trust]") {
+  const MarkerFile marker("no_entry");
+  const fs::path dir = folder_with_good_plugin("no_entry_marker");
+  fs::copy_file(test_plugin("test_marker_no_entry"), dir / "mechgraph_marker.so");
+  PluginRegistry r;
+  r.load_directory(dir);
+  CHECK(r.find("test.add"));
+  REQUIRE(r.skipped().size() == 1);
+  CHECK_THAT(r.skipped()[0].reason, Contains("has no entry 'mechgraph_plugin_entry'") && Contains("not a mechgraph plugin"));
+  CHECK(marks(marker.path).empty());
+  CHECK_THROWS_WITH(PluginRegistry().load_file(dir / "mechgraph_marker.so"), Contains("has no entry"));
+  CHECK(marks(marker.path).empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a library the probe refuses is not loaded in the host: its constructors ran only in the child",
+          "[plugins][safety][trust]") {
+  const MarkerFile marker("foreign_abi");
+  for (int attempt = 0; attempt < 2; ++attempt) {  // the second time: a refusal is never cached as good
+    PluginRegistry r;
+    CHECK_THROWS_WITH(r.load_file(test_plugin("test_marker_foreign_abi")),
+                      Contains("built for plugin ABI version " + std::to_string(plugin_abi_version_for_tests() + 1)));
+    const std::vector<long> pids = marks(marker.path);
+    REQUIRE(pids.size() == static_cast<std::size_t>(attempt + 1));  // one probe each time
+    for (long pid : pids) CHECK(pid != static_cast<long>(::getpid()));
+  }
+}
+
+TEST_CASE("a symbolic link in a plugin folder is followed only within the folder", "[plugins][safety][trust]") {
+  const MarkerFile marker("symlink");
+  const fs::path dir = folder_with_good_plugin("symlink");
+  // Outside: a plugin elsewhere, and a library that is no plugin (as a link to a system library is).
+  fs::create_symlink(test_plugin("test_marker_foreign_abi"), dir / "mechgraph_elsewhere.so");
+  fs::create_symlink(test_plugin("test_marker_no_entry"), dir / "mechgraph_system_lib.so");
+  // Inside: a versioned name, as installs make them.
+  fs::copy_file(test_plugin("test_bad_version"), dir / "mechgraph_versioned.so.1");
+  fs::create_symlink("mechgraph_versioned.so.1", dir / "mechgraph_versioned.so");
+  PluginRegistry r;
+  r.load_directory(dir);
+  CHECK(r.find("test.add"));
+  std::map<std::string, std::string> reasons;
+  for (const SkippedPlugin& s : r.skipped()) reasons[s.path.filename().string()] = s.reason;
+  REQUIRE(reasons.size() == 3);
+  CHECK_THAT(reasons["mechgraph_elsewhere.so"], Contains("symbolic link") && Contains("outside its plugin folder"));
+  CHECK_THAT(reasons["mechgraph_system_lib.so"], Contains("symbolic link") && Contains("outside its plugin folder"));
+  // The link within the folder was followed: its target was loaded and judged on its own merits.
+  CHECK_THAT(reasons["mechgraph_versioned.so"], Contains("is not a semantic version"));
+  CHECK(marks(marker.path).empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the ELF symbol reader finds the entry of every built-in plugin and of no system library",
+          "[plugins][safety][trust]") {
+  // A second method: the dynamic loader itself (dlsym) on the same files.
+  const fs::path builtin = MECHGRAPH_PLUGIN_DIR;
+  int seen = 0;
+  for (const auto& entry : fs::directory_iterator(builtin)) {
+    if (entry.path().extension() != ".so") continue;
+    ++seen;
+    INFO(entry.path());
+    PluginRegistry r;
+    CHECK_NOTHROW(r.load_file(entry.path()));
+  }
+  CHECK(seen >= 5);
+  for (const char* system : {"/lib/x86_64-linux-gnu/libm.so.6", "/lib/x86_64-linux-gnu/libz.so.1"}) {
+    if (!fs::exists(system)) continue;
+    INFO(system);
+    CHECK_THROWS_WITH(PluginRegistry().load_file(system), Contains("has no entry") || Contains("owned by"));
+  }
 }

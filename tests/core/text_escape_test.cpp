@@ -32,6 +32,9 @@ TEST_CASE("HTML text: markup characters as entities, controls dropped", "[escape
 
 TEST_CASE("gnuplot strings: single-quoted, quote doubled, nothing that ends or substitutes a command", "[escape]") {
   CHECK(gnuplot_string("it's") == "'it''s'");
+  // gnuplot 5.4 drops a string whose doubled quote follows the opening quote or another one.
+  CHECK(gnuplot_string("it''s") == "'it''\xE2\x80\x8B''s'");
+  CHECK(gnuplot_string("'a") == "'\xE2\x80\x8B''a'");
   CHECK(gnuplot_string("a\nsystem(\"id\")\n#") == "'a system(\"id\") #'");
   CHECK(gnuplot_string("`id` @m") == "'\xCA\xBBid\xCA\xBB \xEF\xBC\xA0m'");
 }
@@ -44,6 +47,20 @@ TEST_CASE("DOT strings: double-quoted, quote and backslash escaped, line breaks 
 TEST_CASE("terminal text: no escape sequence, C1 control or DEL reaches the screen", "[escape]") {
   CHECK(terminal_text("a\x1b]0;owned\x07" "b\tc\n") == "a?]0;owned?b\tc\n");
   CHECK(terminal_text("\xC2\x9B" "31m \x7f \xC2\xA0 \xC3\xA9") == "?31m ? \xC2\xA0 \xC3\xA9");  // CSI as C1; NBSP and é kept
+  CHECK(terminal_text("\x9B" "31m") == "\xEF\xBF\xBD" "31m");                  // the raw C1 byte is not UTF-8
+  CHECK(terminal_text("\xC2\x80\xC2\x9F\xC2\x85") == "???");                  // every C1 control, NEL included
+  // Bidi embeddings, overrides and isolates (U+202A..U+202E, U+2066..U+2069) would reorder the
+  // text after them; the marks U+200E/U+200F and everything around the ranges stay.
+  CHECK(terminal_text("a\xE2\x80\xAE" "b\xE2\x80\xAA\xE2\x81\xA6\xE2\x81\xA9" "c") == "a?b???c");
+  CHECK(terminal_text("\xE2\x80\xA9\xE2\x80\xAF\xE2\x81\xA5\xE2\x81\xAA\xE2\x80\x8F") ==
+        "\xE2\x80\xA9\xE2\x80\xAF\xE2\x81\xA5\xE2\x81\xAA\xE2\x80\x8F");
+  // One line: a label cannot start a line of its own.
+  CHECK(terminal_text("a\nb\tc\rd", TerminalLines::one) == "a?b?c?d");
+  CHECK(is_terminal_safe("a\tb\n\xC3\xA9"));
+  CHECK_FALSE(is_terminal_safe("a\tb", TerminalLines::one));
+  CHECK_FALSE(is_terminal_safe("\xE2\x81\xA7"));
+  CHECK_FALSE(is_terminal_safe("\x9B"));
+  CHECK(terminal_text(terminal_text("\x1b\x9b\xC2\x9B")) == terminal_text("\x1b\x9b\xC2\x9B"));  // idempotent
 }
 
 TEST_CASE("escaping random bytes always gives valid text of the format", "[escape]") {
@@ -63,6 +80,8 @@ TEST_CASE("escaping random bytes always gives valid text of the format", "[escap
     CHECK(inner.find_first_of("`@\n\r") == std::string::npos);
     // Quotes inside come in pairs: the string cannot be closed early.
     for (std::size_t q = inner.find('\''); q != std::string::npos; q = inner.find('\'', q + 2)) CHECK(inner[q + 1] == '\'');
+    CHECK(inner.rfind("''", 0) != 0);
+    CHECK(inner.find("''''") == std::string::npos);
     const std::string d = dot_string(text);
     CHECK_FALSE(first_invalid_utf8(d));
     for (std::size_t i = 1; i + 1 < d.size(); ++i) {
@@ -73,6 +92,8 @@ TEST_CASE("escaping random bytes always gives valid text of the format", "[escap
     CHECK_FALSE(first_invalid_utf8(t));
     for (unsigned char c : t) CHECK((c >= 0x20 || c == '\t' || c == '\n'));
     CHECK(t.find("\xC2\x9B") == std::string::npos);
+    CHECK(is_terminal_safe(t));
+    CHECK(is_terminal_safe(terminal_text(text, TerminalLines::one), TerminalLines::one));
     std::ostringstream json;
     JsonWriter(json).value(text);
     CHECK_FALSE(first_invalid_utf8(json.str()));

@@ -8,7 +8,13 @@
 //     hostile.throw_int               evaluate() throws 7 while making its domain object
 //     hostile.bad_contract            a domain object whose contract_problem() throws 7
 //     hostile.evil_curve              a closed curve whose channel names hold DXF group lines
+//     hostile.evil_text               terminal control sequences (ESC, OSC, CSI as C1, bidi
+//                                     overrides) in its summary, docs, choices, series labels,
+//                                     notes, log messages and errors; its `label` (scene text)
+//                                     goes into all of them; label "fail" makes it throw
 #include <mechgraph/plugin_abi.hpp>
+
+#include <mechgraph/errors.hpp>
 
 #include <limits>
 #include <stdexcept>
@@ -16,6 +22,10 @@
 namespace {
 
 using namespace mechgraph;
+
+// ESC ] 0 ; ... BEL sets a terminal's title; ESC [ 2 J clears the screen; U+009B is CSI as a C1
+// control (in UTF-8 and as the raw byte 0x9B); U+202E reverses the text that follows.
+const std::string evil = "\x1b]0;PWNED\x07 \x1b[2J \xc2\x9b" "31m \x9b" "1m \xe2\x80\xae \x7f \r\x08 end";
 
 class Thing final : public DomainObject {
  public:
@@ -31,7 +41,7 @@ class Liar final : public DomainObject {
 
 class Hostile final : public NodeType {
  public:
-  enum class Kind { series, nan_work, throw_int, bad_contract, evil_curve };
+  enum class Kind { series, nan_work, throw_int, bad_contract, evil_curve, evil_text };
   Hostile(Kind kind, std::string type) : kind_(kind) {
     info_.type = std::move(type);
     info_.summary = "a deliberately broken node (host tests)";
@@ -46,6 +56,12 @@ class Hostile final : public NodeType {
       case Kind::throw_int: info_.outputs = {PortSpec::handle("thing", "hostile_thing", "never made")}; break;
       case Kind::bad_contract: info_.outputs = {PortSpec::handle("liar", "hostile_liar", "cannot say if it is sound")}; break;
       case Kind::evil_curve: info_.outputs = {PortSpec::table("curve", "a square, channels named to forge DXF entities")}; break;
+      case Kind::evil_text:
+        info_.summary = "a node whose words hold " + evil;
+        info_.params = {ParamSpec::text("label", "free text " + evil).with_default("x"),
+                        ParamSpec::choice("mode", {"plain", "also " + evil}, "a choice " + evil).with_default("plain")};
+        info_.outputs = {PortSpec::series("curve", dim::length, "labelled values " + evil)};
+        break;
     }
   }
   const NodeInfo& info() const override { return info_; }
@@ -78,6 +94,18 @@ class Hostile final : public NodeType {
         out.set("curve", Value::table(std::move(t)));
         break;
       }
+      case Kind::evil_text: {
+        const std::string& label = p.text("label");
+        if (label == "fail") throw NodeError("label", "refused " + evil);
+        ctx.log(LogLevel::warn, "a warning " + evil + " about " + label);
+        Series s;
+        s.values = {1e-3, 2e-3};
+        s.axis = {0.0, 1.0};
+        s.labels = {label, evil};
+        out.set("curve", Value::series(std::move(s)));
+        out.note("made from " + label + " and " + evil);
+        break;
+      }
     }
   }
 
@@ -96,7 +124,8 @@ NodeTypeList make_types() {
   return {std::make_shared<Hostile>(Kind::series, "hostile.series"), std::make_shared<Hostile>(Kind::nan_work, "hostile.nan_work"),
           std::make_shared<Hostile>(Kind::throw_int, "hostile.throw_int"),
           std::make_shared<Hostile>(Kind::bad_contract, "hostile.bad_contract"),
-          std::make_shared<Hostile>(Kind::evil_curve, "hostile.evil_curve")};
+          std::make_shared<Hostile>(Kind::evil_curve, "hostile.evil_curve"),
+          std::make_shared<Hostile>(Kind::evil_text, "hostile.evil_text")};
 #endif
 }
 

@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/worker_threads.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -84,10 +85,19 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
     }
   };
 
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  // The calling thread works too; a thread that cannot start (a process or memory limit) leaves its
+  // cases to the others. Whatever escapes a case's own handling (no memory for a worker's graph)
+  // stops the sweep and is rethrown here, never std::terminate.
+  run_on_workers(threads, [&](unsigned) {
+    try {
+      worker();
+    } catch (...) {
+      std::lock_guard lock(mutex);
+      if (!emit_failure) emit_failure = std::current_exception();
+      abort = true;
+      emitted_more.notify_all();
+    }
+  });
   if (emit_failure) std::rethrow_exception(emit_failure);
   summary.stopped = summary.run < n;
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -22,11 +22,12 @@
 #include <mechgraph/testing/node_harness.hpp>
 #include <mechgraph/testing/report.hpp>
 #include <mechgraph/units.hpp>
+#include <mechgraph/worker_threads.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <functional>
-#include <latch>
 #include <map>
 #include <optional>
 #include <set>
@@ -40,13 +41,17 @@ namespace mechgraph::testing {
 /// failed, exactly when an evaluation was tried; `plugin-test --strict` looks for it).
 inline constexpr const char* evaluation_check = "evaluates with its defaults";
 
+/// The most evaluations at once the thread-safety check runs: more proves nothing on any machine
+/// and only multiplies memory.
+inline constexpr int max_check_threads = 256;
+
 struct NodeCheckOptions {
   std::map<std::string, std::string> values;  // parameters as scene text; the rest from the defaults
   /// A value for an input port (a cam_law from another type, a scalar); nullopt: none. Optional
   /// ports without a value are left unconnected; a required one without a value skips evaluation.
   std::function<std::optional<Value>(const PortSpec&)> input_for;
   CamLawCheckOptions cam_law;
-  int threads = 4;  // evaluations at once for the thread-safety check (0: skip it)
+  int threads = 4;  // evaluations at once for the thread-safety check (0: skip it; at most max_check_threads)
 };
 
 namespace detail {
@@ -220,35 +225,47 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     r.add(suite, "deterministic: the same inputs give the same bits", false, std::string("the second evaluation threw: ") + e.what());
   }
   if (options.threads > 1) {
-    // All threads start together (a latch) and evaluate several times each, so the evaluations overlap.
+    // All threads start together (a gate opened once every thread that could start has started)
+    // and evaluate several times each, so the evaluations overlap. Threads that cannot start (a
+    // process or memory limit) are left out and the check says how many ran.
     constexpr int rounds = 8;
-    std::vector<std::optional<HarnessRun>> runs(static_cast<std::size_t>(options.threads));
+    const auto wanted = static_cast<unsigned>(options.threads);
+    std::vector<std::optional<HarnessRun>> runs(wanted);
     std::vector<std::string> errors(runs.size());
-    std::vector<std::thread> pool;
-    std::latch start(options.threads);
-    for (std::size_t i = 0; i < runs.size(); ++i)
-      pool.emplace_back([&, i] {
-        start.arrive_and_wait();
-        try {
-          std::string where;
-          for (int k = 0; k < rounds; ++k) {
-            runs[i] = run_node(type, params, inputs);
-            if (!detail::same_outputs(first.outputs, runs[i]->outputs, where)) break;
-          }
-        } catch (const std::exception& e) {
-          errors[i] = e.what();
-        } catch (...) {
-          errors[i] = "a non-standard exception";
+    std::atomic<bool> open{false};
+    const auto evaluate = [&](unsigned i) {
+      while (!open.load(std::memory_order_acquire)) std::this_thread::yield();
+      try {
+        std::string where;
+        for (int k = 0; k < rounds; ++k) {
+          runs[i] = run_node(type, params, inputs);
+          if (!detail::same_outputs(first.outputs, runs[i]->outputs, where)) break;
         }
-      });
-    for (auto& t : pool) t.join();
+      } catch (const std::exception& e) {
+        errors[i] = e.what();
+      } catch (...) {
+        errors[i] = "a non-standard exception";
+      }
+    };
+    unsigned ran = 1;
+    {
+      WorkerThreads more(wanted - 1, evaluate);
+      open.store(true, std::memory_order_release);
+      evaluate(0);
+      more.join();
+      ran += more.started();
+    }
+    runs.resize(ran);
     std::string where;
     for (std::size_t i = 0; i < runs.size() && where.empty(); ++i) {
       if (!errors[i].empty()) where = "thread " + std::to_string(i) + " threw: " + errors[i];
       else if (!detail::same_outputs(first.outputs, runs[i]->outputs, where)) where = "thread " + std::to_string(i) + " differs at " + where;
     }
-    r.add(suite, "thread-safe: " + std::to_string(options.threads) + " threads x " + std::to_string(rounds) +
-                     " evaluations at once agree", where.empty(), where);
+    const std::string threads_text = ran == wanted ? std::to_string(wanted) + " threads"
+                                                   : std::to_string(ran) + " threads (of " + std::to_string(wanted) +
+                                                         " asked; the rest could not start)";
+    r.add(suite, "thread-safe: " + threads_text + " x " + std::to_string(rounds) + " evaluations at once agree",
+          where.empty(), where);
   }
 
   for (const auto& [port, v] : first.outputs.all()) {

@@ -1,0 +1,124 @@
+#include "plugin_handshake.hpp"
+
+#include <mechgraph/scene.hpp>
+#include <mechgraph/semantic_version.hpp>
+
+#include <map>
+#include <set>
+#include <sstream>
+#include <vector>
+
+namespace mechgraph::detail {
+namespace {
+
+// "abi4;gcc-12;cxx202002;glibcxx-abi1" -> {"abi": "4", "compiler": "gcc-12", "cxx": "202002", ...}
+std::map<std::string, std::string> fingerprint_fields(const std::string& fingerprint) {
+  std::map<std::string, std::string> out;
+  std::stringstream ss(fingerprint);
+  for (std::string item; std::getline(ss, item, ';');) {
+    if (item.rfind("abi", 0) == 0) out["abi"] = item.substr(3);
+    else if (item.rfind("cxx", 0) == 0) out["cxx"] = item.substr(3);
+    else if (item.rfind("glibcxx-abi", 0) == 0) out["glibcxx-abi"] = item.substr(11);
+    else out["compiler"] = item;
+  }
+  return out;
+}
+
+std::string cxx_standard_name(const std::string& cplusplus) {
+  static const std::map<std::string, std::string> names{{"201402", "C++14"}, {"201703", "C++17"}, {"202002", "C++20"},
+                                                        {"202100", "C++23"}, {"202302", "C++23"}};
+  const auto it = names.find(cplusplus.substr(0, 6));
+  return it == names.end() ? "__cplusplus " + cplusplus : it->second + " (__cplusplus " + cplusplus + ")";
+}
+
+// Names each field of the build fingerprint that differs and what to rebuild with.
+std::string explain_fingerprint_mismatch(const std::string& plugin, const std::string& host) {
+  const auto p = fingerprint_fields(plugin);
+  const auto h = fingerprint_fields(host);
+  auto field = [](const std::map<std::string, std::string>& m, const char* key) {
+    const auto it = m.find(key);
+    return it == m.end() ? std::string("unknown") : it->second;
+  };
+  std::vector<std::string> differences;
+  if (field(p, "compiler") != field(h, "compiler"))
+    differences.push_back("compiler: plugin " + field(p, "compiler") + ", mechgraph " + field(h, "compiler") +
+                          " (build the plugin with the compiler that built mechgraph: CMAKE_CXX_COMPILER)");
+  if (field(p, "cxx") != field(h, "cxx"))
+    differences.push_back("C++ standard: plugin " + cxx_standard_name(field(p, "cxx")) + ", mechgraph " +
+                          cxx_standard_name(field(h, "cxx")) + " (rebuild the plugin with " +
+                          (h.count("cxx") && h.at("cxx").substr(0, 6) == "202002" ? "-std=c++20" : "mechgraph's standard") +
+                          "; mechgraph_add_plugin() sets it unless a -std= compile option overrides it)");
+  if (field(p, "glibcxx-abi") != field(h, "glibcxx-abi"))
+    differences.push_back("libstdc++ string ABI: plugin _GLIBCXX_USE_CXX11_ABI=" + field(p, "glibcxx-abi") +
+                          ", mechgraph " + field(h, "glibcxx-abi") + " (do not set _GLIBCXX_USE_CXX11_ABI)");
+  if (field(p, "abi") != field(h, "abi"))
+    differences.push_back("plugin ABI: plugin " + field(p, "abi") + ", mechgraph " + field(h, "abi"));
+  std::string out = "was built with a toolchain this mechgraph cannot share C++ objects with (plugin '" + plugin +
+                    "', mechgraph '" + host + "'); what differs:";
+  for (const std::string& d : differences) out += "\n    " + d;
+  if (differences.empty()) out += " the fingerprints' text; rebuild the plugin with the same toolchain";
+  return out;
+}
+
+}  // namespace
+
+void throw_plugin_load_failure(const std::string& where, const std::string& reason) {
+  if (reason.find("libmechgraph.so") != std::string::npos)
+    throw PluginError(where + ": cannot be loaded (" + reason + "): it was built against another mechgraph SDK; rebuild it "
+                      "against this mechgraph " MECHGRAPH_SDK_VERSION " (find_package(mechgraph CONFIG) of this install)");
+  throw PluginError(where + ": cannot be loaded as a shared library (" + reason + ")");
+}
+
+const PluginDescriptor& checked_plugin_descriptor(PluginEntry* entry, const std::string& where) {
+  const PluginDescriptor* d = call_plugin(where, "its entry", [&] { return entry(); });
+  if (!d) throw PluginError(where + ": its entry returned no descriptor");
+  if (d->abi_version != plugin_abi_version)
+    throw PluginError(where + " was built for plugin ABI version " + std::to_string(d->abi_version) +
+                      ", this mechgraph " MECHGRAPH_SDK_VERSION " uses ABI version " + std::to_string(plugin_abi_version) +
+                      "; rebuild the plugin against this mechgraph's SDK (find_package(mechgraph " MECHGRAPH_SDK_VERSION
+                      " CONFIG) and mechgraph_add_plugin)");
+  const std::string id = d->plugin_id ? d->plugin_id : "";
+  if (!d->build_fingerprint || std::string(d->build_fingerprint) != build_fingerprint)
+    throw PluginError(where + " ('" + id + "') " +
+                      explain_fingerprint_mismatch(d->build_fingerprint ? d->build_fingerprint : "", build_fingerprint));
+  if (id.empty()) throw PluginError(where + ": its descriptor has an empty plugin id");
+  if (!d->make_node_types) throw PluginError(where + ": its descriptor has no node type factory");
+  const std::string version = d->plugin_version ? d->plugin_version : "";
+  if (!SemanticVersion::parse(version))
+    throw PluginError(where + " ('" + id + "'): its version '" + version +
+                      "' is not a semantic version MAJOR.MINOR.PATCH (e.g. \"0.1.0\"); fix the MECHGRAPH_PLUGIN line");
+  return *d;
+}
+
+std::string plugin_where(const std::string& where, const PluginDescriptor& d) {
+  return where + " ('" + (d.plugin_id ? d.plugin_id : "") + "')";
+}
+
+NodeTypeList checked_plugin_node_types(const PluginDescriptor& d, const std::string& where) {
+  const std::string named = plugin_where(where, d);
+  NodeTypeList types = call_plugin(named, "its node type factory", [&] { return d.make_node_types(); });
+  std::set<std::string> own;
+  for (const auto& t : types) {
+    if (!t) throw PluginError(where + ": returned an empty node type");
+    const NodeInfo& described = call_plugin(named, "a node type's info()", [&]() -> const NodeInfo& { return t->info(); });
+    const std::string& name = described.type;
+    if (name.empty()) throw PluginError(where + ": a node type has an empty name");
+    if (!own.insert(name).second) throw PluginError(where + " provides node type '" + name + "' twice");
+    // Port, parameter and effect names become CSV headers, file names and plot titles: they follow
+    // the grammar of scene names (a port called "../x" or "a,b" is a defect of the plugin).
+    const auto check_name = [&](const std::string& what, const std::string& n) {
+      if (const std::string why = name_problem(n); !why.empty())
+        throw PluginError(named + ": node type '" + name + "' has a " + what + " whose name " + why);
+    };
+    for (const PortSpec& port : described.inputs) check_name("input port", port.name);
+    for (const PortSpec& port : described.outputs) check_name("output port", port.name);
+    for (const EffectSpec& effect : described.effects) check_name("effect", effect.name);
+    for (const ParamSpec& param : described.params) {
+      check_name("parameter", param.name);
+      for (const ParamSpec& field : param.fields) check_name("record field", field.name);
+    }
+  }
+  return types;
+}
+
+}  // namespace mechgraph::detail

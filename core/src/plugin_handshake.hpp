@@ -1,0 +1,42 @@
+#pragma once
+// The plugin handshake, checked the same way in the probe's child process and in the host: the
+// descriptor the entry returns (ABI version, build fingerprint, id, version, factory) and the node
+// types its factory makes (present, named, each name once, port and parameter names in the scene
+// grammar). Every refusal is a PluginError naming the plugin and what to do. Private to libmechgraph.
+#include <mechgraph/bounded_read.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/plugin_abi.hpp>
+
+#include <string>
+
+namespace mechgraph::detail {
+
+/// Calls into a plugin (its entry, its node type factory, a type's info()) and turns whatever it
+/// throws into a PluginError naming the plugin: a throw of a non-std type must not end the host.
+template <class F>
+auto call_plugin(const std::string& where, const char* what, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const PluginError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw PluginError(where + ": " + what + " threw an exception (" + quoted_text_excerpt(e.what(), 200) + "); refused");
+  } catch (...) {
+    throw PluginError(where + ": " + what + " threw something that is not a std::exception (a defect of the plugin); refused");
+  }
+}
+
+/// The dynamic loader could not load the file: its own words (`reason`), and what to rebuild when
+/// the plugin was built against another libmechgraph.
+[[noreturn]] void throw_plugin_load_failure(const std::string& where, const std::string& reason);
+
+/// Calls the entry and checks the descriptor it returns; throws PluginError on any mismatch.
+const PluginDescriptor& checked_plugin_descriptor(PluginEntry* entry, const std::string& where);
+
+/// "plugin '/path' ('id')": how messages name a plugin once its id is known.
+std::string plugin_where(const std::string& where, const PluginDescriptor& d);
+
+/// Calls the node type factory and checks every type it makes; throws PluginError naming the type.
+NodeTypeList checked_plugin_node_types(const PluginDescriptor& d, const std::string& where);
+
+}  // namespace mechgraph::detail
