@@ -3,7 +3,9 @@
 #include <mechgraph/errors.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <set>
 
 namespace mechgraph {
@@ -24,69 +26,151 @@ std::string amount(double v) {
   return text;
 }
 
+std::string mebibytes(double bytes) { return amount(bytes / (1 << 20)) + " MiB"; }
+
+// A plugin's figure, made safe to add up: negative or NaN is no bound at all (infinite), so the
+// budget refuses it naming the node rather than admitting it.
+double figure(double v) { return std::isnan(v) || v < 0 ? std::numeric_limits<double>::infinity() : v; }
+
+// The conventions for a type without a forecast: counts named points, samples, bins, times
+// revolutions; list lengths.
+void count_by_conventions(const GraphNode& n, NodeEstimate& e, double& rows, bool with_terms) {
+  double revolutions = 1;
+  struct Count {
+    std::string what;
+    double work;
+    double row_memory = 0;  // a count of points: the rows of a curve it keeps (not times revolutions)
+  };
+  std::vector<Count> counts;
+  // Parameters of an effect that is off are not read: they cost nothing.
+  std::set<std::string> idle;
+  for (const EffectSpec& effect : n.info().effects)
+    if (std::find(n.effects_read.begin(), n.effects_read.end(), effect.name) == n.effects_read.end())
+      idle.insert(effect.params.begin(), effect.params.end());
+  for (const auto& [name, value] : n.params.all()) {
+    if (idle.count(name)) continue;
+    const auto what = [&, name = std::string_view(name)] { return with_terms ? n.name + "." + std::string(name) : std::string(); };
+    if (value.kind == ParamKind::integer) {
+      if (name == "revolutions") revolutions = std::max(1.0, value.number);
+      if (ends_with(name, "points") || ends_with(name, "samples") || ends_with(name, "bins")) {
+        counts.push_back({with_terms ? what() + " = " + amount(value.number) : std::string(), value.number,
+                          ends_with(name, "points") ? value.number * memory_per_row : 0.0});
+        if (ends_with(name, "points")) rows = std::max(rows, value.number);
+      }
+    } else if (value.kind == ParamKind::record_list && !value.records.empty()) {
+      const double k = static_cast<double>(value.records.size());
+      counts.push_back({with_terms ? what() + " (" + amount(k) + " records)" : std::string(), k});
+    } else if (value.kind == ParamKind::number_list && !value.numbers.empty()) {
+      const double k = static_cast<double>(value.numbers.size());
+      counts.push_back({with_terms ? what() + " (" + amount(k) + " numbers)" : std::string(), k});
+    }
+  }
+  for (Count& c : counts) {
+    const double work = c.work * revolutions, memory = std::max(work * memory_per_item, c.row_memory);
+    e.work += work;
+    e.memory += memory;
+    if (with_terms)
+      e.terms.push_back({revolutions > 1 ? c.what + " x " + amount(revolutions) + " revolutions" : c.what, work, 0, memory});
+  }
+}
+
 }  // namespace
+
+std::vector<char> writing_nodes(const Graph& graph) {
+  std::vector<char> writing(graph.nodes.size(), 0);
+  for (const RequestedOutput& o : graph.outputs)
+    if (o.spec && (o.spec->kind == ValueKind::series || o.spec->kind == ValueKind::table) && o.node < writing.size())
+      writing[o.node] = 1;
+  return writing;
+}
+
+NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vector<double>& output_sizes, bool writes,
+                           bool with_terms) {
+  const GraphNode& n = graph.nodes[index];
+  NodeEstimate e;
+  InputSizes sizes;
+  double largest_input = 1;
+  for (const GraphNode::Input& in : n.inputs) {
+    double size = 0;
+    for (const GraphNode::Source& s : in.sources) size = std::max(size, s.node < output_sizes.size() ? output_sizes[s.node] : 1.0);
+    if (in.sources.empty()) continue;
+    size = std::max(figure(size), 1.0);
+    sizes[in.port] = size;
+    largest_input = std::max(largest_input, size);
+  }
+  std::optional<WorkForecast> forecast;
+  try {
+    forecast = n.type->type->forecast(n.params, sizes);
+  } catch (...) {
+    // The contract says never; a plugin that throws anyway is counted by the conventions.
+    forecast.reset();
+  }
+  double rows = 0;
+  if (forecast) {
+    e.work = figure(forecast->items);
+    e.memory = figure(forecast->memory);
+    e.output_size = std::max(figure(forecast->output_size), 1.0);
+    if (with_terms)
+      e.terms.push_back({n.name + (forecast->driver.empty() ? std::string() : "." + forecast->driver) + " (" + n.info().type + ")",
+                         e.work, 0, e.memory});
+    // The rows its curves are written with still follow the points convention.
+    for (const auto& [name, value] : n.params.all())
+      if (value.kind == ParamKind::integer && ends_with(name, "points")) rows = std::max(rows, value.number);
+  } else {
+    count_by_conventions(n, e, rows, with_terms);
+    e.output_size = largest_input;
+    // Every input's pieces beyond the first are resolved by the node's searches.
+    for (const auto& [port, size] : sizes) {
+      if (!(size > 1)) continue;
+      const double work = size * inputs_items_per_piece, memory = size * memory_per_input_piece;
+      e.work += work;
+      e.memory += memory;
+      if (with_terms) e.terms.push_back({n.name + "." + port + " (an input of " + amount(size) + " pieces)", work, 0, memory});
+    }
+  }
+  if (writes) {
+    const double r = rows > 0 ? rows : default_rows;
+    e.bytes = r * bytes_per_row;
+    if (with_terms) e.terms.push_back({n.name + "'s curves (" + amount(r) + " rows)", 0, e.bytes, 0});
+  }
+  return e;
+}
 
 WorkEstimate estimate_work(const Graph& graph) {
   WorkEstimate e;
-  std::set<std::size_t> writing;  // nodes with a requested series or table
-  for (const RequestedOutput& o : graph.outputs)
-    if (o.spec && (o.spec->kind == ValueKind::series || o.spec->kind == ValueKind::table)) writing.insert(o.node);
+  const std::vector<char> writing = writing_nodes(graph);
+  std::vector<double> sizes(graph.nodes.size(), 1.0);
   for (std::size_t index : graph.order) {
-    const GraphNode& n = graph.nodes[index];
-    double revolutions = 1, rows = 0;
-    std::vector<WorkEstimate::Term> node_terms;
-    // Parameters of an effect that is off are not read: they cost nothing.
-    std::set<std::string> idle;
-    for (const EffectSpec& effect : n.info().effects)
-      if (std::find(n.effects_read.begin(), n.effects_read.end(), effect.name) == n.effects_read.end())
-        idle.insert(effect.params.begin(), effect.params.end());
-    for (const auto& [name, value] : n.params.all()) {
-      if (idle.count(name)) continue;
-      const std::string what = n.name + "." + name;
-      if (value.kind == ParamKind::integer) {
-        if (name == "revolutions") revolutions = std::max(1.0, value.number);
-        if (ends_with(name, "points") || ends_with(name, "samples") || ends_with(name, "bins")) {
-          node_terms.push_back({what + " = " + amount(value.number), value.number, 0});
-          if (ends_with(name, "points")) rows = std::max(rows, value.number);
-        }
-      } else if (value.kind == ParamKind::record_list && !value.records.empty()) {
-        node_terms.push_back({what + " (" + amount(static_cast<double>(value.records.size())) + " records)",
-                              static_cast<double>(value.records.size()), 0});
-      } else if (value.kind == ParamKind::number_list && !value.numbers.empty()) {
-        node_terms.push_back({what + " (" + amount(static_cast<double>(value.numbers.size())) + " numbers)",
-                              static_cast<double>(value.numbers.size()), 0});
-      }
-    }
-    for (WorkEstimate::Term& t : node_terms) {
-      t.work *= revolutions;
-      if (revolutions > 1) t.what += " x " + amount(revolutions) + " revolutions";
-    }
-    if (writing.count(index)) {
-      const double written = (rows > 0 ? rows : default_rows) * bytes_per_row;
-      node_terms.push_back({n.name + "'s curves (" + amount(rows > 0 ? rows : default_rows) + " rows)", 0, written});
-    }
-    for (const WorkEstimate::Term& t : node_terms) {
-      e.work += t.work;
-      e.bytes += t.bytes;
-      e.terms.push_back(t);
-    }
+    NodeEstimate n = estimate_node(graph, index, sizes, writing[index] != 0, true);
+    sizes[index] = n.output_size;
+    e.work += n.work;
+    e.bytes += n.bytes;
+    e.memory += n.memory;
+    for (WorkEstimate::Term& t : n.terms) e.terms.push_back(std::move(t));
   }
   return e;
 }
 
 void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudget& budget, double cases,
-                       bool writes_curves) {
+                       bool writes_curves, double concurrent, const std::string& where) {
   const auto biggest = [&](auto key) {
     const auto it = std::max_element(e.terms.begin(), e.terms.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
     return it == e.terms.end() ? std::string("-") : it->what;
   };
-  const std::string per_case = cases > 1 ? " over " + amount(cases) + " cases" : std::string();
+  const std::string per_case = !where.empty() ? " " + where : cases > 1 ? " over " + amount(cases) + " cases" : std::string();
   const double work = e.work * cases;
   if (!(work <= budget.max_work))
     throw SceneError(graph.file + ": the scene asks for about " + amount(work) + " work items" + per_case +
                      ", more than the budget of " + amount(budget.max_work) + "; the biggest term is " +
                      biggest([](const WorkEstimate::Term& t) { return t.work; }) +
                      ". Lower it, or raise the budget with --max-work " + amount(std::max(work * 1.01, 1.0)));
+  const double memory = e.memory * std::max(concurrent, 1.0);
+  if (!(memory <= budget.max_memory))
+    throw SceneError(graph.file + ": the scene would hold about " + mebibytes(memory) + " of memory" +
+                     (concurrent > 1 ? " (" + amount(concurrent) + " cases at once)" : std::string()) +
+                     ", more than the budget of " + mebibytes(budget.max_memory) + "; the biggest term is " +
+                     biggest([](const WorkEstimate::Term& t) { return t.memory; }) +
+                     ". Lower it, or raise the budget with --max-memory " + amount(std::max(memory * 1.01, 1.0)));
   if (writes_curves && !(e.bytes <= budget.max_bytes))
     throw SceneError(graph.file + ": the scene would write about " + amount(e.bytes / (1 << 20)) +
                      " MiB of curves, more than the budget of " + amount(budget.max_bytes / (1 << 20)) +

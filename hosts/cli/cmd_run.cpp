@@ -95,7 +95,8 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
 
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
-  Graph graph = load_scene_graph(vm, registry);
+  // --json prints every requested curve on standard output: the same bound as --out's files.
+  Graph graph = load_scene_graph(vm, registry, vm.count("json") > 0);
   want_timing_notes(graph);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();

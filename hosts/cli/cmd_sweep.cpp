@@ -11,6 +11,7 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/csv.hpp>
 #include <mechgraph/hash.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/sweep/case_table.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
@@ -224,13 +225,15 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
 
   SweepOptions options;
   for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
-  // The work of all the cases of this shard against the budget (a sweep's default is larger: its
-  // cases are many by intent, and memoised nodes make the estimate an upper bound).
-  WorkBudget budget = work_budget(vm);
-  if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
-  check_work_budget(graph, estimate_work(graph), budget, static_cast<double>(std::max<std::size_t>(options.cases.size(), 1)), false);
   options.threads = threads;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
+  // The work of every case of this shard, each with its own values (a cases file's, a grid's, a
+  // sample's), against the budget, and the memory of the largest case times the threads (a sweep's
+  // default work budget is larger: its cases are many by intent, and memoised nodes make the
+  // estimate an upper bound).
+  WorkBudget budget = work_budget(vm);
+  if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
+  check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
   options.stop = &stop_requested;
 
   SweepManifest manifest;

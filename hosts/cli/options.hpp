@@ -32,15 +32,17 @@ inline bool parse_options(const std::vector<std::string>& args, const po::option
 }
 
 /// The options of every command that reads a scene: --help, --set (SCENE is positional) and the
-/// work budget (--max-work, --max-output) checked before anything is evaluated.
+/// work budget (--max-work, --max-output, --max-memory) checked before anything is evaluated.
 inline void add_scene_options(po::options_description& visible) {
   const WorkBudget defaults;
   visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
                                                 "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
       "max-work", po::value<double>()->default_value(defaults.max_work, "1e9"),
-      "refuse a scene estimated at more work items (curve points, samples, bins, records) than this (a sweep: all its cases, default 1e12)")(
+      "refuse a scene estimated at more work items (each node's forecast, or its curve points, samples, bins, records) than this (a sweep: all its cases, default 1e12)")(
       "max-output", po::value<double>()->default_value(defaults.max_bytes, "268435456"),
-      "refuse a scene whose curves would write more bytes of files than this (256 MiB)");
+      "refuse a scene whose curves would write more bytes than this, to files (--out) or to standard output (run --json) (256 MiB)")(
+      "max-memory", po::value<double>()->default_value(defaults.max_memory, "4294967296"),
+      "refuse a scene estimated to hold more bytes of memory than this (4 GiB; a sweep: its threads together)");
 }
 
 /// The budget the command line sets; throws UsageError for one that is not a positive number.
@@ -48,8 +50,9 @@ inline WorkBudget work_budget(const po::variables_map& vm) {
   WorkBudget b;
   b.max_work = vm["max-work"].as<double>();
   b.max_bytes = vm["max-output"].as<double>();
-  if (!(b.max_work > 0) || !(b.max_bytes > 0) || !std::isfinite(b.max_work) || !std::isfinite(b.max_bytes))
-    throw UsageError("--max-work and --max-output take a positive number");
+  b.max_memory = vm["max-memory"].as<double>();
+  for (const double v : {b.max_work, b.max_bytes, b.max_memory})
+    if (!(v > 0) || !std::isfinite(v)) throw UsageError("--max-work, --max-output and --max-memory take a positive number");
   return b;
 }
 
@@ -63,11 +66,13 @@ inline bool parse_scene_command(const std::vector<std::string>& args, const po::
   return parse_options(args, visible, all, positional, vm, synopsis);
 }
 
-/// The scene named on the command line, loaded and checked with its --set overrides.
-inline Graph load_scene_graph(const po::variables_map& vm, const PluginRegistry& registry) {
+/// The scene named on the command line, loaded and checked with its --set overrides. Its curves
+/// count against --max-output when they are written: to files (--out) or, `prints_curves`, to
+/// standard output (run --json).
+inline Graph load_scene_graph(const po::variables_map& vm, const PluginRegistry& registry, bool prints_curves = false) {
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
-  check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, vm.count("out") > 0);
+  check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, vm.count("out") > 0 || prints_curves);
   return graph;
 }
 

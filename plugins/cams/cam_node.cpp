@@ -17,6 +17,14 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
+// The cost of the searches over a law, per smooth piece (measured by the calibration test,
+// tests/core/work_estimate_calibration_test.cpp): the summary and the events interpolate each
+// piece at 33 points or more, for a few functions, and keep the interpolants while they search.
+constexpr double summary_items_per_piece = 400.0;
+constexpr double summary_bytes_per_piece = 8192.0;
+// An svaj row: angle, lift and three derivatives (and crank angle), kept as the table.
+constexpr double svaj_bytes_per_point = 64.0;
+
 // The common ramp parameters, checked: `ramp: none` with a height or length set is an error
 // rather than silently ignored; a ramp needs both.
 RampSpec read_ramp(const ParamSet& params) {
@@ -75,7 +83,8 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
 
 class CamNodeType final : public NodeType {
  public:
-  explicit CamNodeType(CamLawDefinition d) : make_(std::move(d.make)), derived_(d.derives_lift_and_action) {
+  explicit CamNodeType(CamLawDefinition d)
+      : make_(std::move(d.make)), cost_(std::move(d.cost)), derived_(d.derives_lift_and_action) {
     const std::string derived_from = d.derived_from;
     info_.type = std::move(d.type);
     info_.version = d.version;
@@ -162,6 +171,32 @@ class CamNodeType final : public NodeType {
 
   const NodeInfo& info() const override { return info_; }
 
+  // The law's cost, then the searches over its pieces (the summary and the events: each piece
+  // interpolated at summary_items_per_piece points or so, samples raising the start), then the
+  // svaj table's points.
+  std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes&) const override {
+    CamLawCost law = cost_ ? cost_(params) : CamLawCost{};
+    if (params.has("ramp") && params.text("ramp") != "none") law.pieces += 4.0;  // a ramp's pieces each side
+    const double samples = params.has("samples") ? static_cast<double>(params.integer("samples")) : 16.0;
+    const double per_piece = summary_items_per_piece * std::max(1.0, samples / 32.0);
+    const double searches = law.pieces * law.search_factor * per_piece;
+    const double points = params.has("curve_points") ? static_cast<double>(params.integer("curve_points")) : 0.0;
+    WorkForecast f;
+    f.items = law.items + searches + points;
+    f.memory = law.memory + law.pieces * law.search_factor * summary_bytes_per_piece * std::max(1.0, samples / 32.0) +
+               points * svaj_bytes_per_point;
+    f.output_size = law.pieces;
+    if (!law.driver.empty() && law.items + searches >= points) {
+      f.driver = law.driver;
+    } else if (points >= searches) {
+      f.driver = "curve_points = " + std::to_string(static_cast<long>(points));
+    } else {
+      f.driver = "samples = " + std::to_string(static_cast<long>(samples)) + " (per piece, " +
+                 std::to_string(static_cast<long>(law.pieces)) + " pieces)";
+    }
+    return f;
+  }
+
   void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx) const override {
     const RampSpec ramp = read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
@@ -206,6 +241,7 @@ class CamNodeType final : public NodeType {
  private:
   NodeInfo info_;
   CamLawFactory make_;
+  CamLawCostFunction cost_;
   bool derived_ = false;
 };
 

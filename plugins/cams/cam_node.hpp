@@ -34,6 +34,20 @@ struct CamBasics {
 using CamLawFactory =
     std::function<std::shared_ptr<const CamLaw>(const CamBasics&, const ParamSet&, OutputSet& extra)>;
 
+/// What a law costs to make and how many smooth pieces it has, said from the parameters before
+/// anything runs (NodeType::forecast): every search over the law (this node's summary, the valve
+/// motion's, a contour's) resolves each piece.
+struct CamLawCost {
+  double pieces = 16.0;  // smooth pieces of the law (a closed form: a handful); what downstream searches resolve
+  /// How many pieces a search may cut each into before it resolves it (a rough table's: 16, the
+  /// certified searches' 4 halvings): this node's own summary is counted at that worst case.
+  double search_factor = 1.0;
+  double items = 0.0;    // work items of making it (reading and fitting a table)
+  double memory = 0.0;   // bytes held while making it and by the law
+  std::string driver;    // the parameter behind a large cost: "file (about 80000 rows, smoothing none)"
+};
+using CamLawCostFunction = std::function<CamLawCost(const ParamSet&)>;
+
 struct CamLawDefinition {
   std::string type;     // "cam.kurz"
   int version = 1;
@@ -45,6 +59,8 @@ struct CamLawDefinition {
   std::map<std::string, std::vector<std::string>> output_dependencies;
   std::vector<std::string> extra_work_counters;
   CamLawFactory make;
+  /// The law's cost (absent: a closed form of at most CamLawCost{}.pieces pieces, cheap to make).
+  CamLawCostFunction cost;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.
   bool derives_lift_and_action = false;
   /// Where such a law's lift and event come from, for the parameters' descriptions ("the data",

@@ -160,8 +160,14 @@ QuinticSmoother::QuinticSmoother(std::vector<double> x, std::vector<double> y) :
   }
 }
 
-double QuinticSmoother::lambda_max() const {
-  return std::min(1e15, 1e4 * std::pow(static_cast<double>(x_.size() - 1), 8));
+double QuinticSmoother::lambda_max() const { return lambda_max(static_cast<double>(x_.size())); }
+
+double QuinticSmoother::lambda_max(double rows) { return std::min(1e15, 1e4 * std::pow(std::max(rows - 1.0, 1.0), 8)); }
+
+double QuinticSmoother::most_solves(bool gcv, double rows) {
+  constexpr double brent_steps = 100, toms748_steps = 200, after = 3;  // the limits given to Boost below
+  const double grid = std::round((std::log10(lambda_max(rows)) - std::log10(lambda_min)) / 0.25) + 1.0;
+  return (gcv ? grid + brent_steps : 2.0 + toms748_steps) + most_active_set_steps + after;
 }
 
 double QuinticSmoother::rss_of(const std::vector<double>& c, const std::vector<double>& y) const {
@@ -249,6 +255,13 @@ QuinticSmoother::Fit QuinticSmoother::fit_nonnegative(double lambda, SmoothingWo
   const int release_steps = 2 * nf + 20;
   Fit f;
   for (int step = 0;; ++step) {
+    if (step == most_active_set_steps) {
+      std::ostringstream m;
+      m << "the non-negative fit did not settle in " << most_active_set_steps << " active-set steps (" << f.held_at_zero
+        << " of " << nf << " B-spline coefficients held at zero); the rows fall below zero in many places: check the "
+        << "table's zero rows, or smooth less";
+      throw NodeError("smoothing", m.str());
+    }
     ++work.iterations;
     f = solve(lambda, y_, held, false, work);
     bool added = false;

@@ -61,6 +61,16 @@ class QuinticSmoother {
   /// freedom exact (their recursion loses all digits from about 1e19 on a 1200-row table).
   static constexpr double lambda_min = 1e-8;
   double lambda_max() const;
+  static double lambda_max(double rows);
+
+  /// The most steps the active set of fit_nonnegative takes; one more is NodeError("smoothing")
+  /// (each step is a solve of O(rows): unbounded, the steps would make the fit quadratic in the rows).
+  static constexpr int most_active_set_steps = 64;
+  /// The most least-squares solves choosing lambda and fitting take on `rows` rows: gcv, the grid of
+  /// quarter decades over [lambda_min, lambda_max] and at most 100 steps of Brent's method;
+  /// resolution, the two ends and at most 200 steps of TOMS 748; then the active set, the final fit
+  /// with its dof and the noise estimate's. A bound for the work estimate (cam.table's forecast).
+  static double most_solves(bool gcv, double rows);
 
   /// x strictly increasing, at least 4 rows; y the lifts, y at the ends is held at zero whatever
   /// it is. Throws NodeError("file", ...) if fewer rows.

@@ -1,5 +1,7 @@
 #include "table_law.hpp"
 
+#include "table_cost.hpp"
+
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
@@ -530,6 +532,7 @@ CamLawDefinition table_law_definition() {
   };
   d.output_dependencies = {{"master_deviation_rms", {"master"}}, {"master_deviation_max", {"master"}}, {"master_deviation", {"master"}}};
   d.extra_work_counters = {"solves", "iterations"};
+  d.cost = table_cost;
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& out) -> std::shared_ptr<const CamLaw> {
     auto scale_of = [&](const char* name, const char* fallback, Dimension expected, const char* what) {
       const std::string text = params.has(name) ? params.text(name) : std::string(fallback);

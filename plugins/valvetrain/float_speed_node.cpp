@@ -27,6 +27,10 @@ namespace mechgraph::valvetrain {
 namespace {
 
 constexpr double rpm = 2.0 * std::numbers::pi / 60.0;  // rad/s per rpm
+// The forecast's figures (checked by tests/core/work_estimate_calibration_test.cpp).
+constexpr double items_per_revolution = 1000.0;
+constexpr double items_per_law_piece = 20.0;
+constexpr double bytes_per_item = 64.0;  // the dense output of one simulation, kept until it is read
 
 class FloatSpeedType final : public NodeType {
  public:
@@ -80,6 +84,30 @@ class FloatSpeedType final : public NodeType {
     info_.work_counters = {"simulations", "steps", "rhs_evaluations", "refined_intervals", "implicit_simulations"};
   }
   const NodeInfo& info() const override { return info_; }
+
+  // Each simulation runs `revolutions` revolutions: the scan's speeds, then about two more per
+  // halving of the range down to speed_tolerance (the bisection and the intervals split where the
+  // margin could reach zero). A revolution costs some 1000 work items at tolerance 1e-8 (measured:
+  // 340 steps of 7 right-hand sides, and the contact monitor), the steps growing as tolerance^(-1/5)
+  // (dopri5's order), and a step at least per piece of the valve's law.
+  std::optional<WorkForecast> forecast(const ParamSet& p, const InputSizes& sizes) const override {
+    const double scan = static_cast<double>(p.integer("scan_points"));
+    const double revolutions = static_cast<double>(p.integer("revolutions"));
+    const double range = std::max(p.number("rpm_max") - p.number("rpm_min"), 0.0);
+    const double halvings = std::max(1.0, std::log2(std::max(range / p.number("speed_tolerance"), 2.0)));
+    const double simulations = scan + 2.0 * halvings;
+    const auto pieces = sizes.find("valve");
+    const double per_revolution = items_per_revolution * std::pow(1e-8 / p.number("tolerance"), 0.2) +
+                                  items_per_law_piece * (pieces == sizes.end() ? 1.0 : pieces->second);
+    WorkForecast f;
+    f.items = simulations * revolutions * per_revolution;
+    f.memory = revolutions * per_revolution * bytes_per_item + scan * 64.0;
+    f.output_size = 1.0;
+    f.driver = "scan_points = " + std::to_string(static_cast<long>(scan)) + " (about " +
+               std::to_string(static_cast<long>(simulations)) + " simulations of " + std::to_string(static_cast<long>(revolutions)) +
+               " revolutions)";
+    return f;
+  }
 
   void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
     const auto motion = in.handle<ValveMotion>("valve");

@@ -33,14 +33,16 @@ def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
     else:
         raise TypeError("cases: expected a pandas DataFrame or a dict of arrays, got " + type(cases).__name__)
     names, units, columns = [], [], []
+    seen = set()  # a set, not the list: a frame may have hundreds of thousands of columns
     for header, values in items:
         name, unit = split_header(header)
-        if name in names:
+        if name in seen:
             from ._errors import SceneError
 
             raise SceneError(f"cases: column '{name}' appears twice")
         columns.append(_as_column(values))
         names.append(name)
+        seen.add(name)
         units.append(unit)
     return names, units, columns
 

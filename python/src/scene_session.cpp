@@ -7,6 +7,7 @@
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/work_estimate.hpp>
 
 #include <algorithm>
@@ -180,11 +181,11 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
   WorkBudget budget;
   budget.max_work = sweep_default_max_work;
-  check_work_budget(graph, estimate_work(graph), budget, static_cast<double>(std::max<std::size_t>(table.cases.size(), 1)), false);
-
   SweepOptions options;
   for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
   options.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  // Every case with its own values, as `mechgraph sweep` estimates them (sweep/case_estimate.hpp).
+  check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
   options.stop = stop;
 
   // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.

@@ -80,3 +80,26 @@ def test_no_cases_give_an_empty_frame_and_nan_is_refused(scenes):
         scene.sweep({"rpm [rpm]": [5000.0, float("nan")]}, outputs=["v_kurz.max_acceleration"])
     with pytest.raises(mechgraph.SceneError):
         scene.sweep({"lift": [0.008, float("inf")]}, outputs=["v_kurz.max_acceleration"])
+
+
+def test_a_wide_frame_is_checked_for_repeated_columns_in_linear_time(scenes):
+    # 300000 columns took about 110 s when each name was compared with every earlier one.
+    import time
+
+    from mechgraph._cases import case_columns
+
+    columns = {f"c{i}": [1.0] for i in range(300000)}
+    start = time.monotonic()
+    names, _, _ = case_columns(columns)
+    assert len(names) == 300000 and time.monotonic() - start < 10
+    columns["c299999 [mm]"] = [1.0]
+    with pytest.raises(mechgraph.SceneError, match="appears twice"):
+        case_columns(columns)
+
+
+def test_each_case_is_estimated_with_its_own_values(scenes):
+    # The scene's 361 points would pass; the cases' own 10^6 points each, 200 cases at once, hold
+    # more than the 4 GiB of memory of the budget.
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    with pytest.raises(mechgraph.SceneError, match="curve_points = 1000000"):
+        scene.sweep({"kurz.curve_points": [1e6] * 200}, outputs=["v_kurz.max_acceleration"], threads=200)

@@ -17,6 +17,7 @@ namespace mechgraph {
 DomainObject::~DomainObject() = default;
 EvalContext::~EvalContext() = default;
 NodeType::~NodeType() = default;
+std::optional<WorkForecast> NodeType::forecast(const ParamSet&, const InputSizes&) const { return std::nullopt; }
 CamLaw::~CamLaw() = default;
 Fit::~Fit() = default;
 Follower::~Follower() = default;

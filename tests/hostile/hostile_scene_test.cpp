@@ -266,9 +266,12 @@ TEST_CASE("hostile: which nodes are evaluated and which reused does not depend o
 TEST_CASE("hostile: a sweep's work is estimated over all its cases before the first runs", "[hostile]") {
   Scratch s("sweep_budget");
   const std::string scene = source_file("scenes/tolerance_stack.yaml");
-  const Outcome o = run_mechgraph({"sweep", scene, "--sample", "gap.samples=1000:2000", "--n", "1000", "--max-work", "1e5",
+  // Each case with its own value (issue 28): 11 cases of 100000 .. 200000 samples. (A case whose value
+  // the parameter refuses, a sampled 1234.5 samples, fails before any work and costs nothing.)
+  const Outcome o = run_mechgraph({"sweep", scene, "--vary", "gap.samples=100000:200000:11", "--max-work", "1e5",
                                    "--out", (s.dir / "rows.csv").string()});
   CHECK(o.exit_code == 2);
-  CHECK_THAT(o.err, Contains("over 1000 cases, more than the budget of 100000"));
+  CHECK_THAT(o.err, Contains("over 11 cases, more than the budget of 100000"));
+  CHECK_THAT(o.err, Contains("gap.samples = 200000"));
   CHECK_FALSE(std::filesystem::exists(s.dir / "rows.csv"));
 }

@@ -1,17 +1,26 @@
 #pragma once
 // What a scene asks of the machine, estimated from its parameters before anything runs, and the
-// budget it must keep: a scene from a stranger cannot start an hour of work or a gigabyte of files
-// unless the user says so (--max-work, --max-output).
+// budget it must keep: a scene from a stranger cannot start an hour of work, take gigabytes of
+// memory or write a gigabyte of files unless the user says so (--max-work, --max-memory,
+// --max-output).
 //
-// The estimate reads the conventions of the SDK (docs/writing-plugins.md, "Counts of work"): an
-// integer parameter whose name ends in `points`, `samples` or `bins` counts work items of its node
-// (points of a curve, samples of a search or a Monte Carlo run, bins of a histogram) and
-// `revolutions` multiplies them; every record of a record list and every number of a number list
-// counts as work items too. A node's curves are written with a row per point. It is an order of
-// magnitude, not a prediction of seconds: its use is to refuse what is absurd, naming the term
-// that makes it so.
+// Each needed node, in dependency order, is estimated by its type's NodeType::forecast when the
+// type gives one (its work items, peak memory and the size of what it outputs, from its parameters
+// and the sizes of its inputs: a cam.table's law has a piece per row of its file, and every search
+// downstream resolves them all). A type that gives none is counted by the conventions of the SDK
+// (docs/writing-plugins.md, "Counts of work"): an integer parameter whose name ends in `points`,
+// `samples` or `bins` counts work items of its node, `revolutions` multiplies them, every record of
+// a record list and every number of a number list counts as work items, and every piece of an
+// input beyond the first costs inputs_items_per_piece items (a certified search resolves it); its
+// memory is memory_per_item bytes a work item (a count of points: memory_per_row a point, at least)
+// and its output is as large as its largest input. A
+// node's curves are written with a row per point. The estimate is an upper bound of the order of
+// magnitude, not a prediction of seconds: its use is to refuse what is absurd, naming the term that
+// makes it so. tests/core/work_estimate_calibration_test.cpp holds every built-in node type to
+// measured cost within a stated factor.
 #include <mechgraph/graph.hpp>
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -22,26 +31,50 @@ struct WorkEstimate {
     std::string what;    // "k.curve_points = 1000000"
     double work = 0;     // work items it brings to one evaluation of the scene
     double bytes = 0;    // bytes of result files it brings when curves are written
+    double memory = 0;   // bytes it holds at its peak
   };
   double work = 0;       // work items of one evaluation of every needed node
-  double bytes = 0;      // bytes of the requested curves as CSV
+  double bytes = 0;      // bytes of the requested curves as CSV (or JSON)
+  double memory = 0;     // bytes held by one evaluation: every needed node's peak, added up
   std::vector<Term> terms;
 };
 
 /// A sweep's default work budget, for all its cases together.
 inline constexpr double sweep_default_max_work = 1e12;
+/// Conventions for a node type without a forecast (see above).
+inline constexpr double inputs_items_per_piece = 200.0;
+inline constexpr double memory_per_item = 16.0;
+inline constexpr double memory_per_row = 128.0;  // a curve's row: up to 16 channels of 8 bytes
+inline constexpr double memory_per_input_piece = 4096.0;
 
 struct WorkBudget {
-  double max_work = 1e9;            // work items of one evaluation of the scene (a sweep: sweep_default_max_work)
-  double max_bytes = 256.0 * (1 << 20);  // bytes of result files
+  double max_work = 1e9;                        // work items of one evaluation (a sweep: sweep_default_max_work, all cases)
+  double max_bytes = 256.0 * (1 << 20);         // bytes of result files or of curves on standard output
+  double max_memory = 4.0 * (1 << 30);          // bytes held by one evaluation (a sweep: by its threads together)
 };
+
+/// One node's estimate: its terms (work, memory, bytes) and the size of what it outputs.
+struct NodeEstimate {
+  double work = 0, bytes = 0, memory = 0;
+  double output_size = 1;
+  std::vector<WorkEstimate::Term> terms;  // filled only when asked for (messages); the totals always
+};
+
+/// Node `index` of `graph`; `output_sizes[i]` is what node i outputs (1 where not estimated yet).
+/// `writes` says whether its series or table outputs are written (requested).
+NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vector<double>& output_sizes, bool writes,
+                           bool with_terms);
+
+/// Whether each node has a requested series or table output (whose rows are written).
+std::vector<char> writing_nodes(const Graph& graph);
 
 WorkEstimate estimate_work(const Graph& graph);
 
-/// Throws SceneError when `cases` evaluations of the scene exceed the budget's work, or the files
-/// written (when `writes_curves`) exceed its bytes: the message gives the estimate, the budget,
-/// the biggest term and the option that raises the budget.
+/// Throws SceneError when `cases` evaluations of the scene exceed the budget's work, the files
+/// written (when `writes_curves`) exceed its bytes, or `concurrent` evaluations at once exceed its
+/// memory: the message gives the estimate, the budget, the biggest term and the option that raises
+/// the budget. `where`, when given, says which case the estimate is of ("case 17 of cases.csv").
 void check_work_budget(const Graph& graph, const WorkEstimate& estimate, const WorkBudget& budget, double cases,
-                       bool writes_curves);
+                       bool writes_curves, double concurrent = 1, const std::string& where = {});
 
 }  // namespace mechgraph

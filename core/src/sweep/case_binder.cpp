@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <unordered_set>
 
 namespace mechgraph {
 namespace {
@@ -35,10 +37,11 @@ std::string unknown_variable(const Graph& graph, const std::string& name) {
 CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRegistry& registry,
                        std::vector<Override> overrides, std::vector<SweepVariable> variables)
     : scene_(scene), registry_(registry), overrides_(std::move(overrides)), variables_(std::move(variables)) {
+  std::unordered_set<std::string_view> varied;  // linear in the variables, however many
+  varied.reserve(variables_.size());
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const std::string& name = variables_[v].name;
-    for (std::size_t w = 0; w < v; ++w)
-      if (variables_[w].name == name) throw SceneError("sweep: '" + name + "' is varied twice");
+    if (!varied.insert(name).second) throw SceneError("sweep: '" + name + "' is varied twice");
     std::vector<Target> targets;
     bool nested = false;
     if (const auto dot = name.find('.'); dot == std::string::npos) {

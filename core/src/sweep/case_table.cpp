@@ -20,6 +20,7 @@
 #include <cstring>
 #include <numeric>
 #include <sstream>
+#include <unordered_set>
 
 namespace mechgraph {
 namespace {
@@ -305,11 +306,15 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
     }
     if (!header) {
       header = true;
+      // A header may hold hundreds of thousands of columns: each name is looked up in a hash set
+      // (linear in the header), never compared with every other name.
+      std::unordered_set<std::string> names;
+      names.reserve(fields.size());
       for (const std::string& f : fields) {
         auto [name, unit] = split_header(f);
         if (name.empty()) throw SceneError(where + ":" + std::to_string(number) + ":1: a column without a name");
-        for (const SweepVariable& v : table.variables)
-          if (v.name == name) throw SceneError(where + ":" + std::to_string(number) + ":1: column '" + excerpt(name) + "' appears twice");
+        if (!names.insert(name).second)
+          throw SceneError(where + ":" + std::to_string(number) + ":1: column '" + excerpt(name) + "' appears twice");
         table.variables.push_back({name, unit});
         header_units.push_back(unit);
       }

@@ -12,4 +12,5 @@
 //    ParamSpec::example_value; out-of-line destructors (key functions) for every shared interface.
 // 7: CamLaw::monotone_breaks and CamLaw::lift_integrals (closed-form queries).
 // 8: the Follower domain interface (mechgraph/domain/follower.hpp); cam.contour takes a follower.
-#define MECHGRAPH_PLUGIN_ABI_VERSION 8
+// 9: NodeType::forecast (a node's work, memory and output size said before it runs).
+#define MECHGRAPH_PLUGIN_ABI_VERSION 9

@@ -184,6 +184,28 @@ class MECHGRAPH_INTERFACE EvalContext {
   virtual bool wanted(std::string_view output) const = 0;
 };
 
+/// What one evaluation will cost, said from the parameters before anything runs, so the host can
+/// refuse a scene beyond the user's budget (docs/writing-plugins.md, "Counts of work"). A work item
+/// is about the cost of evaluating a cam law at one angle (0.1 to 1 us; the calibration test,
+/// tests/core/work_estimate_calibration_test.cpp, holds every built-in type to it within a stated
+/// factor). An upper bound is better than a guess: a scene refused is told why, a scene admitted
+/// that runs for an hour is not.
+struct WorkForecast {
+  double items = 0.0;        // work items of one evaluation
+  double memory = 0.0;       // bytes held at the peak of one evaluation (outputs included)
+  /// How large what it outputs is for the nodes downstream: for a domain object the smooth pieces
+  /// a search over it resolves (a law's pieces), for a curve its points. 1 for a small value.
+  double output_size = 1.0;
+  /// The parameter that makes it this large, and how, for a refusal: "file (about 80000 rows,
+  /// smoothing gcv)", "curve_points = 300000". The host puts the node's name and a dot before it.
+  std::string driver;
+};
+
+/// The size of the values an evaluation will receive, as the host knows it before anything runs:
+/// per input port the largest `WorkForecast::output_size` of the nodes connected to it (1 when the
+/// producer does not say). A port with nothing connected is absent.
+using InputSizes = std::map<std::string, double, std::less<>>;
+
 /// A node type. Implementations are `final`, stateless and const.
 class MECHGRAPH_INTERFACE NodeType {
  public:
@@ -191,6 +213,11 @@ class MECHGRAPH_INTERFACE NodeType {
   virtual const NodeInfo& info() const = 0;
   virtual void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs,
                         EvalContext& context) const = 0;
+  /// The cost of one evaluation with `params` (ranges checked, defaults filled) on inputs of
+  /// `sizes`. Cheap: no evaluation, at most a look at a file's size; never throws (a parameter it
+  /// cannot judge is evaluate()'s to refuse). The default, std::nullopt, lets the host count by the
+  /// naming conventions of "Counts of work" (points, samples, bins, revolutions, list lengths).
+  virtual std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const;
 };
 
 using NodeTypeList = std::vector<std::shared_ptr<const NodeType>>;

@@ -25,8 +25,10 @@ class CaseBinder {
   void apply(Graph& graph, const std::vector<CaseValue>& values) const;
 
   /// Where one graph keeps each varied parameter's value, found once (a sweep's worker binds its
-  /// copy of the graph, then writes every case without a lookup by name). Only for a binder that
-  /// does not rebuild(); valid while that graph lives and is not rebuilt.
+  /// copy of the graph, then writes every case without a lookup by name). Valid while that graph
+  /// lives and is not rebuilt. For a binder that rebuilds(), apply() through slots writes the plain
+  /// parameters only, not the values inside lists and records: enough for the work estimate
+  /// (sweep/case_estimate.hpp), not for a run.
   struct Slots {
     std::vector<std::vector<ParamValue*>> of_variable;  // per variable, per target
   };

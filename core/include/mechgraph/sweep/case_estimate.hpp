@@ -1,0 +1,31 @@
+#pragma once
+// The work of a sweep, case by case, before the first case runs: each case's values are written
+// into a copy of the graph (as the sweep will write them) and the nodes they reach, and everything
+// downstream of them, are estimated again (work_estimate.hpp); the rest is estimated once. So a
+// value from a cases file, a grid or a sample counts as it would from --set: a cases file cannot
+// admit 10^7 rows of a million curve points each because the scene's own value is small.
+#include <mechgraph/sweep/case_binder.hpp>
+#include <mechgraph/work_estimate.hpp>
+
+#include <cstddef>
+#include <vector>
+
+namespace mechgraph {
+
+struct SweepEstimate {
+  WorkEstimate total;        // work: all the cases added up; terms: those of the largest case
+  double largest_memory = 0;  // the most memory one case holds
+  std::size_t largest_case = 0;
+};
+
+/// Estimates each case of `cases` (indices into `table`). A case whose values the binder refuses
+/// costs nothing (it fails before any work). Linear in the cases times the nodes they reach.
+SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
+                             const std::vector<std::size_t>& cases);
+
+/// estimate_cases checked against `budget`: work over all cases, memory of the largest case times
+/// `threads` (at most the number of cases) running at once. Throws SceneError naming the case.
+void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
+                        const std::vector<std::size_t>& cases, const WorkBudget& budget, unsigned threads);
+
+}  // namespace mechgraph
