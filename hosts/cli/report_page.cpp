@@ -906,16 +906,125 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
   return figures;
 }
 
-void html_table(std::ostream& html, const std::vector<std::vector<std::string>>& rows, const std::string& csv) {
-  html << "<div class=\"scroll\"><table>\n<tr>";
-  for (const std::string& h : rows.front()) html << "<th>" << html_text(h) << "</th>";
+// Print. An A4 page less its 12 mm margins is 186 mm wide, 65.9 em of a table's 8 pt; a table
+// wider than that would be cut at the page's edge, so it is printed in parts instead: column
+// groups that each repeat the table's key columns (a report row's label and unit, an events
+// table's checking lift or cam angle). The screen keeps the whole table and scrolls sideways.
+constexpr double printed_width_em = 65.9;
+
+// The width in em of the table's 8 pt that a column needs in print, estimated from its text with
+// a little to spare (chromium's sans-serif is Liberation Sans, Arial's widths: digits 0.56 em;
+// DejaVu Sans, where it stands in, is wider). A header wraps between its words and keeps its unit
+// whole; numbers never wrap; a text cell (a row's label) wraps too, at most 24 letters wide.
+double print_width_em(const std::string& header, const std::string& unit, const std::vector<std::string>& cells,
+                      bool text_cells, double header_size) {
+  double widest = 0.0;
+  std::istringstream words(header);
+  for (std::string word; words >> word;) widest = std::max(widest, 0.62 * header_size * static_cast<double>(word.size()));
+  if (!unit.empty()) widest = std::max(widest, 0.55 * header_size * static_cast<double>(unit.size() + 2));
+  for (const std::string& cell : cells)
+    widest = std::max(widest, text_cells ? 0.6 * static_cast<double>(std::min<std::size_t>(cell.size(), 24))
+                                         : 0.64 * static_cast<double>(cell.size()));
+  return widest + 1.25;  // padding 6 px each side and the border
+}
+
+// The printed parts of a table: each the key columns [0, keys) and then the next columns that fit
+// the page. A part ends where the unit changes (cam degrees to crank degrees) when that keeps at
+// least half of what would fit, so a part holds one kind of column. One part: the table fits.
+std::vector<std::vector<std::size_t>> print_parts(const std::vector<double>& width_em, std::size_t keys,
+                                                  const std::vector<std::string>& unit) {
+  double key_width = 0.0;
+  for (std::size_t k = 0; k < keys && k < width_em.size(); ++k) key_width += width_em[k];
+  std::vector<std::vector<std::size_t>> parts;
+  std::size_t next = keys;
+  while (next < width_em.size()) {
+    std::vector<std::size_t> part;
+    double used = key_width;
+    // At least one column per part, whatever its width (the page cannot be wider).
+    while (next < width_em.size() && (part.empty() || used + width_em[next] <= printed_width_em)) {
+      used += width_em[next];
+      part.push_back(next++);
+    }
+    if (next < width_em.size()) {
+      std::size_t cut = part.size();
+      for (std::size_t j = part.size() - 1; j >= (part.size() + 1) / 2 && j > 0; --j)
+        if (unit[part[j]] != unit[part[j - 1]]) {
+          cut = j;
+          break;
+        }
+      next -= part.size() - cut;
+      part.resize(cut);
+    }
+    parts.push_back(std::move(part));
+  }
+  return parts;
+}
+
+// A table of the page: `header` cells as HTML, `body` cells as text; the first `keys` columns name
+// a row (text, left-aligned), the rest are numbers. A table too wide for the printed page is
+// shown whole on screen and printed in parts (print_parts), each with the key columns.
+struct PageTable {
+  std::string table_class;  // "" or "narrow" (headers of a name and a unit)
+  std::vector<std::string> header_html;
+  std::vector<std::string> header_text, header_unit;  // for the print width
+  std::vector<std::vector<std::string>> body;
+  std::size_t keys = 0;
+  bool text_keys = false;  // the key columns are text (a report row's label), not numbers
+};
+
+void write_html_table(std::ostream& html, const PageTable& t, const std::string& table_class, const std::vector<std::size_t>& columns,
+                      const std::string& caption) {
+  html << "<table" << (table_class.empty() ? std::string() : " class=\"" + table_class + "\"") << ">\n";
+  if (!caption.empty()) html << "<caption>" << html_text(caption) << "</caption>\n";
+  html << "<tr>";
+  for (std::size_t k : columns) html << "<th>" << t.header_html[k] << "</th>";
   html << "</tr>\n";
-  for (std::size_t r = 1; r < rows.size(); ++r) {
+  for (const std::vector<std::string>& row : t.body) {
     html << "<tr>";
-    for (std::size_t i = 0; i < rows[r].size(); ++i) html << (i < 2 ? "<td>" : "<td class=\"n\">") << html_text(rows[r][i]) << "</td>";
+    for (std::size_t k : columns) html << (k < t.keys && t.text_keys ? "<td>" : "<td class=\"n\">") << html_text(row[k]) << "</td>";
     html << "</tr>\n";
   }
-  html << "</table></div>\n<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
+  html << "</table>";
+}
+
+void write_page_table(std::ostream& html, const PageTable& t) {
+  const bool narrow = t.table_class == "narrow";
+  std::vector<double> width(t.header_html.size());
+  for (std::size_t k = 0; k < width.size(); ++k) {
+    std::vector<std::string> cells;
+    for (const auto& row : t.body) cells.push_back(row[k]);
+    width[k] = print_width_em(t.header_text[k], t.header_unit[k], cells, k < t.keys && t.text_keys, narrow ? 0.85 : 1.0);
+  }
+  const std::vector<std::vector<std::size_t>> parts = print_parts(width, t.keys, t.header_unit);
+  std::vector<std::size_t> all(t.header_html.size());
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = k;
+  html << (parts.size() > 1 ? "<div class=\"scroll screen\">" : "<div class=\"scroll\">");
+  write_html_table(html, t, t.table_class, all, "");
+  html << "</div>\n";
+  if (parts.size() < 2) return;
+  html << "<div class=\"print\">\n";
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    std::vector<std::size_t> columns(all.begin(), all.begin() + static_cast<long>(t.keys));
+    columns.insert(columns.end(), parts[p].begin(), parts[p].end());
+    write_html_table(html, t, t.table_class.empty() ? "part" : t.table_class + " part", columns,
+                     "part " + std::to_string(p + 1) + " of " + std::to_string(parts.size()));
+    html << "\n";
+  }
+  html << "</div>\n";
+}
+
+void html_table(std::ostream& html, const std::vector<std::vector<std::string>>& rows, const std::string& csv) {
+  PageTable t;
+  t.keys = 2;  // the row's label and unit
+  t.text_keys = true;
+  for (const std::string& h : rows.front()) {
+    t.header_html.push_back(html_text(h));
+    t.header_text.push_back(h);
+    t.header_unit.emplace_back();
+  }
+  t.body.assign(rows.begin() + 1, rows.end());
+  write_page_table(html, t);
+  html << "<p class=\"csv\">data: " << html_text(csv) << "</p>\n";
 }
 
 }  // namespace
@@ -931,8 +1040,12 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
           "th{background:#eef;font-weight:600;vertical-align:bottom}td.n{text-align:right;font-variant-numeric:tabular-nums}\n"
           "table.narrow th{font-size:85%;max-width:7em}.u{font-weight:normal;color:#555;white-space:nowrap}.scroll{max-width:100%;overflow-x:auto}\n"
           ".csv{color:#666;font-size:90%}figure{margin:1em 0;break-inside:avoid}svg{max-width:100%;height:auto}\n"
+          // Print: A4, tables at 8 pt; a table too wide for the page is printed in parts (.print) instead
+          // of whole (.screen), see print_parts.
+          ".print{display:none}caption{text-align:left;font-size:85%;color:#555}\n"
           "@page{size:A4;margin:12mm}@media print{body{margin:0;max-width:none;font-size:10pt}h2{break-after:avoid}"
-          "table{font-size:8pt}}\n</style></head><body>\n"
+          "table{font-size:8pt;break-inside:avoid}.screen{display:none}.print{display:block}.scroll{overflow:visible}}\n"
+          "</style></head><body>\n"
        << "<h1>" << html_text(graph.title.empty() ? inputs.scene_file : graph.title) << "</h1>\n";
   html << "<p>mechgraph " << MECHGRAPH_VERSION << ", scene <code>" << html_text(inputs.scene_file) << "</code> (SHA-1 "
        << file_sha1(inputs.scene_file) << ")";
@@ -965,23 +1078,28 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
   }
   for (const OutputValue* o : small) {
     const std::string csv = file_safe(o->label) + ".csv";
-    write_table_csv(dir / csv, o->value.as_table(), graph.display_units);
     const Table& t = o->value.as_table();
-    std::vector<std::vector<std::string>> rows(1);
+    PageTable page_table;
+    page_table.table_class = "narrow";
+    page_table.keys = 1;  // the axis: a checking lift, a cam angle
     std::vector<const Table::Column*> cols{&t.axis};
     for (const Table::Column& c : t.channels) cols.push_back(&c);
     // Angles in degrees and lengths in millimetres unless the scene says otherwise; a table with
     // crank angles (crank_*, *_atdc) says of each angle column which angle it is.
     bool crank_columns = false;
     for (const Table::Column* c : cols) crank_columns = crank_columns || c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
-    std::vector<std::string> unit, header_unit;
+    std::vector<std::string> unit;
     for (const Table::Column* c : cols) {
       unit.push_back(display_unit(c->dimension, c->display_unit, graph.display_units));
       const bool crank = c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
-      header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(),
-                                       crank_columns && c->dimension == dim::angle ? (crank ? "crank" : "cam") : ""));
-      rows[0].push_back(spoken(c->name));
+      page_table.header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(),
+                                                  crank_columns && c->dimension == dim::angle ? (crank ? "crank" : "cam") : ""));
+      page_table.header_text.push_back(spoken(c->name));
+      page_table.header_html.push_back(html_text(page_table.header_text.back()) + "<br><span class=\"u\">[" +
+                                       html_text(page_table.header_unit.back()) + "]</span>");
     }
+    // The CSV beside the table is in the units the table shows.
+    write_table_csv(dir / csv, t, unit);
     for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
       std::vector<std::string> row;
       for (std::size_t k = 0; k < cols.size(); ++k) {
@@ -990,23 +1108,15 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
         std::snprintf(buffer, sizeof buffer, "%.6g", v);
         row.push_back(buffer);
       }
-      rows.push_back(std::move(row));
+      page_table.body.push_back(std::move(row));
     }
-    html << "<h2>" << html_text(o->label) << "</h2>\n<div class=\"scroll\"><table class=\"narrow\">\n<tr>";
-    for (std::size_t k = 0; k < rows[0].size(); ++k)
-      html << "<th>" << html_text(rows[0][k]) << "<br><span class=\"u\">[" << html_text(header_unit[k]) << "]</span></th>";
-    html << "</tr>\n";
-    for (std::size_t r = 1; r < rows.size(); ++r) {
-      html << "<tr>";
-      for (const std::string& c : rows[r]) html << "<td class=\"n\">" << c << "</td>";
-      html << "</tr>\n";
-    }
+    html << "<h2>" << html_text(o->label) << "</h2>\n";
+    write_page_table(html, page_table);
     // What the table is, in its port's own words (an events table's codes are explained there).
     std::string doc;
     for (const RequestedOutput& r : graph.outputs)
       if (r.label == o->label && r.spec) doc = r.spec->doc;
-    html << "</table></div>\n<p class=\"csv\">" << (doc.empty() ? "" : html_text(doc) + "; ") << "data: " << html_text(csv)
-         << "</p>\n";
+    html << "<p class=\"csv\">" << (doc.empty() ? "" : html_text(doc) + "; ") << "data: " << html_text(csv) << "</p>\n";
   }
   // How the results were made.
   bool first = true;

@@ -16,11 +16,13 @@
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
+#include <stdexcept>
 
 namespace mechgraph::cli {
 
 // The text of a table's and a series' CSV (below), written whole by write_table_csv / write_csv.
 void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units);
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& column_units);
 void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units);
 
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
@@ -259,19 +261,28 @@ void print_series(std::ostream& os, const OutputValue& o) {
 }
 
 // One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
-// units (SI where the scene names none).
+// units (SI where the scene names none), or in the units the caller gives per column.
 void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units) {
   write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units); });
 }
 
+void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, column_units); });
+}
+
 void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units) {
+  std::vector<std::string> unit{units.unit_for(t.axis.dimension)};
+  for (const Table::Column& c : t.channels) unit.push_back(units.unit_for(c.dimension));
+  write_table_rows(out, t, unit);
+}
+
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& unit) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
-  std::vector<std::string> unit(columns.size());
-  for (std::size_t k = 0; k < columns.size(); ++k) {
-    unit[k] = units.unit_for(columns[k]->dimension);
+  if (unit.size() != columns.size())
+    throw std::logic_error("write_table_rows: " + std::to_string(unit.size()) + " units for " + std::to_string(columns.size()) + " columns");
+  for (std::size_t k = 0; k < columns.size(); ++k)
     out << (k ? "," : "") << csv_field(columns[k]->name + " [" + (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) + "]");
-  }
   out << "\n" << std::setprecision(17);
   for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
     for (std::size_t k = 0; k < columns.size(); ++k) {

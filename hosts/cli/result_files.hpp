@@ -46,6 +46,9 @@ void print_series(std::ostream& os, const OutputValue& o);
 
 /// One CSV per table / series output; header `name [unit]` in the scene's display units.
 void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units);
+/// The same with each column's unit given: `column_units` holds the axis's and then each channel's
+/// ("" keeps SI). A report writes its tables' CSVs in the units its page shows (deg, mm ...).
+void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units);
 void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units);
 
 /// Every file of `run --out` into `dir`: results.json, a CSV per series/table output, a DXF per
