@@ -423,7 +423,7 @@ TEST_CASE("backlash.two_axis: the condition number of a huge or tiny Jacobian is
   CHECK_THROWS_WITH(type->evaluate(tiny, in, out2, ctx), Contains("too small to invert"));
 }
 
-TEST_CASE("joint.cardan: input_angle is declared within one turn either way", "[hostile][nonsense][joints]") {
+TEST_CASE("joint.cardan: input_angle takes any number of turns a double resolves", "[hostile][nonsense][joints]") {
   const std::string scene =
       "nodes: { c: { type: joint.cardan, params: { input_angle: ANGLE, bend_angle: 20 deg } } }\noutputs: [c.speed_ratio]\n";
   auto with = [&](const std::string& angle) {
@@ -432,9 +432,14 @@ TEST_CASE("joint.cardan: input_angle is declared within one turn either way", "[
     return run_yaml(s, project_registry());
   };
   CHECK_THROWS_WITH(with("1e300 deg"), Contains("input_angle"));
-  CHECK_THROWS_WITH(with("-361 deg"), Contains("input_angle"));
-  // At 360 deg the speed ratio is the one at 0: 1/cos b.
-  CHECK_THAT(scalar_output(with("360 deg"), "c.speed_ratio"), WithinRel(1.0 / std::cos(20.0 * std::numbers::pi / 180.0), 1e-12));
+  CHECK_THROWS_WITH(with("-3e18 deg"), Contains("input_angle"));
+  // At 360 deg the speed ratio is the one at 0: 1/cos b; beyond a turn (a shaft turns more than
+  // once) the kinematics repeat: 405 deg is 45 deg, -361 deg is -1 deg.
+  const double b = 20.0 * std::numbers::pi / 180.0;
+  CHECK_THAT(scalar_output(with("360 deg"), "c.speed_ratio"), WithinRel(1.0 / std::cos(b), 1e-12));
+  CHECK_THAT(scalar_output(with("405 deg"), "c.speed_ratio"), WithinRel(scalar_output(with("45 deg"), "c.speed_ratio"), 1e-12));
+  CHECK_THAT(scalar_output(with("-361 deg"), "c.speed_ratio"), WithinRel(scalar_output(with("-1 deg"), "c.speed_ratio"), 1e-12));
+  CHECK(std::isfinite(scalar_output(with("2e18 deg"), "c.speed_ratio")));
 }
 
 TEST_CASE("a value that overflows in the scene's display unit is a named error, not 'inf nm'", "[hostile][nonsense][cli]") {
