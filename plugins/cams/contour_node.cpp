@@ -399,15 +399,26 @@ class ContourNodeType final : public NodeType {
         return false;
       }
     };
-    std::optional<double> smallest;
-    double low = r0, high = r0 * 1.5;
-    while (high < 1000.0 * r0 && !works(high)) low = high, high *= 1.5;
-    if (high < 1000.0 * r0) {
-      while (high - low > 1e-6) {
-        const double mid = 0.5 * (low + high);
-        (works(mid) ? high : low) = mid;
+    // The base radii that work: a scan up from r0 by factors of 1.1 to 1000 r0 finds the first; its
+    // lower end is bisected to 0.001 mm against the last that did not. The scan goes on: a pivoted
+    // flat follower works only in a window (its pad turns too far on a large cam), whose upper end
+    // is bisected too. (A window narrower than 10 % between two scan points can be missed.)
+    const auto bisect = [&](double bad, double good) {
+      while (std::abs(good - bad) > 1e-6) {
+        const double mid = 0.5 * (bad + good);
+        (works(mid) ? good : bad) = mid;
       }
-      smallest = high;
+      return good;
+    };
+    std::optional<double> smallest, largest;
+    double previous = r0;
+    for (double r = r0 * 1.1; r < 1000.0 * r0; previous = r, r *= 1.1) {
+      if (!smallest) {
+        if (works(r)) smallest = bisect(previous, r);
+      } else if (!works(r)) {
+        largest = bisect(r, previous);
+        break;
+      }
     }
     std::ostringstream m;
     const FollowerContact g = f.contact(worst.x, law.at(worst.x), r0, clockwise);
@@ -417,9 +428,18 @@ class ContourNodeType final : public NodeType {
       m << " (the pitch curve's radius there is not above the roller's: undercut)";
     else
       m << " (undercut)";
-    if (smallest)
-      m << "; with this lift the cam's base_radius must be at least " << mm(*smallest) << " for this follower (it is "
-        << mm(r0) << ")";
+    if (smallest) {
+      // The limit is on the edge (and printed to 4 digits may fall below it): suggested with 1 %
+      // more, rounded up to 0.1 mm, or the window's middle when the window is narrower than that.
+      double suggested = std::ceil(*smallest * 1.01 * 1e4) / 1e4;
+      if (largest && !(suggested < *largest)) suggested = 0.5 * (*smallest + *largest);
+      if (largest)
+        m << "; with this lift only base radii from " << mm(*smallest) << " to " << mm(*largest)
+          << " work for this follower (it is " << mm(r0) << "); take e.g. " << mm(suggested);
+      else
+        m << "; with this lift the cam's base_radius must be at least " << mm(*smallest) << " for this follower (it is "
+          << mm(r0) << "); take e.g. " << mm(suggested) << " (1 % above the limit, rounded up to 0.1 mm)";
+    }
     m << (f.roller_radius() > 0.0 ? "; or use a smaller roller, or soften the law" : "; or soften the law");
     throw NodeError(f.roller_radius() > 0.0 ? "roller_radius" : "follower", m.str());
   }
