@@ -467,26 +467,33 @@ class ContourNodeType final : public NodeType {
         return false;
       }
     };
-    // The base radii that work: a scan up from r0 by factors of 1.1 to 1000 r0 finds the first; its
-    // lower end is bisected to 0.001 mm against the last that did not. The scan goes on: a pivoted
-    // flat follower works only in a window (its pad turns too far on a large cam), whose upper end
-    // is bisected too. (A window narrower than 10 % between two scan points can be missed.)
+    // The base radii that work: a scan up from r0 by factors of 1.25 to 1000 r0 finds the first; its
+    // lower end is bisected to 0.001 mm against the last that did not. For a pivoted follower the
+    // scan goes on: a pivoted flat pad works only in a window (its pad turns too far on a large
+    // cam), whose upper end is bisected too. (A window narrower than 25 % between two scan points
+    // can be missed.) A translating follower's radius of curvature grows with r0: no window.
     const auto bisect = [&](double bad, double good) {
       while (std::abs(good - bad) > 1e-6) {
         const double mid = 0.5 * (bad + good);
+        if (mid == bad || mid == good) break;  // neighbouring doubles: as close as it gets
         (works(mid) ? good : bad) = mid;
       }
       return good;
     };
     std::optional<double> smallest, largest;
     double previous = r0;
-    for (double r = r0 * 1.1; r < 1000.0 * r0; previous = r, r *= 1.1) {
+    // 31 steps of 1.25 reach 1000 r0 (counted, not compared: a denormal r0 times 1.25 may round to itself).
+    for (int k = 1; k <= 31; ++k) {
+      const double r = r0 * std::pow(1.25, k);
+      if (!(r > previous)) continue;
       if (!smallest) {
         if (works(r)) smallest = bisect(previous, r);
+        if (smallest && !f.pivoted()) break;
       } else if (!works(r)) {
         largest = bisect(r, previous);
         break;
       }
+      previous = r;
     }
     std::ostringstream m;
     const FollowerContact g = f.contact(worst.x, law.at(worst.x), r0, clockwise);

@@ -186,6 +186,7 @@ std::optional<double> smallest_undercut_free_base_radius(
   }
   while (high - low > 1e-6) {
     const double mid = 0.5 * (low + high);
+    if (mid == low || mid == high) break;  // neighbouring doubles: as close as it gets
     (feasible(mid) ? high : low) = mid;
   }
   return high;
