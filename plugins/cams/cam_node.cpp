@@ -197,6 +197,35 @@ class CamNodeType final : public NodeType {
     return f;
   }
 
+  // The note of a contour its own follower would undercut: by how much, the base radius that
+  // removes it (the law rebuilt at other base radii, with a stated margin), and what cam.contour
+  // checks for the other followers.
+  std::string undercut_note(const CamLaw& law, double rho_min, const CamBasics& basics, const ParamSet& params,
+                            const RampSpec& ramp, int samples) const {
+    const double rr = law.roller_radius();
+    std::ostringstream m;
+    m.precision(4);
+    m << "undercut: under " << (rr > 0.0 ? "its roller" : "a flat-faced follower") << " this cam's contour would be "
+      << "undercut, its smallest radius of curvature " << rho_min * 1e3 << " mm (must be > 0)";
+    const auto law_at = [&](double r0) -> std::shared_ptr<const CamLaw> {
+      CamBasics b = basics;
+      b.base_radius = r0;
+      OutputSet scratch;
+      std::shared_ptr<const CamLaw> l = make_(b, params, scratch);
+      if (ramp.type != RampType::none) l = std::make_shared<const RampedLaw>(l, ramp);
+      return l;
+    };
+    if (const auto r_min = smallest_undercut_free_base_radius(law_at, law.base_radius(), samples)) {
+      // The limit itself is on the edge (printed to 4 digits it may fall below it): 1 % more, up to 0.1 mm.
+      const double suggested = std::ceil(*r_min * 1.01 * 1e4) / 1e4;
+      m << "; a base_radius of " << suggested * 1e3 << " mm removes it (the limit " << *r_min * 1e3
+        << " mm plus 1 %, rounded up to 0.1 mm)";
+    }
+    m << ". The cam is not refused here: cam.contour checks the cam with the follower that runs on it (flat, roller, "
+         "offset roller, pivoted flat or roller) and refuses an undercut pair";
+    return m.str();
+  }
+
   void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx) const override {
     const RampSpec ramp = read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
@@ -216,6 +245,9 @@ class CamNodeType final : public NodeType {
     // checked where cam and follower meet (cam.contour, docs/methods/followers.md).
     const CamSummary s = summarize(*law, samples, parts);
     ctx.report_work("evaluations", static_cast<double>(s.evaluations));
+    // The contour is not refused here, but an undercut does not pass unseen: summarize proves the
+    // contour convex or measures its smallest radius, so the note costs nothing unless it is due.
+    if (s.min_curvature_radius <= 0.0) out.note(undercut_note(*law, s.min_curvature_radius, basics, params, ramp, samples));
     out.set("law", Value::handle(law));
     out.set_scalar("max_lift", law->max_lift());
     if (s.peaks_known) {

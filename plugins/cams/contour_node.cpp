@@ -156,6 +156,22 @@ class ContourNodeType final : public NodeType {
             .optional()
             .at_least(1e-6)
             .at_most(10.0),
+        ParamSpec::number("pressure_angle_limit", dim::angle,
+                          "largest |pressure angle| the design accepts; a note when max_pressure_angle exceeds it. "
+                          "Default by follower: 30 deg translating, 35 deg pivoted (the common design rule, e.g. "
+                          "Norton, Cam Design and Manufacturing Handbook); a translating flat face has none. Up to 90 "
+                          "deg, where the follower would jam",
+                          "deg")
+            .optional()
+            .positive()
+            .below(0.5 * std::numbers::pi),
+        ParamSpec::number("contact_stress_limit", dim::stress,
+                          "largest Hertz contact pressure the materials accept; a note when max_contact_stress exceeds "
+                          "it. Default: 1.2 GPa under a flat face (sliding), 1.9 GPa under a roller (rolling), typical "
+                          "of hardened steel valve trains: set the value for your materials",
+                          "MPa")
+            .optional()
+            .positive(),
         ParamSpec::number("youngs_modulus", dim::stress, "cam material", "GPa").with_default(206e9).at_least(1e6).at_most(1e13),
         ParamSpec::number("poisson_ratio", dim::none, "cam material").with_default(0.3).at_least(0.0).below(0.5),
         ParamSpec::number("follower_youngs_modulus", dim::stress, "follower material (default the cam's)", "GPa")
@@ -182,6 +198,19 @@ class ContourNodeType final : public NodeType {
                          "translating flat face: a round face centred on the follower axis needs 2 max |h'| (add a margin)",
                          "mm"),
         PortSpec::scalar("max_follower_angle", dim::angle, "pivoted follower: the arm's largest turn", "deg"),
+        PortSpec::scalar("undercut_margin", dim::length,
+                         "how far the pair is from undercut, usable as a constraint: the least radius of curvature of "
+                         "the contour where the follower needs it convex (flat face: everywhere; roller: where the pitch "
+                         "curve is convex); > 0 (an undercut pair is refused)",
+                         "mm"),
+        PortSpec::scalar("min_convex_radius", dim::length,
+                         "least radius of curvature of the contour over its convex stretches (the base circle "
+                         "included, so at most the base radius)",
+                         "mm"),
+        PortSpec::scalar("max_concave_curvature", dim::length.pow(-1),
+                         "largest curvature 1/|rho| over the contour's concave stretches, 0 when it has none (the least "
+                         "concave radius is its reciprocal; a roller needs it below 1/roller_radius)",
+                         "1/mm"),
         PortSpec::scalar("max_contact_stress", dim::stress, "largest Hertz contact pressure p0 (with a load)", "MPa"),
         PortSpec::scalar("max_stress_angle", dim::angle, "cam angle of the largest contact pressure", "deg"),
     };
@@ -220,7 +249,11 @@ class ContourNodeType final : public NodeType {
     knots.insert(knots.begin(), -pi);
     knots.push_back(pi);
     const int samples = static_cast<int>(p.integer("samples"));
-    refuse_undercut(*law, f, clockwise, knots, samples, evaluations);
+    const double worst_follow = refuse_undercut(*law, f, clockwise, knots, samples, evaluations);
+    // As a length: a flat face's follow margin is -rho; a roller's 1/(rho + rr) - 1/rr, the least
+    // convex pitch radius rho + rr = 1/(margin + 1/rr), less the roller's radius.
+    const double rr_follower = f.roller_radius();
+    out.set_scalar("undercut_margin", rr_follower > 0.0 ? 1.0 / (worst_follow + 1.0 / rr_follower) - rr_follower : -worst_follow);
     const auto contact_at = [&](double phi, const LiftDerivatives& d) { return f.contact(phi, d, r0, clockwise); };
 
     ContactLoad load;
@@ -288,8 +321,9 @@ class ContourNodeType final : public NodeType {
           v[0] = g.pressure_angle;
           v[1] = load.given() ? stress(phi, g) : 0.0;
           v[2] = g.face_position;
+          v[3] = 1.0 / g.curvature_radius;  // smooth through an inflection, where the radius is not
         },
-        3, knots, samples);
+        4, knots, samples);
     const numerics::Extremum pa_max = pieces.maximum(0), pa_min = pieces.minimum(0);
     const numerics::Extremum v_max = pieces.maximum(2), v_min = pieces.minimum(2);
     const numerics::Extremum peaks[4] = {
@@ -297,8 +331,42 @@ class ContourNodeType final : public NodeType {
         load.given() ? pieces.maximum(1) : numerics::Extremum{},
         v_max,
         {v_min.x, -v_min.value}};
+    const double kappa_max = pieces.maximum(3).value, kappa_min = pieces.minimum(3).value;
     evaluations += pieces.work().evaluations;
+    out.set_scalar("min_convex_radius", kappa_max > 0.0 ? 1.0 / kappa_max : r0);
+    out.set_scalar("max_concave_curvature", kappa_min < 0.0 ? -kappa_min : 0.0);
     out.set_scalar("max_pressure_angle", peaks[0].value);
+    // The engineer's limits (or the defaults by follower type): a note when exceeded.
+    const bool translating_flat = !roller && !f.pivoted();
+    if (p.has("pressure_angle_limit") || !translating_flat) {
+      const double limit = p.has("pressure_angle_limit") ? p.number("pressure_angle_limit") : (f.pivoted() ? 35.0 : 30.0) * pi / 180.0;
+      if (peaks[0].value > limit) {
+        std::ostringstream m;
+        m << "pressure angle: " << peaks[0].value * 180.0 / pi << " deg at cam angle " << peaks[0].x * 180.0 / pi
+          << " deg exceeds " << (p.has("pressure_angle_limit") ? "pressure_angle_limit " : "the default limit for the ")
+          << (p.has("pressure_angle_limit") ? "" : f.named() + ", ") << limit * 180.0 / pi
+          << " deg: the follower is pushed sideways harder than the rule accepts (larger base radius, offset, or a "
+             "longer action angle lower it)";
+        out.note(m.str());
+      }
+    }
+    if (load.given()) {
+      const double limit = p.has("contact_stress_limit") ? p.number("contact_stress_limit") : roller ? 1.9e9 : 1.2e9;
+      if (peaks[1].value > limit) {
+        std::ostringstream m;
+        m << "contact stress: " << peaks[1].value * 1e-6 << " MPa at cam angle " << peaks[1].x * 180.0 / pi
+          << " deg exceeds " << (p.has("contact_stress_limit") ? "contact_stress_limit " : roller ? "the default for a roller, " : "the default for a flat face, ")
+          << limit * 1e-6 << " MPa";
+        out.note(m.str());
+      }
+      if (!in.count("forces")) {
+        std::ostringstream m;
+        m << "contact stress: from a constant load of " << p.number("load")
+          << " N assumed over the whole turn (an assumption, not the valve train's force: connect forces from "
+             "valvetrain.dynamics or spring_design for the load the cam carries)";
+        out.note(m.str());
+      }
+    }
     if (!roller) {
       out.set_scalar("min_face_width", peaks[2].value + peaks[3].value);
       if (!f.pivoted()) out.set_scalar("min_face_diameter", 2.0 * std::max(peaks[2].value, peaks[3].value));
@@ -406,11 +474,11 @@ class ContourNodeType final : public NodeType {
   // The refusal names the follower and the smallest base radius that works with this lift law
   // (grown by 1.5x, then bisected to 0.001 mm; a base radius the follower cannot sit on counts as
   // too small).
-  static void refuse_undercut(const CamLaw& law, const Follower& f, bool clockwise, const std::vector<double>& knots,
-                              int samples, long& evaluations) {
+  static double refuse_undercut(const CamLaw& law, const Follower& f, bool clockwise, const std::vector<double>& knots,
+                                int samples, long& evaluations) {
     const double r0 = law.base_radius();
     const numerics::Extremum worst = worst_margin(law, f, clockwise, r0, knots, samples, evaluations);
-    if (!(worst.value >= 0.0)) return;
+    if (!(worst.value >= 0.0)) return worst.value;
     const auto works = [&](double r) {
       try {
         return !(worst_margin(law, f, clockwise, r, knots, samples, evaluations).value >= 0.0);
@@ -418,15 +486,33 @@ class ContourNodeType final : public NodeType {
         return false;
       }
     };
-    std::optional<double> smallest;
-    double low = r0, high = r0 * 1.5;
-    while (high < 1000.0 * r0 && !works(high)) low = high, high *= 1.5;
-    if (high < 1000.0 * r0) {
-      while (high - low > 1e-6) {
-        const double mid = 0.5 * (low + high);
-        (works(mid) ? high : low) = mid;
+    // The base radii that work: a scan up from r0 by factors of 1.25 to 1000 r0 finds the first; its
+    // lower end is bisected to 0.001 mm against the last that did not. For a pivoted follower the
+    // scan goes on: a pivoted flat pad works only in a window (its pad turns too far on a large
+    // cam), whose upper end is bisected too. (A window narrower than 25 % between two scan points
+    // can be missed.) A translating follower's radius of curvature grows with r0: no window.
+    const auto bisect = [&](double bad, double good) {
+      while (std::abs(good - bad) > 1e-6) {
+        const double mid = 0.5 * (bad + good);
+        if (mid == bad || mid == good) break;  // neighbouring doubles: as close as it gets
+        (works(mid) ? good : bad) = mid;
       }
-      smallest = high;
+      return good;
+    };
+    std::optional<double> smallest, largest;
+    double previous = r0;
+    // 31 steps of 1.25 reach 1000 r0 (counted, not compared: a denormal r0 times 1.25 may round to itself).
+    for (int k = 1; k <= 31; ++k) {
+      const double r = r0 * std::pow(1.25, k);
+      if (!(r > previous)) continue;
+      if (!smallest) {
+        if (works(r)) smallest = bisect(previous, r);
+        if (smallest && !f.pivoted()) break;
+      } else if (!works(r)) {
+        largest = bisect(r, previous);
+        break;
+      }
+      previous = r;
     }
     std::ostringstream m;
     const FollowerContact g = f.contact(worst.x, law.at(worst.x), r0, clockwise);
@@ -436,9 +522,18 @@ class ContourNodeType final : public NodeType {
       m << " (the pitch curve's radius there is not above the roller's: undercut)";
     else
       m << " (undercut)";
-    if (smallest)
-      m << "; with this lift the cam's base_radius must be at least " << mm(*smallest) << " for this follower (it is "
-        << mm(r0) << ")";
+    if (smallest) {
+      // The limit is on the edge (and printed to 4 digits may fall below it): suggested with 1 %
+      // more, rounded up to 0.1 mm, or the window's middle when the window is narrower than that.
+      double suggested = std::ceil(*smallest * 1.01 * 1e4) / 1e4;
+      if (largest && !(suggested < *largest)) suggested = 0.5 * (*smallest + *largest);
+      if (largest)
+        m << "; with this lift only base radii from " << mm(*smallest) << " to " << mm(*largest)
+          << " work for this follower (it is " << mm(r0) << "); take e.g. " << mm(suggested);
+      else
+        m << "; with this lift the cam's base_radius must be at least " << mm(*smallest) << " for this follower (it is "
+          << mm(r0) << "); take e.g. " << mm(suggested) << " (1 % above the limit, rounded up to 0.1 mm)";
+    }
     m << (f.roller_radius() > 0.0 ? "; or use a smaller roller, or soften the law" : "; or soften the law");
     throw NodeError(f.roller_radius() > 0.0 ? "roller_radius" : "follower", m.str());
   }

@@ -5,6 +5,7 @@
 #include <iomanip>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 namespace mechgraph::cams {
@@ -41,57 +42,70 @@ double kurz_default_split(double phi_y, double phi_p) {
 std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double phi_y,
                                                   std::optional<double> rise_split) {
   const double phi_p = 0.5 * basics.action_angle;
-  // Both phases need a resolvable share of the half event: a phase of 1e-3 of it or less makes the
-  // law impulsive (not shockless any more) and its amplitudes overflow.
-  constexpr double min_share = 1e-3;
-  if (!(phi_y >= min_share * phi_p) || !(phi_y <= (1.0 - min_share) * phi_p)) {
+  // The limits are the mathematics' and a double's only: the phases must exist (0 < phi_y < phi_p,
+  // 0 < sigma < 1), each wave must hold an angle of its own (a double strictly inside it), and the
+  // amplitudes and jerks (A+ pi / (2 phi_1), A+ pi / (2 phi_2), 2 A- / phi_3) must stay finite.
+  // The searches read any piece from two ulps up (numerics::one_sided_point), so a wave of 0.22
+  // deg (rise_split 0.01 of 22 deg) or far narrower is computed as it is.
+  if (!(phi_y > 0.0) || !(phi_y < phi_p)) {
     std::ostringstream msg;
-    msg << "accel_angle = " << deg(phi_y) << " must lie between " << deg(min_share * phi_p) << " and "
-        << deg((1.0 - min_share) * phi_p) << " (0.1 % and 99.9 % of half the action angle, " << deg(phi_p)
-        << "): both the positive and the negative phase need room";
+    msg << "accel_angle = " << deg(phi_y) << " must lie strictly between 0 and half the action angle (" << deg(phi_p)
+        << "): the positive phase and the negative phase after it both need room";
     throw NodeError("accel_angle", msg.str());
   }
   const double sigma = rise_split ? *rise_split : kurz_default_split(phi_y, phi_p);
-  if (!(sigma > 0.0) || !(sigma < 1.0)) {
+  if (rise_split && (!(sigma > 0.0) || !(sigma < 1.0))) {
     std::ostringstream msg;
     msg << "rise_split = " << sigma
         << " must lie strictly between 0 and 1 (0 loses the quarter sine, so the acceleration would jump at "
            "the start of lift; 1 loses the quarter cosine, so it would jump at the end of the positive phase)";
     throw NodeError("rise_split", msg.str());
   }
-  const double phi_1 = sigma * phi_y;
-  const double phi_2 = phi_y - phi_1;
-  // Each quarter wave must be wide enough to be told apart from its ends: the host's searches see
-  // a piece's one-sided value at 1e-13 of its width from a knot, and a knot at |phi| <= phi_p is
-  // resolved only to half an ulp, up to 1.1e-16 phi_p; so a wave narrower than 1.1e-3 phi_p merges
-  // into its neighbour (rise_split 0.999 with accel_angle 18 deg reported accel_angle 0). 4e-3 phi_p
-  // (0.26 deg for a 130 deg event) leaves a factor of 3.6; the feasible split is then
-  // [min_wave / accel_angle, 1 - min_wave / accel_angle].
-  const double min_wave = 4e-3 * phi_p;
-  if (phi_y < 2.0 * min_wave) {
-    std::ostringstream msg;
-    msg << "accel_angle = " << deg(phi_y) << " is below " << deg(2.0 * min_wave)
-        << ": its quarter sine and quarter cosine need at least " << deg(min_wave)
-        << " each (0.4 % of half the action angle, " << deg(phi_p) << ")";
-    throw NodeError("accel_angle", msg.str());
-  }
-  if (!(phi_1 >= min_wave) || !(phi_2 >= min_wave)) {
-    std::ostringstream msg;
-    msg << std::setprecision(6) << "rise_split = " << sigma << " leaves the quarter " << (phi_1 < phi_2 ? "sine " : "cosine ")
-        << deg(std::min(phi_1, phi_2)) << " of accel_angle = " << deg(phi_y) << "; each quarter wave needs at least "
-        << deg(min_wave) << " (0.4 % of half the action angle), so rise_split must lie within " << min_wave / phi_y
-        << " .. " << 1.0 - min_wave / phi_y;
-    if (!rise_split)
-      msg << "; this is the default split for accel_angle = " << deg(phi_y) << " and half the action angle "
-          << deg(phi_p) << ": move accel_angle away from half the action angle, or give rise_split";
-    throw NodeError(rise_split ? "rise_split" : "accel_angle", msg.str());
-  }
   const double phi_3 = phi_p - phi_y;
+  // The default jerk-continuous split gives the quarter cosine phi_2 = pi^2 phi_3^2 / (12 phi_y)
+  // directly: through sigma it would round to nothing as accel_angle nears half the action angle.
+  const bool jerk_continuous = !rise_split && kurz_jerk_continuous_split(phi_y, phi_p) > 0.0;
+  const double phi_2 = jerk_continuous ? pi * pi * phi_3 * phi_3 / (12.0 * phi_y) : phi_y - sigma * phi_y;
+  const double phi_1 = jerk_continuous ? phi_y - phi_2 : sigma * phi_y;
+  const char* split_parameter = rise_split ? "rise_split" : "accel_angle";
   std::vector<ShapeSegment> positive{{std::make_shared<const QuarterSineRise>(), phi_1},
                                      {std::make_shared<const QuarterCosineFall>(), phi_2}};
   std::vector<ShapeSegment> negative{{std::make_shared<const ParabolaToVertex>(), phi_3}};
-  return std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
-                                              std::move(positive), std::move(negative));
+  std::shared_ptr<const ShocklessLaw> law;
+  try {
+    law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
+                                               std::move(positive), std::move(negative));
+  } catch (const std::invalid_argument& e) {
+    throw NodeError(phi_1 < phi_3 || phi_2 < phi_3 ? split_parameter : "accel_angle",
+                    std::string("accel_angle = ") + deg(phi_y) + " and rise_split = " + std::to_string(sigma) +
+                        " give no law: " + e.what());
+  }
+  // The waves as the law cuts them (knots: start, sine | cosine, cosine | parabola, ...): each
+  // needs a double strictly inside, else it has no angle of its own.
+  const std::vector<double> k = law->knots();
+  const char* wave[3] = {"quarter sine", "quarter cosine", "parabola"};
+  const double width[3] = {phi_1, phi_2, phi_3};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i + 1 < k.size() && std::nextafter(k[i], k[i + 1]) < k[i + 1]) continue;
+    std::ostringstream msg;
+    msg << std::setprecision(6) << "accel_angle = " << deg(phi_y) << " with rise_split = " << sigma << " leaves the "
+        << wave[i] << " " << width[i] * 180.0 / pi << " deg wide, below one ulp of the cam angle ("
+        << std::abs(std::nextafter(phi_p, 4.0) - phi_p) * 180.0 / pi
+        << " deg at the start of lift): no double angle lies inside it";
+    throw NodeError(i == 2 ? "accel_angle" : split_parameter, msg.str());
+  }
+  const double jerk[3] = {law->positive_amplitude() * 0.5 * pi / phi_1, law->positive_amplitude() * 0.5 * pi / phi_2,
+                          2.0 * law->negative_amplitude() / phi_3};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (std::isfinite(jerk[i]) && std::isfinite(law->positive_amplitude()) && std::isfinite(law->negative_amplitude()))
+      continue;
+    std::ostringstream msg;
+    msg << std::setprecision(6) << "accel_angle = " << deg(phi_y) << " with rise_split = " << sigma << ": the "
+        << wave[i] << " (" << width[i] * 180.0 / pi
+        << " deg) is so narrow that its jerk leaves the range of a double (larger than 1.8e308 m/rad^3)";
+    throw NodeError(i == 2 ? "accel_angle" : split_parameter, msg.str());
+  }
+  return law;
 }
 
 CamLawDefinition kurz_definition() {
@@ -103,8 +117,9 @@ CamLawDefinition kurz_definition() {
       "then a parabola with its vertex at the nose; amplitudes from zero velocity and max_lift at the nose";
   d.params = {
       ParamSpec::number("accel_angle", dim::angle,
-                        "positive-acceleration phase phi_y from the start of lift; must be below half the action "
-                        "angle",
+                        "positive-acceleration phase phi_y from the start of lift; strictly between 0 and half the "
+                        "action angle (both phases need room); beyond that only what a double demands: each wave "
+                        "wider than one ulp of the cam angle, its jerk finite",
                         "deg")
           .positive()
           .with_example(30.0 * std::numbers::pi / 180.0),
@@ -116,9 +131,10 @@ CamLawDefinition kurz_definition() {
           "usual case for valve cams) no split can make the jerk continuous there, and the default is the split "
           "that minimises the larger of the two jerk jumps left, at the start of lift and at the junction: "
           "(1 + k / (pi + sqrt(pi^2 + k^2))) / 2 with k = 6 phi_y^2 / (pi phi_3^2), between 0.5 and 0.62. The "
-          "default therefore changes branch where phi_3 = 1.103 phi_y. The split used is the rise_split output. Each "
-          "quarter wave must span at least 0.4 % of half the action angle, w (so the split lies within w / "
-          "accel_angle .. 1 - w / accel_angle), the default included")
+          "default therefore changes branch where phi_3 = 1.103 phi_y. The split used is the rise_split output. "
+          "Range: strictly between 0 and 1 (at 0 or 1 a wave vanishes and the acceleration jumps); beyond that only "
+          "what a double demands: each wave must hold a double angle of its own (wider than one ulp of the cam "
+          "angle) and its jerk must stay finite, or the node is refused naming the wave")
           .optional()
           .above(0.0)
           .below(1.0),

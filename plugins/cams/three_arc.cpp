@@ -303,14 +303,25 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
       F2 = e * cx;
       F3 = -e * sx;
     } else {
-      // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr, the centre
-      // opposite the follower: theta = pi + x): s = -e cos x + sqrt(R1^2 - e^2 sin^2 x), and
-      // R1 - e = r0 + rr, so h = e (1 - cos x) - e^2 sin^2 x / (R1 + sqrt(...)).
-      const ArcRoot r = arc_root(e, g_.flank_radius + rr, x);
-      F = e * omc - r.excess;
-      F1 = e * sx + r.d1;
-      F2 = e * cx + r.d2;
-      F3 = -e * sx + r.d3;
+      // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr = e + c0,
+      // c0 = r0 + rr, the centre opposite the follower): s = sqrt(R1^2 - e^2 sin^2 x) - e cos x.
+      // Near the largest nose radius e is many times c0 and that difference cancels (and so do its
+      // derivatives, e cos x against e^2 terms). Without cancellation: with u = e cos x and
+      // g = sqrt(u^2 + c0 (2e + c0)), s = c0 (2e + c0) / (g + u), so (ln s)' = w = e sin x / g,
+      //   s' = s w,  s'' = s (w^2 + w'),  s''' = s (w^3 + 3 w w' + w''),
+      //   w' = u R1^2 / g^3,  w'' = R1^2 e sin x (3 u^2 - g^2) / g^5   (g^2 + e^2 sin^2 x = R1^2);
+      // and h = s - c0 = c0 [e (1 - cos x) + e^2 sin^2 x / (R1 + g)] / (g + u).
+      const double c0 = g_.base_radius + rr, R1 = e + c0;
+      const double u = e * cx, n = c0 * (2.0 * e + c0);
+      const double g = std::sqrt(u * u + n);
+      const double D = u >= 0.0 ? g + u : n / (g - u);  // g + u without cancellation when u < 0
+      const double S = n / D;
+      const double w = e * sx / g, g2 = g * g, g3 = g2 * g;
+      const double w1 = u * R1 * R1 / g3, w2 = R1 * R1 * e * sx * (3.0 * u * u - g2) / (g3 * g2);
+      F = c0 * (e * omc + e * e * sx * sx / (R1 + g)) / D;
+      F1 = S * w;
+      F2 = S * (w * w + w1);
+      F3 = S * (w * w * w + 3.0 * w * w1 + w2);
     }
     H = F;
     H1 = -F1;

@@ -25,6 +25,8 @@ namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;
 constexpr const char* effect_name = "cardan_kinematics";
+// 2^55 rad: from here on one ulp of the angle is 8 rad, more than a turn.
+constexpr double max_input_angle = 36028797018963968.0;
 
 class CardanJointType final : public NodeType {
  public:
@@ -33,12 +35,16 @@ class CardanJointType final : public NodeType {
     info_.summary =
         "cardan (universal) joint: trunnion clearances and end float; output angle and speed ratio at a bend angle";
     info_.params = {
-        // One turn either way: the kinematics repeat every half turn, and an angle like 1e300 deg
-        // has no digits left below a turn (its sine is noise), so it is refused, not reduced.
+        // Any angle a double resolves within a turn: a shaft turns more than once, and sin and cos
+        // reduce the double given exactly. From 2^55 rad on, neighbouring doubles lie 8 rad apart
+        // (more than a turn): such an angle names no position in a turn, so it is refused.
         ParamSpec::number("input_angle", dim::angle,
-                          "input yoke angle t1, measured from the plane of the bend, -360 .. 360 deg", "deg")
-            .at_least(-360.0 * deg)
-            .at_most(360.0 * deg)
+                          "input yoke angle t1, measured from the plane of the bend; any number of turns either way "
+                          "(the kinematics repeat every half turn), up to 2^55 rad = 2.06e18 deg, beyond which "
+                          "neighbouring doubles lie more than a turn apart and the angle names no position in a turn",
+                          "deg")
+            .above(-max_input_angle)
+            .below(max_input_angle)
             .with_example(30.0 * deg),
         ParamSpec::number("bend_angle", dim::angle,
                           "bend angle b between the shafts, 0 <= b < 90 deg (evaluated up to 1/cos b = 1e6)", "deg")
@@ -76,8 +82,9 @@ class CardanJointType final : public NodeType {
     const CardanKinematics joint(p.number("bend_angle"));
     const double t1 = p.number("input_angle");
     // The declared range, again for callers that bypass the scene loader (the SDK's harness).
-    if (!(std::abs(t1) <= 360.0 * deg))
-      throw NodeError("input_angle", "the input angle must lie within -360 .. 360 deg (one turn either way)");
+    if (!(std::abs(t1) < max_input_angle))
+      throw NodeError("input_angle", "the input angle must lie below 2^55 rad = 2.06e18 deg either way: beyond it "
+                                     "neighbouring doubles lie more than a turn apart");
     const double ratio = joint.speed_ratio(t1);
     const double scale = ctx.effect(effect_name) ? ratio : 1.0;
 

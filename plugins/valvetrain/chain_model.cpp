@@ -37,6 +37,11 @@ double ChainModel::pushing_force(const DriveValue& e, const ChainState& s) const
   return pushes(e, s) ? cam_force(e, s) : 0.0;
 }
 
+double ChainModel::force_after_event(const DriveValue& e, const ChainState& s) const {
+  if (!p_.contact_loss) return cam_force(e, s);  // bilateral: the force as it is, a pull included
+  return std::max(0.0, cam_force(e, s));
+}
+
 void ChainModel::forces(const Mode& m, double y, double dy, const ChainState& s, bool pushing, bool rates, double* f) const {
   const std::size_t n = p_.mass.size(), P = positions_, v = valve();
   std::fill(f, f + P, 0.0);

@@ -116,6 +116,12 @@ class ChainModel {
   /// The cam force as it acts: cam_force, or with contact_loss only while the cam touches and pushes.
   double pushing_force(double t, const ChainState& s) const { return pushing_force(y_(t), s); }
   double pushing_force(const DriveValue& e, const ChainState& s) const;
+  /// The force the cam carries just after an event, the cam touching (s the post-event state): as
+  /// pushing_force, but on the post-event side of the event's root. At a regain the gap y - x_0 is
+  /// the located root, zero to rounding, and its sign there says nothing (pushing_force read 0 on
+  /// one side of it); just after, the gap closes into compression, so the force is the damper's
+  /// c_0 (y' - x_0') plus k_0 times the gap at most rounding, and never a pull.
+  double force_after_event(const DriveValue& e, const ChainState& s) const;
   /// Net force on the valve from the chain and the spring (without the seat's reaction).
   double force_on_valve(double t, const ChainState& s) const { return force_on_valve(y_(t), s); }
   double force_on_valve(const DriveValue& e, const ChainState& s) const;

@@ -166,7 +166,9 @@ class DynamicsType final : public NodeType {
             .with_default(0.3)
             .non_negative()
             .below(1.0),
-        ParamSpec::number("seating_speed", dim::velocity, "a landing slower than this seats the valve (seat_impact)", "m/s")
+        ParamSpec::number("seating_speed", dim::velocity, "a landing whose rebound (restitution x landing speed) would leave the seat slower than this "
+                          "seats the valve instead of bouncing (seat_impact)",
+                          "m/s")
             .with_default(0.01)
             .positive()
             .at_most(100.0),

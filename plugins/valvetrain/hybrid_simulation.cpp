@@ -63,7 +63,7 @@ class EventHandler {
     for (std::size_t j = events_before; j < result_.events.size(); ++j) {
       EventRecord& e = result_.events[j];
       e.cam_contact = contact_before;
-      e.cam_force = mode.contact ? model_.pushing_force(drive, s) : 0.0;
+      e.cam_force = mode.contact ? model_.force_after_event(drive, s) : 0.0;  // the post-event side
     }
   }
 

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <numbers>
 
 namespace mechgraph {
@@ -73,7 +75,32 @@ double nose_angle(const std::function<double(double)>& lift, std::span<const dou
   const numerics::Extremum top = pieces.maximum(0);
   double nose = top.x;
   if (top.value > 0.0) {
-    // A plateau (a dwell at full lift) or a second equal maximum: the middle of where the lift is
+    // A dwell at full lift: the pieces (between knots) on which the lift holds the top, read at
+    // both one-sided ends and the middle (a dwell returns its height; 4 ulps allow the top a
+    // rounding above it at a flank's end). The nose is then exactly halfway between the first such
+    // piece's start and the last one's end: the dwell's middle, not some point of the plateau.
+    const double tolerance = 4.0 * std::numeric_limits<double>::epsilon() * top.value;
+    std::optional<double> dwell_begin, dwell_end;
+    for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
+      const double a = knots[p], b = knots[p + 1];
+      if (!(b > a) || !numerics::has_interior(a, b)) continue;
+      bool holds = true;
+      for (const double x : {numerics::one_sided_point(a, b), 0.5 * (a + b), numerics::one_sided_point(b, a)}) {
+        ++evaluations;
+        if (!(std::abs(lift(x) - top.value) <= tolerance)) {
+          holds = false;
+          break;
+        }
+      }
+      if (!holds) continue;
+      if (!dwell_begin) dwell_begin = a;
+      dwell_end = b;
+    }
+    if (dwell_begin) {
+      evaluations += pieces.work().evaluations;
+      return 0.5 * (*dwell_begin + *dwell_end);
+    }
+    // A plateau without knots or a second equal maximum: the middle of where the lift is
     // within 1e-13 of the top (above the interpolation's rounding), when that spans more than 1e-3 rad (a
     // smooth top, even one as flat as a cubic's, is far narrower, and its maximum is the search's
     // own). Flanks that leave a dwell as flat as a cubic widen it by some 1e-5 rad, unevenly.
@@ -182,7 +209,9 @@ std::vector<PortSpec> lift_event_ports(const std::string& whose) {
                        "lobe)",
                        "deg"),
       PortSpec::scalar("nose_angle", dim::angle,
-                       "cam angle of the maximum " + whose + " lift (the nose), from the law's zero (the svaj axis)", "deg"),
+                       "cam angle of the maximum " + whose + " lift (the nose), from the law's zero (the svaj axis); "
+                       "on a dwell at full lift, the dwell's middle, exactly halfway between its ends",
+                       "deg"),
       PortSpec::scalar("event_centre", dim::angle,
                        "halfway between the ends of the lift event (seat to seat), cam angle from the nose", "deg"),
   };

@@ -71,21 +71,22 @@ bool flat_contour_certainly_convex(const CamLaw& law, long& evaluations) {
     double x, h, a;
   };
   long budget = 400;
-  auto read = [&](double x, double inward) {
-    const LiftDerivatives d = law.at(x + inward);
+  auto read = [&](double x) {
+    const LiftDerivatives d = law.at(x);
     --budget;
     ++evaluations;
     return End{x, d.lift, d.acceleration};
   };
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-    const double lo = cuts[k], hi = cuts[k + 1], inset = 1e-13 * (hi - lo);
-    std::vector<std::pair<End, End>> pending{{read(lo, inset), read(hi, -inset)}};
+    const double lo = cuts[k], hi = cuts[k + 1];
+    if (!numerics::has_interior(lo, hi)) continue;  // no angle of its own
+    std::vector<std::pair<End, End>> pending{{read(numerics::one_sided_point(lo, hi)), read(numerics::one_sided_point(hi, lo))}};
     while (!pending.empty()) {
       const auto [l, r] = pending.back();
       pending.pop_back();
       if (r0 + std::min(l.h, r.h) + std::min(l.a, r.a) - slack > 0.0) continue;
       if (budget <= 0) return false;
-      const End m = read(0.5 * (l.x + r.x), 0.0);
+      const End m = read(0.5 * (l.x + r.x));
       if (!(r0 + m.h + m.a > 0.0)) return false;  // a point with rho <= 0: not convex, let the caller measure it
       pending.push_back({l, m});
       pending.push_back({m, r});
@@ -185,6 +186,7 @@ std::optional<double> smallest_undercut_free_base_radius(
   }
   while (high - low > 1e-6) {
     const double mid = 0.5 * (low + high);
+    if (mid == low || mid == high) break;  // neighbouring doubles: as close as it gets
     (feasible(mid) ? high : low) = mid;
   }
   return high;

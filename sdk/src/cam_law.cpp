@@ -26,6 +26,19 @@ std::string sample_problem(const CamLaw& law, double phi, double lift_floor) {
   return {};
 }
 
+// A piece needs an angle of its own: some double strictly between its ends, where it can be
+// evaluated apart from its neighbours (the searches read one-sided values there,
+// numerics::one_sided_point). Narrower than that it is below the resolution of a double angle.
+std::string piece_problem(double from, double to) {
+  if (std::nextafter(from, to) < to) return {};
+  std::ostringstream out;
+  out.precision(17);
+  out << "its piece from " << from * 180.0 / std::numbers::pi << " to " << to * 180.0 / std::numbers::pi
+      << " deg holds no angle of its own (the two are adjacent doubles): a piece must be wider than one ulp of its "
+         "angle to be evaluated apart from its neighbours";
+  return out.str();
+}
+
 }  // namespace
 
 // The contract of docs/writing-plugins.md ("The cam_law interface"), the part cheap enough to run
@@ -54,8 +67,10 @@ std::string CamLaw::contract_problem() const {
     if (!(b > begin && b < end))
       return "breakpoint " + degrees(b) + " is not strictly inside the event (" + degrees(begin) + ", " + degrees(end) + ")";
     if (!(b > previous)) return "breakpoints are not sorted ascending without repeats (" + degrees(b) + " after " + degrees(previous) + ")";
+    if (std::string p = piece_problem(previous, b); !p.empty()) return p;
     previous = b;
   }
+  if (std::string p = piece_problem(previous, end); !p.empty()) return p;
   const double lift_floor = -1e-9 * lift;
   constexpr int uniform = 16;
   for (int i = 0; i < uniform; ++i) {

@@ -10,8 +10,10 @@
 namespace mechgraph {
 namespace {
 
-// Where a run's one-sided values are read: 1e-13 of its width inside (as numerics/piecewise.hpp).
-double inset(double lo, double hi) { return 1e-13 * (hi - lo); }
+// Where a run's one-sided values are read: numerics::one_sided_point, as the generic search reads
+// its knots (1e-13 of the width inside, at least 4 ulps, at most the middle).
+using numerics::has_interior;
+using numerics::one_sided_point;
 
 int sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 
@@ -58,9 +60,10 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
     for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r->edges_.size()); ++k) {
       const double lo = r->edges_[static_cast<std::size_t>(k)], hi = r->edges_[static_cast<std::size_t>(k) + 1];
       if (lo >= hi_end) break;
-      const double d = inset(lo, hi);
+      if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
+      const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives& v = at(*r->law_, std::clamp(x, lo + d, hi - d));
+        const LiftDerivatives& v = at(*r->law_, std::clamp(x, inner_lo, inner_hi));
         const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};
@@ -86,9 +89,10 @@ std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level
   double zero_at = 0.0;  // the first exact zero since the last signed point
   bool zero_since_last = false;
   for (std::size_t k = 0; k + 1 < edges_.size(); ++k) {
-    const double lo = edges_[k], hi = edges_[k + 1], d = inset(lo, hi);
+    const double lo = edges_[k], hi = edges_[k + 1];
+    if (!has_interior(lo, hi)) continue;  // no angle of its own
     for (const bool left : {true, false}) {
-      const double x = left ? lo + d : hi - d;
+      const double x = left ? one_sided_point(lo, hi) : one_sided_point(hi, lo);
       const double gx = g(x);
       const int s = sign_of(gx);
       if (s == 0) {

@@ -43,6 +43,18 @@ int starting_intervals(int samples) {
 
 }  // namespace
 
+double one_sided_point(double from, double to) {
+  const double width = std::abs(to - from), toward = to > from ? 1.0 : -1.0;
+  const double inset = std::max(1e-13 * width, 4.0 * eps * std::max(std::abs(from), std::abs(to)));
+  const double mid = from + 0.5 * (to - from);
+  double x = from + toward * inset;
+  if (toward * (x - mid) > 0.0) x = mid;
+  if (x == from) x = std::nextafter(from, to);  // a piece of two ulps: its middle
+  return x;
+}
+
+bool has_interior(double a, double b) { return std::nextafter(a, b) < b; }
+
 SmoothPieces::SmoothPieces(Sampler sample, std::size_t count, std::span<const double> knots, int samples_per_piece)
     : sample_(std::move(sample)), count_(count), scratch_(count), slopes_(count) {
   check_knots(knots, samples_per_piece);
@@ -50,11 +62,10 @@ SmoothPieces::SmoothPieces(Sampler sample, std::size_t count, std::span<const do
   const int n0 = starting_intervals(samples_per_piece);
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a = knots[p], b = knots[p + 1];
-    if (!(b > a)) continue;
-    // Pulled inside by a relative 1e-13: at a knot where f jumps, each piece sees its own side.
-    const double inset = 1e-13 * (b - a);
+    if (!(b > a) || !has_interior(a, b)) continue;  // no double of its own: nothing to evaluate
+    // Pulled inside: at a knot where f jumps, each piece sees its own side.
     const std::size_t first = pieces_.size();
-    resolve(a + inset, b - inset, n0, 0);
+    resolve(one_sided_point(a, b), one_sided_point(b, a), n0, 0);
     pieces_[first].knot = a;
   }
   if (pieces_.empty()) throw std::invalid_argument("piecewise numerics need an interval of positive length");

@@ -255,3 +255,75 @@ TEST_CASE("cw mirrors the contour; refusals name the parameter") {
 
 }  // namespace
 }  // namespace mechgraph::cams
+
+namespace {
+std::vector<std::string> notes_of(const mechgraph::RunResult& r, const std::string& node) {
+  for (const auto& n : r.runs)
+    if (n.node == node) return n.notes;
+  return {};
+}
+bool any_note(const std::vector<std::string>& notes, const std::string& part) {
+  for (const std::string& n : notes)
+    if (n.find(part) != std::string::npos) return true;
+  return false;
+}
+}  // namespace
+
+TEST_CASE("contour: undercut margin and the least convex and concave radii as scalars", "[cams][contour][undercut]") {
+  using mechgraph::testing::project_registry;
+  using mechgraph::testing::run_yaml;
+  using mechgraph::testing::scalar_output;
+  // Flat face: the margin is the contour's least radius r0 + h + h'' (the cam node's figure, a
+  // second method); a harmonic cam with a small roller has concave flanks: their curvature against
+  // the contact table (every table row within the peaks found).
+  const mechgraph::RunResult r = run_yaml(
+      "nodes:\n  cam: { type: cam.harmonic, params: { max_lift: 8 mm, action_angle: 100 deg, base_radius: 20 mm } }\n"
+      "  big: { type: cam.harmonic, params: { max_lift: 8 mm, action_angle: 100 deg, base_radius: 50 mm } }\n"
+      "  flat: { type: cam.contour, inputs: { cam: big.law } }\n"
+      "  roll: { type: cam.contour, inputs: { cam: cam.law }, params: { follower: roller, roller_radius: 4 mm, curve_points: 2001 } }\n"
+      "outputs: [big.min_curvature_radius, flat.undercut_margin, flat.min_convex_radius, flat.max_concave_curvature,\n"
+      "          roll.undercut_margin, roll.min_convex_radius, roll.max_concave_curvature, roll.contact]\n",
+      project_registry());
+  CHECK_THAT(scalar_output(r, "flat.undercut_margin"), Catch::Matchers::WithinRel(scalar_output(r, "big.min_curvature_radius"), 1e-9));
+  CHECK_THAT(scalar_output(r, "flat.min_convex_radius"), Catch::Matchers::WithinRel(scalar_output(r, "big.min_curvature_radius"), 1e-9));
+  CHECK(scalar_output(r, "flat.max_concave_curvature") == 0.0);
+  const mechgraph::Table& t = mechgraph::testing::output(r, "roll.contact").as_table();
+  const auto& rho = t.find("curvature_radius")->values;
+  double least_convex = 1e300, most_concave = 0.0;
+  for (double v : rho)
+    if (v > 0.0) least_convex = std::min(least_convex, v);
+    else most_concave = std::max(most_concave, -1.0 / v);
+  REQUIRE(most_concave > 0.0);  // the flanks are concave
+  CHECK(scalar_output(r, "roll.min_convex_radius") <= least_convex * (1 + 1e-12));
+  CHECK_THAT(scalar_output(r, "roll.min_convex_radius"), Catch::Matchers::WithinRel(least_convex, 1e-3));
+  CHECK(scalar_output(r, "roll.max_concave_curvature") >= most_concave * (1 - 1e-12));
+  CHECK_THAT(scalar_output(r, "roll.max_concave_curvature"), Catch::Matchers::WithinRel(most_concave, 1e-3));
+  CHECK(scalar_output(r, "roll.undercut_margin") > 0.0);
+}
+
+TEST_CASE("contour: pressure angle and contact stress limits, and the constant load, in notes", "[cams][contour]") {
+  using mechgraph::testing::project_registry;
+  using mechgraph::testing::run_yaml;
+  using mechgraph::testing::scalar_output;
+  const std::string cam = "nodes:\n  cam: { type: cam.harmonic, params: { max_lift: 8 mm, action_angle: 100 deg, base_radius: 12 mm } }\n";
+  // A translating roller on a small cam: above the 30 deg default.
+  const mechgraph::RunResult r = run_yaml(
+      cam + "  roll: { type: cam.contour, inputs: { cam: cam.law }, params: { follower: roller, roller_radius: 8 mm, load: 800 N, contact_length: 10 mm } }\n"
+            "outputs: [roll.max_pressure_angle, roll.max_contact_stress]\n",
+      project_registry());
+  REQUIRE(scalar_output(r, "roll.max_pressure_angle") > 30.0 * std::numbers::pi / 180.0);
+  const auto notes = notes_of(r, "roll");
+  CHECK(any_note(notes, "pressure angle:"));
+  CHECK(any_note(notes, "exceeds the default limit"));
+  CHECK(any_note(notes, "constant load of 800 N assumed"));
+  // The engineer's own limits: above the angle, no note; below the stress, a note.
+  const double stress = scalar_output(r, "roll.max_contact_stress");
+  char limits[200];
+  std::snprintf(limits, sizeof limits, "pressure_angle_limit: 89 deg, contact_stress_limit: %.17g MPa", 0.5 * stress * 1e-6);
+  const mechgraph::RunResult own = run_yaml(
+      cam + "  roll: { type: cam.contour, inputs: { cam: cam.law }, params: { follower: roller, roller_radius: 8 mm, load: 800 N, "
+            "contact_length: 10 mm, " + limits + " } }\noutputs: [roll.max_pressure_angle]\n",
+      project_registry());
+  CHECK_FALSE(any_note(notes_of(own, "roll"), "pressure angle:"));
+  CHECK(any_note(notes_of(own, "roll"), "exceeds contact_stress_limit"));
+}

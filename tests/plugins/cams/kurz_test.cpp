@@ -220,7 +220,7 @@ TEST_CASE("kurz node: accel_angle reproduced, outputs, errors", "[cams][kurz]") 
     FAIL("expected a NodeError");
   } catch (const NodeError& e) {
     CHECK(e.parameter() == "accel_angle");
-    CHECK_THAT(e.what(), Catch::Contains("half the action angle, 65 deg"));
+    CHECK_THAT(e.what(), Catch::Contains("half the action angle (65 deg)"));
   }
   try {
     make_kurz_law(kBasics, 18 * deg, 1.0);

@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstdio>
 #include <numbers>
 #include <regex>
 
@@ -75,4 +76,72 @@ TEST_CASE("undercut: the named radius is the limit, ramps included", "[cams][und
   CHECK_NOTHROW(cut("cam.kurz", p));
   p["base_radius"] = ParamValue::of_number(r - 1e-5);
   CHECK_THROWS_AS(cut("cam.kurz", p), NodeError);
+}
+
+TEST_CASE("undercut: the cam node alone says so in a note, with a base radius that works", "[cams][undercut]") {
+  // No contour connected: the cam runs, but a note (printed by every host, kept with the results)
+  // says its flat-face contour is undercut, by how much, and what base radius removes it; that
+  // radius is then accepted by cam.contour (not refused by rounding: a stated 1 % margin).
+  std::map<std::string, ParamValue> p{{"max_lift", ParamValue::of_number(8e-3)}, {"action_angle", ParamValue::of_number(110 * deg)},
+                                      {"accel_angle", ParamValue::of_number(18 * deg)}, {"base_radius", ParamValue::of_number(3e-3)}};
+  const OutputSet out = run_cam("cam.kurz", p);
+  const double rho = out.all().at("min_curvature_radius").as_scalar();
+  REQUIRE(rho < 0.0);
+  std::string note;
+  for (const std::string& n : out.notes())
+    if (n.find("undercut") != std::string::npos) note = n;
+  INFO(note);
+  CHECK_THAT(note, Catch::Matchers::Contains("flat-faced follower") && Catch::Matchers::Contains("cam.contour"));
+  std::smatch m;
+  REQUIRE(std::regex_search(note, m, std::regex("a base_radius of ([0-9.eE+-]+) mm removes it")));
+  const double suggested = std::stod(m[1]) * 1e-3;
+  CHECK(suggested > 3e-3 - rho);  // the flat-face limit r0 - rho_min, and a margin above it
+  p["base_radius"] = ParamValue::of_number(suggested);
+  CHECK_NOTHROW(cut("cam.kurz", p));
+  for (const std::string& n : run_cam("cam.kurz", p).notes()) CHECK(n.find("undercut") == std::string::npos);
+}
+
+TEST_CASE("undercut: the base radius cam.contour suggests is accepted", "[cams][undercut]") {
+  std::map<std::string, ParamValue> p{{"max_lift", ParamValue::of_number(8e-3)}, {"action_angle", ParamValue::of_number(110 * deg)},
+                                      {"base_radius", ParamValue::of_number(10e-3)}};
+  try {
+    cut("cam.poly4567", p);
+    FAIL("the cam was not refused");
+  } catch (const NodeError& e) {
+    std::smatch m;
+    const std::string text = e.what();
+    REQUIRE(std::regex_search(text, m, std::regex("take e.g. ([0-9.eE+-]+) mm")));
+    p["base_radius"] = ParamValue::of_number(std::stod(m[1]) * 1e-3);
+    CHECK_NOTHROW(cut("cam.poly4567", p));
+  }
+}
+
+TEST_CASE("undercut: where only a window of base radii works (pivoted flat face), the window is named", "[cams][undercut]") {
+  // A finger with a flat pad works on a harmonic cam only between two base radii: below, the
+  // contour undercuts; above, the pad cannot reach the larger cam. Both ends are checked by
+  // building the cam 1 % inside and outside them.
+  auto run_with = [](double r0_mm) {
+    char scene[600];
+    std::snprintf(scene, sizeof scene,
+                  "nodes:\n  cam: { type: cam.harmonic, params: { max_lift: 8 mm, action_angle: 140 deg, base_radius: %.17g mm } }\n"
+                  "  finger: { type: follower.pivoted_flat, params: { pivot_x: -60 mm, pivot_y: 50 mm, face_offset: 2 mm } }\n"
+                  "  cut: { type: cam.contour, inputs: { cam: cam.law, follower: finger.follower } }\n"
+                  "outputs: [cut.max_pressure_angle]\n",
+                  r0_mm);
+    return mechgraph::testing::run_yaml(scene, mechgraph::testing::project_registry());
+  };
+  std::string text;
+  try {
+    run_with(10.0);
+    FAIL("the cam was not refused");
+  } catch (const std::exception& e) {
+    text = e.what();
+  }
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex("only base radii from ([0-9.eE+-]+) mm to ([0-9.eE+-]+) mm work")));
+  const double low = std::stod(m[1]), high = std::stod(m[2]);
+  CHECK_NOTHROW(run_with(low * 1.01));
+  CHECK_THROWS(run_with(low * 0.99));
+  CHECK_NOTHROW(run_with(high * 0.99));
+  CHECK_THROWS(run_with(high * 1.01));
 }

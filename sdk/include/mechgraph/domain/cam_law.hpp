@@ -9,7 +9,10 @@
 //  - evaluate_in_event(phi) is only called with event_begin() < phi < event_end(); it returns
 //    h [m], dh/dphi [m/rad], d2h/dphi2 [m/rad^2], d3h/dphi3 [m/rad^3].
 //  - breakpoints(): the angles strictly inside the event where some derivative up to the third is
-//    discontinuous, sorted ascending. Integrators and extremum searches split there.
+//    discontinuous, sorted ascending. Integrators and extremum searches split there. Every piece
+//    (between neighbouring knots) holds at least one double of its own, and the law evaluates each
+//    double strictly between two knots on the piece that holds it, so that the searches can read
+//    a piece's one-sided values a few ulps inside it (numerics::one_sided_point) however narrow.
 //  - higher_derivatives(phi) gives d4h/dphi4 [m/rad^4] and d5h/dphi5 [m/rad^5] inside the event for
 //    laws that have them in closed form (returns false otherwise, the default). Cam synthesis
 //    against an elastic drive needs them (valvetrain.polydyne_cam).
@@ -19,7 +22,8 @@
 //
 // Who checks what
 //  - The host: every cam_law a node outputs goes through contract_problem() (final, below): event
-//    inside (-pi, pi) and not empty, breakpoints sorted and strictly inside the event, the declared
+//    inside (-pi, pi) and not empty, breakpoints sorted and strictly inside the event, each piece
+//    wider than one ulp (a double strictly inside it), the declared
 //    radii and lift, and the law sampled at 16 angles and at each piece's midpoint (finite, lift not
 //    below -1e-9 * max_lift). A law that breaks it is refused with the node type's name; nothing is
 //    wrapped or truncated.

@@ -7,8 +7,10 @@
 //  - a crossing of a level inside a run is bracketed by the run's ends (one sign change at most)
 //    and found by TOMS 748 on the law itself; where f jumps across the level at a cut, the cut is
 //    the crossing.
-// One-sided values at a cut are read 1e-13 of the run's width inside it, as the generic search
-// reads its knots (numerics/piecewise.hpp), so both paths agree on a jump to rounding.
+// One-sided values at a cut are read where the generic search reads its knots
+// (numerics::one_sided_point: 1e-13 of the run's width inside, at least 4 ulps of the angle, at
+// most the middle), so both paths agree on a jump to rounding on runs of any width from two ulps;
+// a run with no double strictly inside is skipped (it has no angle of its own).
 // Everything is certified by the law's declaration alone; the conformance kit checks it.
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/numerics/piecewise.hpp>

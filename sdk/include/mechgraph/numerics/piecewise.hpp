@@ -12,9 +12,11 @@
 // evaluated on the function itself. The result does not depend on the starting density beyond
 // rounding; `samples_per_piece` is only where the doubling starts (>= 3).
 //
-// At a knot the one-sided values belong to their pieces (the samples are pulled inside by a
-// relative 1e-13), so a jump at a knot is seen from both sides. Every routine counts the
-// function evaluations it made.
+// At a knot the one-sided values belong to their pieces (the samples are pulled inside by
+// one_sided_point: a relative 1e-13 of the piece, at least a few ulps of the knot), so a jump at a
+// knot is seen from both sides, on a piece of any width down to two ulps. A piece with no double
+// strictly inside cannot be evaluated and is skipped. Every routine counts the function
+// evaluations it made.
 #include <functional>
 #include <optional>
 #include <span>
@@ -23,6 +25,17 @@
 namespace mechgraph::numerics {
 
 using Function1D = std::function<double(double)>;
+
+/// Where the one-sided value of the piece between `from` and `to` is read at its end `from`:
+/// toward `to` by 1e-13 of the width, but by at least 4 ulps of the larger end (a function tells its
+/// pieces apart to a few roundings of the angle), and never past the middle (a piece of a few ulps
+/// is read at its middle). A relative inset alone rounds to nothing on a piece narrower than about
+/// 1e-3 of its angle: the knot itself was read then, and a jump there was seen from the wrong side.
+double one_sided_point(double from, double to);
+
+/// Whether some double lies strictly between a and b (a < b): a piece without one has no point a
+/// function can be evaluated at that belongs to it alone.
+bool has_interior(double a, double b);
 
 struct Extremum {
   double x = 0.0;
@@ -61,7 +74,7 @@ class SmoothPieces {
 
  private:
   struct Piece {
-    double a = 0.0, b = 0.0;   // interpolation interval (knots pulled in by a relative 1e-13)
+    double a = 0.0, b = 0.0;   // interpolation interval (knots pulled in by one_sided_point)
     double knot = 0.0;         // where the piece begins: the knot itself (a halving's midpoint)
     int n = 0;                 // intervals: n + 1 Chebyshev points
     std::vector<double> values;                     // (n + 1) x count, point-major, x descending

@@ -84,7 +84,7 @@ inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_l
   for (std::size_t p = 0; p + 1 < knots.size(); ++p) {
     const double a0 = knots[p], a1 = knots[p + 1];
     for (int i = -1; i <= n; ++i) {
-      const double phi = i < 0 ? a0 + 1e-12 * (a1 - a0) : i == n ? a1 - 1e-12 * (a1 - a0) : a0 + (a1 - a0) * (i + 0.5) / n;
+      const double phi = i < 0 ? numerics::one_sided_point(a0, a1) : i == n ? numerics::one_sided_point(a1, a0) : a0 + (a1 - a0) * (i + 0.5) / n;
       const LiftDerivatives d = law.at(phi);
       for (int k = 0; k < 4; ++k) {
         if (!std::isfinite(component(d, k))) {
@@ -218,12 +218,14 @@ inline Report check_cam_law(const CamLaw& law, const std::string& suite = "cam_l
     const double noise = 1e-12 * S[o] + 1e-300;
     std::string bad;
     for (std::size_t p = 0; p + 1 < edges.size() && bad.empty(); ++p) {
-      const double a0 = edges[p], a1 = edges[p + 1], inset = 1e-13 * (a1 - a0);
-      const double first = component(law.at(a0 + inset), o), last = component(law.at(a1 - inset), o);
+      const double a0 = edges[p], a1 = edges[p + 1];
+      if (!numerics::has_interior(a0, a1)) continue;
+      const double first = component(law.at(numerics::one_sided_point(a0, a1)), o),
+                   last = component(law.at(numerics::one_sided_point(a1, a0)), o);
       const double direction = last >= first ? 1.0 : -1.0;
       double previous = first;
       for (int i = 1; i <= n && bad.empty(); ++i) {
-        const double phi = i == n ? a1 - inset : a0 + (a1 - a0) * i / n;
+        const double phi = i == n ? numerics::one_sided_point(a1, a0) : a0 + (a1 - a0) * i / n;
         const double v = component(law.at(phi), o);
         if (direction * (v - previous) < -noise)
           bad = "not monotone between " + deg(a0) + " and " + deg(a1) + ": " + num(previous) + " then " + num(v) + " at " + deg(phi);
@@ -300,8 +302,8 @@ inline Report check_cam_peaks(const CamLaw& law, const OutputSet& outputs, const
   for (std::size_t p = 0; p + 1 < knots.size(); ++p)
     for (int i = -1; i <= samples_per_piece; ++i) {
       const double a0 = knots[p], a1 = knots[p + 1];
-      const double phi = i < 0 ? a0 + 1e-12 * (a1 - a0)
-                         : i == samples_per_piece ? a1 - 1e-12 * (a1 - a0)
+      const double phi = i < 0 ? numerics::one_sided_point(a0, a1)
+                         : i == samples_per_piece ? numerics::one_sided_point(a1, a0)
                                                   : a0 + (a1 - a0) * (i + 0.5) / samples_per_piece;
       const LiftDerivatives d = law.at(phi);
       v = std::max(v, std::abs(d.velocity));
