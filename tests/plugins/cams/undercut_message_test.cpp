@@ -98,7 +98,8 @@ TEST_CASE("undercut: the cam node alone says so in a note, with a base radius th
   CHECK(suggested > 3e-3 - rho);  // the flat-face limit r0 - rho_min, and a margin above it
   p["base_radius"] = ParamValue::of_number(suggested);
   CHECK_NOTHROW(cut("cam.kurz", p));
-  for (const std::string& n : run_cam("cam.kurz", p).notes()) CHECK(n.find("undercut") == std::string::npos);
+  const OutputSet again = run_cam("cam.kurz", p);  // kept: notes() refers into it
+  for (const std::string& n : again.notes()) CHECK(n.find("undercut") == std::string::npos);
 }
 
 TEST_CASE("undercut: the base radius cam.contour suggests is accepted", "[cams][undercut]") {
