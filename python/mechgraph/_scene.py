@@ -8,6 +8,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Sequence, Union
 from . import _core
 from ._cases import case_columns
 from ._result import Result
+from ._units import set_entries
 
 SetValue = Union[str, float, int, Sequence[float]]
 
@@ -80,39 +81,51 @@ class Scene:
 
     # ---- evaluating --------------------------------------------------------------------------
     def run(self, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-            threads: int = 1) -> Result:
-        """Evaluates the scene.
+            threads: int = 1, si: bool = False) -> Result:
+        """Evaluates the scene and returns its :class:`Result`.
 
-        set: ``{"rpm": "6500 rpm", "arc.follower": "roller", "cam.max_lift": 0.009}``: text with
-            its unit (or a word) as ``--set`` takes, a number in SI (int, float, numpy integers and
-            floats), or a 1-D array in SI for a list parameter (``table.angles``, ``table.lifts``).
-            Refused (SceneError): True/False and numpy/bool arrays, complex numbers, dates, times
-            and durations (datetime, numpy datetime64/timedelta64, pandas), bytes, None.
-        outputs: ``node.port`` labels instead of the scene's outputs and report.
+        set: values by name (a scene parameter ``rpm`` or a node's ``kurz.max_lift``), each with its
+            unit: text as ``--set`` takes it (``"6500 rpm"``, a word such as ``"roller"``), a pair
+            ``(9, "mm")``, a pint quantity, or a number marked SI with ``mechgraph.si(0.009)``. A
+            1-D array goes to a list parameter (``table.angles``) the same ways:
+            ``(angles_deg, "deg")``, a pint array, ``mechgraph.si(radians)``. A bare number is
+            taken only for a dimensionless parameter (a count, a ratio); for one with a dimension
+            it is refused (SceneError naming the dimension and the scene's unit), unless `si` is
+            True. Refused as values: True/False and bool arrays, complex numbers, dates, times and
+            durations (datetime, numpy datetime64/timedelta64, pandas), bytes, None.
+        outputs: ``node.port`` labels instead of the scene's outputs and report; each one is then
+            readable in the result (``r.table("kurz.svaj")``, which the scene may not ask for).
         threads: independent nodes evaluated at once.
+        si: every bare number in `set` is in SI (m, rad, rad/s ...).
         """
-        outcome = self._session.run(dict(set or {}), list(outputs or []), threads, self._interruptible)
+        outcome = self._session.run(set_entries(set, si), list(outputs or []), threads, self._interruptible)
         result = Result(outcome)
         self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
         return result
 
-    def sweep(self, cases: Any, set: Optional[Mapping[str, Union[str, float, int]]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0):
+    def sweep(self, cases: Any, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0, si: bool = False):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
         ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
         ``name [unit]``, values in that unit), ``exit`` and ``error``; a failed case is a row with
-        its exit class (2 scene, 3 evaluation) and message. Column names carry units as on the
-        command line (``cam.max_lift [mm]``); a column without one holds numbers in SI.
+        its exit class (2 scene, 3 evaluation) and message.
 
-        set: fixed overrides for every case, text with its unit or a number in SI
-            (``{"rpm": "6000 rpm"}``); a text is taken as it is, never read as YAML.
+        Units: a column's header names the unit of its numbers as on the command line
+        (``cam.max_lift [mm]``), or the values carry it (``(values, "mm")``, a pint quantity);
+        numbers without a unit are taken only for a dimensionless parameter, or when marked SI
+        (``mechgraph.si(values)``, or `si` True for every column); else SceneError. Text cells are
+        read as a cases file's ("6500 rpm", "roller"). Columns of dates or durations are refused.
+
+        set: fixed values for every case, as :meth:`run` takes them (``{"rpm": "6000 rpm"}``);
+            a text is taken as it is, never read as YAML.
+        si: every number without a unit (in `cases` and `set`) is in SI.
         """
         import pandas as pd
 
-        names, units, columns = case_columns(cases)
-        header, lines, summary = self._session.sweep(names, units, columns, dict(set or {}), list(outputs or []),
-                                                     int(threads))
+        names, units, marks, columns = case_columns(cases, si)
+        header, lines, summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
+                                                     list(outputs or []), int(threads))
         frame = pd.DataFrame([json.loads(line) for line in lines], columns=header)
         frame.attrs["summary"] = summary
         return frame

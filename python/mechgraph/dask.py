@@ -10,6 +10,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Tuple
 
 from ._cases import case_columns
 from ._scene import Scene
+from ._units import SI
 
 # Scenes built on this worker process, by their source (the scene travels as its text or path).
 _worker_scenes: Dict[Tuple[str, ...], Scene] = {}
@@ -30,30 +31,31 @@ def _run_chunk(source: Tuple[str, ...], first: int, chunk: Dict[str, Any], sets:
     return frame
 
 
-def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, str]] = None,
-          outputs: Optional[Iterable[str]] = None, threads: int = 1):
+def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, Any]] = None,
+          outputs: Optional[Iterable[str]] = None, threads: int = 1, si: bool = False):
     """Runs `cases` (a DataFrame or dict of arrays, as :meth:`Scene.sweep` takes) on the workers of
     `client` (a ``dask.distributed.Client``) in chunks of `chunk` cases, `threads` threads per
-    chunk, and returns one DataFrame in case order. The columns of a series output are fixed per
+    chunk, and returns one DataFrame in case order. Units as :meth:`Scene.sweep` takes them (`si`
+    marks every number without a unit as SI). The columns of a series output are fixed per
     chunk; a chunk whose cases all fail has only the scalar columns (its rows are aligned to the
     others by name)."""
     import pandas as pd
 
     if chunk < 1:
         raise ValueError("chunk must be at least 1")
-    names, units, columns = case_columns(cases)
+    names, units, marks, columns = case_columns(cases, si)
     headers = [f"{n} [{u}]" if u else n for n, u in zip(names, units)]
     total = len(columns[0]) if columns else 0
     source = scene._source
-    sets = dict(set or {})
+    sets = {k: (v if isinstance(v, SI) or not si else SI(v)) for k, v in dict(set or {}).items()}
     outs = list(outputs or [])
     futures = []
     for first in range(0, total, chunk):
-        part = {h: c[first:first + chunk] for h, c in zip(headers, columns)}
+        part = {h: SI(c[first:first + chunk]) if m else c[first:first + chunk] for h, m, c in zip(headers, marks, columns)}
         futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, pure=False))
     frames = client.gather(futures)
     if not frames:
-        return scene.sweep(cases, set=set, outputs=outputs, threads=threads)
+        return scene.sweep(cases, set=set, outputs=outputs, threads=threads, si=si)
     result = pd.concat(frames, ignore_index=True)
     widest = max(frames, key=lambda f: len(f.columns))
     ordered = list(widest.columns) + [c for c in result.columns if c not in widest.columns]

@@ -6,6 +6,7 @@
 #include "interruptible.hpp"
 #include "python_values.hpp"
 #include "scene_session.hpp"
+#include "unit_rule.hpp"
 #include "value_arrays.hpp"
 
 #include <cli.hpp>
@@ -75,28 +76,50 @@ py::list plugin_list(const PluginRegistry& r) {
 
 // ---- values from Python -------------------------------------------------------------------------
 
-// A `set=` entry through the one conversion of Python values (python_values.hpp): text, a number
-// in SI, or a 1-D array of numbers in SI for a list parameter.
-SetValue set_value(const std::string& name, const py::handle& value) {
+// A `set=` entry through the one conversion of Python values (python_values.hpp): text, a number,
+// or a 1-D array of numbers for a list parameter; with `unit` ("mm", from (9, "mm") or a pint
+// quantity) when the Python side had one, `si` when it was marked SI. A number with its unit becomes
+// the text "9 mm", read as --set reads it.
+SetValue set_value(const std::string& name, const py::handle& value, const std::string& unit, bool si) {
   const std::string context = "set " + name;
   if (is_sequence(value)) {
     ColumnValues column = column_values(value, context);
-    if (column.text) throw SceneError(context + ": an array goes to a list parameter as numbers in SI, not as text");
-    return {name, std::move(column.numbers)};
+    if (column.text) throw SceneError(context + ": an array goes to a list parameter as numbers, not as text");
+    return {name, std::move(column.numbers), unit, si};
   }
   ScalarValue scalar = scalar_value(value, context);
-  if (auto* text = std::get_if<std::string>(&scalar)) return {name, std::move(*text)};
-  return {name, std::get<double>(scalar)};
+  if (auto* text = std::get_if<std::string>(&scalar)) {
+    if (!unit.empty())
+      throw SceneError(context + ": text with a unit beside it; give the text alone (\"9 mm\") or a number with its unit (9, \"mm\")");
+    return {name, std::move(*text), "", false};
+  }
+  const double x = std::get<double>(scalar);
+  if (!unit.empty()) {
+    if (!std::isfinite(x)) throw SceneError(context + ": " + (std::isnan(x) ? "NaN" : "an infinite value") + " is not a value");
+    return {name, number_text(x) + " " + unit, "", false};
+  }
+  return {name, x, "", si};
+}
+
+// `set=` as the Python side hands it over: (name, value, unit, si) for each entry.
+std::vector<SetValue> set_values(const py::list& sets) {
+  std::vector<SetValue> out;
+  for (const py::handle entry : sets) {
+    const auto t = py::reinterpret_borrow<py::tuple>(entry);
+    out.push_back(set_value(py::str(t[0]), t[1], t[2].cast<std::string>(), t[3].cast<bool>()));
+  }
+  return out;
 }
 
 // A sweep's cases from columns, each through the one conversion of Python values: numbers in the
-// column's unit, or in SI without one; or text cells read as a cases file's are (a bare number
-// takes the column's unit).
+// column's unit, or in SI when the column is marked SI; or text cells read as a cases file's are (a
+// bare number takes the column's unit). Numbers without a unit for a parameter with a dimension
+// are refused (unit_rule.hpp).
 CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
-                     const py::list& columns) {
+                     const std::vector<bool>& si, const py::list& columns) {
   CaseTable table;
   table.origin = "python";
-  if (py::len(columns) != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
+  if (py::len(columns) != names.size() || units.size() != names.size() || si.size() != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
                                                          std::to_string(py::len(columns)) + " columns");
   std::size_t n = 0;
   for (std::size_t v = 0; v < names.size(); ++v) {
@@ -115,8 +138,14 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
                        std::to_string(n));
     }
     const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
+    const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
+    const auto refuse_bare = [&] {
+      throw SceneError(bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *d,
+                                           session.scene_unit_of(name, *d), BareKind::column));
+    };
+    const bool bare_refused = unit.empty() && !si[v] && d && !d->dimensionless();
     if (!column.text) {
-      const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
+      if (bare_refused && n > 0) refuse_bare();
       for (std::size_t i = 0; i < n; ++i) {
         const double x = column.numbers[i];
         if (!std::isfinite(x)) throw SceneError(context(i) + ": not a finite number");
@@ -127,8 +156,10 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
       for (std::size_t i = 0; i < n; ++i) {
         const std::string& cell = column.cells[i];
         CaseValue value = value_from_text(cell, context(i));
-        if (!unit.empty() && value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos)
-          value = value_from_text(cell + " " + unit, context(i));
+        const bool bare = value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos;
+        if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context(i));
+        else if (bare && bare_refused) refuse_bare();
+        else if (bare && si[v] && d) value = value_from_si(*value.si, *d, context(i));
         table.cases[i][v] = std::move(value);
       }
     }
@@ -315,10 +346,9 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("cache_counters", [](const SceneSession& s) { return py::make_tuple(s.cache_hits(), s.cache_misses()); })
       .def("clear_cache", &SceneSession::clear_cache)
-      .def("run", [](const std::shared_ptr<SceneSession>& session, const py::dict& sets, const std::vector<std::string>& outputs,
+      .def("run", [](const std::shared_ptr<SceneSession>& session, const py::list& sets, const std::vector<std::string>& outputs,
                      unsigned threads, bool interruptible) {
-        auto values = std::make_shared<std::vector<SetValue>>();
-        for (const auto& [key, value] : sets) values->push_back(set_value(py::str(key), value));
+        auto values = std::make_shared<std::vector<SetValue>>(set_values(sets));
         auto run = std::make_shared<SessionRun>();
         if (interruptible) {
           // The work owns what it touches: on Ctrl-C it may finish after this call has raised.
@@ -331,11 +361,10 @@ PYBIND11_MODULE(_core, m) {
         return RunOutcome{session, run, outputs};
       }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
-                       const std::vector<std::string>& units, const py::list& columns, const py::dict& set,
-                       const std::vector<std::string>& outputs, unsigned threads) {
-        const CaseTable table = case_table(*session, names, units, columns);
-        std::vector<SetValue> sets;
-        for (const auto& [key, value] : set) sets.push_back(set_value(py::str(key), value));
+                       const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
+                       const py::list& set, const std::vector<std::string>& outputs, unsigned threads) {
+        const CaseTable table = case_table(*session, names, units, si, columns);
+        const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
         SessionSweep result;
         run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get()); }, [&] { *stop = true; },

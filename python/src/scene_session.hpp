@@ -22,10 +22,14 @@
 
 namespace mechgraph::python {
 
-/// One `set=` entry: text with its unit ("6500 rpm", a word), a number in SI, or a list in SI.
+/// One `set=` entry: text with its unit ("6500 rpm", a word; a number given with its unit becomes
+/// such text), a number, or a list of numbers for a list parameter. A number or list without a unit
+/// is refused for a parameter with a dimension unless marked SI (unit_rule.hpp).
 struct SetValue {
   std::string name;
   std::variant<std::string, double, std::vector<double>> value;
+  std::string unit;  // a list's numbers are in this unit ("deg"); "": SI when `si`, else bare
+  bool si = false;   // marked as SI (mechgraph.si, si=True)
 };
 
 struct SessionRun {
@@ -71,6 +75,10 @@ class SceneSession {
   const PluginRegistry& registry() const { return *registry_; }
   /// The dimension a `set=` name reaches (see case_values.hpp), from the scene's own graph.
   std::optional<Dimension> dimension_of(const std::string& name);
+  /// The unit the scene writes `name` in (unit_rule.hpp), for messages.
+  std::string scene_unit_of(std::string_view name, Dimension d) const;
+  /// Refuses a bare number (no unit, not marked SI) for a `name` with a dimension.
+  void require_unit_or_si(const std::string& context, const std::string& name, double given);
 
   /// Memo cache counters: hits, misses, entries dropped.
   std::size_t cache_hits() const { return cache_->hits(); }

@@ -48,7 +48,7 @@ def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
 def test_si_numbers_and_dict_of_arrays(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm_si = np.array([5000.0, 6000.0]) * 2 * math.pi / 60
-    a = scene.sweep({"rpm": rpm_si}, outputs=["v_kurz.max_acceleration"])
+    a = scene.sweep({"rpm": mechgraph.si(rpm_si)}, outputs=["v_kurz.max_acceleration"])
     b = scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["v_kurz.max_acceleration"])
     col = [c for c in a.columns if c.startswith("v_kurz.max_acceleration")][0]
     assert np.allclose(a[col].to_numpy(dtype=float), b[col].to_numpy(dtype=float), rtol=1e-14, atol=0)
@@ -79,7 +79,7 @@ def test_no_cases_give_an_empty_frame_and_nan_is_refused(scenes):
     with pytest.raises(mechgraph.SceneError):
         scene.sweep({"rpm [rpm]": [5000.0, float("nan")]}, outputs=["v_kurz.max_acceleration"])
     with pytest.raises(mechgraph.SceneError):
-        scene.sweep({"lift": [0.008, float("inf")]}, outputs=["v_kurz.max_acceleration"])
+        scene.sweep({"lift": [0.008, float("inf")]}, si=True, outputs=["v_kurz.max_acceleration"])
 
 
 def test_a_wide_frame_is_checked_for_repeated_columns_in_linear_time(scenes):
@@ -90,7 +90,7 @@ def test_a_wide_frame_is_checked_for_repeated_columns_in_linear_time(scenes):
 
     columns = {f"c{i}": [1.0] for i in range(300000)}
     start = time.monotonic()
-    names, _, _ = case_columns(columns)
+    names, _, _, _ = case_columns(columns)
     assert len(names) == 300000 and time.monotonic() - start < 10
     columns["c299999 [mm]"] = [1.0]
     with pytest.raises(mechgraph.SceneError, match="appears twice"):
