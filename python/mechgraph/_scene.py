@@ -124,9 +124,9 @@ class Scene:
         import pandas as pd
 
         names, units, marks, columns = case_columns(cases, si)
-        header, lines, summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
-                                                     list(outputs or []), int(threads))
-        frame = pd.DataFrame([json.loads(line) for line in lines], columns=header)
+        (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
+                                                        list(outputs or []), int(threads))
+        frame = pd.DataFrame(values, columns=header)
         frame.attrs["summary"] = summary
         return frame
 

@@ -26,6 +26,8 @@
 
 #include <atomic>
 #include <charconv>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -219,6 +221,54 @@ py::dict provenance(const RunOutcome& r) {
   return out;
 }
 
+// A sweep's rows as numpy columns by header: `case` and `exit` int64, the outputs float64 (NaN
+// where a case failed), an input float64 when every cell is a number (else objects: None, float
+// or the text as written), `error` objects (None for a success). The same values as the rows of
+// `mechgraph sweep --format jsonl`, without text in between.
+py::tuple sweep_columns(const SessionSweep& s) {
+  const std::size_t n = s.rows.size();
+  const std::size_t inputs = s.inputs;
+  const std::size_t outputs = s.header.size() - 3 - inputs;
+  py::dict columns;
+  py::array_t<std::int64_t> cases(static_cast<py::ssize_t>(n)), exits(static_cast<py::ssize_t>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    cases.mutable_at(i) = static_cast<std::int64_t>(s.cases[i]);
+    exits.mutable_at(i) = s.rows[i].exit_code;
+  }
+  columns[py::str(s.header.front())] = cases;
+  for (std::size_t v = 0; v < inputs; ++v) {
+    bool numbers = true;
+    for (const auto& row : s.rows) numbers = numbers && std::holds_alternative<double>(row.inputs[v]);
+    if (numbers) {
+      py::array_t<double> column(static_cast<py::ssize_t>(n));
+      for (std::size_t i = 0; i < n; ++i) column.mutable_at(i) = std::get<double>(s.rows[i].inputs[v]);
+      columns[python_text(s.header[1 + v])] = column;
+    } else {
+      py::list column;
+      for (const auto& row : s.rows) {
+        const auto& cell = row.inputs[v];
+        if (const auto* x = std::get_if<double>(&cell)) column.append(*x);
+        else if (const auto* text = std::get_if<std::string>(&cell)) column.append(python_text(*text));
+        else column.append(py::none());
+      }
+      columns[python_text(s.header[1 + v])] = py::module_::import("numpy").attr("array")(column, py::arg("dtype") = "object");
+    }
+  }
+  for (std::size_t o = 0; o < outputs; ++o) {
+    py::array_t<double> column(static_cast<py::ssize_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      column.mutable_at(i) = s.rows[i].outputs.empty() ? std::numeric_limits<double>::quiet_NaN() : s.rows[i].outputs[o];
+    columns[python_text(s.header[1 + inputs + o])] = column;
+  }
+  columns[py::str(s.header[s.header.size() - 2])] = exits;
+  py::list errors;
+  for (const auto& row : s.rows) errors.append(row.error.empty() ? py::object(py::none()) : py::object(python_text(row.error)));
+  columns[py::str(s.header.back())] = py::module_::import("numpy").attr("array")(errors, py::arg("dtype") = "object");
+  py::list header;
+  for (const std::string& h : s.header) header.append(python_text(h));
+  return py::make_tuple(header, columns);
+}
+
 // ---- errors -------------------------------------------------------------------------------------
 
 void raise_as(const char* class_name, const std::string& message) {
@@ -373,6 +423,6 @@ PYBIND11_MODULE(_core, m) {
         summary["cases"] = result.summary.run;
         summary["failed"] = result.failed;
         summary["seconds"] = result.summary.seconds;
-        return py::make_tuple(result.header, result.lines, summary);
+        return py::make_tuple(sweep_columns(result), summary);
       });
 }

@@ -215,13 +215,15 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   cli::RowSequencer sequence(
       rows, [] {},
       [&](const CaseResult& r) {
-        out.lines.push_back(rows.line(r, cli::exit_code_of(r.failure)));
-        if (r.failure != CaseFailure::none) ++out.failed;
+        out.cases.push_back(r.index);
+        out.rows.push_back(rows.values(r, cli::exit_code_of(r.failure)));
+        if (out.rows.back().exit_code != 0) ++out.failed;
       });
   MemoCache cache;
   out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { sequence(std::move(r)); });
   sequence.finish();
   out.header = rows.header();
+  out.inputs = table.variables.size();
   return out;
 }
 

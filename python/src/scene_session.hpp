@@ -6,6 +6,8 @@
 //
 // Thread-safety: a session serialises its runs (a run writes into its built graph); sweeps work on
 // their own copies and may run beside runs.
+#include <sweep_rows.hpp>
+
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/case_binder.hpp>
@@ -40,10 +42,12 @@ struct SessionRun {
   double seconds = 0.0;                // wall time of the evaluation
 };
 
-/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header.
+/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header, as values.
 struct SessionSweep {
   std::vector<std::string> header;
-  std::vector<std::string> lines;  // one JSON object per case, in case order
+  std::size_t inputs = 0;                            // varied-input columns after `case`
+  std::vector<std::size_t> cases;                    // each row's case number, in case order
+  std::vector<cli::SweepRows::Values> rows;          // one per case
   SweepSummary summary;
   std::size_t failed = 0;
 };
