@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 from typing import Any, Dict, List, Sequence
 
-from ._errors import EvaluationError, MechgraphError, PluginError, SceneError
+from ._errors import EvaluationError, MechgraphError, PluginError, SceneError, SceneFileNotFoundError, UnitError
 from . import _core
 from ._result import Quantity, Result
 from ._scene import Scene
@@ -22,7 +22,8 @@ from ._units import SI, si
 
 __version__: str = _core.__version__
 
-__all__ = ["Scene", "Result", "Quantity", "si", "SI", "MechgraphError", "SceneError", "EvaluationError", "PluginError",
+__all__ = ["Scene", "Result", "Quantity", "si", "SI", "MechgraphError", "SceneError", "SceneFileNotFoundError",
+           "UnitError", "EvaluationError", "PluginError",
            "describe", "node_types", "plugins", "load_plugins", "set_log_level", "Description"]
 
 

@@ -7,6 +7,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Sequence, Union
 
 from . import _core
 from ._cases import case_columns
+from ._errors import SceneError, SceneFileNotFoundError
 from ._result import Result
 from ._units import set_entries
 
@@ -32,9 +33,16 @@ class Scene:
     # ---- making one --------------------------------------------------------------------------
     @classmethod
     def load(cls, path: Union[str, os.PathLike]) -> "Scene":
-        """Reads a scene file (YAML, units in strings); errors name file:line:column."""
+        """Reads a scene file (YAML, units in strings). Errors are SceneError naming
+        file:line:column (``location``); a file that does not exist is a
+        :class:`SceneFileNotFoundError`, which is also a FileNotFoundError."""
         path = os.fspath(path)
-        return cls(_core.Session.load(path), ("file", path))
+        try:
+            return cls(_core.Session.load(path), ("file", path))
+        except SceneError as e:
+            if not os.path.exists(path):
+                raise SceneFileNotFoundError(e.message, path) from None
+            raise
 
     @classmethod
     def from_text(cls, yaml: str, name: str = "<text>") -> "Scene":
@@ -98,8 +106,9 @@ class Scene:
         threads: independent nodes evaluated at once.
         si: every bare number in `set` is in SI (m, rad, rad/s ...).
         """
-        outcome = self._session.run(set_entries(set, si), list(outputs or []), threads, self._interruptible)
-        result = Result(outcome)
+        entries = set_entries(set, si)
+        outcome = self._session.run(entries, list(outputs or []), threads, self._interruptible)
+        result = Result(outcome, self._session, entries)
         self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
         return result
 

@@ -5,6 +5,7 @@
 #include "case_values.hpp"
 #include "interruptible.hpp"
 #include "python_values.hpp"
+#include "report_tables.hpp"
 #include "scene_session.hpp"
 #include "unit_rule.hpp"
 #include "value_arrays.hpp"
@@ -14,6 +15,8 @@
 #include <terminal_output.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/units.hpp>
@@ -142,7 +145,7 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
     const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
     const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
     const auto refuse_bare = [&] {
-      throw SceneError(bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *d,
+      throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *d,
                                            session.scene_unit_of(name, *d), BareKind::column));
     };
     const bool bare_refused = unit.empty() && !si[v] && d && !d->dimensionless();
@@ -271,9 +274,19 @@ py::tuple sweep_columns(const SessionSweep& s) {
 
 // ---- errors -------------------------------------------------------------------------------------
 
-void raise_as(const char* class_name, const std::string& message) {
+// Raises mechgraph's Python class `class_name` with `message` (which may quote a plugin's bytes)
+// and, when the C++ error carried one, its subject as attributes: location (file, line, column),
+// node, parameter. Read from the error's fields, never from its message.
+void raise_as(const char* class_name, const std::string& message, const ErrorSubject* subject = nullptr) {
   const py::object cls = py::module_::import("mechgraph._errors").attr(class_name);
-  PyErr_SetObject(cls.ptr(), python_text(message).ptr());  // a message may quote a plugin's bytes
+  py::object error = cls(python_text(message));
+  if (subject) {
+    if (subject->where.line > 0)
+      error.attr("location") = py::make_tuple(python_text(subject->where.file), subject->where.line, subject->where.column);
+    if (!subject->node.empty()) error.attr("node") = python_text(subject->node);
+    if (!subject->parameter.empty()) error.attr("parameter") = python_text(subject->parameter);
+  }
+  PyErr_SetObject(cls.ptr(), error.ptr());
 }
 
 }  // namespace
@@ -288,6 +301,12 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const SceneErrorAt& e) {
+      raise_as("SceneError", e.what(), &e.subject());
+    } catch (const NodeEvaluationError& e) {
+      raise_as("EvaluationError", e.what(), &e.subject());
+    } catch (const UnitError& e) {
+      raise_as("UnitError", e.what());
     } catch (const SceneError& e) {
       raise_as("SceneError", e.what());
     } catch (const cli::UsageError& e) {
@@ -320,6 +339,11 @@ PYBIND11_MODULE(_core, m) {
     if (l == spdlog::level::off && level != "off")
       throw SceneError("log level '" + level + "': valid levels are trace, debug, info, warn, error, critical, off");
     spdlog::set_level(l);
+  });
+  m.def("unit_scale", [](const std::string& unit) {
+    // shown = si / scale - offset, and the SI unit of the unit's dimension ("" dimensionless)
+    const UnitScale u = parse_unit(unit);
+    return py::make_tuple(u.scale, u.offset, si_unit_label(u.dimension));
   });
   m.def("to_unit", [](double si, const std::string& unit) {
     // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
@@ -367,6 +391,42 @@ PYBIND11_MODULE(_core, m) {
           work[n.node.c_str()] = node;
         }
         return work;
+      })
+      .def("shown_units", [](const RunOutcome& r, const std::string& label) {
+        // The units the scene shows this output in ("" keeps SI): a scalar's; a series' values and
+        // axis; a table's axis and channels.
+        const OutputValue& o = r.find(label);
+        const DisplayUnits units = DisplayUnits::from_scene(r.session->scene().units);
+        py::list out;
+        switch (o.value.kind()) {
+          case ValueKind::series:
+            out.append(python_text(o.display_unit));
+            out.append(python_text(units.unit_for(o.value.as_series().axis_dimension)));
+            break;
+          case ValueKind::table: {
+            const Table& t = o.value.as_table();
+            out.append(python_text(units.unit_for(t.axis.dimension, t.axis.display_unit)));
+            for (const Table::Column& c : t.channels) out.append(python_text(units.unit_for(c.dimension, c.display_unit)));
+            break;
+          }
+          default: out.append(python_text(o.display_unit));
+        }
+        return out;
+      })
+      .def("report_tables", [](const RunOutcome& r) {
+        const Graph graph = r.session->graph_for(*r.run->sets, r.outputs);
+        py::list tables;
+        for (const ReportTableValues& t : report_table_values(graph, r.run->result)) {
+          py::list columns, rows;
+          for (const std::string& c : t.columns) columns.append(python_text(c));
+          for (const auto& row : t.rows) {
+            py::list values;
+            for (const auto& v : row.values) values.append(v ? py::object(py::float_(*v)) : py::object(py::none()));
+            rows.append(py::make_tuple(python_text(row.label), python_text(row.unit), values));
+          }
+          tables.append(py::make_tuple(python_text(t.title), columns, rows));
+        }
+        return tables;
       })
       .def_property_readonly("seconds", [](const RunOutcome& r) { return r.run->seconds; })
       .def("provenance", &provenance);

@@ -59,7 +59,7 @@ std::string SceneSession::scene_unit_of(std::string_view name, Dimension d) cons
 void SceneSession::require_unit_or_si(const std::string& context, const std::string& name, double given) {
   const std::optional<Dimension> d = dimension_of(name);
   if (d && !d->dimensionless())
-    throw SceneError(bare_number_refusal(context, name, number_text(given), *d, scene_unit_of(name, *d), BareKind::number));
+    throw SceneErrorAt(subject_of(name), bare_number_refusal(context, name, number_text(given), *d, scene_unit_of(name, *d), BareKind::number));
 }
 
 void SceneSession::clear_cache() {
@@ -82,7 +82,7 @@ SceneSession::Prepared SceneSession::prepare(const std::vector<std::string>& out
   check_work_budget(p.graph, estimate_work(p.graph), WorkBudget{}, 1, false);
   std::vector<SweepVariable> variables;
   for (const std::string& n : names) variables.push_back({n, ""});
-  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables);
+  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables, BinderUse::set);
   return p;
 }
 
@@ -122,7 +122,7 @@ void write_list(Graph& graph, const SceneSpec& scene, const SetValue& given) {
   if (!given.unit.empty()) {
     values = values_in_si(values, given.unit, spec->dimension, context);
   } else if (!given.si && !spec->dimension.dimensionless()) {
-    throw SceneError(bare_number_refusal(context, name, "", spec->dimension, scene_unit(scene, name, spec->dimension),
+    throw SceneErrorAt(subject_of(name), bare_number_refusal(context, name, "", spec->dimension, scene_unit(scene, name, spec->dimension),
                                          BareKind::array));
   }
   for (std::size_t i = 0; i < values.size(); ++i) {

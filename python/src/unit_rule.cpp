@@ -79,6 +79,12 @@ std::string bare_number_refusal(const std::string& context, std::string_view nam
   return context;
 }
 
+ErrorSubject subject_of(std::string_view name) {
+  const auto dot = name.find('.');
+  if (dot == std::string_view::npos) return {{}, {}, std::string(name)};
+  return {{}, std::string(name.substr(0, dot)), std::string(name.substr(dot + 1))};
+}
+
 std::string number_text(double x) {
   char buffer[40];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);

@@ -4,6 +4,7 @@
 // (mechgraph.si(0.009), si=True). A bare 9 for a valve lift would otherwise be 9 m and run without
 // a word. Dimensionless parameters (counts, ratios) take bare numbers.
 #include <mechgraph/dimension.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/scene.hpp>
 
 #include <string>
@@ -24,6 +25,10 @@ enum class BareKind { number, array, column };
 /// it names the dimension, the scene's unit and SI's, and the ways to say which is meant.
 std::string bare_number_refusal(const std::string& context, std::string_view name, std::string_view given, Dimension d,
                                 const std::string& scene_unit, BareKind kind);
+
+/// What a `set=` name is about, as an error carries it: "kurz.max_lift" is node kurz, parameter
+/// max_lift; "rpm" (a scene parameter) parameter rpm.
+ErrorSubject subject_of(std::string_view name);
 
 /// The shortest text that reads back as `x` ("9", "0.0085").
 std::string number_text(double x);
