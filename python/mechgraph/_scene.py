@@ -66,10 +66,12 @@ class Scene:
     # ---- what it is --------------------------------------------------------------------------
     @property
     def title(self) -> str:
+        """The scene's ``title:`` ("" when it has none)."""
         return self._session.title
 
     @property
     def file(self) -> str:
+        """The scene's file as given to :meth:`load`, or the `name` given to :meth:`from_text`."""
         return self._session.file
 
     @property
@@ -145,6 +147,7 @@ class Scene:
         return {"hits": hits, "misses": misses}
 
     def clear_cache(self) -> None:
+        """Empties this scene's memo cache: the next run evaluates every node it needs."""
         self._session.clear_cache()
 
     def __repr__(self) -> str:
