@@ -9,6 +9,7 @@ from . import _core
 from ._cases import case_columns
 from ._errors import SceneError, SceneFileNotFoundError
 from ._result import Result
+from ._progress import _Bar, progress_bar
 from ._units import set_entries
 
 SetValue = Union[str, float, int, Sequence[float]]
@@ -115,7 +116,7 @@ class Scene:
         return result
 
     def sweep(self, cases: Any, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0, si: bool = False):
+              threads: int = 0, si: bool = False, progress: Any = True):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
         ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
@@ -131,12 +132,24 @@ class Scene:
         set: fixed values for every case, as :meth:`run` takes them (``{"rpm": "6000 rpm"}``);
             a text is taken as it is, never read as YAML.
         si: every number without a unit (in `cases` and `set`) is in SI.
+        progress: a tqdm bar on stderr (or a Jupyter widget) once the sweep has run for a second
+            (True, the default); False for none; or a callable ``progress(done, total)`` called
+            about every 20 ms while cases run.
         """
         import pandas as pd
 
         names, units, marks, columns = case_columns(cases, si)
-        (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
-                                                        list(outputs or []), int(threads))
+        total = len(columns[0]) if columns else 0
+        bar = progress_bar(progress, total, "sweep " + (os.path.basename(self.file) if self.file else "scene"))
+        try:
+            (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
+                                                            list(outputs or []), int(threads), bar)
+        except BaseException:
+            if isinstance(bar, _Bar):
+                bar.close()
+            raise
+        if isinstance(bar, _Bar):
+            bar.close(summary["cases"])
         frame = pd.DataFrame(values, columns=header)
         frame.attrs["summary"] = summary
         return frame

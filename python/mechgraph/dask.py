@@ -10,6 +10,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Tuple
 
 from ._cases import case_columns
 from ._scene import Scene
+from ._progress import _Bar, progress_bar
 from ._units import SI
 
 # Scenes built on this worker process, by their source (the scene travels as its text or path).
@@ -26,17 +27,18 @@ def _worker_scene(source: Tuple[str, ...]) -> Scene:
 
 def _run_chunk(source: Tuple[str, ...], first: int, chunk: Dict[str, Any], sets: Optional[Mapping[str, str]],
                outputs: Optional[list], threads: int):
-    frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads)
+    frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads, progress=False)
     frame["case"] = frame["case"] + first
     return frame
 
 
 def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, Any]] = None,
-          outputs: Optional[Iterable[str]] = None, threads: int = 1, si: bool = False):
+          outputs: Optional[Iterable[str]] = None, threads: int = 1, si: bool = False, progress: Any = True):
     """Runs `cases` (a DataFrame or dict of arrays, as :meth:`Scene.sweep` takes) on the workers of
     `client` (a ``dask.distributed.Client``) in chunks of `chunk` cases, `threads` threads per
     chunk, and returns one DataFrame in case order. Units as :meth:`Scene.sweep` takes them (`si`
-    marks every number without a unit as SI). The columns of a series output are fixed per
+    marks every number without a unit as SI). `progress`: a tqdm bar of the cases done, chunk by
+    chunk, once the sweep has run for a second (False: none; a callable ``progress(done, total)``). The columns of a series output are fixed per
     chunk; a chunk whose cases all fail has only the scalar columns (its rows are aligned to the
     others by name)."""
     import pandas as pd
@@ -53,6 +55,17 @@ def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optiona
     for first in range(0, total, chunk):
         part = {h: SI(c[first:first + chunk]) if m else c[first:first + chunk] for h, m, c in zip(headers, marks, columns)}
         futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, pure=False))
+    bar = progress_bar(progress, total, "dask sweep")
+    if bar is not None and futures:
+        from distributed import as_completed
+
+        sizes = {f.key: min(chunk, total - first) for f, first in zip(futures, range(0, total, chunk))}
+        done = 0
+        for future in as_completed(futures):
+            done += sizes[future.key]
+            bar(done, total)
+        if isinstance(bar, _Bar):
+            bar.close(done)
     frames = client.gather(futures)
     if not frames:
         return scene.sweep(cases, set=set, outputs=outputs, threads=threads, si=si)

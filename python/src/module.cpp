@@ -472,13 +472,18 @@ PYBIND11_MODULE(_core, m) {
       }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
                        const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
-                       const py::list& set, const std::vector<std::string>& outputs, unsigned threads) {
+                       const py::list& set, const std::vector<std::string>& outputs, unsigned threads,
+                       const py::object& progress) {
         const CaseTable table = case_table(*session, names, units, si, columns);
         const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
+        std::atomic<std::size_t> done{0};
         SessionSweep result;
-        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get()); }, [&] { *stop = true; },
-                          OnInterrupt::wait);
+        // progress(done, total), every 20 ms while the cases run (a tqdm bar, _progress.py)
+        std::function<void()> tick;
+        if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.cases.size()); };
+        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), &done); }, [&] { *stop = true; },
+                          OnInterrupt::wait, tick);
         py::dict summary;
         summary["cases"] = result.summary.run;
         summary["failed"] = result.failed;

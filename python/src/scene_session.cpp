@@ -183,7 +183,8 @@ SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, 
 }
 
 SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop) {
+                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                                 std::atomic<std::size_t>* done) {
   SceneSpec scene = scene_;
   std::vector<Override> overrides;
   for (const SetValue& s : sets) {
@@ -220,7 +221,10 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
         if (out.rows.back().exit_code != 0) ++out.failed;
       });
   MemoCache cache;
-  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { sequence(std::move(r)); });
+  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
+    sequence(std::move(r));
+    if (done) done->fetch_add(1, std::memory_order_relaxed);
+  });
   sequence.finish();
   out.header = rows.header();
   out.inputs = table.variables.size();

@@ -66,8 +66,10 @@ class SceneSession {
   /// Runs one case per row of `table` on `threads` workers (0: one per core) with the rows of
   /// `mechgraph sweep`; `stop` set: no new case starts. `sets` are fixed for every case (text or
   /// a number in SI; each goes to the scene as the text it is, never read as YAML).
+  /// `done` (if given) counts the cases finished, for a progress bar.
   SessionSweep sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                     const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+                     const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                     std::atomic<std::size_t>* done = nullptr);
 
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()

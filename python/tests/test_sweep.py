@@ -103,3 +103,33 @@ def test_each_case_is_estimated_with_its_own_values(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     with pytest.raises(mechgraph.SceneError, match="curve_points = 1000000"):
         scene.sweep({"kurz.curve_points": [1e6] * 200}, outputs=["v_kurz.max_acceleration"], threads=200)
+
+
+def test_progress_is_reported_while_cases_run_and_a_bar_shows_only_for_long_sweeps(scenes, capfd, monkeypatch):
+    import mechgraph._progress
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    cases = {"rpm [rpm]": np.linspace(3000, 8000, 20000)}
+    seen = []
+    rows = scene.sweep(cases, outputs=["ta_kurz.time_area"], threads=1, progress=lambda done, total: seen.append((done, total)))
+    assert len(rows) == 20000
+    assert seen and all(total == 20000 for _, total in seen)
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    capfd.readouterr()
+    scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["ta_kurz.time_area"])  # short: no bar
+    assert capfd.readouterr().err == ""
+    monkeypatch.setattr(mechgraph._progress, "DELAY_S", 0.0)  # a long sweep's bar, without waiting a second
+    scene.sweep(cases, outputs=["ta_kurz.time_area"], threads=1)
+    err = capfd.readouterr().err
+    assert "100%" in err and "20000/20000" in err and "case" in err
+
+
+def test_a_progress_callable_that_raises_stops_the_sweep(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+
+    def stop(done, total):
+        raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        scene.sweep({"rpm [rpm]": np.linspace(3000, 8000, 200000)}, outputs=["ta_kurz.time_area"], threads=2, progress=stop)
+    assert len(scene.sweep({"rpm [rpm]": [5000.0]}, outputs=["ta_kurz.time_area"])) == 1
