@@ -10,7 +10,7 @@ from ._cases import case_columns
 from ._errors import SceneError, SceneFileNotFoundError
 from ._result import Result
 from ._progress import _Bar, progress_bar
-from ._units import set_entries
+from ._units import scene_value, set_entries
 
 SetValue = Union[str, float, int, Sequence[float]]
 
@@ -55,8 +55,10 @@ class Scene:
     @classmethod
     def from_dict(cls, scene: Mapping[str, Any], name: str = "<dict>") -> "Scene":
         """A scene from a dict shaped like the YAML (``{"params": ..., "nodes": ..., "outputs": [...]}``),
-        bounded as :meth:`from_text` is (the dict written as indented JSON, at most 1 MiB)."""
-        return cls.from_text(json.dumps(scene, indent=1), name)
+        bounded as :meth:`from_text` is (the dict written as indented JSON, at most 1 MiB). Values
+        are text with their units (``"8 mm"``) or pint quantities (written in SI base units); a
+        bare number for a parameter with a dimension is refused as in a scene file."""
+        return cls.from_text(json.dumps(scene, indent=1, default=scene_value), name)
 
     # pickling (dask): the scene travels as its text and is built again where it lands
     def __reduce__(self):

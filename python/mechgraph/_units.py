@@ -135,3 +135,20 @@ def _cell(value: Any, context: str) -> Any:
     if _is_unit_pair(value):
         return f"{value[0]} {value[1]}"
     return value
+
+
+def scene_value(value: Any) -> Any:
+    """A value of a scene given as a dict (``Scene.from_dict``) as JSON writes it: a pint quantity
+    as text in SI base units ("0.009 m"), numpy numbers and arrays as numbers and lists."""
+    if is_pint(value):
+        magnitude, unit = _pint_parts(value, "scene")
+        if np.ndim(magnitude):
+            return [f"{float(x)!r} {unit}".strip() for x in np.asarray(magnitude).ravel()]
+        return f"{float(magnitude)!r} {unit}".strip()
+    if isinstance(value, SI):
+        raise TypeError("a scene's value is text with its unit ('9 mm') or a pint quantity; mechgraph.si() is for set=")
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"a scene's value cannot be a {type(value).__name__}")

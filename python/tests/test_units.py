@@ -183,3 +183,16 @@ def test_si_marks_numbers_only():
         mechgraph.si(Q_(9, "mm"))
     assert repr(mechgraph.si(0.009)) == "mechgraph.si(0.009)"
     assert mechgraph.si(mechgraph.si(0.009)).value == 0.009
+
+
+def test_a_scene_from_a_dict_takes_pint_quantities_and_refuses_bare_lengths():
+    def scene(lift):
+        return {"nodes": {"k": {"type": "cam.kurz", "params": {"max_lift": lift, "action_angle": Q_(130, "deg"),
+                                                               "accel_angle": "18 deg", "base_radius": Q_(17, "mm")}}},
+                "outputs": ["k.max_lift"]}
+
+    a = mechgraph.Scene.from_dict(scene(Q_(9, "mm"))).run()
+    b = mechgraph.Scene.from_dict(scene("9 mm")).run()
+    assert close(a["k.max_lift"], b["k.max_lift"])
+    with pytest.raises(mechgraph.SceneError, match="no unit"):
+        mechgraph.Scene.from_dict(scene(9)).validate()
