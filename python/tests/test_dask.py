@@ -13,7 +13,8 @@ def test_dask_sweep_equals_the_single_process_sweep(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm = np.linspace(4000, 8000, 37)
     r0 = np.where(np.arange(37) == 11, 3.0, 17.0)  # one infeasible case, a failed row
-    cases = pd.DataFrame({"rpm [rpm]": rpm, "r0 [mm]": r0})
+    # units three ways: a header, a (values, unit) pair, numbers marked SI; each chunk keeps them
+    cases = {"rpm [rpm]": rpm, "r0": (r0, "mm"), "lift": mechgraph.si(np.linspace(0.007, 0.009, 37))}
     outputs = ["arc.min_curvature_radius", "v_kurz.max_acceleration", "ta_kurz.time_area"]
     local = scene.sweep(cases, outputs=outputs, threads=1)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
