@@ -1,6 +1,6 @@
 # Type hints of the package mechgraph (the implementation is mechgraph/*.py over mechgraph._core).
 import os
-from typing import Any, Dict, Iterable, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import pandas as pd
@@ -88,7 +88,8 @@ class Scene:
     def run(self, set: Optional[Mapping[str, SetValue]] = ..., outputs: Optional[Iterable[str]] = ...,
             threads: int = ..., si: bool = ...) -> Result: ...
     def sweep(self, cases: Union[pd.DataFrame, Mapping[str, Any]], set: Optional[Mapping[str, SetValue]] = ...,
-              outputs: Optional[Iterable[str]] = ..., threads: int = ..., si: bool = ...) -> pd.DataFrame: ...
+              outputs: Optional[Iterable[str]] = ..., threads: int = ..., si: bool = ...,
+              progress: Union[bool, Callable[[int, int], None]] = ...) -> pd.DataFrame: ...
     def cache_info(self) -> Dict[str, int]: ...
     def clear_cache(self) -> None: ...
 
