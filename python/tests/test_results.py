@@ -198,3 +198,26 @@ def test_every_public_name_has_a_docstring():
         if not doc or len(doc) < 20:
             missing.append(name)
     assert not missing, missing
+
+
+@pytest.mark.parametrize("text", [
+    "nodes:\n  k: { type: cam.kurtz }\n",                                                     # unknown node type
+    "nodes: {k: [1\n",                                                                          # YAML syntax
+    "units: { lenght: mm }\nnodes: {}\n",                                                       # unknown quantity
+    "units: { length: deg }\nnodes: {}\n",                                                      # a unit of another dimension
+    "nodes:\n  k: { type: cam.kurz, params: { max_lift: 9, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }\n"
+    "outputs: [k.max_lift]\n",                                                                   # a length without its unit
+    "nodes:\n  k: { type: cam.kurz, params: { max_lift: 9 mm, max_lift: 8 mm } }\n",           # a key given twice
+    "nodes:\n  v: { type: valvetrain.time_area, inputs: { valve: nope.motion } }\n",            # an unknown source node
+    "title: caf\xe9\nnodes: {}\n",                                                             # not UTF-8 (as bytes)
+])
+def test_every_scene_error_that_names_a_place_carries_it_as_data(tmp_path, text):
+    scene = tmp_path / "scene.yaml"
+    scene.write_bytes(text.encode("latin-1"))
+    with pytest.raises(mechgraph.SceneError) as e:
+        mechgraph.Scene.load(scene).validate()
+    message = str(e.value)
+    assert message.startswith(str(scene) + ":"), message
+    assert e.value.location is not None, message
+    file, line, column = e.value.location
+    assert message.startswith(f"{file}:{line}:{column}: ") and line >= 1 and column >= 1
