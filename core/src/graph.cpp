@@ -318,10 +318,15 @@ class GraphBuilder {
     std::set<std::string> seen;
     for (const auto& [name, value] : written) {
       const ParamSpec* spec = info.find_param(name);
-      if (!spec) fail(value.key_where, owner + ": " + unknown_name_message("parameter", name, valid));
+      if (!spec)
+        throw SceneErrorAt({value.key_where, n.name, name}, value.key_where.str() + owner + ": " + unknown_name_message("parameter", name, valid));
       seen.insert(name);
       record_scene_param_uses(graph_.nodes.size(), name, value, false);
-      node.params.set(name, parse_param(value, *spec, owner));
+      try {
+        node.params.set(name, parse_param(value, *spec, owner));
+      } catch (const SceneErrorAt& e) {  // the same error, with the node and parameter as data
+        throw SceneErrorAt({e.subject().where, n.name, name}, e.what());
+      }
       node.param_where[name] = value.where;
     }
     for (const ParamSpec& p : info.params) {

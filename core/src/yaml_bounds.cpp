@@ -161,7 +161,7 @@ void check_utf8(std::string_view text, const std::string& file) {
   }
   char hex[8];
   std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
-  throw_scene_error_at(SourceLocation{file, line, column}, "byte " + hex +
+  throw_scene_error_at(SourceLocation{file, line, column}, std::string("byte ") + hex +
                    " is not UTF-8: save the scene as UTF-8 text");
 }
 

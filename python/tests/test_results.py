@@ -221,3 +221,16 @@ def test_every_scene_error_that_names_a_place_carries_it_as_data(tmp_path, text)
     assert e.value.location is not None, message
     file, line, column = e.value.location
     assert message.startswith(f"{file}:{line}:{column}: ") and line >= 1 and column >= 1
+
+
+def test_a_parameters_scene_error_names_node_and_parameter(tmp_path):
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("nodes:\n  k: { type: cam.kurz, params: { max_lift: 9, action_angle: 130 deg, accel_angle: 18 deg,"
+                     " base_radius: 17 mm } }\noutputs: [k.max_lift]\n")
+    with pytest.raises(mechgraph.SceneError) as e:
+        mechgraph.Scene.load(scene).validate()
+    assert (e.value.node, e.value.parameter, e.value.location[1]) == ("k", "max_lift", 2)
+    scene.write_text("nodes:\n  k: { type: cam.kurz, params: { max_lfit: 9 mm } }\noutputs: [k.max_lift]\n")
+    with pytest.raises(mechgraph.SceneError) as e:
+        mechgraph.Scene.load(scene).validate()
+    assert (e.value.node, e.value.parameter) == ("k", "max_lfit") and "max_lift" in str(e.value)
