@@ -234,3 +234,11 @@ def test_a_parameters_scene_error_names_node_and_parameter(tmp_path):
     with pytest.raises(mechgraph.SceneError) as e:
         mechgraph.Scene.load(scene).validate()
     assert (e.value.node, e.value.parameter) == ("k", "max_lfit") and "max_lift" in str(e.value)
+
+
+@pytest.mark.parametrize("sets", [{"kurz.curve_points": 1e9}, {"kurz.max_lift": "9 deg"}, {"kurz.ramp": "wavy"},
+                                  {"kurz.max_lift": "-9 mm"}])
+def test_a_refused_value_names_the_node_and_parameter_it_reached(cams, sets):
+    with pytest.raises(mechgraph.SceneError) as e:
+        cams.run(set=sets, outputs=["kurz.max_lift"])
+    assert (e.value.node, e.value.parameter) == ("kurz", next(iter(sets)).split(".")[1]), str(e.value)

@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/case_binder.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -136,6 +137,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
       const GraphNode& node = graph.nodes[t.node];
       const ParamSpec& spec = *t.spec;
       const auto param = [&] { return "parameter '" + spec.name + "' of " + owner_of(node); };
+      const auto subject = [&] { return ErrorSubject{{}, node.name, spec.name}; };  // as data (error_subject.hpp)
       ParamValue& slot = *slots.of_variable[v][k];
       switch (spec.kind) {
         case ParamKind::number:
@@ -147,15 +149,15 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
             } catch (const UnitError& e) {
               why = e.what();
             }
-            throw SceneError(what() + ": " + param() + ": " + why);
+            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + why);
           }
           // Read values are finite already (case_table); a table built by a library caller may not be.
-          if (!std::isfinite(*value.si)) throw SceneError(what() + ": " + param() + ": not a finite number");
+          if (!std::isfinite(*value.si)) throw SceneErrorAt(subject(), what() + ": " + param() + ": not a finite number");
           if (!(value.dimension == spec.dimension))
-            throw SceneError(what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
+            throw SceneErrorAt(subject(), what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
           if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
-            throw SceneError(what() + ": " + param() + " " + problem);
+            throw SceneErrorAt(subject(), what() + ": " + param() + " " + problem);
           // Written in place: a number needs no new ParamValue.
           slot.kind = spec.kind;
           slot.number = spec.kind == ParamKind::integer ? static_cast<double>(static_cast<long>(*value.si)) : *value.si;
@@ -163,7 +165,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
         }
         case ParamKind::choice:
           if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
-            throw SceneError(what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
+            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
           slot = ParamValue::of_choice(value.text);
           break;
         case ParamKind::text: slot = ParamValue::of_text(value.text); break;
