@@ -63,7 +63,7 @@ std::string explain_fingerprint_mismatch(const std::string& plugin, const std::s
 }  // namespace
 
 void throw_plugin_load_failure(const std::string& where, const std::string& reason) {
-  if (reason.find("libmechgraph.so") != std::string::npos)
+  if (reason.find("libmechgraph.so") != std::string::npos || reason.find("libmechgraph_sdk.so") != std::string::npos)
     throw PluginError(where + ": cannot be loaded (" + reason + "): it was built against another mechgraph SDK; rebuild it "
                       "against this mechgraph " MECHGRAPH_SDK_VERSION " (find_package(mechgraph CONFIG) of this install)");
   throw PluginError(where + ": cannot be loaded as a shared library (" + reason + ")");
