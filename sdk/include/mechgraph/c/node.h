@@ -5,6 +5,14 @@
  * and inputs that may run on many threads at once. It reports through the eval suite (host.h):
  * outputs by index, errors through fail() with MG_ERR_NODE, work counters, notes; it polls
  * cancelled() in long loops. It never returns NaN or Inf: the host checks.
+ *
+ * Required prefixes. A host reads a description's fields up to these whatever the writer's
+ * struct_size, and refuses a shorter struct; every field after them may be absent in a writer's
+ * struct (an older 1.x) and then counts as its default (NULL, 0, -1 for a frame index):
+ *   mg_node_type  up to evaluate          mg_node_desc    up to output_count
+ *   mg_param_decl up to field_count       mg_port_decl    up to flags
+ *   mg_counter_decl up to name            mg_effect_decl  whole
+ *   mg_plugin (plugin.h) up to node_types
  */
 #ifndef MECHGRAPH_C_NODE_H
 #define MECHGRAPH_C_NODE_H
