@@ -8,7 +8,6 @@
 
 #include <cstdint>
 #include <cstring>
-#include <deque>
 #include <new>
 #include <stdexcept>
 #include <vector>
@@ -267,9 +266,9 @@ class CallViews {
         break;
       case ParamKind::record_list: {
         out.kind = MG_PARAM_RECORD_LIST;
-        std::vector<mg_record>& records = records_.emplace_back();
+        std::vector<mg_record>& records = add(records_);
         for (const Record& r : v.records) {
-          std::vector<mg_param_value>& fields = fields_.emplace_back();
+          std::vector<mg_param_value>& fields = add(fields_);
           for (const ParamSpec& f : spec.fields) {
             const auto it = r.find(f.name);
             fields.push_back(it != r.end() ? param(it->second, f) : absent(f));
@@ -294,10 +293,10 @@ class CallViews {
       case ValueKind::scalar: out.kind = MG_VALUE_SCALAR; out.u.scalar = v.as_scalar(); break;
       case ValueKind::series: {
         const Series& s = v.as_series();
-        mg_series& c = series_.emplace_back();
+        mg_series& c = add(series_);
         c = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), to_c_dim(s.axis_dimension), nullptr, {}};
         if (!s.labels.empty()) {
-          std::vector<const char*>& labels = labels_.emplace_back();
+          std::vector<const char*>& labels = add(labels_);
           for (const std::string& l : s.labels) labels.push_back(l.c_str());
           c.labels = labels.data();
         }
@@ -307,11 +306,11 @@ class CallViews {
       }
       case ValueKind::table: {
         const Table& t = v.as_table();
-        std::vector<mg_column>& channels = columns_.emplace_back();
+        std::vector<mg_column>& channels = add(columns_);
         for (const Table::Column& col : t.channels) channels.push_back(column(col));
-        std::vector<mg_mark>& marks = marks_.emplace_back();
+        std::vector<mg_mark>& marks = add(marks_);
         for (const Table::Mark& m : t.axis_marks) marks.push_back({m.label.c_str(), m.value});
-        mg_table& c = tables_.emplace_back();
+        mg_table& c = add(tables_);
         c = mg_table{sizeof(mg_table), t.axis.values.size(), column(t.axis), channels.data(), channels.size(),
                      (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u),
                      marks.data(), marks.size(), {}};
@@ -335,13 +334,19 @@ class CallViews {
   static mg_column column(const Table::Column& c) {
     return {c.name.c_str(), to_c_dim(c.dimension), c.display_unit.c_str(), c.values.data()};
   }
-  std::deque<std::vector<mg_record>> records_;
-  std::deque<std::vector<mg_param_value>> fields_;
-  std::deque<mg_series> series_;
-  std::deque<std::vector<const char*>> labels_;
-  std::deque<std::vector<mg_column>> columns_;
-  std::deque<std::vector<mg_mark>> marks_;
-  std::deque<mg_table> tables_;
+  // Stable addresses, and no allocation at all for a call that needs none of them (a std::deque
+  // allocates when it is made).
+  template <class T>
+  static T& add(std::vector<std::unique_ptr<T>>& store) {
+    return *store.emplace_back(std::make_unique<T>());
+  }
+  std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
+  std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
+  std::vector<std::unique_ptr<mg_series>> series_;
+  std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
+  std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
+  std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
+  std::vector<std::unique_ptr<mg_table>> tables_;
 };
 
 class CNodeType final : public NodeType {
