@@ -16,6 +16,7 @@
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/sweep/case_estimate.hpp>
+#include <mechgraph/sweep/case_table.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -247,62 +248,73 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
                            "mechgraph study SCENE [--samples N] [--method M] [--seed S] [--threads N] [--rows FILE]\n"
                            "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--json] [--out DIR]"))
     return ok;
+  const std::string samples = vm.count("samples") ? vm["samples"].as<std::string>() : "";
+  const std::string method = vm.count("method") ? vm["method"].as<std::string>() : "";
+  const std::string seed = vm.count("seed") ? vm["seed"].as<std::string>() : "";
+  const std::string& threads_text = vm["threads"].as<std::string>();
+  unsigned threads = 0;
+  if (const auto [p, ec] = std::from_chars(threads_text.data(), threads_text.data() + threads_text.size(), threads);
+      ec != std::errc() || p != threads_text.data() + threads_text.size() || threads > max_threads)
+    throw UsageError("--threads '" + excerpt(threads_text, 40) + "' is not a whole number from 0 to " + std::to_string(max_threads));
+  if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
   const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
   SceneSpec scene = load_scene(scene_file);
-  StudySpec spec = study_spec_of(scene, registry);
-  apply_study_options(spec, vm.count("samples") ? vm["samples"].as<std::string>() : "", vm.count("method") ? vm["method"].as<std::string>() : "",
-                      vm.count("seed") ? vm["seed"].as<std::string>() : "");
-  const unsigned threads_asked = static_cast<unsigned>(std::stoul(vm["threads"].as<std::string>()));
-  const unsigned threads = threads_asked ? std::min(threads_asked, 1024u) : std::max(1u, std::thread::hardware_concurrency());
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  const Graph graph = build_sweep_graph(scene, registry, overrides,
-                                        vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt);
-  check_study_parameters(spec, graph, scene, registry, overrides);
-  const std::vector<StudyColumn> columns = study_columns(graph);
-  const CaseTable table = make_study_cases(spec);
-  StudyData data;
+  const std::optional<std::string> outputs = vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt;
+
+  std::unique_ptr<StudyOutcome> outcome;
   if (vm.count("rows")) {
-    data = read_study_rows(vm["rows"].as<std::string>(), table, columns);
+    // The design again (it depends on the seed alone), the values from the rows.
+    outcome = std::make_unique<StudyOutcome>();
+    outcome->spec = study_spec_of(scene, registry);
+    apply_study_options(outcome->spec, samples, method, seed);
+    const Graph graph = build_sweep_graph(scene, registry, overrides, outputs);
+    check_study_parameters(outcome->spec, graph, scene, registry, overrides);
+    outcome->table = make_study_cases(outcome->spec);
+    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, study_columns(graph));
+    outcome->answers = analyse_study(outcome->spec, outcome->data);
+    std::ostringstream text;
+    JsonWriter w(text);
+    write_study_json(w, outcome->spec, outcome->answers);
+    outcome->json = text.str();
   } else {
-    const CaseBinder binder(graph, scene, registry, overrides, table.variables);
-    std::vector<std::size_t> all(table.cases.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     WorkBudget budget = work_budget(vm);
     if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
-    check_sweep_budget(graph, binder, table, all, budget, threads);
     study_stop = false;
     auto previous_int = std::signal(SIGINT, request_study_stop);
     auto previous_term = std::signal(SIGTERM, request_study_stop);
-    SweepSummary summary;
-    data = evaluate_study(graph, binder, table, columns, threads, &study_stop, &summary);
+    try {
+      outcome = run_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, budget, threads, &study_stop);
+    } catch (...) {
+      std::signal(SIGINT, previous_int);
+      std::signal(SIGTERM, previous_term);
+      throw;
+    }
     std::signal(SIGINT, previous_int);
     std::signal(SIGTERM, previous_term);
+    const SweepSummary& summary = outcome->summary;
     if (summary.stopped) {
       spdlog::warn("study stopped after {} of {} cases; nothing is reported from a part of the design "
-                   "(for a run that can stop and go on: mechgraph sweep SCENE --study --out FILE --resume)", summary.run, table.cases.size());
+                   "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
       return interrupted;
     }
-    spdlog::info("study: {} cases in {:.3g} s on {} threads, {} failed", summary.run, summary.seconds, threads, summary.failed);
+    spdlog::info("study: {} cases in {:.3g} s, {} failed", summary.run, summary.seconds, summary.failed);
   }
-  const StudyAnswers answers = analyse_study(spec, data);
-  std::ostringstream json;
-  {
-    JsonWriter w(json);
-    write_study_json(w, spec, answers);
-  }
-  json << "\n";
+  const StudySpec& spec = outcome->spec;
+  const StudyAnswers& answers = outcome->answers;
+  const std::string json = outcome->json + "\n";
   if (vm.count("out"))
     write_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0, [&](const std::filesystem::path& dir) {
       std::ofstream f(dir / "study.json", std::ios::binary);
-      f << json.str();
+      f << json;
       f.close();
       check_written(f, dir / "study.json");
       write_csvs(dir, spec, answers);
     });
-  if (vm.count("json")) std::cout << json.str();
+  if (vm.count("json")) std::cout << json;
   else print_text(terminal_tables(spec, answers));
   return ok;
 }

@@ -5,6 +5,7 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/memo_cache.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
@@ -12,7 +13,11 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <algorithm>
+#include <memory>
 #include <set>
+#include <sstream>
+#include <thread>
 
 namespace mechgraph::cli {
 
@@ -152,6 +157,61 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
   if (spec.evaluations() > max_sweep_cases)
     throw UsageError("--samples " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
                      " evaluations, more than 10^7");
+}
+
+}  // namespace mechgraph::cli
+
+namespace mechgraph::cli {
+
+RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block) {
+  RawValue merged;
+  merged.kind = RawValue::Kind::map;
+  if (scene.uncertainty) merged = *scene.uncertainty;
+  if (!block) return merged;
+  if (block->kind != RawValue::Kind::map) throw SceneError(block->where.str() + "expected the uncertainty settings as a map");
+  merged.where = block->where;
+  for (const RawField& f : block->fields) {
+    auto same = std::find_if(merged.fields.begin(), merged.fields.end(), [&](const RawField& m) { return m.first == f.first; });
+    if (same == merged.fields.end()) {
+      merged.fields.push_back(f);
+    } else if (f.first == "parameters" && f.second.kind == RawValue::Kind::map && same->second.kind == RawValue::Kind::map) {
+      for (const RawField& p : f.second.fields) {
+        auto old = std::find_if(same->second.fields.begin(), same->second.fields.end(), [&](const RawField& m) { return m.first == p.first; });
+        if (old == same->second.fields.end()) same->second.fields.push_back(p);
+        else old->second = p.second;
+      }
+    } else {
+      same->second = f.second;
+    }
+  }
+  return merged;
+}
+
+std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                              const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                              const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
+                                              unsigned threads, const std::atomic<bool>* stop) {
+  auto outcome = std::make_unique<StudyOutcome>();
+  if (block) scene.uncertainty = merged_uncertainty(scene, block);
+  outcome->spec = study_spec_of(scene, registry);
+  apply_study_options(outcome->spec, samples, method, seed);
+  const Graph graph = build_sweep_graph(scene, registry, overrides, outputs);
+  check_study_parameters(outcome->spec, graph, scene, registry, overrides);
+  const std::vector<StudyColumn> columns = study_columns(graph);
+  outcome->table = make_study_cases(outcome->spec);
+  const CaseBinder binder(graph, scene, registry, overrides, outcome->table.variables);
+  std::vector<std::size_t> all(outcome->table.cases.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  check_sweep_budget(graph, binder, outcome->table, all, budget, threads);
+  outcome->data = evaluate_study(graph, binder, outcome->table, columns, threads, stop, &outcome->summary);
+  if (outcome->summary.stopped) return outcome;
+  outcome->answers = analyse_study(outcome->spec, outcome->data);
+  std::ostringstream json;
+  JsonWriter w(json);
+  write_study_json(w, outcome->spec, outcome->answers);
+  outcome->json = json.str();
+  return outcome;
 }
 
 }  // namespace mechgraph::cli

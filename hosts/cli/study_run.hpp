@@ -5,11 +5,13 @@
 // (uncertainty/sample_design.hpp) and run by the sweep runner on the worker pool, the values taken
 // as the sweep's rows show them, then analysed (uncertainty/study_answers.hpp).
 #include <mechgraph/graph.hpp>
+#include <mechgraph/work_estimate.hpp>
 #include <mechgraph/sweep/case_binder.hpp>
 #include <mechgraph/uncertainty/sample_design.hpp>
 #include <mechgraph/uncertainty/study_answers.hpp>
 
 #include <atomic>
+#include <memory>
 #include <optional>
 
 namespace mechgraph::cli {
@@ -42,5 +44,31 @@ namespace mechgraph::cli {
 /// --samples, --method and --seed (empty: the scene's) over the scene's settings; throws
 /// UsageError for a value out of range, naming the option.
 void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed);
+
+}  // namespace mechgraph::cli
+
+namespace mechgraph::cli {
+
+/// A study run in process (Python's Scene.study, `mechgraph study`): its settings, the design,
+/// the values and the answers.
+struct StudyOutcome {
+  StudySpec spec;
+  CaseTable table;
+  StudyData data;
+  StudyAnswers answers;  // refers to `spec`: keep the outcome whole
+  SweepSummary summary;
+  std::string json;      // write_study_json
+};
+
+/// `block` merged over the scene's `uncertainty:` (a key of `block` replaces the scene's, except
+/// `parameters`, which are merged by name); `block` may be absent.
+RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block);
+
+/// Reads the study (`block` over the scene's), checks it, runs its cases within `budget` on
+/// `threads` and analyses them. summary.stopped: `stop` was set, nothing analysed.
+std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                              const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                              const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
+                                              unsigned threads, const std::atomic<bool>* stop);
 
 }  // namespace mechgraph::cli

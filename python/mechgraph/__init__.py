@@ -18,10 +18,11 @@ from ._errors import EvaluationError, MechgraphError, PluginError, SceneError
 from . import _core
 from ._result import Quantity, Result
 from ._scene import Scene
+from ._study import Study
 
 __version__: str = _core.__version__
 
-__all__ = ["Scene", "Result", "Quantity", "MechgraphError", "SceneError", "EvaluationError", "PluginError",
+__all__ = ["Scene", "Study", "Result", "Quantity", "MechgraphError", "SceneError", "EvaluationError", "PluginError",
            "describe", "node_types", "plugins", "load_plugins", "set_log_level", "Description"]
 
 

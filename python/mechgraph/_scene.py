@@ -117,6 +117,33 @@ class Scene:
         frame.attrs["summary"] = summary
         return frame
 
+    def study(self, parameters: Optional[Mapping[str, Any]] = None, *, samples: Optional[int] = None,
+              method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
+              limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
+              set: Optional[Mapping[str, Union[str, float, int]]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0) -> "Study":
+        """An uncertainty study of the scene, as ``mechgraph study`` runs it (docs/python.md).
+
+        parameters: distributions by parameter name, as the scene's ``uncertainty: parameters:``
+            writes them, e.g. ``{"lash": {"normal": {"mean": "0.25 mm", "sigma": "0.01 mm"}}}``;
+            merged over the scene's block by name. limits, events, samples, method, seed and
+            sensitivity replace the block's. Returns a Study (DataFrames: summary, quantiles,
+            histograms, sobol, events, samples). The answers do not depend on `threads`.
+        """
+        from ._study import Study
+
+        block: Dict[str, Any] = {}
+        if parameters:
+            block["parameters"] = dict(parameters)
+        for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
+            if value is not None:
+                block[key] = value
+        text = json.dumps(block) if block else ""
+        json_text, cases = self._session.study(text, dict(set or {}), "" if samples is None else str(int(samples)),
+                                               method or "", "" if seed is None else str(int(seed)), list(outputs or []),
+                                               int(threads))
+        return Study(json_text, cases)
+
     def cache_info(self) -> Dict[str, int]:
         """Memo cache lookups of this scene's runs: hits and misses."""
         hits, misses = self._session.cache_counters()

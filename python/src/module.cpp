@@ -8,6 +8,9 @@
 #include "scene_session.hpp"
 #include "value_arrays.hpp"
 
+#include <study_run.hpp>
+#include <sweep_rows.hpp>
+
 #include <cli.hpp>
 #include <node_info_format.hpp>
 #include <terminal_output.hpp>
@@ -345,5 +348,37 @@ PYBIND11_MODULE(_core, m) {
         summary["failed"] = result.failed;
         summary["seconds"] = result.summary.seconds;
         return py::make_tuple(result.header, result.lines, summary);
+      })
+      .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::dict& set,
+                       const std::string& samples, const std::string& method, const std::string& seed,
+                       const std::vector<std::string>& outputs, unsigned threads) {
+        // `block`: the settings from Python as JSON text ("" for none), read as the scene's block is.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        std::vector<SetValue> sets;
+        for (const auto& [key, value] : set) sets.push_back(set_value(py::str(key), value));
+        auto stop = std::make_shared<std::atomic<bool>>(false);
+        std::unique_ptr<cli::StudyOutcome> outcome;
+        run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
+                          [&] { *stop = true; }, OnInterrupt::wait);
+        // The design's cases: the parameters in SI, the outputs in their shown units, the failure class.
+        py::dict cases;
+        const cli::StudyOutcome& o = *outcome;
+        for (std::size_t v = 0; v < o.table.variables.size(); ++v) {
+          std::vector<double> column(o.table.cases.size());
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
+          cases[py::str(o.table.variables[v].name)] = column;
+        }
+        py::list units;
+        for (std::size_t c = 0; c < o.data.outputs.size(); ++c) {
+          const StudyColumn& col = o.data.outputs[c];
+          const std::string unit = col.unit.empty() ? col.dimension.si_unit() : col.unit;
+          const std::string name = unit.empty() || unit == "1" ? col.label : col.label + " [" + unit + "]";
+          cases[py::str(name)] = o.data.values[c];
+        }
+        std::vector<int> exits;
+        for (CaseFailure f : o.data.failures) exits.push_back(cli::exit_code_of(f));
+        cases["exit"] = exits;
+        return py::make_tuple(o.json, cases);
       });
 }

@@ -75,16 +75,20 @@ void UnitDesign::point(std::size_t i, double* out) const {
         out[j] = (static_cast<double>(strata_[j * n_ + i]) + counter_uniform(seed_, stream_lhs_jitter, i, j)) / static_cast<double>(n_);
       return;
     case SamplingMethod::sobol: {
-      // Point i of the sequence (Boost positions the generator there: seed(i) = discard i points),
-      // its 64-bit coordinates XORed with the digital shift.
+      // Point i of the sequence, its 64-bit coordinates XORed with the digital shift. Point 0 is
+      // the origin; Boost's generator starts at point 1, and seed(k) makes point k + 1 the next.
+      if (i == 0) {
+        for (std::size_t j = 0; j < dims_; ++j) out[j] = open_unit(shift_[j]);
+        return;
+      }
       thread_local std::unique_ptr<boost::random::sobol> engine;
-      thread_local std::size_t engine_dims = 0, engine_next = 0;
+      thread_local std::size_t engine_dims = 0, engine_next = 0;  // engine_next: the point the next read gives
       if (!engine || engine_dims != dims_) {
         engine = std::make_unique<boost::random::sobol>(dims_);
         engine_dims = dims_;
-        engine_next = 0;
+        engine_next = 1;
       }
-      if (engine_next != i) engine->seed(static_cast<boost::random::sobol::result_type>(i));
+      if (engine_next != i) engine->seed(static_cast<boost::random::sobol::result_type>(i - 1));
       for (std::size_t j = 0; j < dims_; ++j) out[j] = open_unit(static_cast<std::uint64_t>((*engine)()) ^ shift_[j]);
       engine_next = i + 1;
       return;
