@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <sstream>
 
@@ -342,5 +343,31 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
   CHECK(other.exit_code == 2);
   CHECK_THAT(other.err, Contains("all.csv:2:") && Contains("another seed"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncertainty]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_study_out_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string plugin = " --plugin-dir '" + testing::test_plugin("test_uq").parent_path().string() + "' ";
+  const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/tests/uncertainty/ishigami.yaml";
+  const auto r = testing::run_cli(plugin + "study '" + scene + "' --samples 64 --out '" + (dir / "out").string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("Sobol' indices") && Contains("high: "));
+  for (const char* f : {"study.json", "summary.csv", "quantiles.csv", "histograms.csv", "sobol.csv", "events.csv"})
+    CHECK(std::filesystem::is_regular_file(dir / "out" / f));
+  const std::string bad = (dir / "bad.yaml").string();
+  std::ofstream(bad) << "params: {x1: 0}\nuncertainty:\n  parameters:\n    x1: { normal: { mean: 1, sigma: -1 } }\n"
+                        "nodes:\n  f: { type: test.ishigami, params: { x1: $x1 } }\noutputs: [f.y]\n";
+  const auto e = testing::run_cli(plugin + "study '" + bad + "'");
+  CHECK(e.exit_code == 2);
+  CHECK_THAT(e.err, Contains("bad.yaml:4:37: sigma must be greater than 0"));
+  const auto none = testing::run_cli("study '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml'");
+  CHECK(none.exit_code == 2);
+  CHECK_THAT(none.err, Contains("no 'uncertainty' block"));
+  const auto usage = testing::run_cli(plugin + "study '" + scene + "' --method lhs");
+  CHECK(usage.exit_code == 2);
+  CHECK_THAT(usage.err, Contains("latin_hypercube"));
   std::filesystem::remove_all(dir);
 }

@@ -122,6 +122,7 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   if (mean && sigma && !nominal && !tolerance && !lower && !upper && !cp) {
     m.a = dims.take(*mean, "mean");
     m.b = dims.take(*sigma, "sigma");
+    if (!(m.b > 0)) fail(sigma->where, "sigma must be greater than 0");
   } else if (nominal && tolerance && !mean && !sigma && !lower && !upper) {
     // nominal +- tolerance is the specification; Cp = (USL - LSL) / (6 sigma) = 2 t / (6 sigma).
     m.a = dims.take(*nominal, "nominal");
