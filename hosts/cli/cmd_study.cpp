@@ -268,18 +268,9 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::unique_ptr<StudyOutcome> outcome;
   if (vm.count("rows")) {
     // The design again (it depends on the seed alone), the values from the rows.
-    outcome = std::make_unique<StudyOutcome>();
-    outcome->spec = study_spec_of(scene, registry);
-    apply_study_options(outcome->spec, samples, method, seed);
-    const Graph graph = build_sweep_graph(scene, registry, overrides, outputs);
-    check_study_parameters(outcome->spec, graph, scene, registry, overrides);
-    outcome->table = make_study_cases(outcome->spec);
-    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, study_columns(graph));
-    outcome->answers = analyse_study(outcome->spec, outcome->data);
-    std::ostringstream text;
-    JsonWriter w(text);
-    write_study_json(w, outcome->spec, outcome->answers);
-    outcome->json = text.str();
+    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs);
+    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, outcome->columns);
+    finish_study(*outcome);
   } else {
     WorkBudget budget = work_budget(vm);
     if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;

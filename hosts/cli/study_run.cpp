@@ -187,30 +187,41 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
   return merged;
 }
 
-std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
-                                              const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
-                                              const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
-                                              unsigned threads, const std::atomic<bool>* stop) {
+std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                                  const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                                  const std::string& seed, const std::optional<std::string>& outputs) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
   apply_study_options(outcome->spec, samples, method, seed);
-  const Graph graph = build_sweep_graph(scene, registry, overrides, outputs);
-  check_study_parameters(outcome->spec, graph, scene, registry, overrides);
-  const std::vector<StudyColumn> columns = study_columns(graph);
+  outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
+  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
+  check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
+  outcome->columns = study_columns(outcome->graph);
   outcome->table = make_study_cases(outcome->spec);
-  const CaseBinder binder(graph, scene, registry, overrides, outcome->table.variables);
+  return outcome;
+}
+
+void finish_study(StudyOutcome& outcome) {
+  outcome.answers = analyse_study(outcome.spec, outcome.data);
+  std::ostringstream json;
+  JsonWriter w(json);
+  write_study_json(w, outcome.spec, outcome.answers);
+  outcome.json = json.str();
+}
+
+std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                              const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                              const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
+                                              unsigned threads, const std::atomic<bool>* stop) {
+  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs);
+  const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables);
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  check_sweep_budget(graph, binder, outcome->table, all, budget, threads);
-  outcome->data = evaluate_study(graph, binder, outcome->table, columns, threads, stop, &outcome->summary);
-  if (outcome->summary.stopped) return outcome;
-  outcome->answers = analyse_study(outcome->spec, outcome->data);
-  std::ostringstream json;
-  JsonWriter w(json);
-  write_study_json(w, outcome->spec, outcome->answers);
-  outcome->json = json.str();
+  check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
+  outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
+  if (!outcome->summary.stopped) finish_study(*outcome);
   return outcome;
 }
 

@@ -53,6 +53,9 @@ namespace mechgraph::cli {
 /// the values and the answers.
 struct StudyOutcome {
   StudySpec spec;
+  std::unique_ptr<SceneSpec> scene;  // the scene studied (the graph's binder refers to it)
+  Graph graph;
+  std::vector<StudyColumn> columns;
   CaseTable table;
   StudyData data;
   StudyAnswers answers;  // refers to `spec`: keep the outcome whole
@@ -64,7 +67,16 @@ struct StudyOutcome {
 /// `parameters`, which are merged by name); `block` may be absent.
 RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block);
 
-/// Reads the study (`block` over the scene's), checks it, runs its cases within `budget` on
+/// Reads the study (`block` over the scene's), builds and checks its graph and makes its design,
+/// running nothing: the outcome's spec, scene, graph, columns and table.
+std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                                  const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                                  const std::string& seed, const std::optional<std::string>& outputs);
+
+/// Analyses outcome.data into outcome.answers and outcome.json.
+void finish_study(StudyOutcome& outcome);
+
+/// prepare_scene_study, then runs its cases within `budget` on
 /// `threads` and analyses them. summary.stopped: `stop` was set, nothing analysed.
 std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,

@@ -132,16 +132,8 @@ class Scene:
         """
         from ._study import Study
 
-        block: Dict[str, Any] = {}
-        if parameters:
-            block["parameters"] = dict(parameters)
-        for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
-            if value is not None:
-                block[key] = value
-        text = json.dumps(block) if block else ""
-        json_text, cases = self._session.study(text, dict(set or {}), "" if samples is None else str(int(samples)),
-                                               method or "", "" if seed is None else str(int(seed)), list(outputs or []),
-                                               int(threads))
+        args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs)
+        json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads))
         return Study(json_text, cases)
 
     def cache_info(self) -> Dict[str, int]:
@@ -154,6 +146,19 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"Scene({self.title or self.file!r})"
+
+
+def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs) -> tuple:
+    """Scene.study's settings as the module takes them: the block as JSON text ("" for none), the
+    fixed overrides, samples, method and seed as text ("": the scene's), the outputs."""
+    block: Dict[str, Any] = {}
+    if parameters:
+        block["parameters"] = dict(parameters)
+    for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
+        if value is not None:
+            block[key] = value
+    return (json.dumps(block) if block else "", dict(set or {}), "" if samples is None else str(int(samples)), method or "",
+            "" if seed is None else str(int(seed)), list(outputs or []))
 
 
 def _rebuild(kind: str, *args: str) -> Scene:

@@ -188,6 +188,13 @@ std::unique_ptr<cli::StudyOutcome> SceneSession::study(const std::vector<SetValu
                               outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
 }
 
+std::unique_ptr<cli::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                               const std::string& samples, const std::string& method,
+                                                               const std::string& seed, const std::vector<std::string>& outputs) {
+  return cli::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
+                                  outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
+}
+
 SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
                                  const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop) {
   SceneSpec scene = scene_;

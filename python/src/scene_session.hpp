@@ -69,6 +69,12 @@ class SceneSession {
                                            const std::string& samples, const std::string& method, const std::string& seed,
                                            const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
 
+  /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
+  /// (mechgraph.dask.study), analysed with cli::finish_study once their values are in.
+  std::unique_ptr<cli::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                   const std::string& samples, const std::string& method, const std::string& seed,
+                                                   const std::vector<std::string>& outputs);
+
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()
   /// gives them (values bound in place, arrays written into their list parameters), so nothing is
