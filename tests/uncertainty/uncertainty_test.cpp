@@ -122,6 +122,16 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   };
   CHECK_THAT(graph_error("x4", "{ normal: { mean: 1 mm, sigma: 1 um } }"), Contains("study.yaml:4:5") && Contains("x1"));
   CHECK_THAT(graph_error("f.x2", "{ normal: { mean: 1 s, sigma: 1 ms } }"), Contains("study.yaml:4:5") && Contains("length"));
+  // A limit on an output the study does not read, at its line, with the outputs it has.
+  std::string limits = scene;
+  limits.replace(limits.find("NAME"), 4, "x1");
+  limits.replace(limits.find("DIST"), 4, "{ normal: { mean: 1 mm, sigma: 1 um } }\n  limits: { f.z: { upper: 1 mm } }");
+  try {
+    run_study(limits, 1);
+    FAIL("a limit on f.z accepted");
+  } catch (const SceneError& e) {
+    CHECK_THAT(std::string(e.what()), Contains("study.yaml:5:13") && Contains("f.y"));
+  }
 }
 
 TEST_CASE("Designs: strata of Latin hypercube and Sobol', counter streams", "[uncertainty]") {
@@ -370,4 +380,28 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   CHECK(usage.exit_code == 2);
   CHECK_THAT(usage.err, Contains("latin_hypercube"));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("ISO 286 classes from the fits plugin's tables", "[uncertainty]") {
+  // 20 mm H7: 0 .. +21 um; g6: -7 .. -20 um (ISO 286-2). Normal over the zone at Cp 1, or uniform.
+  const StudySpec spec = study_of(R"(uncertainty:
+  parameters:
+    bore:  { iso286: { size: 20 mm, class: H7 } }
+    pin:   { iso286: { size: 20 mm, class: g6, distribution: uniform } }
+    tight: { iso286: { size: 20 mm, class: H7, cp: 1.33 } }
+nodes: {}
+)",
+                                  testing::project_registry());
+  CHECK_THAT(spec.parameters[0].marginal.a, Catch::Matchers::WithinAbs(20.0105e-3, 1e-12));
+  CHECK_THAT(spec.parameters[0].marginal.b, Catch::Matchers::WithinAbs(21e-6 / 6, 1e-12));
+  CHECK(spec.parameters[1].marginal.kind == Marginal::Kind::uniform);
+  CHECK_THAT(spec.parameters[1].marginal.a, Catch::Matchers::WithinAbs(19.980e-3, 1e-12));
+  CHECK_THAT(spec.parameters[1].marginal.b, Catch::Matchers::WithinAbs(19.993e-3, 1e-12));
+  CHECK_THAT(spec.parameters[2].marginal.b, Catch::Matchers::WithinAbs(21e-6 / (6 * 1.33), 1e-12));
+  try {
+    study_of("uncertainty:\n  parameters:\n    bore: { iso286: { size: 20 mm, class: Q7 } }\nnodes: {}\n", testing::project_registry());
+    FAIL("Q7 accepted");
+  } catch (const SceneError& e) {
+    CHECK_THAT(std::string(e.what()), Contains("study.yaml:3:43") && Contains("Q7"));
+  }
 }

@@ -35,6 +35,7 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data) {
   for (std::size_t k = 0; k < answers.cases; ++k)
     if (k % per_sample < (spec.sensitivity ? 2 : 1)) statistical.push_back(k);
   answers.samples = statistical.size();
+  for (const SpecLimits& l : spec.limits) output_index(data, l.output, l.where);  // every limit names a studied output
 
   for (std::size_t o = 0; o < data.outputs.size(); ++o) {
     OutputAnswer a;
@@ -78,10 +79,6 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data) {
       a.sobol = sobol_indices(f_a, f_b, f_ab, spec.bootstrap, spec.confidence, spec.seed);
     }
     answers.outputs.push_back(std::move(a));
-  }
-  for (const SpecLimits& l : spec.limits) {
-    const std::size_t o = output_index(data, l.output, l.where);
-    (void)o;
   }
   for (const StudyEvent& e : spec.events) {
     EventAnswer a;

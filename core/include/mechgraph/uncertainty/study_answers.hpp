@@ -55,8 +55,8 @@ struct StudyAnswers {
   std::vector<EventAnswer> events;
 };
 
-/// Throws SceneError when a limit or an event names an output the study does not have (with the
-/// valid names) or a limit's dimension differs from its output's.
+/// Throws SceneError when a limit or an event names an output the study does not have (at its
+/// file:line:column, with the valid names).
 StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data);
 
 /// The answers as one JSON object (SI), the study's settings and parameters with them.
