@@ -269,6 +269,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   if (vm.count("rows")) {
     // The design again (it depends on the seed alone), the values from the rows.
     outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs);
+    outcome->threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
     outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, outcome->columns);
     finish_study(*outcome);
   } else {

@@ -203,7 +203,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
 }
 
 void finish_study(StudyOutcome& outcome) {
-  outcome.answers = analyse_study(outcome.spec, outcome.data);
+  outcome.answers = analyse_study(outcome.spec, outcome.data, outcome.threads);
   std::ostringstream json;
   JsonWriter w(json);
   write_study_json(w, outcome.spec, outcome.answers);
@@ -219,6 +219,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  outcome->threads = threads;
   check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
   if (!outcome->summary.stopped) finish_study(*outcome);

@@ -61,6 +61,7 @@ struct StudyOutcome {
   StudyAnswers answers;  // refers to `spec`: keep the outcome whole
   SweepSummary summary;
   std::string json;      // write_study_json
+  unsigned threads = 1;  // for the analysis (the bootstrap); the answers do not depend on it
 };
 
 /// `block` merged over the scene's `uncertainty:` (a key of `block` replaces the scene's, except

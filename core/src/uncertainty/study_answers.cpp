@@ -24,7 +24,7 @@ double to_si(double v, const StudyColumn& c) { return (v + c.offset) * c.scale; 
 
 }  // namespace
 
-StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data) {
+StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads) {
   StudyAnswers answers;
   const std::size_t d = spec.parameters.size();
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
@@ -76,7 +76,7 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data) {
         f_b.push_back(column[k + 1]);
         for (std::size_t j = 0; j < d; ++j) f_ab[j].push_back(column[k + 2 + j]);
       }
-      a.sobol = sobol_indices(f_a, f_b, f_ab, spec.bootstrap, spec.confidence, spec.seed);
+      a.sobol = sobol_indices(f_a, f_b, f_ab, spec.bootstrap, spec.confidence, spec.seed, threads);
     }
     answers.outputs.push_back(std::move(a));
   }

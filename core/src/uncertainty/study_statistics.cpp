@@ -6,7 +6,12 @@
 #include <boost/math/distributions/beta.hpp>
 #include <boost/math/distributions/binomial.hpp>
 
+#include <mechgraph/worker_threads.hpp>
+
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <cmath>
 
 namespace mechgraph {
@@ -166,7 +171,7 @@ Interval percentile(std::vector<double> draws, double confidence) {
 
 SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<double>& f_b,
                            const std::vector<std::vector<double>>& f_ab, std::size_t bootstrap, double confidence,
-                           std::uint64_t seed) {
+                           std::uint64_t seed, unsigned threads) {
   SobolIndices out;
   const std::size_t n = f_a.size();
   out.samples = n;
@@ -182,17 +187,31 @@ SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<dou
   const SobolEstimate point = estimate(f_a, f_b, f_ab, all, centre);
   out.variance = point.variance;
   const std::size_t d = f_ab.size();
-  std::vector<std::vector<double>> first_draws(d), total_draws(d);
-  std::vector<std::size_t> pick(n);
-  for (std::size_t r = 0; r < bootstrap; ++r) {
-    for (std::size_t i = 0; i < n; ++i)
-      pick[i] = std::min(static_cast<std::size_t>(counter_uniform(seed, stream_bootstrap, r, i) * static_cast<double>(n)), n - 1);
-    const SobolEstimate e = estimate(f_a, f_b, f_ab, pick, centre);
-    for (std::size_t j = 0; j < d; ++j) {
-      first_draws[j].push_back(e.first[j]);
-      total_draws[j].push_back(e.total[j]);
+  // Each resample's draws come from the counter generator by (replicate, draw), so replicates run
+  // on any number of threads and land in their own slots: the same bits whatever `threads` is.
+  std::vector<std::vector<double>> first_draws(d, std::vector<double>(bootstrap)), total_draws(d, std::vector<double>(bootstrap));
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::exception_ptr failure;
+  run_on_workers(static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, bootstrap))), [&](unsigned) {
+    try {
+      std::vector<std::size_t> pick(n);
+      for (std::size_t r; (r = next.fetch_add(1)) < bootstrap;) {
+        for (std::size_t i = 0; i < n; ++i)
+          pick[i] = std::min(static_cast<std::size_t>(counter_uniform(seed, stream_bootstrap, r, i) * static_cast<double>(n)), n - 1);
+        const SobolEstimate e = estimate(f_a, f_b, f_ab, pick, centre);
+        for (std::size_t j = 0; j < d; ++j) {
+          first_draws[j][r] = e.first[j];
+          total_draws[j][r] = e.total[j];
+        }
+      }
+    } catch (...) {
+      std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = bootstrap;
     }
-  }
+  });
+  if (failure) std::rethrow_exception(failure);
   for (std::size_t j = 0; j < d; ++j) {
     SobolIndex s;
     s.first = point.first[j];

@@ -57,7 +57,8 @@ struct StudyAnswers {
 
 /// Throws SceneError when a limit or an event names an output the study does not have (at its
 /// file:line:column, with the valid names).
-StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data);
+/// `threads`: for the bootstrap; the answers do not depend on it.
+StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads = 1);
 
 /// The answers as one JSON object (SI), the study's settings and parameters with them.
 void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers);

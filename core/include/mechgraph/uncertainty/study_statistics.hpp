@@ -70,9 +70,10 @@ struct SobolIndices {
 /// centred by the mean of all of them; V is the sample variance of f(A) and f(B) pooled;
 ///   S_j  = (1/N) sum f(B) (f(AB^j) - f(A)) / V           (Saltelli et al. 2010)
 ///   ST_j = (1/2N) sum (f(A) - f(AB^j))^2 / V             (Jansen 1999)
-/// `bootstrap` resamples of the N base samples with replacement give percentile intervals.
+/// `bootstrap` resamples of the N base samples with replacement give percentile intervals; they
+/// run on `threads` workers with the same result on any number.
 SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<double>& f_b,
                            const std::vector<std::vector<double>>& f_ab, std::size_t bootstrap, double confidence,
-                           std::uint64_t seed);
+                           std::uint64_t seed, unsigned threads = 1);
 
 }  // namespace mechgraph
