@@ -8,6 +8,7 @@
 #include "line_reader.hpp"
 #include "options.hpp"
 #include "results_folder.hpp"
+#include "study_page.hpp"
 #include "study_run.hpp"
 #include "sweep_file.hpp"
 #include "sweep_rows.hpp"
@@ -241,7 +242,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("outputs", po::value<std::string>(), "outputs to study: node.port,node.port (default: the scene's scalar outputs)")
       ("rows", po::value<std::string>(), "analyse the rows of 'mechgraph sweep SCENE --study' (shards merged) instead of running the cases")
       ("json", "print one JSON object on stdout (SI)")
-      ("out", po::value<std::string>(), "also write study.json and CSVs (summary, quantiles, histograms, sobol, events) into DIR")
+      ("out", po::value<std::string>(), "also write study.json, report.html (histograms against spec limits, Sobol' chart) and CSVs (summary, quantiles, histograms, sobol, events) into DIR")
       ("force", "replace DIR when mechgraph wrote it");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
@@ -305,6 +306,10 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       f.close();
       check_written(f, dir / "study.json");
       write_csvs(dir, spec, answers);
+      std::ofstream page(dir / "report.html", std::ios::binary);
+      page << study_page(scene.title, spec, answers);
+      page.close();
+      check_written(page, dir / "report.html");
     });
   if (vm.count("json")) std::cout << json;
   else print_text(terminal_tables(spec, answers));

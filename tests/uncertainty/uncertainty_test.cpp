@@ -365,8 +365,12 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   const auto r = testing::run_cli(plugin + "study '" + scene + "' --samples 64 --out '" + (dir / "out").string() + "'");
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.out, Contains("Sobol' indices") && Contains("high: "));
-  for (const char* f : {"study.json", "summary.csv", "quantiles.csv", "histograms.csv", "sobol.csv", "events.csv"})
+  for (const char* f : {"study.json", "summary.csv", "quantiles.csv", "histograms.csv", "sobol.csv", "events.csv", "report.html"})
     CHECK(std::filesystem::is_regular_file(dir / "out" / f));
+  // The page: the histogram against both spec limits, the Sobol' chart, the events.
+  std::ifstream page_file(dir / "out" / "report.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
+  CHECK_THAT(page, Contains("LSL -8") && Contains("USL 12") && Contains("Sobol' indices (64 base samples)") && Contains("<td>high</td>"));
   const std::string bad = (dir / "bad.yaml").string();
   std::ofstream(bad) << "params: {x1: 0}\nuncertainty:\n  parameters:\n    x1: { normal: { mean: 1, sigma: -1 } }\n"
                         "nodes:\n  f: { type: test.ishigami, params: { x1: $x1 } }\noutputs: [f.y]\n";
