@@ -4,7 +4,8 @@ CMake builds the extension mechgraph._core, libmechgraph and the built-in plugin
 beside this file; they are then laid into the package as
 
     mechgraph/_core.cpython-*.so                 RUNPATH $ORIGIN/_lib
-    mechgraph/_lib/libmechgraph.so.X.Y           (the library's soname)
+    mechgraph/_lib/libmechgraph.so.X.Y           (the library's soname; RUNPATH $ORIGIN)
+    mechgraph/_lib/libmechgraph_sdk.so.N         (the SDK library libmechgraph links, its soname)
     mechgraph/_lib/mechgraph/plugins/*.so        found by libmechgraph beside itself
 
 so that an installed package (or an editable one, python/mechgraph) is whole on its own.
@@ -66,6 +67,8 @@ class CMakeBuild(build_ext):
         library = next(p for p in (build / "lib").glob("libmechgraph.so.*.*.*"))
         soname = ".".join(library.name.split(".")[:4])  # libmechgraph.so.X.Y
         shutil.copy2(library, lib / soname)
+        sdk_library = next(p for p in (build / "lib").glob("libmechgraph_sdk.so.*.*.*"))
+        shutil.copy2(sdk_library, lib / ".".join(sdk_library.name.split(".")[:3]))  # libmechgraph_sdk.so.N
         for plugin in sorted((build / "lib" / "mechgraph" / "plugins").glob("*.so")):
             shutil.copy2(plugin, lib / "mechgraph" / "plugins" / plugin.name)
         for path in [lib, *lib.rglob("*")]:

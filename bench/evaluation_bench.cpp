@@ -133,6 +133,28 @@ void BM_BuildLargeGraph(benchmark::State& state) {
 }
 BENCHMARK(BM_BuildLargeGraph)->Arg(1000)->Arg(2000)->Arg(4000)->Unit(benchmark::kMillisecond)->Complexity();
 
+#ifdef MECHGRAPH_TEST_ARITH_PLUGIN
+// The bare cost of one node call through the host: a graph of one node with one scalar output
+// (test.constant), evaluated cold. What the plugin boundary adds per node is measured here (the
+// SDK 1.0 budget: docs/design/sdk-1.0.md, section 4.1).
+void BM_NodeCallOverhead(benchmark::State& state) {
+  static const PluginRegistry arith = [] {
+    PluginRegistry r;
+    r.load_file(MECHGRAPH_TEST_ARITH_PLUGIN);
+    return r;
+  }();
+  const Graph g = build_graph(parse_scene("title: one node\nnodes:\n  a: { type: test.constant, params: { value: 1 mm } }\n"
+                                          "outputs: [ a.out ]\n",
+                                          "node_call.yaml"),
+                             arith);
+  for (auto _ : state) {
+    MemoCache cache;
+    benchmark::DoNotOptimize(evaluate(g, cache));
+  }
+}
+BENCHMARK(BM_NodeCallOverhead)->Unit(benchmark::kNanosecond);
+#endif
+
 BENCHMARK_MAIN();
 
 namespace {

@@ -4,6 +4,7 @@
 // types its factory makes (present, named, each name once, port and parameter names in the scene
 // grammar). Every refusal is a PluginError naming the plugin and what to do. Private to libmechgraph.
 #include <mechgraph/bounded_read.hpp>
+#include <mechgraph/c/plugin.h>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/plugin_abi.hpp>
 
@@ -38,5 +39,21 @@ std::string plugin_where(const std::string& where, const PluginDescriptor& d);
 
 /// Calls the node type factory and checks every type it makes; throws PluginError naming the type.
 NodeTypeList checked_plugin_node_types(const PluginDescriptor& d, const std::string& where);
+
+// SDK 1.x plugins (entry mechgraph_plugin_entry_1, sdk/include/mechgraph/c/plugin.h).
+
+/// Calls the entry with the host's mg_host and checks the mg_plugin it returns: present (else the
+/// plugin's own reason), long enough, sdk_major equal to the host's and sdk_minor not above it
+/// (a refusal names both versions), an id and a semantic version.
+const mg_plugin& checked_c_plugin(mg_plugin_entry_fn* entry, const std::string& where);
+
+/// "plugin '/path' ('id')" for an SDK 1.x plugin.
+std::string plugin_where(const std::string& where, const mg_plugin& p);
+
+/// "sdk1.0; gcc 12.2.0": what `mechgraph plugins` shows in place of a pre-1.0 build fingerprint.
+std::string c_plugin_fingerprint(const mg_plugin& p);
+
+/// Wraps every node type of the plugin (c_node_type.hpp) and checks them as the pre-1.0 types are.
+NodeTypeList checked_c_plugin_node_types(const mg_plugin& p, const std::string& where);
 
 }  // namespace mechgraph::detail

@@ -100,12 +100,18 @@ constexpr std::size_t probe_report_limit = 4000;  // below PIPE_BUF: one write, 
       const char* e = ::dlerror();
       throw_plugin_load_failure(where, e ? e : "unknown reason");
     }
-    void* entry = ::dlsym(handle, plugin_entry_name);
-    if (!entry)
-      throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
-                        "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
-    const PluginDescriptor& d = checked_plugin_descriptor(reinterpret_cast<PluginEntry*>(entry), where);
-    (void)checked_plugin_node_types(d, where);
+    // An SDK 1.x plugin (the C boundary) first, then the pre-1.0 C++ one.
+    if (void* c_entry = ::dlsym(handle, MG_PLUGIN_ENTRY)) {
+      const mg_plugin& p = checked_c_plugin(reinterpret_cast<mg_plugin_entry_fn*>(c_entry), where);
+      (void)checked_c_plugin_node_types(p, where);
+    } else {
+      void* entry = ::dlsym(handle, plugin_entry_name);
+      if (!entry)
+        throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
+                          "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
+      const PluginDescriptor& d = checked_plugin_descriptor(reinterpret_cast<PluginEntry*>(entry), where);
+      (void)checked_plugin_node_types(d, where);
+    }
   } catch (const std::exception& e) {
     verdict = std::string(1, probe_refused) + e.what();
   } catch (...) {

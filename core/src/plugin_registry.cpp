@@ -61,7 +61,9 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   // mapped.
   detail::check_plugin_ownership(file, where, false);
   detail::check_plugin_elf(file, where);
-  if (!detail::plugin_exports_symbol(file, plugin_entry_name, where)) {
+  // An SDK 1.x plugin exports mechgraph_plugin_entry_1 (the C boundary); a pre-1.0 one the C++ entry.
+  const bool sdk1 = detail::plugin_exports_symbol(file, MG_PLUGIN_ENTRY, where);
+  if (!sdk1 && !detail::plugin_exports_symbol(file, plugin_entry_name, where)) {
     if (detail::plugin_exports_symbol(file, legacy_plugin_entry_name, where))
       throw PluginError(where + ": was built for mechgraph plugin ABI 3 or older (its entry is the old '" +
                         std::string(legacy_plugin_entry_name) + "' alias); this mechgraph " MECHGRAPH_SDK_VERSION
@@ -77,19 +79,36 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
   if (ec || !library->is_loaded()) detail::throw_plugin_load_failure(where, ec.message());
-  if (!library->has(plugin_entry_name))
-    throw PluginError(where + ": has no entry '" + std::string(plugin_entry_name) +
+  const char* entry_name = sdk1 ? MG_PLUGIN_ENTRY : plugin_entry_name;
+  if (!library->has(entry_name))
+    throw PluginError(where + ": has no entry '" + std::string(entry_name) +
                       "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
   // From here on the plugin's code runs in this process: it stays mapped even when it is refused
   // (an object it threw, a static it registered, may still point into it).
   if (lifetime_ == Lifetime::process) all_libraries().push_back(library);
-  const PluginDescriptor& d = detail::checked_plugin_descriptor(library->get<PluginEntry>(plugin_entry_name), where);
-  const std::string id = d.plugin_id;
-  for (const PluginInfo& p : plugins_)
-    if (p.id == id) throw PluginError(where + ": plugin id '" + id + "' is already loaded from '" + p.path.string() + "'");
-  NodeTypeList types = detail::checked_plugin_node_types(d, where);
+  // Both paths end in the same PluginInfo and node types behind the one NodeType interface.
+  PluginInfo info;
+  NodeTypeList types;
+  std::string named;
+  const auto refuse_loaded_id = [&](const std::string& id) {
+    for (const PluginInfo& p : plugins_)
+      if (p.id == id) throw PluginError(where + ": plugin id '" + id + "' is already loaded from '" + p.path.string() + "'");
+  };
+  if (sdk1) {
+    const mg_plugin& p = detail::checked_c_plugin(library->get<mg_plugin_entry_fn>(MG_PLUGIN_ENTRY), where);
+    refuse_loaded_id(p.plugin_id);
+    types = detail::checked_c_plugin_node_types(p, where);
+    named = detail::plugin_where(where, p);
+    info = PluginInfo{p.plugin_id, p.plugin_version, detail::c_plugin_fingerprint(p), file, {}, p.sdk_version ? p.sdk_version : ""};
+  } else {
+    const PluginDescriptor& d = detail::checked_plugin_descriptor(library->get<PluginEntry>(plugin_entry_name), where);
+    refuse_loaded_id(d.plugin_id);
+    types = detail::checked_plugin_node_types(d, where);
+    named = detail::plugin_where(where, d);
+    info = PluginInfo{d.plugin_id, d.plugin_version, d.build_fingerprint, file, {}, d.sdk_version ? d.sdk_version : ""};
+  }
+  const std::string id = info.id;
   std::shared_ptr<const void> keep = library;
-  PluginInfo info{id, d.plugin_version, d.build_fingerprint, file, {}, d.sdk_version ? d.sdk_version : ""};
   std::vector<std::pair<std::string, RegisteredType>> added;
   for (auto& t : types) {
     const std::string name = t->info().type;
@@ -97,7 +116,7 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
       std::string other_path;
       for (const PluginInfo& p : plugins_)
         if (p.id == other->plugin_id) other_path = p.path.string();
-      throw PluginError(detail::plugin_where(where, d) + " provides node type '" + name + "', which plugin '" +
+      throw PluginError(named + " provides node type '" + name + "', which plugin '" +
                         other->plugin_id + "' (" + other_path + ") already provides");
     }
     info.node_types.push_back(name);

@@ -1,5 +1,6 @@
 // `mechgraph sweep` and `mechgraph merge` end to end: the rows a user gets, a sweep killed with
 // kill -9 and resumed (no case lost or doubled), Ctrl-C, shards merged back and checked.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -24,15 +25,9 @@ namespace {
 std::string arith_dir() { return arith_plugin_dir_option(); }
 fs::path work_dir() { return scratch_dir("mechgraph_sweep_cli"); }
 
-std::string write_file(const std::string& name, const std::string& text) {
-  const auto file = work_dir() / name;
-  std::ofstream(file) << text;
-  return file.string();
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
+// `text` as the file `name` in this test's scratch folder.
+std::string scratch_file(const std::string& name, const std::string& text) {
+  return mechgraph::testing::write_file(work_dir() / name, text);
 }
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -87,7 +82,7 @@ std::string wait_status(const fs::path& status_file) {
 }  // namespace
 
 TEST_CASE("sweep: one tidy CSV row per case with inputs, outputs in display units, exit and error", "[cli][sweep]") {
-  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
   const auto r = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:3mm:3 --vary s.gain=1,-2 --threads 2");
   REQUIRE(r.exit_code == 0);
   const auto rows = lines_of(r.out);
@@ -105,7 +100,7 @@ TEST_CASE("sweep: one tidy CSV row per case with inputs, outputs in display unit
 }
 
 TEST_CASE("sweep --format jsonl: one JSON object per case, keys as the CSV's columns", "[cli][sweep]") {
-  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
   const auto r = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm,2mm --outputs s.sum --format jsonl");
   REQUIRE(r.exit_code == 0);
   const auto rows = lines_of(r.out);
@@ -119,7 +114,7 @@ TEST_CASE("sweep --format jsonl: one JSON object per case, keys as the CSV's col
 }
 
 TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {
-  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "'").err, Contains("give the cases one way"));
   CHECK(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --cases x.csv").exit_code == 2);
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --sample len=1mm:2mm").err, Contains("--sample needs --n"));
@@ -131,7 +126,7 @@ TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {
 }
 
 TEST_CASE("sweep --out: complete under its name at the end, refused when it exists, manifest beside it", "[cli][sweep]") {
-  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
   const fs::path out = work_dir() / "rows.csv";
   fs::remove(out);
   const std::string args = arith_dir() + " sweep '" + scene + "' --vary len=1mm:5mm:5 --out '" + out.string() + "'";
@@ -149,7 +144,7 @@ TEST_CASE("sweep --out: complete under its name at the end, refused when it exis
 }
 
 TEST_CASE("sweep killed with kill -9, then --resume: no case lost or written twice", "[cli][sweep][slow]") {
-  const std::string scene = write_file("slow.yaml", slow_scene);
+  const std::string scene = scratch_file("slow.yaml", slow_scene);
   const fs::path out = work_dir() / "killed.csv", reference = work_dir() / "reference.csv";
   for (const fs::path& p : {out, reference}) {
     fs::remove(p);
@@ -183,7 +178,7 @@ TEST_CASE("sweep killed with kill -9, then --resume: no case lost or written twi
 }
 
 TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130; --resume completes it", "[cli][sweep][slow]") {
-  const std::string scene = write_file("slow.yaml", slow_scene);
+  const std::string scene = scratch_file("slow.yaml", slow_scene);
   const fs::path out = work_dir() / "interrupted.csv";
   fs::remove(out);
   fs::remove(out.string() + ".part");
@@ -201,7 +196,7 @@ TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130; --res
 }
 
 TEST_CASE("shards merged back equal the single-process sweep; gaps and overlaps are refused", "[cli][sweep]") {
-  const std::string scene = write_file("scene.yaml", scene_text);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
   const std::string base = arith_dir() + " sweep '" + scene + "' --vary len=1mm:9mm:9 --vary s.gain=1,2 -q";
   std::string parts;
   for (int i = 0; i < 3; ++i) {

@@ -3,6 +3,7 @@
 // outputs on a full disk. Each test runs the built command as a subprocess and checks the exit
 // code, the message and what is on disk; JSON is read back by Python's strict parser.
 #include "hostile/hostile_support.hpp"
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -22,22 +23,7 @@ namespace {
 
 fs::path work_dir() { return scratch_dir("mechgraph_hostile_outputs"); }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = work_dir() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string write_file(const fs::path& file, const std::string& text) {
-  std::ofstream(file, std::ios::binary) << text;
-  return file.string();
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+fs::path fresh_dir(const std::string& name) { return mechgraph::testing::fresh_dir(work_dir(), name); }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 std::string plugins() { return "--plugin-dir '" + std::string(MECHGRAPH_PLUGIN_DIR) + "' "; }

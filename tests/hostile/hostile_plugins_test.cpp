@@ -2,6 +2,7 @@
 // values of the wrong shape, files that are not files, a full disk, a RUNPATH that reaches the
 // current folder, and inputs that used to end in exit 0 with nonsense. Each case runs the built
 // `mechgraph` (as a user would) or the code it names, and checks against an independent value.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include "backlash/chain_geometry.hpp"
@@ -62,11 +63,6 @@ CommandResult run_cli_with_cache(const fs::path& cache_home, const std::string& 
   std::string command = cwd.empty() ? std::string() : "cd " + quoted(cwd) + " && ";
   command += "XDG_CACHE_HOME=" + quoted(cache_home) + " '" + std::string(MECHGRAPH_CLI) + "' " + args;
   return run_command(command);
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 fs::path build_dir() { return fs::path(MECHGRAPH_CLI).parent_path().parent_path(); }

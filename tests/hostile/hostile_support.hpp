@@ -3,6 +3,8 @@
 // newline in an argument reaches the program as it is, no shell in between), stdout and stderr
 // captured to files, stdin from /dev/null, a time limit so a hang is a failure and not a stuck
 // suite. Also a scratch folder per test.
+#include "file_support.hpp"
+
 #include <chrono>
 #include <cstdlib>
 #include <fcntl.h>
@@ -26,10 +28,7 @@ struct Outcome {
   std::string out, err;
 };
 
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+using mechgraph::testing::slurp;
 
 /// A fresh, empty folder under the system's temporary folder, removed when the object goes.
 struct Scratch {

@@ -3,6 +3,7 @@
 // something mechgraph did not write, hang on a FIFO, spin on a huge manifest, carry over edited
 // rows, send a non-finite value into a node or write a CSV a spreadsheet would run. Each test runs
 // the built command as a subprocess and checks the exit code, the message and what is on disk.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <mechgraph/csv.hpp>
@@ -33,22 +34,7 @@ namespace {
 std::string arith_dir() { return arith_plugin_dir_option(); }
 fs::path work_dir() { return scratch_dir("mechgraph_hostile_sweep"); }
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = work_dir() / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string write_file(const fs::path& file, const std::string& text) {
-  std::ofstream(file, std::ios::binary) << text;
-  return file.string();
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
+fs::path fresh_dir(const std::string& name) { return mechgraph::testing::fresh_dir(work_dir(), name); }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 

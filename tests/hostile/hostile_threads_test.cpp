@@ -2,7 +2,9 @@
 // gives) or an address-space limit (RLIMIT_AS: every thread's stack must be mapped), every command
 // that runs work on threads does it on fewer, with the same results, or ends with a clean error and
 // its exit code; never std::terminate (SIGABRT). The limits are set by prlimit(1) on the command;
-// RLIMIT_NPROC binds no root process, so as root the command runs as the user nobody.
+// RLIMIT_NPROC binds no root process, so as root the command runs as the user nobody. Nobody keeps
+// the capabilities to read and search any file (ambient DAC capabilities, which RLIMIT_NPROC does
+// not exempt), so the test also runs from a checkout in a folder only root may enter (mktemp -d).
 #include "hostile/hostile_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -40,7 +42,12 @@ Outcome run_limited(const std::vector<std::string>& limits, const std::vector<st
   std::string program = prlimit;
   if (as_nobody) {
     program = setpriv;
-    argv = {"--reuid=65534", "--regid=65534", "--clear-groups", prlimit};
+    argv = {"--reuid=65534",
+            "--regid=65534",
+            "--clear-groups",
+            "--inh-caps=+dac_override,+dac_read_search",
+            "--ambient-caps=+dac_override,+dac_read_search",
+            prlimit};
   }
   argv.insert(argv.end(), limits.begin(), limits.end());
   argv.push_back("--");

@@ -1,0 +1,194 @@
+#include "c_node_description.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <cstddef>
+
+namespace mechgraph::detail {
+namespace {
+
+// A field of a growable struct, or `fallback` when the writer's struct ends before it.
+#define MG_FIELD_OR(ptr, type, field, fallback) (MG_HAS_FIELD(ptr, type, field) ? (ptr)->field : (fallback))
+
+std::string text(const char* s) { return s ? s : ""; }
+
+// The part of each struct an SDK 1.x writer must fill (node.h, "Required prefixes"): shorter is
+// refused; the fields after it may be absent and are then taken as their defaults.
+template <class T>
+void require_prefix(const T* p, std::size_t required, const std::string& what) {
+  if (p->struct_size < required)
+    throw PluginError(what + " is " + std::to_string(p->struct_size) + " bytes (struct_size), shorter than the " +
+                      std::to_string(required) + " bytes every SDK 1.x writer fills; a defect of the plugin");
+}
+
+// Element i of a plugin's array of growable structs: all elements have the size of the first.
+template <class T>
+const T* element(const T* array, std::size_t i, std::size_t required, const std::string& what) {
+  if (!array) throw PluginError(what + ": the array is missing (a null pointer with a non-zero count)");
+  require_prefix(array, required, what);
+  const T* e = MG_ELEMENT(T, array, i);
+  if (e->struct_size != array->struct_size)
+    throw PluginError(what + " element " + std::to_string(i) + " has struct_size " + std::to_string(e->struct_size) +
+                      ", the first " + std::to_string(array->struct_size) + " (one array, one size)");
+  return e;
+}
+
+std::vector<std::string> names(const char* const* list, std::size_t count, const std::string& what) {
+  std::vector<std::string> out;
+  if (count > 0 && !list) throw PluginError(what + ": the list is missing (a null pointer with a non-zero count)");
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!list[i]) throw PluginError(what + ": entry " + std::to_string(i) + " is a null pointer");
+    out.emplace_back(list[i]);
+  }
+  return out;
+}
+
+ParamKind param_kind(std::int32_t kind, const std::string& what) {
+  switch (kind) {
+    case MG_PARAM_NUMBER: return ParamKind::number;
+    case MG_PARAM_INTEGER: return ParamKind::integer;
+    case MG_PARAM_CHOICE: return ParamKind::choice;
+    case MG_PARAM_TEXT: return ParamKind::text;
+    case MG_PARAM_NUMBER_LIST: return ParamKind::number_list;
+    case MG_PARAM_RECORD_LIST: return ParamKind::record_list;
+    default: throw PluginError(what + " has kind " + std::to_string(kind) + ", not one of MG_PARAM_*");
+  }
+}
+
+ParamValue param_value(const mg_param_value& v, const ParamSpec& spec, const std::string& what) {
+  ParamValue out;
+  out.kind = spec.kind;
+  switch (spec.kind) {
+    case ParamKind::number:
+    case ParamKind::integer: out.number = v.number; break;
+    case ParamKind::choice:
+    case ParamKind::text:
+      if (v.text.size > 0 && !v.text.data) throw PluginError(what + ": its text is a null pointer");
+      out.text.assign(v.text.data ? v.text.data : "", v.text.size);
+      break;
+    case ParamKind::number_list:
+      if (v.number_count > 0 && !v.numbers) throw PluginError(what + ": its numbers are a null pointer");
+      out.numbers.assign(v.numbers, v.numbers + v.number_count);
+      break;
+    case ParamKind::record_list:
+      if (v.record_count > 0 && !v.records) throw PluginError(what + ": its records are a null pointer");
+      for (std::size_t r = 0; r < v.record_count; ++r) {
+        const mg_record& rec = v.records[r];
+        if (rec.field_count != spec.fields.size() || (rec.field_count > 0 && !rec.fields))
+          throw PluginError(what + ": record " + std::to_string(r) + " has " + std::to_string(rec.field_count) +
+                            " fields, its declaration " + std::to_string(spec.fields.size()));
+        Record record;
+        for (std::size_t f = 0; f < rec.field_count; ++f)
+          if (rec.fields[f].present)
+            record[spec.fields[f].name] = param_value(rec.fields[f], spec.fields[f], what + " field '" + spec.fields[f].name + "'");
+        out.records.push_back(std::move(record));
+      }
+      break;
+  }
+  return out;
+}
+
+ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
+  const std::string what = what_type + " parameter '" + text(d.name) + "'";
+  if (!d.name) throw PluginError(what_type + ": a parameter has no name");
+  ParamSpec s;
+  s.name = d.name;
+  s.kind = param_kind(d.kind, what);
+  s.dimension = from_c_dim(d.dim, what);
+  s.doc = text(d.doc);
+  s.min = d.min;
+  s.max = d.max;
+  s.min_exclusive = (d.flags & MG_PF_MIN_EXCLUSIVE) != 0;
+  s.max_exclusive = (d.flags & MG_PF_MAX_EXCLUSIVE) != 0;
+  s.knob = (d.flags & MG_PF_KNOB) != 0;
+  s.is_path = (d.flags & MG_PF_PATH) != 0;
+  s.choices = names(d.choices, d.choice_count, what + " choices");
+  for (std::size_t f = 0; f < d.field_count; ++f)
+    s.fields.push_back(param_spec(*element(d.fields, f, offsetof(mg_param_decl, display_unit), what + " record field"), what + " record field"));
+  const bool has_default = (d.flags & MG_PF_HAS_DEFAULT) != 0;
+  s.required = (d.flags & MG_PF_REQUIRED) != 0 && !has_default;
+  if (has_default) s.default_value = param_value(d.default_value, s, what + " default");
+  if (d.flags & MG_PF_HAS_EXAMPLE) s.example_value = param_value(d.example_value, s, what + " example");
+  s.display_unit = text(MG_FIELD_OR(&d, mg_param_decl, display_unit, nullptr));
+  return s;
+}
+
+PortSpec port_spec(const mg_port_decl& d, const std::string& what_type, const char* side, std::uint32_t* version) {
+  if (!d.name) throw PluginError(what_type + ": an " + side + " port has no name");
+  const std::string what = what_type + " " + side + " '" + d.name + "'";
+  PortSpec p;
+  p.name = d.name;
+  p.doc = text(d.doc);
+  switch (d.kind) {
+    case MG_VALUE_SCALAR: p.kind = ValueKind::scalar; break;
+    case MG_VALUE_SERIES: p.kind = ValueKind::series; break;
+    case MG_VALUE_TABLE: p.kind = ValueKind::table; break;
+    case MG_VALUE_OBJECT:
+      p.kind = ValueKind::handle;
+      if (!d.interface || !*d.interface) throw PluginError(what + " carries objects but names no interface");
+      p.handle_kind = d.interface;
+      if (version) *version = d.interface_version;
+      break;
+    default: throw PluginError(what + " has kind " + std::to_string(d.kind) + ", not one of MG_VALUE_*");
+  }
+  if (p.kind != ValueKind::table) p.dimension = from_c_dim(d.dim, what);
+  p.multiple = (d.flags & MG_PORT_MULTIPLE) != 0;
+  p.optional = (d.flags & MG_PORT_OPTIONAL) != 0;
+  p.display_unit = text(MG_FIELD_OR(&d, mg_port_decl, display_unit, nullptr));
+  return p;
+}
+
+}  // namespace
+
+mg_dim to_c_dim(const Dimension& d) { return mg_dim{d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
+
+Dimension from_c_dim(const mg_dim& d, const std::string& what) {
+  if (d.current != 0 || d.amount != 0 || d.luminous != 0)
+    throw PluginError(what + " has a dimension with electric current, amount of substance or luminous intensity, "
+                      "which this mechgraph does not know");
+  return Dimension{d.length, d.mass, d.time, d.angle, d.temperature};
+}
+
+CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string& where) {
+  const mg_node_desc* d = type.desc;
+  if (!d) throw PluginError(where + ": a node type has no description (desc is a null pointer)");
+  require_prefix(d, offsetof(mg_node_desc, effects), where + ": a node type's mg_node_desc");
+  if (!d->type || !*d->type) throw PluginError(where + ": a node type has an empty name");
+  const std::string what = where + ": node type '" + std::string(d->type) + "'";
+  CNodeDeclaration out;
+  NodeInfo& info = out.info;
+  info.type = d->type;
+  info.version = d->version;
+  info.summary = text(d->summary);
+  for (std::size_t i = 0; i < d->param_count; ++i)
+    info.params.push_back(param_spec(*element(d->params, i, offsetof(mg_param_decl, display_unit), what + " parameter"), what));
+  for (std::size_t i = 0; i < d->input_count; ++i)
+    info.inputs.push_back(port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), what, "input", nullptr));
+  out.output_interface_versions.assign(d->output_count, 0);
+  for (std::size_t i = 0; i < d->output_count; ++i)
+    info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), what + " output"), what,
+                                     "output", &out.output_interface_versions[i]));
+  // Everything after the outputs may be absent in an older writer's description.
+  const std::size_t effect_count = MG_FIELD_OR(d, mg_node_desc, effect_count, 0);
+  for (std::size_t i = 0; i < effect_count; ++i) {
+    const mg_effect_decl* e = element(d->effects, i, sizeof(mg_effect_decl), what + " effect");
+    if (!e->name) throw PluginError(what + ": an effect has no name");
+    info.effects.push_back({e->name, text(e->doc), names(e->outputs, e->output_count, what + " effect outputs"),
+                            names(e->params, e->param_count, what + " effect parameters")});
+  }
+  const std::size_t counter_count = MG_FIELD_OR(d, mg_node_desc, counter_count, 0);
+  for (std::size_t i = 0; i < counter_count; ++i) {
+    const mg_counter_decl* c = element(d->counters, i, offsetof(mg_counter_decl, doc), what + " work counter");
+    if (!c->name) throw PluginError(what + ": a work counter has no name");
+    info.work_counters.emplace_back(c->name);
+  }
+  const std::size_t dep_count = MG_FIELD_OR(d, mg_node_desc, dep_count, 0);
+  if (dep_count > 0 && !d->deps) throw PluginError(what + ": its output dependencies are a null pointer");
+  for (std::size_t i = 0; i < dep_count; ++i) {
+    if (!d->deps[i].output) throw PluginError(what + ": an output dependency names no output");
+    info.output_dependencies[d->deps[i].output] = names(d->deps[i].inputs, d->deps[i].input_count, what + " output dependencies");
+  }
+  return out;
+}
+
+}  // namespace mechgraph::detail

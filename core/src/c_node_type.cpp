@@ -1,0 +1,411 @@
+#include "c_node_type.hpp"
+
+#include "c_node_description.hpp"
+
+#include <mechgraph/c/sdk_lib.h>
+#include <mechgraph/cancellation.hpp>
+#include <mechgraph/errors.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <new>
+#include <stdexcept>
+#include <vector>
+
+namespace mechgraph::detail {
+namespace {
+
+// An object a C node made, carried along the graph as a DomainObject: it holds the one reference
+// set_object handed over and releases it when the last Value that carries it goes. kind() is the
+// declared interface name, which is what ports of C nodes compare.
+class CObjectHandle final : public DomainObject {
+ public:
+  CObjectHandle(const mg_object* object, std::string interface, std::uint32_t version)
+      : object_(object), interface_(std::move(interface)), version_(version) {}
+  ~CObjectHandle() override { object_->vtbl->release(object_); }
+  CObjectHandle(const CObjectHandle&) = delete;
+  CObjectHandle& operator=(const CObjectHandle&) = delete;
+  std::string_view kind() const override { return interface_; }
+  // The SDK library's checks for SDK interfaces (mg_check_object), none for a plugin's own.
+  std::string contract_problem() const override {
+    std::string problem;
+    mg_text_sink sink{&problem, [](void* self, const char* text, size_t size) {
+                        static_cast<std::string*>(self)->append(text, size);
+                      }};
+    const mg_status s = mg_check_object(object_, interface_.c_str(), version_, sink);
+    if (s == MG_OK) return {};
+    return problem.empty() ? std::string("mg_check_object says ") + mg_status_name(s) : problem;
+  }
+  const mg_object* object() const { return object_; }
+
+ private:
+  const mg_object* object_;
+  std::string interface_;
+  std::uint32_t version_;
+};
+
+std::string text(mg_str s) { return s.data ? std::string(s.data, s.size) : std::string(); }
+
+}  // namespace
+}  // namespace mechgraph::detail
+
+// The per-call state behind the opaque mg_eval_ctx of host.h: what the eval suite reaches.
+struct mg_eval_ctx {
+  const mechgraph::NodeInfo& info;
+  const std::vector<std::uint32_t>& output_versions;
+  mechgraph::OutputSet& outputs;
+  mechgraph::EvalContext& context;
+  bool failed = false;
+  std::string fail_parameter, fail_message;
+  std::string defect;  // a broken contract of the boundary (an index out of range, a malformed table)
+  std::vector<std::unique_ptr<std::byte[]>> scratch;
+
+  void breaks(std::string what) {
+    if (defect.empty()) defect = std::move(what);
+  }
+  // The output at `index` when it is declared with `kind`, else nullptr (and the defect noted,
+  // unless even that fails for want of memory). Never throws: it runs inside C callbacks.
+  const mechgraph::PortSpec* output(uint32_t index, mechgraph::ValueKind kind, const char* call) noexcept try {
+    if (index >= info.outputs.size()) {
+      breaks(std::string(call) + " was given output index " + std::to_string(index) + " of " +
+             std::to_string(info.outputs.size()) + " declared outputs");
+      return nullptr;
+    }
+    const mechgraph::PortSpec& port = info.outputs[index];
+    if (port.kind != kind) {
+      breaks(std::string(call) + " was used for output '" + port.name + "', declared as a " +
+             std::string(mechgraph::to_string(port.kind)));
+      return nullptr;
+    }
+    return &port;
+  } catch (...) {
+    return nullptr;
+  }
+};
+
+namespace mechgraph::detail {
+namespace {
+
+// Releases an adopted array's owner once, whatever happens to its contents.
+struct Adopted {
+  mg_owner owner;
+  ~Adopted() {
+    if (owner.release) owner.release(owner.ctx);
+  }
+};
+
+int32_t suite_effect(mg_eval_ctx* c, uint32_t index) {
+  try {
+    return index < c->info.effects.size() && c->context.effect(c->info.effects[index].name) ? 1 : 0;
+  } catch (...) {
+    return 0;
+  }
+}
+int32_t suite_wanted(mg_eval_ctx* c, uint32_t index) {
+  try {
+    return index < c->info.outputs.size() && c->context.wanted(c->info.outputs[index].name) ? 1 : 0;
+  } catch (...) {
+    return 1;
+  }
+}
+int32_t suite_cancelled(mg_eval_ctx*) { return cancellation_requested() ? 1 : 0; }
+void suite_log(mg_eval_ctx* c, int32_t level, mg_str message) {
+  try {
+    c->context.log(level <= MG_LOG_DEBUG ? LogLevel::debug : level == MG_LOG_INFO ? LogLevel::info : LogLevel::warn,
+                   text(message));
+  } catch (...) {
+  }
+}
+void suite_add_work(mg_eval_ctx* c, uint32_t index, double amount) {
+  try {
+    if (index >= c->info.work_counters.size())
+      return c->breaks("add_work was given counter index " + std::to_string(index) + " of " +
+                       std::to_string(c->info.work_counters.size()) + " declared work counters");
+    c->context.report_work(c->info.work_counters[index], amount);
+  } catch (const std::exception& e) {
+    c->breaks(e.what());
+  }
+}
+void suite_note(mg_eval_ctx* c, mg_str note) {
+  try {
+    c->outputs.note(text(note));
+  } catch (const std::exception& e) {
+    c->breaks(e.what());
+  }
+}
+void suite_fail(mg_eval_ctx* c, mg_str parameter, mg_str message) {
+  try {
+    if (c->failed) return;  // the first failure is the one a user reads
+    c->failed = true;
+    c->fail_parameter = text(parameter);
+    c->fail_message = text(message);
+  } catch (...) {
+  }
+}
+void suite_set_scalar(mg_eval_ctx* c, uint32_t index, double value) {
+  try {
+    if (const PortSpec* port = c->output(index, ValueKind::scalar, "set_scalar")) c->outputs.set_scalar(port->name, value);
+  } catch (const std::exception& e) {
+    c->breaks(e.what());
+  }
+}
+mg_status suite_set_series(mg_eval_ctx* c, uint32_t index, const mg_series* s) {
+  const Adopted adopted{s ? s->owner : mg_owner{nullptr, nullptr}};
+  try {
+    const PortSpec* port = c->output(index, ValueKind::series, "set_series");
+    if (!port) return MG_ERR_BAD_ARGUMENT;
+    if (!s || s->struct_size < sizeof(mg_series) || (s->size > 0 && (!s->axis || !s->values))) {
+      c->breaks("set_series was given a malformed mg_series for output '" + port->name + "'");
+      return MG_ERR_BAD_ARGUMENT;
+    }
+    Series out;
+    out.axis.assign(s->axis, s->axis + s->size);
+    out.values.assign(s->values, s->values + s->size);
+    out.axis_dimension = from_c_dim(s->axis_dim, "output '" + port->name + "'");
+    if (s->labels)
+      for (size_t i = 0; i < s->size; ++i) out.labels.emplace_back(s->labels[i] ? s->labels[i] : "");
+    c->outputs.set(port->name, Value::series(std::move(out)));
+    return MG_OK;
+  } catch (const std::bad_alloc&) {
+    return MG_ERR_NO_MEMORY;
+  } catch (const std::exception& e) {
+    c->breaks(e.what());
+    return MG_ERR_BAD_ARGUMENT;
+  }
+}
+Table::Column column(const mg_column& c, size_t rows, const std::string& what) {
+  if (!c.name) throw std::invalid_argument(what + " has a column without a name");
+  if (rows > 0 && !c.values) throw std::invalid_argument(what + ": column '" + std::string(c.name) + "' has no values");
+  Table::Column out{c.name, from_c_dim(c.dim, what + " column '" + c.name + "'"), {}, c.display_unit ? c.display_unit : ""};
+  out.values.assign(c.values, c.values + rows);
+  return out;
+}
+mg_status suite_set_table(mg_eval_ctx* c, uint32_t index, const mg_table* t) {
+  const Adopted adopted{t ? t->owner : mg_owner{nullptr, nullptr}};
+  try {
+    const PortSpec* port = c->output(index, ValueKind::table, "set_table");
+    if (!port) return MG_ERR_BAD_ARGUMENT;
+    const std::string what = "set_table for output '" + port->name + "'";
+    if (!t || t->struct_size < sizeof(mg_table) || (t->channel_count > 0 && !t->channels) || (t->mark_count > 0 && !t->marks)) {
+      c->breaks(what + " was given a malformed mg_table");
+      return MG_ERR_BAD_ARGUMENT;
+    }
+    Table out;
+    out.axis = column(t->axis, t->rows, what);
+    for (size_t i = 0; i < t->channel_count; ++i) out.channels.push_back(column(t->channels[i], t->rows, what));
+    out.closed_curve = (t->flags & MG_TABLE_CLOSED_CURVE) != 0;
+    out.histogram = (t->flags & MG_TABLE_HISTOGRAM) != 0;
+    for (size_t i = 0; i < t->mark_count; ++i)
+      out.axis_marks.push_back({t->marks[i].label ? t->marks[i].label : "", t->marks[i].value});
+    c->outputs.set(port->name, Value::table(std::move(out)));
+    return MG_OK;
+  } catch (const std::bad_alloc&) {
+    return MG_ERR_NO_MEMORY;
+  } catch (const std::exception& e) {
+    c->breaks(e.what());
+    return MG_ERR_BAD_ARGUMENT;
+  }
+}
+mg_status suite_set_object(mg_eval_ctx* c, uint32_t index, const mg_object* o) {
+  if (!o || !o->vtbl || !o->vtbl->retain || !o->vtbl->release || !o->vtbl->query) {
+    c->breaks("set_object was given no object, or one whose vtable lacks retain, release or query");
+    return MG_ERR_BAD_ARGUMENT;
+  }
+  const PortSpec* port = c->output(index, ValueKind::handle, "set_object");
+  std::shared_ptr<const CObjectHandle> handle;
+  try {
+    if (port) handle = std::make_shared<const CObjectHandle>(o, port->handle_kind, c->output_versions[index]);
+  } catch (...) {  // no handle made: the reference handed over is still ours to release
+  }
+  if (!handle) {
+    o->vtbl->release(o);
+    return port ? MG_ERR_NO_MEMORY : MG_ERR_BAD_ARGUMENT;
+  }
+  try {  // from here the handle owns the reference, whatever happens
+    c->outputs.set(port->name, Value::handle(std::move(handle)));
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_NO_MEMORY;
+  }
+}
+void* suite_scratch(mg_eval_ctx* c, size_t bytes, size_t align) {
+  try {
+    if (align == 0 || (align & (align - 1)) != 0 || align > 4096 || bytes > SIZE_MAX - align) return nullptr;
+    auto block = std::make_unique_for_overwrite<std::byte[]>(bytes + align);
+    void* p = block.get();
+    size_t space = bytes + align;
+    void* aligned = std::align(align, bytes, p, space);
+    c->scratch.push_back(std::move(block));
+    return aligned;
+  } catch (...) {
+    return nullptr;
+  }
+}
+
+const mg_eval_suite_v1 eval_suite{sizeof(mg_eval_suite_v1), &suite_effect,     &suite_wanted,     &suite_cancelled,
+                                  &suite_log,               &suite_add_work,   &suite_note,       &suite_fail,
+                                  &suite_set_scalar,        &suite_set_series, &suite_set_table,  &suite_set_object,
+                                  &suite_scratch};
+
+// The C views of one evaluation's parameters and inputs, over the host's own storage (nothing
+// copied but the small descriptors).
+class CallViews {
+ public:
+  mg_param_value param(const ParamValue& v, const ParamSpec& spec) {
+    mg_param_value out{};
+    out.present = 1;
+    switch (spec.kind) {
+      case ParamKind::number: out.kind = MG_PARAM_NUMBER; out.number = v.number; break;
+      case ParamKind::integer: out.kind = MG_PARAM_INTEGER; out.number = v.number; break;
+      case ParamKind::choice: out.kind = MG_PARAM_CHOICE; out.text = {v.text.data(), v.text.size()}; break;
+      case ParamKind::text: out.kind = MG_PARAM_TEXT; out.text = {v.text.data(), v.text.size()}; break;
+      case ParamKind::number_list:
+        out.kind = MG_PARAM_NUMBER_LIST;
+        out.numbers = v.numbers.data();
+        out.number_count = v.numbers.size();
+        break;
+      case ParamKind::record_list: {
+        out.kind = MG_PARAM_RECORD_LIST;
+        std::vector<mg_record>& records = add(records_);
+        for (const Record& r : v.records) {
+          std::vector<mg_param_value>& fields = add(fields_);
+          for (const ParamSpec& f : spec.fields) {
+            const auto it = r.find(f.name);
+            fields.push_back(it != r.end() ? param(it->second, f) : absent(f));
+          }
+          records.push_back({fields.data(), fields.size()});
+        }
+        out.records = records.data();
+        out.record_count = records.size();
+        break;
+      }
+    }
+    return out;
+  }
+  static mg_param_value absent(const ParamSpec& spec) {
+    mg_param_value out{};
+    out.kind = static_cast<int32_t>(spec.kind) + 1;  // ParamKind's order is MG_PARAM_*'s, from 1
+    return out;
+  }
+  mg_value value(const Value& v) {
+    mg_value out{};
+    switch (v.kind()) {
+      case ValueKind::scalar: out.kind = MG_VALUE_SCALAR; out.u.scalar = v.as_scalar(); break;
+      case ValueKind::series: {
+        const Series& s = v.as_series();
+        mg_series& c = add(series_);
+        c = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), to_c_dim(s.axis_dimension), nullptr, {}};
+        if (!s.labels.empty()) {
+          std::vector<const char*>& labels = add(labels_);
+          for (const std::string& l : s.labels) labels.push_back(l.c_str());
+          c.labels = labels.data();
+        }
+        out.kind = MG_VALUE_SERIES;
+        out.u.series = &c;
+        break;
+      }
+      case ValueKind::table: {
+        const Table& t = v.as_table();
+        std::vector<mg_column>& channels = add(columns_);
+        for (const Table::Column& col : t.channels) channels.push_back(column(col));
+        std::vector<mg_mark>& marks = add(marks_);
+        for (const Table::Mark& m : t.axis_marks) marks.push_back({m.label.c_str(), m.value});
+        mg_table& c = add(tables_);
+        c = mg_table{sizeof(mg_table), t.axis.values.size(), column(t.axis), channels.data(), channels.size(),
+                     (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u),
+                     marks.data(), marks.size(), {}};
+        out.kind = MG_VALUE_TABLE;
+        out.u.table = &c;
+        break;
+      }
+      case ValueKind::handle: {
+        out.kind = MG_VALUE_OBJECT;
+        // Ports of C nodes carry interface names, which only C nodes produce (the graph compares them).
+        const auto* handle = dynamic_cast<const CObjectHandle*>(v.as_handle().get());
+        if (!handle) throw std::logic_error("an input carries an object of a pre-1.0 plugin, which has no C interface");
+        out.u.object = handle->object();
+        break;
+      }
+    }
+    return out;
+  }
+
+ private:
+  static mg_column column(const Table::Column& c) {
+    return {c.name.c_str(), to_c_dim(c.dimension), c.display_unit.c_str(), c.values.data()};
+  }
+  // Stable addresses, and no allocation at all for a call that needs none of them (a std::deque
+  // allocates when it is made).
+  template <class T>
+  static T& add(std::vector<std::unique_ptr<T>>& store) {
+    return *store.emplace_back(std::make_unique<T>());
+  }
+  std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
+  std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
+  std::vector<std::unique_ptr<mg_series>> series_;
+  std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
+  std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
+  std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
+  std::vector<std::unique_ptr<mg_table>> tables_;
+};
+
+class CNodeType final : public NodeType {
+ public:
+  CNodeType(const mg_node_type& type, CNodeDeclaration declaration)
+      : type_(type), info_(std::move(declaration.info)), output_versions_(std::move(declaration.output_interface_versions)) {}
+  const NodeInfo& info() const override { return info_; }
+
+  void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs, EvalContext& context) const override {
+    CallViews views;
+    std::vector<mg_param_value> c_params;
+    c_params.reserve(info_.params.size());
+    for (const ParamSpec& spec : info_.params)
+      c_params.push_back(params.has(spec.name) ? views.param(params.get(spec.name), spec) : CallViews::absent(spec));
+    std::vector<std::vector<mg_value>> values(info_.inputs.size());
+    std::vector<mg_input> c_inputs(info_.inputs.size());
+    for (std::size_t i = 0; i < info_.inputs.size(); ++i) {
+      const std::string& port = info_.inputs[i].name;
+      for (std::size_t k = 0, n = inputs.count(port); k < n; ++k) values[i].push_back(views.value(inputs.value(port, k)));
+      c_inputs[i] = {values[i].data(), values[i].size()};
+    }
+    const mg_eval_args args{sizeof(mg_eval_args), c_params.data(), c_inputs.data()};
+    mg_eval_ctx call{info_, output_versions_, outputs, context, false, {}, {}, {}, {}};
+    const mg_status status = type_.evaluate(&type_, &args, &call);
+    if (!call.defect.empty())
+      throw std::runtime_error("broke the C boundary's contract: " + call.defect + " (a defect of its plugin)");
+    switch (status) {
+      case MG_OK:
+        if (call.failed) throw std::runtime_error("called fail() (" + call.fail_message + ") but returned MG_OK (a defect of its plugin)");
+        return;
+      case MG_ERR_NODE:
+        throw NodeError(call.fail_parameter, call.fail_message.empty() ? std::string("failed without saying why (MG_ERR_NODE)")
+                                                                       : call.fail_message);
+      case MG_ERR_CANCELLED: throw std::runtime_error("stopped: the evaluation was cancelled");
+      case MG_ERR_NO_MEMORY: throw std::bad_alloc();
+      default:
+        throw std::runtime_error("returned " + std::string(mg_status_name(status)) +
+                                 (call.fail_message.empty() ? std::string() : " (" + call.fail_message + ")") +
+                                 " (a defect of its plugin)");
+    }
+  }
+
+ private:
+  const mg_node_type& type_;
+  NodeInfo info_;
+  std::vector<std::uint32_t> output_versions_;
+};
+
+}  // namespace
+
+const mg_eval_suite_v1& c_eval_suite() { return eval_suite; }
+
+std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where) {
+  if (type.struct_size < offsetof(mg_node_type, reserved_batch))
+    throw PluginError(where + ": a node type's mg_node_type is " + std::to_string(type.struct_size) +
+                      " bytes (struct_size), shorter than the " + std::to_string(offsetof(mg_node_type, reserved_batch)) +
+                      " bytes every SDK 1.x writer fills; a defect of the plugin");
+  if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
+  return std::make_shared<const CNodeType>(type, c_node_declaration(type, where));
+}
+
+}  // namespace mechgraph::detail

@@ -1,0 +1,49 @@
+/* mechgraph SDK 1.x: the functions libmechgraph_sdk.so.1 exports (docs/design/sdk-1.0.md,
+ * sections 1.7 and 3.6). They are the SDK's ABI, checked with abidiff against the tagged release.
+ * Rule: an SDK function never keeps its arguments after it returns.
+ */
+#ifndef MECHGRAPH_C_SDK_LIB_H
+#define MECHGRAPH_C_SDK_LIB_H
+
+#include <mechgraph/c/base.h>
+#include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/valve_motion.h>
+#include <mechgraph/c/host.h>
+#include <mechgraph/c/node.h>
+#include <mechgraph/c/object.h>
+#include <mechgraph/c/plugin.h>
+#include <mechgraph/c/present.h>
+#include <mechgraph/c/value.h>
+
+MG_EXTERN_C_BEGIN
+
+/* The SDK the library implements: MG_SDK_MAJOR and its own minor (>= the headers' a plugin was
+   built with, when the library is the newer one). Either pointer may be NULL. */
+MG_API void mg_sdk_version(uint16_t* major, uint16_t* minor);
+
+/* The name of a status ("MG_ERR_NODE"); "MG_ERR_INTERNAL" for an unknown code (the rule of base.h).
+   Static storage. */
+MG_API const char* mg_status_name(mg_status status);
+
+/* Checks that `object` keeps the contract of interface `name` at `version` for every SDK interface
+   it knows (a cam law: its event inside (-pi, pi), ascending breakpoints strictly inside, finite
+   lift and derivatives at samples and at every piece's middle; no lift beyond max_lift). Returns
+   MG_OK when it does or when the interface is not the SDK's (a plugin's private one), else
+   MG_ERR_BAD_ARGUMENT with what it breaks in `problem`, or MG_ERR_MISSING_FEATURE when the object
+   does not answer `name`/`version`. */
+MG_API mg_status mg_check_object(const mg_object* object, const char* name, uint32_t version, mg_text_sink problem);
+
+/* Does nothing. It names every public struct of the SDK, so that abidw, which sees only the types
+   reachable from exported functions, puts every one of them in the ABI dump
+   (scripts/abi-dump.sh). */
+MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg_log_suite_v1* log,
+                          const mg_eval_suite_v1* eval, const mg_memory_suite_v1* memory,
+                          const mg_node_type* node_type, const mg_eval_args* args, const mg_error* error,
+                          const mg_series* series, const mg_table* table, const mg_value* value,
+                          const mg_object* object, const mg_cam_law_v1* cam_law,
+                          const mg_cam_law_closed_form_v1* closed_form, const mg_cam_law_higher_v1* higher,
+                          const mg_valve_motion_v1* valve_motion, const mg_owner* owner);
+
+MG_EXTERN_C_END
+
+#endif /* MECHGRAPH_C_SDK_LIB_H */

@@ -1,0 +1,367 @@
+#pragma once
+// C++ node types exported through the SDK 1.x C boundary (docs/design/sdk-1.0.md, section 3):
+// header-only, compiled into the plugin with hidden visibility, so no C++ type, exception or
+// allocator crosses to the host. Each NodeType's NodeInfo becomes an mg_node_desc once, at the
+// entry; each evaluation rebuilds a ParamSet and an InputSet from the C arguments, runs the node,
+// and hands its outputs to the host through the eval suite by index. Every exception is caught
+// here (OpenFX's ladder): NodeError -> fail() + MG_ERR_NODE, std::bad_alloc -> MG_ERR_NO_MEMORY,
+// anything else -> fail() + MG_ERR_INTERNAL.
+//
+// A first step: ports that carry domain objects are not exported yet (object export and import,
+// section 3.3-3.4, come next); a plugin with such a port is refused at its entry, saying so. Until
+// the C++ helpers leave libmechgraph_sdk (migration step 6) the plugin still calls them, so it
+// must share the host's C++ standard library ABI (libstdc++; any compiler).
+#include <mechgraph/c/node.h>
+#include <mechgraph/c/plugin.h>
+#include <mechgraph/node.hpp>
+#include <mechgraph/version.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <deque>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace mechgraph::detail {
+
+/// The host's suites, fetched once at the entry.
+struct HostSuites {
+  const mg_eval_suite_v1* eval = nullptr;
+};
+inline HostSuites& host_suites() {
+  static HostSuites suites;
+  return suites;
+}
+
+inline mg_str c_text(std::string_view s) { return {s.data(), s.size()}; }
+inline mg_dim c_dim(const Dimension& d) { return {d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
+inline Dimension cxx_dim(const mg_dim& d) { return {d.length, d.mass, d.time, d.angle, d.temperature}; }
+
+template <class Container>
+std::uint32_t index_of(const Container& items, std::string_view name) {
+  for (std::size_t i = 0; i < items.size(); ++i)
+    if (items[i].name == name) return static_cast<std::uint32_t>(i);
+  return UINT32_MAX;
+}
+
+/// What a node sees of the host during one evaluation, over the eval suite.
+class SuiteContext final : public EvalContext {
+ public:
+  SuiteContext(const NodeInfo& info, mg_eval_ctx* ctx) : info_(info), ctx_(ctx) {}
+  bool effect(std::string_view name) const override {
+    for (std::size_t i = 0; i < info_.effects.size(); ++i)
+      if (info_.effects[i].name == name) return host_suites().eval->effect(ctx_, static_cast<std::uint32_t>(i)) != 0;
+    return false;
+  }
+  void log(LogLevel level, std::string_view message) override {
+    host_suites().eval->log(ctx_, level == LogLevel::debug ? MG_LOG_DEBUG : level == LogLevel::info ? MG_LOG_INFO : MG_LOG_WARN,
+                            c_text(message));
+  }
+  void report_work(std::string_view counter, double amount) override {
+    for (std::size_t i = 0; i < info_.work_counters.size(); ++i)
+      if (info_.work_counters[i] == counter) return host_suites().eval->add_work(ctx_, static_cast<std::uint32_t>(i), amount);
+    throw std::logic_error("report_work on undeclared counter '" + std::string(counter) + "'");
+  }
+  bool wanted(std::string_view output) const override {
+    const std::uint32_t i = index_of(info_.outputs, output);
+    return i == UINT32_MAX || host_suites().eval->wanted(ctx_, i) != 0;
+  }
+
+ private:
+  const NodeInfo& info_;
+  mg_eval_ctx* ctx_;
+};
+
+/// One C++ NodeType and the C description that stands for it; lives until the process ends.
+class NodeTypeExport {
+ public:
+  explicit NodeTypeExport(std::shared_ptr<const NodeType> type) : type_(std::move(type)) {
+    const NodeInfo& info = type_->info();
+    for (const ParamSpec& p : info.params) params_.push_back(param_decl(p));
+    for (const PortSpec& p : info.inputs) inputs_.push_back(port_decl(p));
+    for (const PortSpec& p : info.outputs) outputs_.push_back(port_decl(p));
+    for (const EffectSpec& e : info.effects) {
+      const auto& outs = names(e.outputs);
+      const auto& ps = names(e.params);
+      effects_.push_back({sizeof(mg_effect_decl), e.name.c_str(), e.doc.c_str(), outs.data(), outs.size(), ps.data(), ps.size()});
+    }
+    for (const std::string& c : info.work_counters) counters_.push_back({sizeof(mg_counter_decl), c.c_str(), ""});
+    for (const auto& [output, ins] : info.output_dependencies) {
+      const auto& list = names(ins);
+      deps_.push_back({output.c_str(), list.data(), list.size()});
+    }
+    desc_ = mg_node_desc{sizeof(mg_node_desc), info.type.c_str(), info.version, info.summary.c_str(),
+                         params_.data(), params_.size(), inputs_.data(), inputs_.size(), outputs_.data(), outputs_.size(),
+                         effects_.data(), effects_.size(), counters_.data(), counters_.size(), deps_.data(), deps_.size(),
+                         nullptr, 0, nullptr, 0};
+    c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, nullptr};
+  }
+  NodeTypeExport(const NodeTypeExport&) = delete;
+  NodeTypeExport& operator=(const NodeTypeExport&) = delete;
+  const mg_node_type* c_type() const { return &c_type_; }
+
+ private:
+  const std::vector<const char*>& names(const std::vector<std::string>& list) {
+    auto& out = lists_.emplace_back();
+    for (const std::string& s : list) out.push_back(s.c_str());
+    return out;
+  }
+  static std::int32_t c_param_kind(ParamKind k) { return static_cast<std::int32_t>(k) + 1; }  // MG_PARAM_* order
+
+  mg_param_value c_value(const ParamValue& v, const ParamSpec& spec) {
+    mg_param_value out{};
+    out.kind = c_param_kind(spec.kind);
+    out.present = 1;
+    out.number = v.number;
+    out.text = c_text(v.text);
+    out.numbers = v.numbers.data();
+    out.number_count = v.numbers.size();
+    if (spec.kind == ParamKind::record_list) {
+      auto& records = records_.emplace_back();
+      for (const Record& r : v.records) {
+        auto& fields = values_.emplace_back();
+        for (const ParamSpec& f : spec.fields) {
+          const auto it = r.find(f.name);
+          mg_param_value absent{};
+          absent.kind = c_param_kind(f.kind);
+          fields.push_back(it != r.end() ? c_value(it->second, f) : absent);
+        }
+        records.push_back({fields.data(), fields.size()});
+      }
+      out.records = records.data();
+      out.record_count = records.size();
+    }
+    return out;
+  }
+  mg_param_decl param_decl(const ParamSpec& p) {
+    mg_param_decl d{};
+    d.struct_size = sizeof d;
+    d.name = p.name.c_str();
+    d.kind = c_param_kind(p.kind);
+    d.dim = c_dim(p.dimension);
+    d.doc = p.doc.c_str();
+    d.flags = (p.required ? MG_PF_REQUIRED : 0u) | (p.knob ? MG_PF_KNOB : 0u) | (p.is_path ? MG_PF_PATH : 0u) |
+              (p.default_value ? MG_PF_HAS_DEFAULT : 0u) | (p.example_value ? MG_PF_HAS_EXAMPLE : 0u) |
+              (p.min_exclusive ? MG_PF_MIN_EXCLUSIVE : 0u) | (p.max_exclusive ? MG_PF_MAX_EXCLUSIVE : 0u);
+    d.min = p.min;
+    d.max = p.max;
+    if (p.default_value) d.default_value = c_value(*p.default_value, p);
+    if (p.example_value) d.example_value = c_value(*p.example_value, p);
+    const auto& choices = names(p.choices);
+    d.choices = choices.data();
+    d.choice_count = choices.size();
+    auto& fields = fields_.emplace_back();
+    for (const ParamSpec& f : p.fields) fields.push_back(param_decl(f));
+    d.fields = fields.data();
+    d.field_count = fields.size();
+    d.display_unit = p.display_unit.c_str();
+    d.angle_frame = -1;
+    return d;
+  }
+  static mg_port_decl port_decl(const PortSpec& p) {
+    mg_port_decl d{};
+    d.struct_size = sizeof d;
+    d.name = p.name.c_str();
+    switch (p.kind) {
+      case ValueKind::scalar: d.kind = MG_VALUE_SCALAR; break;
+      case ValueKind::series: d.kind = MG_VALUE_SERIES; break;
+      case ValueKind::table: d.kind = MG_VALUE_TABLE; break;
+      case ValueKind::handle:
+        throw std::invalid_argument("port '" + p.name + "' carries " + p.handle_kind +
+                                    " objects, which this SDK 1.x bridge does not export yet");
+    }
+    d.dim = c_dim(p.dimension);
+    d.doc = p.doc.c_str();
+    d.flags = (p.multiple ? MG_PORT_MULTIPLE : 0u) | (p.optional ? MG_PORT_OPTIONAL : 0u);
+    d.display_unit = p.display_unit.c_str();
+    d.angle_frame = -1;
+    return d;
+  }
+
+  static ParamValue cxx_value(const mg_param_value& v, const ParamSpec& spec) {
+    ParamValue out;
+    out.kind = spec.kind;
+    out.number = v.number;
+    if (v.text.data) out.text.assign(v.text.data, v.text.size);
+    if (v.numbers) out.numbers.assign(v.numbers, v.numbers + v.number_count);
+    for (std::size_t r = 0; r < v.record_count; ++r) {
+      Record record;
+      for (std::size_t f = 0; f < v.records[r].field_count && f < spec.fields.size(); ++f)
+        if (v.records[r].fields[f].present) record[spec.fields[f].name] = cxx_value(v.records[r].fields[f], spec.fields[f]);
+      out.records.push_back(std::move(record));
+    }
+    return out;
+  }
+  static Table::Column cxx_column(const mg_column& c, std::size_t rows) {
+    return {c.name ? c.name : "", cxx_dim(c.dim), std::vector<double>(c.values, c.values + rows), c.display_unit ? c.display_unit : ""};
+  }
+  static Value cxx_input(const mg_value& v) {
+    switch (v.kind) {
+      case MG_VALUE_SCALAR: return Value::scalar(v.u.scalar);
+      case MG_VALUE_SERIES: {
+        const mg_series& s = *v.u.series;
+        Series out{{s.axis, s.axis + s.size}, {s.values, s.values + s.size}, cxx_dim(s.axis_dim), {}};
+        if (s.labels)
+          for (std::size_t i = 0; i < s.size; ++i) out.labels.emplace_back(s.labels[i] ? s.labels[i] : "");
+        return Value::series(std::move(out));
+      }
+      case MG_VALUE_TABLE: {
+        const mg_table& t = *v.u.table;
+        Table out;
+        out.axis = cxx_column(t.axis, t.rows);
+        for (std::size_t i = 0; i < t.channel_count; ++i) out.channels.push_back(cxx_column(t.channels[i], t.rows));
+        out.closed_curve = (t.flags & MG_TABLE_CLOSED_CURVE) != 0;
+        out.histogram = (t.flags & MG_TABLE_HISTOGRAM) != 0;
+        for (std::size_t i = 0; i < t.mark_count; ++i) out.axis_marks.push_back({t.marks[i].label ? t.marks[i].label : "", t.marks[i].value});
+        return Value::table(std::move(out));
+      }
+      default: throw std::invalid_argument("an input value of a kind this bridge does not import");
+    }
+  }
+
+  // The host adopts a table or series: the plugin's Value (a shared pointer) keeps the arrays alive
+  // until the host releases it.
+  struct Holder {
+    Value value;
+    std::vector<mg_column> channels;
+    std::vector<mg_mark> marks;
+    std::vector<const char*> labels;
+    mg_table table{};
+    mg_series series{};
+    static void release(void* self) { delete static_cast<Holder*>(self); }
+  };
+  static mg_column c_column(const Table::Column& c) { return {c.name.c_str(), c_dim(c.dimension), c.display_unit.c_str(), c.values.data()}; }
+
+  static mg_status put_output(const mg_eval_suite_v1& suite, mg_eval_ctx* ctx, std::uint32_t index, const Value& v) {
+    switch (v.kind()) {
+      case ValueKind::scalar: suite.set_scalar(ctx, index, v.as_scalar()); return MG_OK;
+      case ValueKind::series: {
+        auto holder = std::make_unique<Holder>();
+        holder->value = v;
+        const Series& s = holder->value.as_series();
+        for (const std::string& l : s.labels) holder->labels.push_back(l.c_str());
+        holder->series = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), c_dim(s.axis_dimension),
+                                   s.labels.empty() ? nullptr : holder->labels.data(), {holder.get(), &Holder::release}};
+        const mg_series* c = &holder->series;
+        holder.release();  // the host releases it, also on refusal
+        return suite.set_series(ctx, index, c);
+      }
+      case ValueKind::table: {
+        auto holder = std::make_unique<Holder>();
+        holder->value = v;
+        const Table& t = holder->value.as_table();
+        for (const Table::Column& c : t.channels) holder->channels.push_back(c_column(c));
+        for (const Table::Mark& m : t.axis_marks) holder->marks.push_back({m.label.c_str(), m.value});
+        holder->table = mg_table{sizeof(mg_table), t.axis.values.size(), c_column(t.axis), holder->channels.data(),
+                                 holder->channels.size(),
+                                 (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u),
+                                 holder->marks.data(), holder->marks.size(), {holder.get(), &Holder::release}};
+        const mg_table* c = &holder->table;
+        holder.release();
+        return suite.set_table(ctx, index, c);
+      }
+      case ValueKind::handle: break;
+    }
+    return MG_ERR_UNSUPPORTED;
+  }
+
+  static mg_status evaluate(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) noexcept {
+    const mg_eval_suite_v1& suite = *host_suites().eval;
+    const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
+    const NodeInfo& info = exported.type_->info();
+    try {
+      ParamSet params;
+      for (std::size_t i = 0; i < info.params.size(); ++i)
+        if (args->params[i].present) params.set(info.params[i].name, cxx_value(args->params[i], info.params[i]));
+      InputSet inputs;
+      for (std::size_t i = 0; i < info.inputs.size(); ++i)
+        for (std::size_t k = 0; k < args->inputs[i].count; ++k) inputs.add(info.inputs[i].name, cxx_input(args->inputs[i].values[k]));
+      OutputSet outputs;
+      SuiteContext context(info, ctx);
+      exported.type_->evaluate(params, inputs, outputs, context);
+      for (const std::string& note : outputs.notes()) suite.note(ctx, c_text(note));
+      for (const auto& [name, value] : outputs.all()) {
+        const std::uint32_t index = index_of(info.outputs, name);
+        if (index == UINT32_MAX) throw std::logic_error("set output '" + name + "', which it does not declare");
+        if (const mg_status s = put_output(suite, ctx, index, value); s != MG_OK) return s;
+      }
+      return MG_OK;
+    } catch (const NodeError& e) {
+      suite.fail(ctx, c_text(e.parameter()), c_text(e.what()));
+      return MG_ERR_NODE;
+    } catch (const std::bad_alloc&) {
+      return MG_ERR_NO_MEMORY;
+    } catch (const std::exception& e) {
+      suite.fail(ctx, {}, c_text(e.what()));
+      return MG_ERR_INTERNAL;
+    } catch (...) {
+      suite.fail(ctx, {}, c_text("an exception that is not a std::exception"));
+      return MG_ERR_INTERNAL;
+    }
+  }
+
+  std::shared_ptr<const NodeType> type_;
+  std::deque<std::vector<const char*>> lists_;
+  std::deque<std::vector<mg_param_decl>> fields_;
+  std::deque<std::vector<mg_param_value>> values_;
+  std::deque<std::vector<mg_record>> records_;
+  std::vector<mg_param_decl> params_;
+  std::vector<mg_port_decl> inputs_, outputs_;
+  std::vector<mg_effect_decl> effects_;
+  std::vector<mg_counter_decl> counters_;
+  std::vector<mg_output_deps> deps_;
+  mg_node_desc desc_{};
+  mg_node_type c_type_{};
+};
+
+inline void tell(mg_text_sink why, std::string_view text) {
+  if (why.append) why.append(why.self, text.data(), text.size());
+}
+
+/// The body of mechgraph_plugin_entry_1 (MECHGRAPH_PLUGIN_1): called once per process.
+inline const mg_plugin* plugin_entry_1(const mg_host* host, mg_text_sink why, const char* id, const char* version,
+                                       NodeTypeList (*factory)()) noexcept {
+  try {
+    if (!host || host->sdk_major != MG_SDK_MAJOR) {
+      tell(why, "this host's SDK has another major version than the plugin's 1");
+      return nullptr;
+    }
+    host_suites().eval = static_cast<const mg_eval_suite_v1*>(host->fetch(host->host_data, MG_SUITE_EVAL, 1));
+    if (!host_suites().eval) {
+      tell(why, "this host offers no mechgraph.eval suite version 1");
+      return nullptr;
+    }
+    // Kept until the process ends, never destroyed: the host holds pointers into them.
+    static auto* exports = new std::vector<std::unique_ptr<NodeTypeExport>>();
+    static auto* list = new std::vector<const mg_node_type*>();
+    static mg_plugin plugin{};
+    if (plugin.struct_size == 0) {
+      for (auto& t : factory()) {
+        if (!t) throw std::invalid_argument("the factory returned an empty node type");
+        exports->push_back(std::make_unique<NodeTypeExport>(std::move(t)));
+        list->push_back(exports->back()->c_type());
+      }
+      plugin = mg_plugin{sizeof(mg_plugin), MG_SDK_MAJOR, MG_SDK_MINOR, id, version, MECHGRAPH_SDK_VERSION,
+#if defined(__clang__)
+                         "clang " __clang_version__,
+#elif defined(__GNUC__)
+                         "gcc " __VERSION__,
+#else
+                         "",
+#endif
+                         list->size(), list->data(), 0, nullptr};
+    }
+    return &plugin;
+  } catch (const std::exception& e) {
+    tell(why, e.what());
+  } catch (...) {
+    tell(why, "its node type factory threw something that is not a std::exception");
+  }
+  return nullptr;
+}
+
+}  // namespace mechgraph::detail

@@ -1,0 +1,66 @@
+// C++ node types exported through the SDK 1.x C boundary (mechgraph/plugin_sdk1.hpp), built by
+// the project's compiler and by clang++ (tests/test_plugins/sdk1_cxx_plugin.cpp), loaded into this
+// host beside a pre-1.0 plugin: the two paths meet in one scene.
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::vector<std::string> builds() {
+  std::vector<std::string> out{"test_sdk1_cxx"};
+  if (std::filesystem::exists(test_plugin("test_sdk1_clang"))) out.push_back("test_sdk1_clang");
+  return out;
+}
+
+const char* scene = R"(nodes:
+  k: { type: test.constant, params: { value: 3 mm } }
+  s: { type: cxx1.scale, params: { gain: 4 }, inputs: { in: k.out } }
+  c: { type: cxx1.curve, params: { a: 2 mm, points: 3 } }
+outputs: [ s.out, c.table, c.series ]
+)";
+
+}  // namespace
+
+TEST_CASE("C++ node types behind the C boundary run beside a pre-1.0 plugin, whichever compiler built them",
+          "[plugins][sdk1]") {
+  REQUIRE(std::filesystem::exists(test_plugin("test_sdk1_clang")));  // clang++ is a dependency (install-deps.sh)
+  for (const std::string& build : builds()) {
+    INFO(build);
+    PluginRegistry r;
+    r.load_file(test_plugin("test_arith"));
+    r.load_file(test_plugin(build));
+    REQUIRE(r.plugins().size() == 2);
+    CHECK_THAT(r.plugins()[1].fingerprint, Contains(build == "test_sdk1_clang" ? "sdk1.0; clang" : "sdk1.0; gcc"));
+    const RunResult run = run_yaml(scene, r);
+    CHECK(scalar_output(run, "s.out") == Approx(0.012).epsilon(1e-12).margin(1e-15));
+    const Table& t = output(run, "c.table").as_table();
+    REQUIRE(t.channels.size() == 1);
+    CHECK(t.channels[0].display_unit == "mm");
+    CHECK(t.channels[0].values[1] == Approx(0.0005).epsilon(1e-12).margin(1e-15));
+    CHECK(output(run, "c.series").as_series().values.back() == Approx(0.002).epsilon(1e-12).margin(1e-15));
+    CHECK(run.runs[1].notes == std::vector<std::string>{"scaled in C++ behind the C boundary"});
+    CHECK(run.runs[1].work.at("products") == 1.0);
+    // A NodeError thrown in the plugin crosses as MG_ERR_NODE and names the node and the parameter.
+    CHECK_THROWS_MATCHES(run_yaml(R"(nodes:
+  c: { type: cxx1.curve, params: { a: -1 mm } }
+outputs: [ c.series ]
+)", r),
+                         EvaluationError,
+                         Catch::Matchers::Message("scene.yaml:2:39: node 'c' (cxx1.curve), parameter 'a': a negative a "
+                                                  "would dig below the axis"));
+  }
+}
+
+TEST_CASE("a plugin built with clang++ passes plugin-test in the gcc-built host", "[plugins][sdk1][cli]") {
+  const CommandResult r = run_cli("plugin-test '" + test_plugin("test_sdk1_clang").string() + "'");
+  INFO(r.out << r.err);
+  CHECK(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("cxx1.curve: 9 passed, 0 failed"));
+}

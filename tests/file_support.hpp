@@ -1,0 +1,31 @@
+#pragma once
+// Files in tests: read one whole, write one whole, start from an empty folder. Shared by the tests
+// that talk to the command line and by the hostile-input kit (tests/hostile/hostile_support.hpp).
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+namespace mechgraph::testing {
+
+/// The bytes of `file` ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Writes `text` to `file` as it is (binary); returns the file's path as text for a command line.
+inline std::string write_file(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream(file, std::ios::binary) << text;
+  return file.string();
+}
+
+/// `parent`/`name`, emptied (created when missing).
+inline std::filesystem::path fresh_dir(const std::filesystem::path& parent, const std::string& name) {
+  const std::filesystem::path dir = parent / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace mechgraph::testing
