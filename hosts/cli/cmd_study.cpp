@@ -7,6 +7,7 @@
 #include "cli.hpp"
 #include "line_reader.hpp"
 #include "options.hpp"
+#include "provenance.hpp"
 #include "results_folder.hpp"
 #include "study_page.hpp"
 #include "study_run.hpp"
@@ -298,7 +299,14 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   }
   const StudySpec& spec = outcome->spec;
   const StudyAnswers& answers = outcome->answers;
-  const std::string json = outcome->json + "\n";
+  // The answers with how they were made: the program, the scene and its SHA-1, the --set values,
+  // each node's parameters (provenance.hpp).
+  std::ostringstream with_provenance;
+  {
+    JsonWriter w(with_provenance);
+    write_study_json(w, spec, answers, [&](JsonWriter& j) { write_provenance(j, outcome->graph, registry, RunInputs{scene_file, sets}); });
+  }
+  const std::string json = with_provenance.str() + "\n";
   if (vm.count("out"))
     write_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0, [&](const std::filesystem::path& dir) {
       std::ofstream f(dir / "study.json", std::ios::binary);

@@ -135,7 +135,7 @@ void write_proportion(JsonWriter& out, const Proportion& p) {
 
 }  // namespace
 
-void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers) {
+void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers, const std::function<void(JsonWriter&)>& more) {
   out.begin_object();
   out.key("method").value(to_string(spec.method)).key("samples").value(static_cast<long>(spec.samples));
   out.key("seed").value(static_cast<long>(spec.seed)).key("sensitivity").value(spec.sensitivity);
@@ -210,6 +210,7 @@ void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers
     write_proportion(out, e.probability);
   }
   out.end_object();
+  if (more) more(out);
   out.end_object();
 }
 

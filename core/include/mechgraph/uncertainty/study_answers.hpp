@@ -10,6 +10,7 @@
 #include <mechgraph/uncertainty/study_spec.hpp>
 #include <mechgraph/uncertainty/study_statistics.hpp>
 
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -60,7 +61,9 @@ struct StudyAnswers {
 /// `threads`: for the bootstrap; the answers do not depend on it.
 StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads = 1);
 
-/// The answers as one JSON object (SI), the study's settings and parameters with them.
-void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers);
+/// The answers as one JSON object (SI), the study's settings and parameters with them; `more`,
+/// when given, writes further members before the object closes (the command's provenance).
+void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers,
+                      const std::function<void(JsonWriter&)>& more = {});
 
 }  // namespace mechgraph
