@@ -88,8 +88,8 @@ class SceneReader {
   SceneSpec read(const YAML::Node& root) {
     SceneSpec scene;
     scene.file = file_;
-    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, units, nodes, effects, outputs, report");
-    check_keys(root, {"title", "requires", "params", "units", "nodes", "effects", "outputs", "report"}, "scene key");
+    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, units, uncertainty, nodes, effects, outputs, report");
+    check_keys(root, {"title", "requires", "params", "units", "uncertainty", "nodes", "effects", "outputs", "report"}, "scene key");
     if (root["title"]) scene.title = scalar(root["title"], "a title");
     if (const YAML::Node r = root["requires"]; r && !r.IsNull()) {
       if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { cams: \">=0.2\" }");
@@ -113,6 +113,10 @@ class SceneReader {
         v.key_where = at(kv.first);
         scene.units.emplace_back(scalar(kv.first, "a quantity name"), std::move(v));
       }
+    }
+    if (const YAML::Node u = root["uncertainty"]; u && !u.IsNull()) {
+      if (!u.IsMap()) fail(at(u), "expected uncertainty as a map (parameters, method, samples, ...), found " + shape(u));
+      scene.uncertainty = raw(u);
     }
     const YAML::Node nodes = root["nodes"];
     if (!nodes || nodes.IsNull()) fail({file_, 1, 1}, "the scene has no 'nodes'");

@@ -23,11 +23,12 @@ from ._errors import EvaluationError, MechgraphError, PluginError, SceneError, S
 from . import _core
 from ._result import Quantity, Result
 from ._scene import Scene
+from ._study import Study
 from ._units import SI, si
 
 __version__: str = _core.__version__
 
-__all__ = ["Scene", "Result", "Quantity", "si", "SI", "MechgraphError", "SceneError", "SceneFileNotFoundError",
+__all__ = ["Scene", "Study", "Result", "Quantity", "si", "SI", "MechgraphError", "SceneError", "SceneFileNotFoundError",
            "UnitError", "EvaluationError", "PluginError",
            "describe", "node_types", "plugins", "load_plugins", "set_log_level", "Description"]
 

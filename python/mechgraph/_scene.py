@@ -156,6 +156,27 @@ class Scene:
         frame.attrs["summary"] = summary
         return frame
 
+    def study(self, parameters: Optional[Mapping[str, Any]] = None, *, samples: Optional[int] = None,
+              method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
+              limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
+              set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0, si: bool = False) -> "Study":
+        """An uncertainty study of the scene, as ``mechgraph study`` runs it (docs/python.md).
+
+        parameters: distributions by parameter name, as the scene's ``uncertainty: parameters:``
+            writes them, e.g. ``{"lash": {"normal": {"mean": "0.25 mm", "sigma": "0.01 mm"}}}``;
+            merged over the scene's block by name. limits, events, samples, method, seed and
+            sensitivity replace the block's. Returns a Study (DataFrames: summary, quantiles,
+            histograms, sobol, events, samples). The answers do not depend on `threads`.
+        set: fixed values for every case, as :meth:`run` takes them (a bare number only for a
+            dimensionless parameter, or with `si` True).
+        """
+        from ._study import Study
+
+        args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+        json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads))
+        return Study(json_text, cases)
+
     def cache_info(self) -> Dict[str, int]:
         """Memo cache lookups of this scene's runs: hits and misses."""
         hits, misses = self._session.cache_counters()
@@ -167,6 +188,19 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"Scene({self.title or self.file!r})"
+
+
+def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si=False) -> tuple:
+    """Scene.study's settings as the module takes them: the block as JSON text ("" for none), the
+    fixed overrides (entries by the unit rule of ``set=``), samples, method and seed as text ("": the scene's), the outputs."""
+    block: Dict[str, Any] = {}
+    if parameters:
+        block["parameters"] = dict(parameters)
+    for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
+        if value is not None:
+            block[key] = value
+    return (json.dumps(block) if block else "", set_entries(set, si), "" if samples is None else str(int(samples)), method or "",
+            "" if seed is None else str(int(seed)), list(outputs or []))
 
 
 def _rebuild(kind: str, *args: str) -> Scene:

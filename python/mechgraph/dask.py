@@ -73,3 +73,30 @@ def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optiona
     widest = max(frames, key=lambda f: len(f.columns))
     ordered = list(widest.columns) + [c for c in result.columns if c not in widest.columns]
     return result[ordered]
+
+
+def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = None, *, samples: Optional[int] = None,
+          method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
+          limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
+          set: Optional[Mapping[str, Any]] = None, outputs: Optional[Iterable[str]] = None, chunk: int = 1000, threads: int = 1,
+          si: bool = False):
+    """An uncertainty study (as :meth:`Scene.study` takes its settings) whose cases run on the
+    workers of `client` by :func:`sweep`: the design is made here, its cases (parameters in SI)
+    go out in chunks, the rows come back exact, and the answers are made from them: the same
+    numbers as ``scene.study(...)`` in one process."""
+    from ._scene import _study_arguments
+    from ._study import Study
+
+    args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+    design = scene._session.study_design(*args)
+    # The design's parameters are in SI: marked so, for the unit rule of sweep columns.
+    rows = sweep(client, scene, {name: SI(values) for name, values in design.items()}, chunk=chunk, set=set,
+                 outputs=outputs, threads=threads, si=si)
+    columns = {name: [float("nan") if v is None else float(v) for v in rows[name]] for name in rows.columns
+               if name not in design and name not in ("case", "exit", "error")}
+    exits = [int(e) for e in rows["exit"]]
+    json_text = scene._session.study_rows(*args, columns, exits)
+    cases = dict(design)
+    cases.update(columns)
+    cases["exit"] = exits
+    return Study(json_text, cases)

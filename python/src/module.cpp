@@ -10,6 +10,9 @@
 #include "unit_rule.hpp"
 #include "value_arrays.hpp"
 
+#include <study_run.hpp>
+#include <sweep_rows.hpp>
+
 #include <cli.hpp>
 #include <node_info_format.hpp>
 #include <terminal_output.hpp>
@@ -489,5 +492,80 @@ PYBIND11_MODULE(_core, m) {
         summary["failed"] = result.failed;
         summary["seconds"] = result.summary.seconds;
         return py::make_tuple(sweep_columns(result), summary);
+      })
+      .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                       const std::string& samples, const std::string& method, const std::string& seed,
+                       const std::vector<std::string>& outputs, unsigned threads) {
+        // `block`: the settings from Python as JSON text ("" for none), read as the scene's block is.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        auto stop = std::make_shared<std::atomic<bool>>(false);
+        std::unique_ptr<cli::StudyOutcome> outcome;
+        run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
+                          [&] { *stop = true; }, OnInterrupt::wait);
+        // The design's cases: the parameters in SI, the outputs in their shown units, the failure class.
+        py::dict cases;
+        const cli::StudyOutcome& o = *outcome;
+        for (std::size_t v = 0; v < o.table.variables.size(); ++v) {
+          std::vector<double> column(o.table.cases.size());
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
+          cases[py::str(o.table.variables[v].name)] = column;
+        }
+        py::list units;
+        for (std::size_t c = 0; c < o.data.outputs.size(); ++c) {
+          const StudyColumn& col = o.data.outputs[c];
+          const std::string unit = col.unit.empty() ? col.dimension.si_unit() : col.unit;
+          const std::string name = unit.empty() || unit == "1" ? col.label : col.label + " [" + unit + "]";
+          cases[py::str(name)] = o.data.values[c];
+        }
+        std::vector<int> exits;
+        for (CaseFailure f : o.data.failures) exits.push_back(cli::exit_code_of(f));
+        cases["exit"] = exits;
+        return py::make_tuple(o.json, cases);
+      })
+      .def("study_design", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                              const std::string& samples, const std::string& method, const std::string& seed,
+                              const std::vector<std::string>& outputs) {
+        // The study's cases (parameters in SI) and the output columns its rows will carry.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        py::dict cases;
+        for (std::size_t v = 0; v < o->table.variables.size(); ++v) {
+          std::vector<double> column(o->table.cases.size());
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o->table.cases[i][v].si;
+          cases[py::str(o->table.variables[v].name)] = column;
+        }
+        return cases;
+      })
+      .def("study_rows", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                            const std::string& samples, const std::string& method, const std::string& seed,
+                            const std::vector<std::string>& outputs, const py::dict& columns, const std::vector<int>& exits) {
+        // The answers from rows a sweep of the study's cases gave (`name [unit]` columns in the
+        // units the rows show, NaN where a case failed; exit per case), as Scene.study's.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        const std::size_t n = o->table.cases.size();
+        if (exits.size() != n) throw SceneError("study rows: " + std::to_string(exits.size()) + " rows for the design's " + std::to_string(n) + " cases");
+        o->data.outputs = o->columns;
+        o->data.failures.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+          o->data.failures[i] = exits[i] == 0 ? CaseFailure::none : exits[i] == 2 ? CaseFailure::scene : CaseFailure::evaluation;
+        for (const StudyColumn& c : o->columns) {
+          const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+          const std::string name = unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
+          if (!columns.contains(name)) throw SceneError("study rows: no column '" + name + "'");
+          std::vector<double> values = columns[py::str(name)].cast<std::vector<double>>();
+          if (values.size() != n) throw SceneError("study rows: column '" + name + "' has " + std::to_string(values.size()) + " values");
+          for (std::size_t i = 0; i < n; ++i)
+            if (o->data.failures[i] != CaseFailure::none) values[i] = std::numeric_limits<double>::quiet_NaN();
+          o->data.values.push_back(std::move(values));
+        }
+        cli::finish_study(*o);
+        return o->json;
       });
 }

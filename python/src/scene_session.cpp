@@ -182,10 +182,7 @@ SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, 
   return run;
 }
 
-SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
-                                 std::atomic<std::size_t>* done) {
-  SceneSpec scene = scene_;
+std::vector<Override> SceneSession::fixed_overrides(const std::vector<SetValue>& sets) {
   std::vector<Override> overrides;
   for (const SetValue& s : sets) {
     // An override is read as YAML (as --set's are); a value from Python goes in as one quoted
@@ -198,6 +195,32 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
     } else throw SceneError("set " + s.name + ": an array is not a sweep's fixed value (give it to Scene.run, or vary it)");
     overrides.push_back({s.name, yaml_quoted(text), s.name + "=" + text});
   }
+  return overrides;
+}
+
+std::unique_ptr<cli::StudyOutcome> SceneSession::study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                       const std::string& samples, const std::string& method, const std::string& seed,
+                                                       const std::vector<std::string>& outputs, unsigned threads,
+                                                       const std::atomic<bool>* stop) {
+  const std::vector<Override> overrides = fixed_overrides(sets);
+  WorkBudget budget;
+  budget.max_work = sweep_default_max_work;
+  return cli::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
+                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
+}
+
+std::unique_ptr<cli::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                               const std::string& samples, const std::string& method,
+                                                               const std::string& seed, const std::vector<std::string>& outputs) {
+  return cli::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
+                                  outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
+}
+
+SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
+                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                                 std::atomic<std::size_t>* done) {
+  SceneSpec scene = scene_;
+  const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = cli::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);

@@ -13,6 +13,8 @@
 #include <mechgraph/sweep/case_binder.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
+#include <study_run.hpp>
+
 #include <atomic>
 #include <map>
 #include <memory>
@@ -71,6 +73,18 @@ class SceneSession {
                      const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
                      std::atomic<std::size_t>* done = nullptr);
 
+  /// An uncertainty study of the scene (study_run.hpp): `block` merged over its `uncertainty:`,
+  /// `sets` fixed for every case (as sweep() takes them); empty samples/method/seed: the block's.
+  std::unique_ptr<cli::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                           const std::string& samples, const std::string& method, const std::string& seed,
+                                           const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+
+  /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
+  /// (mechgraph.dask.study), analysed with cli::finish_study once their values are in.
+  std::unique_ptr<cli::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                   const std::string& samples, const std::string& method, const std::string& seed,
+                                                   const std::vector<std::string>& outputs);
+
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()
   /// gives them (values bound in place, arrays written into their list parameters), so nothing is
@@ -105,6 +119,8 @@ class SceneSession {
     std::vector<const SetValue*> lists;
   };
   BoundSets bound_sets(const std::vector<SetValue>& sets);
+  // A sweep's or a study's fixed `sets` as overrides (each value one quoted YAML scalar).
+  std::vector<Override> fixed_overrides(const std::vector<SetValue>& sets);
   Prepared prepare(const std::vector<std::string>& outputs, const std::vector<std::string>& names) const;
   void give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const;
   Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
