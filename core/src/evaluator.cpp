@@ -153,7 +153,7 @@ std::shared_ptr<const OutputSet> checked_outputs(const GraphNode& node, OutputSe
     if (value.kind() == ValueKind::handle) {
       if (!value.as_handle() || value.as_handle()->kind() != spec->handle_kind)
         throw EvaluationError(where_of(node) + " produced no " + spec->handle_kind + " at output '" + port + "'");
-      // The interface's own contract (e.g. a cam law's event inside (-pi, pi)): refused, never truncated.
+      // The interface's own contract (e.g. an event inside (-pi, pi)): refused, never truncated.
       if (const std::string problem = value.as_handle()->contract_problem(); !problem.empty())
         throw EvaluationError(node.where.str() + where_of(node) + " produced a " + spec->handle_kind + " at output '" +
                               port + "' that breaks the " + spec->handle_kind + " contract: " + problem);

@@ -24,7 +24,7 @@ namespace mechgraph {
 Override parse_override(std::string_view text) {
   const auto eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0 || eq + 1 == text.size())
-    throw SceneError("--set " + std::string(text) + ": expected NAME=VALUE, e.g. --set rpm=6000rpm or --set cam.max_lift=10mm");
+    throw SceneError("--set " + std::string(text) + ": expected NAME=VALUE, e.g. --set rpm=6000rpm or --set part.length=10mm");
   return {std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), std::string(text)};
 }
 

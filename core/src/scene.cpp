@@ -92,7 +92,7 @@ class SceneReader {
     check_keys(root, {"title", "requires", "params", "units", "uncertainty", "nodes", "effects", "outputs", "report"}, "scene key");
     if (root["title"]) scene.title = scalar(root["title"], "a title");
     if (const YAML::Node r = root["requires"]; r && !r.IsNull()) {
-      if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { cams: \">=0.2\" }");
+      if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { myplugin: \">=1.0\" }");
       for (const auto& kv : r)
         scene.requirements.push_back({scalar(kv.first, "a plugin id"), scalar(kv.second, "a version requirement"), at(kv.second)});
     }

@@ -1,7 +1,7 @@
 // mechgraph plugin-test (LIB.so | TYPE)... [--set TYPE.PARAM=VALUE ...] [--continuity TYPE=N] [--json]:
 // the conformance suites (sdk/include/mechgraph/testing/) against every node type of a plugin file,
-// or against named types, each evaluated with its own declared defaults. Handle inputs (a cam_law
-// for a valve-motion node) come from another loaded type that makes one from its defaults alone.
+// or against named types, each evaluated with its own declared defaults. Handle inputs (an object of
+// the kind a node takes) come from another loaded type that makes one from its defaults alone.
 #include "cli.hpp"
 #include "terminal_output.hpp"
 #include "options.hpp"
@@ -24,8 +24,8 @@ namespace {
 using testing::Check;
 
 // A value for a handle input: the first loaded type (by name) that makes an object of that kind from
-// its defaults and examples, its own handle inputs made the same way (a valve motion from a cam law,
-// a spring design from a valve motion, ...), to a depth of four. Made once per kind.
+// its defaults and examples, its own handle inputs made the same way (an object from another kind's
+// object, ...), to a depth of four. Made once per kind.
 class InputProvider {
  public:
   explicit InputProvider(const PluginRegistry& registry) : registry_(registry) {}
@@ -91,7 +91,7 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
   po::options_description visible("plugin-test options");
   visible.add_options()("help,h", "this text")
       ("set", po::value<std::vector<std::string>>()->composing(),
-       "a parameter of one type for the test, as in a scene: --set example.parabolic_cam.max_lift=8mm")
+       "a parameter of one type for the test, as in a scene: --set mytype.length=8mm")
       ("continuity", po::value<std::vector<std::string>>()->composing(),
        "cam laws of TYPE must be continuous up to derivative N at breakpoints (0 lift, 1 velocity, 2 acceleration, 3 jerk;"
        " default 0): --continuity cam.cycloidal=2")
@@ -146,7 +146,7 @@ int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& 
       const auto eq = s.find('=');
       const auto dot = s.rfind('.', eq);
       if (eq == std::string::npos || dot == std::string::npos || dot == 0)
-        throw UsageError("--set " + s + ": expected TYPE.PARAM=VALUE, e.g. --set cam.poly345.max_lift=8mm");
+        throw UsageError("--set " + s + ": expected TYPE.PARAM=VALUE, e.g. --set mytype.length=8mm");
       const std::string type = s.substr(0, dot);
       if (!options.count(type)) throw UsageError("--set " + s + ": " + unknown_name_message("node type under test", type, types));
       options[type].values[s.substr(dot + 1, eq - dot - 1)] = s.substr(eq + 1);

@@ -17,15 +17,11 @@
 namespace mechgraph::cli {
 namespace {
 
-// Scalars a plot marks when the node has them: a spring's free length, installed deflection and
-// solid length on its force-over-lift plot.
-constexpr const char* marked_scalars[] = {"preload_deflection", "free_length", "solid_length"};
-
 // The scene as written plus, as outputs, every table and series output of every node (the curves
-// and shares a report plots) and the scalars those plots mark, leaving out those of an effect the
+// and shares a report plots; what they mark is in their data), leaving out those of an effect the
 // node does not run with. Only the nodes the scene itself needs (`needed`, from its outputs and
 // report tables; every node when it asks for nothing) are drawn: a node the scene culls
-// (culling_demo.yaml's undercut cam) stays culled.
+// (culling_demo.yaml's refused design) stays culled.
 SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry, const std::vector<std::string>& needed) {
   std::vector<std::string> scene_effects;
   for (const auto& [name, where] : scene.effects) scene_effects.push_back(name);
@@ -34,19 +30,14 @@ SceneSpec with_every_curve(SceneSpec scene, const PluginRegistry& registry, cons
     const RegisteredType* type = registry.find(n.type);
     if (!type) continue;  // build_graph names it
     const NodeInfo& info = type->type->info();
-    const bool has_curves = std::any_of(info.outputs.begin(), info.outputs.end(), [](const PortSpec& p) {
-      return p.kind == ValueKind::table || p.kind == ValueKind::series;
-    });
     for (const PortSpec& port : info.outputs) {
-      const bool marked = has_curves && port.kind == ValueKind::scalar &&
-                          std::any_of(std::begin(marked_scalars), std::end(marked_scalars), [&](const char* m) { return port.name == m; });
-      if (port.kind != ValueKind::table && port.kind != ValueKind::series && !marked) continue;
+      if (port.kind != ValueKind::table && port.kind != ValueKind::series) continue;
       if (const EffectSpec* e = info.effect_of_output(port.name)) {
         const bool on = std::find(scene_effects.begin(), scene_effects.end(), e->name) != scene_effects.end() ||
                         std::any_of(n.effects.begin(), n.effects.end(), [&](const auto& ne) { return ne.first == e->name; });
         if (!on) continue;
       }
-      // An output made only with inputs this node is not given (cam.table's deviation from a
+      // An output made only with inputs this node is not given (a deviation from a
       // master law) is not there to draw.
       if (const auto deps = info.output_dependencies.find(port.name); deps != info.output_dependencies.end()) {
         const bool given = std::all_of(deps->second.begin(), deps->second.end(), [&](const std::string& in) {

@@ -25,16 +25,17 @@
 namespace mechgraph::cli {
 namespace {
 
-// An installed lobe (a node given nose_timing) quotes its events from TDC and BDC in a note
-// ("intake: opens 3.4 deg ATDC, ..."); the node makes that note while it finds its events, so the
-// events are wanted of every such node, whether or not the scene lists them as an output.
-void want_timing_notes(Graph& graph) {
+// A node makes the notes it declares (NodeInfo::notes) while it computes their output when their
+// parameter is given; run prints notes, so that output is wanted of every such node, whether or not
+// the scene lists it.
+void want_declared_notes(Graph& graph) {
   for (GraphNode& n : graph.nodes) {
-    if (!n.needed || !n.params.has("nose_timing")) continue;
-    const auto& outputs = n.info().outputs;
-    const bool has_events = std::any_of(outputs.begin(), outputs.end(), [](const PortSpec& p) { return p.name == "events"; });
-    if (!has_events || std::find(n.wanted.begin(), n.wanted.end(), "events") != n.wanted.end()) continue;
-    n.wanted.insert(std::upper_bound(n.wanted.begin(), n.wanted.end(), std::string("events")), "events");
+    if (!n.needed) continue;
+    for (const NoteDecl& note : n.info().notes) {
+      if (!n.params.has(note.when_param) || !n.info().find_output(note.output)) continue;
+      if (std::find(n.wanted.begin(), n.wanted.end(), note.output) != n.wanted.end()) continue;
+      n.wanted.insert(std::upper_bound(n.wanted.begin(), n.wanted.end(), note.output), note.output);
+    }
   }
 }
 
@@ -46,7 +47,8 @@ namespace {
 // column in its display unit; longer ones (curves) go to the CSV files of --out.
 constexpr std::size_t printed_table_rows = 40;
 
-void print_short_table(std::ostream& os, const Table& t) {
+// A channel with declared codes shows each row's name beside the number ("1 contact_lost").
+void print_short_table(std::ostream& os, const Table& t, const Presentation& presentation) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
   const auto unit_of = [](const Table::Column& c) {
@@ -54,26 +56,31 @@ void print_short_table(std::ostream& os, const Table& t) {
     const std::string si = c.dimension.si_unit();
     return si == "1" ? std::string() : si;
   };
-  std::vector<std::string> head;
+  // Every cell first, so that a column is as wide as its widest cell (a code's name).
+  std::vector<std::vector<std::string>> cells(t.axis.values.size(), std::vector<std::string>(columns.size()));
   std::vector<std::size_t> width;
-  for (const Table::Column* c : columns) {
-    const std::string unit = unit_of(*c);
-    head.push_back(terminal_text(c->name, TerminalLines::one) +
-                   (unit.empty() ? "" : " [" + terminal_text(unit, TerminalLines::one) + "]"));
+  std::vector<std::string> head;
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    const Table::Column& c = *columns[k];
+    const std::string unit = unit_of(c);
+    head.push_back(terminal_text(c.name, TerminalLines::one) + (unit.empty() ? "" : " [" + terminal_text(unit, TerminalLines::one) + "]"));
     width.push_back(std::max<std::size_t>(head.back().size(), 12));
-  }
-  for (std::size_t k = 0; k < columns.size(); ++k) os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << head[k];
-  os << "\n";
-  for (std::size_t j = 0; j < t.axis.values.size(); ++j) {
-    for (std::size_t k = 0; k < columns.size(); ++k) {
-      const Table::Column& c = *columns[k];
+    const ChannelDecl* decl = presentation.find(c.name);
+    for (std::size_t j = 0; j < t.axis.values.size(); ++j) {
       const double shown = c.display_unit.empty() ? c.values[j] : to_unit(c.values[j], c.dimension, c.display_unit);
       char cell[32];
       std::snprintf(cell, sizeof cell, "%.6g", shown);
-      os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << cell;
+      const std::string_view name = decl ? decl->code_name(c.values[j]) : std::string_view();
+      cells[j][k] = name.empty() ? std::string(cell) : std::string(cell) + " " + terminal_text(name, TerminalLines::one);
+      width[k] = std::max(width[k], cells[j][k].size());
     }
-    os << "\n";
   }
+  auto print_row = [&](const std::vector<std::string>& row) {
+    for (std::size_t k = 0; k < row.size(); ++k) os << (k ? "  " : "    ") << std::setw(static_cast<int>(width[k])) << row[k];
+    os << "\n";
+  };
+  print_row(head);
+  for (const auto& row : cells) print_row(row);
 }
 
 }  // namespace
@@ -97,7 +104,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
   const PluginRegistry registry = load_plugins(g);
   // --json prints every requested curve on standard output: the same bound as --out's files.
   Graph graph = load_scene_graph(vm, registry, vm.count("json") > 0);
-  want_timing_notes(graph);
+  want_declared_notes(graph);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();
   if (threads > max_threads) throw UsageError("--threads " + std::to_string(threads) + " is more than " + std::to_string(max_threads));
@@ -136,10 +143,9 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
         // and which angle a unit of degrees counts.
         const std::string unit = o.display_unit.empty() ? reader_unit(o.dimension) : o.display_unit;
         const PortSpec* spec = graph.outputs[i].spec;
+        const std::string reference = spec ? angle_reference(graph.nodes[graph.outputs[i].node].info(), *spec) : std::string();
         text << format_value(o.value.as_scalar(), o.dimension, unit)
-             << (spec && unit.find("deg") != std::string::npos && !angle_reference(*spec).empty()
-                     ? " (" + angle_reference(*spec) + ")"
-                     : std::string());
+             << (unit.find("deg") != std::string::npos && !reference.empty() ? " (" + reference + ")" : std::string());
       }
       else if (o.value.kind() == ValueKind::series) print_series(text, o);
       else if (o.value.kind() == ValueKind::table) {
@@ -148,7 +154,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
         const std::size_t rows = o.value.as_table().axis.values.size();
         if (rows > 0 && rows <= printed_table_rows) {
           text << "\n";
-          print_short_table(text, o.value.as_table());
+          print_short_table(text, o.value.as_table(), graph.outputs[i].spec ? graph.outputs[i].spec->presentation : Presentation{});
           continue;
         }
       }

@@ -135,7 +135,7 @@ CaseTable make_cases(const po::variables_map& vm, const SceneSpec& scene, const 
   return make_latin_hypercube(specs, n, vm.count("seed") ? vm["seed"].as<std::uint64_t>() : 1);
 }
 
-// Every file the sweep reads, by the path its nodes are given: the files the scene names (a lift
+// Every file the sweep reads, by the path its nodes are given: the files the scene names (a
 // table) and, where a varied input is such a parameter, the file of each case's value.
 std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
   std::set<std::string> files;
@@ -164,7 +164,7 @@ std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
 }
 
 // Which sweep a file of rows belongs to: the scene's text, the contents of every file it reads,
-// the --set values, every case, the columns. A lift table edited between a stopped sweep and its
+// the --set values, every case, the columns. A table file edited between a stopped sweep and its
 // --resume is another sweep: its rows are not mixed with the old table's.
 std::string fingerprint(const std::string& scene_file, const std::vector<std::string>& sets, const CaseTable& table,
                         const Graph& graph, RowFormat format) {

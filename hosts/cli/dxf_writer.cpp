@@ -28,6 +28,7 @@ struct Curve {
   std::string layer;
   const std::vector<double>* x = nullptr;
   const std::vector<double>* y = nullptr;
+  bool closed = true;  // a part shown at rest (stroke 2) is drawn as its path goes
 };
 
 // Every text of the drawing goes through here: a DXF file is a list of group-code/value lines, so
@@ -51,19 +52,16 @@ std::string dxf_layer_name(std::string_view prefix) {
   return layer.substr(0, 255);
 }
 
-// The x/y channel pairs of a table: "x"/"y" on CONTOUR, "p_x"/"p_y" on layer P (capitals).
-std::vector<Curve> curves_of(const Table& t) {
+// The x/y channel pairs the table's presentation declares (drawing_to_scale), each on its layer
+// (capitals); pairs whose channels the table lacks or that are not lengths are left out.
+std::vector<Curve> curves_of(const Table& t, const Presentation& presentation) {
   std::vector<Curve> out;
-  for (const Table::Column& c : t.channels) {
-    if (c.dimension != dim::length) continue;
-    const std::string& n = c.name;
-    std::string prefix;
-    if (n == "x") prefix = "";
-    else if (n.size() > 2 && n.compare(n.size() - 2, 2, "_x") == 0) prefix = n.substr(0, n.size() - 2);
-    else continue;
-    const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
-    if (!y || y->dimension != dim::length) continue;
-    out.push_back({prefix.empty() ? std::string("CONTOUR") : dxf_layer_name(prefix), &c.values, &y->values});
+  if (presentation.role != Role::drawing_to_scale) return out;
+  for (const XyPair& pair : presentation.pairs) {
+    const Table::Column* x = t.find(pair.x);
+    const Table::Column* y = t.find(pair.y);
+    if (!x || !y || x->dimension != dim::length || y->dimension != dim::length) continue;
+    out.push_back({dxf_layer_name(pair.layer), &x->values, &y->values, pair.stroke != 2});
   }
   return out;
 }
@@ -111,14 +109,17 @@ class BufferWriter final : public DL_WriterA {
 
 }  // namespace
 
-bool is_drawable_curve(const Table& t) { return t.closed_curve && !curves_of(t).empty(); }
+bool is_drawable_curve(const Table& t, const Presentation& presentation) {
+  return t.closed_curve && !curves_of(t, presentation).empty();
+}
 
-void write_dxf(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& notes) {
-  const std::vector<Curve> curves = curves_of(t);
+void write_dxf(const std::filesystem::path& file, const Table& t, const Presentation& presentation,
+               const std::vector<std::string>& notes) {
+  const std::vector<Curve> curves = curves_of(t, presentation);
   DL_Dxf dxf;
   auto dw = std::make_unique<BufferWriter>();
 
-  // The node's notes (a contour's direction of rotation) as comments, escaped like every text.
+  // The node's notes (a drawing's direction of rotation) as comments, escaped like every text.
   for (const std::string& n : notes) dw->dxfString(999, dxf_text(n));
 
   dxf.writeHeader(*dw);
@@ -162,7 +163,7 @@ void write_dxf(const std::filesystem::path& file, const Table& t, const std::vec
   dw->sectionEntities();
   for (const Curve& c : curves) {
     const DL_Attributes on_layer(c.layer, 256, -1, "BYLAYER", 1.0);
-    dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(c.x->size()), 0, 0, 1 /* closed */), on_layer);
+    dxf.writePolyline(*dw, DL_PolylineData(static_cast<int>(c.x->size()), 0, 0, c.closed ? 1 : 0), on_layer);
     for (std::size_t i = 0; i < c.x->size(); ++i) dxf.writeVertex(*dw, DL_VertexData((*c.x)[i] * 1e3, (*c.y)[i] * 1e3, 0.0));
     dxf.writePolylineEnd(*dw);
   }

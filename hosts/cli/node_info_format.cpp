@@ -79,6 +79,115 @@ void write_params_text(std::ostream& os, const std::vector<ParamSpec>& params, c
   }
 }
 
+const char* role_name(Role r) {
+  switch (r) {
+    case Role::plain: return "plain";
+    case Role::derivative_family: return "derivative_family";
+    case Role::curve_over_channel: return "curve_over_channel";
+    case Role::drawing_to_scale: return "drawing_to_scale";
+    case Role::events: return "events";
+    case Role::histogram: return "histogram";
+  }
+  return "plain";
+}
+
+std::vector<std::string> flag_names(std::uint32_t flags) {
+  std::vector<std::string> out;
+  const std::pair<std::uint32_t, const char*> known[] = {{channel_flag::alt_axis, "alt_axis"}, {channel_flag::curvature, "curvature"},
+                                                         {channel_flag::positive_only, "positive_only"}, {channel_flag::not_drawn, "not_drawn"},
+                                                         {channel_flag::line_from_mark, "line_from_mark"}};
+  for (const auto& [bit, name] : known)
+    if (flags & bit) out.emplace_back(name);
+  return out;
+}
+
+// A channel declaration in one line: "event: \"event after start\", frame shaft, codes 1 a, 2 b".
+std::string channel_text(const ChannelDecl& c) {
+  std::ostringstream os;
+  os << c.name << ":";
+  if (!c.label.empty()) os << " \"" << c.label << "\"";
+  if (!c.display_unit.empty()) os << " in " << c.display_unit;
+  if (!c.angle_frame.empty()) os << " frame " << c.angle_frame;
+  if (c.derivative_order >= 0) os << " derivative " << c.derivative_order;
+  for (const std::string& f : flag_names(c.flags)) os << " " << f;
+  if (!c.from_mark.empty()) os << " from mark \"" << c.from_mark << "\"";
+  if (!c.codes.empty()) {
+    os << " codes";
+    for (std::size_t k = 0; k < c.codes.size(); ++k) os << (k ? ", " : " ") << c.codes[k].value << " " << c.codes[k].name;
+  }
+  return os.str();
+}
+
+void write_presentation_text(std::ostream& os, const PortSpec& p) {
+  if (!p.label.empty()) os << "      label: " << p.label << "\n";
+  if (!p.angle_frame.empty()) os << "      angle frame: " << p.angle_frame << "\n";
+  const Presentation& pr = p.presentation;
+  if (pr.empty()) return;
+  os << "      presented as " << role_name(pr.role);
+  if (!pr.x_channel.empty()) os << " over " << pr.x_channel;
+  if (!pr.figure_title.empty()) os << ", \"" << pr.figure_title << "\"";
+  os << "\n";
+  if (pr.has_axis) os << "        axis " << channel_text(pr.axis) << "\n";
+  for (const ChannelDecl& c : pr.channels) os << "        channel " << channel_text(c) << "\n";
+  for (const XyPair& xy : pr.pairs) os << "        pair " << xy.x << ", " << xy.y << " on layer " << xy.layer << " (stroke " << xy.stroke << ")\n";
+  for (const PointMarks& pm : pr.points) {
+    os << "        points from " << pm.port << " row " << pm.row << ":";
+    for (std::size_t k = 0; k < pm.x_channels.size(); ++k) os << " " << pm.x_channels[k] << (k < pm.labels.size() ? " (" + pm.labels[k] + ")" : "");
+    os << "\n";
+  }
+}
+
+void write_channel_json(JsonWriter& json, const ChannelDecl& c) {
+  json.begin_object().key("name").value(c.name);
+  if (!c.label.empty()) json.key("label").value(c.label);
+  if (!c.display_unit.empty()) json.key("display_unit").value(c.display_unit);
+  if (!c.angle_frame.empty()) json.key("angle_frame").value(c.angle_frame);
+  if (c.derivative_order >= 0) json.key("derivative_order").value(static_cast<long>(c.derivative_order));
+  json.key("flags").begin_array();
+  for (const std::string& f : flag_names(c.flags)) json.value(f);
+  json.end_array();
+  if (!c.from_mark.empty()) json.key("from_mark").value(c.from_mark);
+  if (!c.codes.empty()) {
+    json.key("codes").begin_array();
+    for (const Code& code : c.codes) json.begin_object().key("value").value(code.value).key("name").value(code.name).key("doc").value(code.doc).end_object();
+    json.end_array();
+  }
+  json.end_object();
+}
+
+void write_presentation_json(JsonWriter& json, const PortSpec& p) {
+  if (!p.label.empty()) json.key("label").value(p.label);
+  if (!p.angle_frame.empty()) json.key("angle_frame").value(p.angle_frame);
+  const Presentation& pr = p.presentation;
+  if (pr.empty()) return;
+  json.key("presentation").begin_object().key("role").value(role_name(pr.role));
+  if (pr.has_axis) {
+    json.key("axis");
+    write_channel_json(json, pr.axis);
+  }
+  json.key("channels").begin_array();
+  for (const ChannelDecl& c : pr.channels) write_channel_json(json, c);
+  json.end_array();
+  if (!pr.x_channel.empty()) json.key("x_channel").value(pr.x_channel);
+  json.key("pairs").begin_array();
+  for (const XyPair& xy : pr.pairs)
+    json.begin_object().key("x").value(xy.x).key("y").value(xy.y).key("layer").value(xy.layer).key("label").value(xy.label)
+        .key("stroke").value(static_cast<long>(xy.stroke)).end_object();
+  json.end_array();
+  json.key("points").begin_array();
+  for (const PointMarks& pm : pr.points) {
+    json.begin_object().key("port").value(pm.port).key("row").value(static_cast<long>(pm.row)).key("x_channels").begin_array();
+    for (const std::string& x : pm.x_channels) json.value(x);
+    json.end_array().key("labels").begin_array();
+    for (const std::string& l : pm.labels) json.value(l);
+    json.end_array().key("y_from_axis").value(pm.y_from_axis).key("caption").value(pm.caption).end_object();
+  }
+  json.end_array();
+  if (!pr.figure_title.empty()) json.key("figure_title").value(pr.figure_title);
+  if (!pr.caption.empty()) json.key("caption").value(pr.caption);
+  json.end_object();
+}
+
 void write_ports_text(std::ostream& os, const std::vector<PortSpec>& ports) {
   for (const PortSpec& p : ports) {
     os << "  " << p.name << "  (";
@@ -89,6 +198,7 @@ void write_ports_text(std::ostream& os, const std::vector<PortSpec>& ports) {
     if (p.multiple) os << ", one or more";
     if (p.optional) os << ", optional";
     os << ")\n      " << p.doc << "\n";
+    write_presentation_text(os, p);
   }
 }
 
@@ -133,6 +243,7 @@ void write_ports_json(JsonWriter& json, const std::vector<PortSpec>& ports) {
     else json.key("dimension").value(p.dimension.describe()).key("unit").value(p.dimension.si_unit());
     if (!p.display_unit.empty()) json.key("display_unit").value(p.display_unit);
     json.key("multiple").value(p.multiple).key("optional").value(p.optional);
+    write_presentation_json(json, p);
     json.end_object();
   }
   json.end_array();
@@ -168,6 +279,19 @@ void write_node_info_raw(std::ostream& os, const NodeInfo& info) {
     list("brings outputs", e.outputs);
     list("reads parameters", e.params);
   }
+  if (!info.frames.empty()) os << "\nangle frames:\n";
+  for (const AngleFrame& f : info.frames) {
+    os << "  " << f.id << ": " << f.label << " (degrees shown as deg (" << f.unit_tag << ")); zero: " << f.zero << "\n";
+    if (!f.base_frame.empty())
+      os << "      = " << f.scale << " x " << f.base_frame << " + " << (f.offset_param.empty() ? "0" : f.offset_param) << "\n";
+    if (f.mark_spacing > 0.0) {
+      os << "      marks every " << f.mark_spacing * 180.0 / 3.141592653589793 << " deg:";
+      for (const std::string& l : f.mark_labels) os << " " << l;
+      os << "; quoted " << f.before << "/" << f.after << "\n";
+    }
+  }
+  if (!info.notes.empty()) os << "\nnotes:\n";
+  for (const NoteDecl& n : info.notes) os << "  with " << n.when_param << ", made with " << n.output << ": " << n.doc << "\n";
   os << "\nwork counters:";
   for (const auto& w : info.work_counters) os << " " << w;
   os << "\n";
@@ -202,6 +326,21 @@ void write_node_info_json(JsonWriter& json, const NodeInfo& info) {
   json.end_array();
   json.key("work_counters").begin_array();
   for (const auto& w : info.work_counters) json.value(w);
+  json.end_array();
+  json.key("frames").begin_array();
+  for (const AngleFrame& f : info.frames) {
+    json.begin_object().key("id").value(f.id).key("label").value(f.label).key("unit_tag").value(f.unit_tag).key("zero").value(f.zero);
+    if (!f.base_frame.empty()) json.key("base_frame").value(f.base_frame).key("scale").value(f.scale).key("offset_param").value(f.offset_param);
+    if (f.mark_spacing > 0.0) {
+      json.key("mark_spacing").value(f.mark_spacing).key("mark_labels").begin_array();
+      for (const std::string& l : f.mark_labels) json.value(l);
+      json.end_array().key("before").value(f.before).key("after").value(f.after);
+    }
+    json.end_object();
+  }
+  json.end_array();
+  json.key("notes").begin_array();
+  for (const NoteDecl& n : info.notes) json.begin_object().key("output").value(n.output).key("when_param").value(n.when_param).key("doc").value(n.doc).end_object();
   json.end_array();
   json.key("output_dependencies").begin_object();
   for (const auto& [out, ins] : info.output_dependencies) {

@@ -36,7 +36,7 @@ inline bool parse_options(const std::vector<std::string>& args, const po::option
 inline void add_scene_options(po::options_description& visible) {
   const WorkBudget defaults;
   visible.add_options()("help,h", "this text")("set", po::value<std::vector<std::string>>()->composing(),
-                                                "override a parameter: --set rpm=6000rpm, --set cam.max_lift=10mm")(
+                                                "override a parameter: --set rpm=6000rpm, --set part.length=10mm")(
       "max-work", po::value<double>()->default_value(defaults.max_work, "1e9"),
       "refuse a scene estimated at more work items (each node's forecast, or its curve points, samples, bins, records) than this (a sweep: all its cases, default 1e12)")(
       "max-output", po::value<double>()->default_value(defaults.max_bytes, "268435456"),

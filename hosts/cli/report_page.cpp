@@ -1,5 +1,6 @@
 #include "report_page.hpp"
 
+#include "declared_port.hpp"
 #include "result_files.hpp"
 #include "gnuplot_data.hpp"
 #include "output_file.hpp"
@@ -33,7 +34,7 @@
 namespace mechgraph::cli {
 namespace {
 
-// Tables with at most this many rows are shown as tables, not plotted (a cam's events).
+// Tables with at most this many rows are shown as tables, not plotted (a list of events).
 constexpr std::size_t table_rows_shown = 12;
 
 std::string file_safe(std::string text) {
@@ -42,10 +43,9 @@ std::string file_safe(std::string text) {
   return text;
 }
 
-// A channel or port name as a reader says it: "opening_atdc" -> "opening after TDC", "cam_angle" ->
-// "cam angle".
+// A port or undeclared channel name as a reader says it: "max_force" -> "max force" (declared
+// channels say it with their label: DeclaredPort::label).
 std::string spoken(std::string name) {
-  if (name.size() > 5 && name.compare(name.size() - 5, 5, "_atdc") == 0) name = name.substr(0, name.size() - 5) + " after TDC";
   std::replace(name.begin(), name.end(), '_', ' ');
   return name;
 }
@@ -73,32 +73,31 @@ std::string display_unit(const Dimension& d, const std::string& own_unit, const 
   return unit;
 }
 
-// Which angle a unit of degrees counts: "mm/deg" -> "mm/deg (cam)" when the derivative is over cam
-// angle. Units without degrees are unchanged.
+// Which angle a unit of degrees counts: "mm/deg" -> "mm/deg (tag)", the tag of the angle frame
+// declared for it. Units without degrees are unchanged.
 std::string with_angle(const std::string& unit, const std::string& reference) { return unit_with_reference(unit, reference); }
 
-// A unit without the angle it counts: "deg (crank)" -> "deg".
+// A unit without the angle it counts: "deg (shaft)" -> "deg".
 std::string bare_unit(const std::string& unit) { return unit.substr(0, unit.find(" (")); }
 
 // A column to plot: values converted to the unit shown.
 struct Column {
-  std::string name;   // CSV header: "kurz lift [mm]"
+  std::string name;   // CSV header: "first height [mm]"
   std::string unit;
   std::vector<double> values;
 };
 
+// `title` is what the reader calls it (a label), `frame_tag` the tag of its angle frame when it is
+// an angle or a rate per angle of a declared frame (column_tag), else "".
 Column shown(const std::string& title, const Dimension& d, const std::vector<double>& si, const std::string& own_unit,
-             const DisplayUnits& units, const std::string& angle_reference = {}) {
+             const DisplayUnits& units, const std::string& frame_tag = {}) {
   Column c;
   c.unit = display_unit(d, own_unit, units);
   const bool convert = !c.unit.empty();
   if (c.unit.empty()) c.unit = d.si_unit() == "1" ? std::string() : d.si_unit();
   c.values.reserve(si.size());
   for (double v : si) c.values.push_back(convert ? to_unit(v, d, c.unit) : v);
-  // Which angle: for an angle axis (cam angle, crank angle ...) and for a rate per angle (mm/deg);
-  // an angle that is a result (a pressure angle) is just degrees.
-  const bool angle_axis = d == dim::angle && (title.rfind("cam", 0) == 0 || title.rfind("crank", 0) == 0);
-  if (angle_axis || d.angle < 0) c.unit = with_angle(c.unit, angle_reference);
+  c.unit = with_angle(c.unit, frame_tag);
   c.name = spoken(title) + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
   return c;
 }
@@ -121,7 +120,6 @@ std::pair<Column, Column> curvature_of(const Column& x, const std::vector<double
   return out;
 }
 
-bool is_curvature_radius(const std::string& channel) { return channel.find("curvature_radius") != std::string::npos; }
 
 struct Figure {
   enum class Kind { lines, bars, to_scale, histogram, panel } kind = Kind::lines;
@@ -197,7 +195,7 @@ void write_curves(std::ostream& s, const Figure& f, const std::vector<std::size_
   }
 }
 
-// The SVAJ panel: one plot per quantity stacked on one angle axis, the x tics only under the
+// A derivative panel: one plot per quantity stacked on one angle axis, the x tics only under the
 // bottom one, the legend once, the marks (dead centres) through every panel and the events as
 // labelled points on the top one.
 void write_panel(std::ostream& s, const Figure& f) {
@@ -389,137 +387,180 @@ const OutputValue* find_output(const RunResult& result, const std::string& label
   return nullptr;
 }
 
-std::optional<double> scalar_output(const RunResult& result, const std::string& label) {
-  const OutputValue* o = find_output(result, label);
-  if (!o || o->value.kind() != ValueKind::scalar) return std::nullopt;
-  return o->value.as_scalar();
-}
-
-// A crank angle after the overlap TDC (deg) quoted from the nearest dead centre: "3.4 ATDC",
-// "52.0 BBDC".
-std::string from_dead_centre(double after_tdc) {
-  const double centre = 180.0 * std::round(after_tdc / 180.0);
-  const bool bdc = std::fmod(std::abs(centre), 360.0) == 180.0;
-  const double from = after_tdc - centre;
+// An angle quoted from the nearest of a frame's periodic marks: |a - mark| + before/after + the
+// mark's label ("3.4 AM": 3.4 after the mark M). `deg` is the angle in degrees of the frame.
+std::string from_nearest_mark(double deg, const AngleFrame& frame) {
+  const double spacing = frame.mark_spacing * 180.0 / std::numbers::pi;
+  const double k = std::round(deg / spacing);
+  const long n = static_cast<long>(frame.mark_labels.size());
+  const std::string& label = frame.mark_labels[static_cast<std::size_t>(((static_cast<long>(k) % n) + n) % n)];
+  const double from = deg - k * spacing;
   char text[48];
-  std::snprintf(text, sizeof text, "%.1f %s%s", std::abs(from), from < 0.0 ? "B" : "A", bdc ? "BDC" : "TDC");
-  return text;
+  std::snprintf(text, sizeof text, "%.1f ", std::abs(from));
+  return text + (from < 0.0 ? frame.before : frame.after) + label;
 }
 
-bool has_channels(const Table& t, std::initializer_list<const char*> names) {
-  for (const char* n : names)
-    if (!t.find(n)) return false;
-  return true;
+// The tag of a column's degrees: its declared frame's, else for a rate per angle (mm/deg) the
+// frame of the table's axis; "" when neither says.
+std::string column_tag(const DeclaredPort& d, const std::string& name, const Dimension& dimension) {
+  if (const ChannelDecl* c = d.channel(name); c && !c->angle_frame.empty()) return d.tag(c->angle_frame);
+  const Presentation& p = d.presentation();
+  if (dimension.angle < 0 && p.has_axis) return d.tag(p.axis.angle_frame);
+  return {};
 }
 
-// The SVAJ panel of one port's tables (every cam's or every valve's lift, velocity, acceleration
-// and jerk): on crank angle after the overlap TDC when every node is installed (nose_timing), with
-// the dead centres marked and each node's opening and closing at its checking lift as labelled
-// points; else on cam angle.
-Figure svaj_panel(const Graph& graph, const RunResult& result, const std::vector<const OutputValue*>& outs,
-                  const std::string& stem, const Legend& legend) {
+// A derivative family (role derivative_family: a value and its derivatives over one axis, every
+// node's table of one port): one plot per order stacked on the axis. When the axis' frame has a
+// derived frame (this = scale * axis + offset_param) and every node drawn is given that parameter,
+// the panel is drawn in the derived frame, with its periodic marks and the points the port declares
+// (another output's row, labelled and quoted from the nearest mark); else over the axis.
+Figure derivative_panel(const Graph& graph, const RunResult& result, const std::vector<const OutputValue*>& outs,
+                        const std::string& stem, const std::string& port, const Legend& legend) {
   const DisplayUnits& units = graph.display_units;
+  const DeclaredPort first = declared_port(graph, outs.front()->label);
+  const Presentation& p = first.presentation();
   Figure f;
   f.kind = Figure::Kind::panel;
-  f.name = file_safe(stem + "_svaj");
+  f.name = file_safe(stem + "_" + port);
   std::vector<std::string> nodes;
   std::string who;
   for (std::size_t k = 0; k < outs.size(); ++k) who += (k ? ", " : "") + legend(node_of(*outs[k]));
   std::string ids;
   for (std::size_t k = 0; k < outs.size(); ++k) ids += (k ? ", " : "") + node_of(*outs[k]);
-  f.title = "Lift, velocity, acceleration and jerk of " + who + (who == ids ? "" : " (" + ids + ")");
-  std::vector<double> timing;  // rad, per node, when every node has one
+  f.title = (p.figure_title.empty() ? spoken(port) : p.figure_title) + " of " + who + (who == ids ? "" : " (" + ids + ")");
+  std::vector<const ChannelDecl*> orders;
+  for (const ChannelDecl& c : p.channels)
+    if (c.derivative_order >= 0) orders.push_back(&c);
+  std::stable_sort(orders.begin(), orders.end(), [](const ChannelDecl* a, const ChannelDecl* b) { return a->derivative_order < b->derivative_order; });
+  // The derived frame, when every node gives its offset.
+  const AngleFrame* derived = nullptr;
+  if (first.info && p.has_axis && !p.axis.angle_frame.empty())
+    for (const AngleFrame& fr : first.info->frames)
+      if (!derived && fr.base_frame == p.axis.angle_frame && !fr.offset_param.empty()) derived = &fr;
+  std::vector<double> offset;  // SI, per node
   for (const OutputValue* o : outs) {
-    const auto n = graph.find(node_of(*o));
-    if (!n || !graph.nodes[*n].params.has("nose_timing") || !o->value.as_table().find("crank_angle")) {
-      timing.clear();
+    const DeclaredPort d = declared_port(graph, o->label);
+    if (!derived || !d.node || !d.node->params.has(derived->offset_param)) {
+      offset.clear();
       break;
     }
-    timing.push_back(graph.nodes[*n].params.number("nose_timing"));
+    offset.push_back(d.node->params.number(derived->offset_param));
   }
-  const bool crank = timing.size() == outs.size();
-  f.xlabel = crank ? "crank angle after the overlap TDC [deg (crank)]" : "cam angle [deg (cam)]";
-  const char* channels[] = {"lift", "velocity", "acceleration", "jerk"};
-  for (std::size_t p = 0; p < 4; ++p) {
+  if (offset.size() != outs.size()) derived = nullptr;
+  for (std::size_t q = 0; q < orders.size(); ++q) {
     std::string ylabel;
     for (std::size_t k = 0; k < outs.size(); ++k) {
       const Table& t = outs[k]->value.as_table();
-      const Table::Column* c = t.find(channels[p]);
+      const DeclaredPort d = declared_port(graph, outs[k]->label);
+      const Table::Column* c = t.find(orders[q]->name);
+      if (!c) continue;
       Column x;
-      if (crank) {
-        std::vector<double> after_tdc = t.find("crank_angle")->values;
-        for (double& v : after_tdc) v += timing[k];
-        x = shown("crank angle after TDC", dim::angle, after_tdc, "deg", units, "crank");
+      if (derived) {
+        std::vector<double> shifted = t.axis.values;
+        for (double& v : shifted) v = derived->scale * v + offset[k];
+        x = shown(derived->label, t.axis.dimension, shifted, t.axis.display_unit, units, derived->unit_tag);
       } else {
-        x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, "cam");
+        x = shown(d.label(t.axis.name), t.axis.dimension, t.axis.values, t.axis.display_unit, units, column_tag(d, t.axis.name, t.axis.dimension));
       }
-      // Derivatives over cam angle say so ("mm/deg (cam)"); those in time (m/s) have no degrees.
-      Column y = shown(c->name, c->dimension, c->values, c->display_unit, units, "cam");
+      Column y = shown(d.label(c->name), c->dimension, c->values, c->display_unit, units, column_tag(d, c->name, c->dimension));
       ylabel = y.name;
+      f.xlabel = x.name;
       f.curves.emplace_back(std::move(x), std::move(y));
       f.curve_titles.push_back(legend(node_of(*outs[k])));
       f.curve_styles.emplace_back();
-      f.panel_of.push_back(p);
+      f.panel_of.push_back(f.panel_ylabels.size());
       nodes.push_back(node_of(*outs[k]));
     }
     f.panel_ylabels.push_back(ylabel);
   }
   legend.disambiguate(f, nodes);
-  if (crank) {
+  if (!derived || f.curves.empty()) return f;
+  if (derived->mark_spacing > 0.0 && !derived->mark_labels.empty()) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& [x, y] : f.curves)
       for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
-    const double half_turn = to_unit(std::numbers::pi, dim::angle, bare_unit(f.curves.front().first.unit));
-    for (double centre = half_turn * std::ceil(lo / half_turn); centre <= hi; centre += half_turn)
-      f.marks.emplace_back(std::lround(centre / half_turn) % 2 != 0 ? "BDC" : "TDC", centre);
-    // Each node's events at its checking lift, from its events table (first row).
-    const std::string lift_unit = bare_unit(f.curves.front().second.unit), angle_unit = bare_unit(f.curves.front().first.unit);
+    const double spacing = to_unit(derived->mark_spacing, dim::angle, bare_unit(f.curves.front().first.unit));
+    const long n = static_cast<long>(derived->mark_labels.size());
+    for (double mark = spacing * std::ceil(lo / spacing); mark <= hi; mark += spacing)
+      f.marks.emplace_back(derived->mark_labels[static_cast<std::size_t>(((std::lround(mark / spacing) % n) + n) % n)], mark);
+  }
+  // The points other outputs of each node put on the panel (those in the derived frame), on the top plot.
+  const std::string y_unit = bare_unit(f.curves.front().second.unit), angle_unit = bare_unit(f.curves.front().first.unit);
+  for (const PointMarks& pm : p.points) {
     for (std::size_t k = 0; k < outs.size(); ++k) {
-      const OutputValue* events = find_output(result, node_of(*outs[k]) + ".events");
-      if (!events || events->value.kind() != ValueKind::table) continue;
-      const Table& e = events->value.as_table();
-      const Table::Column* opening = e.find("opening_atdc");
-      const Table::Column* closing = e.find("closing_atdc");
-      if (!opening || !closing || e.axis.values.empty() || opening->values.empty() || closing->values.empty()) continue;
-      const double at_lift = to_unit(e.axis.values.front(), dim::length, lift_unit.empty() ? "m" : lift_unit);
-      const double opens = opening->values.front(), closes = closing->values.front();
-      const double deg = 180.0 / std::numbers::pi;
-      const std::string quote = "opens " + from_dead_centre(opens * deg) + ", closes " + from_dead_centre(closes * deg);
-      // One node's events are labelled on the plot; several nodes' are said in the caption.
-      f.points.emplace_back(to_unit(opens, dim::angle, angle_unit), at_lift, outs.size() == 1 ? "opens " + from_dead_centre(opens * deg) : "");
-      f.points.emplace_back(to_unit(closes, dim::angle, angle_unit), at_lift, outs.size() == 1 ? "closes " + from_dead_centre(closes * deg) : "");
-      char title[64];
-      std::snprintf(title, sizeof title, "events at %g mm lift", e.axis.values.front() * 1e3);
+      const OutputValue* source = find_output(result, node_of(*outs[k]) + "." + pm.port);
+      if (!source || source->value.kind() != ValueKind::table) continue;
+      const Table& e = source->value.as_table();
+      if (e.axis.values.size() <= pm.row) continue;
+      const DeclaredPort from = declared_port(graph, source->label);
+      const double y = pm.y_from_axis ? to_unit(e.axis.values[pm.row], e.axis.dimension, y_unit.empty() ? e.axis.dimension.si_unit() : y_unit) : 0.0;
+      std::string quote;
+      std::vector<std::tuple<double, double, std::string>> points;
+      for (std::size_t j = 0; j < pm.x_channels.size(); ++j) {
+        const Table::Column* c = e.find(pm.x_channels[j]);
+        const ChannelDecl* decl = from.channel(pm.x_channels[j]);
+        if (!c || c->values.size() <= pm.row || !decl || decl->angle_frame != derived->id) {
+          points.clear();
+          break;
+        }
+        const double deg = c->values[pm.row] * 180.0 / std::numbers::pi;
+        const std::string label = j < pm.labels.size() ? pm.labels[j] : pm.x_channels[j];
+        const std::string said = derived->mark_spacing > 0.0 && !derived->mark_labels.empty() ? label + " " + from_nearest_mark(deg, *derived) : label;
+        quote += (quote.empty() ? "" : ", ") + said;
+        // One node's points are labelled on the plot; several nodes' are said in the caption.
+        points.emplace_back(to_unit(c->values[pm.row], dim::angle, angle_unit), y, outs.size() == 1 ? said : "");
+      }
+      if (points.empty()) continue;
+      f.points.insert(f.points.end(), points.begin(), points.end());
+      std::string title = pm.caption;
+      if (const auto at = title.find("{axis}"); at != std::string::npos) {
+        char value[48];
+        std::snprintf(value, sizeof value, "%g", y);
+        title.replace(at, 6, value + (y_unit.empty() ? std::string() : " " + y_unit));
+      }
       f.points_title = title;
-      f.caption += (f.caption.empty() ? std::string(title) + ": " : "; ") + f.curve_titles[k] + " " + quote;
+      f.caption += (f.caption.empty() ? title + ": " : "; ") + f.curve_titles[k] + " " + quote;
     }
   }
   return f;
 }
 
-// Spring force over valve lift (a spring design's force_curve): the spring line from the free-length
-// point, the force the rule asks for and the force the drive carries, with free length, installed
-// height, full lift and solid height marked on the lift axis.
-Figure spring_over_lift(const RunResult& result, const OutputValue& o, const DisplayUnits& units, const Legend& legend) {
+// A table drawn over one of its channels (role curve_over_channel: x_channel), a figure per node:
+// every drawn channel of the x channel's... of one dimension over it, styled by its flags, with the
+// table's marks on the x axis.
+Figure curve_over_channel(const Graph& graph, const OutputValue& o, const Legend& legend) {
+  const DisplayUnits& units = graph.display_units;
+  const DeclaredPort d = declared_port(graph, o.label);
+  const Presentation& p = d.presentation();
   const Table& t = o.value.as_table();
   const std::string node = node_of(o);
   Figure f;
-  f.name = file_safe(o.label + "_over_lift");
-  f.title = "Spring force over valve lift: " + legend(node) + (legend(node) == node ? "" : " (" + node + ")");
-  const Table::Column* lift = t.find("valve_lift");
-  const Column x = shown("valve lift", lift->dimension, lift->values, lift->display_unit, units);
+  const Table::Column* xc = t.find(p.x_channel);
+  if (!xc) return f;
+  const std::string x_words = d.label(p.x_channel);
+  f.name = file_safe(o.label + "_over_" + x_words.substr(x_words.rfind(' ') + 1));
+  f.title = (p.figure_title.empty() ? spoken(o.label) + " over " + d.label(p.x_channel) : p.figure_title) + " of " + legend(node) +
+            (legend(node) == node ? "" : " (" + node + ")");
+  const Column x = shown(d.label(xc->name), xc->dimension, xc->values, xc->display_unit, units, column_tag(d, xc->name, xc->dimension));
   f.xlabel = x.name;
-  const std::optional<double> f0 = scalar_output(result, node + ".preload_deflection");
-  const std::optional<double> free_length = scalar_output(result, node + ".free_length");
-  const std::optional<double> solid_length = scalar_output(result, node + ".solid_length");
-  const std::string lift_unit = x.unit.empty() ? "m" : x.unit;
+  const std::string x_unit = x.unit.empty() ? xc->dimension.si_unit() : bare_unit(x.unit);
+  auto mark_at = [&](const std::string& label) -> std::optional<double> {
+    for (const Table::Mark& m : t.axis_marks)
+      if (m.label == label) return to_unit(m.value, xc->dimension, x_unit);
+    return std::nullopt;
+  };
+  std::optional<Dimension> drawn;
   for (const Table::Column& c : t.channels) {
-    if (!(c.dimension == dim::force) || c.name == "inertia_force") continue;
-    Column y = shown(c.name, c.dimension, c.values, c.display_unit, units);
-    f.ylabel = "force [" + y.unit + "]";
+    const ChannelDecl* decl = d.channel(c.name);
+    const std::uint32_t flags = decl ? decl->flags : 0u;
+    if (c.name == p.x_channel || (flags & (channel_flag::alt_axis | channel_flag::not_drawn | channel_flag::curvature)) != 0) continue;
+    if (drawn && !(c.dimension == *drawn)) continue;  // one quantity per figure: the first's
+    drawn = c.dimension;
+    Column y = shown(d.label(c.name), c.dimension, c.values, c.display_unit, units, column_tag(d, c.name, c.dimension));
+    f.ylabel = quantity(c.dimension) + " [" + y.unit + "]";
     Column cx = x;
-    if (c.name == "required_force") {
-      // Only where the valve decelerates (elsewhere the rule asks nothing).
+    std::string style;
+    if (flags & channel_flag::positive_only) {
       Column keep_x = cx, keep_y = y;
       keep_x.values.clear();
       keep_y.values.clear();
@@ -527,77 +568,65 @@ Figure spring_over_lift(const RunResult& result, const OutputValue& o, const Dis
         if (y.values[i] > 0.0) keep_x.values.push_back(cx.values[i]), keep_y.values.push_back(y.values[i]);
       cx = std::move(keep_x);
       y = std::move(keep_y);
-      f.curve_styles.push_back("with lines lw 1.5 dt 2");
-    } else if (c.name == "spring_force" && f0) {
-      // The spring line is straight: drawn from the free-length point (-f0, 0) to full lift.
-      std::size_t top = 0;
-      for (std::size_t i = 0; i < cx.values.size(); ++i)
-        if (cx.values[i] > cx.values[top]) top = i;
-      const double low = to_unit(-*f0, dim::length, lift_unit);
-      cx.values = {low, cx.values[top]};
-      y.values = {0.0, y.values[top]};
-      f.curve_styles.push_back("with linespoints lw 2 pt 7 ps 0.5");
-    } else {
-      f.curve_styles.emplace_back();
+      style = "with lines lw 1.5 dt 2";
+    } else if (flags & channel_flag::line_from_mark) {
+      // A straight line: from the mark (at 0) to the row of the largest x.
+      const std::optional<double> from = decl ? mark_at(decl->from_mark) : std::nullopt;
+      if (from && !cx.values.empty()) {
+        std::size_t top = 0;
+        for (std::size_t i = 0; i < cx.values.size(); ++i)
+          if (cx.values[i] > cx.values[top]) top = i;
+        cx.values = {*from, cx.values[top]};
+        y.values = {0.0, y.values[top]};
+        style = "with linespoints lw 2 pt 7 ps 0.5";
+      }
     }
-    if (cx.values.empty()) {
-      f.curve_styles.pop_back();
-      continue;
-    }
-    f.curve_titles.push_back(spoken(c.name));
+    if (cx.values.empty()) continue;
+    f.curve_styles.push_back(style);
+    f.curve_titles.push_back(d.label(c.name));
     f.curves.emplace_back(std::move(cx), std::move(y));
   }
-  double full = 0.0;
-  for (double v : x.values) full = std::max(full, v);
-  if (f0) f.marks.emplace_back("free length", to_unit(-*f0, dim::length, lift_unit));
-  f.marks.emplace_back("installed", 0.0);
-  f.marks.emplace_back("full lift", full);
-  if (f0 && free_length && solid_length)
-    f.marks.emplace_back("solid", to_unit(*free_length - *solid_length - *f0, dim::length, lift_unit));
-  f.caption = "lift measured from the installed height; free length and solid height at the lifts where the spring "
-              "would reach them";
+  for (const Table::Mark& m : t.axis_marks) f.marks.emplace_back(m.label, to_unit(m.value, xc->dimension, x_unit));
+  f.caption = p.caption;
   return f;
 }
 
-// A closed curve to scale (a cam's contour) with its base circle (the least radius of the
-// contour), the follower where it stands at the nose (a roller from the pitch curve, else a flat
-// face through the contact point) and an arrow showing the way the cam turns.
-Figure contour_figure(const OutputValue& o, const DisplayUnits& units) {
+// A drawing to scale (role drawing_to_scale): its declared x/y pairs (0 an outline, 1 a
+// construction line, 2 a part shown at rest), the least circle about the origin of the first
+// outline, and an arrow showing the way the part turns (Table::turns_clockwise).
+Figure drawing_figure(const OutputValue& o, const Presentation& presentation, const DisplayUnits& units) {
   const Table& t = o.value.as_table();
   Figure f;
   f.kind = Figure::Kind::to_scale;
   f.name = file_safe(o.label);
   f.title = o.label + " (to scale)";
-  for (const Table::Column& c : t.channels) {
-    if (c.name.size() < 1 || c.name.back() != 'x' || (c.name != "x" && c.name.size() > 2 && c.name.substr(c.name.size() - 2) != "_x")) continue;
-    const std::string prefix = c.name == "x" ? "" : c.name.substr(0, c.name.size() - 2);
-    const Table::Column* y = t.find(prefix.empty() ? "y" : prefix + "_y");
-    if (!y) continue;
+  std::optional<std::size_t> outline;  // the first outline (stroke 0)
+  for (const XyPair& pair : presentation.pairs) {
+    const Table::Column* xc = t.find(pair.x);
+    const Table::Column* y = t.find(pair.y);
+    if (!xc || !y) continue;
+    const Table::Column& c = *xc;
     Column cx = shown("x", c.dimension, c.values, c.display_unit, units), cy = shown("y", y->dimension, y->values, y->display_unit, units);
-    // Close the drawing: the first point again at the end.
-    cx.values.push_back(cx.values.front());
-    cy.values.push_back(cy.values.front());
+    // Close an outline or a construction line: the first point again at the end (a part at rest
+    // is drawn as its path goes).
+    if (pair.stroke != 2 && !cx.values.empty()) {
+      cx.values.push_back(cx.values.front());
+      cy.values.push_back(cy.values.front());
+    }
     f.xlabel = cx.name;
     f.ylabel = cy.name;
-    f.curve_titles.push_back(prefix.empty() || prefix == "contour" ? "contour" : spoken(prefix) + " curve");
-    f.curve_styles.push_back(prefix.empty() || prefix == "contour" ? "with lines lw 2 lc rgb '#204080'" : "with lines lw 1 dt 3 lc rgb '#808080'");
+    if (pair.stroke == 0 && !outline) outline = f.curves.size();
+    f.curve_titles.push_back(pair.label.empty() ? pair.layer : pair.label);
+    f.curve_styles.push_back(pair.stroke == 0 ? "with lines lw 2 lc rgb '#204080'" : pair.stroke == 1 ? "with lines lw 1 dt 3 lc rgb '#808080'"
+                                                                                     : "with lines lw 2 lc rgb '#c03030'");
     f.curves.emplace_back(std::move(cx), std::move(cy));
   }
-  if (f.curves.empty()) return f;
-  // The contour proper is the curve named x/y or contour_x/contour_y, else the first.
-  std::size_t contour = 0;
-  for (std::size_t k = 0; k < f.curve_titles.size(); ++k)
-    if (f.curve_titles[k] == "contour") contour = k;
-  const std::vector<double> X = f.curves[contour].first.values;  // copies: f.curves grows below
-  const std::vector<double> Y = f.curves[contour].second.values;
-  const std::string unit = f.curves[contour].first.unit;
-  double r_base = std::numeric_limits<double>::infinity(), r_max = 0.0;
-  std::size_t nose = 0;
-  for (std::size_t i = 0; i < X.size(); ++i) {
-    const double r = std::hypot(X[i], Y[i]);
-    r_base = std::min(r_base, r);
-    if (r > r_max) r_max = r, nose = i;
-  }
+  if (f.curves.empty() || !outline) return f;
+  const std::vector<double> X = f.curves[*outline].first.values;  // copies: f.curves grows below
+  const std::vector<double> Y = f.curves[*outline].second.values;
+  const std::string unit = f.curves[*outline].first.unit;
+  double r_base = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < X.size(); ++i) r_base = std::min(r_base, std::hypot(X[i], Y[i]));
   auto circle = [&](double cx, double cy, double r, std::size_t n) {
     std::pair<Column, Column> c;
     c.first.name = "x [" + unit + "]";
@@ -611,56 +640,13 @@ Figure contour_figure(const OutputValue& o, const DisplayUnits& units) {
     return c;
   };
   char base_title[64];
-  std::snprintf(base_title, sizeof base_title, "base circle r = %.4g %s", r_base, unit.c_str());
+  std::snprintf(base_title, sizeof base_title, "least circle r = %.4g %s", r_base, unit.c_str());
   f.curves.push_back(circle(0.0, 0.0, r_base, 180));
   f.curve_titles.push_back(base_title);
   f.curve_styles.push_back("with lines lw 1 dt 2 lc rgb '#a0a0a0'");
-  // The follower at the nose: along the line from the cam centre through the nose point.
-  const double ux = X[nose] / r_max, uy = Y[nose] / r_max;
-  std::optional<std::size_t> pitch_curve;
-  for (std::size_t k = 0; k < f.curve_titles.size(); ++k)
-    if (f.curve_titles[k].find("pitch") != std::string::npos) pitch_curve = k;
-  auto segment = [&](const std::string& name, std::vector<double> xs, std::vector<double> ys) {
-    std::pair<Column, Column> c;
-    c.first.name = name + " x [" + unit + "]";
-    c.second.name = name + " y [" + unit + "]";
-    c.first.unit = c.second.unit = unit;
-    c.first.values = std::move(xs);
-    c.second.values = std::move(ys);
-    return c;
-  };
-  std::pair<Column, Column> follower, stem;
-  if (pitch_curve) {
-    // A roller: centred on the pitch curve where it is furthest out, touching the contour there.
-    const std::vector<double> PX = f.curves[*pitch_curve].first.values;
-    const std::vector<double> PY = f.curves[*pitch_curve].second.values;
-    std::size_t far = 0;
-    for (std::size_t i = 0; i < PX.size(); ++i)
-      if (std::hypot(PX[i], PY[i]) > std::hypot(PX[far], PY[far])) far = i;
-    double roller = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < X.size(); ++i) roller = std::min(roller, std::hypot(X[i] - PX[far], Y[i] - PY[far]));
-    follower = circle(PX[far], PY[far], roller, 90);
-    follower.first.name = "follower x [" + unit + "]";
-    follower.second.name = "follower y [" + unit + "]";
-    // Its centre marked (the axis of an offset follower does not pass through the cam's centre,
-    // so no stem is drawn along a guess).
-    stem = segment("roller centre", {PX[far] - 0.1 * roller, PX[far] + 0.1 * roller, PX[far], PX[far], PX[far]},
-                   {PY[far], PY[far], PY[far], PY[far] - 0.1 * roller, PY[far] + 0.1 * roller});
-  } else {
-    // A flat face through the nose, square to the follower's axis, and its stem.
-    const double half = 0.6 * r_base;
-    follower = segment("follower", {X[nose] - uy * half, X[nose] + uy * half}, {Y[nose] + ux * half, Y[nose] - ux * half});
-    stem = segment("stem", {X[nose], X[nose] + ux * 0.8 * r_base}, {Y[nose], Y[nose] + uy * 0.8 * r_base});
-  }
-  f.curves.push_back(std::move(follower));
-  f.curve_titles.push_back("follower at the nose");
-  f.curve_styles.push_back("with lines lw 2 lc rgb '#c03030'");
-  f.curves.push_back(std::move(stem));
-  f.curve_titles.emplace_back();
-  f.curve_styles.push_back("with lines lw 2 lc rgb '#c03030'");
-  // The rotation: an arc of a third of a turn at half the base radius, its head the way the cam
-  // turns (the contour's axis says cw or ccw: cam_angle_cw).
-  const bool clockwise = t.axis.name.find("_cw") != std::string::npos;
+  // The rotation: an arc of a third of a turn at half the least radius, its head the way the part
+  // turns (data of the table: turns_clockwise).
+  const bool clockwise = t.turns_clockwise;
   const double r_arrow = 0.5 * r_base;
   std::pair<Column, Column> arc;
   arc.first.name = "rotation x [" + unit + "]";
@@ -697,7 +683,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     if (o.value.kind() == ValueKind::table) {
       const Table& t = o.value.as_table();
       if (t.closed_curve) {
-        Figure f = contour_figure(o, units);
+        Figure f = drawing_figure(o, declared_port(graph, o.label).presentation(), units);
         if (!f.curves.empty()) figures.push_back(std::move(f));
         continue;
       }
@@ -720,14 +706,14 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         figures.push_back(std::move(f));
         continue;
       }
-      // A list of events (a cam's timing, the dynamics' contact losses and landings) is read as
-      // a table however long it is: a plot of event codes over angle says nothing.
-      if (t.axis.values.size() <= table_rows_shown || port == "events") {
+      // A list of events (role events) is read as a table however long it is: a plot of event
+      // codes over an axis says nothing.
+      if (t.axis.values.size() <= table_rows_shown || declared_port(graph, o.label).presentation().role == Role::events) {
         small.push_back(&o);
         continue;
       }
-      // Tables of one port are compared when their channels agree (a cam's svaj over cam angle, a
-      // valve's in time are two groups).
+      // Tables of one port are compared when their channels agree (rates over an angle and rates in
+      // time are two groups).
       std::string group = port + "\x1f" + t.axis.name + ":" + t.axis.dimension.describe();
       for (const Table::Column& c : t.channels) group += "\x1f" + c.name + ":" + c.dimension.describe();
       if (!by_port.count(group)) {
@@ -756,8 +742,8 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       }
     }
   }
-  // Series of one port name (every valve's lift curve): one plot, a curve per node. A series over
-  // an angle is over cam angle (the ports say so) and is drawn in degrees.
+  // Series of one port name: one plot, a curve per node. A series over an angle is over the angle
+  // frame its port declares (labelled by the frame) and is drawn in degrees.
   for (const std::string& port : series_order) {
     Figure f;
     f.name = file_safe(port);
@@ -768,7 +754,10 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     for (const OutputValue* o : series_by_port[port]) {
       const Series& s = o->value.as_series();
       const bool angle = s.axis_dimension == dim::angle;
-      Column x = shown(angle ? "cam angle from the nose" : "axis", s.axis_dimension, s.axis, angle ? "deg" : "", units, angle ? "cam" : "");
+      const DeclaredPort d = declared_port(graph, o->label);
+      const AngleFrame* frame = angle && d.port ? d.frame(d.port->angle_frame) : nullptr;
+      Column x = shown(frame ? frame->label : angle ? "angle" : "axis", s.axis_dimension, s.axis, angle ? "deg" : "", units,
+                       frame ? frame->unit_tag : "");
       Column y = shown(base, o->dimension, s.values, o->display_unit, units);
       f.xlabel = x.name;
       f.ylabel = y.name;
@@ -786,24 +775,32 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     const bool named = groups_of_port[port] > 1;
     const std::string stem = named ? port + "_" + first_node_of[group] : port;
     const Table& first = outs.front()->value.as_table();
-    if (has_channels(first, {"lift", "velocity", "acceleration", "jerk"})) {
-      figures.push_back(svaj_panel(graph, result, outs, stem, legend));
+    const DeclaredPort declared = declared_port(graph, outs.front()->label);
+    const Presentation& presentation = declared.presentation();
+    if (presentation.role == Role::derivative_family) {
+      figures.push_back(derivative_panel(graph, result, outs, stem, port, legend));
       continue;
     }
-    const bool spring_curve = has_channels(first, {"valve_lift", "spring_force"});
-    if (spring_curve) {
-      for (const OutputValue* o : outs) figures.push_back(spring_over_lift(result, *o, units, legend));
+    if (presentation.role == Role::curve_over_channel && first.find(presentation.x_channel)) {
+      for (const OutputValue* o : outs) figures.push_back(curve_over_channel(graph, *o, legend));
       continue;
     }
-    const std::string axis_reference = first.axis.name.rfind("cam_angle", 0) == 0 ? "cam" : first.axis.name.rfind("crank", 0) == 0 ? "crank" : "";
+    // Channels another scale of the axis or not drawn are left out; a radius of curvature is drawn
+    // as curvature, apart.
+    auto flags_of = [&](const Table::Column& c) {
+      const ChannelDecl* decl = declared.channel(c.name);
+      return decl ? decl->flags : 0u;
+    };
+    auto apart = [&](const Table::Column& c) { return (flags_of(c) & (channel_flag::alt_axis | channel_flag::not_drawn | channel_flag::curvature)) != 0; };
+    auto is_curvature_radius = [&](const Table::Column& c) { return (flags_of(c) & channel_flag::curvature) != 0; };
     // Channels that share a dimension with another channel of the table are compared within one
-    // node's table (a spring line against its requirement, dynamic against kinematic lift); a
-    // channel with a dimension of its own is compared across nodes (every cam's acceleration).
+    // node's table (a force against its requirement, a computed against a prescribed motion); a
+    // channel with a dimension of its own is compared across nodes (every node's acceleration).
     // A radius of curvature is drawn as curvature, on its own.
     std::vector<Dimension> dims;
     std::map<std::size_t, int> channels_of;  // index in dims -> channels of that dimension
     for (const Table::Column& c : first.channels) {
-      if (c.name == "crank_angle" || is_curvature_radius(c.name)) continue;  // the axis again, doubled; curvature apart
+      if (apart(c)) continue;
       auto it = std::find(dims.begin(), dims.end(), c.dimension);
       if (it == dims.end()) it = dims.insert(dims.end(), c.dimension);
       ++channels_of[static_cast<std::size_t>(it - dims.begin())];
@@ -819,7 +816,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     };
     // Curvature of every node's table together.
     for (const Table::Column& channel : first.channels) {
-      if (!is_curvature_radius(channel.name)) continue;
+      if (!is_curvature_radius(channel)) continue;
       Figure f;
       f.name = file_safe(stem + "_curvature");
       f.title = "Curvature 1/rho of " + who(outs) + " (0 at an inflection; least radius ";
@@ -829,7 +826,8 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         const Table& t = o->value.as_table();
         const Table::Column* c = t.find(channel.name);
         if (!c) continue;
-        const Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
+        const Column x = shown(declared.label(t.axis.name), t.axis.dimension, t.axis.values, t.axis.display_unit, units,
+                               column_tag(declared, t.axis.name, t.axis.dimension));
         auto curve = curvature_of(x, c->values, "curvature");
         double rho = std::numeric_limits<double>::infinity();
         for (double v : c->values)
@@ -850,18 +848,20 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     if (outs.size() > 1) {
       // Several nodes' tables: a plot per lone channel, a curve per node.
       for (const Table::Column& channel : first.channels) {
-        if (channel.name == "crank_angle" || is_curvature_radius(channel.name) || shared_dimension(channel)) continue;
+        if (apart(channel) || shared_dimension(channel)) continue;
         Figure f;
         f.name = file_safe(stem + "_" + channel.name);
         const std::string all = who(outs);
-        f.title = spoken(channel.name) + (all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
+        f.title = declared.label(channel.name) + (all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
         std::vector<std::string> nodes;
         for (const OutputValue* o : outs) {
           const Table& t = o->value.as_table();
           const Table::Column* c = t.find(channel.name);
           if (!c) continue;
-          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
-          Column y = shown(channel.name, c->dimension, c->values, c->display_unit, units, axis_reference);
+          Column x = shown(declared.label(t.axis.name), t.axis.dimension, t.axis.values, t.axis.display_unit, units,
+                           column_tag(declared, t.axis.name, t.axis.dimension));
+          Column y = shown(declared.label(channel.name), c->dimension, c->values, c->display_unit, units,
+                           column_tag(declared, channel.name, c->dimension));
           f.xlabel = x.name;
           f.ylabel = y.name;
           f.curve_titles.push_back(legend(node_of(*o)));
@@ -882,14 +882,15 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         std::string names;
         std::vector<std::string> spoken_names;
         for (const Table::Column& c : t.channels) {
-          if (c.name == "crank_angle" || is_curvature_radius(c.name) || !(c.dimension == dims[g])) continue;
-          Column x = shown(t.axis.name, t.axis.dimension, t.axis.values, t.axis.display_unit, units, axis_reference);
-          Column y = shown(c.name, c.dimension, c.values, c.display_unit, units, axis_reference);
+          if (apart(c) || !(c.dimension == dims[g])) continue;
+          Column x = shown(declared.label(t.axis.name), t.axis.dimension, t.axis.values, t.axis.display_unit, units,
+                           column_tag(declared, t.axis.name, t.axis.dimension));
+          Column y = shown(declared.label(c.name), c.dimension, c.values, c.display_unit, units, column_tag(declared, c.name, c.dimension));
           f.xlabel = x.name;
-          spoken_names.push_back(spoken(c.name));
+          spoken_names.push_back(declared.label(c.name));
           f.ylabel = y.unit;
-          f.curve_titles.push_back(spoken(c.name));
-          names += (names.empty() ? "" : ", ") + spoken(c.name);
+          f.curve_titles.push_back(declared.label(c.name));
+          names += (names.empty() ? "" : ", ") + declared.label(c.name);
           f.curves.emplace_back(std::move(x), std::move(y));
         }
         if (f.curves.empty()) continue;
@@ -909,7 +910,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
 // Print. An A4 page less its 12 mm margins is 186 mm wide, 65.9 em of a table's 8 pt; a table
 // wider than that would be cut at the page's edge, so it is printed in parts instead: column
 // groups that each repeat the table's key columns (a report row's label and unit, an events
-// table's checking lift or cam angle). The screen keeps the whole table and scrolls sideways.
+// table's axis). The screen keeps the whole table and scrolls sideways.
 constexpr double printed_width_em = 65.9;
 
 // The width in em of the table's 8 pt that a column needs in print, estimated from its text with
@@ -929,7 +930,7 @@ double print_width_em(const std::string& header, const std::string& unit, const 
 }
 
 // The printed parts of a table: each the key columns [0, keys) and then the next columns that fit
-// the page. A part ends where the unit changes (cam degrees to crank degrees) when that keeps at
+// the page. A part ends where the unit changes (degrees of one frame to another's) when that keeps at
 // least half of what would fit, so a part holds one kind of column. One part: the table fits.
 std::vector<std::vector<std::size_t>> print_parts(const std::vector<double>& width_em, std::size_t keys,
                                                   const std::vector<std::string>& unit) {
@@ -1081,32 +1082,39 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     const Table& t = o->value.as_table();
     PageTable page_table;
     page_table.table_class = "narrow";
-    page_table.keys = 1;  // the axis: a checking lift, a cam angle
+    page_table.keys = 1;  // the axis
     std::vector<const Table::Column*> cols{&t.axis};
     for (const Table::Column& c : t.channels) cols.push_back(&c);
     // Angles in degrees and lengths in millimetres unless the scene says otherwise; a table with
-    // crank angles (crank_*, *_atdc) says of each angle column which angle it is.
-    bool crank_columns = false;
-    for (const Table::Column* c : cols) crank_columns = crank_columns || c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
+    // angles of more than one declared frame says of each angle column which angle it is.
+    const DeclaredPort declared = declared_port(graph, o->label);
+    std::vector<std::string> frames_seen;
+    for (const Table::Column* c : cols)
+      if (const ChannelDecl* decl = declared.channel(c->name); decl && !decl->angle_frame.empty() &&
+          std::find(frames_seen.begin(), frames_seen.end(), decl->angle_frame) == frames_seen.end())
+        frames_seen.push_back(decl->angle_frame);
     std::vector<std::string> unit;
     for (const Table::Column* c : cols) {
       unit.push_back(display_unit(c->dimension, c->display_unit, graph.display_units));
-      const bool crank = c->name.rfind("crank", 0) == 0 || c->name.find("_atdc") != std::string::npos;
-      page_table.header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(),
-                                                  crank_columns && c->dimension == dim::angle ? (crank ? "crank" : "cam") : ""));
-      page_table.header_text.push_back(spoken(c->name));
+      const ChannelDecl* decl = declared.channel(c->name);
+      const std::string tag = frames_seen.size() > 1 && decl ? declared.tag(decl->angle_frame) : std::string();
+      page_table.header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(), tag));
+      page_table.header_text.push_back(declared.label(c->name));
       page_table.header_html.push_back(html_text(page_table.header_text.back()) + "<br><span class=\"u\">[" +
                                        html_text(page_table.header_unit.back()) + "]</span>");
     }
     // The CSV beside the table is in the units the table shows.
-    write_table_csv(dir / csv, t, unit);
+    write_table_csv(dir / csv, t, unit, declared.presentation());
     for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
       std::vector<std::string> row;
       for (std::size_t k = 0; k < cols.size(); ++k) {
+        // A code is shown by its declared name, its number beside it ("contact_lost (1)").
+        const ChannelDecl* decl = declared.channel(cols[k]->name);
+        const std::string_view name = decl ? decl->code_name(cols[k]->values[i]) : std::string_view();
         const double v = unit[k].empty() ? cols[k]->values[i] : to_unit(cols[k]->values[i], cols[k]->dimension, unit[k]);
         char buffer[32];
         std::snprintf(buffer, sizeof buffer, "%.6g", v);
-        row.push_back(buffer);
+        row.push_back(name.empty() ? std::string(buffer) : std::string(name) + " (" + buffer + ")");
       }
       page_table.body.push_back(std::move(row));
     }

@@ -2,8 +2,8 @@
 // `mechgraph report`: one self-contained HTML page of a run (no network: styles and SVG plots
 // inline) with the CSV behind every plot and table beside it. Plots are drawn by gnuplot (Debian's
 // gnuplot-nox, svg terminal without its mouse script): tables that share a port name are overlaid
-// channel by channel (every cam's SVAJ curves together), a single table's channels of one dimension
-// share a plot (dynamic against kinematic lift), closed curves are drawn to scale (contours),
+// channel by channel (every node's derivative panel together), a single table's channels of one dimension
+// share a plot (a computed against a prescribed motion), closed curves are drawn to scale,
 // labelled series become bar charts (contributions); small tables are shown as tables.
 #include "provenance.hpp"
 

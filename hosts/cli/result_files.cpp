@@ -4,6 +4,7 @@
 #include <mechgraph/text_escape.hpp>
 
 #include "cli.hpp"
+#include "declared_port.hpp"
 #include "dxf_writer.hpp"
 #include "output_file.hpp"
 #include "results_folder.hpp"
@@ -21,8 +22,8 @@
 namespace mechgraph::cli {
 
 // The text of a table's and a series' CSV (below), written whole by write_table_csv / write_csv.
-void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units);
-void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& column_units);
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const Presentation& presentation);
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& column_units, const Presentation& presentation);
 void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units);
 
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
@@ -65,8 +66,20 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
         for (const Table::Column& c : t.channels) names.push_back(c.name);
         const std::vector<std::string> keys = distinct_keys(names);  // a channel named like the axis
         json.key("value").begin_object().key("axis").value(keys[0]).key("columns").begin_object();
+        // A channel with declared codes also gives them ({"value", "name", "doc"}) and each row's name.
+        const Presentation& presentation = declared_port(graph, o.label).presentation();
         auto column = [&](const Table::Column& c, const std::string& key) {
-          json.key(key).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values).end_object();
+          json.key(key).begin_object().key("unit").value(c.dimension.si_unit()).key("values").numbers(c.values);
+          if (const ChannelDecl* decl = presentation.find(c.name); decl && !decl->codes.empty()) {
+            json.key("codes").begin_array();
+            for (const Code& code : decl->codes)
+              json.begin_object().key("value").value(code.value).key("name").value(code.name).key("doc").value(code.doc).end_object();
+            json.end_array();
+            json.key("names").begin_array();
+            for (double v : c.values) json.value(std::string(decl->code_name(v)));
+            json.end_array();
+          }
+          json.end_object();
         };
         column(t.axis, keys[0]);
         for (std::size_t k = 0; k < t.channels.size(); ++k) column(t.channels[k], keys[k + 1]);
@@ -113,15 +126,10 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
   os << "\n";
 }
 
-std::string angle_reference(const PortSpec& port) {
+std::string angle_reference(const NodeInfo& info, const PortSpec& port) {
   if (port.dimension.angle == 0) return {};
-  // The port says which angle it is measured in: its name (crank_duration) or its description
-  // ("... over cam angle", "in crank degrees"), whichever of the two it names first.
-  if (port.name.rfind("crank", 0) == 0) return "crank";
-  const auto crank = std::min(port.doc.find("crank angle"), port.doc.find("crank degree"));
-  const auto cam = std::min(port.doc.find("cam angle"), port.doc.find("cam degree"));
-  if (crank == std::string::npos && cam == std::string::npos) return {};
-  return crank < cam ? "crank" : "cam";
+  const AngleFrame* frame = info.find_frame(port.angle_frame);
+  return frame ? frame->unit_tag : std::string();
 }
 
 std::string unit_with_reference(const std::string& unit, const std::string& reference) {
@@ -130,8 +138,8 @@ std::string unit_with_reference(const std::string& unit, const std::string& refe
 }
 
 std::string reader_unit(const Dimension& d) {
-  // A cam's lift and its derivatives over cam angle, lengths, angles and areas the way a drawing
-  // gives them; everything else stays SI (N, m/s, Hz ...).
+  // A length and its derivatives over an angle, lengths, angles and areas the way a drawing gives
+  // them; everything else stays SI (N, m/s, Hz ...).
   const Dimension per_angle[] = {dim::length / dim::angle, dim::length / dim::angle.pow(2), dim::length / dim::angle.pow(3)};
   const char* per_angle_unit[] = {"mm/deg", "mm/deg^2", "mm/deg^3"};
   for (std::size_t n = 0; n < 3; ++n)
@@ -187,7 +195,8 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
       const std::string unit = unit_of(o, row.unit);
       if (cells[1] == row.unit && o.dimension.si_unit() != "1") {
         const PortSpec* spec = cell->output < graph.outputs.size() ? graph.outputs[cell->output].spec : nullptr;
-        cells[1] = unit_with_reference(unit.empty() ? o.dimension.si_unit() : unit, spec ? angle_reference(*spec) : "");
+        const NodeInfo* info = spec ? &graph.nodes[graph.outputs[cell->output].node].info() : nullptr;
+        cells[1] = unit_with_reference(unit.empty() ? o.dimension.si_unit() : unit, info ? angle_reference(*info, *spec) : "");
       }
       const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
       char buffer[32];
@@ -262,32 +271,40 @@ void print_series(std::ostream& os, const OutputValue& o) {
 
 // One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
 // units (SI where the scene names none), or in the units the caller gives per column.
-void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units) {
-  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units); });
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units, const Presentation& presentation) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units, presentation); });
 }
 
-void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units) {
-  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, column_units); });
+void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units,
+                     const Presentation& presentation) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, column_units, presentation); });
 }
 
-void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units) {
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const Presentation& presentation) {
   std::vector<std::string> unit{units.unit_for(t.axis.dimension)};
   for (const Table::Column& c : t.channels) unit.push_back(units.unit_for(c.dimension));
-  write_table_rows(out, t, unit);
+  write_table_rows(out, t, unit, presentation);
 }
 
-void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& unit) {
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& unit, const Presentation& presentation) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
   if (unit.size() != columns.size())
     throw std::logic_error("write_table_rows: " + std::to_string(unit.size()) + " units for " + std::to_string(columns.size()) + " columns");
+  // A channel with declared codes is followed by their names.
+  std::vector<const ChannelDecl*> named(columns.size(), nullptr);
   for (std::size_t k = 0; k < columns.size(); ++k)
+    if (const ChannelDecl* decl = presentation.find(columns[k]->name); decl && !decl->codes.empty()) named[k] = decl;
+  for (std::size_t k = 0; k < columns.size(); ++k) {
     out << (k ? "," : "") << csv_field(columns[k]->name + " [" + (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) + "]");
+    if (named[k]) out << "," << csv_field(columns[k]->name + "_name");
+  }
   out << "\n" << std::setprecision(17);
   for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
     for (std::size_t k = 0; k < columns.size(); ++k) {
       const double v = columns[k]->values[i];
       out << (k ? "," : "") << (unit[k].empty() ? v : to_unit(v, columns[k]->dimension, unit[k]));
+      if (named[k]) out << "," << csv_field(std::string(named[k]->code_name(v)));
     }
     out << "\n";
   }
@@ -315,14 +332,15 @@ void write_result_files(const std::filesystem::path& dir, const Graph& graph, co
   for (const OutputValue& o : result.outputs)
     if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units);
     else if (o.value.kind() == ValueKind::table) {
-      write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units);
-      if (is_drawable_curve(o.value.as_table())) {
-        // The producing node's notes go into the drawing too (a contour says which way it turns).
+      const DeclaredPort declared = declared_port(graph, o.label);
+      write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units, declared.presentation());
+      if (is_drawable_curve(o.value.as_table(), declared.presentation())) {
+        // The producing node's notes go into the drawing too (a drawing says which way it turns).
         const std::string node = o.label.substr(0, o.label.find('.'));
         std::vector<std::string> notes;
         for (const NodeRun& r : result.runs)
           if (r.node == node) notes = r.notes;
-        write_dxf(dir / (o.label + ".dxf"), o.value.as_table(), notes);
+        write_dxf(dir / (o.label + ".dxf"), o.value.as_table(), declared.presentation(), notes);
       }
     }
 }

@@ -19,10 +19,10 @@ namespace mechgraph::cli {
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs);
 
-/// "cam" or "crank" for a port of an angle dimension that says which angle it is measured in
-/// (its name starts with crank, or its description names cam or crank angle first); "" otherwise.
-std::string angle_reference(const PortSpec& port);
-/// `unit` with the angle named when it holds degrees: "mm^2*deg (cam)".
+/// The tag of the angle frame a port of an angle dimension (or a rate per angle) declares
+/// (NodeInfo::frames, PortSpec::angle_frame); "" otherwise.
+std::string angle_reference(const NodeInfo& info, const PortSpec& port);
+/// `unit` with the angle named when it holds degrees: "mm^2*deg (shaft)".
 std::string unit_with_reference(const std::string& unit, const std::string& reference);
 
 /// The unit a report row without one shows a dimension in when the scene has no `units:` for it
@@ -33,7 +33,7 @@ std::string reader_unit(const Dimension& d);
 /// values formatted with 6 significant digits in the row's unit; a row without one shows its
 /// dimension in the scene's display unit, else in the unit the table's first row of that
 /// dimension used (its port's own, else reader_unit), one unit per dimension. Units of degrees
-/// say cam or crank.
+/// say which angle (the port's declared frame).
 std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result, const Graph& graph);
 /// The same as aligned text under its title.
 void print_report(std::ostream& os, const ResolvedReport& report, const RunResult& result, const Graph& graph);
@@ -45,10 +45,14 @@ void write_report_csv(const std::filesystem::path& file, const ResolvedReport& r
 void print_series(std::ostream& os, const OutputValue& o);
 
 /// One CSV per table / series output; header `name [unit]` in the scene's display units.
-void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units);
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units,
+                     const Presentation& presentation = {});
 /// The same with each column's unit given: `column_units` holds the axis's and then each channel's
 /// ("" keeps SI). A report writes its tables' CSVs in the units its page shows (deg, mm ...).
-void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units);
+/// A channel with declared codes (presentation.hpp) is followed by a column "<channel>_name" with
+/// each row's code name.
+void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units,
+                     const Presentation& presentation = {});
 void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units);
 
 /// Every file of `run --out` into `dir`: results.json, a CSV per series/table output, a DXF per

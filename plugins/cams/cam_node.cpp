@@ -159,8 +159,9 @@ class CamNodeType final : public NodeType {
                          "checks the cam with its follower",
                          "mm"),
     };
-    info_.outputs.push_back(PortSpec::table(
-        "svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
+    info_.outputs.push_back(svaj_port("svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
+    info_.frames = cam_angle_frames();
+    info_.notes = {timing_note()};
     for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
     for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
     info_.inputs = std::move(d.extra_inputs);

@@ -9,6 +9,7 @@
 
 #include <followers/follower_types.hpp>
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
@@ -20,6 +21,59 @@
 
 namespace mechgraph::cams {
 namespace {
+
+// The contour and (a roller's) pitch curve drawn to scale, in the cam frame.
+Presentation contour_drawing() {
+  Presentation p;
+  p.role = Role::drawing_to_scale;
+  p.pairs = {{"x", "y", "contour", "contour", 0},
+             {"pitch_x", "pitch_y", "pitch", "pitch curve", 1},
+             {"follower_x", "follower_y", "follower", "follower at the nose", 2}};
+  return p;
+}
+
+// `n` points evenly spaced along the path through `corners` (a polyline), the last on its end.
+void along_path(const std::vector<std::pair<double, double>>& corners, std::size_t n, std::vector<double>& x, std::vector<double>& y) {
+  std::vector<double> at{0.0};
+  for (std::size_t k = 1; k < corners.size(); ++k)
+    at.push_back(at.back() + std::hypot(corners[k].first - corners[k - 1].first, corners[k].second - corners[k - 1].second));
+  std::size_t piece = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double s = n > 1 ? at.back() * static_cast<double>(i) / static_cast<double>(n - 1) : 0.0;
+    while (piece + 1 < at.size() && at[piece] < s) ++piece;
+    const double span = at[piece] - at[piece - 1];
+    const double u = span > 0.0 ? std::clamp((s - at[piece - 1]) / span, 0.0, 1.0) : 1.0;
+    x.push_back(corners[piece - 1].first + u * (corners[piece].first - corners[piece - 1].first));
+    y.push_back(corners[piece - 1].second + u * (corners[piece].second - corners[piece - 1].second));
+  }
+}
+
+// The follower drawn at rest where it stands at the nose (the point of the contour furthest from
+// the centre), as `n` points of one path: a roller, the circle of its radius about the furthest
+// point of the pitch curve; a flat face, the face square to the line from the centre through the
+// nose (1.2 base radii long) and its stem along that line (0.8 base radii).
+void follower_at_nose(const ContourPoints& c, double roller_radius, std::vector<double>& x, std::vector<double>& y) {
+  const std::size_t n = c.points.size();
+  double r_base = std::numeric_limits<double>::infinity(), r_max = 0.0;
+  std::size_t nose = 0, far = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = std::hypot(c.points[i].x, c.points[i].y);
+    r_base = std::min(r_base, r);
+    if (r > r_max) r_max = r, nose = i;
+    if (std::hypot(c.points[i].pitch_x, c.points[i].pitch_y) > std::hypot(c.points[far].pitch_x, c.points[far].pitch_y)) far = i;
+  }
+  if (roller_radius > 0.0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double a = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n > 1 ? n - 1 : 1);
+      x.push_back(c.points[far].pitch_x + roller_radius * std::cos(a));
+      y.push_back(c.points[far].pitch_y + roller_radius * std::sin(a));
+    }
+    return;
+  }
+  const double nx = c.points[nose].x, ny = c.points[nose].y, ux = nx / r_max, uy = ny / r_max, half = 0.6 * r_base;
+  along_path({{nx - uy * half, ny + ux * half}, {nx + uy * half, ny - ux * half}, {nx, ny}, {nx + ux * 0.8 * r_base, ny + uy * 0.8 * r_base}},
+             n, x, y);
+}
 
 constexpr double pi = std::numbers::pi;
 
@@ -186,10 +240,12 @@ class ContourNodeType final : public NodeType {
     info_.outputs = {
         PortSpec::table("contour", "closed contour: x, y (and pitch_x, pitch_y for a roller) in the cam frame over "
                                    "cam_angle_ccw or cam_angle_cw (named for the way the cam turns, seen from the "
-                                   "front), within chord_error; written as CSV and DXF"),
+                                   "front), within chord_error; written as CSV and DXF")
+            .presented(contour_drawing()),
         PortSpec::table("contact", "over the event: pressure_angle, curvature_radius (of the contour), face_offset "
                                    "(flat face: where the contact lies on it), follower_angle (pivoted), load and "
-                                   "contact_stress (with a load)"),
+                                   "contact_stress (with a load)")
+            .presented(over_cam_angle().with(ChannelDecl::of("curvature_radius", dim::length).flag(channel_flag::curvature))),
         PortSpec::scalar("points", dim::none, "points of the contour"),
         PortSpec::scalar("max_pressure_angle", dim::angle, "largest |pressure angle| (0 for a flat face)", "deg"),
         PortSpec::scalar("min_face_width", dim::length,
@@ -212,9 +268,10 @@ class ContourNodeType final : public NodeType {
                          "concave radius is its reciprocal; a roller needs it below 1/roller_radius)",
                          "1/mm"),
         PortSpec::scalar("max_contact_stress", dim::stress, "largest Hertz contact pressure p0 (with a load)", "MPa"),
-        PortSpec::scalar("max_stress_angle", dim::angle, "cam angle of the largest contact pressure", "deg"),
+        PortSpec::scalar("max_stress_angle", dim::angle, "cam angle of the largest contact pressure", "deg").in_frame("cam"),
     };
     info_.work_counters = {"evaluations"};
+    info_.frames = cam_angle_frames(false);
   }
 
   const NodeInfo& info() const override { return info_; }
@@ -280,6 +337,7 @@ class ContourNodeType final : public NodeType {
       const ContourPoints c = trace_contour(*law, f, clockwise, p.number("chord_error"), evaluations);
       Table t;
       t.closed_curve = true;
+      t.turns_clockwise = clockwise;
       // The axis names the direction the cam turns, so that a CSV of the contour says it too (its
       // header: cam_angle_ccw [deg] or cam_angle_cw [deg]).
       t.axis = {clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
@@ -293,6 +351,12 @@ class ContourNodeType final : public NodeType {
         for (const auto& g : c.points) px.push_back(g.pitch_x);
         auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
         for (const auto& g : c.points) py.push_back(g.pitch_y);
+      }
+      {
+        std::vector<double> fx, fy;
+        follower_at_nose(c, f.roller_radius(), fx, fy);
+        t.add_channel("follower_x", dim::length, "mm").values = std::move(fx);
+        t.add_channel("follower_y", dim::length, "mm").values = std::move(fy);
       }
       // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
       if (f.pivoted())

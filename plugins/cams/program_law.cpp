@@ -1,6 +1,7 @@
 #include "program_law.hpp"
 #include "registration.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/errors.hpp>
 
 #include <algorithm>
@@ -160,7 +161,8 @@ CamLawDefinition program_law_definition() {
   d.extra_outputs = {
       PortSpec::table("joints", "a row per joint (the event's ends included) at its cam angle: the jumps of lift, velocity, "
                                 "acceleration and jerk (right minus left) and first_jump, the lowest derivative that "
-                                "jumps (4: none up to the jerk)"),
+                                "jumps (4: none up to the jerk)")
+          .presented(over_cam_angle()),
       PortSpec::scalar("continuity_order", dim::none,
                        "highest derivative continuous at every joint (2: jerk jumps somewhere; 3: continuous to the jerk)"),
   };

@@ -3,6 +3,7 @@
 #include "table_cost.hpp"
 
 #include <mechgraph/bounded_read.hpp>
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 #include <mechgraph/units.hpp>
@@ -528,7 +529,8 @@ CamLawDefinition table_law_definition() {
                        "largest |law - master| at the table's angles (master connected only)", "um"),
       PortSpec::table("master_deviation",
                       "over the table's angles: deviation (law - master) and row_deviation (row - master) (master "
-                      "connected only)"),
+                      "connected only)")
+          .presented(over_cam_angle()),
   };
   d.output_dependencies = {{"master_deviation_rms", {"master"}}, {"master_deviation_max", {"master"}}, {"master_deviation", {"master"}}};
   d.extra_work_counters = {"solves", "iterations"};

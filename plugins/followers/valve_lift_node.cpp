@@ -95,8 +95,10 @@ class ValveLiftType final : public NodeType {
         PortSpec::scalar("cam_lever", dim::length, "pivot to the base-circle contact (cam side)", "mm"),
         PortSpec::scalar("ratio_closed", dim::none, "valve lift / cam lift for a small lift, valve_arm cos(a) / cam_lever"),
         PortSpec::scalar("ratio_at_nose", dim::none, "d(valve lift) / d(cam lift) at the nose"),
-        PortSpec::table("curve", "follower_angle, valve_lift and ratio (d valve lift / d cam lift) over cam angle"),
+        PortSpec::table("curve", "follower_angle, valve_lift and ratio (d valve lift / d cam lift) over cam angle")
+            .presented(over_cam_angle()),
     };
+    info_.frames = cam_angle_frames(false);
   }
   const NodeInfo& info() const override { return info_; }
 

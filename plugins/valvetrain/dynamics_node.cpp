@@ -10,6 +10,7 @@
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 
 #include <algorithm>
@@ -38,6 +39,18 @@ double event_code(const EventRecord& e, bool after_bounce) {
   if (e.kind == "stop") return 7.0;
   if (e.kind == "stop_release") return 8.0;
   return 0.0;
+}
+
+// The names of event_code's values, as the events table declares them.
+std::vector<Code> event_codes() {
+  return {{1.0, "contact_lost", "the valve leaves the cam"},
+          {2.0, "contact_regained", "the follower lands on the cam again"},
+          {3.0, "bounce", "a bounce on the seat"},
+          {4.0, "seated", "seated off the cam or after bounces"},
+          {5.0, "coil_bind", "the spring goes solid"},
+          {6.0, "coil_bind_left", "the spring leaves solid"},
+          {7.0, "stop_hit", "the travel stop is hit"},
+          {8.0, "stop_left", "the travel stop is left"}};
 }
 
 // The events of the last revolution (from `last`, s) as a table over cam angle; the peak force of
@@ -205,7 +218,8 @@ class DynamicsType final : public NodeType {
     };
     info_.outputs = {
         PortSpec::table("curves", "over the last revolution's cam angle: lift x, quasi-static x_qs, kinematic lift, drive "
-                                  "displacement y, velocity, contact force, spring force"),
+                                  "displacement y, velocity, contact force, spring force")
+            .presented(over_cam_angle()),
         PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the last revolution (dense output)", "mm"),
         PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
         PortSpec::scalar("min_contact_force", dim::force,
@@ -229,7 +243,9 @@ class DynamicsType final : public NodeType {
                                   "3 bounce on the seat, 4 seated off the cam or after bounces, 5 coil bind (the spring "
                                   "goes solid), 6 coil bind left, 7 travel stop hit, 8 stop left; speed: of approach or "
                                   "separation; cam_force: the cam's force just after; peak_force: the contact's greatest "
-                                  "force until it is left (coil bind, stop)"),
+                                  "force until it is left (coil bind, stop)")
+            .presented(over_cam_angle("cam_angle", Role::events)
+                           .with(ChannelDecl::of("event", dim::none).with_codes(event_codes()))),
         PortSpec::series("natural_frequencies", dim::frequency,
                          "of the drive (valve off its seat, cam in contact), lowest first; with spring_surge the coils' too",
                          "Hz"),
@@ -252,6 +268,7 @@ class DynamicsType final : public NodeType {
                          "elastic_drive)",
          {}, {"coils", "surge_damping_ratio"}},
     };
+    info_.frames = cam_angle_frames(false);
     info_.work_counters = {"steps", "rhs_evaluations", "jacobian_evaluations", "root_evaluations", "rejected_steps",
                            "newton_iterations", "events", "monitor_evaluations", "refinements", "stiffness_ratio",
                            "implicit"};

@@ -12,6 +12,7 @@
 #include "node_types.hpp"
 #include "train_masses.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -22,6 +23,21 @@
 
 namespace mechgraph::valvetrain {
 namespace {
+
+// The force curve drawn over valve lift: the spring line straight from the free-length mark, the
+// rule's requirement where it asks anything, the inertia force only in the numbers.
+Presentation force_over_lift() {
+  Presentation p = over_cam_angle("cam_angle", Role::curve_over_channel);
+  p.x_channel = "valve_lift";
+  p.figure_title = "Spring force over valve lift";
+  p.caption = "lift measured from the installed height; free length and solid height at the lifts where the spring "
+              "would reach them";
+  p.with(ChannelDecl::of("crank_angle", dim::angle).in_frame("crank").flag(channel_flag::alt_axis));
+  p.with(ChannelDecl::of("spring_force", dim::force).line_from("free length"));
+  p.with(ChannelDecl::of("inertia_force", dim::force).flag(channel_flag::not_drawn));
+  p.with(ChannelDecl::of("required_force", dim::force).flag(channel_flag::positive_only));
+  return p;
+}
 
 constexpr int max_iterations = 200;
 
@@ -101,9 +117,12 @@ class SpringDesignType final : public NodeType {
         PortSpec::scalar("min_safety_factor", dim::none, "least (P0 + c h) / (M_red |a(h)|) over the negative phase"),
         PortSpec::table("force_curve", "over cam angle through the open period: valve lift, the spring line P0 + c h, the "
                                        "inertia force M_red a, the requirement K M_red |a| where the valve decelerates, and "
-                                       "the contact force P0 + c h + M_red a the drive carries (valve side; for cam.contour)"),
+                                       "the contact force P0 + c h + M_red a the drive carries (valve side; for cam.contour); "
+                                       "marked on the lift: free length, installed, full lift and solid")
+            .presented(force_over_lift()),
     };
     info_.work_counters = {"iterations", "evaluations"};
+    info_.frames = cam_angle_frames(false);
   }
   const NodeInfo& info() const override { return info_; }
 
@@ -282,6 +301,11 @@ class SpringDesignType final : public NodeType {
         t.channels[5].values[i] = t.channels[2].values[i] + t.channels[3].values[i];  // what the cam carries, valve side
       }
       ctx.report_work("evaluations", static_cast<double>(n));
+      // The lifts where the spring would stand at its free length and go solid, measured like
+      // valve_lift from the installed height; the straight spring line is drawn from the first.
+      const double f0 = line.preload / line.rate, top = *std::max_element(t.channels[1].values.begin(), t.channels[1].values.end());
+      const CoilGeometry coil = spring->coils().front();
+      t.axis_marks = {{"free length", -f0}, {"installed", 0.0}, {"full lift", top}, {"solid", coil.free_length - coil.solid_length - f0}};
       out.set("force_curve", Value::table(std::move(t)));
     }
     out.set("spring", Value::handle(spring));

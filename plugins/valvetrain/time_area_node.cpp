@@ -8,6 +8,7 @@
 #include "node_types.hpp"
 #include "valve_motion.hpp"
 
+#include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
@@ -61,11 +62,13 @@ class TimeAreaType final : public NodeType {
     info_.outputs = {
         PortSpec::scalar("time_area", dim::area * dim::time, "integral of the flow area over time", "mm^2*s"),
         PortSpec::scalar("angle_area", dim::area * dim::angle, "integral of the flow area over cam angle (rpm-free)",
-                         "mm^2*deg"),
+                         "mm^2*deg")
+            .in_frame("cam"),
         PortSpec::scalar("mean_flow_area", dim::area, "angle_area / open cam angle", "mm^2"),
         PortSpec::scalar("open_duration", dim::time, "time the valve is open", "ms"),
     };
     info_.work_counters = {"evaluations"};
+    info_.frames = cam_angle_frames(false);
   }
   const NodeInfo& info() const override { return info_; }
 

@@ -51,11 +51,13 @@ class ValveMotionType final : public NodeType {
         PortSpec::scalar("max_velocity", dim::velocity, "maximum |valve velocity|", "m/s"),
         PortSpec::scalar("max_acceleration", dim::acceleration, "maximum valve acceleration", "m/s^2"),
         PortSpec::scalar("min_acceleration", dim::acceleration, "most negative valve acceleration (j_min)", "m/s^2"),
-        PortSpec::scalar("open_angle", dim::angle, "cam angle over which the valve is open", "deg"),
-        PortSpec::series("lift_curve", dim::length, "valve lift over cam angle (axis: rad from the nose)", "mm"),
-        PortSpec::table("svaj", "valve lift, velocity, acceleration and jerk in time over cam angle (and crank angle), "
-                                "curve_points rows"),
+        PortSpec::scalar("open_angle", dim::angle, "cam angle over which the valve is open", "deg").in_frame("cam"),
+        PortSpec::series("lift_curve", dim::length, "valve lift over cam angle (axis: rad from the nose)", "mm").in_frame("cam"),
+        svaj_port("svaj", "valve lift, velocity, acceleration and jerk in time over cam angle (and crank angle), "
+                          "curve_points rows"),
     };
+    info_.frames = cam_angle_frames();
+    info_.notes = {timing_note()};
     for (PortSpec& port : lift_event_ports("valve")) info_.outputs.push_back(std::move(port));
     info_.work_counters = {"evaluations"};
   }

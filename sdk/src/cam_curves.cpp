@@ -195,25 +195,87 @@ ParamSpec nose_timing_param() {
       .at_most(2.0 * std::numbers::pi);
 }
 
+std::vector<AngleFrame> cam_angle_frames(bool installed) {
+  AngleFrame cam;
+  cam.id = "cam";
+  cam.label = "cam angle from the nose";
+  cam.unit_tag = "cam";
+  cam.zero = "the law's zero: the nose of a symmetric lobe";
+  AngleFrame crank;
+  crank.id = "crank";
+  crank.label = "crank angle after the overlap TDC";
+  crank.unit_tag = "crank";
+  crank.zero = installed ? "the overlap TDC when nose_timing is given (crank = 2 cam + nose_timing), else twice the cam's zero"
+                        : "twice the cam's zero";
+  crank.base_frame = "cam";
+  crank.scale = 2.0;
+  if (installed) crank.offset_param = "nose_timing";
+  crank.mark_spacing = std::numbers::pi;
+  crank.mark_labels = {"TDC", "BDC"};
+  crank.before = "B";
+  crank.after = "A";
+  return {cam, crank};
+}
+
+NoteDecl timing_note() {
+  return {"events", "nose_timing", "the events quoted from TDC and BDC (\"intake: opens 3.4 deg ATDC, ...\")"};
+}
+
+PortSpec svaj_port(std::string name, std::string doc) {
+  Presentation p;
+  p.role = Role::derivative_family;
+  p.figure_title = "Lift, velocity, acceleration and jerk";
+  p.with_axis(ChannelDecl::of("cam_angle", dim::angle).in_frame("cam"));
+  p.with(ChannelDecl::of("crank_angle", dim::angle).in_frame("crank").flag(channel_flag::alt_axis));
+  const char* names[] = {"lift", "velocity", "acceleration", "jerk"};
+  for (int k = 0; k < 4; ++k) p.with(ChannelDecl::of(names[k]).in_frame("cam").derivative(k));
+  PointMarks events;
+  events.port = "events";
+  events.x_channels = {"opening_atdc", "closing_atdc"};
+  events.labels = {"opens", "closes"};
+  events.caption = "events at {axis} lift";
+  p.points.push_back(std::move(events));
+  return PortSpec::table(std::move(name), std::move(doc)).presented(std::move(p));
+}
+
+Presentation over_cam_angle(std::string axis, Role role) {
+  Presentation p;
+  p.role = role;
+  p.with_axis(ChannelDecl::of(std::move(axis), dim::angle).in_frame("cam"));
+  return p;
+}
+
 std::vector<PortSpec> lift_event_ports(const std::string& whose) {
+  Presentation events;
+  events.role = Role::events;
+  events.with_axis(ChannelDecl::of("checking_lift", dim::length));
+  for (const char* n : {"opening", "closing", "duration", "centreline"}) events.with(ChannelDecl::of(n, dim::angle).in_frame("cam"));
+  for (const char* n : {"crank_opening", "crank_closing", "crank_duration", "crank_centreline"})
+    events.with(ChannelDecl::of(n, dim::angle).in_frame("crank"));
+  for (const char* n : {"opening", "closing", "centreline"})
+    events.with(ChannelDecl::of(std::string(n) + "_atdc", dim::angle).labelled(std::string(n) + " after TDC").in_frame("crank"));
   return {
       PortSpec::table("events", "opening, closing, duration and centreline of the " + whose +
                                     " in cam and crank angle at checking_lift, 0.050 in and the seat, a row per "
-                                    "checking lift reached (with nose_timing also from the overlap TDC)"),
-      PortSpec::scalar("opening_angle", dim::angle, "cam angle where the " + whose + " lift rises through checking_lift", "deg"),
-      PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg"),
-      PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg"),
-      PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg"),
+                                    "checking lift reached (with nose_timing also from the overlap TDC)")
+          .presented(std::move(events)),
+      PortSpec::scalar("opening_angle", dim::angle, "cam angle where the " + whose + " lift rises through checking_lift", "deg").in_frame("cam"),
+      PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg").in_frame("cam"),
+      PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg").in_frame("cam"),
+      PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg").in_frame("crank"),
       PortSpec::scalar("centreline", dim::angle,
                        "halfway between opening and closing at checking_lift, cam angle from the nose (0 on a symmetric "
                        "lobe)",
-                       "deg"),
+                       "deg")
+          .in_frame("cam"),
       PortSpec::scalar("nose_angle", dim::angle,
                        "cam angle of the maximum " + whose + " lift (the nose), from the law's zero (the svaj axis); "
                        "on a dwell at full lift, the dwell's middle, exactly halfway between its ends",
-                       "deg"),
+                       "deg")
+          .in_frame("cam"),
       PortSpec::scalar("event_centre", dim::angle,
-                       "halfway between the ends of the lift event (seat to seat), cam angle from the nose", "deg"),
+                       "halfway between the ends of the lift event (seat to seat), cam angle from the nose", "deg")
+          .in_frame("cam"),
   };
 }
 

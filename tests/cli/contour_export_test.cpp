@@ -25,11 +25,11 @@ TEST_CASE("contours go out as CSV and DXF; ezdxf reads the DXF back with the CSV
     CHECK(fs::exists(dir / f));
   CHECK_FALSE(fs::exists(dir / "kurz.svaj.dxf"));  // only closed curves are drawings
   const std::string reader = "/usr/bin/python3 '" + std::string(MECHGRAPH_SOURCE_DIR) + "/tests/cli/read_dxf.py' ";
-  const auto flat = run_command(reader + "'" + (dir / "flat.contour.dxf").string() + "' '" + (dir / "flat.contour.csv").string() + "' CONTOUR");
+  const auto flat = run_command(reader + "'" + (dir / "flat.contour.dxf").string() + "' '" + (dir / "flat.contour.csv").string() + "' CONTOUR FOLLOWER:open");
   INFO(flat.out << flat.err);
   CHECK(flat.exit_code == 0);
   const auto roller = run_command(reader + "'" + (dir / "roller.contour.dxf").string() + "' '" +
-                                  (dir / "roller.contour.csv").string() + "' CONTOUR PITCH");
+                                  (dir / "roller.contour.csv").string() + "' CONTOUR PITCH FOLLOWER:open");
   INFO(roller.out << roller.err);
   CHECK(roller.exit_code == 0);
   CHECK_THAT(roller.out, Contains("PITCH: 571 points, closed"));

@@ -152,7 +152,7 @@ TEST_CASE("report: the page's numbers and notes are the run's, with the panel, s
     if (entry.path().filename().string().find("_svaj.csv") != std::string::npos) ++panels;
   CHECK(panels == 2);
   // Spring force over valve lift with its marks; the spring line starts at the free-length point.
-  CHECK_THAT(page, Contains("Spring force over valve lift: Kurz (sd_kurz)"));
+  CHECK_THAT(page, Contains("Spring force over valve lift of Kurz (sd_kurz)"));
   for (const char* mark : {"free length", "installed", "full lift", "solid"}) CHECK_THAT(page, Contains(mark));
   const std::string spring_csv = plot_csv(dir, "_sd_kurz.force_curve_over_lift.csv");
   REQUIRE(!spring_csv.empty());
@@ -166,13 +166,13 @@ TEST_CASE("report: the page's numbers and notes are the run's, with the panel, s
   CHECK_THAT(page, Contains("<div class=\"scroll\">"));
 }
 
-TEST_CASE("report: contour with base circle, follower and rotation, curvature as 1/rho", "[cli][report]") {
+TEST_CASE("report: contour with its least circle, follower and rotation, curvature as 1/rho", "[cli][report]") {
   const fs::path dir = fresh_folder("contour");
   const auto r = run_cli("-q report '" + scene("cam_contour.yaml") + "' --out '" + dir.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   const std::string page = read(dir / "report.html");
-  CHECK_THAT(page, Contains("base circle r = 17 mm"));
+  CHECK_THAT(page, Contains("least circle r = 17 mm"));
   CHECK_THAT(page, Contains("follower at the nose"));
   CHECK_THAT(page, Contains("rotation (counter-clockwise)"));
   // Curvature: 1/rho; on the base circle 1/17 mm, the least radius in the title equals the run's.

@@ -37,7 +37,7 @@ TEST_CASE("mechgraph report: a self-contained page with every curve plotted, ren
       {"valvetrain_cams.yaml", "cams", 5,
        {"Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (arc, kurz, poly)",
         "Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (v_arc, v_kurz, v_poly)",
-        "Stage 4 by the source", "kurz.events", "v_kurz.events", "Spring force over valve lift: Kurz (sd_kurz)",
+        "Stage 4 by the source", "kurz.events", "v_kurz.events", "Spring force over valve lift of Kurz (sd_kurz)",
         "intake: opens"}},
       {"backlash_chain.yaml", "chain", 3,
        {"chain.joint_contribution_rss", "Against the specification", "samples outside spec",

@@ -55,7 +55,15 @@ class Hostile final : public NodeType {
       case Kind::nan_work: info_.outputs = {PortSpec::scalar("out", dim::length, "1 mm")}; break;
       case Kind::throw_int: info_.outputs = {PortSpec::handle("thing", "hostile_thing", "never made")}; break;
       case Kind::bad_contract: info_.outputs = {PortSpec::handle("liar", "hostile_liar", "cannot say if it is sound")}; break;
-      case Kind::evil_curve: info_.outputs = {PortSpec::table("curve", "a square, channels named to forge DXF entities")}; break;
+      case Kind::evil_curve: {
+        // Its pair declared (the host draws declared pairs only), on a layer named like the channels.
+        const std::string forge = "e\n  0\nLINE\n  8\nEVIL";
+        Presentation drawing;
+        drawing.role = Role::drawing_to_scale;
+        drawing.pairs = {{forge + "_x", forge + "_y", forge, forge, 0}};
+        info_.outputs = {PortSpec::table("curve", "a square, channels named to forge DXF entities").presented(drawing)};
+        break;
+      }
       case Kind::evil_text:
         info_.summary = "a node whose words hold " + evil;
         info_.params = {ParamSpec::text("label", "free text " + evil).with_default("x"),

@@ -1,6 +1,6 @@
 #pragma once
 // Messages for unknown names: the closest valid name and the list of valid ones, e.g.
-// "unknown node type 'cam.kurtz'; did you mean 'cam.kurz'? valid node types are: (cam.kurz ...)".
+// "unknown node type 'shape.circel'; did you mean 'shape.circle'? valid node types are: (shape.circle ...)".
 #include <string>
 #include <string_view>
 #include <vector>

@@ -2,7 +2,7 @@
 // The units a scene asks results to be shown in (`units: { length: mm, angle: deg }`): files and
 // text a person reads (CSV columns, printed outputs, reports) use them; JSON stays SI. A quantity
 // named in `units:` is used for exactly its dimension; a dimension made only of base quantities the
-// scene names is composed from them (length: mm and angle: deg show a cam's acceleration in
+// scene names is composed from them (length: mm and angle: deg show an acceleration over an angle in
 // mm/deg^2); anything else stays SI.
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/scene.hpp>

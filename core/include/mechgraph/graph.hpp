@@ -14,7 +14,7 @@
 
 namespace mechgraph {
 
-/// `--set NAME=VALUE`: a scene parameter (`rpm=6000rpm`) or a node parameter (`cam.max_lift=10mm`).
+/// `--set NAME=VALUE`: a scene parameter (`rpm=6000rpm`) or a node parameter (`part.length=10mm`).
 struct Override {
   std::string target;
   std::string value;

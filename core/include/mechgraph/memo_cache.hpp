@@ -2,7 +2,7 @@
 // The memo cache: a node's outputs kept under the hash of everything they depend on (type,
 // version, parameters, effects read, the inputs' hashes), shared by the runs of a sweep and by its
 // threads. It is bounded: past `capacity` entries the least recently used one is dropped, so a
-// sweep over thousands of designs keeps what its cases share (one cam for many springs or speeds)
+// sweep over thousands of designs keeps what its cases share (one part for many speeds)
 // without growing without end.
 #include <mechgraph/node.hpp>
 

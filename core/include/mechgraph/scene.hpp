@@ -93,7 +93,7 @@ struct ReportSpec {
   SourceLocation where;
 };
 
-/// `requires: { cams: ">=0.2" }`: the plugin versions a scene needs (semantic_version.hpp).
+/// `requires: { myplugin: ">=1.0" }`: the plugin versions a scene needs (semantic_version.hpp).
 struct PluginRequirement {
   std::string plugin;       // plugin id
   std::string requirement;  // ">=0.2, <1"

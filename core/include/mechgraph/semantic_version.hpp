@@ -1,6 +1,6 @@
 #pragma once
 // Semantic versions of plugins (MAJOR.MINOR.PATCH, https://semver.org without pre-release tags) and
-// the requirements a scene states on them: `requires: { cams: ">=0.2, <1" }`.
+// the requirements a scene states on them: `requires: { myplugin: ">=1.0, <2" }`.
 // A requirement is one or more comparisons joined by commas, all of which must hold:
 //   >=V  >V  <=V  <V  ==V (or =V, or V alone)  ^V (same major, or same minor while major is 0, and >= V)
 //   ~V (same major.minor, >= V).

@@ -6,7 +6,7 @@
 //
 // Each needed node, in dependency order, is estimated by its type's NodeType::forecast when the
 // type gives one (its work items, peak memory and the size of what it outputs, from its parameters
-// and the sizes of its inputs: a cam.table's law has a piece per row of its file, and every search
+// and the sizes of its inputs: a law read from a table file has a piece per row of it, and every search
 // downstream resolves them all). A type that gives none is counted by the conventions of the SDK
 // (docs/writing-plugins.md, "Counts of work"): an integer parameter whose name ends in `points`,
 // `samples` or `bins` counts work items of its node, `revolutions` multiplies them, every record of

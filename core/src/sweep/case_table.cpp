@@ -244,11 +244,11 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
 }
 
 SampleSpec parse_sample(std::string_view text) {
-  const auto [name, rhs] = split_assignment(text, "--sample", "NAME=LO:HI (e.g. cam.max_lift=8mm:10mm)");
+  const auto [name, rhs] = split_assignment(text, "--sample", "NAME=LO:HI (e.g. part.length=8mm:10mm)");
   const std::string context = "--sample " + excerpt(text);
   const auto colon = rhs.find(':');
   if (colon == std::string::npos || rhs.find(':', colon + 1) != std::string::npos)
-    throw SceneError(context + ": expected LO:HI, e.g. cam.max_lift=8mm:10mm");
+    throw SceneError(context + ": expected LO:HI, e.g. part.length=8mm:10mm");
   const std::string lo_text = trim(rhs.substr(0, colon)), hi_text = trim(rhs.substr(colon + 1));
   const auto [lo, lo_unit] = range_end(lo_text, hi_text, context);
   const auto [hi, hi_unit] = range_end(hi_text, lo_text, context);
@@ -345,7 +345,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
     }
     table.cases.push_back(std::move(row));
   }
-  if (!header) throw SceneError(where + ":1:1: no header (a line of parameter names, e.g. rpm,cam.max_lift [mm])");
+  if (!header) throw SceneError(where + ":1:1: no header (a line of parameter names, e.g. rpm,part.length [mm])");
   if (table.cases.empty()) throw SceneError(where + ": no cases below the header");
   return table;
 }

@@ -70,10 +70,19 @@ class ParabolicCam final : public NodeType {
     info_.outputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name), "the cam law"),
         PortSpec::scalar("max_lift", dim::length, "lift at the nose", "mm"),
-        PortSpec::scalar("max_velocity", dim::length / dim::angle, "largest |dh/dphi|", "mm/deg"),
-        PortSpec::scalar("max_acceleration", dim::length / (dim::angle * dim::angle), "largest d2h/dphi2", "mm/deg^2"),
+        PortSpec::scalar("max_velocity", dim::length / dim::angle, "largest |dh/dphi|", "mm/deg").in_frame("cam"),
+        PortSpec::scalar("max_acceleration", dim::length / (dim::angle * dim::angle), "largest d2h/dphi2", "mm/deg^2")
+            .in_frame("cam"),
         PortSpec::scalar("min_curvature_radius", dim::length, "smallest radius of curvature of the contour", "mm"),
     };
+    // How hosts show its angles (docs/writing-plugins.md, "Presentation"): its rates count cam
+    // degrees, so reports and `run` say "mm/deg^2 (cam)".
+    AngleFrame cam;
+    cam.id = "cam";
+    cam.label = "cam angle from the nose";
+    cam.unit_tag = "cam";
+    cam.zero = "the nose";
+    info_.frames = {cam};
     info_.work_counters = {"evaluations"};
   }
   const NodeInfo& info() const override { return info_; }

@@ -13,4 +13,6 @@
 // 7: CamLaw::monotone_breaks and CamLaw::lift_integrals (closed-form queries).
 // 8: the Follower domain interface (mechgraph/domain/follower.hpp); cam.contour takes a follower.
 // 9: NodeType::forecast (a node's work, memory and output size said before it runs).
-#define MECHGRAPH_PLUGIN_ABI_VERSION 9
+// 10: presentation declarations (presentation.hpp): PortSpec::label, angle_frame, presentation;
+//     NodeInfo::frames and notes.
+#define MECHGRAPH_PLUGIN_ABI_VERSION 10

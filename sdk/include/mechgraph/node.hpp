@@ -7,6 +7,7 @@
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/params.hpp>
+#include <mechgraph/presentation.hpp>
 #include <mechgraph/value.hpp>
 
 #include <limits>
@@ -87,6 +88,12 @@ struct PortSpec {
   bool multiple = false;
   bool optional = false;
   std::string display_unit;
+  /// How hosts present it (docs/design/sdk-1.0.md, 1.6): a label ("" : the name with '_' read as
+  /// ' '), the angle frame an angle (or a rate per angle) counts (an id of NodeInfo::frames), and
+  /// for tables and series the figure it calls for.
+  std::string label;
+  std::string angle_frame;
+  Presentation presentation;
 
   static PortSpec scalar(std::string name, Dimension d, std::string doc, std::string unit = {});
   static PortSpec series(std::string name, Dimension d, std::string doc, std::string unit = {});
@@ -95,6 +102,9 @@ struct PortSpec {
   static PortSpec table(std::string name, std::string doc);
   PortSpec& many();
   PortSpec& optional_port();
+  PortSpec& labelled(std::string text) { label = std::move(text); return *this; }
+  PortSpec& in_frame(std::string frame) { angle_frame = std::move(frame); return *this; }
+  PortSpec& presented(Presentation p) { presentation = std::move(p); return *this; }
 };
 
 /// An optional piece of physics a node implements, switched on by the scene's `effects:` or the
@@ -120,11 +130,21 @@ struct NodeInfo {
   std::vector<std::string> work_counters;  // what report_work() may count: "samples", "evaluations"
   /// Which inputs each output depends on; an output not listed depends on all inputs.
   std::map<std::string, std::vector<std::string>> output_dependencies;
+  /// The angle references its ports and channels name (presentation.hpp).
+  std::vector<AngleFrame> frames;
+  /// The notes it makes when a parameter is given, and the output it makes them with.
+  std::vector<NoteDecl> notes;
 
   const ParamSpec* find_param(std::string_view name) const;
   const PortSpec* find_input(std::string_view name) const;
   const PortSpec* find_output(std::string_view name) const;
   bool implements_effect(std::string_view name) const;
+  /// The frame `id`, or nullptr (also for "").
+  const AngleFrame* find_frame(std::string_view id) const {
+    for (const AngleFrame& f : frames)
+      if (!id.empty() && f.id == id) return &f;
+    return nullptr;
+  }
   /// The effect that brings output `port`, or nullptr if the output is always there.
   const EffectSpec* effect_of_output(std::string_view port) const;
   /// The effect that brings parameter `name`, or nullptr.

@@ -53,6 +53,9 @@ struct Table {
   /// A histogram: the axis holds the centres of equal bins, each channel the counts in them.
   /// Writers draw bars that touch; the CSV keeps the centres and counts.
   bool histogram = false;
+  /// A drawing of a part that turns clockwise seen from the front (data, not a name): a report's
+  /// arrow shows it.
+  bool turns_clockwise = false;
   /// Reference values on the axis (a specification's limits): plots draw them as vertical lines.
   struct Mark {
     std::string label;

@@ -1,6 +1,6 @@
 #pragma once
 // Puts one case's values into a graph that was built once: each sweep variable is resolved to the
-// node parameters it reaches (a scene parameter `rpm` to every `$rpm`, `cam.max_lift` to that
+// node parameters it reaches (a scene parameter `rpm` to every `$rpm`, `part.length` to that
 // one), and each case's value is checked against the parameter's dimension and range before it is
 // written. No YAML is read per case. A variable that reaches into a list or a record (a stack
 // link's field) cannot be written in place: such sweeps build each case's graph anew from the

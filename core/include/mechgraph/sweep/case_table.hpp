@@ -1,6 +1,6 @@
 #pragma once
 // The cases of a sweep: which parameters vary (by the name `--set` uses: `rpm` for a scene
-// parameter, `cam.max_lift` for a node's) and the value each takes in each case. Three ways to
+// parameter, `part.length` for a node's) and the value each takes in each case. Three ways to
 // make them: a full grid (`--vary`), a table read from CSV (`--cases`) and a Latin hypercube
 // sample (`--sample`, reproducible from its seed).
 #include <mechgraph/dimension.hpp>
@@ -45,7 +45,7 @@ struct CaseValue {
 CaseValue read_case_value(const std::string& text, const std::string& context);
 
 struct SweepVariable {
-  std::string name;  // "rpm", "cam.max_lift"
+  std::string name;  // "rpm", "part.length"
   std::string unit;  // the unit its values are shown in ("" = SI, or a word)
 };
 

@@ -1,8 +1,8 @@
 #pragma once
 // Runs the cases of a sweep on one pool of worker threads, started once for the whole sweep.
 // Each worker keeps its own copy of the built graph and writes each case's values into it
-// (CaseBinder); every case shares one memo cache, so what cases have in common (a cam evaluated
-// for many speeds or springs) is computed once. Results reach the caller in case order, whatever
+// (CaseBinder); every case shares one memo cache, so what cases have in common (a part evaluated
+// for many speeds) is computed once. Results reach the caller in case order, whatever
 // the thread count, and are the same bit for bit: nodes are pure and a cached value is the value.
 // A failed case is a result with its error; the sweep goes on.
 #include <mechgraph/evaluator.hpp>

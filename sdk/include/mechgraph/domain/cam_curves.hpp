@@ -82,6 +82,23 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
                      std::span<const double> knots, double max_lift, const std::string& whose, int samples,
                      long& evaluations);
 
+// Their presentation (presentation.hpp), declared once here for every node with a lift curve:
+/// The angle frames such a node declares (NodeInfo::frames): "cam", cam angle from the law's zero
+/// (the nose of a symmetric lobe), and "crank", crank angle after the overlap TDC: 2 cam +
+/// nose_timing, with the dead centres marked every 180 deg and angles quoted from them ("3.4 ATDC").
+/// A node without the nose_timing parameter (`installed` false) gets the crank frame as twice
+/// the cam angle only: its figures stay on cam angle.
+std::vector<AngleFrame> cam_angle_frames(bool installed = true);
+/// The note such a node makes: with nose_timing, its events quoted from TDC and BDC, made while
+/// it computes its events table.
+NoteDecl timing_note();
+/// A table port of svaj_table's channels: one stacked panel of lift and its derivatives over
+/// cam angle (crank_angle another scale of the axis), with the events at the checking lift as
+/// labelled points when drawn in crank angle.
+PortSpec svaj_port(std::string name, std::string doc);
+/// A table over cam angle (its axis `axis`, in frame "cam"), drawn plainly or as `role`.
+Presentation over_cam_angle(std::string axis = "cam_angle", Role role = Role::plain);
+
 /// 0.050 in in metres: the American checking lift, beside the European 1 mm.
 inline constexpr double checking_lift_0050_in = 0.050 * 25.4e-3;
 

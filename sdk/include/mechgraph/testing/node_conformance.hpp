@@ -81,6 +81,91 @@ inline bool same_outputs(const OutputSet& a, const OutputSet& b, std::string& wh
   return true;
 }
 
+// What is wrong with the type's presentation declarations (presentation.hpp), or "": every frame
+// named (by a port, a channel, another frame) is declared, frame ids are unique and their base
+// frames form no cycle, codes are unique per channel (value and name), a note names an output and a
+// parameter the type has, a figure's points come from an output it has, a curve over a channel
+// names that channel, a drawing names its pairs' channels.
+inline std::string presentation_problem(const NodeInfo& info) {
+  std::set<std::string> ids;
+  for (const AngleFrame& f : info.frames) {
+    if (f.id.empty()) return "an angle frame without an id";
+    if (!ids.insert(f.id).second) return "angle frame '" + f.id + "' declared twice";
+  }
+  for (const AngleFrame& f : info.frames) {
+    if (!f.base_frame.empty() && !ids.count(f.base_frame)) return "frame '" + f.id + "' maps from frame '" + f.base_frame + "', which is not declared";
+    if (!f.offset_param.empty() && !info.find_param(f.offset_param))
+      return "frame '" + f.id + "' offsets by parameter '" + f.offset_param + "', which the type does not have";
+    if (f.mark_spacing > 0.0 && f.mark_labels.empty()) return "frame '" + f.id + "' has marks without labels";
+    // Follow the base frames: no frame may come back to itself.
+    std::string at = f.id;
+    for (std::size_t steps = 0; !at.empty(); ++steps) {
+      if (steps > info.frames.size()) return "frame '" + f.id + "' is derived from itself (a cycle of base frames)";
+      const AngleFrame* next = info.find_frame(at);
+      at = next ? next->base_frame : std::string();
+    }
+  }
+  auto frame_known = [&](const std::string& id) { return id.empty() || ids.count(id) > 0; };
+  auto channel_problem = [&](const ChannelDecl& c, const std::string& where) -> std::string {
+    if (c.name.empty()) return where + ": a channel declaration without a name";
+    if (!frame_known(c.angle_frame)) return where + " channel '" + c.name + "': frame '" + c.angle_frame + "' is not declared";
+    std::set<double> values;
+    std::set<std::string> names;
+    for (const Code& code : c.codes)
+      if (code.name.empty() || !values.insert(code.value).second || !names.insert(code.name).second)
+        return where + " channel '" + c.name + "': code " + std::to_string(code.value) + " '" + code.name + "' empty or not unique";
+    if ((c.flags & channel_flag::line_from_mark) && c.from_mark.empty()) return where + " channel '" + c.name + "': a line from a mark names no mark";
+    return {};
+  };
+  for (const std::vector<PortSpec>* ports : {&info.inputs, &info.outputs})
+    for (const PortSpec& port : *ports) {
+      const std::string where = "port '" + port.name + "'";
+      if (!frame_known(port.angle_frame)) return where + ": frame '" + port.angle_frame + "' is not declared";
+      const Presentation& p = port.presentation;
+      if (p.has_axis)
+        if (std::string bad = channel_problem(p.axis, where); !bad.empty()) return bad;
+      std::set<std::string> declared;
+      for (const ChannelDecl& c : p.channels) {
+        if (std::string bad = channel_problem(c, where); !bad.empty()) return bad;
+        if (!declared.insert(c.name).second) return where + ": channel '" + c.name + "' declared twice";
+      }
+      if (p.role == Role::curve_over_channel && p.x_channel.empty()) return where + ": a curve over a channel names no x_channel";
+      for (const XyPair& xy : p.pairs)
+        if (xy.x.empty() || xy.y.empty() || xy.layer.empty()) return where + ": an x/y pair without its channels or layer";
+      for (const PointMarks& pm : p.points) {
+        const PortSpec* from = info.find_output(pm.port);
+        if (!from || from->kind != ValueKind::table) return where + ": its points come from '" + pm.port + "', which is no table output of the type";
+        if (pm.labels.size() > pm.x_channels.size()) return where + ": more point labels than x channels";
+      }
+    }
+  for (const NoteDecl& n : info.notes) {
+    if (!info.find_output(n.output)) return "a note made with output '" + n.output + "', which the type does not have";
+    if (!info.find_param(n.when_param)) return "a note made with parameter '" + n.when_param + "', which the type does not have";
+  }
+  return {};
+}
+
+// Declared names the produced value lacks: a curve's x channel or a drawing's pair must be there;
+// other declared channels may be absent (made only with some parameters) and are listed.
+inline std::string presentation_missing(const PortSpec& port, const Value& v, bool& fatal) {
+  fatal = false;
+  if (v.kind() != ValueKind::table) return {};
+  const Table& t = v.as_table();
+  const Presentation& p = port.presentation;
+  if (p.role == Role::curve_over_channel && !t.find(p.x_channel)) {
+    fatal = true;
+    return "output '" + port.name + "' has no channel '" + p.x_channel + "', its declared x_channel";
+  }
+  if (p.has_axis && p.axis.name != t.axis.name) {
+    fatal = true;
+    return "output '" + port.name + "' has axis '" + t.axis.name + "', declared '" + p.axis.name + "'";
+  }
+  std::string absent;
+  for (const ChannelDecl& c : p.channels)
+    if (!t.find(c.name)) absent += (absent.empty() ? "" : ", ") + port.name + "." + c.name;
+  return absent;
+}
+
 }  // namespace detail
 
 /// What the type says about itself: names, docs, defaults inside their own ranges, knobs, units.
@@ -123,6 +208,9 @@ inline Report check_node_info(const NodeInfo& info) {
   }
   r.add(suite, "outputs declared once each, handles name their kind", !info.outputs.empty() && bad.empty(),
         info.outputs.empty() ? "no outputs" : bad);
+  const std::string presentation = detail::presentation_problem(info);
+  r.add(suite, "presentation: frames declared and acyclic, codes unique, notes and points name what the type has",
+        presentation.empty(), presentation);
   return r;
 }
 
@@ -198,6 +286,16 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     if (!info.effect_of_output(o.name) && first.outputs.all().find(o.name) == first.outputs.all().end())
       absent += (absent.empty() ? "not produced with these parameters: " : ", ") + o.name;
   r.add(suite, "produces only its declared outputs, of their kinds", bad.empty(), bad.empty() ? absent : bad);
+  std::string missing, unmet;
+  for (const auto& [port, v] : first.outputs.all()) {
+    const PortSpec* spec = info.find_output(port);
+    if (!spec) continue;
+    bool fatal = false;
+    const std::string text = detail::presentation_missing(*spec, v, fatal);
+    if (fatal) missing = text;
+    else if (!text.empty()) unmet += (unmet.empty() ? "declared, not in these tables: " : ", ") + text;
+  }
+  r.add(suite, "its tables have the axis and x channel their presentation names", missing.empty(), missing.empty() ? unmet : missing);
 
   bad.clear();
   for (const auto& [port, v] : first.outputs.all())
