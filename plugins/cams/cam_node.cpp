@@ -60,6 +60,11 @@ RampSpec read_ramp(const ParamSet& params) {
   return r;
 }
 
+// The smallest action angle: below 0.1 deg the derivatives (h / phi^2, h / phi^3) leave the range
+// of a double for any lift. A ramp leaves room for the event only while action_angle + 2
+// ramp_length < 360 deg, so ramp_length stays below half of 360 deg less this.
+constexpr double min_action_angle = 0.1 * pi / 180.0;
+
 // The main law's share of max_lift once the ramp has taken its own (see ramps.hpp).
 double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
   if (ramp.type == RampType::none) return max_lift;
@@ -101,7 +106,7 @@ class CamNodeType final : public NodeType {
                           "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
                           "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
                           "deg")
-            .at_least(0.1 * std::numbers::pi / 180.0)
+            .at_least(min_action_angle)
             .below(2.0 * std::numbers::pi)
             .with_example(130.0 * std::numbers::pi / 180.0),
         ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().with_example(60e-3),
@@ -133,7 +138,7 @@ class CamNodeType final : public NodeType {
                                              "deg")
                                .with_default(0.0)
                                .non_negative()
-                               .below(2.0 * std::numbers::pi));
+                               .below(pi - 0.5 * min_action_angle));
     info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
                                .with_default(16.0)
                                .at_least(8)

@@ -147,7 +147,7 @@ CamLawDefinition program_law_definition() {
                    ParamSpec::number("lift", dim::length, "how far a rise lifts or a return lowers", "mm")
                        .optional()
                        .positive()
-                       .at_most(10.0),
+                       .at_most(1e3),
                    ParamSpec::choice("law", laws, "normalised law of a rise or return").with_default("cycloidal")},
                   "the segments from the start of lift, e.g. [{type: rise, angle: 60 deg, lift: 9 mm, law: poly345}, "
                   "{type: dwell, angle: 10 deg}, {type: return, angle: 80 deg, lift: 9 mm}]; the lift must end at 0")

@@ -80,7 +80,7 @@ class ValveLiftType final : public NodeType {
                           "lift ratio is largest there); 0: square at the seat",
                           "deg")
             .with_default(0.0)
-            .at_least(-pi / 2.0)
+            .above(-pi / 2.0)
             .at_most(pi / 2.0),
         ParamSpec::integer("curve_points", "points of the curve table over the event widened by a tenth each side")
             .with_default(361.0)

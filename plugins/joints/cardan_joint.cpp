@@ -47,9 +47,9 @@ class CardanJointType final : public NodeType {
             .below(max_input_angle)
             .with_example(30.0 * deg),
         ParamSpec::number("bend_angle", dim::angle,
-                          "bend angle b between the shafts, 0 <= b < 90 deg (evaluated up to 1/cos b = 1e6)", "deg")
+                          "bend angle b between the shafts, 0 <= b < 90 deg (at 90 deg the joint locks)", "deg")
             .non_negative()
-            .at_most(90.0 * deg)
+            .below(0.5 * std::numbers::pi)
             .with_example(20.0 * deg),
         ParamSpec::number("end_float", dim::length, "axial end float of the trunnions, added as one play term", "um")
             .with_default(0.0)
