@@ -60,11 +60,6 @@ RampSpec read_ramp(const ParamSet& params) {
   return r;
 }
 
-// The smallest action angle: below 0.1 deg the derivatives (h / phi^2, h / phi^3) leave the range
-// of a double for any lift. A ramp leaves room for the event only while action_angle + 2
-// ramp_length < 360 deg, so ramp_length stays below half of 360 deg less this.
-constexpr double min_action_angle = 0.1 * pi / 180.0;
-
 // The main law's share of max_lift once the ramp has taken its own (see ramps.hpp).
 double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
   if (ramp.type == RampType::none) return max_lift;

@@ -121,7 +121,7 @@ CamLawDefinition kurz_definition() {
                         "action angle (both phases need room); beyond that only what a double demands: each wave "
                         "wider than one ulp of the cam angle, its jerk finite",
                         "deg")
-          .positive()
+          .at_least(4.0 * min_start_of_lift_ulp)
           .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number(
           "rise_split", dim::none,
@@ -136,7 +136,7 @@ CamLawDefinition kurz_definition() {
           "what a double demands: each wave must hold a double angle of its own (wider than one ulp of the cam "
           "angle) and its jerk must stay finite, or the node is refused naming the wave")
           .optional()
-          .above(0.0)
+          .at_least(0x1p-52)
           .below(1.0),
   };
   d.extra_outputs = {

@@ -345,7 +345,7 @@ CamLawDefinition three_arc_definition() {
                         "output); the radii follow in closed form. Give exactly one of accel_angle and nose_radius",
                         "deg")
           .optional()
-          .positive()
+          .at_least(2.0 * min_start_of_lift_ulp)
           .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number("nose_radius", dim::length,
                         "nose-arc radius r2 of the contour; the flank radius and angle follow in closed form. Give "
