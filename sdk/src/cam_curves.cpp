@@ -213,7 +213,8 @@ ParamSpec checking_lift_param(const std::string& whose) {
                            "measured; the events table adds 0.050 in and the seat (zero lift)",
                            "mm")
       .with_default(1e-3)
-      .positive();
+      .positive()
+      .because("> 0: the seat (zero lift) is the events table's own row");
 }
 
 ParamSpec nose_timing_param() {
@@ -225,7 +226,8 @@ ParamSpec nose_timing_param() {
                            "deg")
       .optional()
       .at_least(-2.0 * std::numbers::pi)
-      .at_most(2.0 * std::numbers::pi);
+      .at_most(2.0 * std::numbers::pi)
+      .because("-360 to 360 deg: one turn of the crank either way of the overlap TDC");
 }
 
 std::vector<PortSpec> lift_event_ports(const std::string& whose) {

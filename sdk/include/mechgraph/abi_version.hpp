@@ -13,4 +13,5 @@
 // 7: CamLaw::monotone_breaks and CamLaw::lift_integrals (closed-form queries).
 // 8: the Follower domain interface (mechgraph/domain/follower.hpp); cam.contour takes a follower.
 // 9: NodeType::forecast (a node's work, memory and output size said before it runs).
-#define MECHGRAPH_PLUGIN_ABI_VERSION 9
+// 10: ParamSpec::range_reason (why each finite bound of a parameter is where it is).
+#define MECHGRAPH_PLUGIN_ABI_VERSION 10
