@@ -1,11 +1,12 @@
 // Each side of each declared limit: every numeric parameter with a finite bound, of every node of
-// the example scenes and of tests/stability/walk_scenes/ (which hold the types no example uses and
-// the witnesses below). Just inside the bound (the bound itself when it is included, else the next
-// double or whole number inward) some node of the type must compute finite outputs: a range limit
-// belongs only where the mathematics or the range of a double demands it, so a value it admits is
-// a valid input, for some values of the node's other parameters. Just outside, every node must
-// refuse it with a message naming the node, the parameter and the limit. Accuracy knobs are
-// checked outside only. (parameter_walk_test.cpp goes further out, to the huge and the tiny.)
+// the example scenes, of tests/stability/walk_scenes/ (the types no example uses) and of
+// tests/stability/witness_scenes/ (the witnesses below). Just inside the bound (the bound itself
+// when it is included, else the next double or whole number inward) some node of the type must
+// compute finite outputs: a range limit belongs only where the mathematics or the range of a double
+// demands it, so a value it admits is a valid input, for some values of the node's other
+// parameters. Just outside, every node must refuse it with a message naming the node, the parameter
+// and the limit. Accuracy knobs are checked outside only. (parameter_walk_test.cpp goes further
+// out, to the huge and the tiny.)
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
@@ -76,11 +77,11 @@ bool simulates(const std::string& type) { return type == "valvetrain.dynamics" |
 // The type, parameter and side of each bound whose inside value its node refuses in every scene
 // that holds the type. A value the other parameters of one node make infeasible (a ramp_length
 // no action angle of that node leaves room for, a checking lift above that cam's lift) is valid
-// when some node of the type computes it: tests/stability/walk_scenes/ holds those witnesses.
+// when some node of the type computes it: tests/stability/witness_scenes/ holds those witnesses.
 void walk_limits(bool simulating, std::set<std::string>& contradictions) {
   std::set<std::string> refused, accepted;
   std::vector<std::filesystem::path> files;
-  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes"})
+  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes", "/tests/stability/witness_scenes"})
     for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + folder))
       if (entry.path().extension() == ".yaml") files.push_back(entry.path());
   int limits = 0;
