@@ -110,6 +110,7 @@ ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
   if (has_default) s.default_value = param_value(d.default_value, s, what + " default");
   if (d.flags & MG_PF_HAS_EXAMPLE) s.example_value = param_value(d.example_value, s, what + " example");
   s.display_unit = text(MG_FIELD_OR(&d, mg_param_decl, display_unit, nullptr));
+  s.range_reason = text(MG_FIELD_OR(&d, mg_param_decl, range_reason, nullptr));
   return s;
 }
 

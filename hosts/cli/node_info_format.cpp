@@ -70,6 +70,7 @@ void write_params_text(std::ostream& os, const std::vector<ParamSpec>& params, c
     if (const std::string r = range_text(p); !r.empty()) os << "; " << r;
     if (p.knob) os << "; accuracy knob";
     os << ")\n" << indent << "    " << p.doc << "\n";
+    if (!p.range_reason.empty()) os << indent << "    range: " << p.range_reason << "\n";
     if (!p.choices.empty()) {
       os << indent << "    choices:";
       for (const auto& c : p.choices) os << " " << c;
@@ -219,6 +220,7 @@ void write_params_json(JsonWriter& json, const std::vector<ParamSpec>& params) {
     }
     if (std::isfinite(p.min)) json.key(p.min_exclusive ? "above" : "min").value(p.min);
     if (std::isfinite(p.max)) json.key(p.max_exclusive ? "below" : "max").value(p.max);
+    if (!p.range_reason.empty()) json.key("range_reason").value(p.range_reason);
     if (!p.choices.empty()) {
       json.key("choices").begin_array();
       for (const auto& c : p.choices) json.value(c);

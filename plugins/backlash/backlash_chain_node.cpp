@@ -84,22 +84,26 @@ class BacklashChainType final : public NodeType {
                                "k_i: how much of joint i's play reaches the rod's line of action (1 on the rod's line), "
                                "one per joint in the order of `joints`")
             .positive()
-            .at_most(1e6),
+            .at_most(1e6)
+            .because("> 0: a play reduced along the chain; <= 1e6: far past any lever"),
         ParamSpec::number("actuator_backlash", L, "L_act: mean backlash of the actuator itself (maker's data), peak to peak",
                           "um")
             .non_negative()
-            .at_most(1.0),
+            .at_most(1.0)
+            .because(">= 0: a play; <= 1 m: far past any actuator"),
         ParamSpec::number("actuator_backlash_limit", L,
                           "dL_act: limit deviation of the actuator's backlash (worst case; 3 sigma for RSS and Monte Carlo)",
                           "um")
             .non_negative()
-            .at_most(1.0),
+            .at_most(1.0)
+            .because(">= 0: a deviation; <= 1 m: far past any actuator"),
         ParamSpec::number("lever_arm", L,
                           "R: moment arm of the rod about the swivel axis (sign = sense of rotation); or give the geometry",
                           "mm")
             .optional()
             .at_least(-1e3)
-            .at_most(1e3),
+            .at_most(1e3)
+            .because("within 1 km either way (the sign is the sense of rotation): far past any linkage"),
         ParamSpec::number_list("rod_attach_fixed", L, "F: the rod's end on the fixed part (x, y, z); with the geometry", "mm")
             .optional(),
         ParamSpec::number_list("rod_attach_moving", L, "P: the rod's end on the nozzle (x, y, z); with the geometry", "mm")
@@ -109,14 +113,17 @@ class BacklashChainType final : public NodeType {
             .optional(),
         ParamSpec::number("min_lever_arm", L, "smallest |R| accepted; below it the design is singular", "mm")
             .with_default(1e-3)
-            .positive(),
+            .positive()
+            .because("> 0: a design with a zero lever arm is singular"),
         ParamSpec::number("load", dim::force, "force on the rod while the play is measured (with compliance)", "N")
             .with_default(0.0)
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a force along the rod"),
         ParamSpec::number("stiffness", dim::stiffness,
                           "stiffness of the chain reduced to the rod, N/m (needed with compliance)", "N/mm")
             .optional()
-            .positive(),
+            .positive()
+            .because("> 0: a stiffness"),
         samples_param(),
         seed_param(),
         threads_param(),

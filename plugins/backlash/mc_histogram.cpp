@@ -7,7 +7,8 @@ ParamSpec histogram_bins_param() {
                             "more than 131072 samples lays them across a pilot's range: up to half as many again)")
       .with_default(40.0)
       .at_least(2)
-      .at_most(1e5);
+      .at_most(1e5)
+      .because("2 to 100,000 bins: a histogram needs two, more than a sample fills");
 }
 
 PortSpec mc_histogram_port(const std::string& what) {

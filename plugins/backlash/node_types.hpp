@@ -28,6 +28,7 @@ inline ParamSpec samples_param() {
       .with_default(100000.0)
       .at_least(100)
       .at_most(max_samples)
+      .because("100 to 1e7: fewer give no tail quantile; the samples are kept for the quantiles (1e7 is 80 MB)")
       .as_knob();
 }
 inline ParamSpec seed_param() {
@@ -35,7 +36,8 @@ inline ParamSpec seed_param() {
                                     "the same numbers on every platform and for any number of threads")
       .with_default(1.0)
       .non_negative()
-      .at_most(9007199254740992.0);
+      .at_most(9007199254740992.0)
+      .because("0 to 2^53: a whole number a double holds exactly");
 }
 
 /// Threads the Monte Carlo samples may be drawn on. The node contract gives a node no share of
@@ -46,7 +48,8 @@ inline ParamSpec threads_param() {
                                        "the results are the same bit for bit for any number")
       .with_default(1.0)
       .non_negative()
-      .at_most(max_threads);
+      .at_most(max_threads)
+      .because("0 (all cores) to 256 worker threads");
 }
 
 /// A number as text for messages, with up to six significant digits.

@@ -39,18 +39,21 @@ class StackLinearType final : public NodeType {
             {
                 // Ranges that keep every sum, square and sample of a stack finite (a km-sized part,
                 // tolerances to 100 m, lever ratios to 1e6).
-                ParamSpec::number("nominal", dim::length, "nominal size of the part", "mm").at_least(-1e3).at_most(1e3),
+                ParamSpec::number("nominal", dim::length, "nominal size of the part", "mm").at_least(-1e3).at_most(1e3).because("within 1 km either way: far past any stack"),
                 ParamSpec::number("upper", dim::length, "upper limit deviation of the part from nominal (es, ES)", "mm")
                     .at_least(-100.0)
-                    .at_most(100.0),
+                    .at_most(100.0)
+                    .because("within 100 m either way: far past any tolerance"),
                 ParamSpec::number("lower", dim::length, "lower limit deviation of the part from nominal (ei, EI)", "mm")
                     .at_least(-100.0)
-                    .at_most(100.0),
+                    .at_most(100.0)
+                    .because("within 100 m either way: far past any tolerance"),
                 ParamSpec::number("sensitivity", dim::none,
                                   "how much of the part reaches the result (+1 opens the gap, -1 closes it; a lever ratio)")
                     .with_default(1.0)
                     .at_least(-1e6)
-                    .at_most(1e6),
+                    .at_most(1e6)
+                    .because("within 1e6 either way: far past any lever"),
                 distribution_param("distribution",
                                    "spread over the tolerance: normal with T = 6 sigma, uniform, or symmetric triangular"),
                 ParamSpec::text("label", "name of the link in reports").optional(),

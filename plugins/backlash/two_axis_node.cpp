@@ -28,7 +28,8 @@ class TwoAxisType final : public NodeType {
         ParamSpec::number("max_condition", dim::none,
                           "largest accepted condition number of J; above it the two rods (nearly) act about the same axis")
             .with_default(1000.0)
-            .at_least(1.0),
+            .at_least(1.0)
+            .because(">= 1: a condition number is never below 1"),
     };
     info_.inputs = {
         PortSpec::scalar("rod_backlash_1", dim::length, "free play of actuator 1's rod, peak to peak (e.g. a chain's max)",

@@ -95,16 +95,18 @@ class CamNodeType final : public NodeType {
                           "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
                           "mm")
             .positive()
-            .at_most(1e3)  // 1 km: the square of a lift (time-area, energies) stays far inside a double
+            .at_most(1e3)
+            .because("> 0: a lift event must lift; <= 1 km: squares of a lift (time-area, energies) stay far inside a double")
             .with_example(9e-3),
         ParamSpec::number("action_angle", dim::angle,
                           "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
                           "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
                           "deg")
-            .at_least(0.1 * std::numbers::pi / 180.0)
+            .at_least(min_action_angle)
             .below(2.0 * std::numbers::pi)
+            .because(">= 0.1 deg: below it h / phi^2 and h / phi^3 leave the range of a double for some lift; < 360 deg: the event fits in one turn")
             .with_example(130.0 * std::numbers::pi / 180.0),
-        ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().with_example(60e-3),
+        ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().because("> 0: a radius").with_example(60e-3),
     };
     if (derived_) {
       for (std::size_t i = 0; i < 2; ++i) {
@@ -126,18 +128,21 @@ class CamNodeType final : public NodeType {
     info_.params.push_back(ParamSpec::number("ramp_height", dim::length,
                                              "lift at the end of each ramp (set with a ramp, 0 without)", "mm")
                                .with_default(0.0)
-                               .non_negative());
+                               .non_negative()
+                               .because(">= 0: a lift (0: no ramp)"));
     info_.params.push_back(ParamSpec::number("ramp_length", dim::angle,
                                              "cam angle of each ramp, before and after the action angle (set with a "
                                              "ramp, 0 without)",
                                              "deg")
                                .with_default(0.0)
                                .non_negative()
-                               .below(2.0 * std::numbers::pi));
+                               .below(pi - 0.5 * min_action_angle)
+                               .because(">= 0: an angle (0: no ramp); < 180 - 0.05 deg: action_angle (at least 0.1 deg) plus two ramps must stay below 360 deg"));
     info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
                                .with_default(16.0)
                                .at_least(8)
                                .at_most(1e6)
+                               .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: 8 already agree with 3200 to 1e-13, more only costs time")
                                .as_knob());
     info_.params.push_back(checking_lift_param("cam"));
     info_.params.push_back(nose_timing_param());
@@ -145,7 +150,8 @@ class CamNodeType final : public NodeType {
                                                               "widened by a tenth of its width each side")
                                .with_default(361.0)
                                .at_least(3)
-                               .at_most(1e6));
+                               .at_most(1e6)
+                               .because(">= 3: a curve needs its two ends and a point between; <= 1e6: a table for plotting, bounded in memory"));
     info_.outputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name), "follower lift over cam angle with 3 derivatives"),
         PortSpec::scalar("max_lift", dim::length, "follower (tappet) lift at the nose, ramps included", "mm"),

@@ -15,6 +15,14 @@
 
 namespace mechgraph::cams {
 
+/// The smallest action_angle, 0.1 deg: below it the derivatives (h / phi^2, h / phi^3) leave the
+/// range of a double for any lift. Laws derive the least widths of their pieces from it: a piece
+/// starting at the start of lift (-action_angle / 2) needs two ulps of that angle to hold a double
+/// of its own, and at 0.05 deg (in [2^-11, 2^-10) rad) an ulp is 2^-63 rad.
+inline constexpr double min_action_angle = 0.1 * 3.14159265358979323846 / 180.0;
+/// One ulp of the start-of-lift angle at the smallest action angle, 2^-63 rad.
+inline constexpr double min_start_of_lift_ulp = 0x1p-63;
+
 /// The common cam parameters, already in SI, handed to each law's factory.
 struct CamBasics {
   double max_lift = 0.0;      // m

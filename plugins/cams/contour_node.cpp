@@ -174,7 +174,8 @@ class ContourNodeType final : public NodeType {
         ParamSpec::number("roller_radius", dim::length, "roller radius (roller; default the law's)", "mm")
             .optional()
             .at_least(1e-6)
-            .at_most(1.0),
+            .at_most(1.0)
+            .because("1 um to 1 m: a roller follower of a cam (a knife edge is a flat follower's limit, not a roller)"),
         ParamSpec::number("offset", dim::length,
                           "roller axis offset from the cam centre, positive to the side that lowers the pressure "
                           "angle on the rise",
@@ -191,25 +192,30 @@ class ContourNodeType final : public NodeType {
             .with_default(1e-6)
             .at_least(1e-9)
             .at_most(1e-3)
+            .because("1e-9 m to 1 mm: below 1 nm the chords lie under the contour's rounding, above 1 mm the drawing is no cam's")
             .as_knob(),
         ParamSpec::integer("samples", "samples per smooth piece for the peak searches (then refined by Brent)")
             .with_default(16.0)
             .at_least(8)
             .at_most(1e6)
+            .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: more only costs time")
             .as_knob(),
-        ParamSpec::integer("curve_points", "points of the contact table over the event").with_default(361.0).at_least(3).at_most(1e6),
+        ParamSpec::integer("curve_points", "points of the contact table over the event").with_default(361.0).at_least(3).at_most(1e6).because(">= 3: a curve needs its two ends and a point between; <= 1e6: bounded in memory"),
         ParamSpec::number("load", dim::force, "contact load on the cam, constant over the event (or connect forces)", "N")
             .optional()
             .non_negative()
-            .at_most(1e9),
+            .at_most(1e9)
+            .because(">= 0: a compressive contact force; <= 1 GN: far past any cam, stresses stay inside a double"),
         ParamSpec::number("load_ratio", dim::none,
                           "multiplies the connected forces' contact_force (e.g. the rocker ratio, valve to cam side)")
             .with_default(1.0)
-            .positive(),
+            .positive()
+            .because("> 0: a factor on the load"),
         ParamSpec::number("contact_length", dim::length, "length of the contact line (cam width under the follower); needed for the stress", "mm")
             .optional()
             .at_least(1e-6)
-            .at_most(10.0),
+            .at_most(10.0)
+            .because("1 um to 10 m: a line contact's length (Hertz divides by it)"),
         ParamSpec::number("pressure_angle_limit", dim::angle,
                           "largest |pressure angle| the design accepts; a note when max_pressure_angle exceeds it. "
                           "Default by follower: 30 deg translating, 35 deg pivoted (the common design rule, e.g. "
@@ -218,24 +224,28 @@ class ContourNodeType final : public NodeType {
                           "deg")
             .optional()
             .positive()
-            .below(0.5 * std::numbers::pi),
+            .below(0.5 * std::numbers::pi)
+            .because("> 0 and < 90 deg: at 90 deg the follower is pushed square to its own motion"),
         ParamSpec::number("contact_stress_limit", dim::stress,
                           "largest Hertz contact pressure the materials accept; a note when max_contact_stress exceeds "
                           "it. Default: 1.2 GPa under a flat face (sliding), 1.9 GPa under a roller (rolling), typical "
                           "of hardened steel valve trains: set the value for your materials",
                           "MPa")
             .optional()
-            .positive(),
-        ParamSpec::number("youngs_modulus", dim::stress, "cam material", "GPa").with_default(206e9).at_least(1e6).at_most(1e13),
-        ParamSpec::number("poisson_ratio", dim::none, "cam material").with_default(0.3).at_least(0.0).below(0.5),
+            .positive()
+            .because("> 0: an allowable stress"),
+        ParamSpec::number("youngs_modulus", dim::stress, "cam material", "GPa").with_default(206e9).at_least(1e6).at_most(1e13).because("1 MPa to 10 TPa: from rubber to past diamond (about 1.2 TPa)"),
+        ParamSpec::number("poisson_ratio", dim::none, "cam material").with_default(0.3).at_least(0.0).below(0.5).because(">= 0 and < 0.5: 0.5 is incompressible, where 1 - nu^2 over E of the Hertz formula loses meaning for a linear solid"),
         ParamSpec::number("follower_youngs_modulus", dim::stress, "follower material (default the cam's)", "GPa")
             .optional()
             .at_least(1e6)
-            .at_most(1e13),
+            .at_most(1e13)
+            .because("1 MPa to 10 TPa: from rubber to past diamond (about 1.2 TPa)"),
         ParamSpec::number("follower_poisson_ratio", dim::none, "follower material (default the cam's)")
             .optional()
             .at_least(0.0)
-            .below(0.5),
+            .below(0.5)
+            .because(">= 0 and < 0.5: 0.5 is incompressible"),
     };
     info_.outputs = {
         PortSpec::table("contour", "closed contour: x, y (and pitch_x, pitch_y for a roller) in the cam frame over "

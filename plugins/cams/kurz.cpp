@@ -121,7 +121,8 @@ CamLawDefinition kurz_definition() {
                         "action angle (both phases need room); beyond that only what a double demands: each wave "
                         "wider than one ulp of the cam angle, its jerk finite",
                         "deg")
-          .positive()
+          .at_least(4.0 * min_start_of_lift_ulp)
+          .because(">= 4 x 2^-63 rad: each of its two waves must hold a double angle of its own, two ulps of the start of lift at the smallest action angle (0.05 deg from the nose)")
           .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number(
           "rise_split", dim::none,
@@ -136,8 +137,9 @@ CamLawDefinition kurz_definition() {
           "what a double demands: each wave must hold a double angle of its own (wider than one ulp of the cam "
           "angle) and its jerk must stay finite, or the node is refused naming the wave")
           .optional()
-          .above(0.0)
-          .below(1.0),
+          .at_least(0x1p-52)
+          .below(1.0)
+          .because(">= 2^-52: the quarter sine (rise_split x accel_angle) must hold a double angle at the start of lift, two ulps of that angle, which exceeds accel_angle; < 1: at 1 the quarter cosine vanishes"),
   };
   d.extra_outputs = {
       PortSpec::scalar("rise_split", dim::none, "share of the positive phase taken by the quarter sine, as used"),

@@ -413,11 +413,13 @@ CamLawDefinition polydyne_definition() {
                         "[2, q, q+s, q+2s, q+3s] (s = exponent_step); exponents is then not used",
                         "deg")
           .optional()
-          .positive(),
+          .at_least(polydyne_accel_angle(polydyne_q_max(1.0), 1.0, min_action_angle))
+          .because(">= the narrowest phase the exponents reach (q + 3 s up to 1000, s = 1) at the smallest action angle, 0.1 deg"),
       ParamSpec::number("exponent_step", dim::none, "s, the spacing of the exponents found for accel_angle")
           .with_default(8.0)
           .at_least(1.0)
-          .at_most(100.0),
+          .at_most(100.0)
+          .because("1 to 100: exponents at least 1 apart, and q + 3 s within the family's 1000"),
       ParamSpec::number_list("exponents", dim::none,
                              "the exponents 2, p, q, r, s: five even integers, the first 2, strictly increasing, "
                              "at most 1000; they set the positive-acceleration phase (higher exponents: shorter, "
@@ -430,7 +432,7 @@ CamLawDefinition polydyne_definition() {
       // phi_y falls as q grows; q from 5 (derivatives to the 5th stay finite at the nose, as cam
       // synthesis needs) to 1000 - 3s.
       const double s = params.number("exponent_step"), target = params.number("accel_angle");
-      const double q_low = 5.0, q_high = 1000.0 - 3.0 * s;
+      const double q_low = 5.0, q_high = polydyne_q_max(s);
       auto phase = [&](double q) { return polydyne_accel_angle(q, s, basics.action_angle); };
       const double widest = phase(q_low), narrowest = phase(q_high);
       if (!(target <= widest && target >= narrowest)) {

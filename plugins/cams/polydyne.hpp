@@ -116,6 +116,10 @@ class RealPolydyneLaw final : public CamLaw {
 /// The positive-acceleration phase (from the start of lift) of the polydyne with exponents
 /// [2, q, q+s, q+2s, q+3s] over `action_angle`: phi_p (1 - u*), x''(u*) = 0.
 double polydyne_accel_angle(double q, double step, double action_angle);
+/// The largest q found for accel_angle with step s: the last exponent q + 3 s stays at most 1000.
+/// The narrowest phase, polydyne_accel_angle(polydyne_q_max(1), 1, min_action_angle), is
+/// accel_angle's least value.
+inline double polydyne_q_max(double step) { return 1000.0 - 3.0 * step; }
 
 /// cam.polydyne: exponents (default 2, 6, 10, 14, 18), or accel_angle with exponent_step; extra
 /// output exponent_q (the second exponent).

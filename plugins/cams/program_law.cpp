@@ -144,11 +144,12 @@ CamLawDefinition program_law_definition() {
   d.params = {ParamSpec::record_list(
                   "segments",
                   {ParamSpec::choice("type", {"rise", "dwell", "return"}, "what the segment does"),
-                   ParamSpec::number("angle", dim::angle, "cam angle of the segment", "deg").positive().below(2.0 * pi),
+                   ParamSpec::number("angle", dim::angle, "cam angle of the segment", "deg").positive().below(2.0 * pi).because("> 0 and < 360 deg: a segment of one turn"),
                    ParamSpec::number("lift", dim::length, "how far a rise lifts or a return lowers", "mm")
                        .optional()
                        .positive()
-                       .at_most(10.0),
+                       .at_most(1e3)
+                       .because("> 0: a segment that lifts; <= 1 km: as max_lift"),
                    ParamSpec::choice("law", laws, "normalised law of a rise or return").with_default("cycloidal")},
                   "the segments from the start of lift, e.g. [{type: rise, angle: 60 deg, lift: 9 mm, law: poly345}, "
                   "{type: dwell, angle: 10 deg}, {type: return, angle: 80 deg, lift: 9 mm}]; the lift must end at 0")

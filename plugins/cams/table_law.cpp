@@ -498,7 +498,8 @@ CamLawDefinition table_law_definition() {
                         "um")
           .optional()
           .positive()
-          .at_most(1e-3),
+          .at_most(1e-3)
+          .because("> 0: a digit's size; <= 1 mm: a measuring machine's last digit of a valve lift"),
   };
   d.extra_inputs = {
       PortSpec::handle("master", std::string(CamLaw::kind_name),

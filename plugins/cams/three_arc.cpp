@@ -345,21 +345,24 @@ CamLawDefinition three_arc_definition() {
                         "output); the radii follow in closed form. Give exactly one of accel_angle and nose_radius",
                         "deg")
           .optional()
-          .positive()
+          .at_least(2.0 * min_start_of_lift_ulp)
+          .because(">= 2 x 2^-63 rad: the flank arc must hold a double angle of its own, two ulps of the start of lift at the smallest action angle (0.05 deg from the nose)")
           .with_example(30.0 * std::numbers::pi / 180.0),
       ParamSpec::number("nose_radius", dim::length,
                         "nose-arc radius r2 of the contour; the flank radius and angle follow in closed form. Give "
                         "exactly one of accel_angle and nose_radius",
                         "mm")
           .optional()
-          .positive(),
+          .positive()
+          .because("> 0: a radius (its upper limit, where the flank arcs vanish, follows from the design and is checked with it)"),
       ParamSpec::choice("follower", {"flat", "roller"},
                         "flat-faced tappet, or in-line roller (the lift is that of the roller centre on the offset "
                         "contour)")
           .with_default(std::string("flat")),
       ParamSpec::number("roller_radius", dim::length, "roller radius, required for follower = roller", "mm")
           .optional()
-          .positive(),
+          .positive()
+          .because("> 0: a radius"),
   };
   d.extra_outputs = {
       PortSpec::scalar("flank_radius", dim::length, "flank-arc radius r1 of the contour", "mm"),

@@ -38,7 +38,7 @@ class FitNodeType final : public NodeType {
     info_.type = iso ? "fit.iso286" : "fit.explicit";
     info_.summary = iso ? "hole/shaft fit from ISO 286 designations (e.g. 20 mm H11/d11): deviations and clearances"
                         : "hole/shaft fit from explicit limit deviations (the source's dB/dH): deviations and clearances";
-    info_.params.push_back(ParamSpec::number("size", dim::length, "nominal diameter", "mm").positive().at_most(3.15).with_example(20e-3));
+    info_.params.push_back(ParamSpec::number("size", dim::length, "nominal diameter", "mm").positive().at_most(3.15).because("> 0: a diameter; <= 3.15 m: the end of the ISO 286 tables").with_example(20e-3));
     if (iso) {
       info_.params.push_back(ParamSpec::text("hole", "hole tolerance class, upper case: fundamental deviation + grade, e.g. H11, JS7, K6").with_example("H7"));
       info_.params.push_back(ParamSpec::text("shaft", "shaft tolerance class, lower case, e.g. d11, h9, js6, k6").with_example("g6"));
@@ -52,7 +52,8 @@ class FitNodeType final : public NodeType {
           info_.params.push_back(ParamSpec::number(std::string(part) + "_" + side, dim::length,
                                                    std::string(side) + " limit deviation of the " + part + " (signed)", "um")
                                      .at_least(-1.0)
-                                     .at_most(1.0)  // a metre either way: far past any fit, finite in every sum
+                                     .at_most(1.0)
+                                     .because("within 1 m either way: far past any fit, finite in every sum")
                                      .with_example(explicit_example(part, side)));
     }
     for (const char* part : {"hole", "shaft"})
@@ -64,17 +65,21 @@ class FitNodeType final : public NodeType {
     info_.params.push_back(ParamSpec::number("hole_expansion", dim::per_kelvin, "thermal expansion coefficient of the hole's part (thermal), -1e-4 .. 1e-3 1/K", "1/K")
                                .with_default(11.5e-6)
                                .at_least(-1e-4)
-                               .at_most(1e-3));
+                               .at_most(1e-3)
+                               .because("-1e-4 to 1e-3 per K: from the most negative known solids to past any plastic"));
     info_.params.push_back(ParamSpec::number("shaft_expansion", dim::per_kelvin, "thermal expansion coefficient of the shaft (thermal), -1e-4 .. 1e-3 1/K", "1/K")
                                .with_default(11.5e-6)
                                .at_least(-1e-4)
-                               .at_most(1e-3));
+                               .at_most(1e-3)
+                               .because("-1e-4 to 1e-3 per K: from the most negative known solids to past any plastic"));
     info_.params.push_back(ParamSpec::number("assembly_temperature", dim::temperature, "temperature the sizes hold at (thermal)", "degC")
                                .with_default(293.15)
-                               .positive());
+                               .positive()
+                               .because("> 0 K: an absolute temperature"));
     info_.params.push_back(ParamSpec::number("operating_temperature", dim::temperature, "temperature in service (thermal)", "degC")
                                .with_default(293.15)
-                               .positive());
+                               .positive()
+                               .because("> 0 K: an absolute temperature"));
     info_.effects = {{"thermal", "clearances at operating temperature from the parts' different expansion"}};
     info_.outputs = {
         PortSpec::handle("fit", std::string(Fit::kind_name), "the fit, for joints"),

@@ -31,7 +31,7 @@ class FollowerType final : public NodeType {
 };
 
 ParamSpec roller_radius() {
-  return ParamSpec::number("roller_radius", dim::length, "roller radius", "mm").at_least(1e-6).at_most(1.0).with_example(10e-3);
+  return ParamSpec::number("roller_radius", dim::length, "roller radius", "mm").at_least(1e-6).at_most(1.0).because("1 um to 1 m: a roller (a knife edge is a flat follower's limit, not a roller)").with_example(10e-3);
 }
 ParamSpec pivot(const char* axis, double example) {
   return ParamSpec::number(std::string("pivot_") + axis, dim::length,
@@ -41,6 +41,7 @@ ParamSpec pivot(const char* axis, double example) {
                            "mm")
       .at_least(-10.0)
       .at_most(10.0)
+      .because("within 10 m either way: far past any cam follower's pivot")
       .with_example(example);
 }
 
@@ -62,6 +63,7 @@ void add_follower_types(NodeTypeList& out) {
                                                "mm")
                                  .at_least(-1.0)
                                  .at_most(1.0)
+                                 .because("within 1 m either way: far past any cam")
                                  .with_example(3e-3)},
       [](const ParamSet& p) { return make_roller(p.number("roller_radius"), p.number("offset")); }));
   out.push_back(std::make_shared<const FollowerType>(
@@ -75,7 +77,8 @@ void add_follower_types(NodeTypeList& out) {
                                                "mm")
                                  .with_default(0.0)
                                  .at_least(-1.0)
-                                 .at_most(1.0)},
+                                 .at_most(1.0)
+                                 .because("within 1 m either way: far past any cam")},
       [](const ParamSet& p) { return make_pivoted_flat(p.number("pivot_x"), p.number("pivot_y"), p.number("face_offset")); }));
   out.push_back(std::make_shared<const FollowerType>(
       "follower.pivoted_roller",
@@ -85,6 +88,7 @@ void add_follower_types(NodeTypeList& out) {
                              ParamSpec::number("arm_length", dim::length, "pivot to roller centre", "mm")
                                  .at_least(1e-4)
                                  .at_most(10.0)
+                                 .because("0.1 mm to 10 m: a follower arm (the lever divides by it)")
                                  .with_example(35e-3),
                              roller_radius()},
       [](const ParamSet& p) {

@@ -74,18 +74,21 @@ class ValveLiftType final : public NodeType {
                           "mm")
             .optional()
             .at_least(1e-4)
-            .at_most(10.0),
+            .at_most(10.0)
+            .because("0.1 mm to 10 m: a rocker arm (the ratio divides by it)"),
         ParamSpec::number("valve_arm_angle", dim::angle,
                           "turn of the arm from the valve closed at which it stands square to the valve axis (the valve "
                           "lift ratio is largest there); 0: square at the seat",
                           "deg")
             .with_default(0.0)
-            .at_least(-pi / 2.0)
-            .at_most(pi / 2.0),
+            .above(-pi / 2.0)
+            .at_most(pi / 2.0)
+            .because("> -90 and <= 90 deg: the valve must rise with the arm's turn psi, cos(psi - angle) > 0 from psi = 0"),
         ParamSpec::integer("curve_points", "points of the curve table over the event widened by a tenth each side")
             .with_default(361.0)
             .at_least(3)
-            .at_most(1e6),
+            .at_most(1e6)
+            .because(">= 3: a curve needs its two ends and a point between; <= 1e6: bounded in memory"),
     };
     info_.outputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name), "valve lift over cam angle (for valvetrain.valve_motion, "

@@ -45,15 +45,18 @@ class CardanJointType final : public NodeType {
                           "deg")
             .above(-max_input_angle)
             .below(max_input_angle)
+            .because("within 2^55 rad either way: beyond, neighbouring doubles lie more than a turn apart and the angle names no position")
             .with_example(30.0 * deg),
         ParamSpec::number("bend_angle", dim::angle,
-                          "bend angle b between the shafts, 0 <= b < 90 deg (evaluated up to 1/cos b = 1e6)", "deg")
+                          "bend angle b between the shafts, 0 <= b < 90 deg (at 90 deg the joint locks)", "deg")
             .non_negative()
-            .at_most(90.0 * deg)
+            .below(0.5 * std::numbers::pi)
+            .because(">= 0: an angle between shafts; < 90 deg: at 90 deg the joint locks (1/cos b grows without bound)")
             .with_example(20.0 * deg),
         ParamSpec::number("end_float", dim::length, "axial end float of the trunnions, added as one play term", "um")
             .with_default(0.0)
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a play"),
         joint_label_param(),
     };
     info_.inputs = {PortSpec::handle("fits", std::string(Fit::kind_name),

@@ -9,17 +9,17 @@
 
 namespace mechgraph::joints {
 
-double CardanKinematics::bend_limit() { return std::acos(1.0 / max_secant); }
-
 CardanKinematics::CardanKinematics(double bend_angle) : b_(bend_angle) {
   constexpr double deg = std::numbers::pi / 180.0;
   if (!(b_ >= 0.0)) throw NodeError("bend_angle", "the bend angle must be zero or positive");
-  if (!(b_ <= bend_limit())) {
+  // The joint locks at 90 deg (its speed ratio 1/cos b grows without bound), the one limit the
+  // mathematics sets. "90 deg" reads as the double nearest pi/2, which is refused as the locked
+  // joint; every double below it has cos b >= 1.6e-16, so 1/cos b <= 6.2e15 stays finite.
+  if (!(b_ < 0.5 * std::numbers::pi)) {
     std::ostringstream msg;
     msg << std::setprecision(10) << "bend_angle = " << b_ / deg
-        << " deg: a cardan joint locks as the bend angle approaches 90 deg (its speed ratio reaches 1/cos b); "
-           "bend angles are evaluated up to acos(1e-6) = "
-        << bend_limit() / deg << " deg (1/cos b <= 1e6)";
+        << " deg: a cardan joint locks at a bend of 90 deg (its speed ratio 1/cos b grows without bound); the bend "
+           "angle must stay below 90 deg";
     throw NodeError("bend_angle", msg.str());
   }
   cos_b_ = std::cos(b_);

@@ -14,19 +14,14 @@
 //   speed ratio    w2/w1 = dt2/dt1 = cos b / (1 - sin^2 b cos^2 t1)
 //                        = cos b / (sin^2 t1 + cos^2 t1 cos^2 b)   (a sum of squares: no cancellation)
 //       ranging from cos b (t1 = 90 deg) to 1/cos b (t1 = 0).
-// The joint locks as b -> 90 deg: 1/cos b grows without bound. Bend angles are accepted up to
-// acos(1 / max_secant) (1/cos b <= 1e6, b <= 89.99994 deg); beyond, and for b >= 90 deg, the
-// constructor throws NodeError("bend_angle").
+// The joint locks as b -> 90 deg: 1/cos b grows without bound. Every bend angle below 90 deg is
+// accepted (the double below pi/2 has 1/cos b = 6.2e15, finite); for b >= 90 deg (the double
+// nearest pi/2 included, as "90 deg" reads) the constructor throws NodeError("bend_angle").
 namespace mechgraph::joints {
 
 class CardanKinematics final {
  public:
-  /// Largest speed ratio 1/cos b accepted: bend angles up to acos(1e-6) = 89.9999427 deg.
-  static constexpr double max_secant = 1e6;
-  /// acos(1 / max_secant), rad.
-  static double bend_limit();
-
-  /// Throws NodeError("bend_angle") for b < 0, b > bend_limit() (including b >= 90 deg) or NaN.
+  /// Throws NodeError("bend_angle") for b < 0, b >= pi/2 (the double) or NaN.
   explicit CardanKinematics(double bend_angle);
 
   double bend_angle() const { return b_; }

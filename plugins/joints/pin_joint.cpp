@@ -28,7 +28,8 @@ class PinJointType final : public NodeType {
                           "(1: the line of action is radial to the pin; at most 100)")
             .with_default(1.0)
             .positive()
-            .at_most(100.0),
+            .at_most(100.0)
+            .because("> 0: a factor on a play; <= 100: far past any geometry"),
         joint_label_param(),
     };
     info_.inputs = {PortSpec::handle("fits", std::string(Fit::kind_name),

@@ -48,6 +48,7 @@ class SphericalJointType final : public NodeType {
         ParamSpec::number("bore", dim::length, "bore d of the bearing; selects the row of the clearance table", "mm")
             .optional()
             .positive()
+            .because("> 0: a diameter")
             .with_example(20e-3),
         ParamSpec::choice("clearance_group", {"C2", "normal", "C3"},
                           "ISO 12240-1 radial internal clearance group (overridden by radial_clearance_min/_max)")
@@ -57,35 +58,42 @@ class SphericalJointType final : public NodeType {
                           "overrides clearance_group)",
                           "um")
             .optional()
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a clearance"),
         ParamSpec::number("radial_clearance_max", dim::length,
                           "greatest radial internal clearance (with radial_clearance_min)", "um")
             .optional()
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a clearance"),
         distribution_param("clearance_distribution",
                           "how the internal clearance is spread over its range (normal: range = 6 sigma)"),
         ParamSpec::number("tilt_limit", dim::angle,
                           "permissible tilt angle alpha of the bearing (catalogue); default: the source's 6 deg", "deg")
             .with_default(6.0 * deg)
             .positive()
-            .below(90.0 * deg),
+            .below(90.0 * deg)
+            .because("> 0 and < 90 deg: a tilt of the ring on the ball"),
         ParamSpec::number("deflection", dim::angle, "tilt the joint must allow (nozzle deflection at this hinge)", "deg")
             .with_default(0.0)
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a tilt"),
         ParamSpec::number("ball_diameter", dim::length,
                           "sphere diameter dk of the inner ring (with outer_ring_width: axial clearance from geometry)",
                           "mm")
             .optional()
-            .positive(),
+            .positive()
+            .because("> 0: a diameter"),
         ParamSpec::number("outer_ring_width", dim::length, "outer ring width C (with ball_diameter)", "mm")
             .optional()
-            .positive(),
+            .positive()
+            .because("> 0: a width"),
         ParamSpec::number("axial_play_factor", dim::none,
                           "axial internal clearance / radial internal clearance, if the maker gives it "
                           "(instead of ball_diameter and outer_ring_width; at most 100)")
             .optional()
             .positive()
-            .at_most(100.0),
+            .at_most(100.0)
+            .because("> 0: a factor on a play; <= 100: far past any geometry"),
         joint_label_param(),
     };
     info_.inputs = {PortSpec::handle("fits", std::string(Fit::kind_name),

@@ -116,22 +116,26 @@ std::vector<ParamSpec> coil_rule_params() {
       ParamSpec::number("shear_modulus", dim::stress, "shear modulus G of the wire", "GPa")
           .with_default(81.5e9)
           .at_least(1e9)
-          .at_most(1e12),
-      ParamSpec::number("density", dim::density, "density of the wire", "kg/m^3").with_default(7850.0).at_least(100.0).at_most(1e5),
+          .at_most(1e12)
+          .because("1 GPa to 1 TPa: spring materials, from plastics to past any steel"),
+      ParamSpec::number("density", dim::density, "density of the wire", "kg/m^3").with_default(7850.0).at_least(100.0).at_most(1e5).because("100 to 100,000 kg/m^3: from foams to past osmium (22,600)"),
       ParamSpec::number("allowable_stress", dim::stress, "allowable corrected shear stress at full lift", "MPa")
           .with_default(600e6)
           .at_least(1e6)
-          .at_most(1e10),
-      ParamSpec::number("end_coils", dim::none, "inactive coils (closed ends)").with_default(2.0).non_negative().at_most(20.0),
+          .at_most(1e10)
+          .because("1 MPa to 10 GPa: past any spring wire (about 2.5 GPa)"),
+      ParamSpec::number("end_coils", dim::none, "inactive coils (closed ends)").with_default(2.0).non_negative().at_most(20.0).because(">= 0: a count; <= 20: the closed ends of a spring, not its body"),
       ParamSpec::number("coil_clearance", dim::length, "least summed gap between the coils at full lift", "mm")
           .with_default(0.5e-3)
           .non_negative()
-          .at_most(1.0),
+          .at_most(1.0)
+          .because(">= 0: a gap; <= 1 m: far past any coil"),
       ParamSpec::number("installed_length", dim::length,
                         "spring length with the valve closed (the space in the head); absent: the shortest that works", "mm")
           .optional()
           .positive()
-          .at_most(10.0),
+          .at_most(10.0)
+          .because("> 0: a length; <= 10 m: far past any valve spring"),
   };
 }
 

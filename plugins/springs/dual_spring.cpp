@@ -53,17 +53,19 @@ class DualSpringType final : public NodeType {
     info_.summary = "two nested helical springs sharing the load (outer and inner coil, same deflection)";
     info_.params = coil_rule_params();
     info_.params.push_back(
-        ParamSpec::number("outer_index", dim::none, "spring index D/d of the outer coil").with_default(9.0).at_least(4.0).at_most(16.0));
+        ParamSpec::number("outer_index", dim::none, "spring index D/d of the outer coil").with_default(9.0).at_least(4.0).at_most(16.0).because("4 to 16: the spring index the Wahl correction and coiling hold for"));
     info_.params.push_back(
-        ParamSpec::number("inner_index", dim::none, "spring index D/d of the inner coil").with_default(6.0).at_least(4.0).at_most(16.0));
+        ParamSpec::number("inner_index", dim::none, "spring index D/d of the inner coil").with_default(6.0).at_least(4.0).at_most(16.0).because("4 to 16: the spring index the Wahl correction and coiling hold for"));
     info_.params.push_back(ParamSpec::number("outer_share", dim::none, "share of preload and rate the outer coil carries")
                                .with_default(0.6)
                                .above(0.0)
-                               .below(1.0));
+                               .below(1.0)
+                               .because("> 0 and < 1: each spring carries part of the load"));
     info_.params.push_back(ParamSpec::number("radial_clearance", dim::length, "least radial gap between the two coils", "mm")
                                .with_default(0.3e-3)
                                .non_negative()
-                               .at_most(0.1));
+                               .at_most(0.1)
+                               .because(">= 0: a gap; <= 0.1 m: far past any nested pair"));
     info_.outputs = {PortSpec::handle("model", std::string(SpringModel::kind_name),
                                       "the unsized nested-spring model; valvetrain.spring_design sizes it")};
   }

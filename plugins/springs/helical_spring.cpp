@@ -30,7 +30,8 @@ class HelicalSpringType final : public NodeType {
     info_.params.push_back(ParamSpec::number("spring_index", dim::none, "spring index C = D/d (coil / wire diameter)")
                                .with_default(7.0)
                                .at_least(4.0)
-                               .at_most(16.0));
+                               .at_most(16.0)
+                               .because("4 to 16: the spring index the Wahl correction and coiling hold for"));
     info_.outputs = {PortSpec::handle("model", std::string(SpringModel::kind_name),
                                       "the unsized spring model (material, index, limits); valvetrain.spring_design sizes it")};
   }

@@ -130,23 +130,27 @@ class DynamicsType final : public NodeType {
                           "N/mm")
             .optional()
             .at_least(1e3)
-            .at_most(1e13),
+            .at_most(1e13)
+            .because("1 N/mm to 1e10 N/mm: softer leaves any cam, stiffer than any steel drive and beyond the integrator's stiffness"),
         ParamSpec::number("damping_ratio", dim::none,
                           "damping of the drive's first mode, share of critical (stiffness-proportional on the drive's "
                           "links) (elastic_drive)")
             .with_default(0.06)
             .non_negative()
-            .at_most(2.0),
+            .at_most(2.0)
+            .because(">= 0: damping takes energy; <= 2: past critical (1), overdamped"),
         ParamSpec::integer("revolutions", "cam revolutions simulated; results from the last")
             .with_default(2.0)
             .at_least(1)
-            .at_most(1000),
+            .at_most(1000)
+            .because("1 to 1000 camshaft turns: the run settles within a few, 1000 bounds the time"),
         ParamSpec::number("tolerance", dim::none,
                           "relative tolerance of the integration (absolute: this times the full lift, and times the "
                           "full lift x camshaft speed for the velocity)")
             .with_default(1e-8)
             .at_least(1e-13)
             .at_most(1e-2)
+            .because("1e-13 to 1e-2: tighter than a double's rounding of the state cannot be met, looser says nothing")
             .as_knob(),
         ParamSpec::choice("integrator", {"cvode", "dopri5", "auto"},
                           "cvode: SUNDIALS CVODE, BDF (stiff drives); dopri5: explicit Dormand-Prince 5(4); auto: "
@@ -158,6 +162,7 @@ class DynamicsType final : public NodeType {
             .with_default(1441.0)
             .at_least(16)
             .at_most(1e7)
+            .because("16 to 1e7: a curve per turn, bounded in memory")
             .as_knob(),
         ParamSpec::number_list("stiffnesses", dim::stiffness,
                                "multi_mass: stiffnesses reduced to the valve, cam-tappet, tappet-pushrod, pushrod-rocker, "
@@ -165,49 +170,59 @@ class DynamicsType final : public NodeType {
                                "N/mm")
             .optional()
             .positive()
-            .at_most(1e13),
+            .at_most(1e13)
+            .because("> 0: a spring's stiffness; <= 1e10 N/mm: as drive_stiffness"),
         ParamSpec::integer("coils", "spring_surge: coil masses the spring is cut into")
             .with_default(8.0)
             .at_least(1)
             .at_most(200)
+            .because("1 to 200: the spring cut into that many masses, more than any spring's active coils")
             .as_knob(),
         ParamSpec::number("surge_damping_ratio", dim::none, "spring_surge: damping of the first surge mode, share of critical")
             .with_default(0.01)
             .non_negative()
-            .at_most(1.0),
+            .at_most(1.0)
+            .because(">= 0: damping takes energy; <= 1: critical"),
         ParamSpec::number("restitution", dim::none, "coefficient of restitution of the valve on its seat (seat_impact)")
             .with_default(0.3)
             .non_negative()
-            .below(1.0),
+            .below(1.0)
+            .because(">= 0 and < 1: a landing gives energy back, never all of it"),
         ParamSpec::number("seating_speed", dim::velocity, "a landing whose rebound (restitution x landing speed) would leave the seat slower than this "
                           "seats the valve instead of bouncing (seat_impact)",
                           "m/s")
             .with_default(0.01)
             .positive()
-            .at_most(100.0),
+            .at_most(100.0)
+            .because("> 0: a speed; <= 100 m/s: far past any valve"),
         ParamSpec::number("coil_bind_stiffness", dim::stiffness,
                           "stiffness of the solid spring (coil bind at the spring's solid length, elastic_drive)", "N/mm")
             .with_default(1e8)
             .at_least(1e4)
-            .at_most(1e12),
+            .at_most(1e12)
+            .because("10 N/mm to 1e9 N/mm: from soft to solid steel contact"),
         ParamSpec::number("coil_bind_restitution", dim::none,
                           "coefficient of restitution of the valve on the solid spring (rebound speed / impact speed)")
             .with_default(0.5)
             .above(0.0)
-            .at_most(1.0),
+            .at_most(1.0)
+            .because("> 0 and <= 1: a contact gives energy back, at most all of it"),
         ParamSpec::number("stop_lift", dim::length, "travel_stop: the valve lift at which the stop is met", "mm")
             .optional()
             .positive()
-            .at_most(1.0),
+            .at_most(1.0)
+            .because("> 0: a lift; <= 1 m: far past any valve"),
         ParamSpec::number("stop_stiffness", dim::stiffness, "travel_stop: stiffness of the stop", "N/mm")
             .with_default(1e8)
             .at_least(1e4)
-            .at_most(1e12),
+            .at_most(1e12)
+            .because("10 N/mm to 1e9 N/mm: from soft to solid steel contact"),
         ParamSpec::number("stop_restitution", dim::none,
                           "travel_stop: coefficient of restitution of the valve on the stop (rebound speed / impact speed)")
             .with_default(0.3)
             .above(0.0)
-            .at_most(1.0),
+            .at_most(1.0)
+            .because("> 0 and <= 1: a contact gives energy back, at most all of it"),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's kinematic motion at the speed simulated"),

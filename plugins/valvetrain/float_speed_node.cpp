@@ -39,33 +39,39 @@ class FloatSpeedType final : public NodeType {
     info_.version = 2;
     info_.summary = "lowest crank speed in a range at which the valve loses cam contact (valve float)";
     info_.params = {
-        ParamSpec::number("rpm_min", dim::angular_speed, "lowest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).with_example(3000 * rpm),
-        ParamSpec::number("rpm_max", dim::angular_speed, "highest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).with_example(9000 * rpm),
+        ParamSpec::number("rpm_min", dim::angular_speed, "lowest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).because("1 to 1e6 rpm: a turning engine, far past any").with_example(3000 * rpm),
+        ParamSpec::number("rpm_max", dim::angular_speed, "highest crank speed tried", "rpm").at_least(rpm).at_most(1e6 * rpm).because("1 to 1e6 rpm: a turning engine, far past any (and above rpm_min)").with_example(9000 * rpm),
         ParamSpec::number("drive_stiffness", dim::stiffness, "k_d: the drive's stiffness reduced to the valve", "N/mm")
             .positive()
             .at_most(1e13)
+            .because("> 0: a stiffness; <= 1e10 N/mm: stiffer than any steel drive")
             .with_example(4e6),
         ParamSpec::number("damping_ratio", dim::none, "damping of the drive's first mode, share of critical")
             .with_default(0.06)
             .non_negative()
-            .at_most(2.0),
+            .at_most(2.0)
+            .because(">= 0: damping takes energy; <= 2: past critical (1), overdamped"),
         ParamSpec::integer("revolutions", "cam revolutions simulated per speed; float is read in the last")
             .with_default(3.0)
             .at_least(1)
-            .at_most(1000),
+            .at_most(1000)
+            .because("1 to 1000 camshaft turns per speed: 1000 bounds the time"),
         ParamSpec::integer("scan_points", "speeds tried evenly across the range first (refined where the margin could reach 0)")
             .with_default(12.0)
             .at_least(2)
             .at_most(10000)
+            .because("2 to 10,000 speeds: the two ends at least")
             .as_knob(),
         ParamSpec::number("speed_tolerance", dim::angular_speed, "width of the final bracket", "rpm")
             .with_default(1.0 * rpm)
             .at_least(1e-6 * rpm)
+            .because(">= 1e-6 rpm: finer than the simulations' own accuracy distinguishes")
             .as_knob(),
         ParamSpec::number("tolerance", dim::none, "relative tolerance of each simulation")
             .with_default(1e-8)
             .at_least(1e-13)
             .at_most(1e-2)
+            .because("1e-13 to 1e-2: tighter than a double's rounding of the state cannot be met, looser says nothing")
             .as_knob(),
         ParamSpec::choice("integrator", {"cvode", "dopri5", "auto"}, "as in valvetrain.dynamics").with_default("auto").as_knob(),
     };

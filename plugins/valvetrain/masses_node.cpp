@@ -11,20 +11,21 @@ class MassesType final : public NodeType {
     info_.type = "valvetrain.masses";
     info_.summary = "masses of valve, retainer, tappet, pushrod and rocker, reduced to the valve (without the spring)";
     auto mass = [](const char* name, const char* doc) {
-      return ParamSpec::number(name, dim::mass, doc, "g").with_default(0.0).non_negative().at_most(100.0);
+      return ParamSpec::number(name, dim::mass, doc, "g").with_default(0.0).non_negative().at_most(100.0).because(">= 0: a mass; <= 100 kg: far past any valve-train part");
     };
     auto arm = [](const char* name, const char* doc) {
-      return ParamSpec::number(name, dim::length, doc, "mm").with_default(1.0).at_least(1e-4).at_most(10.0);
+      return ParamSpec::number(name, dim::length, doc, "mm").with_default(1.0).at_least(1e-4).at_most(10.0).because("0.1 mm to 10 m: a rocker arm (the ratio of two arms divides by them)");
     };
     info_.params = {
-        ParamSpec::number("valve_mass", dim::mass, "mass of the valve", "g").positive().at_most(100.0).with_example(0.06),
+        ParamSpec::number("valve_mass", dim::mass, "mass of the valve", "g").positive().at_most(100.0).because("> 0: the valve has mass; <= 100 kg: far past any valve").with_example(0.06),
         mass("retainer_mass", "spring retainer (plate) and keepers"),
         mass("tappet_mass", "tappet (lifter)"),
         mass("pushrod_mass", "pushrod"),
         ParamSpec::number("rocker_inertia", dim::moment_of_inertia, "moment of inertia of the rocker about its shaft", "kg*m^2")
             .with_default(0.0)
             .non_negative()
-            .at_most(10.0),
+            .at_most(10.0)
+            .because(">= 0: an inertia; <= 10 kg m^2: far past any rocker"),
         arm("arm_valve", "rocker arm on the valve side, l_v"),
         arm("arm_pushrod", "rocker arm on the pushrod side, l_p (rocker ratio l_v / l_p)"),
     };

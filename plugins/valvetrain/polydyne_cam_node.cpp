@@ -83,6 +83,7 @@ class PolydyneCamType final : public NodeType {
         ParamSpec::number("design_rpm", dim::angular_speed, "crank speed the cam is made for (camshaft at half)", "rpm")
             .at_least(2.0 * pi / 60.0)
             .at_most(1e6 * 2.0 * pi / 60.0)
+            .because("1 to 1e6 rpm: a turning engine, far past any")
             .with_example(6000.0 * 2.0 * pi / 60.0),
         ParamSpec::number("drive_stiffness", dim::stiffness,
                           "k_d: the drive's stiffness reduced to the valve (from 1 N/mm: softer, the synthesised "
@@ -90,13 +91,15 @@ class PolydyneCamType final : public NodeType {
                           "N/mm")
             .at_least(1e3)
             .at_most(1e13)
+            .because("1 N/mm to 1e10 N/mm: softer, the correction M a / k_d leaves any cam; stiffer than any steel drive")
             .with_example(4e6),
-        ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p").with_default(1.0).at_least(0.01).at_most(100.0),
-        ParamSpec::number("lash", dim::length, "valve lash, taken up by the ramps", "mm").with_default(0.0).non_negative().at_most(0.1),
+        ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p").with_default(1.0).at_least(0.01).at_most(100.0).because("0.01 to 100: a rocker, as valve_motion's"),
+        ParamSpec::number("lash", dim::length, "valve lash, taken up by the ramps", "mm").with_default(0.0).non_negative().at_most(0.1).because(">= 0: a gap; <= 0.1 m: far past any valve lash"),
         ParamSpec::number("ramp_angle", dim::angle, "cam angle of each take-up ramp", "deg")
             .with_default(20.0 * pi / 180.0)
             .positive()
-            .below(pi),
+            .below(pi)
+            .because("> 0 and < 180 deg: the valve law's event plus two ramps fit in one turn"),
     };
     info_.inputs = {
         PortSpec::handle("law", std::string(CamLaw::kind_name),

@@ -29,11 +29,13 @@ class ResonanceType final : public NodeType {
                           "N/mm")
             .positive()
             .at_most(1e12)
+            .because("> 0: a stiffness; <= 1e9 N/mm: stiffer than any steel drive")
             .with_example(4e6),
         ParamSpec::integer("samples", "samples of the lift over one cam revolution (N)")
             .with_default(3600.0)
             .at_least(16)
             .at_most(1e8)
+            .because("16 to 1e8: the harmonics need at least 16 points a turn; 1e8 bounds the time")
             .as_knob(),
         ParamSpec::number("damping_coefficient", dim::mass / dim::time,
                           "xi, N*s/m; default 0.107 M_red omega0 (from 1e-3 N*s/m: undamped, the resonant amplitude "
@@ -41,7 +43,8 @@ class ResonanceType final : public NodeType {
                           "N*s/m")
             .optional()
             .at_least(1e-3)
-            .at_most(1e9),
+            .at_most(1e9)
+            .because("1e-3 to 1e9 N s/m: a damper from nearly none to far past any"),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion at the speed studied"),

@@ -58,36 +58,42 @@ class SpringDesignType final : public NodeType {
         ParamSpec::number("safety_factor", dim::none, "K: spring force over inertia force (1.3-2.0 usual)")
             .with_default(1.5)
             .at_least(1.0)
-            .at_most(10.0),
+            .at_most(10.0)
+            .because("1 to 10: at least the inertia force (1), the usual 1.3 to 2 well inside"),
         ParamSpec::number("min_seat_force", dim::force, "least spring force on the closed valve (P0 >= this)", "N")
             .with_default(0.0)
             .non_negative()
-            .at_most(1e6),
+            .at_most(1e6)
+            .because(">= 0: a force; <= 1 MN: far past any valve spring"),
         ParamSpec::choice("rule", {"free_length", "source"},
                           "free_length: the line from the free-length point tangent to K times the inertia force "
                           "(always holds the valve); source: P_max = K M_red |a_min| at full lift, preload given")
             .with_default("free_length"),
-        ParamSpec::number("preload", dim::force, "P0 (rule source; or preload_ratio)", "N").optional().positive().at_most(1e6),
-        ParamSpec::number("preload_ratio", dim::none, "P0 / P_max (rule source; or preload)").optional().positive().below(1.0),
+        ParamSpec::number("preload", dim::force, "P0 (rule source; or preload_ratio)", "N").optional().positive().at_most(1e6).because("> 0: a spring that holds the valve; <= 1 MN: far past any valve spring"),
+        ParamSpec::number("preload_ratio", dim::none, "P0 / P_max (rule source; or preload)").optional().positive().below(1.0).because("> 0 and < 1: the preload is below P_max, or the rate would be zero or less"),
         ParamSpec::number("preload_deflection", dim::length,
                           "f0, spring deflection from free length to installed (rule free_length); default 2 h_max", "mm")
             .optional()
             .positive()
-            .at_most(1.0),
+            .at_most(1.0)
+            .because("> 0: a deflection; <= 1 m: far past any valve spring"),
         ParamSpec::number("tolerance", dim::none, "relative tolerance of the reduced-mass fixed point")
             .with_default(1e-12)
             .at_least(1e-15)
             .at_most(1e-2)
+            .because("1e-15 to 1e-2: a double's rounding to loose")
             .as_knob(),
         ParamSpec::integer("samples", "samples per smooth piece for the searches over the negative-acceleration phase")
             .with_default(100.0)
             .at_least(8)
             .at_most(1e6)
+            .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: more only costs time")
             .as_knob(),
         ParamSpec::integer("curve_points", "points of the force_curve table, evenly spaced over the open period")
             .with_default(361.0)
             .at_least(3)
-            .at_most(1e6),
+            .at_most(1e6)
+            .because(">= 3: a curve needs its two ends and a point between; <= 1e6: bounded in memory"),
     };
     info_.inputs = {
         PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion at the design speed"),

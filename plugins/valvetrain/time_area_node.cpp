@@ -28,20 +28,22 @@ class TimeAreaType final : public NodeType {
     info_.type = "valvetrain.time_area";
     info_.summary = "time-area, angle-area and mean flow area of the valve over its open period";
     info_.params = {
-        ParamSpec::number("seat_diameter", dim::length, "inner seat diameter d0", "mm").positive().with_example(35e-3),
+        ParamSpec::number("seat_diameter", dim::length, "inner seat diameter d0", "mm").positive().because("> 0: a diameter").with_example(35e-3),
         ParamSpec::number("seat_angle", dim::angle, "seat cone angle a (45 deg usual)", "deg")
             .with_default(std::numbers::pi / 4.0)
             .positive()
-            .below(std::numbers::pi / 2.0),
+            .below(std::numbers::pi / 2.0)
+            .because("> 0 and < 90 deg: a conical seat (0 and 90 would be a flat ring or a tube)"),
         ParamSpec::choice("flow_area", {"conical", "three_stage"},
                           "conical: the source's seat-cone formula; three_stage: seat cone, then seat-to-port "
                           "transition, then the port (needs seat_width, port_diameter, stem_diameter)")
             .with_default("conical"),
-        ParamSpec::number("seat_width", dim::length, "seat width w (three_stage)", "mm").optional().positive(),
-        ParamSpec::number("port_diameter", dim::length, "port diameter Dp (three_stage)", "mm").optional().positive(),
+        ParamSpec::number("seat_width", dim::length, "seat width w (three_stage)", "mm").optional().positive().because("> 0: a width"),
+        ParamSpec::number("port_diameter", dim::length, "port diameter Dp (three_stage)", "mm").optional().positive().because("> 0: a diameter"),
         ParamSpec::number("stem_diameter", dim::length, "valve stem diameter Ds (three_stage)", "mm")
             .with_default(0.0)
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a diameter (0: no stem in the port)"),
         ParamSpec::choice("method", {"exact", "rectangle"},
                           "exact: adaptive Gauss-Kronrod between breakpoints; rectangle: the source's sum with `step`")
             .with_default("exact")
@@ -49,6 +51,7 @@ class TimeAreaType final : public NodeType {
         ParamSpec::number("step", dim::angle, "cam-angle step of the rectangle sum", "deg")
             .with_default(std::numbers::pi / 180.0)
             .positive()
+            .because("> 0: a step")
             .as_knob(),
         ParamSpec::number("tolerance", dim::none,
                           "relative tolerance of the exact quadrature; below 1e-13 round-off, not the rule, "
@@ -56,6 +59,7 @@ class TimeAreaType final : public NodeType {
                           "value 1e-13 gives in 75), so it is refused")
             .with_default(1e-10)
             .at_least(1e-13)
+            .because(">= 1e-13: tighter than a double's rounding of the integral cannot be met")
             .as_knob(),
     };
     info_.inputs = {PortSpec::handle("valve", std::string(ValveMotion::kind_name), "the valve's motion at one speed")};

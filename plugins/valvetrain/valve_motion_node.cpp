@@ -22,25 +22,30 @@ class ValveMotionType final : public NodeType {
     info_.params = {
         ParamSpec::number("rpm", dim::angular_speed, "crank speed; the camshaft turns at half of it (four-stroke)", "rpm")
             .at_least(2.0 * std::numbers::pi / 60.0)       // 1 rpm
-            .at_most(1e6 * 2.0 * std::numbers::pi / 60.0)  // 1e6 rpm
+            .at_most(1e6 * 2.0 * std::numbers::pi / 60.0)
+            .because("1 to 1e6 rpm: a turning engine, far past any")
             .with_example(6000.0 * 2.0 * std::numbers::pi / 60.0),
         ParamSpec::number("rocker_ratio", dim::none, "valve lift / tappet lift, l_v / l_p")
             .with_default(1.0)
             .at_least(0.01)
-            .at_most(100.0),
+            .at_most(100.0)
+            .because("0.01 to 100: a rocker (an arm 100 times the other)"),
         ParamSpec::number("lash", dim::length, "valve lash (cold clearance), taken up before the valve moves", "mm")
             .with_default(0.0)
-            .non_negative(),
+            .non_negative()
+            .because(">= 0: a gap"),
         ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
             .with_default(16.0)
             .at_least(8)
             .at_most(1e6)
+            .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: more only costs time")
             .as_knob(),
         ParamSpec::integer("curve_points", "points of the lift_curve series over the open period, and of the svaj "
                                            "table over it widened by a tenth of its width each side")
             .with_default(361.0)
             .at_least(3)
-            .at_most(1e6),
+            .at_most(1e6)
+            .because(">= 3: a curve needs its two ends and a point between; <= 1e6: bounded in memory"),
         checking_lift_param("valve"),
         nose_timing_param(),
     };

@@ -58,6 +58,30 @@ std::optional<LiftEvents> events_from(const std::vector<double>& crossings) {
   return e;
 }
 
+// Where the lift passes `h` between `from` (lift below or at h: a seat) and `to` (lift above it),
+// on the lift itself: scanned from `from` at distances halving down to 2^-60 of the span (the
+// first point above h nearest the seat), then bisected to neighbouring doubles. Used for a
+// crossing the interpolants cannot sign: a checking lift at the lift's rounding level (16 ulps of
+// its largest value), where near the seat lift - h is a zone of rounding. The lift is 0 at the
+// event's ends (the CamLaw contract), so the first crossing rises and the last falls.
+double crossing_from_seat(const std::function<double(double)>& lift, double from, double to, double h) {
+  double below = from, above = to;
+  for (int k = 60; k >= 1; --k) {
+    const double x = from + (to - from) * std::ldexp(1.0, -k);
+    if (lift(x) > h) {
+      above = x;
+      break;
+    }
+    below = x;
+  }
+  while (true) {
+    const double mid = 0.5 * (below + above);
+    if (mid == below || mid == above) break;
+    (lift(mid) > h ? above : below) = mid;
+  }
+  return 0.5 * (below + above);
+}
+
 }  // namespace
 
 std::optional<LiftEvents> events_at_lift(const std::function<double(double)>& lift, std::span<const double> knots,
@@ -129,7 +153,16 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
       e = LiftEvents{knots.front(), knots.back(), knots.back() - knots.front(), 0.5 * (knots.front() + knots.back())};
     } else {
       if (!pieces) pieces.emplace([&](double phi, double* v, double*) { v[0] = lift(phi); }, 1, knots, samples);
-      e = events_from(pieces->crossings(0, h));
+      std::vector<std::pair<double, bool>> xs = pieces->directed_crossings(0, h);
+      if (lift(nose) > h) {
+        // A checking lift at the rounding level of the lift: the interpolants see a zone at the
+        // seat and miss the crossing nearest it; it is found on the lift itself.
+        if (xs.empty() || !xs.front().second) xs.insert(xs.begin(), {crossing_from_seat(lift, knots.front(), nose, h), true});
+        if (xs.back().second) xs.push_back({crossing_from_seat(lift, knots.back(), nose, h), false});
+      }
+      std::vector<double> crossings;
+      for (const auto& x : xs) crossings.push_back(x.first);
+      e = events_from(crossings);
     }
     if (!e) continue;
     t.axis.values.push_back(h);
@@ -180,7 +213,8 @@ ParamSpec checking_lift_param(const std::string& whose) {
                            "measured; the events table adds 0.050 in and the seat (zero lift)",
                            "mm")
       .with_default(1e-3)
-      .positive();
+      .positive()
+      .because("> 0: the seat (zero lift) is the events table's own row");
 }
 
 ParamSpec nose_timing_param() {
@@ -192,7 +226,8 @@ ParamSpec nose_timing_param() {
                            "deg")
       .optional()
       .at_least(-2.0 * std::numbers::pi)
-      .at_most(2.0 * std::numbers::pi);
+      .at_most(2.0 * std::numbers::pi)
+      .because("-360 to 360 deg: one turn of the crank either way of the overlap TDC");
 }
 
 std::vector<AngleFrame> cam_angle_frames(bool installed) {

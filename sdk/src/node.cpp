@@ -43,7 +43,7 @@ std::string ParamSpec::value_problem(double si) const {
     if (std::isfinite(min)) range += (min_exclusive ? "> " : ">= ") + quantity_text(min, *this);
     if (std::isfinite(max))
       range += (range.empty() ? "" : " and ") + std::string(max_exclusive ? "< " : "<= ") + quantity_text(max, *this);
-    return "is out of range: it must be " + range;
+    return "is out of range: it must be " + range + (range_reason.empty() ? "" : " (" + range_reason + ")");
   }
   if (kind == ParamKind::integer && si != std::floor(si)) return "must be a whole number";
   if (kind == ParamKind::integer && std::abs(si) > 9007199254740992.0)  // 2^53: exact in a double
@@ -139,6 +139,10 @@ ParamSpec& ParamSpec::at_most(double v) {
 ParamSpec& ParamSpec::below(double v) {
   max = v;
   max_exclusive = true;
+  return *this;
+}
+ParamSpec& ParamSpec::because(std::string reason) {
+  range_reason = std::move(reason);
   return *this;
 }
 ParamSpec& ParamSpec::with_example(double v) {

@@ -128,6 +128,23 @@ TEST_CASE("validate, graph, plugins and describe", "[cli]") {
   CHECK_THAT(unknown.err, Contains("did you mean 'test.add'"));
 }
 
+TEST_CASE("describe states why each range is what it is, in text and --json", "[cli][limits]") {
+  const auto d = run_cli("describe joint.cardan");
+  REQUIRE(d.exit_code == 0);
+  CHECK_THAT(d.out, Contains("range: >= 0: an angle between shafts; < 90 deg: at 90 deg the joint locks"));
+  const auto dj = run_cli("describe joint.cardan --json");
+  REQUIRE(dj.exit_code == 0);
+  const YAML::Node cardan = YAML::Load(dj.out);
+  bool found = false;
+  for (const auto& p : cardan["params"])
+    if (p["name"].as<std::string>() == "bend_angle") {
+      found = true;
+      CHECK_THAT(p["range_reason"].as<std::string>(), Contains("the joint locks"));
+      CHECK(p["below"].as<double>() == 0.5 * 3.14159265358979323846);
+    }
+  CHECK(found);
+}
+
 TEST_CASE("run --out writes results.json and a CSV per series", "[cli]") {
   const auto dir = std::filesystem::temp_directory_path() / "mg_out_test";
   std::filesystem::remove_all(dir);

@@ -1,14 +1,16 @@
 // Each side of each declared limit: every numeric parameter with a finite bound, of every node of
-// the example scenes and of tests/stability/walk_scenes/ (which hold the types no example uses).
-// Just inside the bound (the bound itself when it is included, else the next double or whole
-// number inward) the scene must be accepted and compute finite outputs: a range limit belongs only
-// where the mathematics or the range of a double demands it, so a value it admits is a valid
-// input. Just outside, the scene must be refused with a message naming the node, the parameter
+// the example scenes, of tests/stability/walk_scenes/ (the types no example uses) and of
+// tests/stability/witness_scenes/ (the witnesses below). Just inside the bound (the bound itself
+// when it is included, else the next double or whole number inward) some node of the type must
+// compute finite outputs: a range limit belongs only where the mathematics or the range of a double
+// demands it, so a value it admits is a valid input, for some values of the node's other
+// parameters. Just outside, every node must refuse it with a message naming the node, the parameter
 // and the limit. Accuracy knobs are checked outside only. (parameter_walk_test.cpp goes further
 // out, to the huge and the tiny.)
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/node.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -17,6 +19,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -51,23 +54,46 @@ Side either_side(const ParamSpec& p, bool lower) {
   return {exclusive ? std::nextafter(bound, in_dir) : bound, exclusive ? bound : std::nextafter(bound, out_dir)};
 }
 
-// 50: scenes/valve_timing_tolerances.yaml (a ramped cam with lash) brings
-// valvetrain.valve_motion.checking_lift at its minimum: the smallest denormal checking lift is
-// refused as "not below the valve's lift 11.75 mm" (issue 29's range work to settle).
-constexpr std::size_t known_contradictions = 50, known_simulating_contradictions = 1;
+// The bounds no witness reaches yet (each refused by its own node over its own parameter), each with why: the range is right, but a node computing the
+// inside value needs other nodes (a spring model, a table) to make a design they cannot make.
+// None may be added; each is to be witnessed or its range or code fixed.
+const std::map<std::string, std::string> unwitnessed = {
+    {"valvetrain.polydyne_cam.ramp_angle at its maximum",
+     "needs a valve law of 0.1 deg action through a spring design that can be sized"},
+    {"valvetrain.polydyne_cam.rocker_ratio at its minimum",
+     "needs the design's arms 1:100 and a spring the helical model sizes for them"},
+    {"valvetrain.polydyne_cam.rocker_ratio at its maximum",
+     "needs the design's arms 100:1 and a spring the helical model sizes for them"},
+    {"valvetrain.spring_design.preload at its maximum",
+     "needs P_max above 1 MN and a spring model that sizes such a spring"},
+    {"valvetrain.float_speed.rpm_max at its minimum",
+     "1 rpm: no valve floats below it, and a float speed not found is refused"},
+};
 
 bool simulates(const std::string& type) { return type == "valvetrain.dynamics" || type == "valvetrain.float_speed"; }
 
-// The type, parameter and side of each bound whose inside value the node itself refuses.
+// The type, parameter and side of each bound whose inside value its node refuses in every scene
+// that holds the type. A value the other parameters of one node make infeasible (a ramp_length
+// no action angle of that node leaves room for, a checking lift above that cam's lift) is valid
+// when some node of the type computes it: tests/stability/witness_scenes/ holds those witnesses.
 void walk_limits(bool simulating, std::set<std::string>& contradictions) {
+  std::set<std::string> walked, computed, refused, accepted;
+  std::map<std::string, std::string> refusal;  // the last refusal of each bound not computed
   std::vector<std::filesystem::path> files;
-  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes"})
+  for (const char* folder : {"/scenes", "/tests/stability/walk_scenes", "/tests/stability/witness_scenes"})
     for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + folder))
       if (entry.path().extension() == ".yaml") files.push_back(entry.path());
   int limits = 0;
   for (const std::filesystem::path& file : files) {
     const SceneSpec scene = load_scene(file);
     const Graph base = build_graph(scene, project_registry());
+    {
+      // The scene itself computes: else every step's refusal would pass for another node's.
+      INFO(file.filename().string() << " as written");
+      Graph g = build_graph(scene, project_registry());
+      MemoCache cache;
+      REQUIRE_NOTHROW(evaluate(g, cache));
+    }
     for (std::size_t i : base.order) {
       const GraphNode& node = base.nodes[i];
       if (simulates(node.info().type) != simulating) continue;
@@ -77,28 +103,29 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
           if (!std::isfinite(lower ? p.min : p.max)) continue;
           ++limits;
           const Side side = either_side(p, lower);
+          const std::string bound = node.info().type + "." + p.name + (lower ? " at its minimum" : " at its maximum");
           const std::string inside = node.name + "." + p.name + "=" + text_of(side.inside, p);
           const std::string outside = node.name + "." + p.name + "=" + text_of(side.outside, p);
           // An accuracy knob at its end costs time, not correctness (mechgraph bench walks them):
           // only its outside is checked.
           if (!p.knob) {
-            INFO(file.filename().string() << ": " << node.info().type << ": --set " << inside << " (just inside)");
+            walked.insert(bound);
             try {
               Graph g = build_graph(scene, project_registry(), {parse_override(inside)});
               MemoCache cache;
               (void)evaluate(g, cache);  // the evaluator's guard checks every value is finite
+              computed.insert(bound);
+              accepted.insert(bound);
             } catch (const std::exception& e) {
               // Another node, or this node over another parameter, may refuse the design the value
               // makes (a spring that no longer fits, a contour that undercuts): feasibility, not a
               // range. This node refusing this very parameter inside its declared range is the
-              // contradiction looked for.
+              // contradiction looked for, unless a witness elsewhere computes the value.
               const std::string what = e.what();
+              refusal[bound] = file.filename().string() + ": --set " + inside + ": " + what;
               const bool same = what.find("node '" + node.name + "'") != std::string::npos &&
                                 what.find("parameter '" + p.name + "'") != std::string::npos;
-              if (same) {
-                contradictions.insert(node.info().type + "." + p.name + (lower ? " at its minimum" : " at its maximum"));
-                WARN("refused by its own node over its own parameter: " << what);
-              }
+              (same ? refused : accepted).insert(bound);
             }
           }
           {
@@ -122,27 +149,73 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
       }
     }
   }
+  for (const std::string& b : refused)
+    if (!accepted.count(b) && !unwitnessed.count(b)) contradictions.insert(b);
+  // A listed bound that is now witnessed leaves the list.
+  for (const auto& [b, why] : unwitnessed) {
+    INFO(b << " is accepted by some node now: remove it from `unwitnessed`");
+    CHECK(!accepted.count(b));
+  }
+  // Stricter, for the record (not yet required): the bounds no node of the type computes, where
+  // every refusal came from another node or parameter (a design the walk's scenes cannot make).
+  std::size_t uncomputed = 0;
+  for (const std::string& b : walked)
+    if (!computed.count(b)) {
+      ++uncomputed;
+      std::cout << "no node computes " << b << " (" << refusal[b] << ")\n";
+    }
+  std::cout << uncomputed << " of " << walked.size() << " bounds are computed by no node of their type\n";
   INFO(limits << " limits checked");
   CHECK(limits > (simulating ? 10 : 40));
 }
 
 }  // namespace
 
-// Outside every bound: refused by name, without exception. Inside: the bounds a node's own checks
-// still contradict (a limit computed from the design or from a double, e.g. a wave narrower than
-// one ulp, below a declared "> 0") are listed; their number may only fall (known at the time of
-// writing: see the list this prints).
+// Outside every bound: refused by name, without exception. Inside: no declared bound is refused
+// by its own node in every scene (the list printed names any that is), but the few `unwitnessed`.
 TEST_CASE("each side of each declared limit: inside computes, outside is refused naming node, parameter and limit",
           "[stability][limits]") {
   std::set<std::string> contradictions;
   walk_limits(false, contradictions);
   for (const std::string& c : contradictions) std::cout << "declared range contradicted by its node: " << c << "\n";
-  CHECK(contradictions.size() <= known_contradictions);
+  CHECK(contradictions.empty());
 }
 
 TEST_CASE("each side of each declared limit of the simulating nodes (dynamics, float speed)", "[stability][limits][slow]") {
   std::set<std::string> contradictions;
   walk_limits(true, contradictions);
   for (const std::string& c : contradictions) std::cout << "declared range contradicted by its node: " << c << "\n";
-  CHECK(contradictions.size() <= known_simulating_contradictions);
+  CHECK(contradictions.empty());
+}
+
+namespace {
+
+// Each finite bound of `params` (and of record fields) without a reason, as "type.param".
+void unexplained(const std::string& where, const std::vector<ParamSpec>& params, std::vector<std::string>& out) {
+  for (const ParamSpec& p : params) {
+    if ((std::isfinite(p.min) || std::isfinite(p.max)) && p.range_reason.empty()) out.push_back(where + "." + p.name);
+    if (!p.fields.empty()) unexplained(where + "." + p.name, p.fields, out);
+  }
+}
+
+}  // namespace
+
+// `describe` states why each range is what it is: every finite bound of every built-in node type
+// carries a reason, which describe prints and an out-of-range message quotes.
+TEST_CASE("every finite bound of every built-in parameter says why", "[stability][limits][describe]") {
+  std::vector<std::string> missing;
+  int bounded = 0;
+  for (const std::string& type : project_registry().type_names()) {
+    const NodeInfo& info = project_registry().find(type)->type->info();
+    unexplained(type, info.params, missing);
+    for (const ParamSpec& p : info.params) bounded += std::isfinite(p.min) || std::isfinite(p.max);
+  }
+  for (const std::string& m : missing) std::cout << "no range_reason: " << m << "\n";
+  CHECK(bounded > 100);
+  CHECK(missing.empty());
+  // The reason reaches the user: in the out-of-range message.
+  const NodeInfo& cardan = project_registry().find("joint.cardan")->type->info();
+  const ParamSpec* bend = cardan.find_param("bend_angle");
+  REQUIRE(bend != nullptr);
+  CHECK_THAT(bend->value_problem(2.0), Catch::Matchers::Contains(bend->range_reason));
 }

@@ -15,4 +15,5 @@
 // 9: NodeType::forecast (a node's work, memory and output size said before it runs).
 // 10: presentation declarations (presentation.hpp): PortSpec::label, angle_frame, presentation;
 //     NodeInfo::frames and notes.
+//     ParamSpec::range_reason (why each finite bound of a parameter is where it is).
 #define MECHGRAPH_PLUGIN_ABI_VERSION 10

@@ -39,6 +39,10 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false;
   bool max_exclusive = false;
+  /// Why the range is what it is: a short sentence for every finite bound ("> 0: a length;
+  /// <= 1 km: the square of a lift stays inside a double"), shown by `mechgraph describe` and in
+  /// the out-of-range message. A plain string (SDK 1.0: mg_param_decl::range_reason).
+  std::string range_reason;
   std::vector<std::string> choices;  // for choice
   std::vector<ParamSpec> fields;     // for record_list: the fields of each record
   bool knob = false;
@@ -66,6 +70,7 @@ struct ParamSpec {
   ParamSpec& above(double v);
   ParamSpec& at_most(double v);
   ParamSpec& below(double v);
+  ParamSpec& because(std::string reason);  // sets range_reason
   ParamSpec& as_knob();
   ParamSpec& as_path();             // a text parameter that names a file
 

@@ -51,6 +51,29 @@ TEST_CASE("events at a checking lift match the harmonic law's closed form, in ca
   CHECK_THAT(t.find("duration")->values[1], Catch::Matchers::WithinAbs(phi_d, 1e-15));
 }
 
+// A checking lift at the rounding level of the lift (below 16 ulps of its top) lies in the zone
+// the interpolants cannot sign at the seat: the crossings were lost and a valid checking lift
+// (> 0) refused. h = H sin^2(pi x / 2) on the rise, so the opening is -B + B (2/pi) asin(sqrt(hc/H)).
+TEST_CASE("events at a checking lift down to the least double: found on the lift, as the closed form") {
+  const double H = 9e-3, phi_d = 140 * deg, B = 0.5 * phi_d;
+  const SymmetricRiseReturnLaw law(RiseShape::harmonic, H, phi_d, 20e-3);
+  std::vector<double> knots{law.event_begin(), 0.0, law.event_end()};
+  for (double hc : {1e-16, 1e-20, 1e-30, 1e-300, 4.9406564584124654e-324}) {
+    INFO("checking lift " << hc << " m");
+    long evaluations = 0;
+    const Table t = events_table([&](double phi) { return law.at(phi).lift; }, knots, {hc, 0.0}, 16, evaluations);
+    REQUIRE(t.axis.values.size() == 2);
+    const double opening = -B + B * (2.0 / pi) * std::asin(std::sqrt(hc / H));
+    CHECK_THAT(t.find("opening")->values[0], Catch::Matchers::WithinAbs(opening, 1e-14));
+    CHECK_THAT(t.find("closing")->values[0], Catch::Matchers::WithinAbs(-opening, 1e-14));
+  }
+  const OutputSet out = testing::run_cam("cam.harmonic", {{"max_lift", ParamValue::of_number(H)},
+                                                          {"action_angle", ParamValue::of_number(phi_d)},
+                                                          {"base_radius", ParamValue::of_number(40e-3)},
+                                                          {"checking_lift", ParamValue::of_number(4.9406564584124654e-324)}});
+  CHECK_THAT(out.all().at("duration").as_scalar(), Catch::Matchers::WithinAbs(phi_d, 1e-14));
+}
+
 TEST_CASE("the svaj table spans the event with a margin, and its velocity is the derivative of its lift") {
   const double phi_d = 130 * deg;
   const SymmetricRiseReturnLaw law(RiseShape::cycloidal, 8e-3, phi_d, 17e-3);

@@ -168,20 +168,26 @@ TEST_CASE("cardan: near-singular bend angles 89.9 and 89.999 deg against a 50-di
   }
 }
 
-TEST_CASE("cardan: bend angle 90 deg and beyond the 1/cos b = 1e6 limit is a NodeError naming bend_angle", "[joints][cardan]") {
+TEST_CASE("cardan: bend angle 90 deg and beyond is a NodeError naming bend_angle; every bend below computes", "[joints][cardan]") {
   CHECK_THROWS_MATCHES(CardanKinematics(90 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
   CHECK_THROWS_MATCHES(CardanKinematics(95 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
   CHECK_THROWS_MATCHES(CardanKinematics(-1 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
   CHECK_THROWS_MATCHES(CardanKinematics(std::nan("")), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
-  // the limit: acos(1e-6) = 89.99994270... deg
-  CHECK_THAT(CardanKinematics::bend_limit() / deg, WithinRel(90.0 - std::asin(1e-6) / deg, 1e-15));
-  CHECK_NOTHROW(CardanKinematics(CardanKinematics::bend_limit()));
-  CHECK_THROWS_AS(CardanKinematics(89.99995 * deg), NodeError);
-  CHECK(CardanKinematics(CardanKinematics::bend_limit()).speed_ratio_max() <= 1e6 * (1 + 1e-9));
+  // The mathematics' limit only (it was 1/cos b <= 1e6, 89.99994 deg, before): the double below
+  // pi/2 computes, with 1/cos b = 1 / cos(pi/2 - 2.2e-16) finite and right.
+  const double last = std::nextafter(0.5 * pi, 0.0);
+  CHECK_NOTHROW(CardanKinematics(89.99995 * deg));
+  const CardanKinematics edge(last);
+  CHECK(std::isfinite(edge.speed_ratio_max()));
+  CHECK_THAT(edge.speed_ratio_max(), WithinRel(1.0 / std::cos(last), 1e-15));
+  CHECK_THAT(edge.speed_ratio(0.0), WithinRel(1.0 / std::cos(last), 1e-12));
+  CHECK_THAT(edge.speed_ratio(pi / 2), WithinRel(std::cos(last), 1e-12));
+  CHECK(std::isfinite(edge.angular_error(0.3)));
 
   // Through the node type: the message names the limit.
   CHECK_THROWS_MATCHES(run_cardan(0.0, 90 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
-  CHECK_THROWS_WITH(run_cardan(0.0, 90 * deg), Contains("89.9999427") && Contains("1e6"));
+  CHECK_THROWS_WITH(run_cardan(0.0, 90 * deg), Contains("below 90 deg"));
+  CHECK_NOTHROW(run_cardan(0.3, last));
 }
 
 TEST_CASE("joint.cardan: kinematic outputs at 30 deg input, 20 deg bend", "[joints][cardan]") {

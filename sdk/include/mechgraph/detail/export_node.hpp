@@ -160,6 +160,7 @@ class NodeTypeExport {
     d.field_count = fields.size();
     d.display_unit = p.display_unit.c_str();
     d.angle_frame = -1;
+    d.range_reason = p.range_reason.empty() ? nullptr : p.range_reason.c_str();
     return d;
   }
   static mg_port_decl port_decl(const PortSpec& p) {
