@@ -50,7 +50,8 @@ typedef struct mg_channel_decl {
 typedef struct mg_xy_pair {
   const char* x; /* channel names */
   const char* y;
-  const char* layer; /* DXF layer and legend */
+  const char* layer; /* DXF layer */
+  const char* label; /* legend; NULL: the layer */
   int32_t stroke;    /* 0 outline, 1 construction (dotted), 2 a part shown at rest */
 } mg_xy_pair;
 
@@ -76,7 +77,8 @@ typedef struct mg_presentation {
   size_t pair_count;
   const mg_point_marks* points;
   size_t point_count;
-  const char* figure_title;
+  const char* figure_title; /* the host adds " of " and the nodes */
+  const char* caption;      /* said under the figure; NULL: nothing */
 } mg_presentation;
 
 /* An angle reference. Frames belong to a node type, which names them; the host compares only the
