@@ -482,11 +482,14 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, pub
 inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version) {
   if (!o || !o->vtbl) throw std::invalid_argument("an input object is missing or has no vtable");
   if (o->vtbl->origin == &object_origin) return exported(o).self;  // made here: no C hop
-  if (const SdkInterface* known = sdk_interface_named(interface)) {
-    if (known->kind == CamLaw::kind_name) return std::make_shared<const ForeignCamLaw>(o);
-    if (known->kind == ValveMotion::kind_name) return std::make_shared<const ForeignValveMotion>(o);
-    if (known->kind == JointPlay::kind_name) return import_play_data(o);
-  }
+  // (By position in sdk_interfaces, not by kind_name: reading those static members here would
+  // make the plugin export them.)
+  if (const SdkInterface* known = sdk_interface_named(interface)) switch (known - sdk_interfaces) {
+      case 0: return std::make_shared<const ForeignCamLaw>(o);
+      case 1: return std::make_shared<const ForeignValveMotion>(o);
+      case 2: return import_play_data(o);
+      default: break;
+    }
   return std::make_shared<const ForeignOpaque>(o, std::string(interface), version);
 }
 
