@@ -122,6 +122,21 @@ outputs: [ a.native, a.lift_at_half, a.integral, peak.lift, cpeak.lift, b.native
   CHECK(scalar_output(after, "live.count") == 0.0);
 }
 
+TEST_CASE("a joint play crosses as plain data into a pre-1.0 stack-up", "[plugins][sdk1][objects]") {
+  const RunResult run = run_yaml(R"(nodes:
+  p: { type: objsa.play }
+  chain:
+    type: backlash.chain
+    inputs: { joints: [p.play] }
+    params: { transfer_ratios: [1], actuator_backlash: 0 um, actuator_backlash_limit: 0 um, lever_arm: 100 mm }
+outputs: [ p.play_max, chain.rod_backlash_limit, chain.rod_backlash_mean ]
+)",
+                                 objects_registry());
+  // play = bore + 2 pin: worst case (40 + 10) + 2 (10 + 5) um = 80 um; mean 40 + 2 * 10 = 60 um.
+  CHECK(scalar_output(run, "p.play_max") == Approx(80e-6).epsilon(1e-12).margin(1e-15));
+  CHECK(scalar_output(run, "chain.rod_backlash_mean") == Approx(60e-6).epsilon(1e-12).margin(1e-15));
+}
+
 TEST_CASE("an exception thrown in a C++ node crosses the C boundary as an error naming the node", "[plugins][sdk1]") {
   const auto message = [](int what) {
     try {

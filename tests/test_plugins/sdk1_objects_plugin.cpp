@@ -5,8 +5,10 @@
 //   <id>.relay        passes a cam law on; `native` 1 when it arrived as this plugin's own C++ law
 //   <id>.motion       a ValveMotion over a cam law (valve lift = ratio * cam lift)
 //   <id>.read_motion  reads a valve motion and its cam at 0.3 rad; `native`, `cam_native` as above
+//   <id>.play         a JointPlay (plain data): one term of two links
 //   <id>.throws       throws what `what` says (0: an int, 1: std::bad_alloc, 2: std::runtime_error)
 // objects_live() (exported, for the test) counts this plugin's laws and motions alive.
+#include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 #include <mechgraph/plugin_sdk1.hpp>
 
@@ -164,6 +166,23 @@ class ReadMotion final : public Node {
   }
 };
 
+class PlayNode final : public Node {
+ public:
+  PlayNode() {
+    info_.type = type_name("play");
+    info_.summary = "a joint's play";
+    info_.outputs = {PortSpec::handle("play", std::string(JointPlay::kind_name), "the play"),
+                     PortSpec::scalar("play_max", dim::length, "greatest play")};
+  }
+  void evaluate(const ParamSet&, const InputSet&, OutputSet& out, EvalContext&) const override {
+    auto play = std::make_shared<const JointPlay>(
+        "test joint", std::vector<PlayTerm>{{"pin", {{"bore", 40e-6, 10e-6, 1.0, Distribution::uniform},
+                                                     {"pin", 10e-6, 5e-6, 2.0, Distribution::triangular}}}});
+    out.set("play", Value::handle(play));
+    out.set_scalar("play_max", play->play_max());
+  }
+};
+
 class Throws final : public Node {
  public:
   Throws() {
@@ -183,7 +202,7 @@ class Throws final : public Node {
 
 NodeTypeList make_node_types() {
   return {std::make_shared<const LawNode>(), std::make_shared<const Relay>(), std::make_shared<const MotionNode>(),
-          std::make_shared<const ReadMotion>(), std::make_shared<const Throws>()};
+          std::make_shared<const ReadMotion>(), std::make_shared<const PlayNode>(), std::make_shared<const Throws>()};
 }
 
 }  // namespace
