@@ -8,10 +8,12 @@ packages=(cmake g++ ninja-build ccache pkg-config
           libeigen3-dev libspdlog-dev libyaml-cpp-dev catch2 libsundials-dev libdxflib-dev)
 # ... and what the reports, the Python module, the benchmarks and the whole test suite add.
 if [ "${1:-}" != "--study" ]; then
+  packages+=(python3-pint python3-tqdm)  # the Python module: units (pint), sweep progress bars (tqdm)
   packages+=(libbenchmark-dev gnuplot-nox python3-ezdxf chromium python3-pil graphviz poppler-utils
              pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
              python3-pytest python3-venv python3-pip python3-setuptools python3-wheel python3-distributed python3-nbclient python3-ipykernel python3-nbformat
-             clang abigail-tools libc++-dev)  # the SDK checks: C headers under clang, abidw/abidiff, a libc++ plugin
+             clang abigail-tools libc++-dev  # the SDK checks: C headers under clang, abidw/abidiff, a libc++ plugin
+             python3-openturns)  # the uncertainty study checked against OpenTURNS (python/tests/test_study_openturns.py)
 fi
 missing=()
 for p in "${packages[@]}"; do

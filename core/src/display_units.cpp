@@ -3,6 +3,7 @@
 #include <map>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -31,22 +32,22 @@ DisplayUnits DisplayUnits::from_scene(const std::vector<std::pair<std::string, R
   for (const auto& q : quantities()) names.push_back(q.first);
   for (const auto& [name, value] : units) {
     const auto q = std::find_if(quantities().begin(), quantities().end(), [&wanted = name](const auto& e) { return e.first == wanted; });
-    if (q == quantities().end()) throw SceneError(value.key_where.str() + "units: " + unknown_name_message("quantity", name, names));
+    if (q == quantities().end()) throw_scene_error_at(value.key_where, "units: " + unknown_name_message("quantity", name, names));
     if (value.kind != RawValue::Kind::scalar)
-      throw SceneError(value.where.str() + "units: " + name + " takes one unit, e.g. " + name + ": mm");
+      throw_scene_error_at(value.where, "units: " + name + " takes one unit, e.g. " + name + ": mm");
     UnitScale scale;
     try {
       scale = parse_unit(value.text);
     } catch (const UnitError& e) {
       SourceLocation at = value.where;
       at.column += static_cast<int>(e.column());
-      throw SceneError(at.str() + "units: " + name + ": " + e.what());
+      throw_scene_error_at(at, "units: " + name + ": " + e.what());
     }
     if (!(scale.dimension == q->second))
-      throw SceneError(value.where.str() + "units: " + name + " is a " + q->second.describe() + " but '" + value.text +
+      throw_scene_error_at(value.where, "units: " + name + " is a " + q->second.describe() + " but '" + value.text +
                        "' is a " + (scale.dimension.dimensionless() ? std::string("pure number") : scale.dimension.describe()));
     if (scale.offset != 0.0)
-      throw SceneError(value.where.str() + "units: " + name + ": '" + value.text +
+      throw_scene_error_at(value.where, "units: " + name + ": '" + value.text +
                        "' has an offset (degC); results are shown in units without one, e.g. K");
     out.named_.emplace_back(q->second, value.text);
   }

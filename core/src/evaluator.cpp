@@ -1,5 +1,6 @@
 #include <mechgraph/evaluator.hpp>
 
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/hash.hpp>
 #include <mechgraph/units.hpp>
@@ -21,6 +22,8 @@
 #include <sstream>
 
 namespace mechgraph {
+
+NodeEvaluationError::~NodeEvaluationError() = default;
 
 namespace {
 
@@ -202,8 +205,8 @@ namespace {
 // Evaluates node i (or takes it from the cache); its producers are in `produced` already. Fills
 // `record` (name, time, counters, notes) when given; a sweep's lean run passes none. Returns
 // whether the node was taken from the cache.
-bool run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
-              std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache, NodeRun* record) {
+bool run_node_unnamed(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
+                      std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache, NodeRun* record) {
   const GraphNode& node = graph.nodes[i];
   if (record) *record = NodeRun{node.name, node.info().type, hashes[i], false, 0.0, {}, {}};
   if (auto hit = node.memoised ? cache.find(hashes[i]) : nullptr) {
@@ -236,7 +239,8 @@ bool run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t
     // Point at the parameter's value in the scene when it was written there, else at the node.
     auto at = node.param_where.find(e.parameter());
     const SourceLocation& where = at != node.param_where.end() ? at->second : node.where;
-    throw EvaluationError(where.str() + where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
+    throw NodeEvaluationError({where, node.name, e.parameter()},
+                              where.str() + where_of(node) + ", parameter '" + e.parameter() + "': " + e.what());
   } catch (const EvaluationError&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -269,6 +273,22 @@ bool run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t
   if (node.memoised) cache.store(hashes[i], produced[i]);
   if (record) spdlog::debug("{} evaluated in {:.3g} s", where_of(node), record->seconds);
   return false;
+}
+
+// An EvaluationError while evaluating node i carries the node as data (error_subject.hpp).
+NodeEvaluationError named(const GraphNode& node, const EvaluationError& e) {
+  return NodeEvaluationError({node.where, node.name, {}}, e.what());
+}
+
+bool run_node(const Graph& graph, std::size_t i, const std::vector<std::uint64_t>& hashes,
+              std::vector<std::shared_ptr<const OutputSet>>& produced, MemoCache& cache, NodeRun* record) {
+  try {
+    return run_node_unnamed(graph, i, hashes, produced, cache, record);
+  } catch (const NodeEvaluationError&) {
+    throw;
+  } catch (const EvaluationError& e) {
+    throw named(graph.nodes[i], e);
+  }
 }
 
 // Runs the needed nodes on `threads` workers: a node starts as soon as all its producers are done.
@@ -407,11 +427,17 @@ RunResult evaluate(const Graph& graph, MemoCache& cache, unsigned threads) {
                  result.runs);
   }
   for (const RequestedOutput& o : graph.outputs) {
-    const Value& value = requested_value(graph, o, produced);
-    result.outputs.push_back(
-        {o.label, value, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
-    const OutputValue& out = result.outputs.back();
-    check_displayable(graph.nodes[o.node], o.label, out.value, out.dimension, out.display_unit, graph.display_units);
+    try {
+      const Value& value = requested_value(graph, o, produced);
+      result.outputs.push_back(
+          {o.label, value, o.spec->dimension, graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit)});
+      const OutputValue& out = result.outputs.back();
+      check_displayable(graph.nodes[o.node], o.label, out.value, out.dimension, out.display_unit, graph.display_units);
+    } catch (const NodeEvaluationError&) {
+      throw;
+    } catch (const EvaluationError& e) {
+      throw named(graph.nodes[o.node], e);
+    }
   }
   return result;
 }

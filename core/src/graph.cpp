@@ -5,6 +5,7 @@
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/bounded_read.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -50,7 +51,7 @@ std::optional<std::size_t> Graph::find(std::string_view name) const {
 
 namespace {
 
-[[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw SceneError(where.str() + message); }
+[[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw_scene_error_at(where, message); }
 
 
 
@@ -296,7 +297,7 @@ class GraphBuilder {
     node.type = registry_.find(n.type);
     if (!node.type) {
       const std::string message = n.type_where.str() + unknown_name_message("node type", n.type, registry_.type_names());
-      if (registry_.skipped().empty()) throw SceneError(message);
+      if (registry_.skipped().empty()) throw SceneErrorAt({n.type_where, n.name, {}}, message);
       // It may live in a plugin file that could not be loaded: that is the failure to report.
       std::string skipped;
       for (const SkippedPlugin& s : registry_.skipped()) skipped += "\n  " + s.reason;
@@ -317,10 +318,15 @@ class GraphBuilder {
     std::set<std::string> seen;
     for (const auto& [name, value] : written) {
       const ParamSpec* spec = info.find_param(name);
-      if (!spec) fail(value.key_where, owner + ": " + unknown_name_message("parameter", name, valid));
+      if (!spec)
+        throw SceneErrorAt({value.key_where, n.name, name}, value.key_where.str() + owner + ": " + unknown_name_message("parameter", name, valid));
       seen.insert(name);
       record_scene_param_uses(graph_.nodes.size(), name, value, false);
-      node.params.set(name, parse_param(value, *spec, owner));
+      try {
+        node.params.set(name, parse_param(value, *spec, owner));
+      } catch (const SceneErrorAt& e) {  // the same error, with the node and parameter as data
+        throw SceneErrorAt({e.subject().where, n.name, name}, e.what());
+      }
       node.param_where[name] = value.where;
     }
     for (const ParamSpec& p : info.params) {

@@ -4,6 +4,7 @@
 
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/text_escape.hpp>
 
@@ -15,6 +16,8 @@
 #include <sstream>
 
 namespace mechgraph {
+
+SceneErrorAt::~SceneErrorAt() = default;
 
 std::string SourceLocation::str() const {
   if (line == 0) return file.empty() ? std::string() : file + ": ";
@@ -33,7 +36,7 @@ class SceneReader {
   }
 
   [[noreturn]] void fail(const SourceLocation& where, const std::string& message) const {
-    throw SceneError(where.str() + message);
+    throw_scene_error_at(where, message);
   }
 
   std::string scalar(const YAML::Node& n, const std::string& what) const {
@@ -85,8 +88,8 @@ class SceneReader {
   SceneSpec read(const YAML::Node& root) {
     SceneSpec scene;
     scene.file = file_;
-    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, units, nodes, effects, outputs, report");
-    check_keys(root, {"title", "requires", "params", "units", "nodes", "effects", "outputs", "report"}, "scene key");
+    if (!root.IsMap()) fail({file_, 1, 1}, "a scene is a map with keys title, requires, params, units, uncertainty, nodes, effects, outputs, report");
+    check_keys(root, {"title", "requires", "params", "units", "uncertainty", "nodes", "effects", "outputs", "report"}, "scene key");
     if (root["title"]) scene.title = scalar(root["title"], "a title");
     if (const YAML::Node r = root["requires"]; r && !r.IsNull()) {
       if (!r.IsMap()) fail(at(r), "expected requires as a map of plugin: version requirement, e.g. requires: { cams: \">=0.2\" }");
@@ -110,6 +113,10 @@ class SceneReader {
         v.key_where = at(kv.first);
         scene.units.emplace_back(scalar(kv.first, "a quantity name"), std::move(v));
       }
+    }
+    if (const YAML::Node u = root["uncertainty"]; u && !u.IsNull()) {
+      if (!u.IsMap()) fail(at(u), "expected uncertainty as a map (parameters, method, samples, ...), found " + shape(u));
+      scene.uncertainty = raw(u);
     }
     const YAML::Node nodes = root["nodes"];
     if (!nodes || nodes.IsNull()) fail({file_, 1, 1}, "the scene has no 'nodes'");
@@ -232,7 +239,7 @@ std::optional<CellRef> parse_cell_ref(std::string_view text, const SourceLocatio
     const auto digits = text.substr(open + 1, text.size() - open - 2);
     auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
     if (open == std::string_view::npos || digits.empty() || ec != std::errc() || ptr != digits.data() + digits.size())
-      throw SceneError(where.str() + "expected 'node.port[index]' with a whole index, found '" + std::string(text) + "'");
+      throw_scene_error_at(where, "expected 'node.port[index]' with a whole index, found '" + std::string(text) + "'");
     element = index;
     text = text.substr(0, open);
   }
@@ -243,21 +250,21 @@ std::optional<CellRef> parse_cell_ref(std::string_view text, const SourceLocatio
 PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
   const auto dot = text.find('.');
   if (dot == std::string_view::npos || dot == 0 || dot + 1 == text.size() || text.find('.', dot + 1) != std::string_view::npos)
-    throw SceneError(where.str() + "expected 'node.port', found '" + std::string(text) + "'");
+    throw_scene_error_at(where, "expected 'node.port', found '" + std::string(text) + "'");
   return {std::string(text.substr(0, dot)), std::string(text.substr(dot + 1)), where};
 }
 
 RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {
   constexpr std::size_t max_value_bytes = 1 << 20;
   if (text.size() > max_value_bytes)
-    throw SceneError(where.str() + "a value of " + std::to_string(text.size()) + " bytes is more than the limit of 1 MiB");
+    throw_scene_error_at(where, "a value of " + std::to_string(text.size()) + " bytes is more than the limit of 1 MiB");
   detail::check_utf8(text, where.file);
   detail::check_yaml_events(text, where.file, {16, 100'000, 100'000});
   YAML::Node node;
   try {
     node = YAML::Load(std::string(text));
   } catch (const YAML::Exception& e) {
-    throw SceneError(where.str() + "cannot read " + quoted_text_excerpt(text) + ": " + e.msg);
+    throw_scene_error_at(where, "cannot read " + quoted_text_excerpt(text) + ": " + e.msg);
   }
   detail::check_yaml_bounds(node, where.file, {16, 100'000, 100'000});
   RawValue v = SceneReader(where.file).raw(node);
@@ -282,7 +289,7 @@ SceneSpec parse_scene(std::string_view yaml_text, const std::string& file_label)
   try {
     root = YAML::Load(std::string(yaml_text));
   } catch (const YAML::Exception& e) {
-    throw SceneError(SourceLocation{file_label, e.mark.line + 1, e.mark.column + 1}.str() + "YAML syntax: " + e.msg);
+    throw_scene_error_at(SourceLocation{file_label, e.mark.line + 1, e.mark.column + 1}, "YAML syntax: " + e.msg);
   }
   detail::check_yaml_bounds(root, file_label);
   return SceneReader(file_label).read(root);

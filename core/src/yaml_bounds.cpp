@@ -1,5 +1,6 @@
 #include "yaml_bounds.hpp"
 
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/scene.hpp>
 #include <mechgraph/bounded_read.hpp>
@@ -54,7 +55,7 @@ class BoundsWalk {
   [[noreturn]] void fail(const YAML::Node& n, const std::string& message) const {
     const YAML::Mark m = n.Mark();
     const SourceLocation where = m.is_null() ? SourceLocation{file_, 0, 0} : SourceLocation{file_, m.line + 1, m.column + 1};
-    throw SceneError(where.str() + message);
+    throw_scene_error_at(where, message);
   }
 
   std::string file_;
@@ -119,7 +120,7 @@ class CountingHandler final : public YAML::EventHandler {
                   " YAML nodes (an alias counts each time it is used): too large to be a scene");
   }
   [[noreturn]] void fail(const YAML::Mark& m, const std::string& message) const {
-    throw SceneError(SourceLocation{file_, m.line + 1, m.column + 1}.str() + message);
+    throw_scene_error_at(SourceLocation{file_, m.line + 1, m.column + 1}, message);
   }
 
   std::string file_;
@@ -160,7 +161,7 @@ void check_utf8(std::string_view text, const std::string& file) {
   }
   char hex[8];
   std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned>(static_cast<unsigned char>(text[*bad])));
-  throw SceneError(SourceLocation{file, line, column}.str() + "byte " + hex +
+  throw_scene_error_at(SourceLocation{file, line, column}, std::string("byte ") + hex +
                    " is not UTF-8: save the scene as UTF-8 text");
 }
 

@@ -56,5 +56,6 @@ int merge_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int bench_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int plugin_test_command(const GlobalOptions& g, const std::vector<std::string>& args);
 int report_command(const GlobalOptions& g, const std::vector<std::string>& args);
+int study_command(const GlobalOptions& g, const std::vector<std::string>& args);
 
 }  // namespace mechgraph::cli

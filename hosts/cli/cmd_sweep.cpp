@@ -5,6 +5,7 @@
 #include "options.hpp"
 #include "sweep_file.hpp"
 #include "sweep_progress.hpp"
+#include "study_run.hpp"
 #include "sweep_rows.hpp"
 
 #include <mechgraph/bounded_read.hpp>
@@ -102,10 +103,24 @@ Shard parse_shard(const std::string& text) {
   return shard;
 }
 
-CaseTable make_cases(const po::variables_map& vm) {
-  const int ways = static_cast<int>(vm.count("vary") > 0) + static_cast<int>(vm.count("cases") > 0) + static_cast<int>(vm.count("sample") > 0);
-  if (ways != 1) throw UsageError("give the cases one way: --vary NAME=FROM:TO:N ..., --cases FILE.csv, or --sample NAME=LO:HI ... --n N");
-  if (!vm.count("sample") && (vm.count("n") || vm.count("seed"))) throw UsageError("--n and --seed go with --sample");
+CaseTable make_cases(const po::variables_map& vm, const SceneSpec& scene, const PluginRegistry& registry, const Graph& graph,
+                     const std::vector<Override>& overrides) {
+  const int ways = static_cast<int>(vm.count("vary") > 0) + static_cast<int>(vm.count("cases") > 0) + static_cast<int>(vm.count("sample") > 0) +
+                   static_cast<int>(vm.count("study") > 0);
+  if (ways != 1)
+    throw UsageError("give the cases one way: --vary NAME=FROM:TO:N ..., --cases FILE.csv, --sample NAME=LO:HI ... --n N, or --study");
+  if (vm.count("study")) {
+    // The cases of the scene's uncertainty study, every one fixed by its index: shards of a Slurm
+    // array each run theirs, `merge` joins them and `mechgraph study SCENE --rows FILE` analyses.
+    if (vm.count("n")) throw UsageError("--study takes its sample count from the scene's uncertainty block or --samples, not --n");
+    StudySpec spec = study_spec_of(scene, registry);
+    apply_study_options(spec, vm.count("samples") ? vm["samples"].as<std::string>() : "", vm.count("method") ? vm["method"].as<std::string>() : "",
+                        vm.count("seed") ? std::to_string(vm["seed"].as<std::uint64_t>()) : "");
+    check_study_parameters(spec, graph, scene, registry, overrides);
+    return make_study_cases(spec);
+  }
+  if (vm.count("samples") || vm.count("method")) throw UsageError("--samples and --method go with --study");
+  if (!vm.count("sample") && (vm.count("n") || vm.count("seed"))) throw UsageError("--n and --seed go with --sample or --study");
   if (vm.count("vary")) {
     std::vector<VarySpec> specs;
     for (const std::string& v : vm["vary"].as<std::vector<std::string>>()) specs.push_back(parse_vary(v));
@@ -185,6 +200,9 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("cases", po::value<std::string>(), "cases from CSV: header of names ('name' or 'name [unit]'), one case per row")
       ("sample", po::value<std::vector<std::string>>()->composing(), "a Latin hypercube variable: NAME=LO:HI")
       ("n", po::value<std::string>(), "cases to sample (with --sample), 1 to 10^7")
+      ("study", "the cases of the scene's uncertainty study (its uncertainty: block; mechgraph study SCENE --rows FILE analyses them)")
+      ("samples", po::value<std::string>(), "with --study: base samples N (default: the scene's)")
+      ("method", po::value<std::string>(), "with --study: monte_carlo, latin_hypercube or sobol (default: the scene's)")
       ("seed", po::value<std::uint64_t>(), "seed of the sample (default 1): the same seed, the same cases")
       ("threads", po::value<std::string>()->default_value("0"), "worker threads, 0 to 1024 (0: one per core)")
       ("out", po::value<std::string>(), "write rows to FILE (appended as they come, complete under its name at the end; FILE.json says which sweep)")
@@ -197,7 +215,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
        "node results kept in the memo cache, 0 to 10^9 (least recently used dropped)");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
-                           "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S])\n"
+                           "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S] | --study)\n"
                            "                       [--threads N] [--out FILE] [--format csv|jsonl] [--shard I/N|auto] [--resume]\n"
                            "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--cache-size N] [--force]"))
     return ok;
@@ -220,7 +238,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
   const Graph graph = build_sweep_graph(scene, registry, overrides,
                                        vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt);
-  const CaseTable table = make_cases(vm);
+  const CaseTable table = make_cases(vm, scene, registry, graph, overrides);
   const CaseBinder binder(graph, scene, registry, overrides, table.variables);
 
   SweepOptions options;

@@ -35,6 +35,8 @@ commands:
   sweep SCENE (--vary N=A:B:K | --cases F.csv | --sample N=A:B --n K) [--threads N] [--out F] [--shard I/N]
                                                           many designs: one row per case, on all cores
   merge FILE... [--out FILE]                              shards of one sweep back together, checked
+  study SCENE [--samples N] [--method M] [--seed S] [--rows FILE] [--json] [--out DIR]
+                                                          uncertainty: statistics, Cpk, events, Sobol' indices
   plugin-test (LIB.so | TYPE)... [--set TYPE.P=V] [--continuity TYPE=N] [--strict] [--threads N] [--json]
                                                           conformance suites against a plugin's node types
 
@@ -131,7 +133,7 @@ int main(int argc, char** argv) {
   const std::map<std::string, int (*)(const cli::GlobalOptions&, const std::vector<std::string>&)> commands{
       {"run", &cli::run_command},         {"validate", &cli::validate_command}, {"graph", &cli::graph_command},
       {"plugins", &cli::plugins_command}, {"describe", &cli::describe_command}, {"bench", &cli::bench_command},
-      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command},       {"plugin-test", &cli::plugin_test_command},
+      {"sweep", &cli::sweep_command},     {"merge", &cli::merge_command},       {"study", &cli::study_command},       {"plugin-test", &cli::plugin_test_command},
       {"report", &cli::report_command}};
   auto it = commands.find(command);
   if (it == commands.end()) {

@@ -430,6 +430,21 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
   return format(cells, numeric);
 }
 
+SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) const {
+  Values out;
+  for (std::size_t v = 0; v < table_.variables.size(); ++v) {
+    std::string cell = table_.shown(result.index, v);
+    if (cell.empty()) out.inputs.emplace_back(std::monostate{});
+    else if (table_.cases[result.index][v].si.has_value() && finite_number_cell(cell)) out.inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
+    else out.inputs.emplace_back(std::move(cell));
+  }
+  out.error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
+  out.exit_code = result.failure == CaseFailure::none && !out.error.empty() ? evaluation_error : exit_code;
+  if (result.failure == CaseFailure::none && out.error.empty())
+    for (const Column& c : columns_) out.outputs.push_back(cell_value(result, c));
+  return out;
+}
+
 }  // namespace mechgraph::cli
 
 namespace mechgraph::cli {

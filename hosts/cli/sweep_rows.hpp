@@ -20,6 +20,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace mechgraph::cli {
@@ -47,6 +48,16 @@ class SweepRows {
   std::string line(const CaseResult& result, int exit_code) const;
   /// line(result, exit_code) appended to `out` (CSV rows without a string per cell).
   void append_line(std::string& out, const CaseResult& result, int exit_code) const;
+
+  /// The row of one case as values, for a caller that keeps numbers as numbers (the Python
+  /// module's numpy columns): what line() writes as JSON Lines, before it becomes text.
+  struct Values {
+    std::vector<std::variant<std::monostate, double, std::string>> inputs;  // none, a number, or text as written
+    std::vector<double> outputs;  // one per output column, in its unit; empty when the case failed
+    int exit_code = 0;
+    std::string error;  // "" when the case succeeded
+  };
+  Values values(const CaseResult& result, int exit_code) const;
 
  private:
   struct Column {

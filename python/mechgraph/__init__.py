@@ -2,9 +2,14 @@
 
     import mechgraph
     scene = mechgraph.Scene.load("scenes/valvetrain_cams.yaml")
-    r = scene.run(set={"rpm": "6500 rpm"})
-    r["v_arc.max_acceleration"]          # float, SI
+    r = scene.run(set={"rpm": "6500 rpm", "kurz.max_lift": (9, "mm")})
+    r["v_arc.max_acceleration"]                      # float, SI
+    r.table("kurz.svaj", units="display")            # DataFrame in the scene's units
     scene.sweep({"rpm [rpm]": [5000, 6000, 7000]})   # DataFrame, rows of `mechgraph sweep`
+
+Every number for a parameter with a dimension says its unit: text ("9 mm"), a pair (9, "mm"), a
+pint quantity, a column header ("lift [mm]"), or SI said so (mechgraph.si(0.009), si=True); a bare
+number is refused (SceneError), except for counts and ratios.
 
 Plugins are found as the command line finds them: folders given to :func:`load_plugins`, then
 ``MECHGRAPH_PLUGIN_PATH``, then the built-in folder beside libmechgraph.
@@ -14,14 +19,17 @@ from __future__ import annotations
 import json
 from typing import Any, Dict, List, Sequence
 
-from ._errors import EvaluationError, MechgraphError, PluginError, SceneError
+from ._errors import EvaluationError, MechgraphError, PluginError, SceneError, SceneFileNotFoundError, UnitError
 from . import _core
 from ._result import Quantity, Result
 from ._scene import Scene
+from ._study import Study
+from ._units import SI, si
 
 __version__: str = _core.__version__
 
-__all__ = ["Scene", "Result", "Quantity", "MechgraphError", "SceneError", "EvaluationError", "PluginError",
+__all__ = ["Scene", "Study", "Result", "Quantity", "si", "SI", "MechgraphError", "SceneError", "SceneFileNotFoundError",
+           "UnitError", "EvaluationError", "PluginError",
            "describe", "node_types", "plugins", "load_plugins", "set_log_level", "Description"]
 
 

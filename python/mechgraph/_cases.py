@@ -6,6 +6,8 @@ from typing import Any, List, Tuple
 
 import numpy as np
 
+from ._units import column_entry
+
 _HEADER = re.compile(r"^\s*(?P<name>[^\[\]]*?)\s*(\[\s*(?P<unit>[^\[\]]*?)\s*\])?\s*$")
 
 
@@ -19,20 +21,23 @@ def split_header(column: str) -> Tuple[str, str]:
     return m["name"], m["unit"] or ""
 
 
-def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
-    """Names, units and columns of `cases`: a DataFrame, a dict of arrays or lists, or anything
-    with ``items()``. The columns go to the C++ side as they are, where one conversion
+def case_columns(cases: Any, si: bool = False) -> Tuple[List[str], List[str], List[bool], list]:
+    """Names, units, SI marks and columns of `cases`: a DataFrame, a dict of arrays or lists, or
+    anything with ``items()``. A column's unit is in its header (``lift [mm]``), or comes with its
+    values (``(values, "mm")``, a pint quantity); ``mechgraph.si(values)`` or `si` marks numbers
+    without a unit as SI (_units.py). The columns go to the C++ side, where one conversion
     (python_values.cpp) reads every kind of value the same way as ``set=`` does: numbers in the
-    column's unit, or SI when the column names none; text cells read as a cases file's ('6500 rpm',
-    'roller'). Refused there, naming the column: True/False, complex numbers, dates, times and
-    durations (numpy datetime64/timedelta64, pandas), bytes, None and NA."""
+    column's unit; numbers without one only for a dimensionless parameter or when marked SI; text
+    cells read as a cases file's ('6500 rpm', 'roller'). Refused there, naming the column:
+    True/False, complex numbers, dates, times and durations (numpy datetime64/timedelta64, pandas),
+    bytes, None and NA."""
     if hasattr(cases, "columns") and hasattr(cases, "__getitem__"):  # a DataFrame
         items = [(c, cases[c]) for c in cases.columns]
     elif hasattr(cases, "items"):
         items = list(cases.items())
     else:
         raise TypeError("cases: expected a pandas DataFrame or a dict of arrays, got " + type(cases).__name__)
-    names, units, columns = [], [], []
+    names, units, marks, columns = [], [], [], []
     seen = set()  # a set, not the list: a frame may have hundreds of thousands of columns
     for header, values in items:
         name, unit = split_header(header)
@@ -40,11 +45,13 @@ def case_columns(cases: Any) -> Tuple[List[str], List[str], list]:
             from ._errors import SceneError
 
             raise SceneError(f"cases: column '{name}' appears twice")
+        values, unit, marked = column_entry(str(header), unit, values, si)
         columns.append(_as_column(values))
         names.append(name)
         seen.add(name)
         units.append(unit)
-    return names, units, columns
+        marks.append(marked)
+    return names, units, marks, columns
 
 
 def _as_column(values: Any) -> Any:

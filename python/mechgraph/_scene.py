@@ -7,7 +7,10 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Sequence, Union
 
 from . import _core
 from ._cases import case_columns
+from ._errors import SceneError, SceneFileNotFoundError
 from ._result import Result
+from ._progress import _Bar, progress_bar
+from ._units import scene_value, set_entries
 
 SetValue = Union[str, float, int, Sequence[float]]
 
@@ -31,9 +34,16 @@ class Scene:
     # ---- making one --------------------------------------------------------------------------
     @classmethod
     def load(cls, path: Union[str, os.PathLike]) -> "Scene":
-        """Reads a scene file (YAML, units in strings); errors name file:line:column."""
+        """Reads a scene file (YAML, units in strings). Errors are SceneError naming
+        file:line:column (``location``); a file that does not exist is a
+        :class:`SceneFileNotFoundError`, which is also a FileNotFoundError."""
         path = os.fspath(path)
-        return cls(_core.Session.load(path), ("file", path))
+        try:
+            return cls(_core.Session.load(path), ("file", path))
+        except SceneError as e:
+            if not os.path.exists(path):
+                raise SceneFileNotFoundError(e.message, path) from None
+            raise
 
     @classmethod
     def from_text(cls, yaml: str, name: str = "<text>") -> "Scene":
@@ -45,8 +55,10 @@ class Scene:
     @classmethod
     def from_dict(cls, scene: Mapping[str, Any], name: str = "<dict>") -> "Scene":
         """A scene from a dict shaped like the YAML (``{"params": ..., "nodes": ..., "outputs": [...]}``),
-        bounded as :meth:`from_text` is (the dict written as indented JSON, at most 1 MiB)."""
-        return cls.from_text(json.dumps(scene, indent=1), name)
+        bounded as :meth:`from_text` is (the dict written as indented JSON, at most 1 MiB). Values
+        are text with their units (``"8 mm"``) or pint quantities (written in SI base units); a
+        bare number for a parameter with a dimension is refused as in a scene file."""
+        return cls.from_text(json.dumps(scene, indent=1, default=scene_value), name)
 
     # pickling (dask): the scene travels as its text and is built again where it lands
     def __reduce__(self):
@@ -57,10 +69,12 @@ class Scene:
     # ---- what it is --------------------------------------------------------------------------
     @property
     def title(self) -> str:
+        """The scene's ``title:`` ("" when it has none)."""
         return self._session.title
 
     @property
     def file(self) -> str:
+        """The scene's file as given to :meth:`load`, or the `name` given to :meth:`from_text`."""
         return self._session.file
 
     @property
@@ -80,42 +94,88 @@ class Scene:
 
     # ---- evaluating --------------------------------------------------------------------------
     def run(self, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-            threads: int = 1) -> Result:
-        """Evaluates the scene.
+            threads: int = 1, si: bool = False) -> Result:
+        """Evaluates the scene and returns its :class:`Result`.
 
-        set: ``{"rpm": "6500 rpm", "arc.follower": "roller", "cam.max_lift": 0.009}``: text with
-            its unit (or a word) as ``--set`` takes, a number in SI (int, float, numpy integers and
-            floats), or a 1-D array in SI for a list parameter (``table.angles``, ``table.lifts``).
-            Refused (SceneError): True/False and numpy/bool arrays, complex numbers, dates, times
-            and durations (datetime, numpy datetime64/timedelta64, pandas), bytes, None.
-        outputs: ``node.port`` labels instead of the scene's outputs and report.
+        set: values by name (a scene parameter ``rpm`` or a node's ``kurz.max_lift``), each with its
+            unit: text as ``--set`` takes it (``"6500 rpm"``, a word such as ``"roller"``), a pair
+            ``(9, "mm")``, a pint quantity, or a number marked SI with ``mechgraph.si(0.009)``. A
+            1-D array goes to a list parameter (``table.angles``) the same ways:
+            ``(angles_deg, "deg")``, a pint array, ``mechgraph.si(radians)``. A bare number is
+            taken only for a dimensionless parameter (a count, a ratio); for one with a dimension
+            it is refused (SceneError naming the dimension and the scene's unit), unless `si` is
+            True. Refused as values: True/False and bool arrays, complex numbers, dates, times and
+            durations (datetime, numpy datetime64/timedelta64, pandas), bytes, None.
+        outputs: ``node.port`` labels instead of the scene's outputs and report; each one is then
+            readable in the result (``r.table("kurz.svaj")``, which the scene may not ask for).
         threads: independent nodes evaluated at once.
+        si: every bare number in `set` is in SI (m, rad, rad/s ...).
         """
-        outcome = self._session.run(dict(set or {}), list(outputs or []), threads, self._interruptible)
-        result = Result(outcome)
+        entries = set_entries(set, si)
+        outcome = self._session.run(entries, list(outputs or []), threads, self._interruptible)
+        result = Result(outcome, self._session, entries)
         self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
         return result
 
-    def sweep(self, cases: Any, set: Optional[Mapping[str, Union[str, float, int]]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0):
+    def sweep(self, cases: Any, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0, si: bool = False, progress: Any = True):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
         ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
         ``name [unit]``, values in that unit), ``exit`` and ``error``; a failed case is a row with
-        its exit class (2 scene, 3 evaluation) and message. Column names carry units as on the
-        command line (``cam.max_lift [mm]``); a column without one holds numbers in SI.
+        its exit class (2 scene, 3 evaluation) and message.
 
-        set: fixed overrides for every case, text with its unit or a number in SI
-            (``{"rpm": "6000 rpm"}``); a text is taken as it is, never read as YAML.
+        Units: a column's header names the unit of its numbers as on the command line
+        (``cam.max_lift [mm]``), or the values carry it (``(values, "mm")``, a pint quantity);
+        numbers without a unit are taken only for a dimensionless parameter, or when marked SI
+        (``mechgraph.si(values)``, or `si` True for every column); else SceneError. Text cells are
+        read as a cases file's ("6500 rpm", "roller"). Columns of dates or durations are refused.
+
+        set: fixed values for every case, as :meth:`run` takes them (``{"rpm": "6000 rpm"}``);
+            a text is taken as it is, never read as YAML.
+        si: every number without a unit (in `cases` and `set`) is in SI.
+        progress: a tqdm bar on stderr (or a Jupyter widget) once the sweep has run for a second
+            (True, the default); False for none; or a callable ``progress(done, total)`` called
+            about every 20 ms while cases run.
         """
         import pandas as pd
 
-        names, units, columns = case_columns(cases)
-        header, lines, summary = self._session.sweep(names, units, columns, dict(set or {}), list(outputs or []),
-                                                     int(threads))
-        frame = pd.DataFrame([json.loads(line) for line in lines], columns=header)
+        names, units, marks, columns = case_columns(cases, si)
+        total = len(columns[0]) if columns else 0
+        bar = progress_bar(progress, total, "sweep " + (os.path.basename(self.file) if self.file else "scene"))
+        try:
+            (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
+                                                            list(outputs or []), int(threads), bar)
+        except BaseException:
+            if isinstance(bar, _Bar):
+                bar.close()
+            raise
+        if isinstance(bar, _Bar):
+            bar.close(summary["cases"])
+        frame = pd.DataFrame(values, columns=header)
         frame.attrs["summary"] = summary
         return frame
+
+    def study(self, parameters: Optional[Mapping[str, Any]] = None, *, samples: Optional[int] = None,
+              method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
+              limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
+              set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
+              threads: int = 0, si: bool = False) -> "Study":
+        """An uncertainty study of the scene, as ``mechgraph study`` runs it (docs/python.md).
+
+        parameters: distributions by parameter name, as the scene's ``uncertainty: parameters:``
+            writes them, e.g. ``{"lash": {"normal": {"mean": "0.25 mm", "sigma": "0.01 mm"}}}``;
+            merged over the scene's block by name. limits, events, samples, method, seed and
+            sensitivity replace the block's. Returns a Study (DataFrames: summary, quantiles,
+            histograms, sobol, events, samples). The answers do not depend on `threads`.
+        set: fixed values for every case, as :meth:`run` takes them (a bare number only for a
+            dimensionless parameter, or with `si` True).
+        """
+        from ._study import Study
+
+        args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+        json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads))
+        return Study(json_text, cases)
 
     def cache_info(self) -> Dict[str, int]:
         """Memo cache lookups of this scene's runs: hits and misses."""
@@ -123,10 +183,24 @@ class Scene:
         return {"hits": hits, "misses": misses}
 
     def clear_cache(self) -> None:
+        """Empties this scene's memo cache: the next run evaluates every node it needs."""
         self._session.clear_cache()
 
     def __repr__(self) -> str:
         return f"Scene({self.title or self.file!r})"
+
+
+def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si=False) -> tuple:
+    """Scene.study's settings as the module takes them: the block as JSON text ("" for none), the
+    fixed overrides (entries by the unit rule of ``set=``), samples, method and seed as text ("": the scene's), the outputs."""
+    block: Dict[str, Any] = {}
+    if parameters:
+        block["parameters"] = dict(parameters)
+    for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
+        if value is not None:
+            block[key] = value
+    return (json.dumps(block) if block else "", set_entries(set, si), "" if samples is None else str(int(samples)), method or "",
+            "" if seed is None else str(int(seed)), list(outputs or []))
 
 
 def _rebuild(kind: str, *args: str) -> Scene:

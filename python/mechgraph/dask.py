@@ -10,6 +10,8 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Tuple
 
 from ._cases import case_columns
 from ._scene import Scene
+from ._progress import _Bar, progress_bar
+from ._units import SI
 
 # Scenes built on this worker process, by their source (the scene travels as its text or path).
 _worker_scenes: Dict[Tuple[str, ...], Scene] = {}
@@ -25,36 +27,76 @@ def _worker_scene(source: Tuple[str, ...]) -> Scene:
 
 def _run_chunk(source: Tuple[str, ...], first: int, chunk: Dict[str, Any], sets: Optional[Mapping[str, str]],
                outputs: Optional[list], threads: int):
-    frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads)
+    frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads, progress=False)
     frame["case"] = frame["case"] + first
     return frame
 
 
-def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, str]] = None,
-          outputs: Optional[Iterable[str]] = None, threads: int = 1):
+def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optional[Mapping[str, Any]] = None,
+          outputs: Optional[Iterable[str]] = None, threads: int = 1, si: bool = False, progress: Any = True):
     """Runs `cases` (a DataFrame or dict of arrays, as :meth:`Scene.sweep` takes) on the workers of
     `client` (a ``dask.distributed.Client``) in chunks of `chunk` cases, `threads` threads per
-    chunk, and returns one DataFrame in case order. The columns of a series output are fixed per
+    chunk, and returns one DataFrame in case order. Units as :meth:`Scene.sweep` takes them (`si`
+    marks every number without a unit as SI). `progress`: a tqdm bar of the cases done, chunk by
+    chunk, once the sweep has run for a second (False: none; a callable ``progress(done, total)``). The columns of a series output are fixed per
     chunk; a chunk whose cases all fail has only the scalar columns (its rows are aligned to the
     others by name)."""
     import pandas as pd
 
     if chunk < 1:
         raise ValueError("chunk must be at least 1")
-    names, units, columns = case_columns(cases)
+    names, units, marks, columns = case_columns(cases, si)
     headers = [f"{n} [{u}]" if u else n for n, u in zip(names, units)]
     total = len(columns[0]) if columns else 0
     source = scene._source
-    sets = dict(set or {})
+    sets = {k: (v if isinstance(v, SI) or not si else SI(v)) for k, v in dict(set or {}).items()}
     outs = list(outputs or [])
     futures = []
     for first in range(0, total, chunk):
-        part = {h: c[first:first + chunk] for h, c in zip(headers, columns)}
+        part = {h: SI(c[first:first + chunk]) if m else c[first:first + chunk] for h, m, c in zip(headers, marks, columns)}
         futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, pure=False))
+    bar = progress_bar(progress, total, "dask sweep")
+    if bar is not None and futures:
+        from distributed import as_completed
+
+        sizes = {f.key: min(chunk, total - first) for f, first in zip(futures, range(0, total, chunk))}
+        done = 0
+        for future in as_completed(futures):
+            done += sizes[future.key]
+            bar(done, total)
+        if isinstance(bar, _Bar):
+            bar.close(done)
     frames = client.gather(futures)
     if not frames:
-        return scene.sweep(cases, set=set, outputs=outputs, threads=threads)
+        return scene.sweep(cases, set=set, outputs=outputs, threads=threads, si=si)
     result = pd.concat(frames, ignore_index=True)
     widest = max(frames, key=lambda f: len(f.columns))
     ordered = list(widest.columns) + [c for c in result.columns if c not in widest.columns]
     return result[ordered]
+
+
+def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = None, *, samples: Optional[int] = None,
+          method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
+          limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
+          set: Optional[Mapping[str, Any]] = None, outputs: Optional[Iterable[str]] = None, chunk: int = 1000, threads: int = 1,
+          si: bool = False):
+    """An uncertainty study (as :meth:`Scene.study` takes its settings) whose cases run on the
+    workers of `client` by :func:`sweep`: the design is made here, its cases (parameters in SI)
+    go out in chunks, the rows come back exact, and the answers are made from them: the same
+    numbers as ``scene.study(...)`` in one process."""
+    from ._scene import _study_arguments
+    from ._study import Study
+
+    args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+    design = scene._session.study_design(*args)
+    # The design's parameters are in SI: marked so, for the unit rule of sweep columns.
+    rows = sweep(client, scene, {name: SI(values) for name, values in design.items()}, chunk=chunk, set=set,
+                 outputs=outputs, threads=threads, si=si)
+    columns = {name: [float("nan") if v is None else float(v) for v in rows[name]] for name in rows.columns
+               if name not in design and name not in ("case", "exit", "error")}
+    exits = [int(e) for e in rows["exit"]]
+    json_text = scene._session.study_rows(*args, columns, exits)
+    cases = dict(design)
+    cases.update(columns)
+    cases["exit"] = exits
+    return Study(json_text, cases)

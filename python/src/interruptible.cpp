@@ -10,7 +10,8 @@
 
 namespace mechgraph::python {
 
-void run_interruptibly(std::function<void()> work, const std::function<void()>& on_interrupt, OnInterrupt mode) {
+void run_interruptibly(std::function<void()> work, const std::function<void()>& on_interrupt, OnInterrupt mode,
+                       const std::function<void()>& on_tick) {
   namespace py = pybind11;
   auto done = std::make_shared<std::promise<void>>();
   std::future<void> finished = done->get_future();
@@ -42,7 +43,7 @@ void run_interruptibly(std::function<void()> work, const std::function<void()>& 
       status = finished.wait_for(std::chrono::milliseconds(20));
     }
     if (status == std::future_status::ready) break;
-    if (PyErr_CheckSignals() != 0) {
+    const auto stop_work = [&] {
       on_interrupt();
       if (mode == OnInterrupt::detach) {
         worker.detach();
@@ -50,7 +51,18 @@ void run_interruptibly(std::function<void()> work, const std::function<void()>& 
         py::gil_scoped_release released;
         worker.join();
       }
+    };
+    if (PyErr_CheckSignals() != 0) {
+      stop_work();
       throw py::error_already_set();
+    }
+    if (on_tick) {
+      try {
+        on_tick();
+      } catch (...) {
+        stop_work();  // the work may hold references to the caller's frame: it ends before this does
+        throw;
+      }
     }
   }
   worker.join();

@@ -5,14 +5,21 @@
 #include "case_values.hpp"
 #include "interruptible.hpp"
 #include "python_values.hpp"
+#include "report_tables.hpp"
 #include "scene_session.hpp"
+#include "unit_rule.hpp"
 #include "value_arrays.hpp"
+
+#include <study_run.hpp>
+#include <sweep_rows.hpp>
 
 #include <cli.hpp>
 #include <node_info_format.hpp>
 #include <terminal_output.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/units.hpp>
@@ -25,6 +32,8 @@
 
 #include <atomic>
 #include <charconv>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <mutex>
 #include <sstream>
@@ -75,28 +84,50 @@ py::list plugin_list(const PluginRegistry& r) {
 
 // ---- values from Python -------------------------------------------------------------------------
 
-// A `set=` entry through the one conversion of Python values (python_values.hpp): text, a number
-// in SI, or a 1-D array of numbers in SI for a list parameter.
-SetValue set_value(const std::string& name, const py::handle& value) {
+// A `set=` entry through the one conversion of Python values (python_values.hpp): text, a number,
+// or a 1-D array of numbers for a list parameter; with `unit` ("mm", from (9, "mm") or a pint
+// quantity) when the Python side had one, `si` when it was marked SI. A number with its unit becomes
+// the text "9 mm", read as --set reads it.
+SetValue set_value(const std::string& name, const py::handle& value, const std::string& unit, bool si) {
   const std::string context = "set " + name;
   if (is_sequence(value)) {
     ColumnValues column = column_values(value, context);
-    if (column.text) throw SceneError(context + ": an array goes to a list parameter as numbers in SI, not as text");
-    return {name, std::move(column.numbers)};
+    if (column.text) throw SceneError(context + ": an array goes to a list parameter as numbers, not as text");
+    return {name, std::move(column.numbers), unit, si};
   }
   ScalarValue scalar = scalar_value(value, context);
-  if (auto* text = std::get_if<std::string>(&scalar)) return {name, std::move(*text)};
-  return {name, std::get<double>(scalar)};
+  if (auto* text = std::get_if<std::string>(&scalar)) {
+    if (!unit.empty())
+      throw SceneError(context + ": text with a unit beside it; give the text alone (\"9 mm\") or a number with its unit (9, \"mm\")");
+    return {name, std::move(*text), "", false};
+  }
+  const double x = std::get<double>(scalar);
+  if (!unit.empty()) {
+    if (!std::isfinite(x)) throw SceneError(context + ": " + (std::isnan(x) ? "NaN" : "an infinite value") + " is not a value");
+    return {name, number_text(x) + " " + unit, "", false};
+  }
+  return {name, x, "", si};
+}
+
+// `set=` as the Python side hands it over: (name, value, unit, si) for each entry.
+std::vector<SetValue> set_values(const py::list& sets) {
+  std::vector<SetValue> out;
+  for (const py::handle entry : sets) {
+    const auto t = py::reinterpret_borrow<py::tuple>(entry);
+    out.push_back(set_value(py::str(t[0]), t[1], t[2].cast<std::string>(), t[3].cast<bool>()));
+  }
+  return out;
 }
 
 // A sweep's cases from columns, each through the one conversion of Python values: numbers in the
-// column's unit, or in SI without one; or text cells read as a cases file's are (a bare number
-// takes the column's unit).
+// column's unit, or in SI when the column is marked SI; or text cells read as a cases file's are (a
+// bare number takes the column's unit). Numbers without a unit for a parameter with a dimension
+// are refused (unit_rule.hpp).
 CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
-                     const py::list& columns) {
+                     const std::vector<bool>& si, const py::list& columns) {
   CaseTable table;
   table.origin = "python";
-  if (py::len(columns) != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
+  if (py::len(columns) != names.size() || units.size() != names.size() || si.size() != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
                                                          std::to_string(py::len(columns)) + " columns");
   std::size_t n = 0;
   for (std::size_t v = 0; v < names.size(); ++v) {
@@ -115,8 +146,14 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
                        std::to_string(n));
     }
     const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
+    const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
+    const auto refuse_bare = [&] {
+      throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *d,
+                                           session.scene_unit_of(name, *d), BareKind::column));
+    };
+    const bool bare_refused = unit.empty() && !si[v] && d && !d->dimensionless();
     if (!column.text) {
-      const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
+      if (bare_refused && n > 0) refuse_bare();
       for (std::size_t i = 0; i < n; ++i) {
         const double x = column.numbers[i];
         if (!std::isfinite(x)) throw SceneError(context(i) + ": not a finite number");
@@ -127,8 +164,10 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
       for (std::size_t i = 0; i < n; ++i) {
         const std::string& cell = column.cells[i];
         CaseValue value = value_from_text(cell, context(i));
-        if (!unit.empty() && value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos)
-          value = value_from_text(cell + " " + unit, context(i));
+        const bool bare = value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos;
+        if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context(i));
+        else if (bare && bare_refused) refuse_bare();
+        else if (bare && si[v] && d) value = value_from_si(*value.si, *d, context(i));
         table.cases[i][v] = std::move(value);
       }
     }
@@ -188,11 +227,69 @@ py::dict provenance(const RunOutcome& r) {
   return out;
 }
 
+// A sweep's rows as numpy columns by header: `case` and `exit` int64, the outputs float64 (NaN
+// where a case failed), an input float64 when every cell is a number (else objects: None, float
+// or the text as written), `error` objects (None for a success). The same values as the rows of
+// `mechgraph sweep --format jsonl`, without text in between.
+py::tuple sweep_columns(const SessionSweep& s) {
+  const std::size_t n = s.rows.size();
+  const std::size_t inputs = s.inputs;
+  const std::size_t outputs = s.header.size() - 3 - inputs;
+  py::dict columns;
+  py::array_t<std::int64_t> cases(static_cast<py::ssize_t>(n)), exits(static_cast<py::ssize_t>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    cases.mutable_at(i) = static_cast<std::int64_t>(s.cases[i]);
+    exits.mutable_at(i) = s.rows[i].exit_code;
+  }
+  columns[py::str(s.header.front())] = cases;
+  for (std::size_t v = 0; v < inputs; ++v) {
+    bool numbers = true;
+    for (const auto& row : s.rows) numbers = numbers && std::holds_alternative<double>(row.inputs[v]);
+    if (numbers) {
+      py::array_t<double> column(static_cast<py::ssize_t>(n));
+      for (std::size_t i = 0; i < n; ++i) column.mutable_at(i) = std::get<double>(s.rows[i].inputs[v]);
+      columns[python_text(s.header[1 + v])] = column;
+    } else {
+      py::list column;
+      for (const auto& row : s.rows) {
+        const auto& cell = row.inputs[v];
+        if (const auto* x = std::get_if<double>(&cell)) column.append(*x);
+        else if (const auto* text = std::get_if<std::string>(&cell)) column.append(python_text(*text));
+        else column.append(py::none());
+      }
+      columns[python_text(s.header[1 + v])] = py::module_::import("numpy").attr("array")(column, py::arg("dtype") = "object");
+    }
+  }
+  for (std::size_t o = 0; o < outputs; ++o) {
+    py::array_t<double> column(static_cast<py::ssize_t>(n));
+    for (std::size_t i = 0; i < n; ++i)
+      column.mutable_at(i) = s.rows[i].outputs.empty() ? std::numeric_limits<double>::quiet_NaN() : s.rows[i].outputs[o];
+    columns[python_text(s.header[1 + inputs + o])] = column;
+  }
+  columns[py::str(s.header[s.header.size() - 2])] = exits;
+  py::list errors;
+  for (const auto& row : s.rows) errors.append(row.error.empty() ? py::object(py::none()) : py::object(python_text(row.error)));
+  columns[py::str(s.header.back())] = py::module_::import("numpy").attr("array")(errors, py::arg("dtype") = "object");
+  py::list header;
+  for (const std::string& h : s.header) header.append(python_text(h));
+  return py::make_tuple(header, columns);
+}
+
 // ---- errors -------------------------------------------------------------------------------------
 
-void raise_as(const char* class_name, const std::string& message) {
+// Raises mechgraph's Python class `class_name` with `message` (which may quote a plugin's bytes)
+// and, when the C++ error carried one, its subject as attributes: location (file, line, column),
+// node, parameter. Read from the error's fields, never from its message.
+void raise_as(const char* class_name, const std::string& message, const ErrorSubject* subject = nullptr) {
   const py::object cls = py::module_::import("mechgraph._errors").attr(class_name);
-  PyErr_SetObject(cls.ptr(), python_text(message).ptr());  // a message may quote a plugin's bytes
+  py::object error = cls(python_text(message));
+  if (subject) {
+    if (subject->where.line > 0)
+      error.attr("location") = py::make_tuple(python_text(subject->where.file), subject->where.line, subject->where.column);
+    if (!subject->node.empty()) error.attr("node") = python_text(subject->node);
+    if (!subject->parameter.empty()) error.attr("parameter") = python_text(subject->parameter);
+  }
+  PyErr_SetObject(cls.ptr(), error.ptr());
 }
 
 }  // namespace
@@ -207,6 +304,12 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const SceneErrorAt& e) {
+      raise_as("SceneError", e.what(), &e.subject());
+    } catch (const NodeEvaluationError& e) {
+      raise_as("EvaluationError", e.what(), &e.subject());
+    } catch (const UnitError& e) {
+      raise_as("UnitError", e.what());
     } catch (const SceneError& e) {
       raise_as("SceneError", e.what());
     } catch (const cli::UsageError& e) {
@@ -239,6 +342,11 @@ PYBIND11_MODULE(_core, m) {
     if (l == spdlog::level::off && level != "off")
       throw SceneError("log level '" + level + "': valid levels are trace, debug, info, warn, error, critical, off");
     spdlog::set_level(l);
+  });
+  m.def("unit_scale", [](const std::string& unit) {
+    // shown = si / scale - offset, and the SI unit of the unit's dimension ("" dimensionless)
+    const UnitScale u = parse_unit(unit);
+    return py::make_tuple(u.scale, u.offset, si_unit_label(u.dimension));
   });
   m.def("to_unit", [](double si, const std::string& unit) {
     // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
@@ -287,6 +395,42 @@ PYBIND11_MODULE(_core, m) {
         }
         return work;
       })
+      .def("shown_units", [](const RunOutcome& r, const std::string& label) {
+        // The units the scene shows this output in ("" keeps SI): a scalar's; a series' values and
+        // axis; a table's axis and channels.
+        const OutputValue& o = r.find(label);
+        const DisplayUnits units = DisplayUnits::from_scene(r.session->scene().units);
+        py::list out;
+        switch (o.value.kind()) {
+          case ValueKind::series:
+            out.append(python_text(o.display_unit));
+            out.append(python_text(units.unit_for(o.value.as_series().axis_dimension)));
+            break;
+          case ValueKind::table: {
+            const Table& t = o.value.as_table();
+            out.append(python_text(units.unit_for(t.axis.dimension, t.axis.display_unit)));
+            for (const Table::Column& c : t.channels) out.append(python_text(units.unit_for(c.dimension, c.display_unit)));
+            break;
+          }
+          default: out.append(python_text(o.display_unit));
+        }
+        return out;
+      })
+      .def("report_tables", [](const RunOutcome& r) {
+        const Graph graph = r.session->graph_for(*r.run->sets, r.outputs);
+        py::list tables;
+        for (const ReportTableValues& t : report_table_values(graph, r.run->result)) {
+          py::list columns, rows;
+          for (const std::string& c : t.columns) columns.append(python_text(c));
+          for (const auto& row : t.rows) {
+            py::list values;
+            for (const auto& v : row.values) values.append(v ? py::object(py::float_(*v)) : py::object(py::none()));
+            rows.append(py::make_tuple(python_text(row.label), python_text(row.unit), values));
+          }
+          tables.append(py::make_tuple(python_text(t.title), columns, rows));
+        }
+        return tables;
+      })
       .def_property_readonly("seconds", [](const RunOutcome& r) { return r.run->seconds; })
       .def("provenance", &provenance);
 
@@ -315,10 +459,9 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("cache_counters", [](const SceneSession& s) { return py::make_tuple(s.cache_hits(), s.cache_misses()); })
       .def("clear_cache", &SceneSession::clear_cache)
-      .def("run", [](const std::shared_ptr<SceneSession>& session, const py::dict& sets, const std::vector<std::string>& outputs,
+      .def("run", [](const std::shared_ptr<SceneSession>& session, const py::list& sets, const std::vector<std::string>& outputs,
                      unsigned threads, bool interruptible) {
-        auto values = std::make_shared<std::vector<SetValue>>();
-        for (const auto& [key, value] : sets) values->push_back(set_value(py::str(key), value));
+        auto values = std::make_shared<std::vector<SetValue>>(set_values(sets));
         auto run = std::make_shared<SessionRun>();
         if (interruptible) {
           // The work owns what it touches: on Ctrl-C it may finish after this call has raised.
@@ -331,19 +474,98 @@ PYBIND11_MODULE(_core, m) {
         return RunOutcome{session, run, outputs};
       }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
-                       const std::vector<std::string>& units, const py::list& columns, const py::dict& set,
-                       const std::vector<std::string>& outputs, unsigned threads) {
-        const CaseTable table = case_table(*session, names, units, columns);
-        std::vector<SetValue> sets;
-        for (const auto& [key, value] : set) sets.push_back(set_value(py::str(key), value));
+                       const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
+                       const py::list& set, const std::vector<std::string>& outputs, unsigned threads,
+                       const py::object& progress) {
+        const CaseTable table = case_table(*session, names, units, si, columns);
+        const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
+        std::atomic<std::size_t> done{0};
         SessionSweep result;
-        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get()); }, [&] { *stop = true; },
-                          OnInterrupt::wait);
+        // progress(done, total), every 20 ms while the cases run (a tqdm bar, _progress.py)
+        std::function<void()> tick;
+        if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.cases.size()); };
+        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), &done); }, [&] { *stop = true; },
+                          OnInterrupt::wait, tick);
         py::dict summary;
         summary["cases"] = result.summary.run;
         summary["failed"] = result.failed;
         summary["seconds"] = result.summary.seconds;
-        return py::make_tuple(result.header, result.lines, summary);
+        return py::make_tuple(sweep_columns(result), summary);
+      })
+      .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                       const std::string& samples, const std::string& method, const std::string& seed,
+                       const std::vector<std::string>& outputs, unsigned threads) {
+        // `block`: the settings from Python as JSON text ("" for none), read as the scene's block is.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        auto stop = std::make_shared<std::atomic<bool>>(false);
+        std::unique_ptr<cli::StudyOutcome> outcome;
+        run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
+                          [&] { *stop = true; }, OnInterrupt::wait);
+        // The design's cases: the parameters in SI, the outputs in their shown units, the failure class.
+        py::dict cases;
+        const cli::StudyOutcome& o = *outcome;
+        for (std::size_t v = 0; v < o.table.variables.size(); ++v) {
+          std::vector<double> column(o.table.cases.size());
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
+          cases[py::str(o.table.variables[v].name)] = column;
+        }
+        py::list units;
+        for (std::size_t c = 0; c < o.data.outputs.size(); ++c) {
+          const StudyColumn& col = o.data.outputs[c];
+          const std::string unit = col.unit.empty() ? col.dimension.si_unit() : col.unit;
+          const std::string name = unit.empty() || unit == "1" ? col.label : col.label + " [" + unit + "]";
+          cases[py::str(name)] = o.data.values[c];
+        }
+        std::vector<int> exits;
+        for (CaseFailure f : o.data.failures) exits.push_back(cli::exit_code_of(f));
+        cases["exit"] = exits;
+        return py::make_tuple(o.json, cases);
+      })
+      .def("study_design", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                              const std::string& samples, const std::string& method, const std::string& seed,
+                              const std::vector<std::string>& outputs) {
+        // The study's cases (parameters in SI) and the output columns its rows will carry.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        py::dict cases;
+        for (std::size_t v = 0; v < o->table.variables.size(); ++v) {
+          std::vector<double> column(o->table.cases.size());
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o->table.cases[i][v].si;
+          cases[py::str(o->table.variables[v].name)] = column;
+        }
+        return cases;
+      })
+      .def("study_rows", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
+                            const std::string& samples, const std::string& method, const std::string& seed,
+                            const std::vector<std::string>& outputs, const py::dict& columns, const std::vector<int>& exits) {
+        // The answers from rows a sweep of the study's cases gave (`name [unit]` columns in the
+        // units the rows show, NaN where a case failed; exit per case), as Scene.study's.
+        std::optional<RawValue> settings;
+        if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
+        const std::vector<SetValue> sets = set_values(set);
+        auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        const std::size_t n = o->table.cases.size();
+        if (exits.size() != n) throw SceneError("study rows: " + std::to_string(exits.size()) + " rows for the design's " + std::to_string(n) + " cases");
+        o->data.outputs = o->columns;
+        o->data.failures.resize(n);
+        for (std::size_t i = 0; i < n; ++i)
+          o->data.failures[i] = exits[i] == 0 ? CaseFailure::none : exits[i] == 2 ? CaseFailure::scene : CaseFailure::evaluation;
+        for (const StudyColumn& c : o->columns) {
+          const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+          const std::string name = unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
+          if (!columns.contains(name)) throw SceneError("study rows: no column '" + name + "'");
+          std::vector<double> values = columns[py::str(name)].cast<std::vector<double>>();
+          if (values.size() != n) throw SceneError("study rows: column '" + name + "' has " + std::to_string(values.size()) + " values");
+          for (std::size_t i = 0; i < n; ++i)
+            if (o->data.failures[i] != CaseFailure::none) values[i] = std::numeric_limits<double>::quiet_NaN();
+          o->data.values.push_back(std::move(values));
+        }
+        cli::finish_study(*o);
+        return o->json;
       });
 }

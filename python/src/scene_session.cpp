@@ -1,6 +1,7 @@
 #include "scene_session.hpp"
 
 #include "case_values.hpp"
+#include "unit_rule.hpp"
 
 #include <cli.hpp>
 #include <sweep_rows.hpp>
@@ -53,6 +54,14 @@ std::optional<Dimension> SceneSession::dimension_of(const std::string& name) {
   return target_dimension(*plain_, name);
 }
 
+std::string SceneSession::scene_unit_of(std::string_view name, Dimension d) const { return scene_unit(scene_, name, d); }
+
+void SceneSession::require_unit_or_si(const std::string& context, const std::string& name, double given) {
+  const std::optional<Dimension> d = dimension_of(name);
+  if (d && !d->dimensionless())
+    throw SceneErrorAt(subject_of(name), bare_number_refusal(context, name, number_text(given), *d, scene_unit_of(name, *d), BareKind::number));
+}
+
 void SceneSession::clear_cache() {
   std::lock_guard lock(mutex_);
   cache_ = std::make_unique<MemoCache>();
@@ -73,7 +82,7 @@ SceneSession::Prepared SceneSession::prepare(const std::vector<std::string>& out
   check_work_budget(p.graph, estimate_work(p.graph), WorkBudget{}, 1, false);
   std::vector<SweepVariable> variables;
   for (const std::string& n : names) variables.push_back({n, ""});
-  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables);
+  p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables, BinderUse::set);
   return p;
 }
 
@@ -82,7 +91,8 @@ namespace {
 // Writes a list parameter (`table.angles`) straight into the built graph, each element checked as
 // the scene loader checks a list's numbers: finite, within the parameter's range. No YAML: a table
 // of a million rows costs its copy.
-void write_list(Graph& graph, const std::string& name, const std::vector<double>& values) {
+void write_list(Graph& graph, const SceneSpec& scene, const SetValue& given) {
+  const std::string& name = given.name;
   const auto dot = name.find('.');
   const std::string context = "set " + name;
   if (dot == std::string::npos)
@@ -107,13 +117,21 @@ void write_list(Graph& graph, const std::string& name, const std::vector<double>
     throw SceneError(context + type + ": '" + param + "' takes one value, not an array (its list parameters: " +
                      (valid.empty() ? "none" : valid) + ")");
   }
+  // In SI: converted from the unit given with them, or marked SI; bare numbers only when dimensionless.
+  std::vector<double> values = std::get<std::vector<double>>(given.value);
+  if (!given.unit.empty()) {
+    values = values_in_si(values, given.unit, spec->dimension, context);
+  } else if (!given.si && !spec->dimension.dimensionless()) {
+    throw SceneErrorAt(subject_of(name), bare_number_refusal(context, name, "", spec->dimension, scene_unit(scene, name, spec->dimension),
+                                         BareKind::array));
+  }
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i]))
       throw SceneError(context + ": element " + std::to_string(i) + " is " + (std::isnan(values[i]) ? "NaN" : "infinite"));
     if (const std::string problem = spec->value_problem(values[i]); !problem.empty())
       throw SceneError(context + ": element " + std::to_string(i) + " = " + si_text(values[i], spec->dimension) + " " + problem);
   }
-  target.params.set(param, ParamValue::of_list(values));
+  target.params.set(param, ParamValue::of_list(std::move(values)));
 }
 
 }  // namespace
@@ -127,13 +145,15 @@ SceneSession::BoundSets SceneSession::bound_sets(const std::vector<SetValue>& se
       b.values.push_back(value_from_text(*text, context));
       b.overrides.push_back(s.name + "=" + *text);
     } else if (const auto* number = std::get_if<double>(&s.value)) {
+      if (!s.si) require_unit_or_si(context, s.name, *number);
       b.names.push_back(s.name);
       b.values.push_back(value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), context));
       b.overrides.push_back(s.name + "=" + b.values.back().text);
     } else {
       b.list_names.push_back(s.name);
       b.lists.push_back(&s);
-      b.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, SI>");
+      b.overrides.push_back(s.name + "=<" + std::to_string(std::get<std::vector<double>>(s.value).size()) + " values, " +
+                            (s.unit.empty() ? std::string("SI") : s.unit) + ">");
     }
   }
   return b;
@@ -141,7 +161,7 @@ SceneSession::BoundSets SceneSession::bound_sets(const std::vector<SetValue>& se
 
 void SceneSession::give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const {
   binder.apply(graph, sets.values);
-  for (const SetValue* l : sets.lists) write_list(graph, l->name, std::get<std::vector<double>>(l->value));
+  for (const SetValue* l : sets.lists) write_list(graph, scene_, *l);
 }
 
 SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs,
@@ -162,20 +182,45 @@ SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, 
   return run;
 }
 
-SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop) {
-  SceneSpec scene = scene_;
+std::vector<Override> SceneSession::fixed_overrides(const std::vector<SetValue>& sets) {
   std::vector<Override> overrides;
   for (const SetValue& s : sets) {
     // An override is read as YAML (as --set's are); a value from Python goes in as one quoted
     // scalar, so its text is the value whatever it holds ("*x", "[1, 2]", "~").
     std::string text;
     if (const auto* t = std::get_if<std::string>(&s.value)) text = *t;
-    else if (const auto* number = std::get_if<double>(&s.value))
+    else if (const auto* number = std::get_if<double>(&s.value)) {
+      if (!s.si) require_unit_or_si("set " + s.name, s.name, *number);
       text = value_from_si(*number, dimension_of(s.name).value_or(Dimension{}), "set " + s.name).text;
-    else throw SceneError("set " + s.name + ": an array is not a sweep's fixed value (give it to Scene.run, or vary it)");
+    } else throw SceneError("set " + s.name + ": an array is not a sweep's fixed value (give it to Scene.run, or vary it)");
     overrides.push_back({s.name, yaml_quoted(text), s.name + "=" + text});
   }
+  return overrides;
+}
+
+std::unique_ptr<cli::StudyOutcome> SceneSession::study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                       const std::string& samples, const std::string& method, const std::string& seed,
+                                                       const std::vector<std::string>& outputs, unsigned threads,
+                                                       const std::atomic<bool>* stop) {
+  const std::vector<Override> overrides = fixed_overrides(sets);
+  WorkBudget budget;
+  budget.max_work = sweep_default_max_work;
+  return cli::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
+                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
+}
+
+std::unique_ptr<cli::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                               const std::string& samples, const std::string& method,
+                                                               const std::string& seed, const std::vector<std::string>& outputs) {
+  return cli::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
+                                  outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
+}
+
+SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
+                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                                 std::atomic<std::size_t>* done) {
+  SceneSpec scene = scene_;
+  const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = cli::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
@@ -194,13 +239,18 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   cli::RowSequencer sequence(
       rows, [] {},
       [&](const CaseResult& r) {
-        out.lines.push_back(rows.line(r, cli::exit_code_of(r.failure)));
-        if (r.failure != CaseFailure::none) ++out.failed;
+        out.cases.push_back(r.index);
+        out.rows.push_back(rows.values(r, cli::exit_code_of(r.failure)));
+        if (out.rows.back().exit_code != 0) ++out.failed;
       });
   MemoCache cache;
-  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { sequence(std::move(r)); });
+  out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
+    sequence(std::move(r));
+    if (done) done->fetch_add(1, std::memory_order_relaxed);
+  });
   sequence.finish();
   out.header = rows.header();
+  out.inputs = table.variables.size();
   return out;
 }
 

@@ -6,10 +6,14 @@
 //
 // Thread-safety: a session serialises its runs (a run writes into its built graph); sweeps work on
 // their own copies and may run beside runs.
+#include <sweep_rows.hpp>
+
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/case_binder.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
+
+#include <study_run.hpp>
 
 #include <atomic>
 #include <map>
@@ -22,10 +26,14 @@
 
 namespace mechgraph::python {
 
-/// One `set=` entry: text with its unit ("6500 rpm", a word), a number in SI, or a list in SI.
+/// One `set=` entry: text with its unit ("6500 rpm", a word; a number given with its unit becomes
+/// such text), a number, or a list of numbers for a list parameter. A number or list without a unit
+/// is refused for a parameter with a dimension unless marked SI (unit_rule.hpp).
 struct SetValue {
   std::string name;
   std::variant<std::string, double, std::vector<double>> value;
+  std::string unit;  // a list's numbers are in this unit ("deg"); "": SI when `si`, else bare
+  bool si = false;   // marked as SI (mechgraph.si, si=True)
 };
 
 struct SessionRun {
@@ -36,10 +44,12 @@ struct SessionRun {
   double seconds = 0.0;                // wall time of the evaluation
 };
 
-/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header.
+/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header, as values.
 struct SessionSweep {
   std::vector<std::string> header;
-  std::vector<std::string> lines;  // one JSON object per case, in case order
+  std::size_t inputs = 0;                            // varied-input columns after `case`
+  std::vector<std::size_t> cases;                    // each row's case number, in case order
+  std::vector<cli::SweepRows::Values> rows;          // one per case
   SweepSummary summary;
   std::size_t failed = 0;
 };
@@ -58,8 +68,22 @@ class SceneSession {
   /// Runs one case per row of `table` on `threads` workers (0: one per core) with the rows of
   /// `mechgraph sweep`; `stop` set: no new case starts. `sets` are fixed for every case (text or
   /// a number in SI; each goes to the scene as the text it is, never read as YAML).
+  /// `done` (if given) counts the cases finished, for a progress bar.
   SessionSweep sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                     const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+                     const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                     std::atomic<std::size_t>* done = nullptr);
+
+  /// An uncertainty study of the scene (study_run.hpp): `block` merged over its `uncertainty:`,
+  /// `sets` fixed for every case (as sweep() takes them); empty samples/method/seed: the block's.
+  std::unique_ptr<cli::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                           const std::string& samples, const std::string& method, const std::string& seed,
+                                           const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+
+  /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
+  /// (mechgraph.dask.study), analysed with cli::finish_study once their values are in.
+  std::unique_ptr<cli::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+                                                   const std::string& samples, const std::string& method, const std::string& seed,
+                                                   const std::vector<std::string>& outputs);
 
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()
@@ -71,6 +95,10 @@ class SceneSession {
   const PluginRegistry& registry() const { return *registry_; }
   /// The dimension a `set=` name reaches (see case_values.hpp), from the scene's own graph.
   std::optional<Dimension> dimension_of(const std::string& name);
+  /// The unit the scene writes `name` in (unit_rule.hpp), for messages.
+  std::string scene_unit_of(std::string_view name, Dimension d) const;
+  /// Refuses a bare number (no unit, not marked SI) for a `name` with a dimension.
+  void require_unit_or_si(const std::string& context, const std::string& name, double given);
 
   /// Memo cache counters: hits, misses, entries dropped.
   std::size_t cache_hits() const { return cache_->hits(); }
@@ -91,6 +119,8 @@ class SceneSession {
     std::vector<const SetValue*> lists;
   };
   BoundSets bound_sets(const std::vector<SetValue>& sets);
+  // A sweep's or a study's fixed `sets` as overrides (each value one quoted YAML scalar).
+  std::vector<Override> fixed_overrides(const std::vector<SetValue>& sets);
   Prepared prepare(const std::vector<std::string>& outputs, const std::vector<std::string>& names) const;
   void give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const;
   Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,

@@ -45,8 +45,11 @@ def test_values_are_si_and_quantities_carry_units(scenes):
 def test_a_number_in_si_is_the_same_as_text_with_its_unit(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     a = scene.run(set={"rpm": "6500 rpm", "lift": "9 mm"}, outputs=["v_kurz.max_acceleration"])
-    b = scene.run(set={"rpm": 6500 * 2 * math.pi / 60, "lift": 0.009}, outputs=["v_kurz.max_acceleration"])
+    b = scene.run(set={"rpm": 6500 * 2 * math.pi / 60, "lift": 0.009}, outputs=["v_kurz.max_acceleration"], si=True)
+    c = scene.run(set={"rpm": mechgraph.si(6500 * 2 * math.pi / 60), "lift": mechgraph.si(0.009)},
+                  outputs=["v_kurz.max_acceleration"])
     assert close(a["v_kurz.max_acceleration"], b["v_kurz.max_acceleration"], rel=1e-14)
+    assert c["v_kurz.max_acceleration"] == b["v_kurz.max_acceleration"]
 
 
 def test_a_second_run_reuses_what_did_not_change(scenes):

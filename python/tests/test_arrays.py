@@ -19,7 +19,7 @@ def test_a_table_from_arrays_follows_the_law_it_samples(tmp_path):
     svaj = scene.run(outputs=["ref.svaj"]).table("ref.svaj")
     angle = svaj["cam_angle [rad]"].to_numpy()
     lift = svaj["lift [m]"].to_numpy()
-    r = scene.run(set={"table.angles": angle, "table.lifts": lift},
+    r = scene.run(set={"table.angles": angle, "table.lifts": lift}, si=True,
                   outputs=["table.max_lift", "table.duration", "ref.duration", "table.max_acceleration", "ref.max_acceleration"])
     # the spline through 361 samples of the Kurz law gives back its lift and event
     assert math.isclose(r["table.max_lift"], 0.008, rel_tol=1e-6)
@@ -38,17 +38,17 @@ def test_the_file_checks_apply_to_arrays():
     angle = np.radians(np.linspace(-65, 65, 41))
     lift = 0.008 * np.cos(np.linspace(-np.pi / 2, np.pi / 2, 41)) ** 2
     with pytest.raises(mechgraph.EvaluationError, match="increase"):
-        scene.run(set={"table.angles": angle[::-1], "table.lifts": lift}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": angle[::-1], "table.lifts": lift}, si=True, outputs=["table.max_lift"])
     bad = lift.copy()
     bad[5] = -1e-6
     with pytest.raises(mechgraph.EvaluationError, match="negative"):
-        scene.run(set={"table.angles": angle, "table.lifts": bad}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": angle, "table.lifts": bad}, si=True, outputs=["table.max_lift"])
     with pytest.raises(mechgraph.EvaluationError, match="as long"):
-        scene.run(set={"table.angles": angle, "table.lifts": lift[:-1]}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": angle, "table.lifts": lift[:-1]}, si=True, outputs=["table.max_lift"])
     with pytest.raises(mechgraph.EvaluationError, match="no table"):
         scene.run(outputs=["table.max_lift"])
     with pytest.raises(mechgraph.SceneError):
-        scene.run(set={"table.angles": angle * np.nan, "table.lifts": lift}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": angle * np.nan, "table.lifts": lift}, si=True, outputs=["table.max_lift"])
 
 
 def test_arrays_go_to_list_parameters_only_and_are_checked_whole():
@@ -63,7 +63,7 @@ def test_arrays_go_to_list_parameters_only_and_are_checked_whole():
     inf = angle.copy()
     inf[7] = np.inf
     with pytest.raises(mechgraph.SceneError, match="element 7"):
-        scene.run(set={"table.angles": inf, "table.lifts": angle}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": inf, "table.lifts": angle}, si=True, outputs=["table.max_lift"])
 
 
 def test_a_long_table_is_written_in_place_not_through_text():
@@ -75,7 +75,7 @@ def test_a_long_table_is_written_in_place_not_through_text():
         angle = np.radians(np.linspace(-65, 65, n))
         lift = 9e-3 * np.cos(np.pi * np.degrees(angle) / 130) ** 2
         lift[0] = lift[-1] = 0.0
-        r = scene.run(set={"table.angles": angle, "table.lifts": lift, "table.base_radius": "30 mm"},
+        r = scene.run(set={"table.angles": angle, "table.lifts": lift, "table.base_radius": "30 mm"}, si=True,
                       outputs=["table.max_lift"])
         results.append(r["table.max_lift"])
         assert r.provenance["overrides"][0] == f"table.angles=<{n} values, SI>"

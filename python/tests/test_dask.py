@@ -13,7 +13,8 @@ def test_dask_sweep_equals_the_single_process_sweep(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm = np.linspace(4000, 8000, 37)
     r0 = np.where(np.arange(37) == 11, 3.0, 17.0)  # one infeasible case, a failed row
-    cases = pd.DataFrame({"rpm [rpm]": rpm, "r0 [mm]": r0})
+    # units three ways: a header, a (values, unit) pair, numbers marked SI; each chunk keeps them
+    cases = {"rpm [rpm]": rpm, "r0": (r0, "mm"), "lift": mechgraph.si(np.linspace(0.007, 0.009, 37))}
     outputs = ["arc.min_curvature_radius", "v_kurz.max_acceleration", "ta_kurz.time_area"]
     local = scene.sweep(cases, outputs=outputs, threads=1)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
@@ -24,3 +25,24 @@ def test_dask_sweep_equals_the_single_process_sweep(scenes):
     assert list(remote.columns) == list(local.columns)
     pd.testing.assert_frame_equal(remote.reset_index(drop=True), local.reset_index(drop=True), check_exact=True)
     assert (remote["exit"] != 0).sum() == 1
+
+
+def test_dask_study_equals_the_single_process_study(monkeypatch):
+    # An uncertainty study's cases on the workers (mechgraph.dask.study) give Scene.study's answers
+    # bit for bit; the workers find the test plugin by MECHGRAPH_PLUGIN_PATH.
+    from conftest import BINARY, SOURCE
+
+    plugins = str(BINARY / "test_plugins" / "test_uq")
+    monkeypatch.setenv("MECHGRAPH_PLUGIN_PATH", plugins)
+    mechgraph.load_plugins()
+    try:
+        scene = mechgraph.Scene.load(SOURCE / "tests" / "uncertainty" / "ishigami.yaml")
+        local = scene.study(samples=64, threads=1)
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+                distributed.Client(cluster) as client:
+            remote = mechgraph.dask.study(client, scene, samples=64, chunk=50)
+        assert remote.json == local.json
+        pd.testing.assert_frame_equal(remote.samples[local.samples.columns], local.samples, check_exact=True, check_dtype=False)
+    finally:
+        monkeypatch.delenv("MECHGRAPH_PLUGIN_PATH")
+        mechgraph.load_plugins()

@@ -48,7 +48,7 @@ def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
 def test_si_numbers_and_dict_of_arrays(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm_si = np.array([5000.0, 6000.0]) * 2 * math.pi / 60
-    a = scene.sweep({"rpm": rpm_si}, outputs=["v_kurz.max_acceleration"])
+    a = scene.sweep({"rpm": mechgraph.si(rpm_si)}, outputs=["v_kurz.max_acceleration"])
     b = scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["v_kurz.max_acceleration"])
     col = [c for c in a.columns if c.startswith("v_kurz.max_acceleration")][0]
     assert np.allclose(a[col].to_numpy(dtype=float), b[col].to_numpy(dtype=float), rtol=1e-14, atol=0)
@@ -79,7 +79,7 @@ def test_no_cases_give_an_empty_frame_and_nan_is_refused(scenes):
     with pytest.raises(mechgraph.SceneError):
         scene.sweep({"rpm [rpm]": [5000.0, float("nan")]}, outputs=["v_kurz.max_acceleration"])
     with pytest.raises(mechgraph.SceneError):
-        scene.sweep({"lift": [0.008, float("inf")]}, outputs=["v_kurz.max_acceleration"])
+        scene.sweep({"lift": [0.008, float("inf")]}, si=True, outputs=["v_kurz.max_acceleration"])
 
 
 def test_a_wide_frame_is_checked_for_repeated_columns_in_linear_time(scenes):
@@ -90,7 +90,7 @@ def test_a_wide_frame_is_checked_for_repeated_columns_in_linear_time(scenes):
 
     columns = {f"c{i}": [1.0] for i in range(300000)}
     start = time.monotonic()
-    names, _, _ = case_columns(columns)
+    names, _, _, _ = case_columns(columns)
     assert len(names) == 300000 and time.monotonic() - start < 10
     columns["c299999 [mm]"] = [1.0]
     with pytest.raises(mechgraph.SceneError, match="appears twice"):
@@ -103,3 +103,33 @@ def test_each_case_is_estimated_with_its_own_values(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     with pytest.raises(mechgraph.SceneError, match="curve_points = 1000000"):
         scene.sweep({"kurz.curve_points": [1e6] * 200}, outputs=["v_kurz.max_acceleration"], threads=200)
+
+
+def test_progress_is_reported_while_cases_run_and_a_bar_shows_only_for_long_sweeps(scenes, capfd, monkeypatch):
+    import mechgraph._progress
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    cases = {"rpm [rpm]": np.linspace(3000, 8000, 20000)}
+    seen = []
+    rows = scene.sweep(cases, outputs=["ta_kurz.time_area"], threads=1, progress=lambda done, total: seen.append((done, total)))
+    assert len(rows) == 20000
+    assert seen and all(total == 20000 for _, total in seen)
+    assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    capfd.readouterr()
+    scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["ta_kurz.time_area"])  # short: no bar
+    assert capfd.readouterr().err == ""
+    monkeypatch.setattr(mechgraph._progress, "DELAY_S", 0.0)  # a long sweep's bar, without waiting a second
+    scene.sweep(cases, outputs=["ta_kurz.time_area"], threads=1)
+    err = capfd.readouterr().err
+    assert "100%" in err and "20000/20000" in err and "case" in err
+
+
+def test_a_progress_callable_that_raises_stops_the_sweep(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+
+    def stop(done, total):
+        raise RuntimeError("enough")
+
+    with pytest.raises(RuntimeError, match="enough"):
+        scene.sweep({"rpm [rpm]": np.linspace(3000, 8000, 200000)}, outputs=["ta_kurz.time_area"], threads=2, progress=stop)
+    assert len(scene.sweep({"rpm [rpm]": [5000.0]}, outputs=["ta_kurz.time_area"])) == 1

@@ -47,11 +47,12 @@ def test_a_refused_kind_is_refused_as_one_value(scene, value, words):
 def test_accepted_numbers_and_text_give_the_same_lift(scene):
     for value in [0.008, np.float64(0.008), np.float32(0.008), decimal.Decimal("0.008"), fractions.Fraction(1, 125), "8 mm",
                   np.str_("8 mm"), np.array(0.008)]:
-        lift = scene.run(set={"lift": value})["ref.max_lift"]
+        lift = scene.run(set={"lift": value if isinstance(value, str) else mechgraph.si(value)})["ref.max_lift"]
+        assert scene.run(set={"lift": value}, si=True)["ref.max_lift"] == lift
         assert math.isclose(lift, 0.008, rel_tol=1e-7, abs_tol=1e-12), repr(value)
     # integers: a cam's base radius of 1 m from int and numpy int types alike
     for value in [1, np.int64(1), np.int32(1), np.uint8(1)]:
-        r = scene.run(set={"ref.base_radius": value})
+        r = scene.run(set={"ref.base_radius": mechgraph.si(value)})
         assert r.provenance["nodes"]["ref"]["used_si"]["base_radius"] == 1.0, repr(value)
 
 
@@ -72,13 +73,13 @@ def _law():
 def test_a_refused_kind_is_refused_in_an_array(scene, convert, words):
     angle, lift = _law()
     with pytest.raises(mechgraph.SceneError, match="set table.lifts.*" + words):
-        scene.run(set={"table.angles": angle, "table.lifts": convert(lift)}, outputs=["table.max_lift"])
+        scene.run(set={"table.angles": angle, "table.lifts": convert(lift)}, outputs=["table.max_lift"], si=True)
 
 
 def test_accepted_arrays(scene):
     angle, lift = _law()
     for lifts in [lift, list(lift), tuple(lift), pd.Series(lift), lift.astype(np.float32)]:
-        r = scene.run(set={"table.angles": angle, "table.lifts": lifts}, outputs=["table.max_lift"])
+        r = scene.run(set={"table.angles": angle, "table.lifts": lifts}, outputs=["table.max_lift"], si=True)
         assert math.isclose(r["table.max_lift"], 0.008, rel_tol=1e-6), type(lifts)
 
 
@@ -110,12 +111,12 @@ def test_accepted_sweep_columns(scene):
         frame = scene.sweep({"lift [mm]": column}, outputs=["ref.max_lift"])
         assert list(frame["exit"]) == [0, 0], repr(column)
         assert np.allclose(frame["ref.max_lift [mm]"], [8.0, 9.0]), repr(column)
-    frame = scene.sweep({"lift": [0.008, np.float64(0.009)]}, outputs=["ref.max_lift"])
+    frame = scene.sweep({"lift": mechgraph.si([0.008, np.float64(0.009)])}, outputs=["ref.max_lift"])
     assert np.allclose(frame["ref.max_lift [mm]"] / 1e3, expected)
 
 
 def test_a_sweeps_fixed_values_take_the_same_conversion_and_are_never_yaml(scene):
-    frame = scene.sweep({"ref.base_radius [mm]": [17.0]}, set={"lift": 0.009}, outputs=["ref.max_lift"])
+    frame = scene.sweep({"ref.base_radius [mm]": [17.0]}, set={"lift": mechgraph.si(0.009)}, outputs=["ref.max_lift"])
     assert math.isclose(frame["ref.max_lift [mm]"][0], 9.0, rel_tol=1e-9)
     frame = scene.sweep({"ref.base_radius [mm]": [17.0]}, set={"lift": "9 mm"}, outputs=["ref.max_lift"])
     assert math.isclose(frame["ref.max_lift [mm]"][0], 9.0, rel_tol=1e-9)
@@ -129,20 +130,20 @@ def test_a_sweeps_fixed_values_take_the_same_conversion_and_are_never_yaml(scene
 
 def test_provenance_records_the_arrays_a_run_used_not_the_scenes_rows(scene):
     angle, lift = _law()
-    r = scene.run(set={"table.angles": angle, "table.lifts": lift}, outputs=["table.max_lift"])
+    r = scene.run(set={"table.angles": angle, "table.lifts": lift}, outputs=["table.max_lift"], si=True)
     used = r.provenance["nodes"]["table"]["used_si"]
     assert np.array_equal(used["angles"], angle)
     assert np.array_equal(used["lifts"], lift)
     assert r.provenance["overrides"] == [f"table.angles=<{len(angle)} values, SI>", f"table.lifts=<{len(lift)} values, SI>"]
     # a later run with other values does not change what an earlier result says it used
-    later = scene.run(set={"table.angles": angle, "table.lifts": lift * 0.5}, outputs=["table.max_lift"])
+    later = scene.run(set={"table.angles": angle, "table.lifts": lift * 0.5}, outputs=["table.max_lift"], si=True)
     assert np.array_equal(r.provenance["nodes"]["table"]["used_si"]["lifts"], lift)
     assert np.array_equal(later.provenance["nodes"]["table"]["used_si"]["lifts"], lift * 0.5)
 
 
 def test_provenance_never_reads_a_text_value_as_yaml(scene):
     for text in ["*x", "[1, 2]", "{a: b}", "&a b", "~", "'q"]:
-        r = scene.run(set={"table.file": text, "lift": 0.0085})  # table is not needed: the run succeeds
+        r = scene.run(set={"table.file": text, "lift": mechgraph.si(0.0085)})  # table is not needed: the run succeeds
         p = r.provenance
         assert p["overrides"][0] == f"table.file={text}"
         assert p["overrides"][1].startswith("lift=0.0085")

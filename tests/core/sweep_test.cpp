@@ -3,6 +3,7 @@
 // cache; rows in case order and bit-identical for any thread count; failed cases and stopping.
 #include "test_support.hpp"
 
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/memo_cache.hpp>
 #include <mechgraph/units.hpp>
@@ -189,6 +190,49 @@ TEST_CASE("unknown sweep variables name the valid ones", "[sweep]") {
   CHECK_THROWS_WITH(bind("other"), Contains("'other' is not used by any node"));
   CHECK_THROWS_WITH(bind("s.gian"), Contains("node 's' (test.add): unknown parameter 'gian'; did you mean 'gain'?"));
   CHECK_THROWS_WITH(bind("q.gain"), Contains("unknown node 'q'"));
+}
+
+TEST_CASE("an evaluation error carries its node, parameter and place as data", "[evaluator]") {
+  const char* yaml = R"(title: failing
+nodes:
+  f: { type: test.fail, params: { limit: 1 mm } }
+outputs: [ f.out ]
+)";
+  try {
+    run_yaml(yaml, arith_registry());
+    FAIL("test.fail did not fail");
+  } catch (const NodeEvaluationError& e) {
+    CHECK(e.subject().node == "f");
+    CHECK(e.subject().parameter == "limit");
+    CHECK(e.subject().where.line == 3);  // where `limit` is written
+    CHECK_THAT(std::string(e.what()), Contains("node 'f' (test.fail), parameter 'limit'"));
+  }
+}
+
+TEST_CASE("a binder for a run's set= speaks of set, and its errors carry node and parameter", "[sweep]") {
+  const SceneSpec scene = parse_scene(two_constants, "sweep.yaml");
+  Graph g = build_graph(scene, arith_registry());
+  auto bind = [&](const std::string& name) { CaseBinder(g, scene, arith_registry(), {}, {{name, ""}}, BinderUse::set); };
+  for (const char* name : {"lne", "other", "s.gian", "q.gain"}) {
+    try {
+      bind(name);
+      FAIL("no error for " << name);
+    } catch (const SceneError& e) {
+      const std::string message = e.what();
+      CHECK_THAT(message, Contains(std::string("set ") + name));
+      CHECK(message.find("sweep") == std::string::npos);
+      CHECK(message.find("vari") == std::string::npos);
+    }
+  }
+  const CaseBinder binder(g, scene, arith_registry(), {}, {{"s.gain", ""}}, BinderUse::set);
+  try {
+    binder.apply(g, {read_case_value("3 mm", "set s.gain")});
+    FAIL("a length for a gain was taken");
+  } catch (const SceneErrorAt& e) {
+    CHECK(e.subject().node == "s");
+    CHECK(e.subject().parameter == "gain");
+    CHECK(e.subject().where.line == 0);
+  }
 }
 
 TEST_CASE("a variable inside a list is swept by building each case anew, with the same results", "[sweep]") {

@@ -51,7 +51,10 @@ Side either_side(const ParamSpec& p, bool lower) {
   return {exclusive ? std::nextafter(bound, in_dir) : bound, exclusive ? bound : std::nextafter(bound, out_dir)};
 }
 
-constexpr std::size_t known_contradictions = 49, known_simulating_contradictions = 1;
+// 50: scenes/valve_timing_tolerances.yaml (a ramped cam with lash) brings
+// valvetrain.valve_motion.checking_lift at its minimum: the smallest denormal checking lift is
+// refused as "not below the valve's lift 11.75 mm" (issue 29's range work to settle).
+constexpr std::size_t known_contradictions = 50, known_simulating_contradictions = 1;
 
 bool simulates(const std::string& type) { return type == "valvetrain.dynamics" || type == "valvetrain.float_speed"; }
 

@@ -110,6 +110,9 @@ struct SceneSpec {
   std::vector<std::pair<std::string, SourceLocation>> effects;
   std::vector<PortRef> outputs;
   std::vector<ReportSpec> report;  // `report:` is one table or a list of tables
+  /// `uncertainty:` as written (distributions on parameters, the sampling, spec limits, events);
+  /// read by uncertainty/study_spec.hpp, which knows its shape. Absent: no study.
+  std::optional<RawValue> uncertainty;
 };
 
 /// The largest scene file read: 1 MiB (a scene is a few pages of text; anything larger is refused

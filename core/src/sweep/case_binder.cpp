@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/case_binder.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -16,40 +17,50 @@ namespace {
 
 std::string owner_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
 
+// The start of a message about variable `name`: "sweep: 'rpm'" or, for a run's set=, "set rpm".
+std::string about(BinderUse use, const std::string& name) {
+  return use == BinderUse::sweep ? "sweep: '" + name + "'" : "set " + name;
+}
+
 // What `name` could have meant: a node's parameters for "node.x", else the nodes or the scene's.
-std::string unknown_variable(const Graph& graph, const std::string& name) {
+std::string unknown_variable(const Graph& graph, const std::string& name, BinderUse use) {
   std::vector<std::string> valid;
   const auto dot = name.find('.');
   if (dot != std::string::npos) {
     if (const auto node = graph.find(name.substr(0, dot))) {
       for (const ParamSpec& p : graph.nodes[*node].info().params) valid.push_back(p.name);
-      return "sweep: '" + name + "': " + owner_of(graph.nodes[*node]) + ": " + unknown_name_message("parameter", name.substr(dot + 1), valid);
+      return about(use, name) + ": " + owner_of(graph.nodes[*node]) + ": " + unknown_name_message("parameter", name.substr(dot + 1), valid);
     }
     for (const GraphNode& n : graph.nodes) valid.push_back(n.name);
-    return "sweep: '" + name + "': " + unknown_name_message("node", name.substr(0, dot), valid);
+    return about(use, name) + ": " + unknown_name_message("node", name.substr(0, dot), valid);
   }
   for (const auto& [scene_param, uses] : graph.scene_param_uses) valid.push_back(scene_param);
+  if (use == BinderUse::set)
+    return about(use, name) + ": " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is set as node.param)";
   return "sweep: " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is varied as node.param)";
 }
 
 }  // namespace
 
 CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRegistry& registry,
-                       std::vector<Override> overrides, std::vector<SweepVariable> variables)
-    : scene_(scene), registry_(registry), overrides_(std::move(overrides)), variables_(std::move(variables)) {
+                       std::vector<Override> overrides, std::vector<SweepVariable> variables, BinderUse use)
+    : scene_(scene), registry_(registry), overrides_(std::move(overrides)), variables_(std::move(variables)), use_(use) {
   std::unordered_set<std::string_view> varied;  // linear in the variables, however many
   varied.reserve(variables_.size());
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const std::string& name = variables_[v].name;
-    if (!varied.insert(name).second) throw SceneError("sweep: '" + name + "' is varied twice");
+    if (!varied.insert(name).second)
+      throw SceneError(about(use, name) + (use == BinderUse::sweep ? " is varied twice" : " is given twice"));
     std::vector<Target> targets;
     bool nested = false;
     if (const auto dot = name.find('.'); dot == std::string::npos) {
       auto it = base.scene_param_uses.find(name);
       if (it == base.scene_param_uses.end()) {
         const bool defined = std::any_of(scene.params.begin(), scene.params.end(), [&](const auto& p) { return p.first == name; });
-        if (defined) throw SceneError("sweep: scene parameter '" + name + "' is not used by any node: varying it changes nothing");
-        throw SceneError(unknown_variable(base, name));
+        if (defined && use == BinderUse::sweep)
+          throw SceneError("sweep: scene parameter '" + name + "' is not used by any node: varying it changes nothing");
+        if (defined) throw SceneError("set " + name + ": scene parameter '" + name + "' is not used by any node: setting it changes nothing");
+        throw SceneError(unknown_variable(base, name, use));
       }
       for (const SceneParamUse& use : it->second) {
         const GraphNode& node = base.nodes[use.node];
@@ -59,19 +70,23 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
     } else {
       const auto node = base.find(name.substr(0, dot));
       const ParamSpec* spec = node ? base.nodes[*node].info().find_param(name.substr(dot + 1)) : nullptr;
-      if (!spec) throw SceneError(unknown_variable(base, name));
+      if (!spec) throw SceneError(unknown_variable(base, name, use));
       // A node parameter written as `$x` in the scene is replaced for this node only.
       targets.push_back({*node, spec});
     }
     for (const Target& t : targets)
       if (t.spec->kind == ParamKind::number_list || t.spec->kind == ParamKind::record_list) nested = true;
-    if (std::none_of(targets.begin(), targets.end(), [&](const Target& t) { return base.nodes[t.node].needed; }))
-      spdlog::warn("sweep: '{}' only reaches nodes the requested outputs do not need: varying it changes nothing", name);
+    if (std::none_of(targets.begin(), targets.end(), [&](const Target& t) { return base.nodes[t.node].needed; })) {
+      if (use == BinderUse::sweep)
+        spdlog::warn("sweep: '{}' only reaches nodes the requested outputs do not need: varying it changes nothing", name);
+      else
+        spdlog::debug("set {}: reaches no node the requested outputs need", name);
+    }
     rebuild_ = rebuild_ || nested;
     targets_.push_back(std::move(targets));
-    swept_labels_.push_back("(swept " + name + ")");
+    swept_labels_.push_back((use == BinderUse::sweep ? "(swept " : "(set ") + name + ")");
   }
-  if (rebuild_)
+  if (rebuild_ && use == BinderUse::sweep)
     spdlog::info("sweep: a varied parameter sits inside a list or record; each case's graph is built anew from the scene");
 }
 
@@ -122,6 +137,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
       const GraphNode& node = graph.nodes[t.node];
       const ParamSpec& spec = *t.spec;
       const auto param = [&] { return "parameter '" + spec.name + "' of " + owner_of(node); };
+      const auto subject = [&] { return ErrorSubject{{}, node.name, spec.name}; };  // as data (error_subject.hpp)
       ParamValue& slot = *slots.of_variable[v][k];
       switch (spec.kind) {
         case ParamKind::number:
@@ -133,15 +149,15 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
             } catch (const UnitError& e) {
               why = e.what();
             }
-            throw SceneError(what() + ": " + param() + ": " + why);
+            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + why);
           }
           // Read values are finite already (case_table); a table built by a library caller may not be.
-          if (!std::isfinite(*value.si)) throw SceneError(what() + ": " + param() + ": not a finite number");
+          if (!std::isfinite(*value.si)) throw SceneErrorAt(subject(), what() + ": " + param() + ": not a finite number");
           if (!(value.dimension == spec.dimension))
-            throw SceneError(what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
+            throw SceneErrorAt(subject(), what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
           if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
-            throw SceneError(what() + ": " + param() + " " + problem);
+            throw SceneErrorAt(subject(), what() + ": " + param() + " " + problem);
           // Written in place: a number needs no new ParamValue.
           slot.kind = spec.kind;
           slot.number = spec.kind == ParamKind::integer ? static_cast<double>(static_cast<long>(*value.si)) : *value.si;
@@ -149,7 +165,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
         }
         case ParamKind::choice:
           if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
-            throw SceneError(what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
+            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
           slot = ParamValue::of_choice(value.text);
           break;
         case ParamKind::text: slot = ParamValue::of_text(value.text); break;

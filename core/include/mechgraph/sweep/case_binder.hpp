@@ -13,12 +13,17 @@
 
 namespace mechgraph {
 
+/// Who gives the values, for the messages: a sweep ("sweep: 'rmp': unknown ...", a value's origin
+/// "(swept rpm)"), or a program setting the parameters of one run (the Python module's `set=`:
+/// "set rmp: unknown ...", "(set rpm)"), whose messages must not speak of a sweep.
+enum class BinderUse { sweep, set };
+
 class CaseBinder {
  public:
   /// Resolves the variables on `base` (built from `scene` with `overrides`); throws SceneError for
   /// an unknown name, with the valid ones. `scene` and `registry` must outlive the binder.
   CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRegistry& registry,
-             std::vector<Override> overrides, std::vector<SweepVariable> variables);
+             std::vector<Override> overrides, std::vector<SweepVariable> variables, BinderUse use = BinderUse::sweep);
 
   /// Writes one case into `graph`, which holds the base graph or an earlier case of it. Throws
   /// SceneError naming the variable, the node parameter and the limit it breaks.
@@ -54,6 +59,7 @@ class CaseBinder {
   std::vector<SweepVariable> variables_;
   std::vector<std::vector<Target>> targets_;  // per variable
   std::vector<std::string> swept_labels_;     // per variable: where its values come from, "(swept x)"
+  BinderUse use_ = BinderUse::sweep;
   bool rebuild_ = false;
 };
 

@@ -1,0 +1,180 @@
+#include <mechgraph/uncertainty/sample_design.hpp>
+
+#include <mechgraph/errors.hpp>
+
+#include <boost/random/sobol.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <memory>
+#include <cmath>
+#include <numeric>
+
+namespace mechgraph {
+namespace {
+
+std::uint64_t splitmix(std::uint64_t z) {
+  z += 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// (x >> 11 + 1/2) 2^-53: strictly inside (0, 1), so every quantile is finite.
+double open_unit(std::uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) * 0x1.0p-53; }
+
+// The streams of counter_hash: which use of random numbers a value belongs to.
+constexpr std::uint64_t stream_monte_carlo = 1, stream_lhs_jitter = 2, stream_lhs_permutation = 3, stream_sobol_shift = 4;
+
+std::string exact_text(double x, const Dimension& d) {
+  char buffer[40];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
+  std::string text(buffer, end);
+  if (!d.dimensionless()) text += " " + d.si_unit();
+  return text;
+}
+
+}  // namespace
+
+std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j) {
+  return splitmix(splitmix(splitmix(splitmix(seed) ^ stream) ^ i) ^ j);
+}
+
+double counter_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j) {
+  return open_unit(counter_hash(seed, stream, i, j));
+}
+
+UnitDesign::UnitDesign(SamplingMethod method, std::size_t n, std::size_t dims, std::uint64_t seed)
+    : method_(method), n_(n), dims_(dims), seed_(seed) {
+  if (method == SamplingMethod::latin_hypercube) {
+    // One permutation of the n strata per dimension (Fisher-Yates, each swap drawn from the counter).
+    strata_.resize(n * dims);
+    for (std::size_t j = 0; j < dims; ++j) {
+      std::uint32_t* pi = strata_.data() + j * n;
+      std::iota(pi, pi + n, std::uint32_t{0});
+      for (std::size_t i = n; i-- > 1;) {
+        const auto k = static_cast<std::size_t>(counter_uniform(seed, stream_lhs_permutation, j, i) * static_cast<double>(i + 1));
+        std::swap(pi[i], pi[std::min(k, i)]);
+      }
+    }
+  } else if (method == SamplingMethod::sobol) {
+    if (dims > boost::random::detail::qrng_tables::sobol::max_dimension)  // not reached: at most 2 x 1000 dimensions
+      throw SceneError("Sobol' sequence: " + std::to_string(dims) + " dimensions are more than Boost's " +
+                       std::to_string(boost::random::detail::qrng_tables::sobol::max_dimension));
+    for (std::size_t j = 0; j < dims; ++j) shift_.push_back(counter_hash(seed, stream_sobol_shift, 0, j));
+  }
+}
+
+void UnitDesign::point(std::size_t i, double* out) const {
+  switch (method_) {
+    case SamplingMethod::monte_carlo:
+      for (std::size_t j = 0; j < dims_; ++j) out[j] = counter_uniform(seed_, stream_monte_carlo, i, j);
+      return;
+    case SamplingMethod::latin_hypercube:
+      for (std::size_t j = 0; j < dims_; ++j)
+        out[j] = (static_cast<double>(strata_[j * n_ + i]) + counter_uniform(seed_, stream_lhs_jitter, i, j)) / static_cast<double>(n_);
+      return;
+    case SamplingMethod::sobol: {
+      // Point i of the sequence, its 64-bit coordinates XORed with the digital shift. Point 0 is
+      // the origin; Boost's generator starts at point 1, and seed(k) makes point k + 1 the next.
+      if (i == 0) {
+        for (std::size_t j = 0; j < dims_; ++j) out[j] = open_unit(shift_[j]);
+        return;
+      }
+      thread_local std::unique_ptr<boost::random::sobol> engine;
+      thread_local std::size_t engine_dims = 0, engine_next = 0;  // engine_next: the point the next read gives
+      if (!engine || engine_dims != dims_) {
+        engine = std::make_unique<boost::random::sobol>(dims_);
+        engine_dims = dims_;
+        engine_next = 1;
+      }
+      if (engine_next != i) engine->seed(static_cast<boost::random::sobol::result_type>(i - 1));
+      for (std::size_t j = 0; j < dims_; ++j) out[j] = open_unit(static_cast<std::uint64_t>((*engine)()) ^ shift_[j]);
+      engine_next = i + 1;
+      return;
+    }
+  }
+}
+
+namespace {
+
+// The lower Cholesky factor L (L L^T = R) of the correlation matrix of the Gaussian copula;
+// throws naming the first correlation when R is not positive definite.
+std::vector<double> cholesky(const StudySpec& spec) {
+  const std::size_t d = spec.parameters.size();
+  std::vector<double> r(d * d, 0.0), l(d * d, 0.0);
+  for (std::size_t j = 0; j < d; ++j) r[j * d + j] = 1.0;
+  for (const ParameterCorrelation& c : spec.correlations) r[c.first * d + c.second] = r[c.second * d + c.first] = c.rho;
+  for (std::size_t j = 0; j < d; ++j) {
+    for (std::size_t k = 0; k <= j; ++k) {
+      double s = r[j * d + k];
+      for (std::size_t m = 0; m < k; ++m) s -= l[j * d + m] * l[k * d + m];
+      if (j == k) {
+        if (!(s > 1e-12))
+          throw SceneError(spec.correlations.front().where.str() +
+                           "the correlations do not make a valid correlation matrix (not positive definite): no set of "
+                           "parameters can be correlated so");
+        l[j * d + j] = std::sqrt(s);
+      } else {
+        l[j * d + k] = s / l[k * d + k];
+      }
+    }
+  }
+  return l;
+}
+
+}  // namespace
+
+CaseTable make_study_cases(const StudySpec& spec) {
+  const std::size_t d = spec.parameters.size(), n = spec.samples;
+  const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
+  if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_case_cells)
+    throw SceneError("uncertainty: " + std::to_string(spec.evaluations()) + " cases of " + std::to_string(d) + " values are more than " +
+                     std::to_string(max_case_cells) + " values in one study");
+  CaseTable table;
+  for (const UncertainParameter& p : spec.parameters) table.variables.push_back({p.name, p.unit});
+  table.origin = "uncertainty: " + to_string(spec.method) + ", " + std::to_string(n) + " samples, seed " + std::to_string(spec.seed) +
+                 (spec.sensitivity ? ", Saltelli design (" + std::to_string(per_sample) + " cases a sample)" : "");
+  const UnitDesign design(spec.method, n, spec.sensitivity ? 2 * d : d, spec.seed);
+  const std::vector<double> l = spec.correlations.empty() ? std::vector<double>{} : cholesky(spec);
+  table.cases.reserve(n * per_sample);
+  std::vector<double> u(design.dims()), z(d), a(d), b(d);
+  const auto to_values = [&](const double* unit, std::vector<double>& x) {
+    if (l.empty()) {
+      for (std::size_t j = 0; j < d; ++j) x[j] = spec.parameters[j].marginal.quantile(unit[j]);
+      return;
+    }
+    // Gaussian copula: normal scores, correlated by L, back to (0, 1), through each quantile.
+    for (std::size_t j = 0; j < d; ++j) z[j] = standard_normal_quantile(unit[j]);
+    for (std::size_t j = 0; j < d; ++j) {
+      double s = 0.0;
+      for (std::size_t k = 0; k <= j; ++k) s += l[j * d + k] * z[k];
+      const double v = std::clamp(standard_normal_cdf(s), 0x1.0p-60, 1.0 - 0x1.0p-53);
+      x[j] = spec.parameters[j].marginal.quantile(v);
+    }
+  };
+  const auto row = [&](const std::vector<double>& x) {
+    std::vector<CaseValue> values(d);
+    for (std::size_t j = 0; j < d; ++j) {
+      const Dimension& dim = spec.parameters[j].marginal.dimension;
+      values[j] = {exact_text(x[j], dim), x[j], dim};
+    }
+    return values;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    design.point(i, u.data());
+    to_values(u.data(), a);
+    table.cases.push_back(row(a));
+    if (!spec.sensitivity) continue;
+    to_values(u.data() + d, b);
+    table.cases.push_back(row(b));
+    for (std::size_t j = 0; j < d; ++j) {
+      std::vector<double> ab = a;
+      ab[j] = b[j];
+      table.cases.push_back(row(ab));
+    }
+  }
+  return table;
+}
+
+}  // namespace mechgraph

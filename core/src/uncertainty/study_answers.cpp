@@ -1,0 +1,217 @@
+#include <mechgraph/uncertainty/study_answers.hpp>
+
+#include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/errors.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mechgraph {
+namespace {
+
+std::size_t output_index(const StudyData& data, const std::string& label, const SourceLocation& where) {
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < data.outputs.size(); ++k) {
+    if (data.outputs[k].label == label) return k;
+    names.push_back(data.outputs[k].label);
+  }
+  throw SceneError(where.str() + unknown_name_message("study output", label, names) +
+                   " (a study reads the scene's scalar outputs; add it to outputs:)");
+}
+
+double shown(double si, const StudyColumn& c) { return si / c.scale - c.offset; }
+double to_si(double v, const StudyColumn& c) { return (v + c.offset) * c.scale; }
+
+}  // namespace
+
+StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads) {
+  StudyAnswers answers;
+  const std::size_t d = spec.parameters.size();
+  const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
+  answers.cases = data.failures.size();
+  for (CaseFailure f : data.failures) answers.failed += f != CaseFailure::none;
+  // The statistical samples: every case, or the A and B rows of Saltelli's design.
+  std::vector<std::size_t> statistical;
+  for (std::size_t k = 0; k < answers.cases; ++k)
+    if (k % per_sample < (spec.sensitivity ? 2 : 1)) statistical.push_back(k);
+  answers.samples = statistical.size();
+  for (const SpecLimits& l : spec.limits) output_index(data, l.output, l.where);  // every limit names a studied output
+
+  for (std::size_t o = 0; o < data.outputs.size(); ++o) {
+    OutputAnswer a;
+    a.column = data.outputs[o];
+    const std::vector<double>& column = data.values[o];
+    std::vector<double> values;
+    values.reserve(statistical.size());
+    for (std::size_t k : statistical)
+      if (std::isfinite(column[k])) values.push_back(column[k]);
+    a.failed = statistical.size() - values.size();
+    a.moments = moments(values, spec.confidence);
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    if (!sorted.empty())
+      for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
+    for (const SpecLimits& l : spec.limits)
+      if (l.output == a.column.label) a.limits = &l;
+    double low = sorted.empty() ? 0.0 : sorted.front(), high = sorted.empty() ? 0.0 : sorted.back();
+    if (a.limits) {
+      if (a.limits->lower) a.lower = shown(*a.limits->lower, a.column);
+      if (a.limits->upper) a.upper = shown(*a.limits->upper, a.column);
+      // The histogram shows the limits beside the values.
+      if (a.lower) low = std::min(low, *a.lower), high = std::max(high, *a.lower);
+      if (a.upper) low = std::min(low, *a.upper), high = std::max(high, *a.upper);
+      if (!values.empty()) a.capability = capability(values, a.moments, a.lower, a.upper, spec.confidence);
+    }
+    a.histogram = histogram(values, spec.bins, low, high);
+    if (spec.sensitivity) {
+      // Base samples whose d + 2 cases all have a value.
+      std::vector<double> f_a, f_b;
+      std::vector<std::vector<double>> f_ab(d);
+      for (std::size_t i = 0; i * per_sample < answers.cases; ++i) {
+        const std::size_t k = i * per_sample;
+        bool whole = k + per_sample <= answers.cases;
+        for (std::size_t r = 0; whole && r < per_sample; ++r) whole = std::isfinite(column[k + r]);
+        if (!whole) continue;
+        f_a.push_back(column[k]);
+        f_b.push_back(column[k + 1]);
+        for (std::size_t j = 0; j < d; ++j) f_ab[j].push_back(column[k + 2 + j]);
+      }
+      a.sobol = sobol_indices(f_a, f_b, f_ab, spec.bootstrap, spec.confidence, spec.seed, threads);
+    }
+    answers.outputs.push_back(std::move(a));
+  }
+  for (const StudyEvent& e : spec.events) {
+    EventAnswer a;
+    a.event = &e;
+    std::size_t hits = 0, trials = 0;
+    if (e.kind == StudyEvent::Kind::failure) {
+      for (std::size_t k : statistical) {
+        const CaseFailure f = data.failures[k];
+        hits += e.failure == StudyEvent::Failure::any ? f != CaseFailure::none
+                : e.failure == StudyEvent::Failure::scene ? f == CaseFailure::scene
+                                                          : f == CaseFailure::evaluation;
+      }
+      trials = statistical.size();
+    } else {
+      const std::size_t o = output_index(data, e.output, e.where);
+      const double threshold = shown(e.threshold, data.outputs[o]);
+      for (std::size_t k : statistical) {
+        const double v = data.values[o][k];
+        if (!std::isfinite(v)) {
+          ++a.undecided;
+          continue;
+        }
+        ++trials;
+        hits += e.kind == StudyEvent::Kind::above ? v > threshold : v < threshold;
+      }
+    }
+    a.probability = proportion(hits, trials, spec.confidence);
+    answers.events.push_back(a);
+  }
+  return answers;
+}
+
+namespace {
+
+void write_interval(JsonWriter& out, const Interval& i, const StudyColumn* c) {
+  out.begin_array();
+  for (const std::optional<double>& end : {i.lower, i.upper}) {
+    if (end) out.value(c ? to_si(*end, *c) : *end);
+    else out.null();
+  }
+  out.end_array();
+}
+
+void write_proportion(JsonWriter& out, const Proportion& p) {
+  out.begin_object();
+  out.key("events").value(static_cast<long>(p.events)).key("trials").value(static_cast<long>(p.trials));
+  out.key("estimate").value(p.estimate);
+  out.key("wilson");
+  write_interval(out, p.wilson, nullptr);
+  out.key("clopper_pearson");
+  write_interval(out, p.clopper_pearson, nullptr);
+  out.end_object();
+}
+
+}  // namespace
+
+void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers& answers, const std::function<void(JsonWriter&)>& more) {
+  out.begin_object();
+  out.key("method").value(to_string(spec.method)).key("samples").value(static_cast<long>(spec.samples));
+  out.key("seed").value(static_cast<long>(spec.seed)).key("sensitivity").value(spec.sensitivity);
+  out.key("confidence").value(spec.confidence).key("cases").value(static_cast<long>(answers.cases));
+  out.key("statistical_samples").value(static_cast<long>(answers.samples)).key("failed").value(static_cast<long>(answers.failed));
+  out.key("parameters").begin_array();
+  for (const UncertainParameter& p : spec.parameters) {
+    out.begin_object().key("name").value(p.name).key("distribution").value(p.written);
+    out.key("mean").value(p.marginal.mean()).key("standard_deviation").value(p.marginal.standard_deviation());
+    out.key("unit").value(p.marginal.dimension.si_unit()).end_object();
+  }
+  out.end_array();
+  out.key("outputs").begin_object();
+  for (const OutputAnswer& a : answers.outputs) {
+    const StudyColumn& c = a.column;
+    out.key(c.label).begin_object();
+    out.key("unit").value(c.dimension.si_unit()).key("n").value(static_cast<long>(a.moments.n)).key("failed").value(static_cast<long>(a.failed));
+    if (a.moments.n > 0) {
+      out.key("mean").value(to_si(a.moments.mean, c)).key("standard_deviation").value(a.moments.standard_deviation * c.scale);
+      out.key("mean_interval");
+      write_interval(out, a.moments.mean_interval, &c);
+      out.key("min").value(to_si(a.moments.min, c)).key("max").value(to_si(a.moments.max, c));
+    }
+    out.key("quantiles").begin_array();
+    for (const QuantileEstimate& q : a.quantiles) {
+      out.begin_object().key("level").value(q.level).key("value").value(to_si(q.value, c)).key("interval");
+      write_interval(out, q.interval, &c);
+      out.end_object();
+    }
+    out.end_array();
+    out.key("histogram").begin_object().key("low").value(to_si(a.histogram.low, c)).key("width").value(a.histogram.width * c.scale);
+    out.key("counts").begin_array();
+    for (std::size_t n : a.histogram.counts) out.value(static_cast<long>(n));
+    out.end_array().end_object();
+    if (a.limits) {
+      out.key("limits").begin_object();
+      out.key("lower");
+      a.limits->lower ? out.value(*a.limits->lower) : out.null();
+      out.key("upper");
+      a.limits->upper ? out.value(*a.limits->upper) : out.null();
+      out.end_object();
+    }
+    if (a.capability) {
+      const Capability& k = *a.capability;
+      out.key("cp");
+      k.cp ? out.value(*k.cp) : out.null();
+      out.key("cpk");
+      k.cpk ? out.value(*k.cpk) : out.null();
+      out.key("ppm_normal").value(k.ppm_normal).key("ppm").value(1e6 * k.out_of_spec.estimate);
+      out.key("out_of_spec");
+      write_proportion(out, k.out_of_spec);
+    }
+    if (a.sobol) {
+      out.key("sobol").begin_object().key("samples").value(static_cast<long>(a.sobol->samples));
+      out.key("variance").value(a.sobol->variance * c.scale * c.scale).key("indices").begin_object();
+      for (std::size_t j = 0; j < a.sobol->indices.size(); ++j) {
+        const SobolIndex& s = a.sobol->indices[j];
+        out.key(spec.parameters[j].name).begin_object().key("first").value(s.first).key("first_interval");
+        write_interval(out, s.first_interval, nullptr);
+        out.key("total").value(s.total).key("total_interval");
+        write_interval(out, s.total_interval, nullptr);
+        out.end_object();
+      }
+      out.end_object().end_object();
+    }
+    out.end_object();
+  }
+  out.end_object();
+  out.key("events").begin_object();
+  for (const EventAnswer& e : answers.events) {
+    out.key(e.event->name);
+    write_proportion(out, e.probability);
+  }
+  out.end_object();
+  if (more) more(out);
+  out.end_object();
+}
+
+}  // namespace mechgraph

@@ -1,0 +1,327 @@
+// mechgraph study SCENE [--samples N] [--method M] [--seed S] [--threads N] [--json] [--out DIR]
+//                       [--rows FILE] [--set ...] [--outputs a.b,c.d]
+// An uncertainty study of the scene's `uncertainty:` block: its cases run on the worker pool
+// (study_run.hpp), or read back from the rows of `mechgraph sweep SCENE --study` (its shards
+// merged), then analysed: per output moments, quantiles, histogram, Cp/Cpk and ppm, Sobol'
+// indices; per event its probability (docs/methods/uncertainty.md).
+#include "cli.hpp"
+#include "line_reader.hpp"
+#include "options.hpp"
+#include "provenance.hpp"
+#include "results_folder.hpp"
+#include "study_page.hpp"
+#include "study_run.hpp"
+#include "sweep_file.hpp"
+#include "sweep_rows.hpp"
+#include "terminal_output.hpp"
+
+#include <mechgraph/csv.hpp>
+#include <mechgraph/errors.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
+#include <mechgraph/sweep/case_table.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <csignal>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <thread>
+
+namespace mechgraph::cli {
+namespace {
+
+std::atomic<bool> study_stop{false};
+extern "C" void request_study_stop(int signal) {
+  study_stop = true;
+  std::signal(signal, SIG_DFL);
+}
+
+std::string number(double x) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 6);
+  return std::string(buffer, end);
+}
+std::string maybe(const std::optional<double>& x) { return x ? number(*x) : "-"; }
+std::string interval(const Interval& i) { return "[" + maybe(i.lower) + ", " + maybe(i.upper) + "]"; }
+std::string shown_unit(const StudyColumn& c) {
+  const std::string u = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+  return u == "1" ? "" : u;
+}
+
+// The rows of `mechgraph sweep SCENE --study` (one file, or shards merged): each case once, its
+// inputs those of this study's design (so the seed, method and samples agree), its outputs read
+// back to the doubles the rows were written from.
+StudyData read_study_rows(const std::string& file, const CaseTable& table, const std::vector<StudyColumn>& columns) {
+  LineReader reader(file, max_row_bytes);
+  std::string line;
+  if (!reader.next(line)) throw UsageError(file + ": empty; expected the rows of 'mechgraph sweep SCENE --study'");
+  const std::vector<std::string> header = split_csv_line(line);
+  const auto column_of = [&](const std::string& name) -> std::optional<std::size_t> {
+    for (std::size_t k = 0; k < header.size(); ++k)
+      if (header[k] == name) return k;
+    return std::nullopt;
+  };
+  const auto exit_column = column_of("exit");
+  if (header.empty() || header[0] != "case" || !exit_column)
+    throw UsageError(file + ":1: not the rows of a sweep (a header 'case', inputs, outputs, 'exit', 'error')");
+  std::vector<std::size_t> at(columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const std::string u = shown_unit(columns[c]);
+    const auto k = column_of(u.empty() ? columns[c].label : columns[c].label + " [" + u + "]");
+    if (!k) throw UsageError(file + ":1: no column for output '" + columns[c].label + "' (the study reads the scene's scalar outputs)");
+    at[c] = *k;
+  }
+  const std::size_t n = table.cases.size(), inputs = table.variables.size();
+  StudyData data;
+  data.outputs = columns;
+  data.values.assign(columns.size(), std::vector<double>(n, std::nan("")));
+  data.failures.assign(n, CaseFailure::none);
+  std::vector<bool> seen(n, false);
+  std::size_t rows = 0;
+  while (reader.next(line)) {
+    const std::string where = file + ":" + std::to_string(reader.number()) + ": ";
+    const std::vector<std::string> cells = split_csv_line(line);
+    if (cells.size() != header.size()) throw UsageError(where + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
+    std::size_t i = 0;
+    const auto [p, ec] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), i);
+    if (ec != std::errc() || p != cells[0].data() + cells[0].size() || i >= n)
+      throw UsageError(where + "case '" + excerpt(cells[0], 40) + "' is not a case of this study (0 to " + std::to_string(n - 1) + ")");
+    if (seen[i]) throw UsageError(where + "case " + std::to_string(i) + " appears twice");
+    seen[i] = true;
+    ++rows;
+    for (std::size_t v = 0; v < inputs; ++v)
+      if (cells[1 + v] != table.shown(i, v))
+        throw UsageError(where + "case " + std::to_string(i) + " has " + table.variables[v].name + " = " + excerpt(cells[1 + v], 40) +
+                         " where this study's design has " + table.shown(i, v) + ": rows of another seed, method or sample count");
+    const std::string& exit = cells[*exit_column];
+    data.failures[i] = exit == "0" ? CaseFailure::none : exit == "2" ? CaseFailure::scene : CaseFailure::evaluation;
+    if (data.failures[i] != CaseFailure::none) continue;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const std::string& cell = cells[at[c]];
+      double x = 0;
+      const auto [q, e] = std::from_chars(cell.data(), cell.data() + cell.size(), x);
+      if (e != std::errc() || q != cell.data() + cell.size() || !std::isfinite(x))
+        throw UsageError(where + "'" + excerpt(cell, 40) + "' is not a finite number (" + columns[c].label + ")");
+      data.values[c][i] = x;
+    }
+  }
+  if (rows != n)
+    throw UsageError(file + ": " + std::to_string(rows) + " of the study's " + std::to_string(n) +
+                     " cases; run the missing shards (or --resume) and merge them");
+  return data;
+}
+
+std::string terminal_tables(const StudySpec& spec, const StudyAnswers& a) {
+  std::ostringstream out;
+  out << "Uncertainty study: " << to_string(spec.method) << ", " << spec.samples << " samples, seed " << spec.seed << ", "
+      << a.cases << " evaluations (" << a.failed << " failed)\n\n";
+  out << "parameter                      distribution\n";
+  for (const UncertainParameter& p : spec.parameters) out << "  " << p.name << std::string(p.name.size() < 29 ? 29 - p.name.size() : 1, ' ') << p.written << "\n";
+  const int level = static_cast<int>(std::lround(spec.confidence * 100));
+  out << "\nOutputs (intervals at " << level << " %)\n";
+  for (const OutputAnswer& o : a.outputs) {
+    const std::string u = shown_unit(o.column);
+    out << "\n" << o.column.label << (u.empty() ? "" : " [" + u + "]") << ": n " << o.moments.n;
+    if (o.failed) out << " (" << o.failed << " failed)";
+    out << "\n";
+    if (o.moments.n == 0) continue;
+    out << "  mean " << number(o.moments.mean) << " " << interval(o.moments.mean_interval) << ", standard deviation "
+        << number(o.moments.standard_deviation) << ", min " << number(o.moments.min) << ", max " << number(o.moments.max) << "\n";
+    for (const QuantileEstimate& q : o.quantiles)
+      out << "  quantile " << number(q.level) << ": " << number(q.value) << " " << interval(q.interval) << "\n";
+    if (o.capability) {
+      const Capability& c = *o.capability;
+      out << "  spec [" << maybe(o.lower) << ", " << maybe(o.upper) << "]: Cp " << maybe(c.cp) << ", Cpk " << maybe(c.cpk)
+          << ", out of spec " << number(1e6 * c.out_of_spec.estimate) << " ppm " << "[" << number(1e6 * *c.out_of_spec.wilson.lower)
+          << ", " << number(1e6 * *c.out_of_spec.wilson.upper) << "] (" << c.below << " below, " << c.above
+          << " above; normal model " << number(c.ppm_normal) << " ppm)\n";
+    }
+  }
+  bool any_sobol = false;
+  for (const OutputAnswer& o : a.outputs) any_sobol = any_sobol || o.sobol.has_value();
+  if (any_sobol) {
+    out << "\nSobol' indices: first order (Saltelli 2010), total (Jansen), bootstrap intervals at " << level << " %\n";
+    for (const OutputAnswer& o : a.outputs) {
+      if (!o.sobol) continue;
+      out << "\n" << o.column.label << " (" << o.sobol->samples << " base samples)\n";
+      for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
+        const SobolIndex& s = o.sobol->indices[j];
+        const std::string& name = spec.parameters[j].name;
+        out << "  " << name << std::string(name.size() < 28 ? 28 - name.size() : 1, ' ') << "S " << number(s.first) << " "
+            << interval(s.first_interval) << "   ST " << number(s.total) << " " << interval(s.total_interval) << "\n";
+      }
+    }
+  }
+  if (!a.events.empty()) {
+    out << "\nEvents (probability, Wilson and Clopper-Pearson intervals at " << level << " %)\n";
+    for (const EventAnswer& e : a.events) {
+      out << "  " << e.event->name << ": " << e.probability.events << " of " << e.probability.trials << " = " << number(e.probability.estimate)
+          << " " << interval(e.probability.wilson) << " " << interval(e.probability.clopper_pearson);
+      if (e.undecided) out << " (" << e.undecided << " cases without a value)";
+      out << "\n";
+    }
+  }
+  return out.str();
+}
+
+// The answers as CSV files, each number in its column's unit as the terminal shows them.
+void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const StudyAnswers& a) {
+  const auto put = [&](const std::string& name, const std::string& text) {
+    std::ofstream f(dir / name, std::ios::binary);
+    f << text;
+    f.close();
+    check_written(f, dir / name);
+  };
+  const auto cell = [](const std::optional<double>& x) {
+    if (!x) return std::string();
+    char buffer[32];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, *x);
+    return std::string(buffer, end);
+  };
+  std::string summary = csv_row({"output", "unit", "n", "failed", "mean", "mean_lower", "mean_upper", "standard_deviation", "min", "max",
+                                 "lower_limit", "upper_limit", "cp", "cpk", "ppm", "ppm_lower", "ppm_upper", "ppm_normal"}) + "\n";
+  std::string quantiles = csv_row({"output", "unit", "level", "value", "lower", "upper"}) + "\n";
+  std::string histograms = csv_row({"output", "unit", "bin_low", "bin_high", "count"}) + "\n";
+  std::string sobol = csv_row({"output", "parameter", "first", "first_lower", "first_upper", "total", "total_lower", "total_upper"}) + "\n";
+  for (const OutputAnswer& o : a.outputs) {
+    const std::string u = shown_unit(o.column);
+    const Moments& m = o.moments;
+    const bool any = m.n > 0;
+    std::optional<double> cp, cpk, ppm, ppm_lo, ppm_hi, ppm_normal;
+    if (o.capability) {
+      cp = o.capability->cp;
+      cpk = o.capability->cpk;
+      ppm = 1e6 * o.capability->out_of_spec.estimate;
+      ppm_lo = 1e6 * *o.capability->out_of_spec.wilson.lower;
+      ppm_hi = 1e6 * *o.capability->out_of_spec.wilson.upper;
+      ppm_normal = o.capability->ppm_normal;
+    }
+    const auto opt = [any](double x) { return any ? std::optional<double>(x) : std::nullopt; };
+    summary += csv_row({o.column.label, u, std::to_string(m.n), std::to_string(o.failed), cell(opt(m.mean)), cell(m.mean_interval.lower),
+                        cell(m.mean_interval.upper), cell(opt(m.standard_deviation)), cell(opt(m.min)), cell(opt(m.max)), cell(o.lower),
+                        cell(o.upper), cell(cp), cell(cpk), cell(ppm), cell(ppm_lo), cell(ppm_hi), cell(ppm_normal)}) + "\n";
+    for (const QuantileEstimate& q : o.quantiles)
+      quantiles += csv_row({o.column.label, u, cell(q.level), cell(q.value), cell(q.interval.lower), cell(q.interval.upper)}) + "\n";
+    for (std::size_t k = 0; k < o.histogram.counts.size(); ++k)
+      histograms += csv_row({o.column.label, u, cell(o.histogram.low + static_cast<double>(k) * o.histogram.width),
+                             cell(o.histogram.low + static_cast<double>(k + 1) * o.histogram.width), std::to_string(o.histogram.counts[k])}) + "\n";
+    if (o.sobol)
+      for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
+        const SobolIndex& s = o.sobol->indices[j];
+        sobol += csv_row({o.column.label, spec.parameters[j].name, cell(s.first), cell(s.first_interval.lower), cell(s.first_interval.upper),
+                          cell(s.total), cell(s.total_interval.lower), cell(s.total_interval.upper)}) + "\n";
+      }
+  }
+  std::string events = csv_row({"event", "events", "trials", "probability", "wilson_lower", "wilson_upper", "clopper_pearson_lower",
+                                "clopper_pearson_upper"}) + "\n";
+  for (const EventAnswer& e : a.events) {
+    const Proportion& p = e.probability;
+    events += csv_row({e.event->name, std::to_string(p.events), std::to_string(p.trials), cell(p.estimate), cell(p.wilson.lower),
+                       cell(p.wilson.upper), cell(p.clopper_pearson.lower), cell(p.clopper_pearson.upper)}) + "\n";
+  }
+  put("summary.csv", summary);
+  put("quantiles.csv", quantiles);
+  put("histograms.csv", histograms);
+  if (spec.sensitivity) put("sobol.csv", sobol);
+  put("events.csv", events);
+}
+
+}  // namespace
+
+int study_command(const GlobalOptions& g, const std::vector<std::string>& args) {
+  po::options_description visible("study options");
+  add_scene_options(visible);
+  visible.add_options()
+      ("samples", po::value<std::string>(), "base samples N, 2 to 10^7 (default: the scene's, else 1000)")
+      ("method", po::value<std::string>(), "monte_carlo, latin_hypercube or sobol (default: the scene's, else latin_hypercube)")
+      ("seed", po::value<std::string>(), "seed of every random number (default: the scene's, else 1)")
+      ("threads", po::value<std::string>()->default_value("0"), "worker threads, 0 to 1024 (0: one per core); the answers do not depend on it")
+      ("outputs", po::value<std::string>(), "outputs to study: node.port,node.port (default: the scene's scalar outputs)")
+      ("rows", po::value<std::string>(), "analyse the rows of 'mechgraph sweep SCENE --study' (shards merged) instead of running the cases")
+      ("json", "print one JSON object on stdout (SI)")
+      ("out", po::value<std::string>(), "also write study.json, report.html (histograms against spec limits, Sobol' chart) and CSVs (summary, quantiles, histograms, sobol, events) into DIR")
+      ("force", "replace DIR when mechgraph wrote it");
+  po::variables_map vm;
+  if (!parse_scene_command(args, visible, vm,
+                           "mechgraph study SCENE [--samples N] [--method M] [--seed S] [--threads N] [--rows FILE]\n"
+                           "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--json] [--out DIR]"))
+    return ok;
+  const std::string samples = vm.count("samples") ? vm["samples"].as<std::string>() : "";
+  const std::string method = vm.count("method") ? vm["method"].as<std::string>() : "";
+  const std::string seed = vm.count("seed") ? vm["seed"].as<std::string>() : "";
+  const std::string& threads_text = vm["threads"].as<std::string>();
+  unsigned threads = 0;
+  if (const auto [p, ec] = std::from_chars(threads_text.data(), threads_text.data() + threads_text.size(), threads);
+      ec != std::errc() || p != threads_text.data() + threads_text.size() || threads > max_threads)
+    throw UsageError("--threads '" + excerpt(threads_text, 40) + "' is not a whole number from 0 to " + std::to_string(max_threads));
+  if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
+  const PluginRegistry registry = load_plugins(g);
+  const std::string scene_file = vm["scene"].as<std::string>();
+  SceneSpec scene = load_scene(scene_file);
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  std::vector<Override> overrides;
+  for (const std::string& s : sets) overrides.push_back(parse_override(s));
+  const std::optional<std::string> outputs = vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt;
+
+  std::unique_ptr<StudyOutcome> outcome;
+  if (vm.count("rows")) {
+    // The design again (it depends on the seed alone), the values from the rows.
+    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs);
+    outcome->threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, outcome->columns);
+    finish_study(*outcome);
+  } else {
+    WorkBudget budget = work_budget(vm);
+    if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
+    study_stop = false;
+    auto previous_int = std::signal(SIGINT, request_study_stop);
+    auto previous_term = std::signal(SIGTERM, request_study_stop);
+    try {
+      outcome = run_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, budget, threads, &study_stop);
+    } catch (...) {
+      std::signal(SIGINT, previous_int);
+      std::signal(SIGTERM, previous_term);
+      throw;
+    }
+    std::signal(SIGINT, previous_int);
+    std::signal(SIGTERM, previous_term);
+    const SweepSummary& summary = outcome->summary;
+    if (summary.stopped) {
+      spdlog::warn("study stopped after {} of {} cases; nothing is reported from a part of the design "
+                   "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
+      return interrupted;
+    }
+    spdlog::info("study: {} cases in {:.3g} s, {} failed", summary.run, summary.seconds, summary.failed);
+  }
+  const StudySpec& spec = outcome->spec;
+  const StudyAnswers& answers = outcome->answers;
+  // The answers with how they were made: the program, the scene and its SHA-1, the --set values,
+  // each node's parameters (provenance.hpp).
+  std::ostringstream with_provenance;
+  {
+    JsonWriter w(with_provenance);
+    write_study_json(w, spec, answers, [&](JsonWriter& j) { write_provenance(j, outcome->graph, registry, RunInputs{scene_file, sets}); });
+  }
+  const std::string json = with_provenance.str() + "\n";
+  if (vm.count("out"))
+    write_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0, [&](const std::filesystem::path& dir) {
+      std::ofstream f(dir / "study.json", std::ios::binary);
+      f << json;
+      f.close();
+      check_written(f, dir / "study.json");
+      write_csvs(dir, spec, answers);
+      std::ofstream page(dir / "report.html", std::ios::binary);
+      page << study_page(scene.title, spec, answers);
+      page.close();
+      check_written(page, dir / "report.html");
+    });
+  if (vm.count("json")) std::cout << json;
+  else print_text(terminal_tables(spec, answers));
+  return ok;
+}
+
+}  // namespace mechgraph::cli

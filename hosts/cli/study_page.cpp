@@ -1,0 +1,133 @@
+#include "study_page.hpp"
+
+#include <mechgraph/text_escape.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace mechgraph::cli {
+namespace {
+
+std::string num(double x, int digits = 6) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits);
+  return std::string(buffer, end);
+}
+std::string maybe(const std::optional<double>& x) { return x ? num(*x) : "-"; }
+std::string unit_of(const StudyColumn& c) {
+  const std::string u = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+  return u == "1" ? "" : u;
+}
+
+// A histogram as SVG bars over [low, high], the spec limits as dashed red lines.
+std::string histogram_svg(const OutputAnswer& o) {
+  const Histogram& h = o.histogram;
+  constexpr double width = 560, height = 200, left = 10, bottom = 170, plot_w = 540, plot_h = 150;
+  const double low = h.low, high = h.low + h.width * static_cast<double>(h.counts.size());
+  const std::size_t most = std::max<std::size_t>(1, *std::max_element(h.counts.begin(), h.counts.end()));
+  const auto x_of = [&](double v) { return left + (v - low) / (high - low) * plot_w; };
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" role=\"img\">\n";
+  for (std::size_t k = 0; k < h.counts.size(); ++k) {
+    const double bar = static_cast<double>(h.counts[k]) / static_cast<double>(most) * plot_h;
+    s << "<rect x=\"" << num(x_of(low + h.width * static_cast<double>(k))) << "\" y=\"" << num(bottom - bar) << "\" width=\""
+      << num(std::max(plot_w / static_cast<double>(h.counts.size()) - 1, 0.5)) << "\" height=\"" << num(bar)
+      << "\" fill=\"#4a78b0\"><title>" << h.counts[k] << "</title></rect>\n";
+  }
+  s << "<line x1=\"" << left << "\" y1=\"" << bottom << "\" x2=\"" << left + plot_w << "\" y2=\"" << bottom << "\" stroke=\"black\"/>\n";
+  for (const auto& [limit, name] : {std::pair{o.lower, "LSL"}, std::pair{o.upper, "USL"}}) {
+    if (!limit) continue;
+    const double x = x_of(*limit);
+    s << "<line x1=\"" << num(x) << "\" y1=\"12\" x2=\"" << num(x) << "\" y2=\"" << bottom
+      << "\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\n<text x=\"" << num(x + 3) << "\" y=\"22\" font-size=\"11\" fill=\"#c0392b\">" << name
+      << " " << num(*limit) << "</text>\n";
+  }
+  s << "<text x=\"" << left << "\" y=\"188\" font-size=\"11\">" << num(low) << "</text>\n<text x=\"" << left + plot_w
+    << "\" y=\"188\" font-size=\"11\" text-anchor=\"end\">" << num(high) << " " << html_text(unit_of(o.column)) << "</text>\n</svg>\n";
+  return s.str();
+}
+
+// First-order (dark) and total (light) indices per parameter with their intervals as whiskers.
+std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
+  double lo = 0.0, hi = 1.0;
+  for (const SobolIndex& i : si.indices)
+    for (const std::optional<double>& v : {i.first_interval.lower, i.total_interval.lower, i.first_interval.upper, i.total_interval.upper})
+      if (v) lo = std::min(lo, *v), hi = std::max(hi, *v);
+  constexpr double name_w = 150, plot_w = 380, row_h = 34;
+  const double height = 30 + row_h * static_cast<double>(si.indices.size());
+  const auto x_of = [&](double v) { return name_w + (v - lo) / (hi - lo) * plot_w; };
+  std::ostringstream s;
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << name_w + plot_w + 20 << "\" height=\"" << num(height) << "\" role=\"img\">\n";
+  for (std::size_t j = 0; j < si.indices.size(); ++j) {
+    const SobolIndex& i = si.indices[j];
+    const double y = 10 + row_h * static_cast<double>(j);
+    s << "<text x=\"" << name_w - 6 << "\" y=\"" << num(y + 16) << "\" font-size=\"12\" text-anchor=\"end\">" << html_text(spec.parameters[j].name)
+      << "</text>\n";
+    const auto bar = [&](double value, const Interval& in, double top, const char* colour, const char* what) {
+      const double a = x_of(std::min(0.0, value)), b = x_of(std::max(0.0, value));
+      s << "<rect x=\"" << num(a) << "\" y=\"" << num(top) << "\" width=\"" << num(std::max(b - a, 0.5)) << "\" height=\"11\" fill=\"" << colour
+        << "\"><title>" << what << " " << num(value) << " [" << maybe(in.lower) << ", " << maybe(in.upper) << "]</title></rect>\n";
+      if (in.lower && in.upper)
+        s << "<line x1=\"" << num(x_of(*in.lower)) << "\" y1=\"" << num(top + 5.5) << "\" x2=\"" << num(x_of(*in.upper)) << "\" y2=\""
+          << num(top + 5.5) << "\" stroke=\"black\"/>\n";
+    };
+    bar(i.first, i.first_interval, y + 2, "#2c5d8f", "first order");
+    bar(i.total, i.total_interval, y + 15, "#9cc3e6", "total");
+  }
+  const double axis = 10 + row_h * static_cast<double>(si.indices.size());
+  s << "<line x1=\"" << num(x_of(0)) << "\" y1=\"6\" x2=\"" << num(x_of(0)) << "\" y2=\"" << num(axis) << "\" stroke=\"black\"/>\n";
+  s << "<line x1=\"" << num(x_of(1)) << "\" y1=\"6\" x2=\"" << num(x_of(1)) << "\" y2=\"" << num(axis) << "\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>\n";
+  s << "<text x=\"" << num(x_of(0)) << "\" y=\"" << num(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">0</text>\n";
+  s << "<text x=\"" << num(x_of(1)) << "\" y=\"" << num(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">1</text>\n</svg>\n";
+  return s.str();
+}
+
+}  // namespace
+
+std::string study_page(const std::string& title, const StudySpec& spec, const StudyAnswers& a) {
+  std::ostringstream p;
+  const int level = static_cast<int>(std::lround(spec.confidence * 100));
+  p << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << html_text(title.empty() ? "Uncertainty study" : title)
+    << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:1em auto}table{border-collapse:collapse}"
+       "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}td:first-child,th:first-child,.text{text-align:left}</style></head><body>\n";
+  p << "<h1>" << html_text(title.empty() ? "Uncertainty study" : title) << "</h1>\n<p>" << html_text(to_string(spec.method)) << ", "
+    << spec.samples << " samples, seed " << spec.seed << ", " << a.cases << " evaluations (" << a.failed << " failed); intervals at "
+    << level << " %.</p>\n<h2>Parameters</h2>\n<table><tr><th>parameter</th><th>distribution</th><th>mean (SI)</th><th>standard deviation (SI)</th></tr>\n";
+  for (const UncertainParameter& q : spec.parameters)
+    p << "<tr><td>" << html_text(q.name) << "</td><td class=\"text\">" << html_text(q.written) << "</td><td>" << num(q.marginal.mean()) << "</td><td>"
+      << num(q.marginal.standard_deviation()) << "</td></tr>\n";
+  p << "</table>\n";
+  for (const OutputAnswer& o : a.outputs) {
+    const std::string u = unit_of(o.column);
+    p << "<h2>" << html_text(o.column.label) << (u.empty() ? "" : " [" + html_text(u) + "]") << "</h2>\n";
+    if (o.moments.n == 0) {
+      p << "<p>No sample has a value.</p>\n";
+      continue;
+    }
+    p << "<p>n " << o.moments.n << (o.failed ? " (" + std::to_string(o.failed) + " failed)" : "") << ", mean " << num(o.moments.mean)
+      << ", standard deviation " << num(o.moments.standard_deviation);
+    if (o.capability)
+      p << "; Cp " << maybe(o.capability->cp) << ", Cpk " << maybe(o.capability->cpk) << ", out of spec "
+        << num(1e6 * o.capability->out_of_spec.estimate) << " ppm";
+    p << "</p>\n" << histogram_svg(o);
+    if (o.sobol && !o.sobol->indices.empty())
+      p << "<h3>Sobol' indices (" << o.sobol->samples << " base samples): first order dark, total light, bootstrap intervals</h3>\n"
+        << sobol_svg(spec, *o.sobol);
+  }
+  if (!a.events.empty()) {
+    p << "<h2>Events</h2>\n<table><tr><th>event</th><th>events</th><th>trials</th><th>probability</th><th>Wilson</th><th>Clopper-Pearson</th></tr>\n";
+    for (const EventAnswer& e : a.events) {
+      const Proportion& q = e.probability;
+      p << "<tr><td>" << html_text(e.event->name) << "</td><td>" << q.events << "</td><td>" << q.trials << "</td><td>" << num(q.estimate)
+        << "</td><td>[" << maybe(q.wilson.lower) << ", " << maybe(q.wilson.upper) << "]</td><td>[" << maybe(q.clopper_pearson.lower) << ", "
+        << maybe(q.clopper_pearson.upper) << "]</td></tr>\n";
+    }
+    p << "</table>\n";
+  }
+  p << "</body></html>\n";
+  return p.str();
+}
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,229 @@
+#include "study_run.hpp"
+
+#include "cli.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/evaluator.hpp>
+#include <mechgraph/memo_cache.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
+#include <mechgraph/units.hpp>
+
+#include <spdlog/spdlog.h>
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <algorithm>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <thread>
+
+namespace mechgraph::cli {
+
+Iso286Limits iso286_limits(const PluginRegistry& registry) {
+  if (!registry.find("fit.iso286")) return {};
+  return [&registry](double size, const std::string& tolerance_class) {
+    // One fit.iso286 node, its parameters given as values (never as YAML text): the class on its
+    // side, a common class on the other.
+    const bool hole = !tolerance_class.empty() && tolerance_class.front() >= 'A' && tolerance_class.front() <= 'Z';
+    SceneSpec scene;
+    scene.file = "ISO 286";
+    NodeSpec node;
+    node.name = "fit";
+    node.type = "fit.iso286";
+    char buffer[40];
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, size, std::chars_format::general, 17);
+    const auto text = [](std::string t) {
+      RawValue v;
+      v.text = std::move(t);
+      return v;
+    };
+    node.params.emplace_back("size", text(std::string(buffer, end) + " m"));
+    node.params.emplace_back("hole", text(hole ? tolerance_class : "H7"));
+    node.params.emplace_back("shaft", text(hole ? "h7" : tolerance_class));
+    scene.nodes.push_back(std::move(node));
+    const std::string side = hole ? "hole" : "shaft";
+    scene.outputs = {{"fit", side + "_lower", {}}, {"fit", side + "_upper", {}}};
+    const Graph graph = build_graph(scene, registry);
+    MemoCache cache(4);
+    const RunValues run = evaluate_values(graph, cache);
+    return std::pair<double, double>{run.values.at(0).as_scalar(), run.values.at(1).as_scalar()};
+  };
+}
+
+StudySpec study_spec_of(const SceneSpec& scene, const PluginRegistry& registry) {
+  if (!scene.uncertainty)
+    throw SceneError(scene.file + ": the scene has no 'uncertainty' block (parameters with their distributions; docs/scenes.md, "
+                     "\"Uncertainty\")");
+  return parse_study(*scene.uncertainty, iso286_limits(registry));
+}
+
+void check_study_parameters(const StudySpec& spec, const Graph& graph, const SceneSpec& scene, const PluginRegistry& registry,
+                            const std::vector<Override>& overrides) {
+  for (const UncertainParameter& p : spec.parameters) {
+    try {
+      const CaseBinder single(graph, scene, registry, overrides, {{p.name, p.unit}});
+      (void)single;
+    } catch (const SceneError& e) {
+      throw SceneError(p.where.str() + e.what());
+    }
+    // The dimension of what the name reaches: a node's parameter, or every use of a scene parameter.
+    std::vector<const ParamSpec*> targets;
+    if (const auto dot = p.name.find('.'); dot != std::string::npos) {
+      if (const auto node = graph.find(p.name.substr(0, dot)))
+        if (const ParamSpec* s = graph.nodes[*node].info().find_param(p.name.substr(dot + 1))) targets.push_back(s);
+    } else if (const auto uses = graph.scene_param_uses.find(p.name); uses != graph.scene_param_uses.end()) {
+      for (const SceneParamUse& use : uses->second)
+        if (const ParamSpec* s = graph.nodes[use.node].info().find_param(use.param)) targets.push_back(s);
+    }
+    for (const ParamSpec* s : targets) {
+      if (s->kind != ParamKind::number && s->kind != ParamKind::integer)
+        throw SceneError(p.where.str() + "'" + p.name + "' reaches parameter '" + s->name + "', which is not a number");
+      if (!(s->dimension == p.marginal.dimension))
+        throw SceneError(p.where.str() + "'" + p.name + "' is " + s->dimension.describe() + " (parameter '" + s->name +
+                         "'), its distribution is " + p.marginal.dimension.describe());
+    }
+  }
+}
+
+std::vector<StudyColumn> study_columns(const Graph& graph) {
+  std::vector<StudyColumn> columns;
+  std::set<std::string> seen;
+  for (const RequestedOutput& o : graph.outputs) {
+    if (o.spec->kind != ValueKind::scalar || !seen.insert(o.label).second) continue;
+    StudyColumn c;
+    c.label = o.label;
+    c.dimension = o.spec->dimension;
+    c.unit = o.spec->display_unit;
+    if (!c.unit.empty()) {
+      const UnitScale u = parse_unit(c.unit);
+      c.scale = u.scale;
+      c.offset = u.offset;
+    }
+    columns.push_back(std::move(c));
+  }
+  return columns;
+}
+
+StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const CaseTable& table, const std::vector<StudyColumn>& columns,
+                         unsigned threads, const std::atomic<bool>* stop, SweepSummary* summary) {
+  StudyData data;
+  data.outputs = columns;
+  const std::size_t n = table.cases.size();
+  data.values.assign(columns.size(), std::vector<double>(n, std::numeric_limits<double>::quiet_NaN()));
+  data.failures.assign(n, CaseFailure::none);
+  std::vector<std::size_t> where(columns.size());
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    for (std::size_t o = 0; o < graph.outputs.size(); ++o)
+      if (graph.outputs[o].label == columns[c].label) {
+        where[c] = o;
+        break;
+      }
+  SweepOptions options;
+  options.threads = threads;
+  options.stop = stop;
+  options.cases.resize(n);
+  for (std::size_t i = 0; i < n; ++i) options.cases[i] = i;
+  MemoCache cache;
+  const SweepSummary s = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
+    data.failures[r.index] = r.failure;
+    if (r.failure != CaseFailure::none) return;
+    for (std::size_t c = 0; c < columns.size(); ++c) data.values[c][r.index] = shown_value(r.outputs[where[c]].as_scalar(), columns[c]);
+  });
+  if (summary) *summary = s;
+  return data;
+}
+
+}  // namespace mechgraph::cli
+
+namespace mechgraph::cli {
+
+void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed) {
+  const auto whole = [](const std::string& text, const char* option, std::size_t low, std::size_t high) {
+    std::size_t n = 0;
+    const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+    if (ec != std::errc() || p != text.data() + text.size() || n < low || n > high)
+      throw UsageError(std::string(option) + " '" + excerpt(text, 40) + "' is not a whole number from " + std::to_string(low) + " to " +
+                       std::to_string(high));
+    return n;
+  };
+  if (!samples.empty()) spec.samples = whole(samples, "--samples", 2, 10'000'000);
+  if (!seed.empty()) spec.seed = whole(seed, "--seed", 0, std::size_t{1} << 62);
+  if (method == "monte_carlo") spec.method = SamplingMethod::monte_carlo;
+  else if (method == "latin_hypercube") spec.method = SamplingMethod::latin_hypercube;
+  else if (method == "sobol") spec.method = SamplingMethod::sobol;
+  else if (!method.empty()) throw UsageError("--method " + excerpt(method, 40) + ": valid methods are monte_carlo, latin_hypercube, sobol");
+  if (spec.evaluations() > max_sweep_cases)
+    throw UsageError("--samples " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
+                     " evaluations, more than 10^7");
+}
+
+}  // namespace mechgraph::cli
+
+namespace mechgraph::cli {
+
+RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block) {
+  RawValue merged;
+  merged.kind = RawValue::Kind::map;
+  if (scene.uncertainty) merged = *scene.uncertainty;
+  if (!block) return merged;
+  if (block->kind != RawValue::Kind::map) throw SceneError(block->where.str() + "expected the uncertainty settings as a map");
+  merged.where = block->where;
+  for (const RawField& f : block->fields) {
+    auto same = std::find_if(merged.fields.begin(), merged.fields.end(), [&](const RawField& m) { return m.first == f.first; });
+    if (same == merged.fields.end()) {
+      merged.fields.push_back(f);
+    } else if (f.first == "parameters" && f.second.kind == RawValue::Kind::map && same->second.kind == RawValue::Kind::map) {
+      for (const RawField& p : f.second.fields) {
+        auto old = std::find_if(same->second.fields.begin(), same->second.fields.end(), [&](const RawField& m) { return m.first == p.first; });
+        if (old == same->second.fields.end()) same->second.fields.push_back(p);
+        else old->second = p.second;
+      }
+    } else {
+      same->second = f.second;
+    }
+  }
+  return merged;
+}
+
+std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                                  const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                                  const std::string& seed, const std::optional<std::string>& outputs) {
+  auto outcome = std::make_unique<StudyOutcome>();
+  if (block) scene.uncertainty = merged_uncertainty(scene, block);
+  outcome->spec = study_spec_of(scene, registry);
+  apply_study_options(outcome->spec, samples, method, seed);
+  outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
+  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
+  check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
+  outcome->columns = study_columns(outcome->graph);
+  outcome->table = make_study_cases(outcome->spec);
+  return outcome;
+}
+
+void finish_study(StudyOutcome& outcome) {
+  outcome.answers = analyse_study(outcome.spec, outcome.data, outcome.threads);
+  std::ostringstream json;
+  JsonWriter w(json);
+  write_study_json(w, outcome.spec, outcome.answers);
+  outcome.json = json.str();
+}
+
+std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                                              const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
+                                              const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
+                                              unsigned threads, const std::atomic<bool>* stop) {
+  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs);
+  const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables);
+  std::vector<std::size_t> all(outcome->table.cases.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  outcome->threads = threads;
+  check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
+  outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
+  if (!outcome->summary.stopped) finish_study(*outcome);
+  return outcome;
+}
+
+}  // namespace mechgraph::cli

@@ -1,0 +1,85 @@
+"""The answers of an uncertainty study (``Scene.study``) as pandas DataFrames.
+
+Every number is the one ``mechgraph study --json`` prints (SI); ``samples`` holds each case of the
+design: the uncertain parameters in SI, the outputs in the units of their sweep columns, ``exit``
+(0, or the failure class: 2 scene, 3 evaluation).
+"""
+import json
+from typing import Any, Dict
+
+
+class Study:
+    def __init__(self, json_text: str, cases: Dict[str, Any]):
+        self.json: Dict[str, Any] = json.loads(json_text)
+        self._cases = cases
+
+    @property
+    def samples(self):
+        import pandas as pd
+
+        return pd.DataFrame(self._cases)
+
+    @property
+    def summary(self):
+        """One row per output: n, failed, mean (with its interval), standard deviation, min, max,
+        and against spec limits Cp, Cpk, the counted ppm (Wilson interval) and the normal model's."""
+        import pandas as pd
+
+        rows = []
+        for name, o in self.json["outputs"].items():
+            row = {"output": name, "unit": o["unit"], "n": o["n"], "failed": o["failed"]}
+            for key in ("mean", "standard_deviation", "min", "max", "cp", "cpk", "ppm", "ppm_normal"):
+                row[key] = o.get(key)
+            row["mean_lower"], row["mean_upper"] = o.get("mean_interval", [None, None])
+            if "out_of_spec" in o:
+                lo, hi = o["out_of_spec"]["wilson"]
+                row["ppm_lower"], row["ppm_upper"] = 1e6 * lo, 1e6 * hi
+            rows.append(row)
+        return pd.DataFrame(rows).set_index("output")
+
+    @property
+    def quantiles(self):
+        import pandas as pd
+
+        rows = [{"output": name, "level": q["level"], "value": q["value"], "lower": q["interval"][0], "upper": q["interval"][1]}
+                for name, o in self.json["outputs"].items() for q in o["quantiles"]]
+        return pd.DataFrame(rows)
+
+    @property
+    def histograms(self):
+        import pandas as pd
+
+        rows = []
+        for name, o in self.json["outputs"].items():
+            h = o["histogram"]
+            for k, count in enumerate(h["counts"]):
+                rows.append({"output": name, "low": h["low"] + k * h["width"], "high": h["low"] + (k + 1) * h["width"], "count": count})
+        return pd.DataFrame(rows)
+
+    @property
+    def sobol(self):
+        """One row per output and parameter: first-order (Saltelli 2010) and total (Jansen) indices
+        with their bootstrap intervals."""
+        import pandas as pd
+
+        rows = []
+        for name, o in self.json["outputs"].items():
+            for parameter, s in o.get("sobol", {}).get("indices", {}).items():
+                rows.append({"output": name, "parameter": parameter, "first": s["first"], "first_lower": s["first_interval"][0],
+                             "first_upper": s["first_interval"][1], "total": s["total"], "total_lower": s["total_interval"][0],
+                             "total_upper": s["total_interval"][1]})
+        return pd.DataFrame(rows)
+
+    @property
+    def events(self):
+        import pandas as pd
+
+        rows = [{"event": name, "events": e["events"], "trials": e["trials"], "probability": e["estimate"],
+                 "wilson_lower": e["wilson"][0], "wilson_upper": e["wilson"][1],
+                 "clopper_pearson_lower": e["clopper_pearson"][0], "clopper_pearson_upper": e["clopper_pearson"][1]}
+                for name, e in self.json["events"].items()]
+        return pd.DataFrame(rows)
+
+    def __repr__(self) -> str:
+        j = self.json
+        return f"Study({j['method']}, {j['samples']} samples, {j['cases']} cases, {j['failed']} failed)"

@@ -1,0 +1,52 @@
+#include "report_tables.hpp"
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/units.hpp>
+
+#include <algorithm>
+
+namespace mechgraph::python {
+
+std::vector<ReportTableValues> report_table_values(const Graph& graph, const RunResult& result) {
+  std::vector<ReportTableValues> tables;
+  for (const ResolvedReport& report : graph.reports) {
+    ReportTableValues table{report.title, report.columns, {}};
+    std::vector<std::pair<Dimension, std::string>> chosen;  // one unit per dimension in a table
+    for (const ResolvedReport::Row& row : report.rows) {
+      ReportTableValues::Row out{row.label, row.unit, {}};
+      bool unit_known = false;
+      for (const auto& cell : row.cells) {
+        if (!cell) {
+          out.values.emplace_back();
+          continue;
+        }
+        const OutputValue& o = result.outputs.at(cell->output);
+        double value = 0.0;
+        if (cell->element) {
+          const auto& values = o.value.as_series().values;
+          if (*cell->element >= values.size())
+            throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
+                                  " elements, the row asks for element " + std::to_string(*cell->element));
+          value = values[*cell->element];
+        } else {
+          value = o.value.as_scalar();
+        }
+        if (!unit_known) {
+          const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
+          if (!row.unit.empty()) out.unit = row.unit;
+          else if (known != chosen.end()) out.unit = known->second;
+          else out.unit = graph.display_units.unit_for(o.dimension, o.display_unit);
+          if (out.unit.empty() && !o.dimension.dimensionless()) out.unit = o.dimension.si_unit();
+          if (known == chosen.end()) chosen.emplace_back(o.dimension, out.unit);
+          unit_known = true;
+        }
+        out.values.push_back(out.unit.empty() ? value : to_unit(value, o.dimension, out.unit));
+      }
+      table.rows.push_back(std::move(out));
+    }
+    tables.push_back(std::move(table));
+  }
+  return tables;
+}
+
+}  // namespace mechgraph::python

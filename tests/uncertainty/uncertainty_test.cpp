@@ -1,0 +1,411 @@
+// Uncertainty studies (docs/methods/uncertainty.md): distributions, designs and estimators against
+// closed forms; the Ishigami function and a linear model through a graph against their Sobol'
+// indices; the same answers on 1, 2 or 5 threads and from shards.
+#include "test_support.hpp"
+
+#include <study_run.hpp>
+
+#include <mechgraph/errors.hpp>
+#include <mechgraph/uncertainty/sample_design.hpp>
+#include <mechgraph/uncertainty/study_answers.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <numeric>
+#include <sstream>
+
+using namespace mechgraph;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const PluginRegistry& uq_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.load_file(testing::test_plugin("test_uq"));
+    return r;
+  }();
+  return registry;
+}
+
+StudySpec study_of(const std::string& yaml, const PluginRegistry& registry = uq_registry()) {
+  const SceneSpec scene = parse_scene(yaml, "study.yaml");
+  return cli::study_spec_of(scene, registry);
+}
+
+// A whole study in process: the scene's cases on `threads` workers, analysed.
+std::unique_ptr<cli::StudyOutcome> run_study(const std::string& yaml, unsigned threads, const PluginRegistry& registry = uq_registry()) {
+  return cli::run_scene_study(parse_scene(yaml, "study.yaml"), registry, {}, std::nullopt, "", "", "", std::nullopt, WorkBudget{}, threads,
+                              nullptr);
+}
+using InProcess = std::unique_ptr<cli::StudyOutcome>;
+
+const char* const uniform_pi = "{ uniform: { lower: -3.141592653589793, upper: 3.141592653589793 } }";
+
+std::string ishigami_scene(const std::string& method, std::size_t samples, const std::string& extra = "") {
+  return std::string("params: { x1: 0, x2: 0, x3: 0 }\nuncertainty:\n  method: ") + method + "\n  samples: " + std::to_string(samples) +
+         "\n  seed: 5\n  sensitivity: true\n  bootstrap: 50\n  parameters:\n    x1: " + uniform_pi + "\n    x2: " + uniform_pi +
+         "\n    x3: " + uniform_pi + "\n" + extra +
+         "nodes:\n  f: { type: test.ishigami, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";
+}
+
+}  // namespace
+
+TEST_CASE("Distributions: quantiles, moments, normal by tolerance and Cp", "[uncertainty]") {
+  const StudySpec spec = study_of(R"(uncertainty:
+  parameters:
+    a: { normal: { mean: 10 mm, sigma: 0.1 mm } }
+    b: { normal: { nominal: 10 mm, tolerance: 0.03 mm, cp: 1.5 } }
+    c: { normal: { lower: 9.97 mm, upper: 10.03 mm } }
+    d: { uniform: { lower: 1, upper: 3 } }
+    e: { triangular: { lower: 0, mode: 1, upper: 4 } }
+    f: { normal: { mean: 0, sigma: 1 }, truncate: { lower: -1, upper: 2 } }
+nodes: {}
+)");
+  REQUIRE(spec.parameters.size() == 6);
+  const Marginal& a = spec.parameters[0].marginal;
+  CHECK(a.dimension == dim::length);
+  CHECK_THAT(a.quantile(0.5), Catch::Matchers::WithinRel(0.010, 1e-14));
+  CHECK_THAT(a.quantile(standard_normal_cdf(1.0)), Catch::Matchers::WithinRel(0.0101, 1e-12));
+  // Cp = 2 t / 6 sigma: sigma = 0.03 mm / (3 x 1.5).
+  CHECK_THAT(spec.parameters[1].marginal.b, Catch::Matchers::WithinRel(0.03e-3 / 4.5, 1e-14));
+  CHECK_THAT(spec.parameters[2].marginal.b, Catch::Matchers::WithinRel(0.06e-3 / 6, 1e-12));
+  CHECK_THAT(spec.parameters[3].marginal.quantile(0.25), Catch::Matchers::WithinRel(1.5, 1e-15));
+  const Marginal& e = spec.parameters[4].marginal;
+  CHECK_THAT(e.mean(), Catch::Matchers::WithinRel(5.0 / 3.0, 1e-15));
+  for (double u : {0.01, 0.2, 0.25, 0.7, 0.99}) CHECK_THAT(e.cdf(e.quantile(u)), Catch::Matchers::WithinAbs(u, 1e-14));
+  const Marginal& f = spec.parameters[5].marginal;
+  CHECK(f.quantile(1e-9) >= -1.0);
+  CHECK(f.quantile(1 - 1e-9) <= 2.0);
+  // The truncated standard normal's mean: (phi(a) - phi(b)) / (Phi(b) - Phi(a)).
+  const auto phi = [](double x) { return std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI); };
+  const double exact = (phi(-1) - phi(2)) / (standard_normal_cdf(2) - standard_normal_cdf(-1));
+  CHECK_THAT(f.mean(), Catch::Matchers::WithinAbs(exact, 1e-6));
+}
+
+TEST_CASE("Distributions: errors name file:line:column and the valid names", "[uncertainty]") {
+  const auto error_of = [](const std::string& yaml) {
+    try {
+      study_of(yaml);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 1 mm, sigma: 2 s } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("sigma is time") && Contains("length"));
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 1 mm, sigm: 2 mm } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("sigma"));
+  CHECK_THAT(error_of("uncertainty:\n  method: sobl\n  parameters:\n    a: { uniform: { lower: 0, upper: 1 } }\nnodes: {}\n"),
+             Contains("study.yaml:2:11") && Contains("sobol"));
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: 0, upper: 1 } }\n    b: { uniform: { lower: 0, upper: 1 } }\n"
+                      "  correlations: [[a, c, 0.5]]\nnodes: {}\n"),
+             Contains("study.yaml:5:22") && Contains("'c'"));
+  CHECK_THAT(error_of("uncertainty:\n  sensitivity: true\n  parameters:\n    a: { uniform: { lower: 0, upper: 1 } }\n    b: { uniform: { lower: 0, upper: 1 } }\n"
+                      "  correlations: [[a, b, 0.5]]\nnodes: {}\n"),
+             Contains("independent"));
+  // A name that reaches no parameter, and a distribution of the wrong dimension, at its line.
+  const std::string scene = "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\nuncertainty:\n  parameters:\n    NAME: DIST\n"
+                            "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";
+  const auto graph_error = [&](const std::string& name, const std::string& dist) {
+    std::string yaml = scene;
+    yaml.replace(yaml.find("NAME"), 4, name);
+    yaml.replace(yaml.find("DIST"), 4, dist);
+    try {
+      run_study(yaml, 1);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(graph_error("x4", "{ normal: { mean: 1 mm, sigma: 1 um } }"), Contains("study.yaml:4:5") && Contains("x1"));
+  CHECK_THAT(graph_error("f.x2", "{ normal: { mean: 1 s, sigma: 1 ms } }"), Contains("study.yaml:4:5") && Contains("length"));
+  // A limit on an output the study does not read, at its line, with the outputs it has.
+  std::string limits = scene;
+  limits.replace(limits.find("NAME"), 4, "x1");
+  limits.replace(limits.find("DIST"), 4, "{ normal: { mean: 1 mm, sigma: 1 um } }\n  limits: { f.z: { upper: 1 mm } }");
+  try {
+    run_study(limits, 1);
+    FAIL("a limit on f.z accepted");
+  } catch (const SceneError& e) {
+    CHECK_THAT(std::string(e.what()), Contains("study.yaml:5:13") && Contains("f.y"));
+  }
+}
+
+TEST_CASE("Designs: strata of Latin hypercube and Sobol', counter streams", "[uncertainty]") {
+  const std::size_t n = 256, d = 4;
+  for (SamplingMethod m : {SamplingMethod::latin_hypercube, SamplingMethod::sobol}) {
+    const UnitDesign design(m, n, d, 9);
+    std::vector<std::vector<int>> hits(d, std::vector<int>(n, 0));
+    std::vector<double> p(d);
+    for (std::size_t i = 0; i < n; ++i) {
+      design.point(i, p.data());
+      for (std::size_t j = 0; j < d; ++j) {
+        REQUIRE(p[j] > 0.0);
+        REQUIRE(p[j] < 1.0);
+        ++hits[j][static_cast<std::size_t>(p[j] * n)];
+      }
+    }
+    // Every one of the n strata of every coordinate holds exactly one point (for Sobol': the first
+    // 2^m points of a digitally shifted net).
+    for (std::size_t j = 0; j < d; ++j) CHECK(std::all_of(hits[j].begin(), hits[j].end(), [](int h) { return h == 1; }));
+  }
+  // A point depends on its index alone: asked out of order, it is the same.
+  const UnitDesign sobol(SamplingMethod::sobol, 1000, 3, 2);
+  std::vector<double> first(3), again(3), other(3);
+  sobol.point(700, first.data());
+  sobol.point(3, other.data());
+  sobol.point(700, again.data());
+  CHECK(first == again);
+  CHECK(counter_hash(1, 2, 3, 4) != counter_hash(1, 2, 4, 3));
+}
+
+TEST_CASE("Correlated pairs: the Gaussian copula gives the normal scores their correlation", "[uncertainty]") {
+  const StudySpec spec = study_of(R"(uncertainty:
+  method: monte_carlo
+  samples: 40000
+  parameters:
+    a: { normal: { mean: 0, sigma: 2 } }
+    b: { uniform: { lower: 0, upper: 1 } }
+  correlations: [[a, b, 0.6]]
+nodes: {}
+)");
+  const CaseTable t = make_study_cases(spec);
+  double sxy = 0, sxx = 0, syy = 0;
+  for (const auto& row : t.cases) {
+    const double za = *row[0].si / 2, zb = standard_normal_quantile(*row[1].si);
+    sxy += za * zb, sxx += za * za, syy += zb * zb;
+  }
+  CHECK_THAT(sxy / std::sqrt(sxx * syy), Catch::Matchers::WithinAbs(0.6, 0.01));  // 4 standard errors
+}
+
+TEST_CASE("Monte Carlo statistics against exact convolution", "[uncertainty]") {
+  // The sum of two uniforms on [0, 1] is triangular on [0, 2]: mean 1, sigma 1/sqrt(6), quantile
+  // p <= 1/2 at sqrt(2p); of two normals N(1, 0.3), N(2, 0.4): N(3, 0.5).
+  const auto scene = [](const std::string& d1, const std::string& d2, const std::string& method) {
+    return "params: { x1: 0 mm, x2: 0 mm }\nuncertainty:\n  method: " + method + "\n  samples: 20000\n  seed: 4\n  parameters:\n    x1: " +
+           d1 + "\n    x2: " + d2 +
+           "\n  quantiles: [0.02, 0.5, 0.9]\nnodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: 0 mm } }\noutputs: [f.y]\n";
+  };
+  for (const std::string method : {"monte_carlo", "latin_hypercube"}) {
+    INFO(method);
+    const InProcess u = run_study(scene("{ uniform: { lower: 0 mm, upper: 1 mm } }", "{ uniform: { lower: 0 mm, upper: 1 mm } }", method), 2);
+    const OutputAnswer& y = u->answers.outputs.at(0);
+    CHECK(y.column.unit == "mm");
+    const double se = (1 / std::sqrt(6.0)) / std::sqrt(20000.0);
+    CHECK_THAT(y.moments.mean, Catch::Matchers::WithinAbs(1.0, 4 * se));
+    CHECK_THAT(y.moments.standard_deviation, Catch::Matchers::WithinRel(1 / std::sqrt(6.0), 0.02));
+    // A quantile's standard error is sqrt(p (1 - p) / n) / f(x_p); the density is x, or 2 - x.
+    const auto quantile_se = [](double p, double density) { return std::sqrt(p * (1 - p) / 20000.0) / density; };
+    CHECK_THAT(y.quantiles[0].value, Catch::Matchers::WithinAbs(std::sqrt(2 * 0.02), 4 * quantile_se(0.02, std::sqrt(2 * 0.02))));
+    CHECK_THAT(y.quantiles[2].value, Catch::Matchers::WithinAbs(2 - std::sqrt(2 * 0.1), 4 * quantile_se(0.9, std::sqrt(2 * 0.1))));
+    // The interval covers the exact quantile (95 %: a seed could miss; this one is checked).
+    CHECK(*y.quantiles[1].interval.lower <= 1.0);
+    CHECK(*y.quantiles[1].interval.upper >= 1.0);
+    const InProcess g = run_study(scene("{ normal: { mean: 1 mm, sigma: 0.3 mm } }", "{ normal: { mean: 2 mm, sigma: 0.4 mm } }", method), 1);
+    const OutputAnswer& z = g->answers.outputs.at(0);
+    CHECK_THAT(z.moments.mean, Catch::Matchers::WithinAbs(3.0, 4 * 0.5 / std::sqrt(20000.0)));
+    CHECK_THAT(z.moments.standard_deviation, Catch::Matchers::WithinRel(0.5, 0.02));
+    CHECK_THAT(z.quantiles[2].value, Catch::Matchers::WithinAbs(3 + 0.5 * standard_normal_quantile(0.9), 0.02));
+  }
+}
+
+TEST_CASE("Cp, Cpk and ppm against their closed forms", "[uncertainty]") {
+  // Exact values: the formulas on given moments.
+  Moments m;
+  m.n = 4;
+  m.mean = 10.2;
+  m.standard_deviation = 0.1;
+  const Capability c = capability({9.5, 10.0, 10.4, 10.6}, m, 9.7, 10.6, 0.95);
+  CHECK_THAT(*c.cp, Catch::Matchers::WithinRel(0.9 / 0.6, 1e-14));
+  CHECK_THAT(*c.cpk, Catch::Matchers::WithinRel(0.4 / 0.3, 1e-14));
+  CHECK_THAT(c.ppm_normal, Catch::Matchers::WithinRel(1e6 * (standard_normal_cdf(-5.0) + standard_normal_cdf(-4.0)), 1e-10));
+  CHECK(c.below == 1);
+  CHECK(c.above == 0);  // 10.6 is inside a closed limit
+  // A normal output N(10, 0.1) mm against [9.75, 10.35] mm: Cpk = min(0.35, 0.25) / 0.3 = 5/6.
+  const InProcess r = run_study(R"(params: { x1: 0 mm }
+uncertainty:
+  method: latin_hypercube
+  samples: 50000
+  parameters:
+    x1: { normal: { mean: 10 mm, sigma: 0.1 mm } }
+  limits:
+    f.y: { lower: 9.75 mm, upper: 10.35 mm }
+nodes:
+  f: { type: test.linear, params: { x1: $x1, x2: 0 mm, x3: 0 mm } }
+outputs: [f.y]
+)",
+                                2);
+  const Capability& k = *r->answers.outputs.at(0).capability;
+  CHECK_THAT(*k.cpk, Catch::Matchers::WithinRel(5.0 / 6.0, 0.01));
+  CHECK_THAT(*k.cp, Catch::Matchers::WithinRel(1.0, 0.01));
+  const double ppm = 1e6 * (standard_normal_cdf(-2.5) + standard_normal_cdf(-3.5));
+  CHECK(1e6 * *k.out_of_spec.clopper_pearson.lower <= ppm);
+  CHECK(1e6 * *k.out_of_spec.clopper_pearson.upper >= ppm);
+}
+
+TEST_CASE("Event probabilities: Wilson and Clopper-Pearson intervals", "[uncertainty]") {
+  const Proportion none = proportion(0, 10, 0.95);
+  CHECK(*none.clopper_pearson.lower == 0.0);
+  CHECK_THAT(*none.clopper_pearson.upper, Catch::Matchers::WithinRel(1 - std::pow(0.025, 0.1), 1e-12));
+  const Proportion some = proportion(12, 100, 0.95);
+  // Wilson at k = 12, n = 100, z = 1.959964: [0.0700, 0.1981] (Newcombe 1998, method 3).
+  CHECK_THAT(*some.wilson.lower, Catch::Matchers::WithinAbs(0.06996, 1e-4));
+  CHECK_THAT(*some.wilson.upper, Catch::Matchers::WithinAbs(0.19812, 1e-4));
+  // A failed evaluation class counts as the event: the node fails where y > 10, so the failure
+  // event and the output event y > 10 of the same design agree.
+  const InProcess fails = run_study(ishigami_scene("monte_carlo", 2000, "  events:\n    refused: { failure: evaluation }\n") +
+                                        "", 2);
+  const InProcess plain_ = run_study(ishigami_scene("monte_carlo", 2000, "  events:\n    high: { output: f.y, above: 10 }\n"), 2);
+  (void)fails;
+  std::string failing = ishigami_scene("monte_carlo", 2000, "  events:\n    refused: { failure: evaluation }\n");
+  failing.replace(failing.find("x3: $x3 }"), 9, "x3: $x3, fail_above: 10 }");
+  const InProcess f = run_study(failing, 2);
+  REQUIRE(f->answers.events.size() == 1);
+  CHECK(f->answers.events[0].probability.events == plain_->answers.events[0].probability.events);
+  CHECK(f->answers.events[0].probability.events > 0);
+  CHECK(f->answers.outputs[0].failed == f->answers.events[0].probability.events);
+}
+
+TEST_CASE("Sobol' indices of the Ishigami function against the closed form", "[uncertainty]") {
+  // a = 7, b = 0.1, x_i uniform on [-pi, pi]: V = a^2/8 + b pi^4/5 + b^2 pi^8/18 + 1/2;
+  // V1 = (1 + b pi^4/5)^2 / 2, V2 = a^2/8, V3 = 0; VT1 = V1 + V13, V13 = b^2 pi^8 (1/18 - 1/50) ... (8/225).
+  const double a = 7, b = 0.1, pi4 = std::pow(M_PI, 4), pi8 = pi4 * pi4;
+  const double v = a * a / 8 + b * pi4 / 5 + b * b * pi8 / 18 + 0.5;
+  const double v1 = 0.5 * (1 + b * pi4 / 5) * (1 + b * pi4 / 5), v2 = a * a / 8, v13 = b * b * pi8 * 8 / 225;
+  const double s[3] = {v1 / v, v2 / v, 0.0}, st[3] = {(v1 + v13) / v, v2 / v, v13 / v};
+  for (const std::string method : {"sobol", "latin_hypercube"}) {
+    INFO(method);
+    const InProcess r = run_study(ishigami_scene(method, 16384), 2);
+    const SobolIndices& si = *r->answers.outputs.at(0).sobol;
+    REQUIRE(si.indices.size() == 3);
+    for (int j = 0; j < 3; ++j) {
+      INFO("x" << j + 1);
+      CHECK_THAT(si.indices[j].first, Catch::Matchers::WithinAbs(s[j], 0.03));
+      CHECK_THAT(si.indices[j].total, Catch::Matchers::WithinAbs(st[j], 0.03));
+      CHECK(*si.indices[j].first_interval.lower < si.indices[j].first);
+      CHECK(*si.indices[j].first_interval.upper > si.indices[j].first);
+    }
+  }
+}
+
+TEST_CASE("Sobol' indices of a linear model: S_i = ST_i = c_i^2 sigma_i^2 / sum", "[uncertainty]") {
+  const InProcess r = run_study(R"(params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }
+uncertainty:
+  method: sobol
+  samples: 8192
+  sensitivity: true
+  bootstrap: 0
+  parameters:
+    x1: { normal: { mean: 1 mm, sigma: 0.1 mm } }
+    x2: { uniform: { lower: 0 mm, upper: 0.6 mm } }
+    x3: { normal: { nominal: 5 mm, tolerance: 0.3 mm } }
+nodes:
+  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3, c1: 2, c2: -1, c3: 0.5 } }
+outputs: [f.y]
+)",
+                                2);
+  const double v1 = 4 * 0.01, v2 = 0.36 / 12, v3 = 0.25 * 0.01, total = v1 + v2 + v3;
+  const double s[3] = {v1 / total, v2 / total, v3 / total};
+  const SobolIndices& si = *r->answers.outputs.at(0).sobol;
+  for (int j = 0; j < 3; ++j) {
+    INFO("x" << j + 1);
+    CHECK_THAT(si.indices[j].first, Catch::Matchers::WithinAbs(s[j], 0.01));
+    CHECK_THAT(si.indices[j].total, Catch::Matchers::WithinAbs(s[j], 0.01));
+  }
+  CHECK_THAT(si.variance, Catch::Matchers::WithinRel(total, 0.03));
+}
+
+TEST_CASE("Studies: the same bits on 1, 2 and 5 threads", "[uncertainty]") {
+  for (const std::string method : {"monte_carlo", "latin_hypercube", "sobol"}) {
+    const std::string scene = ishigami_scene(method, 500, "  limits: { f.y: { upper: 10 } }\n  events: { high: { output: f.y, above: 9 } }\n");
+    const InProcess one = run_study(scene, 1), two = run_study(scene, 2), five = run_study(scene, 5);
+    CHECK(one->json == two->json);
+    CHECK(one->json == five->json);
+    CHECK(one->data.values == five->data.values);
+  }
+}
+
+TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for bit", "[uncertainty]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_study_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string plugin = " --plugin-dir '" + testing::test_plugin("test_uq").parent_path().string() + "' ";
+  const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/tests/uncertainty/ishigami.yaml";
+  const auto whole = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --threads 2");
+  REQUIRE(whole.exit_code == 0);
+  std::string parts;
+  for (int shard = 0; shard < 3; ++shard) {
+    const std::string part = (dir / ("part-" + std::to_string(shard) + ".csv")).string();
+    const auto r = testing::run_cli(plugin + "sweep '" + scene + "' --study --samples 300 --shard " + std::to_string(shard) +
+                                    "/3 --threads 1 --out '" + part + "'");
+    REQUIRE(r.exit_code == 0);
+    parts += " '" + part + "'";
+  }
+  const std::string merged = (dir / "all.csv").string();
+  REQUIRE(testing::run_cli("merge" + parts + " --out '" + merged + "'").exit_code == 0);
+  const auto from_rows = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --rows '" + merged + "'");
+  REQUIRE(from_rows.exit_code == 0);
+  CHECK(from_rows.out == whole.out);
+  // Rows of another seed are refused, naming the row.
+  const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
+  CHECK(other.exit_code == 2);
+  CHECK_THAT(other.err, Contains("all.csv:2:") && Contains("another seed"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncertainty]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_study_out_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string plugin = " --plugin-dir '" + testing::test_plugin("test_uq").parent_path().string() + "' ";
+  const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/tests/uncertainty/ishigami.yaml";
+  const auto r = testing::run_cli(plugin + "study '" + scene + "' --samples 64 --out '" + (dir / "out").string() + "'");
+  REQUIRE(r.exit_code == 0);
+  CHECK_THAT(r.out, Contains("Sobol' indices") && Contains("high: "));
+  for (const char* f : {"study.json", "summary.csv", "quantiles.csv", "histograms.csv", "sobol.csv", "events.csv", "report.html"})
+    CHECK(std::filesystem::is_regular_file(dir / "out" / f));
+  // The page: the histogram against both spec limits, the Sobol' chart, the events.
+  std::ifstream page_file(dir / "out" / "report.html");
+  const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
+  CHECK_THAT(page, Contains("LSL -8") && Contains("USL 12") && Contains("Sobol' indices (64 base samples)") && Contains("<td>high</td>"));
+  const std::string bad = (dir / "bad.yaml").string();
+  std::ofstream(bad) << "params: {x1: 0}\nuncertainty:\n  parameters:\n    x1: { normal: { mean: 1, sigma: -1 } }\n"
+                        "nodes:\n  f: { type: test.ishigami, params: { x1: $x1 } }\noutputs: [f.y]\n";
+  const auto e = testing::run_cli(plugin + "study '" + bad + "'");
+  CHECK(e.exit_code == 2);
+  CHECK_THAT(e.err, Contains("bad.yaml:4:37: sigma must be greater than 0"));
+  const auto none = testing::run_cli("study '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml'");
+  CHECK(none.exit_code == 2);
+  CHECK_THAT(none.err, Contains("no 'uncertainty' block"));
+  const auto usage = testing::run_cli(plugin + "study '" + scene + "' --method lhs");
+  CHECK(usage.exit_code == 2);
+  CHECK_THAT(usage.err, Contains("latin_hypercube"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("ISO 286 classes from the fits plugin's tables", "[uncertainty]") {
+  // 20 mm H7: 0 .. +21 um; g6: -7 .. -20 um (ISO 286-2). Normal over the zone at Cp 1, or uniform.
+  const StudySpec spec = study_of(R"(uncertainty:
+  parameters:
+    bore:  { iso286: { size: 20 mm, class: H7 } }
+    pin:   { iso286: { size: 20 mm, class: g6, distribution: uniform } }
+    tight: { iso286: { size: 20 mm, class: H7, cp: 1.33 } }
+nodes: {}
+)",
+                                  testing::project_registry());
+  CHECK_THAT(spec.parameters[0].marginal.a, Catch::Matchers::WithinAbs(20.0105e-3, 1e-12));
+  CHECK_THAT(spec.parameters[0].marginal.b, Catch::Matchers::WithinAbs(21e-6 / 6, 1e-12));
+  CHECK(spec.parameters[1].marginal.kind == Marginal::Kind::uniform);
+  CHECK_THAT(spec.parameters[1].marginal.a, Catch::Matchers::WithinAbs(19.980e-3, 1e-12));
+  CHECK_THAT(spec.parameters[1].marginal.b, Catch::Matchers::WithinAbs(19.993e-3, 1e-12));
+  CHECK_THAT(spec.parameters[2].marginal.b, Catch::Matchers::WithinAbs(21e-6 / (6 * 1.33), 1e-12));
+  try {
+    study_of("uncertainty:\n  parameters:\n    bore: { iso286: { size: 20 mm, class: Q7 } }\nnodes: {}\n", testing::project_registry());
+    FAIL("Q7 accepted");
+  } catch (const SceneError& e) {
+    CHECK_THAT(std::string(e.what()), Contains("study.yaml:3:43") && Contains("Q7"));
+  }
+}
