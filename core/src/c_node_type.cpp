@@ -3,6 +3,7 @@
 #include "c_node_description.hpp"
 
 #include <mechgraph/c/sdk_lib.h>
+#include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/cancellation.hpp>
 #include <mechgraph/errors.hpp>
 
@@ -15,34 +16,12 @@
 namespace mechgraph::detail {
 namespace {
 
-// An object a C node made, carried along the graph as a DomainObject: it holds the one reference
-// set_object handed over and releases it when the last Value that carries it goes. kind() is the
-// declared interface name, which is what ports of C nodes compare.
-class CObjectHandle final : public DomainObject {
- public:
-  CObjectHandle(const mg_object* object, std::string interface, std::uint32_t version)
-      : object_(object), interface_(std::move(interface)), version_(version) {}
-  ~CObjectHandle() override { object_->vtbl->release(object_); }
-  CObjectHandle(const CObjectHandle&) = delete;
-  CObjectHandle& operator=(const CObjectHandle&) = delete;
-  std::string_view kind() const override { return interface_; }
-  // The SDK library's checks for SDK interfaces (mg_check_object), none for a plugin's own.
-  std::string contract_problem() const override {
-    std::string problem;
-    mg_text_sink sink{&problem, [](void* self, const char* text, size_t size) {
-                        static_cast<std::string*>(self)->append(text, size);
-                      }};
-    const mg_status s = mg_check_object(object_, interface_.c_str(), version_, sink);
-    if (s == MG_OK) return {};
-    return problem.empty() ? std::string("mg_check_object says ") + mg_status_name(s) : problem;
-  }
-  const mg_object* object() const { return object_; }
-
- private:
-  const mg_object* object_;
-  std::string interface_;
-  std::uint32_t version_;
-};
+// The C interface an object port carries: an SDK interface's name for the kind of its C++ class,
+// else the port's kind, which is then the interface name itself (a plugin's private one).
+std::string interface_of_port(const PortSpec& port) {
+  if (const SdkInterface* known = sdk_interface_of_kind(port.handle_kind)) return known->name;
+  return port.handle_kind;
+}
 
 std::string text(mg_str s) { return s.data ? std::string(s.data, s.size) : std::string(); }
 
@@ -211,21 +190,22 @@ mg_status suite_set_object(mg_eval_ctx* c, uint32_t index, const mg_object* o) {
     c->breaks("set_object was given no object, or one whose vtable lacks retain, release or query");
     return MG_ERR_BAD_ARGUMENT;
   }
+  // The reference handed over is released here; the C++ view takes its own (or, for an object this
+  // host exported, is the host's C++ object again).
+  struct HandedOver {
+    const mg_object* o;
+    ~HandedOver() { o->vtbl->release(o); }
+  } const handed_over{o};
   const PortSpec* port = c->output(index, ValueKind::handle, "set_object");
-  std::shared_ptr<const CObjectHandle> handle;
+  if (!port) return MG_ERR_BAD_ARGUMENT;
   try {
-    if (port) handle = std::make_shared<const CObjectHandle>(o, port->handle_kind, c->output_versions[index]);
-  } catch (...) {  // no handle made: the reference handed over is still ours to release
-  }
-  if (!handle) {
-    o->vtbl->release(o);
-    return port ? MG_ERR_NO_MEMORY : MG_ERR_BAD_ARGUMENT;
-  }
-  try {  // from here the handle owns the reference, whatever happens
-    c->outputs.set(port->name, Value::handle(std::move(handle)));
+    c->outputs.set(port->name, Value::handle(import_object(o, interface_of_port(*port), c->output_versions[index])));
     return MG_OK;
-  } catch (...) {
+  } catch (const std::bad_alloc&) {
     return MG_ERR_NO_MEMORY;
+  } catch (const std::exception& e) {
+    c->breaks("set_object for output '" + port->name + "': " + e.what());
+    return MG_ERR_BAD_ARGUMENT;
   }
 }
 void* suite_scratch(mg_eval_ctx* c, size_t bytes, size_t align) {
@@ -320,10 +300,8 @@ class CallViews {
       }
       case ValueKind::handle: {
         out.kind = MG_VALUE_OBJECT;
-        // Ports of C nodes carry interface names, which only C nodes produce (the graph compares them).
-        const auto* handle = dynamic_cast<const CObjectHandle*>(v.as_handle().get());
-        if (!handle) throw std::logic_error("an input carries an object of a pre-1.0 plugin, which has no C interface");
-        out.u.object = handle->object();
+        // A foreign object's original, or a pre-1.0 plugin's C++ object exported for the call.
+        out.u.object = objects_.emplace_back(std::make_unique<ObjectReference>(export_object(v.as_handle(), "", "")))->object;
         break;
       }
     }
@@ -347,6 +325,13 @@ class CallViews {
   std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
   std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
   std::vector<std::unique_ptr<mg_table>> tables_;
+  // Owns one reference for the call.
+  struct ObjectReference {
+    const mg_object* object;
+    explicit ObjectReference(const mg_object* o) : object(o) {}
+    ~ObjectReference() { object->vtbl->release(object); }
+  };
+  std::vector<std::unique_ptr<ObjectReference>> objects_;
 };
 
 class CNodeType final : public NodeType {

@@ -4,6 +4,7 @@
 // table never changes (docs/design/sdk-1.0.md, rules 1-2). The numbers are LP64's (x86_64,
 // aarch64), the platform the SDK promises. A failure here is an ABI break: add a new struct or a
 // new version of the table instead.
+#include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/dimension.hpp>
 
@@ -74,6 +75,20 @@ static_assert(offsetof(mg_valve_motion_v1, knots) == 40);
 static_assert(offsetof(mg_valve_motion_v1, rocker_ratio) == 48);
 static_assert(offsetof(mg_valve_motion_v1, lash) == 56);
 static_assert(offsetof(mg_valve_motion_v1, cam) == 64);
+static_assert(sizeof(mg_tolerance_link) == 40);
+static_assert(offsetof(mg_tolerance_link, label) == 0);
+static_assert(offsetof(mg_tolerance_link, mean) == 8);
+static_assert(offsetof(mg_tolerance_link, half_range) == 16);
+static_assert(offsetof(mg_tolerance_link, sensitivity) == 24);
+static_assert(offsetof(mg_tolerance_link, distribution) == 32);
+static_assert(sizeof(mg_play_term) == 24);
+static_assert(offsetof(mg_play_term, links) == 8);
+static_assert(offsetof(mg_play_term, link_count) == 16);
+static_assert(sizeof(mg_joint_play_data_v1) == 24);
+static_assert(offsetof(mg_joint_play_data_v1, terms) == 8);
+static_assert(offsetof(mg_joint_play_data_v1, term_count) == 16);
+static_assert(sizeof(mg_joint_play_v1) == 16);
+static_assert(offsetof(mg_joint_play_v1, data) == 8);
 static_assert(sizeof(mg_host) == 32);
 static_assert(offsetof(mg_host, struct_size) == 0);
 static_assert(offsetof(mg_host, sdk_major) == 4);

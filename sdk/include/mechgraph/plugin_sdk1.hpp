@@ -4,7 +4,7 @@
 // (mechgraph/detail/export_node.hpp), so the plugin needs no build fingerprint: any compiler that
 // shares the host's C++ standard library ABI will do. Use once per plugin, at namespace scope:
 //   MECHGRAPH_PLUGIN_1("myplugin", "1.0.0", &make_node_types)
-// Not yet for node types with ports that carry domain objects (see export_node.hpp).
+// Ports that carry domain objects cross too (mechgraph/detail/object_bridge.hpp).
 #include <mechgraph/detail/export_node.hpp>
 
 #define MECHGRAPH_PLUGIN_1(id, version, factory)                                                   \

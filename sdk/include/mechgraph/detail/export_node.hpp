@@ -7,12 +7,14 @@
 // here (OpenFX's ladder): NodeError -> fail() + MG_ERR_NODE, std::bad_alloc -> MG_ERR_NO_MEMORY,
 // anything else -> fail() + MG_ERR_INTERNAL.
 //
-// A first step: ports that carry domain objects are not exported yet (object export and import,
-// section 3.3-3.4, come next); a plugin with such a port is refused at its entry, saying so. Until
-// the C++ helpers leave libmechgraph_sdk (migration step 6) the plugin still calls them, so it
+// Domain objects cross through mechgraph/detail/object_bridge.hpp: a port whose kind is an SDK
+// interface's C++ class (CamLaw, ValveMotion) declares that interface ("mechgraph.cam_law"/1);
+// any other kind becomes the plugin's private interface "<plugin id>.<kind>", which only this
+// plugin's own nodes can read. Until the C++ helpers leave libmechgraph_sdk (migration step 6) the plugin still calls them, so it
 // must share the host's C++ standard library ABI (libstdc++; any compiler).
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/plugin.h>
+#include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/version.hpp>
 
@@ -79,11 +81,11 @@ class SuiteContext final : public EvalContext {
 /// One C++ NodeType and the C description that stands for it; lives until the process ends.
 class NodeTypeExport {
  public:
-  explicit NodeTypeExport(std::shared_ptr<const NodeType> type) : type_(std::move(type)) {
+  NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id) : type_(std::move(type)) {
     const NodeInfo& info = type_->info();
     for (const ParamSpec& p : info.params) params_.push_back(param_decl(p));
-    for (const PortSpec& p : info.inputs) inputs_.push_back(port_decl(p));
-    for (const PortSpec& p : info.outputs) outputs_.push_back(port_decl(p));
+    for (const PortSpec& p : info.inputs) inputs_.push_back(port_decl(p, plugin_id, input_interfaces_));
+    for (const PortSpec& p : info.outputs) outputs_.push_back(port_decl(p, plugin_id, output_interfaces_));
     for (const EffectSpec& e : info.effects) {
       const auto& outs = names(e.outputs);
       const auto& ps = names(e.params);
@@ -163,17 +165,27 @@ class NodeTypeExport {
     d.range_reason = p.range_reason.empty() ? nullptr : p.range_reason.c_str();
     return d;
   }
-  static mg_port_decl port_decl(const PortSpec& p) {
+  // `interfaces` gets the port's interface name (empty for values), in declaration order.
+  static mg_port_decl port_decl(const PortSpec& p, std::string_view plugin_id, std::deque<std::string>& interfaces) {
     mg_port_decl d{};
     d.struct_size = sizeof d;
     d.name = p.name.c_str();
+    std::string& interface = interfaces.emplace_back();
     switch (p.kind) {
       case ValueKind::scalar: d.kind = MG_VALUE_SCALAR; break;
       case ValueKind::series: d.kind = MG_VALUE_SERIES; break;
       case ValueKind::table: d.kind = MG_VALUE_TABLE; break;
       case ValueKind::handle:
-        throw std::invalid_argument("port '" + p.name + "' carries " + p.handle_kind +
-                                    " objects, which this SDK 1.x bridge does not export yet");
+        d.kind = MG_VALUE_OBJECT;
+        if (const SdkInterface* known = sdk_interface_of_kind(p.handle_kind)) {
+          interface = known->name;
+          d.interface_version = known->version;
+        } else {
+          interface = std::string(plugin_id) + "." + p.handle_kind;
+          d.interface_version = 1;
+        }
+        d.interface = interface.c_str();
+        break;
     }
     d.dim = c_dim(p.dimension);
     d.doc = p.doc.c_str();
@@ -200,8 +212,9 @@ class NodeTypeExport {
   static Table::Column cxx_column(const mg_column& c, std::size_t rows) {
     return {c.name ? c.name : "", cxx_dim(c.dim), std::vector<double>(c.values, c.values + rows), c.display_unit ? c.display_unit : ""};
   }
-  static Value cxx_input(const mg_value& v) {
+  static Value cxx_input(const mg_value& v, const std::string& interface) {
     switch (v.kind) {
+      case MG_VALUE_OBJECT: return Value::handle(import_object(v.u.object, interface, 1));
       case MG_VALUE_SCALAR: return Value::scalar(v.u.scalar);
       case MG_VALUE_SERIES: {
         const mg_series& s = *v.u.series;
@@ -237,7 +250,7 @@ class NodeTypeExport {
   };
   static mg_column c_column(const Table::Column& c) { return {c.name.c_str(), c_dim(c.dimension), c.display_unit.c_str(), c.values.data()}; }
 
-  static mg_status put_output(const mg_eval_suite_v1& suite, mg_eval_ctx* ctx, std::uint32_t index, const Value& v) {
+  mg_status put_output(const mg_eval_suite_v1& suite, mg_eval_ctx* ctx, std::uint32_t index, const Value& v) const {
     switch (v.kind()) {
       case ValueKind::scalar: suite.set_scalar(ctx, index, v.as_scalar()); return MG_OK;
       case ValueKind::series: {
@@ -265,7 +278,8 @@ class NodeTypeExport {
         holder.release();
         return suite.set_table(ctx, index, c);
       }
-      case ValueKind::handle: break;
+      case ValueKind::handle:  // one new reference, handed over to the host
+        return suite.set_object(ctx, index, export_object(v.as_handle(), type_->info().type, output_interfaces_[index]));
     }
     return MG_ERR_UNSUPPORTED;
   }
@@ -280,7 +294,7 @@ class NodeTypeExport {
         if (args->params[i].present) params.set(info.params[i].name, cxx_value(args->params[i], info.params[i]));
       InputSet inputs;
       for (std::size_t i = 0; i < info.inputs.size(); ++i)
-        for (std::size_t k = 0; k < args->inputs[i].count; ++k) inputs.add(info.inputs[i].name, cxx_input(args->inputs[i].values[k]));
+        for (std::size_t k = 0; k < args->inputs[i].count; ++k) inputs.add(info.inputs[i].name, cxx_input(args->inputs[i].values[k], exported.input_interfaces_[i]));
       OutputSet outputs;
       SuiteContext context(info, ctx);
       exported.type_->evaluate(params, inputs, outputs, context);
@@ -288,7 +302,7 @@ class NodeTypeExport {
       for (const auto& [name, value] : outputs.all()) {
         const std::uint32_t index = index_of(info.outputs, name);
         if (index == UINT32_MAX) throw std::logic_error("set output '" + name + "', which it does not declare");
-        if (const mg_status s = put_output(suite, ctx, index, value); s != MG_OK) return s;
+        if (const mg_status s = exported.put_output(suite, ctx, index, value); s != MG_OK) return s;
       }
       return MG_OK;
     } catch (const NodeError& e) {
@@ -306,6 +320,7 @@ class NodeTypeExport {
   }
 
   std::shared_ptr<const NodeType> type_;
+  std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
   std::deque<std::vector<mg_param_decl>> fields_;
   std::deque<std::vector<mg_param_value>> values_;
@@ -343,7 +358,7 @@ inline const mg_plugin* plugin_entry_1(const mg_host* host, mg_text_sink why, co
     if (plugin.struct_size == 0) {
       for (auto& t : factory()) {
         if (!t) throw std::invalid_argument("the factory returned an empty node type");
-        exports->push_back(std::make_unique<NodeTypeExport>(std::move(t)));
+        exports->push_back(std::make_unique<NodeTypeExport>(std::move(t), id));
         list->push_back(exports->back()->c_type());
       }
       plugin = mg_plugin{sizeof(mg_plugin), MG_SDK_MAJOR, MG_SDK_MINOR, id, version, MECHGRAPH_SDK_VERSION,

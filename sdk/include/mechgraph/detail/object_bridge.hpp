@@ -1,0 +1,496 @@
+#pragma once
+// Domain objects across the SDK 1.x C boundary (docs/design/sdk-1.0.md, sections 3.3 and 3.4),
+// header-only and hidden: every shared library that includes it (a plugin, the host) has its own
+// copy, so two of them never unwrap each other's C++ objects.
+//
+//  - export_object: a C++ DomainObject as an mg_object (one allocation, an atomic reference count,
+//    the C++ object kept alive by a shared_ptr). A CamLaw answers mechgraph.cam_law/1 and the
+//    optional closed_form/1 and higher_derivatives/1 (a C++ `false`, "cannot say", is
+//    MG_ERR_UNSUPPORTED); a ValveMotion answers mechgraph.valve_motion/1; a JointPlay (plain data)
+//    answers mechgraph.joint_play/1 and is copied on import, not viewed. Any other kind crosses as
+//    an opaque object that answers only its private interface name. An object that is itself the
+//    view of a foreign mg_object is passed on as that original object (retained): no chain of
+//    wrappers ever forms.
+//  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
+//    its C++ object (no C hop); another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
+//    ForeignOpaque) that holds one reference and releases it when the last C++ holder lets go.
+// Pure maths behind the tables never throws across: an exception there is MG_ERR_INTERNAL.
+#include <mechgraph/c/domain/joint_play.h>
+#include <mechgraph/c/domain/valve_motion.h>
+#include <mechgraph/c/sdk_lib.h>
+#include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/domain/tolerance.hpp>
+#include <mechgraph/domain/valve_motion.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#define MECHGRAPH_DETAIL_HIDDEN __attribute__((visibility("hidden")))
+
+namespace mechgraph::detail {
+
+/// The identity of this library's SDK layer (mg_object_vtbl::origin): one per shared library.
+MECHGRAPH_DETAIL_HIDDEN inline const char object_origin = 0;
+
+/// The SDK interfaces that have a C++ class: its DomainObject::kind() and its C name and version.
+struct SdkInterface {
+  std::string_view kind;
+  const char* name;
+  std::uint32_t version;
+};
+inline constexpr SdkInterface sdk_interfaces[] = {
+    {CamLaw::kind_name, MG_CAM_LAW, 1}, {ValveMotion::kind_name, MG_VALVE_MOTION, 1}, {JointPlay::kind_name, MG_JOINT_PLAY, 1}};
+inline const SdkInterface* sdk_interface_of_kind(std::string_view kind) {
+  for (const SdkInterface& i : sdk_interfaces)
+    if (i.kind == kind) return &i;
+  return nullptr;
+}
+inline const SdkInterface* sdk_interface_named(std::string_view name) {
+  for (const SdkInterface& i : sdk_interfaces)
+    if (name == i.name) return &i;
+  return nullptr;
+}
+
+/// Implemented by the C++ views of objects made elsewhere: the original object, borrowed.
+class MECHGRAPH_DETAIL_HIDDEN ForeignObject {
+ public:
+  virtual const mg_object* c_object() const = 0;
+
+ protected:
+  ~ForeignObject() = default;
+};
+
+/// A C++ object as an mg_object (3.3). `mg_object` is its base, so the vtable's functions get back
+/// to it with a static_cast.
+struct MECHGRAPH_DETAIL_HIDDEN Exported : mg_object {
+  mutable std::atomic<std::uint32_t> refs{1};
+  std::shared_ptr<const DomainObject> self;
+  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*
+  std::string maker;              // the node type that made it
+  std::string interface;          // an opaque object's private interface name
+  const mg_object* cam = nullptr; // a valve motion's cam law, exported (one reference held)
+  std::vector<mg_tolerance_link> links;  // a joint play's data, as C
+  std::vector<mg_play_term> terms;
+  mg_joint_play_data_v1 play{};
+  ~Exported() {
+    if (cam) cam->vtbl->release(cam);
+  }
+};
+inline const Exported& exported(const mg_object* o) { return *static_cast<const Exported*>(o); }
+
+inline void exported_retain(const mg_object* o) { exported(o).refs.fetch_add(1, std::memory_order_relaxed); }
+inline void exported_release(const mg_object* o) {
+  if (exported(o).refs.fetch_sub(1, std::memory_order_acq_rel) == 1) delete &exported(o);
+}
+inline const char* exported_maker(const mg_object* o) { return exported(o).maker.c_str(); }
+
+// --- mechgraph.cam_law/1 and its optional tables over a C++ CamLaw ---------------------------
+inline const CamLaw& law_of(const mg_object* o) { return *static_cast<const CamLaw*>(exported(o).primary); }
+inline constexpr double nan_result = std::numeric_limits<double>::quiet_NaN();
+
+inline void cam_event(const mg_object* o, double* begin, double* end) {
+  try {
+    *begin = law_of(o).event_begin();
+    *end = law_of(o).event_end();
+  } catch (...) {
+    *begin = *end = nan_result;
+  }
+}
+inline mg_lift4 c_lift(const LiftDerivatives& d) { return {d.lift, d.velocity, d.acceleration, d.jerk}; }
+inline mg_status cam_evaluate(const mg_object* o, double phi, mg_lift4* out) {
+  try {
+    *out = c_lift(law_of(o).evaluate_in_event(phi));
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+inline mg_status cam_evaluate_many(const mg_object* o, const double* phi, size_t n, mg_lift4* out) {
+  try {
+    const CamLaw& law = law_of(o);
+    for (size_t i = 0; i < n; ++i) out[i] = c_lift(law.evaluate_in_event(phi[i]));
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+inline size_t copy_out(const std::vector<double>& v, double* out, size_t capacity) {
+  if (out) std::copy_n(v.begin(), std::min(v.size(), capacity), out);
+  return v.size();
+}
+inline size_t cam_breakpoints(const mg_object* o, double* out, size_t capacity) {
+  try {
+    return copy_out(law_of(o).breakpoints(), out, capacity);
+  } catch (...) {
+    return 0;
+  }
+}
+template <double (CamLaw::*get)() const>
+double cam_number(const mg_object* o) {
+  try {
+    return (law_of(o).*get)();
+  } catch (...) {
+    return nan_result;
+  }
+}
+inline mg_status cam_monotone_breaks(const mg_object* o, int32_t order, double* out, size_t capacity, size_t* count) {
+  try {
+    std::vector<double> breaks;
+    if (!law_of(o).monotone_breaks(order, breaks)) return MG_ERR_UNSUPPORTED;
+    *count = copy_out(breaks, out, capacity);
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+inline mg_status cam_lift_integrals(const mg_object* o, double a, double b, double* integral, double* of_square) {
+  try {
+    return law_of(o).lift_integrals(a, b, *integral, *of_square) ? MG_OK : MG_ERR_UNSUPPORTED;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+inline mg_status cam_d4_d5(const mg_object* o, double phi, double* d4, double* d5) {
+  try {
+    return law_of(o).higher_derivatives(phi, *d4, *d5) ? MG_OK : MG_ERR_UNSUPPORTED;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+MECHGRAPH_DETAIL_HIDDEN inline const mg_cam_law_v1 cam_law_table{sizeof(mg_cam_law_v1),
+                                                                 &cam_event,
+                                                                 &cam_evaluate,
+                                                                 &cam_evaluate_many,
+                                                                 &cam_breakpoints,
+                                                                 &cam_number<&CamLaw::max_lift>,
+                                                                 &cam_number<&CamLaw::base_radius>,
+                                                                 &cam_number<&CamLaw::roller_radius>};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_cam_law_closed_form_v1 cam_closed_form_table{sizeof(mg_cam_law_closed_form_v1),
+                                                                                     &cam_monotone_breaks, &cam_lift_integrals};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_cam_law_higher_v1 cam_higher_table{sizeof(mg_cam_law_higher_v1), &cam_d4_d5};
+inline const void* cam_query(const mg_object*, const char* name, uint32_t version) {
+  if (version != 1 || !name) return nullptr;
+  if (std::strcmp(name, MG_CAM_LAW) == 0) return &cam_law_table;
+  if (std::strcmp(name, MG_CAM_LAW_CLOSED_FORM) == 0) return &cam_closed_form_table;
+  if (std::strcmp(name, MG_CAM_LAW_HIGHER) == 0) return &cam_higher_table;
+  return nullptr;
+}
+
+// --- mechgraph.valve_motion/1 over a C++ ValveMotion -------------------------------------------
+inline const ValveMotion& motion_of(const mg_object* o) { return *static_cast<const ValveMotion*>(exported(o).primary); }
+inline mg_status valve_at(const mg_object* o, double phi, mg_lift4* out) {
+  try {
+    *out = c_lift(motion_of(o).at(phi));
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+inline mg_status valve_at_many(const mg_object* o, const double* phi, size_t n, mg_lift4* out) {
+  try {
+    const ValveMotion& m = motion_of(o);
+    for (size_t i = 0; i < n; ++i) out[i] = c_lift(m.at(phi[i]));
+    return MG_OK;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+template <double (ValveMotion::*get)() const>
+double valve_number(const mg_object* o) {
+  try {
+    return (motion_of(o).*get)();
+  } catch (...) {
+    return nan_result;
+  }
+}
+inline void valve_open_period(const mg_object* o, double* begin, double* end) {
+  try {
+    *begin = motion_of(o).open_begin();
+    *end = motion_of(o).open_end();
+  } catch (...) {
+    *begin = *end = nan_result;
+  }
+}
+inline size_t valve_knots(const mg_object* o, double* out, size_t capacity) {
+  try {
+    return copy_out(motion_of(o).knots(), out, capacity);
+  } catch (...) {
+    return 0;
+  }
+}
+inline const mg_object* valve_cam(const mg_object* o) { return exported(o).cam; }
+MECHGRAPH_DETAIL_HIDDEN inline const mg_valve_motion_v1 valve_motion_table{sizeof(mg_valve_motion_v1),
+                                                                           &valve_at,
+                                                                           &valve_at_many,
+                                                                           &valve_number<&ValveMotion::camshaft_speed>,
+                                                                           &valve_open_period,
+                                                                           &valve_knots,
+                                                                           &valve_number<&ValveMotion::rocker_ratio>,
+                                                                           &valve_number<&ValveMotion::lash>,
+                                                                           &valve_cam};
+inline const void* valve_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_VALVE_MOTION) == 0 ? &valve_motion_table : nullptr;
+}
+
+// --- mechgraph.joint_play/1 over a C++ JointPlay: its data, built once at export ---------------
+inline void joint_play_data(const mg_object* o, mg_joint_play_data_v1* out) { *out = exported(o).play; }
+MECHGRAPH_DETAIL_HIDDEN inline const mg_joint_play_v1 joint_play_table{sizeof(mg_joint_play_v1), &joint_play_data};
+inline const void* joint_play_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_JOINT_PLAY) == 0 ? &joint_play_table : nullptr;
+}
+inline void export_play_data(Exported& e, const JointPlay& play) {
+  std::size_t count = 0;
+  for (const PlayTerm& t : play.terms()) count += t.links.size();
+  e.links.reserve(count);  // no reallocation: the terms point into it
+  for (const PlayTerm& t : play.terms()) {
+    const std::size_t first = e.links.size();
+    for (const ToleranceLink& l : t.links)
+      e.links.push_back({l.label.c_str(), l.mean, l.half_range, l.sensitivity, static_cast<std::int32_t>(l.distribution), 0});
+    e.terms.push_back({t.label.c_str(), e.links.data() + first, t.links.size()});
+  }
+  e.play = {play.joint().c_str(), e.terms.data(), e.terms.size()};
+}
+inline std::shared_ptr<const JointPlay> import_play_data(const mg_object* o) {
+  const auto* t = static_cast<const mg_joint_play_v1*>(o->vtbl->query(o, MG_JOINT_PLAY, 1));
+  if (!t || t->struct_size < sizeof(mg_joint_play_v1)) throw std::runtime_error("a joint_play object does not answer mechgraph.joint_play version 1");
+  mg_joint_play_data_v1 d{};
+  t->data(o, &d);
+  const auto text = [](const char* s) { return std::string(s ? s : ""); };
+  std::vector<PlayTerm> terms;
+  for (std::size_t i = 0; i < d.term_count; ++i) {
+    PlayTerm term{text(d.terms[i].label), {}};
+    for (std::size_t k = 0; k < d.terms[i].link_count; ++k) {
+      const mg_tolerance_link& l = d.terms[i].links[k];
+      if (l.distribution < MG_DISTRIBUTION_NORMAL || l.distribution > MG_DISTRIBUTION_TRIANGULAR)
+        throw std::runtime_error("a joint_play link '" + text(l.label) + "' has distribution " + std::to_string(l.distribution) +
+                                 ", not one of MG_DISTRIBUTION_*");
+      term.links.push_back({text(l.label), l.mean, l.half_range, l.sensitivity, static_cast<Distribution>(l.distribution)});
+    }
+    terms.push_back(std::move(term));
+  }
+  return std::make_shared<const JointPlay>(text(d.joint), std::move(terms));
+}
+
+// --- an object without a C table: answers only its private interface ------------------------
+MECHGRAPH_DETAIL_HIDDEN inline const std::uint32_t opaque_table = sizeof(std::uint32_t);
+inline const void* opaque_query(const mg_object* o, const char* name, uint32_t version) {
+  return version == 1 && name && exported(o).interface == name ? &opaque_table : nullptr;
+}
+
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl cam_law_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
+                                                                 &cam_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl valve_motion_vtbl{
+    sizeof(mg_object_vtbl), &exported_retain, &exported_release, &valve_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl joint_play_vtbl{
+    sizeof(mg_object_vtbl), &exported_retain, &exported_release, &joint_play_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl opaque_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
+                                                                &opaque_query, &exported_maker, &object_origin};
+
+/// `object` as an mg_object: a new reference, which the caller hands over or releases. `maker` is
+/// the node type that made it (for messages); `private_interface` names what an object of a kind
+/// without a C table answers.
+inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
+                                      std::string_view private_interface) {
+  if (!object) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
+  if (const auto* foreign = dynamic_cast<const ForeignObject*>(object.get())) {  // pass the original on
+    const mg_object* original = foreign->c_object();
+    original->vtbl->retain(original);
+    return original;
+  }
+  auto e = std::make_unique<Exported>();
+  e->self = object;
+  e->maker = maker;
+  if (const auto* law = dynamic_cast<const CamLaw*>(object.get())) {
+    e->vtbl = &cam_law_vtbl;
+    e->primary = law;
+  } else if (const auto* motion = dynamic_cast<const ValveMotion*>(object.get())) {
+    e->vtbl = &valve_motion_vtbl;
+    e->primary = motion;
+    // Its cam law, exported once: keeps the motion alive (aliasing) as long as someone holds the law.
+    e->cam = export_object(std::shared_ptr<const CamLaw>(object, &motion->cam()), maker, {});
+  } else if (const auto* play = dynamic_cast<const JointPlay*>(object.get())) {
+    e->vtbl = &joint_play_vtbl;
+    e->primary = play;
+    export_play_data(*e, *play);
+  } else {
+    e->vtbl = &opaque_vtbl;
+    e->interface = private_interface.empty() ? std::string(object->kind()) : std::string(private_interface);
+  }
+  return e.release();
+}
+
+[[noreturn]] inline void throw_foreign(const mg_object* o, std::string_view interface, std::string_view what) {
+  const char* maker = o->vtbl->maker ? o->vtbl->maker(o) : nullptr;
+  throw std::runtime_error(std::string("the ") + std::string(interface) + " made by " + (maker && *maker ? maker : "another plugin") +
+                           " " + std::string(what));
+}
+template <class Table>
+const Table* query_table(const mg_object* o, const char* name) {
+  const auto* t = static_cast<const Table*>(o->vtbl->query(o, name, 1));
+  return t && t->struct_size >= sizeof(Table) ? t : nullptr;
+}
+
+/// Holds one reference to a foreign object for as long as its C++ view lives.
+class MECHGRAPH_DETAIL_HIDDEN ForeignReference {
+ public:
+  explicit ForeignReference(const mg_object* o) : o_(o) { o_->vtbl->retain(o_); }
+  ~ForeignReference() { o_->vtbl->release(o_); }
+  ForeignReference(const ForeignReference&) = delete;
+  ForeignReference& operator=(const ForeignReference&) = delete;
+  const mg_object* get() const { return o_; }
+
+ private:
+  const mg_object* o_;
+};
+
+/// A cam law made elsewhere, seen as a C++ CamLaw (3.4). Its immutable figures are read once.
+class MECHGRAPH_DETAIL_HIDDEN ForeignCamLaw final : public CamLaw, public ForeignObject {
+ public:
+  explicit ForeignCamLaw(const mg_object* o)
+      : t_(query_table<mg_cam_law_v1>(o, MG_CAM_LAW)),
+        cf_(query_table<mg_cam_law_closed_form_v1>(o, MG_CAM_LAW_CLOSED_FORM)),
+        hd_(query_table<mg_cam_law_higher_v1>(o, MG_CAM_LAW_HIGHER)),
+        ref_(o) {
+    if (!t_) throw_foreign(o, MG_CAM_LAW, "does not answer mechgraph.cam_law version 1 (MG_ERR_MISSING_FEATURE)");
+    t_->event(o, &begin_, &end_);
+    max_lift_ = t_->max_lift(o);
+    base_radius_ = t_->base_radius(o);
+    roller_radius_ = t_->roller_radius(o);
+    double buffer[32];
+    const size_t n = t_->breakpoints(o, buffer, 32);
+    breakpoints_.assign(buffer, buffer + std::min<size_t>(n, 32));
+    if (n > 32) {
+      breakpoints_.resize(n);
+      breakpoints_.resize(std::min(n, t_->breakpoints(o, breakpoints_.data(), n)));
+    }
+  }
+  const mg_object* c_object() const override { return ref_.get(); }
+  double event_begin() const override { return begin_; }
+  double event_end() const override { return end_; }
+  LiftDerivatives evaluate_in_event(double phi) const override {
+    mg_lift4 d;
+    if (const mg_status s = t_->evaluate(ref_.get(), phi, &d); s != MG_OK)
+      throw_foreign(ref_.get(), MG_CAM_LAW, std::string("failed to evaluate: ") + mg_status_name(s));
+    return {d.h, d.dh, d.d2h, d.d3h};
+  }
+  std::vector<double> breakpoints() const override { return breakpoints_; }
+  double max_lift() const override { return max_lift_; }
+  double base_radius() const override { return base_radius_; }
+  double roller_radius() const override { return roller_radius_; }
+  bool higher_derivatives(double phi, double& d4, double& d5) const override {
+    return hd_ && hd_->d4_d5(ref_.get(), phi, &d4, &d5) == MG_OK;
+  }
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    if (!cf_) return false;
+    size_t count = 0;
+    double buffer[32];
+    if (cf_->monotone_breaks(ref_.get(), order, buffer, 32, &count) != MG_OK) return false;
+    breaks.assign(buffer, buffer + std::min<size_t>(count, 32));
+    if (count > 32) {
+      breaks.resize(count);
+      if (cf_->monotone_breaks(ref_.get(), order, breaks.data(), count, &count) != MG_OK) return false;
+      breaks.resize(std::min(count, breaks.size()));
+    }
+    return true;
+  }
+  bool lift_integrals(double a, double b, double& integral, double& of_square) const override {
+    return cf_ && cf_->lift_integrals(ref_.get(), a, b, &integral, &of_square) == MG_OK;
+  }
+
+ private:
+  const mg_cam_law_v1* t_;
+  const mg_cam_law_closed_form_v1* cf_;
+  const mg_cam_law_higher_v1* hd_;
+  ForeignReference ref_;
+  double begin_ = 0, end_ = 0, max_lift_ = 0, base_radius_ = 0, roller_radius_ = 0;
+  std::vector<double> breakpoints_;
+};
+
+/// An object of an interface this library has no C++ class for (a plugin's private one).
+class MECHGRAPH_DETAIL_HIDDEN ForeignOpaque final : public DomainObject, public ForeignObject {
+ public:
+  ForeignOpaque(const mg_object* o, std::string interface, std::uint32_t version)
+      : ref_(o), interface_(std::move(interface)), version_(version) {}
+  const mg_object* c_object() const override { return ref_.get(); }
+  std::string_view kind() const override { return interface_; }
+  // The SDK library's checks for SDK interfaces (mg_check_object), none for a plugin's own.
+  std::string contract_problem() const override {
+    std::string problem;
+    const mg_text_sink sink{&problem, [](void* self, const char* text, size_t size) { static_cast<std::string*>(self)->append(text, size); }};
+    const mg_status s = mg_check_object(ref_.get(), interface_.c_str(), version_, sink);
+    if (s == MG_OK) return {};
+    return problem.empty() ? std::string("mg_check_object says ") + mg_status_name(s) : problem;
+  }
+
+ private:
+  ForeignReference ref_;
+  std::string interface_;
+  std::uint32_t version_;
+};
+
+std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version);
+
+/// A valve motion made elsewhere, seen as a C++ ValveMotion; its cam law imported beside it.
+class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, public ForeignObject {
+ public:
+  explicit ForeignValveMotion(const mg_object* o) : t_(query_table<mg_valve_motion_v1>(o, MG_VALVE_MOTION)), ref_(o) {
+    if (!t_) throw_foreign(o, MG_VALVE_MOTION, "does not answer mechgraph.valve_motion version 1 (MG_ERR_MISSING_FEATURE)");
+    const mg_object* cam = t_->cam(o);
+    if (!cam) throw_foreign(o, MG_VALVE_MOTION, "gives no cam law");
+    cam_ = std::dynamic_pointer_cast<const CamLaw>(import_object(cam, MG_CAM_LAW, 1));
+    if (!cam_) throw_foreign(o, MG_VALVE_MOTION, "gives a cam law that is not one");
+    t_->open_period(o, &begin_, &end_);
+    speed_ = t_->camshaft_speed(o);
+    ratio_ = t_->rocker_ratio(o);
+    lash_ = t_->lash(o);
+    knots_.resize(t_->knots(o, nullptr, 0));
+    knots_.resize(std::min(knots_.size(), t_->knots(o, knots_.data(), knots_.size())));
+  }
+  const mg_object* c_object() const override { return ref_.get(); }
+  LiftDerivatives at(double phi) const override {
+    mg_lift4 d;
+    if (const mg_status s = t_->at(ref_.get(), phi, &d); s != MG_OK)
+      throw_foreign(ref_.get(), MG_VALVE_MOTION, std::string("failed to evaluate: ") + mg_status_name(s));
+    return {d.h, d.dh, d.d2h, d.d3h};
+  }
+  double camshaft_speed() const override { return speed_; }
+  double open_begin() const override { return begin_; }
+  double open_end() const override { return end_; }
+  const std::vector<double>& knots() const override { return knots_; }
+  double rocker_ratio() const override { return ratio_; }
+  double lash() const override { return lash_; }
+  const CamLaw& cam() const override { return *cam_; }
+
+ private:
+  const mg_valve_motion_v1* t_;
+  ForeignReference ref_;
+  std::shared_ptr<const CamLaw> cam_;
+  double begin_ = 0, end_ = 0, speed_ = 0, ratio_ = 0, lash_ = 0;
+  std::vector<double> knots_;
+};
+
+/// The C++ view of `o` (borrowed) as a port declaring `interface`/`version` sees it. Throws
+/// std::runtime_error naming the interface when the object does not answer it.
+inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version) {
+  if (!o || !o->vtbl) throw std::invalid_argument("an input object is missing or has no vtable");
+  if (o->vtbl->origin == &object_origin) return exported(o).self;  // made here: no C hop
+  // (By position in sdk_interfaces, not by kind_name: reading those static members here would
+  // make the plugin export them.)
+  if (const SdkInterface* known = sdk_interface_named(interface)) switch (known - sdk_interfaces) {
+      case 0: return std::make_shared<const ForeignCamLaw>(o);
+      case 1: return std::make_shared<const ForeignValveMotion>(o);
+      case 2: return import_play_data(o);
+      default: break;
+    }
+  return std::make_shared<const ForeignOpaque>(o, std::string(interface), version);
+}
+
+}  // namespace mechgraph::detail

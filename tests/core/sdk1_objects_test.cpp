@@ -1,0 +1,153 @@
+// Domain objects crossing the SDK 1.x C boundary from C++ (docs/design/sdk-1.0.md, 3.3-3.4;
+// mechgraph/detail/object_bridge.hpp): two plugins built from tests/test_plugins/sdk1_objects_plugin.cpp
+// (objsa, objsb), the C plugin c_objects.c and the built-in pre-1.0 plugins pass cam laws and
+// valve motions to each other. A law that comes back to its maker is its own C++ object again
+// (no wrapper of a wrapper), every reference is returned when the results go, and an exception
+// thrown in a C++ node becomes an error naming the node.
+#include "test_support.hpp"
+
+#include <mechgraph/errors.hpp>
+
+#include <catch2/catch.hpp>
+#include <dlfcn.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const PluginRegistry& objects_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.load_directory(MECHGRAPH_PLUGIN_DIR);
+    r.load_file(test_plugin("test_sdk1_objects_a"));
+    r.load_file(test_plugin("test_sdk1_objects_b"));
+    r.load_file(test_plugin("test_c_objects"));
+    return r;
+  }();
+  return registry;
+}
+
+// How many laws and motions the plugin built as `name` has alive (its exported objects_live()).
+long live_objects(const std::string& name) {
+  objects_registry();
+  void* handle = dlopen(test_plugin(name).c_str(), RTLD_NOW | RTLD_NOLOAD);
+  REQUIRE(handle);
+  auto* count = reinterpret_cast<long (*)()>(dlsym(handle, "objects_live"));
+  REQUIRE(count);
+  const long n = count();
+  dlclose(handle);
+  return n;
+}
+
+// h = H cos^2(pi phi / (2 w)), the law of both test plugins and of cobj.law
+double cosine_lift(double lift, double w, double phi) {
+  const double c = std::cos(std::numbers::pi * phi / (2.0 * w));
+  return lift * c * c;
+}
+
+}  // namespace
+
+TEST_CASE("a C++ law goes A -> B -> A and comes back as A's own object; a valve motion carries it on",
+          "[plugins][sdk1][objects]") {
+  {
+    const RunResult run = run_yaml(R"(nodes:
+  law: { type: objsa.law, params: { lift: 8 mm, half_width: 1 rad } }
+  b: { type: objsb.relay, inputs: { law: law.law } }
+  a: { type: objsa.relay, inputs: { law: b.law } }
+  m: { type: objsb.motion, params: { ratio: 1.5 }, inputs: { law: a.law } }
+  r: { type: objsa.read_motion, inputs: { motion: m.motion } }
+outputs: [ a.law, b.native, a.native, b.lift_at_half, a.lift_at_half, b.integral, r.lift, r.cam_lift, r.ratio, r.knots, r.native, r.cam_native ]
+)",
+                                   objects_registry());
+    CHECK(scalar_output(run, "b.native") == 0.0);  // foreign to b: read through the C tables
+    CHECK(scalar_output(run, "a.native") == 1.0);  // back home: b passed the original object on
+    const double half = cosine_lift(0.008, 1.0, 0.5);
+    CHECK(scalar_output(run, "b.lift_at_half") == Approx(half).epsilon(1e-14).margin(1e-18));
+    CHECK(scalar_output(run, "a.lift_at_half") == Approx(half).epsilon(1e-14).margin(1e-18));
+    // The optional closed form crosses too: the integral of H cos^2 over the event is H w.
+    CHECK(scalar_output(run, "b.integral") == Approx(0.008).epsilon(1e-12).margin(1e-18));
+    // b's motion over a's law, read by a: the motion is foreign, its cam is a's own law again.
+    CHECK(scalar_output(run, "r.native") == 0.0);
+    CHECK(scalar_output(run, "r.cam_native") == 1.0);
+    CHECK(scalar_output(run, "r.lift") == Approx(1.5 * cosine_lift(0.008, 1.0, 0.3)).epsilon(1e-14).margin(1e-18));
+    CHECK(scalar_output(run, "r.cam_lift") == Approx(cosine_lift(0.008, 1.0, 0.3)).epsilon(1e-14).margin(1e-18));
+    CHECK(scalar_output(run, "r.ratio") == 1.5);
+    CHECK(scalar_output(run, "r.knots") == 2.0);
+    CHECK(live_objects("test_sdk1_objects_a") == 1);  // the law a.law holds; b's motion is gone
+  }
+  // The results are gone: every reference either side took has been returned.
+  CHECK(live_objects("test_sdk1_objects_a") == 0);
+  CHECK(live_objects("test_sdk1_objects_b") == 0);
+}
+
+TEST_CASE("laws cross between a C plugin, C++ SDK 1.x plugins and pre-1.0 plugins both ways", "[plugins][sdk1][objects]") {
+  {
+    const RunResult run = run_yaml(R"(nodes:
+  c: { type: cobj.law, params: { lift: 9 mm, half_width: 1.2 rad } }
+  a: { type: objsa.relay, inputs: { law: c.law } }
+  peak: { type: cobj.peak, inputs: { law: a.law } }
+  own: { type: objsa.law, params: { lift: 7 mm } }
+  cpeak: { type: cobj.peak, inputs: { law: own.law } }
+  cyc: { type: cam.cycloidal, params: { max_lift: 9 mm, action_angle: 130 deg, base_radius: 40 mm } }
+  b: { type: objsb.relay, inputs: { law: cyc.law } }
+  valve: { type: valvetrain.valve_motion, params: { rpm: 6000 rpm, rocker_ratio: 1.5 }, inputs: { cam: b.law } }
+  valve2: { type: valvetrain.valve_motion, params: { rpm: 6000 rpm, rocker_ratio: 1.5 }, inputs: { cam: own.law } }
+  r: { type: objsb.read_motion, inputs: { motion: valve2.motion } }
+outputs: [ a.native, a.lift_at_half, a.integral, peak.lift, cpeak.lift, b.native, b.lift_at_half, cyc.max_lift, valve.max_lift, r.cam_lift, r.ratio ]
+)",
+                                   objects_registry());
+    // C law -> C++ plugin (a view over the C table, no closed form) -> C consumer (the original).
+    CHECK(scalar_output(run, "a.native") == 0.0);
+    CHECK(scalar_output(run, "a.lift_at_half") == Approx(cosine_lift(0.009, 1.2, 0.6)).epsilon(1e-14).margin(1e-18));
+    CHECK(scalar_output(run, "a.integral") == -1.0);
+    CHECK(scalar_output(run, "peak.lift") == Approx(0.009).epsilon(1e-14).margin(1e-18));
+    // C++ law -> C consumer.
+    CHECK(scalar_output(run, "cpeak.lift") == Approx(0.007).epsilon(1e-14).margin(1e-18));
+    // A pre-1.0 plugin's law -> SDK 1.x plugin -> pre-1.0 valve motion, which gets it back as its C++ law.
+    CHECK(scalar_output(run, "b.native") == 0.0);
+    CHECK(scalar_output(run, "b.lift_at_half") > 0.0);
+    CHECK(scalar_output(run, "valve.max_lift") == Approx(1.5 * scalar_output(run, "cyc.max_lift")).epsilon(1e-9).margin(1e-12));
+    // An SDK 1.x law -> a pre-1.0 valve motion -> an SDK 1.x reader of mechgraph.valve_motion.
+    CHECK(scalar_output(run, "r.cam_lift") == Approx(cosine_lift(0.007, 1.0, 0.3)).epsilon(1e-14).margin(1e-18));
+    CHECK(scalar_output(run, "r.ratio") == 1.5);
+  }
+  CHECK(live_objects("test_sdk1_objects_a") == 0);
+  CHECK(live_objects("test_sdk1_objects_b") == 0);
+  const RunResult after = run_yaml("nodes:\n  live: { type: cobj.live }\noutputs: [ live.count ]\n", objects_registry());
+  CHECK(scalar_output(after, "live.count") == 0.0);
+}
+
+TEST_CASE("a joint play crosses as plain data into a pre-1.0 stack-up", "[plugins][sdk1][objects]") {
+  const RunResult run = run_yaml(R"(nodes:
+  p: { type: objsa.play }
+  chain:
+    type: backlash.chain
+    inputs: { joints: [p.play] }
+    params: { transfer_ratios: [1], actuator_backlash: 0 um, actuator_backlash_limit: 0 um, lever_arm: 100 mm }
+outputs: [ p.play_max, chain.rod_backlash_limit, chain.rod_backlash_mean ]
+)",
+                                 objects_registry());
+  // play = bore + 2 pin: worst case (40 + 10) + 2 (10 + 5) um = 80 um; mean 40 + 2 * 10 = 60 um.
+  CHECK(scalar_output(run, "p.play_max") == Approx(80e-6).epsilon(1e-12).margin(1e-15));
+  CHECK(scalar_output(run, "chain.rod_backlash_mean") == Approx(60e-6).epsilon(1e-12).margin(1e-15));
+}
+
+TEST_CASE("an exception thrown in a C++ node crosses the C boundary as an error naming the node", "[plugins][sdk1]") {
+  const auto message = [](int what) {
+    try {
+      run_yaml("nodes:\n  t: { type: objsa.throws, params: { what: " + std::to_string(what) + " } }\noutputs: [ t.out ]\n",
+               objects_registry());
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(message(0), Contains("node 't' (objsa.throws)") && Contains("not a std::exception"));
+  CHECK_THAT(message(1), Contains("node 't' (objsa.throws)") && Contains("memory"));
+  CHECK_THAT(message(2), Contains("node 't' (objsa.throws)") && Contains("a runtime_error from the plugin"));
+}
