@@ -129,7 +129,7 @@ PortSpec port_spec(const mg_port_decl& d, const std::string& what_type, const ch
     case MG_VALUE_OBJECT:
       p.kind = ValueKind::handle;
       if (!d.interface || !*d.interface) throw PluginError(what + " carries objects but names no interface");
-      // An SDK interface with a C++ class is carried as that class (kind "cam_law"), so that pre-1.0
+      // An SDK interface with a C++ class is carried as that class (its C++ kind), so that pre-1.0
       // plugins' ports meet it; any other keeps its interface name.
       if (const SdkInterface* known = sdk_interface_named(d.interface)) p.handle_kind = known->kind;
       else p.handle_kind = d.interface;

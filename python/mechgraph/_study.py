@@ -9,12 +9,19 @@ from typing import Any, Dict
 
 
 class Study:
+    """The answers of one uncertainty study (``Scene.study``, ``mechgraph.dask.study``): the JSON
+    document ``mechgraph study --json`` prints, as ``json``, and its tables as DataFrames (numbers in
+    SI, as in that document; ``samples`` excepted, see there)."""
+
     def __init__(self, json_text: str, cases: Dict[str, Any]):
         self.json: Dict[str, Any] = json.loads(json_text)
         self._cases = cases
 
     @property
     def samples(self):
+        """One row per case of the design: the uncertain parameters in SI, the outputs in the units
+        of their column headers (``name [unit]``), NaN where the case failed, and ``exit`` (0, or
+        the failure class: 2 scene, 3 evaluation)."""
         import pandas as pd
 
         return pd.DataFrame(self._cases)
@@ -39,6 +46,8 @@ class Study:
 
     @property
     def quantiles(self):
+        """One row per output and level: the quantile (type 7) and its distribution-free
+        confidence interval from exact binomial ranks (``lower``, ``upper``), in SI."""
         import pandas as pd
 
         rows = [{"output": name, "level": q["level"], "value": q["value"], "lower": q["interval"][0], "upper": q["interval"][1]}
@@ -47,6 +56,7 @@ class Study:
 
     @property
     def histograms(self):
+        """One row per output and bin: the bin's edges (``low``, ``high``, SI) and its count."""
         import pandas as pd
 
         rows = []
@@ -72,6 +82,8 @@ class Study:
 
     @property
     def events(self):
+        """One row per declared event: how many cases had it of how many, the estimated
+        probability, and its Wilson and Clopper-Pearson intervals."""
         import pandas as pd
 
         rows = [{"event": name, "events": e["events"], "trials": e["trials"], "probability": e["estimate"],

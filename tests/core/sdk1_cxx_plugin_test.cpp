@@ -62,5 +62,6 @@ TEST_CASE("a plugin built with clang++ passes plugin-test in the gcc-built host"
   const CommandResult r = run_cli("plugin-test '" + test_plugin("test_sdk1_clang").string() + "'");
   INFO(r.out << r.err);
   CHECK(r.exit_code == 0);
-  CHECK_THAT(r.out, Contains("cxx1.curve: 9 passed, 0 failed"));
+  CHECK_THAT(r.out, Contains("cxx1.curve: ") && Contains(" passed, 0 failed"));
+  CHECK_THAT(r.out, !Contains("FAIL "));
 }

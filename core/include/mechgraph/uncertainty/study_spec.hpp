@@ -11,14 +11,14 @@
 //     seed: 1
 //     sensitivity: true        # Sobol' indices (Saltelli design)
 //     parameters:
-//       lash:          { normal: { nominal: 0.25 mm, tolerance: 0.03 mm, cp: 1.33 } }
-//       rocker.ratio:  { uniform: { lower: 1.48, upper: 1.52 } }
-//       spring.rate:   { triangular: { lower: 30 N/mm, mode: 32 N/mm, upper: 33 N/mm } }
-//       cam.max_lift:  { normal: { mean: 8 mm, sigma: 0.01 mm }, truncate: { lower: 7.98 mm } }
+//       gap:           { normal: { nominal: 0.25 mm, tolerance: 0.03 mm, cp: 1.33 } }
+//       arm.ratio:     { uniform: { lower: 1.48, upper: 1.52 } }
+//       part.stiffness: { triangular: { lower: 30 N/mm, mode: 32 N/mm, upper: 33 N/mm } }
+//       part.length:   { normal: { mean: 8 mm, sigma: 0.01 mm }, truncate: { lower: 7.98 mm } }
 //       bore:          { iso286: { size: 20 mm, class: H7 } }
-//     correlations: [ [lash, rocker.ratio, 0.3] ]
-//     limits: { v.opening: { lower: -60 deg, upper: -50 deg } }
-//     events: { coil_bind: { output: dyn.coil_binds, above: 0 }, refused: { failure: evaluation } }
+//     correlations: [ [gap, arm.ratio, 0.3] ]
+//     limits: { out.angle: { lower: -60 deg, upper: -50 deg } }
+//     events: { contact: { output: sim.contacts, above: 0 }, refused: { failure: evaluation } }
 #include <mechgraph/scene.hpp>
 #include <mechgraph/uncertainty/distribution.hpp>
 
@@ -35,7 +35,7 @@ enum class SamplingMethod { monte_carlo, latin_hypercube, sobol };
 std::string to_string(SamplingMethod m);
 
 struct UncertainParameter {
-  std::string name;       // as --set names it: "lash" (a scene parameter), "cam.max_lift"
+  std::string name;       // as --set names it: "gap" (a scene parameter), "part.length"
   Marginal marginal;
   std::string unit;       // the unit it was written in ("" for SI or dimensionless)
   std::string written;    // the distribution as written, for tables and provenance
