@@ -3,6 +3,7 @@
 // report draws its derivative family in its derived frame with that frame's marks and its points,
 // tags degrees with its frames, shows its codes by name in the terminal, CSV, JSON and the page,
 // and `run` wants the output its declared note is made with. Nothing in the host names it.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -15,11 +16,6 @@ using Catch::Matchers::Contains;
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::string stroke_dir() { return "--only-plugin-dir '" + test_plugin("test_stroke").parent_path().string() + "' "; }
 
@@ -40,7 +36,7 @@ TEST_CASE("a foreign node type's report: its family in its derived frame, marks,
   const auto r = run_cli("-q " + stroke_dir() + "report '" + stroke_scene(dir, true).string() + "' --out '" + out.string() + "'");
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string page = read(out / "report.html");
+  const std::string page = slurp(out / "report.html");
   // The family: its title, its channels' labels and their frames' tags, drawn in the rotor frame.
   CHECK_THAT(page, Contains("Plunger position, speed and acceleration of p"));
   CHECK_THAT(page, Contains("rotor angle after port one [deg (rotor)]"));
@@ -56,7 +52,7 @@ TEST_CASE("a foreign node type's report: its family in its derived frame, marks,
   CHECK_THAT(page, Contains("opening<br><span class=\"u\">[deg (shaft)]"));
   CHECK_THAT(page, Contains("opening on the rotor<br><span class=\"u\">[deg (rotor)]"));
   CHECK_THAT(page, Contains("suction_port (1)") && Contains("delivery_port (2)"));
-  CHECK_THAT(read(out / "p.port_events.csv"), Contains("kind [1],kind_name,") && Contains(",suction_port,"));
+  CHECK_THAT(slurp(out / "p.port_events.csv"), Contains("kind [1],kind_name,") && Contains(",suction_port,"));
 }
 
 TEST_CASE("a foreign node type's run: its note wanted, codes named, angles tagged with its frame", "[cli][presentation]") {
@@ -89,7 +85,7 @@ TEST_CASE("a foreign node type without its frame's offset is drawn over its own 
   const auto r = run_cli("-q " + stroke_dir() + "report '" + stroke_scene(dir, false).string() + "' --out '" + out.string() + "'");
   INFO(r.out << r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string page = read(out / "report.html");
+  const std::string page = slurp(out / "report.html");
   CHECK_THAT(page, Contains("shaft angle [deg (shaft)]"));
   CHECK_THAT(page, !Contains("rotor angle after port one"));
   CHECK_THAT(page, !Contains("<text>P1</text>"));

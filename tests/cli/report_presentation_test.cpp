@@ -1,6 +1,7 @@
 // What a report shows and how: the numbers on the page are the run's, the timing notes reach
 // `run`'s text and `--json`, report rows keep one unit per dimension and name cam or crank degrees,
 // the SVAJ panel, spring-over-lift and contour figures are there, and `report --pdf` prints a PDF.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -17,11 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 fs::path fresh_folder(const std::string& name) {
   const fs::path base = fs::temp_directory_path() / ("mg_present_" + std::to_string(::getpid())) / name;
   fs::remove_all(base);
@@ -36,7 +32,7 @@ std::string plot_csv(const fs::path& dir, const std::string& suffix) {
   for (const auto& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind("plot_", 0) == 0 && name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
-      return read(entry.path());
+      return slurp(entry.path());
   }
   return {};
 }
@@ -137,7 +133,7 @@ TEST_CASE("report: the page's numbers and notes are the run's, with the panel, s
   INFO(check.out << check.err);
   CHECK(check.exit_code == 0);
 
-  const std::string page = read(dir / "report.html");
+  const std::string page = slurp(dir / "report.html");
   // One SVAJ panel per port group (cams over cam angle, valves over crank angle after TDC), with
   // the legends by the report's column names, not node ids.
   CHECK_THAT(page, Contains("Lift, velocity, acceleration and jerk of three-arc, Kurz, polydyne (kinematic) (arc, kurz, poly)"));
@@ -171,7 +167,7 @@ TEST_CASE("report: contour with its least circle, follower and rotation, curvatu
   const auto r = run_cli("-q report '" + scene("cam_contour.yaml") + "' --out '" + dir.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string page = read(dir / "report.html");
+  const std::string page = slurp(dir / "report.html");
   CHECK_THAT(page, Contains("least circle r = 17 mm"));
   CHECK_THAT(page, Contains("follower at the nose"));
   CHECK_THAT(page, Contains("rotation (counter-clockwise)"));
@@ -233,7 +229,7 @@ TEST_CASE("report draws only the nodes the scene needs: a culled node stays cull
   const auto r = run_cli("-q report '" + scene("culling_demo.yaml") + "' --out '" + dir.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string json = read(dir / "results.json");
+  const std::string json = slurp(dir / "results.json");
   CHECK_THAT(json, !Contains("\"cyc."));
   CHECK_THAT(json, Contains("\"kurz.svaj\""));
 }
@@ -251,7 +247,7 @@ outputs: [ valve.max_lift ]
   const auto r = run_cli("-q report '" + file.string() + "' --out '" + dir.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string page = read(dir / "report.html");
+  const std::string page = slurp(dir / "report.html");
   // The plot's labels (quoted by the report from the events table) agree with the node's own note
   // (quoted by the SDK from its events): the same angles, the same dead centres.
   CHECK_THAT(page, Contains("valve: exhaust: opens 35.9 deg BBDC, closes 8.1 deg BTDC at 1 mm valve lift"));

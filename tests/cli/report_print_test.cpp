@@ -2,6 +2,7 @@
 // page (nothing beyond the right margin, no column dropped: a table too wide is printed in parts
 // that repeat its key column), checked on the PDF itself with poppler's pdftotext; and the CSV
 // beside each of the page's tables holds the numbers the table shows, in its units.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -18,11 +19,6 @@ using Catch::Matchers::Contains;
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 fs::path fresh_folder(const std::string& name) {
   const fs::path base = fs::temp_directory_path() / ("mg_print_" + std::to_string(::getpid())) / name;
@@ -175,13 +171,13 @@ std::string page_unit(const std::string& header) {
 // Every small table of the page (an events table) against the CSV beside it: the same columns,
 // the header's unit the page's, every number the page shows.
 void check_csvs_against_page(const fs::path& dir) {
-  const std::vector<PageTable> tables = screen_tables(read(dir / "report.html"));
+  const std::vector<PageTable> tables = screen_tables(slurp(dir / "report.html"));
   std::size_t compared = 0;
   for (const PageTable& t : tables) {
     const fs::path csv = dir / (t.title + ".csv");
     if (!fs::exists(csv)) continue;  // a report table (table_N.csv, its units a column of its own)
     INFO(csv.string());
-    std::istringstream in(read(csv));
+    std::istringstream in(slurp(csv));
     std::string line;
     REQUIRE(std::getline(in, line));
     const std::vector<std::string> header = csv_fields(line);
@@ -222,7 +218,7 @@ std::vector<PdfPage> pdf_words(const fs::path& pdf) {
   const auto r = run_command("pdftotext -bbox-layout '" + pdf.string() + "' '" + boxes.string() + "'");
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
-  const std::string text = read(boxes);
+  const std::string text = slurp(boxes);
   std::vector<PdfPage> pages;
   for (std::size_t at = 0;;) {
     const std::size_t start = text.find("<page ", at);
@@ -259,7 +255,7 @@ void check_pdf_fits(const fs::path& dir) {
     }
   std::map<std::string, int> shown;
   std::size_t wide = 0;
-  for (const PageTable& t : screen_tables(read(dir / "report.html"))) {
+  for (const PageTable& t : screen_tables(slurp(dir / "report.html"))) {
     wide += t.header.size() > 10 ? 1 : 0;
     for (const std::string& h : t.header)
       for (const std::string& w : words_of(h)) ++shown[w];
@@ -288,7 +284,7 @@ TEST_CASE("report: the CSV beside each table is in the units the table shows", "
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     check_csvs_against_page(dir);
-    if (file.stem() == "ten_lobes") CHECK_THAT(read(dir / "a.events.csv"), Contains("checking_lift [in],opening [deg]"));
+    if (file.stem() == "ten_lobes") CHECK_THAT(slurp(dir / "a.events.csv"), Contains("checking_lift [in],opening [deg]"));
     fs::remove_all(dir);
   }
 }
@@ -306,7 +302,7 @@ TEST_CASE("report --pdf: every table fits the printed A4 page, none cut off", "[
     REQUIRE(r.exit_code == 0);
     check_pdf_fits(dir);
     // The screen still shows each table whole; the parts are for print only.
-    CHECK_THAT(read(dir / "report.html"), Contains("<div class=\"print\">"));
+    CHECK_THAT(slurp(dir / "report.html"), Contains("<div class=\"print\">"));
     fs::remove_all(dir);
   }
 }
