@@ -464,4 +464,14 @@ RunValues evaluate_values(const Graph& graph, MemoCache& cache, unsigned threads
   return result;
 }
 
+double report_cell_value(const RunResult& result, const ResolvedReport::Row& row, const ResolvedReport::Cell& cell) {
+  const OutputValue& o = result.outputs.at(cell.output);
+  if (!cell.element) return o.value.as_scalar();
+  const auto& values = o.value.as_series().values;
+  if (*cell.element >= values.size())
+    throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
+                          " elements, the row asks for element " + std::to_string(*cell.element));
+  return values[*cell.element];
+}
+
 }  // namespace mechgraph

@@ -182,16 +182,7 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
         continue;
       }
       const OutputValue& o = result.outputs[cell->output];
-      double value = 0.0;
-      if (cell->element) {
-        const auto& values = o.value.as_series().values;
-        if (*cell->element >= values.size())
-          throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
-                                " elements, the row asks for element " + std::to_string(*cell->element));
-        value = values[*cell->element];
-      } else {
-        value = o.value.as_scalar();
-      }
+      const double value = report_cell_value(result, row, *cell);
       const std::string unit = unit_of(o, row.unit);
       if (cells[1] == row.unit && o.dimension.si_unit() != "1") {
         const PortSpec* spec = cell->output < graph.outputs.size() ? graph.outputs[cell->output].spec : nullptr;

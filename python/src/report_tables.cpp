@@ -21,16 +21,7 @@ std::vector<ReportTableValues> report_table_values(const Graph& graph, const Run
           continue;
         }
         const OutputValue& o = result.outputs.at(cell->output);
-        double value = 0.0;
-        if (cell->element) {
-          const auto& values = o.value.as_series().values;
-          if (*cell->element >= values.size())
-            throw EvaluationError("report row '" + row.label + "': " + o.label + " has " + std::to_string(values.size()) +
-                                  " elements, the row asks for element " + std::to_string(*cell->element));
-          value = values[*cell->element];
-        } else {
-          value = o.value.as_scalar();
-        }
+        const double value = report_cell_value(result, row, *cell);
         if (!unit_known) {
           const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
           if (!row.unit.empty()) out.unit = row.unit;

@@ -59,4 +59,8 @@ struct RunValues {
 /// value), for less work per case.
 RunValues evaluate_values(const Graph& graph, MemoCache& cache, unsigned threads = 1);
 
+/// The number in a report table's cell of row `row` (SI): the cell's scalar output, or the element
+/// of its series output. Throws EvaluationError naming the row when the series is too short.
+double report_cell_value(const RunResult& result, const ResolvedReport::Row& row, const ResolvedReport::Cell& cell);
+
 }  // namespace mechgraph
