@@ -11,6 +11,7 @@
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <algorithm>
@@ -176,6 +177,11 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
   };
   for (const auto& row : report.rows) {
     std::vector<std::string> cells{row.label, row.unit};
+    // A row's cells are one quantity side by side: one of them at rounding level beside the others
+    // reads 0 (shown_number.hpp).
+    double largest = 0.0;
+    for (const auto& cell : row.cells)
+      if (cell) largest = std::max(largest, std::abs(report_cell_value(result, row, *cell)));
     for (const auto& cell : row.cells) {
       if (!cell) {
         cells.push_back("-");
@@ -190,9 +196,7 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
         cells[1] = unit_with_reference(unit.empty() ? o.dimension.si_unit() : unit, info ? angle_reference(*info, *spec) : "");
       }
       const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
-      char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%.6g", shown);
-      cells.push_back(buffer);
+      cells.push_back(shown_number(shown, value, noise_floor(o.dimension, largest)));
     }
     rows.push_back(std::move(cells));
   }

@@ -25,7 +25,8 @@ class Quantity(NamedTuple):
     display_unit: str
 
     def __str__(self) -> str:
-        return f"{self.display_value:.6g} {self.display_unit}".rstrip()
+        # six significant digits; rounding noise (an angle below 1e-9 of a turn) reads 0
+        return f"{_core.shown_number(self.display_value, self.value, self.unit)} {self.display_unit}".rstrip()
 
 
 def _column_label(name: str, unit: str) -> str:

@@ -242,3 +242,19 @@ def test_a_refused_value_names_the_node_and_parameter_it_reached(cams, sets):
     with pytest.raises(mechgraph.SceneError) as e:
         cams.run(set=sets, outputs=["kurz.max_lift"])
     assert (e.value.node, e.value.parameter) == ("kurz", next(iter(sets)).split(".")[1]), str(e.value)
+
+
+def test_a_scalar_at_rounding_level_shows_as_0_and_keeps_its_value():
+    # The midpoint of events at -65 and +65 deg of a symmetric polydyne lobe: rounding noise, shown 0
+    # (the same rule as the terminal and the report: core/include/mechgraph/shown_number.hpp).
+    scene = mechgraph.Scene.from_text(
+        "nodes:\n"
+        "  cam: { type: cam.polydyne, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 17 mm,"
+        " exponents: [2, 14, 26, 38, 50] } }\n"
+        "outputs: [ cam.events ]\n")
+    r = scene.run()
+    noise = float(r["cam.events"]["centreline"][0])
+    q = mechgraph.Quantity(noise, "rad", math.degrees(noise), "deg")
+    assert str(q) == "0 deg"
+    assert str(mechgraph.Quantity(0.92, "rad", math.degrees(0.92), "deg")) == "52.7121 deg"
+    assert str(mechgraph.Quantity(1.1e-11, "m", 1.1e-8, "mm")) == "1.1e-08 mm"   # a length alone keeps its digits
