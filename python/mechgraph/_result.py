@@ -201,9 +201,10 @@ class Result:
     def report_tables(self):
         """The scene's report tables (``report:``) as pandas DataFrames, one per table: a row per
         report row (the index holds its label), a ``unit`` column, then one column of numbers per
-        report column (NaN for an empty cell). A row is in its own ``unit:``, else in the unit the
-        table shows that dimension in (the scene's ``units:``, else the first such row's port
-        unit), else SI. ``attrs["title"]`` is the table's title. Empty when the run asked for
+        report column (NaN for an empty cell). A row is in the unit the page and the terminal show
+        it in: its own ``unit:``, else the unit the table already shows that dimension in, else
+        the scene's ``units:`` or its port's unit, else the reader's unit (mm, deg, mm/deg^n,
+        mm^2, mm^2*deg, mm^2*s), else SI. ``attrs["title"]`` is the table's title. Empty when the run asked for
         other ``outputs=`` (the report is then not evaluated)."""
         import pandas as pd
 
