@@ -1,6 +1,8 @@
 // Numbers as a person reads them: see shown_number.hpp for the rule and why.
 #include "mechgraph/shown_number.hpp"
 
+#include <mechgraph/units.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,6 +33,19 @@ std::string shown_number(double shown, double si, double floor) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", shown);
   return buffer;
+}
+
+std::string format_value(double si, Dimension dimension, const std::string& unit) {
+  double shown = si;
+  std::string label = unit;
+  if (unit.empty()) {
+    label = dimension.si_unit();
+    if (label == "1") label.clear();
+  } else {
+    shown = to_unit(si, dimension, unit);
+  }
+  const std::string number = shown_number(shown, si, noise_floor(dimension, 0.0));
+  return label.empty() ? number : number + " " + label;
 }
 
 }  // namespace mechgraph

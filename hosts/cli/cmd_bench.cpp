@@ -4,7 +4,7 @@
 #include "cli.hpp"
 #include "gnuplot_data.hpp"
 #include "output_file.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 #include "results_folder.hpp"
 #include "spawn.hpp"
 #include "options.hpp"

@@ -1,8 +1,8 @@
 // mechgraph describe TYPE [--json]: one node type in full.
 #include "cli.hpp"
-#include "node_info_format.hpp"
+#include <mechgraph/host/node_info_format.hpp>
 #include "options.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
 

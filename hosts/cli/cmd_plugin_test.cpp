@@ -3,7 +3,7 @@
 // or against named types, each evaluated with its own declared defaults. Handle inputs (an object of
 // the kind a node takes) come from another loaded type that makes one from its defaults alone.
 #include "cli.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 #include "options.hpp"
 
 #include <mechgraph/did_you_mean.hpp>

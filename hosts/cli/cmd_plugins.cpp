@@ -1,8 +1,8 @@
 // mechgraph plugins [--json]: the loaded plugins and their node types.
 #include "cli.hpp"
-#include "node_info_format.hpp"
+#include <mechgraph/host/node_info_format.hpp>
 #include "options.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/text_escape.hpp>
 

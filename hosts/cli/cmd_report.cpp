@@ -1,6 +1,6 @@
 // mechgraph report SCENE [--set NAME=VALUE ...] [--out DIR] [--force] [--threads N] [--pdf]
 #include "cli.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 #include "options.hpp"
 #include "report_page.hpp"
 #include "report_pdf.hpp"

@@ -3,7 +3,7 @@
 #include "options.hpp"
 #include "result_files.hpp"
 #include "results_folder.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>

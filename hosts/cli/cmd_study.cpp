@@ -10,10 +10,10 @@
 #include "provenance.hpp"
 #include "results_folder.hpp"
 #include "study_page.hpp"
-#include "study_run.hpp"
+#include <mechgraph/host/study_run.hpp>
 #include "sweep_file.hpp"
-#include "sweep_rows.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/sweep_rows.hpp>
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/csv.hpp>
 #include <mechgraph/errors.hpp>

@@ -5,8 +5,8 @@
 #include "options.hpp"
 #include "sweep_file.hpp"
 #include "sweep_progress.hpp"
-#include "study_run.hpp"
-#include "sweep_rows.hpp"
+#include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
 
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>

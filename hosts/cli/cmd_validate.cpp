@@ -1,7 +1,7 @@
 // mechgraph validate SCENE: load and check everything, evaluate nothing.
 #include "cli.hpp"
 #include "options.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/text_escape.hpp>
 

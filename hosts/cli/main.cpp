@@ -1,6 +1,6 @@
 // mechgraph: the command-line host. Subcommands live in one file each (cmd_*.cpp).
 #include "cli.hpp"
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/abi_version.hpp>
 #include <mechgraph/did_you_mean.hpp>

@@ -7,7 +7,9 @@
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 
-#include "report_units.hpp"
+#include "cli.hpp"
+
+#include <mechgraph/host/report_units.hpp>
 
 #include <filesystem>
 #include <ostream>

@@ -17,7 +17,9 @@
 // --resume carries over is checked (RowChecker). Reads are bounded: a manifest at most 64 KiB, a
 // row at most max_row_bytes (rows files are read a line at a time), regular files only.
 #include "output_file.hpp"
-#include "sweep_rows.hpp"
+#include "cli.hpp"
+
+#include <mechgraph/host/sweep_rows.hpp>
 
 #include <cstdio>
 #include <filesystem>

@@ -10,12 +10,14 @@
 #include "unit_rule.hpp"
 #include "value_arrays.hpp"
 
-#include <study_run.hpp>
-#include <sweep_rows.hpp>
+#include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
 
-#include <cli.hpp>
-#include <node_info_format.hpp>
-#include <terminal_output.hpp>
+#include <mechgraph/host/plugin_search.hpp>
+#include <mechgraph/host/scene_loading.hpp>
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/host/node_info_format.hpp>
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/error_subject.hpp>
@@ -51,10 +53,10 @@ std::mutex registry_mutex;
 std::shared_ptr<const PluginRegistry> current_registry;
 
 std::shared_ptr<const PluginRegistry> load_registry(const std::vector<std::string>& dirs, bool only) {
-  cli::GlobalOptions options;
+  host::PluginSearch options;
   options.plugin_dirs = dirs;
   options.only_plugin_dirs = only;
-  auto registry = std::make_shared<const PluginRegistry>(cli::load_plugins(options));
+  auto registry = std::make_shared<const PluginRegistry>(host::load_plugins(options));
   std::lock_guard lock(registry_mutex);
   current_registry = registry;
   return registry;
@@ -299,7 +301,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "mechgraph's C++ core (libmechgraph and its plugins); use the package `mechgraph`.";
   m.attr("__version__") = MECHGRAPH_VERSION;
   // Log messages quote scene and plugin text: through terminal_text, as the command line's are.
-  cli::use_terminal_safe_logger("mechgraph");
+  host::use_terminal_safe_logger("mechgraph");
   spdlog::set_level(spdlog::level::warn);  // a notebook wants results, not progress; set_log_level() changes it
 
   py::register_exception_translator([](std::exception_ptr p) {
@@ -313,7 +315,7 @@ PYBIND11_MODULE(_core, m) {
       raise_as("UnitError", e.what());
     } catch (const SceneError& e) {
       raise_as("SceneError", e.what());
-    } catch (const cli::UsageError& e) {
+    } catch (const host::UsageError& e) {
       raise_as("SceneError", e.what());
     } catch (const EvaluationError& e) {
       raise_as("EvaluationError", e.what());
@@ -331,11 +333,11 @@ PYBIND11_MODULE(_core, m) {
   m.def("describe", [](const std::string& type) {
     const auto r = registry();
     const RegisteredType* t = r->find(type);
-    if (!t) throw cli::UsageError(unknown_name_message("node type", type, r->type_names()));
+    if (!t) throw host::UsageError(unknown_name_message("node type", type, r->type_names()));
     std::ostringstream json_text, text;
     JsonWriter json(json_text);
-    cli::write_node_info_json(json, t->type->info());
-    cli::write_node_info_text(text, t->type->info());
+    host::write_node_info_json(json, t->type->info());
+    host::write_node_info_text(text, t->type->info());
     return py::make_tuple(json_text.str(), text.str());
   });
   m.def("set_log_level", [](const std::string& level) {
@@ -507,12 +509,12 @@ PYBIND11_MODULE(_core, m) {
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
-        std::unique_ptr<cli::StudyOutcome> outcome;
+        std::unique_ptr<host::StudyOutcome> outcome;
         run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
                           [&] { *stop = true; }, OnInterrupt::wait);
         // The design's cases: the parameters in SI, the outputs in their shown units, the failure class.
         py::dict cases;
-        const cli::StudyOutcome& o = *outcome;
+        const host::StudyOutcome& o = *outcome;
         for (std::size_t v = 0; v < o.table.variables.size(); ++v) {
           std::vector<double> column(o.table.cases.size());
           for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
@@ -526,7 +528,7 @@ PYBIND11_MODULE(_core, m) {
           cases[py::str(name)] = o.data.values[c];
         }
         std::vector<int> exits;
-        for (CaseFailure f : o.data.failures) exits.push_back(cli::exit_code_of(f));
+        for (CaseFailure f : o.data.failures) exits.push_back(host::exit_code_of(f));
         cases["exit"] = exits;
         return py::make_tuple(o.json, cases);
       })
@@ -571,7 +573,7 @@ PYBIND11_MODULE(_core, m) {
             if (o->data.failures[i] != CaseFailure::none) values[i] = std::numeric_limits<double>::quiet_NaN();
           o->data.values.push_back(std::move(values));
         }
-        cli::finish_study(*o);
+        host::finish_study(*o);
         return o->json;
       });
 }

@@ -1,6 +1,6 @@
 #include "report_tables.hpp"
 
-#include <report_units.hpp>
+#include <mechgraph/host/report_units.hpp>
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
@@ -14,7 +14,7 @@ std::vector<ReportTableValues> report_table_values(const Graph& graph, const Run
   for (const ResolvedReport& report : graph.reports) {
     ReportTableValues table{report.title, report.columns, {}};
     // The units of the terminal and the page: one rule (hosts/cli/result_files.hpp).
-    const std::vector<std::string> units = cli::report_row_units(report, result, graph);
+    const std::vector<std::string> units = host::report_row_units(report, result, graph);
     for (std::size_t r = 0; r < report.rows.size(); ++r) {
       const ResolvedReport::Row& row = report.rows[r];
       ReportTableValues::Row out{row.label, units[r], {}};

@@ -3,8 +3,10 @@
 #include "case_values.hpp"
 #include "unit_rule.hpp"
 
-#include <cli.hpp>
-#include <sweep_rows.hpp>
+#include <mechgraph/host/plugin_search.hpp>
+#include <mechgraph/host/scene_loading.hpp>
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
@@ -198,21 +200,21 @@ std::vector<Override> SceneSession::fixed_overrides(const std::vector<SetValue>&
   return overrides;
 }
 
-std::unique_ptr<cli::StudyOutcome> SceneSession::study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+std::unique_ptr<host::StudyOutcome> SceneSession::study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                        const std::string& samples, const std::string& method, const std::string& seed,
                                                        const std::vector<std::string>& outputs, unsigned threads,
                                                        const std::atomic<bool>* stop) {
   const std::vector<Override> overrides = fixed_overrides(sets);
   WorkBudget budget;
   budget.max_work = sweep_default_max_work;
-  return cli::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
+  return host::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
                               outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
 }
 
-std::unique_ptr<cli::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                                const std::string& samples, const std::string& method,
                                                                const std::string& seed, const std::vector<std::string>& outputs) {
-  return cli::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
+  return host::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
                                   outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
 }
 
@@ -221,7 +223,7 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
                                  std::atomic<std::size_t>* done) {
   SceneSpec scene = scene_;
   const std::vector<Override> overrides = fixed_overrides(sets);
-  const Graph graph = cli::build_sweep_graph(scene, *registry_, overrides,
+  const Graph graph = host::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
   WorkBudget budget;
@@ -235,12 +237,12 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
 
   // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.
   SessionSweep out;
-  cli::SweepRows rows(graph, table, cli::RowFormat::jsonl);
-  cli::RowSequencer sequence(
+  host::SweepRows rows(graph, table, host::RowFormat::jsonl);
+  host::RowSequencer sequence(
       rows, [] {},
       [&](const CaseResult& r) {
         out.cases.push_back(r.index);
-        out.rows.push_back(rows.values(r, cli::exit_code_of(r.failure)));
+        out.rows.push_back(rows.values(r, host::exit_code_of(r.failure)));
         if (out.rows.back().exit_code != 0) ++out.failed;
       });
   MemoCache cache;

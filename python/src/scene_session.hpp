@@ -6,14 +6,14 @@
 //
 // Thread-safety: a session serialises its runs (a run writes into its built graph); sweeps work on
 // their own copies and may run beside runs.
-#include <sweep_rows.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
 
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 #include <mechgraph/sweep/case_binder.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
-#include <study_run.hpp>
+#include <mechgraph/host/study_run.hpp>
 
 #include <atomic>
 #include <map>
@@ -49,7 +49,7 @@ struct SessionSweep {
   std::vector<std::string> header;
   std::size_t inputs = 0;                            // varied-input columns after `case`
   std::vector<std::size_t> cases;                    // each row's case number, in case order
-  std::vector<cli::SweepRows::Values> rows;          // one per case
+  std::vector<host::SweepRows::Values> rows;          // one per case
   SweepSummary summary;
   std::size_t failed = 0;
 };
@@ -75,13 +75,13 @@ class SceneSession {
 
   /// An uncertainty study of the scene (study_run.hpp): `block` merged over its `uncertainty:`,
   /// `sets` fixed for every case (as sweep() takes them); empty samples/method/seed: the block's.
-  std::unique_ptr<cli::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+  std::unique_ptr<host::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                            const std::string& samples, const std::string& method, const std::string& seed,
                                            const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
 
   /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
-  /// (mechgraph.dask.study), analysed with cli::finish_study once their values are in.
-  std::unique_ptr<cli::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
+  /// (mechgraph.dask.study), analysed with host::finish_study once their values are in.
+  std::unique_ptr<host::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                    const std::string& samples, const std::string& method, const std::string& seed,
                                                    const std::vector<std::string>& outputs);
 

@@ -2,8 +2,8 @@
 // The first byte picks the format and the number of input columns, the rest is the file's lines.
 // It may refuse only with UsageError; a row it accepts has a case number below the sweep's count,
 // after the previous one.
-#include "cli.hpp"
-#include "sweep_rows.hpp"
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
 
 #include <cstdint>
 #include <sstream>
@@ -11,7 +11,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
-  using namespace mechgraph::cli;
+  using namespace mechgraph::host;
   const RowFormat format = data[0] & 1 ? RowFormat::jsonl : RowFormat::csv;
   const std::size_t inputs = (data[0] >> 1) & 3;
   const std::size_t shards = 1 + ((data[0] >> 3) & 3);

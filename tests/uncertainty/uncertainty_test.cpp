@@ -3,7 +3,7 @@
 // indices; the same answers on 1, 2 or 5 threads and from shards.
 #include "test_support.hpp"
 
-#include <study_run.hpp>
+#include <mechgraph/host/study_run.hpp>
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/uncertainty/sample_design.hpp>
@@ -32,15 +32,15 @@ const PluginRegistry& uq_registry() {
 
 StudySpec study_of(const std::string& yaml, const PluginRegistry& registry = uq_registry()) {
   const SceneSpec scene = parse_scene(yaml, "study.yaml");
-  return cli::study_spec_of(scene, registry);
+  return host::study_spec_of(scene, registry);
 }
 
 // A whole study in process: the scene's cases on `threads` workers, analysed.
-std::unique_ptr<cli::StudyOutcome> run_study(const std::string& yaml, unsigned threads, const PluginRegistry& registry = uq_registry()) {
-  return cli::run_scene_study(parse_scene(yaml, "study.yaml"), registry, {}, std::nullopt, "", "", "", std::nullopt, WorkBudget{}, threads,
+std::unique_ptr<host::StudyOutcome> run_study(const std::string& yaml, unsigned threads, const PluginRegistry& registry = uq_registry()) {
+  return host::run_scene_study(parse_scene(yaml, "study.yaml"), registry, {}, std::nullopt, "", "", "", std::nullopt, WorkBudget{}, threads,
                               nullptr);
 }
-using InProcess = std::unique_ptr<cli::StudyOutcome>;
+using InProcess = std::unique_ptr<host::StudyOutcome>;
 
 const char* const uniform_pi = "{ uniform: { lower: -3.141592653589793, upper: 3.141592653589793 } }";
 

@@ -29,4 +29,8 @@ double table_largest(const Table& table, const Dimension& dimension);
 /// below `floor` in magnitude (and for -0).
 std::string shown_number(double shown, double si, double floor);
 
+/// "12.5 mm" from an SI value, in `unit` when given (else SI), by shown_number (alone: no scale
+/// but a turn for an angle).
+std::string format_value(double si, Dimension dimension, const std::string& unit);
+
 }  // namespace mechgraph

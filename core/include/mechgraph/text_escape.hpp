@@ -55,7 +55,7 @@ std::string dot_string(std::string_view text);
 enum class TerminalLines { kept, one };
 
 /// Text for a terminal, the one function every piece of text shown on a terminal passes through
-/// (the command line's text output as a whole, and every log message: hosts/cli/terminal_output.hpp).
+/// (the command line's text output as a whole, and every log message: mechgraph/host/terminal_output.hpp).
 /// Shown as '?': C0 controls other than tab and line feed (with TerminalLines::one those too), DEL,
 /// C1 controls U+0080..U+009F (an escape sequence, ESC or the single-byte CSI, could rewrite the
 /// screen, set the window title or hide lines), and the bidirectional embedding, override and

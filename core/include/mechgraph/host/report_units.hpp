@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// The unit a report row without one shows a dimension in when the scene has no `units:` for it
 /// and the port no unit of its own: mm, deg, mm/deg^n, mm^2, mm^2*deg, mm^2*s; "" (SI) otherwise.
@@ -19,4 +19,4 @@ std::string reader_unit(const Dimension& d);
 /// terminal, the page, the CSV and Python's report tables.
 std::vector<std::string> report_row_units(const ResolvedReport& report, const RunResult& result, const Graph& graph);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -5,10 +5,10 @@
 
 #include <ostream>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// Text for people, through terminal_text (a plugin's words hold no control sequence when shown).
 void write_node_info_text(std::ostream& os, const NodeInfo& info);
 void write_node_info_json(JsonWriter& json, const NodeInfo& info);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -23,7 +23,7 @@
 #include <variant>
 #include <vector>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 enum class RowFormat { csv, jsonl };
 
@@ -144,4 +144,4 @@ bool finite_number_cell(std::string_view text);
 /// The exit code a failed case's class maps to (2 scene or usage, 3 evaluation), 0 for success.
 int exit_code_of(CaseFailure failure);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

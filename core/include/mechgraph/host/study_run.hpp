@@ -14,7 +14,7 @@
 #include <memory>
 #include <optional>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// ISO 286 deviations by the loaded fit.iso286 node type (an empty function when none is loaded).
 Iso286Limits iso286_limits(const PluginRegistry& registry);
@@ -37,17 +37,17 @@ inline double shown_value(double si, const StudyColumn& c) { return si / c.scale
 StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const CaseTable& table, const std::vector<StudyColumn>& columns,
                          unsigned threads, const std::atomic<bool>* stop, SweepSummary* summary = nullptr);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// --samples, --method and --seed (empty: the scene's) over the scene's settings; throws
 /// UsageError for a value out of range, naming the option.
 void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// A study run in process (Python's Scene.study, `mechgraph study`): its settings, the design,
 /// the values and the answers.
@@ -84,4 +84,4 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
                                               unsigned threads, const std::atomic<bool>* stop);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

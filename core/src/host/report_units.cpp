@@ -1,8 +1,8 @@
-#include "report_units.hpp"
+#include <mechgraph/host/report_units.hpp>
 
 #include <algorithm>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 std::string reader_unit(const Dimension& d) {
   // A length and its derivatives over an angle, lengths, angles and areas the way a drawing gives
@@ -41,4 +41,4 @@ std::vector<std::string> report_row_units(const ResolvedReport& report, const Ru
   return units;
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -1,13 +1,15 @@
-#include "node_info_format.hpp"
+#include <mechgraph/host/node_info_format.hpp>
 
-#include "cli.hpp"
+#include <mechgraph/host/exit_codes.hpp>
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/shown_number.hpp>
 
 #include <mechgraph/text_escape.hpp>
 
 #include <cmath>
 #include <sstream>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 namespace {
 
 const char* kind_name(ParamKind k) {
@@ -354,4 +356,4 @@ void write_node_info_json(JsonWriter& json, const NodeInfo& info) {
   json.end_object();
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

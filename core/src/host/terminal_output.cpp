@@ -1,4 +1,4 @@
-#include "terminal_output.hpp"
+#include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/text_escape.hpp>
 
@@ -9,7 +9,7 @@
 #include <memory>
 #include <utility>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 namespace {
 
 class TerminalSafeSink final : public spdlog::sinks::sink {
@@ -42,4 +42,4 @@ void use_terminal_safe_logger(const char* name) {
   spdlog::set_default_logger(std::move(logger));
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

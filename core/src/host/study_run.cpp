@@ -1,6 +1,9 @@
-#include "study_run.hpp"
+#include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/scene_loading.hpp>
 
-#include "cli.hpp"
+#include <mechgraph/host/exit_codes.hpp>
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/shown_number.hpp>
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
@@ -19,7 +22,7 @@
 #include <sstream>
 #include <thread>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 Iso286Limits iso286_limits(const PluginRegistry& registry) {
   if (!registry.find("fit.iso286")) return {};
@@ -135,9 +138,9 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
   return data;
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed) {
   const auto whole = [](const std::string& text, const char* option, std::size_t low, std::size_t high) {
@@ -159,9 +162,9 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
                      " evaluations, more than 10^7");
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block) {
   RawValue merged;
@@ -226,4 +229,4 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   return outcome;
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -1,6 +1,8 @@
-#include "sweep_rows.hpp"
+#include <mechgraph/host/sweep_rows.hpp>
 
-#include "cli.hpp"
+#include <mechgraph/host/exit_codes.hpp>
+#include <mechgraph/host/usage_error.hpp>
+#include <mechgraph/shown_number.hpp>
 
 #include <mechgraph/csv.hpp>
 #include <mechgraph/json_writer.hpp>
@@ -16,7 +18,7 @@
 #include <set>
 #include <sstream>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 namespace {
 
 std::string with_unit(const std::string& name, const std::string& unit) {
@@ -445,9 +447,9 @@ SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) con
   return out;
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 void RowChecker::refuse(std::size_t number, const std::string& why) const {
   throw UsageError(excerpt(file_) + ":" + std::to_string(number) + ": " + why +
@@ -545,4 +547,4 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
   return {index, cells[cells.size() - 2] != "0"};
 }
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -8,7 +8,7 @@
 
 #include <string_view>
 
-namespace mechgraph::cli {
+namespace mechgraph::host {
 
 /// Writes a command's text output (the text mode of run, validate, plugins, describe, ...) to
 /// standard output through terminal_text.
@@ -23,4 +23,4 @@ spdlog::sink_ptr terminal_safe_sink(spdlog::sink_ptr inner);
 /// terminal) through terminal_safe_sink.
 void use_terminal_safe_logger(const char* name);
 
-}  // namespace mechgraph::cli
+}  // namespace mechgraph::host

@@ -1,0 +1,22 @@
+#pragma once
+// Where a host finds its plugins: the folders given (--plugin-dir), MECHGRAPH_PLUGIN_PATH and the
+// built-in folder, in that order (PluginRegistry::search_path), the same for every host.
+#include <mechgraph/plugin_registry.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace mechgraph::host {
+
+struct PluginSearch {
+  std::vector<std::string> plugin_dirs;  // --plugin-dir / --only-plugin-dir, in the order given
+  bool only_plugin_dirs = false;          // --only-plugin-dir: no MECHGRAPH_PLUGIN_PATH, no built-ins
+};
+
+/// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, the built-in folder).
+/// `first` are plugin files loaded before the search path (plugin-test LIB.so): a copy of the same
+/// plugin found later (an installed one) is then the one skipped. A refused `first` file throws.
+PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first = {});
+
+}  // namespace mechgraph::host

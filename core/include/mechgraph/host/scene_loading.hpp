@@ -1,0 +1,23 @@
+#pragma once
+// A scene made into a graph the way every host does it: --set overrides applied, and for a sweep
+// the outputs it can write a column of.
+#include <mechgraph/graph.hpp>
+#include <mechgraph/plugin_registry.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace mechgraph::host {
+
+/// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
+Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);
+
+/// The graph a sweep runs: `outputs` ("a.b,c.d", --outputs) replace the scene's outputs and report;
+/// without them, tables and handles (not one number per case) are left out of the scene's own
+/// outputs with a note. Updates `scene.outputs` to what the graph requests. Throws UsageError for
+/// a chosen output that is not a scalar or a series.
+Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
+                        const std::optional<std::string>& outputs);
+
+}  // namespace mechgraph::host
