@@ -1,0 +1,111 @@
+// Every number with a unit in the method notes (docs/methods/*.md), in docs/*.md and in the README's
+// prose (outside fenced blocks: the README's output listings are compared line by line with what
+// the commands print, docs_numbers_readme_test.cpp) is classified here: recomputed
+// by a named test of tests/docs, or an input of the example, a default value, a constant of the
+// method, a citation, a measurement (a time on the project's machine, not reproducible in a test),
+// a figure from before a fix (historical), a bound a test asserts, or a symbol in a formula. A
+// number added to a note without a line here fails, and so does a line whose text the note no
+// longer has, or whose recomputing test does not exist. Results are recomputed where the test
+// names say; this table only keeps the count honest.
+#include "docs/doc_numbers.hpp"
+
+#include <filesystem>
+#include <map>
+
+using namespace mechgraph::testing::docs;
+
+namespace {
+
+enum class Kind { recomputed, input, default_value, method_constant, citation, measured, historical, checked_bound, formula };
+
+struct Entry {
+  const char* file;  // relative to the source tree
+  const char* text;  // the doc's words around the number(s), as they read with line breaks made spaces
+  Kind kind;
+  const char* why;   // for recomputed: the name of the test case that recomputes it
+};
+
+// clang-format off
+const Entry inventory[] = {
+#include "docs/docs_numbers_inventory.inc"
+};
+// clang-format on
+
+const char* const documents[] = {"docs/methods/backlash.md", "docs/methods/followers.md", "docs/methods/numerics.md",
+                                 "docs/methods/uncertainty.md", "docs/methods/valvetrain.md", "README.md", "docs/bench.md",
+                                 "docs/peers.md", "docs/python.md", "docs/reports.md", "docs/scenes.md", "docs/sweeps.md",
+                                 "docs/writing-plugins.md"};
+
+// The document's prose: fenced blocks blanked, line breaks made spaces, runs of spaces made one.
+std::string prose_text(const std::string& relative) {
+  std::istringstream in(doc_file(relative));
+  std::string text;
+  bool fenced = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("```", 0) == 0) {
+      fenced = !fenced;
+      line.clear();
+    }
+    text += (fenced ? std::string() : line) + " ";
+  }
+  return std::regex_replace(text, std::regex(" +"), " ");
+}
+
+// A number followed by a unit, as the notes print results: "4.63 mm", "17 %", "3.5e15" is not one
+// (no unit) and is listed by hand where it is a result. The character before the number must not
+// belong to a word, a number, an exponent or a ratio.
+const std::regex number_with_unit(
+    "(^|[^A-Za-z0-9_.^/-])([-+]?[0-9]+(?:\\.[0-9]+)?(?:e[-+]?[0-9]+)?) ?"
+    "(mm\\^2\\*deg|mm\\^2\\*s|mm/deg\\^2|N/mm|kN/mm|m/s\\^2|m/s|MPa|GPa|mm|um|deg|rad|rpm|ms|us|s|%|arcmin|Hz|N|ppm|MiB|KiB|GiB|MB|m)"
+    "(?![A-Za-z0-9_/^*])");
+
+std::string all_doc_test_sources() {
+  std::string all;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + "/tests/docs"))
+    if (entry.path().extension() == ".cpp") all += doc_file("tests/docs/" + entry.path().filename().string());
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("docs: every number with a unit in docs/ and the README's prose is recomputed or classified", "[docs][inventory]") {
+  const std::string sources = all_doc_test_sources();
+  std::map<Kind, int> counted;
+  int found = 0;
+  for (const char* note : documents) {
+    const std::string doc = prose_text(note);
+      for (const Entry& e : inventory) {
+      if (std::string(e.file) != note) continue;
+      const std::string text = e.text;
+      INFO(note << ": the inventory's text is no longer in the note: " << text);
+      CHECK(doc.find(text) != std::string::npos);
+      if (e.kind == Kind::recomputed) {
+        INFO(note << ": \"" << text << "\" is said to be recomputed by a test case that does not exist: " << e.why);
+        CHECK(sources.find("TEST_CASE(\"" + std::string(e.why) + "\"") != std::string::npos);
+      }
+    }
+    for (auto it = std::sregex_iterator(doc.begin(), doc.end(), number_with_unit); it != std::sregex_iterator(); ++it) {
+      const std::size_t at = static_cast<std::size_t>(it->position(2));
+      ++found;
+      const Entry* covering = nullptr;
+      for (const Entry& e : inventory) {
+        if (std::string(e.file) != note) continue;
+        for (std::size_t s = doc.find(e.text); s != std::string::npos && !covering; s = doc.find(e.text, s + 1))
+          if (s <= at && at < s + std::string(e.text).size()) covering = &e;
+        if (covering) break;
+      }
+      const std::size_t from = at < 60 ? 0 : at - 60;
+      INFO(note << ": a number no test recomputes and no line of the inventory classifies (add it to "
+                   "tests/docs/docs_numbers_inventory.inc): ..."
+                << doc.substr(from, at - from + 30) << "...");
+      CHECK(covering != nullptr);
+      if (covering) ++counted[covering->kind];
+    }
+  }
+  // The count (shown with -s).
+  INFO("docs: " << found << " numbers with units; recomputed " << counted[Kind::recomputed] << ", inputs " << counted[Kind::input]
+                        << ", defaults " << counted[Kind::default_value] << ", constants " << counted[Kind::method_constant] << ", citations "
+                        << counted[Kind::citation] << ", measured " << counted[Kind::measured] << ", historical " << counted[Kind::historical]
+                        << ", bounds " << counted[Kind::checked_bound] << ", formula symbols " << counted[Kind::formula]);
+  CHECK(found > 0);
+}
