@@ -50,6 +50,14 @@ inline std::vector<std::string> quoted(const std::string& doc, const std::string
   return groups;
 }
 
+/// "node.port" as a scene's output.
+inline PortRef port_ref(const std::string& label) {
+  PortRef ref;
+  ref.node = label.substr(0, label.find('.'));
+  ref.port = label.substr(label.find('.') + 1);
+  return ref;
+}
+
 /// The pattern of a number as docs print it (sign, digits, decimals, exponent); one capture group.
 inline const char* const number = "([-+]?[0-9]+(?:\\.[0-9]+)?(?:e[-+]?[0-9]+)?)";
 
@@ -164,7 +172,8 @@ inline bool same_figure(const std::string& doc, const std::string& tool) {
 
 /// The lines of a doc's output block that the command's `output` does not print, each with the
 /// nearest line of the same shape when there is one. Lines of the block are looked for in order;
-/// a line beginning with "..." stands for lines left out.
+/// a line beginning with "..." stands for lines left out, one ending in " ..." for the rest of
+/// that line.
 inline std::vector<std::string> block_mismatches(const std::string& block, const std::string& output) {
   std::vector<LineShape> printed;
   std::vector<std::string> printed_text;
@@ -181,10 +190,15 @@ inline std::vector<std::string> block_mismatches(const std::string& block, const
   for (std::string line; std::getline(in, line);) {
     const std::size_t text = line.find_first_not_of(' ');
     if (text == std::string::npos || line.compare(text, 3, "...") == 0) continue;
-    const LineShape want = line_shape(line);
+    const bool rest_left_out = line.size() >= 4 && line.compare(line.size() - 4, 4, " ...") == 0;
+    const LineShape want = line_shape(rest_left_out ? line.substr(0, line.size() - 4) : line);
+    auto same_shape = [&](const LineShape& p) {
+      if (!rest_left_out) return p.skeleton == want.skeleton && p.numbers.size() == want.numbers.size();
+      return p.skeleton.compare(0, want.skeleton.size(), want.skeleton) == 0 && p.numbers.size() >= want.numbers.size();
+    };
     std::size_t found = printed.size(), near = printed.size();
     for (std::size_t i = at; i < printed.size() && found == printed.size(); ++i) {
-      if (printed[i].skeleton != want.skeleton || printed[i].numbers.size() != want.numbers.size()) continue;
+      if (!same_shape(printed[i])) continue;
       if (near == printed.size()) near = i;
       bool same = true;
       for (std::size_t k = 0; k < want.numbers.size() && same; ++k) same = same_figure(want.numbers[k], printed[i].numbers[k]);

@@ -23,7 +23,7 @@ constexpr double rpm = 2 * 3.14159265358979323846 / 60;
 RunResult run_file(const std::string& relative, const std::vector<std::string>& outputs, const std::vector<std::string>& settings = {}) {
   SceneSpec scene = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/" + relative);
   scene.outputs.clear();
-  for (const std::string& o : outputs) scene.outputs.push_back(PortRef{o.substr(0, o.find('.')), o.substr(o.find('.') + 1)});
+  for (const std::string& o : outputs) scene.outputs.push_back(port_ref(o));
   std::vector<Override> overrides;
   for (const std::string& s : settings) overrides.push_back(parse_override(s));
   MemoCache cache;

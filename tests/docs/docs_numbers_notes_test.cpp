@@ -129,3 +129,39 @@ TEST_CASE("docs: reports.md, the valve event quote is the valve-train study's", 
   check_quote("opens, deg ATDC", q[0], std::stod(said[0]));
   check_quote("closes, deg ABDC", q[1], std::stod(said[1]));
 }
+
+TEST_CASE("docs: bench.md, the tolerance listing and the integrators' floor on the elastic drive", "[docs][bench]") {
+  const CommandResult r = run_cli("--plugin-dir '" + std::string(MECHGRAPH_PLUGIN_DIR) + "' -q bench '" + std::string(MECHGRAPH_SOURCE_DIR) +
+                                  "/scenes/valvetrain_dynamics.yaml' --node elastic --tol 1e-5");
+  INFO(r.err);
+  REQUIRE(r.exit_code == 0);
+  // The times, the Pareto marks they set and the advice (the cheapest setting) are measurements:
+  // masked on both sides; the settings, errors, worst outputs, work and the reference are results.
+  auto without_times = [](const std::string& text) {
+    std::string kept;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("  ->", 0) == 0) continue;
+      kept += std::regex_replace(line, std::regex("^(\\s+[0-9.e+-]+\\s+)(\\*?)P?(\\s+)[0-9.e+-]+"), "$1$2$3time") + "\n";
+    }
+    return kept;
+  };
+  const std::vector<std::string> problems =
+      block_mismatches(without_times(fenced_block("docs/bench.md", "elastic (valvetrain.dynamics) knob tolerance")), without_times(r.out));
+  std::string all;
+  for (const std::string& p : problems) all += p + "\n";
+  INFO("docs/bench.md's tolerance listing, lines the tool no longer prints so (times masked):\n" << all);
+  CHECK(problems.empty());
+
+  const auto q = quoted(doc_text("docs/bench.md"), "moves the `cvode` reference by " + n + " \\(most in `residual_amplitude`\\): `cvode` itself then reads \"< " + n +
+                                                       "\", `dopri5` " + n);
+  const CommandResult all_knobs = run_cli("--plugin-dir '" + std::string(MECHGRAPH_PLUGIN_DIR) + "' -q bench '" + std::string(MECHGRAPH_SOURCE_DIR) +
+                                          "/scenes/valvetrain_dynamics.yaml' --node elastic");
+  REQUIRE(all_knobs.exit_code == 0);
+  const auto floor = quoted(all_knobs.out, "knob integrator\\s+reference: integrator = cvode;[^\\n]*moves it by " + n + " in all \\(most in elastic\\.residual_amplitude\\)");
+  check_quote("the integrator reference's floor", q[0], std::stod(floor[0]));
+  const auto cvode = quoted(all_knobs.out, "\\n  cvode +\\*?P? +[0-9.e+-]+ +< " + n + " ");
+  check_quote("cvode's error, below the floor", q[1], std::stod(cvode[0]));
+  const auto dopri5 = quoted(all_knobs.out, "\\n  dopri5 +\\*?P? +[0-9.e+-]+ +" + n + " ");
+  check_quote("dopri5's error", q[2], std::stod(dopri5[0]));
+}

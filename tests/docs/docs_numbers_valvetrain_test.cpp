@@ -155,7 +155,7 @@ TEST_CASE("docs: valvetrain.md, the measured-table example scene (5.86 for 17.25
   scene.outputs.clear();
   for (const char* o : {"raw.min_curvature_radius", "design.min_curvature_radius", "smoothed.min_curvature_radius",
                         "gcv.min_curvature_radius", "smoothed.master_deviation_rms", "smoothed.master_deviation_max"})
-    scene.outputs.push_back(PortRef{std::string(o).substr(0, std::string(o).find('.')), std::string(o).substr(std::string(o).find('.') + 1)});
+    scene.outputs.push_back(port_ref(o));
   MemoCache cache;
   const RunResult r = evaluate(build_graph(scene, project_registry()), cache);
   const double raw = scalar_output(r, "raw.min_curvature_radius") / 1e-3, design = scalar_output(r, "design.min_curvature_radius") / 1e-3;
