@@ -51,11 +51,12 @@ std::string prose_text(const std::string& relative) {
   return std::regex_replace(text, std::regex(" +"), " ");
 }
 
-// A number followed by a unit, as the notes print results: "4.63 mm", "17 %", "3.5e15" is not one
-// (no unit) and is listed by hand where it is a result. The character before the number must not
-// belong to a word, a number, an exponent or a ratio.
+// A number or a range followed by a unit, as the notes print results: "4.63 mm", "17 %",
+// "0.4-1.6 %"; "3.5e15" is not one (no unit): such numbers are recomputed where they are results
+// without being counted here. The character before the number must not belong to a word, a number,
+// an exponent or a ratio.
 const std::regex number_with_unit(
-    "(^|[^A-Za-z0-9_.^/-])([-+]?[0-9]+(?:\\.[0-9]+)?(?:e[-+]?[0-9]+)?) ?"
+    "(^|[^A-Za-z0-9_.^/-])([-+]?[0-9]+(?:\\.[0-9]+)?(?:e[-+]?[0-9]+)?)(?:-[0-9]+(?:\\.[0-9]+)?(?:e[-+]?[0-9]+)?)? ?"
     "(mm\\^2\\*deg|mm\\^2\\*s|mm/deg\\^2|N/mm|kN/mm|m/s\\^2|m/s|MPa|GPa|mm|um|deg|rad|rpm|ms|us|s|%|arcmin|Hz|N|ppm|MiB|KiB|GiB|MB|m)"
     "(?![A-Za-z0-9_/^*])");
 
