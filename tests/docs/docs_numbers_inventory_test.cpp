@@ -110,3 +110,53 @@ TEST_CASE("docs: every number with a unit in docs/ and the README's prose is rec
                         << ", bounds " << counted[Kind::checked_bound] << ", formula symbols " << counted[Kind::formula]);
   CHECK(found > 0);
 }
+
+TEST_CASE("docs: every output listing (a fenced block without a language) is compared with the tool or exempt", "[docs][inventory]") {
+  // The first line of each such block, and what holds it to the tool (a test case of tests/docs
+  // that compares it line by line) or why it holds no result. A new listing fails here until it
+  // is one or the other; blocks with a language are commands (sh), scenes (yaml), code (cpp,
+  // cmake) or Python that python/tests/test_snippets.py runs.
+  const std::vector<std::pair<std::string, std::string>> known = {
+      {"Three cams of equal tappet lift", "docs: README's valve-train study listing is what run-study.sh and run print"},
+      {"Kurz cam, spring for 5600 rpm", "docs: README's valve dynamics listing is what run prints"},
+      {"Free play of each hinge along the rod", "docs: README's backlash listing and provenance excerpt are what run prints"},
+      {"v.opening_angle [deg]: n 128", "docs: README's uncertainty study listing is what study prints"},
+      {"One lift law, two followers", "docs: README's contour listing, its note and the events CSV are what run writes"},
+      {"flat: contour: the cam turns", "docs: README's contour listing, its note and the events CSV are what run writes"},
+      {"checking_lift [mm],opening [deg]", "docs: README's contour listing, its note and the events CSV are what run writes"},
+      {"v_kurz: intake: opens", "docs: README's valve-train study listing is what run-study.sh and run print"},
+      {"\"provenance\": {", "docs: README's backlash listing and provenance excerpt are what run prints"},
+      {"Roller finger follower", "docs: README's finger-follower listing is what run prints"},
+      {"elastic (valvetrain.dynamics) knob tolerance", "docs: bench.md, the tolerance listing and the integrators' floor on the elastic drive"},
+      {"sdk/include/mechgraph/", ""},               // README: the source tree's layout
+      {"bench/peers/run.sh [--quick]", ""},          // peers.md: a usage synopsis
+      {"mechgraph sweep SCENE (--vary", ""},         // sweeps.md: a usage synopsis
+      {"plugin '.../mechgraph_foreign.so'", ""},     // writing-plugins.md: an error message's wording
+      {"fixed part -> hinge 1", ""},                 // backlash.md: the chain as a diagram
+  };
+  const std::string sources = all_doc_test_sources();
+  for (const auto& [first, test] : known)
+    if (!test.empty()) {
+      INFO("the listing \"" << first << "\" is said to be compared by a test case that does not exist: " << test);
+      CHECK(sources.find("TEST_CASE(\"" + test + "\"") != std::string::npos);
+    }
+  for (const char* document : documents) {
+    std::istringstream in(doc_file(document));
+    bool fenced = false, first = false;
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("```", 0) == 0) {
+        fenced = !fenced;
+        first = fenced && line == "```";
+        continue;
+      }
+      if (!first) continue;
+      first = false;
+      bool listed = false;
+      for (const auto& k : known) listed = listed || line.rfind(k.first, 0) == 0;
+      INFO(document << ": an output listing that no test compares with the tool (add its check to tests/docs and its first "
+                       "line to this list): "
+                    << line);
+      CHECK(listed);
+    }
+  }
+}
