@@ -165,3 +165,29 @@ TEST_CASE("docs: bench.md, the tolerance listing and the integrators' floor on t
   const auto dopri5 = quoted(all_knobs.out, "\\n  dopri5 +\\*?P? +[0-9.e+-]+ +" + n + " ");
   check_quote("dopri5's error", q[2], std::stod(dopri5[0]));
 }
+
+TEST_CASE("docs: scenes.md, a lift table of 65000 rows is refused by the memory budget, naming its rows", "[docs][scenes]") {
+  // "So a table of 65000 rows, 0.9 MB, rounded to 1 um, is refused by the memory budget, naming
+  // `t.file (about 65013 rows, smoothing none)`": a cycloidal lift of 8 mm over 130 deg every
+  // 0.002 deg (5 rows of base circle each side), as tests/hostile/hostile_bounds_test.cpp writes it.
+  const auto q = quoted(doc_text("docs/scenes.md"), "So a table of ([0-9]+) rows, " + n + " MB, rounded to 1 um, is refused by the memory budget, "
+                                                   "naming `t\\.file \\(about ([0-9]+) rows, smoothing none\\)`");
+  const long rows = std::stol(q[0]);
+  std::string text = "angle,lift\n";
+  char row[64];
+  for (long i = -5; i <= rows + 5; ++i) {
+    const double a = static_cast<double>(i) * 130.0 / static_cast<double>(rows), x = std::min(a, 130.0 - a) / 130.0;
+    const double h = a <= 0.0 || a >= 130.0 ? 0.0 : 8.0 * (x - std::sin(2.0 * pi * x) / (2.0 * pi));
+    std::snprintf(row, sizeof row, "%.4f,%.3f\n", a, h);
+    text += row;
+  }
+  check_quote("the file's size, MB", q[1], static_cast<double>(text.size()) / 1e6);
+  const TempFile table("docs_fine_table.csv", text);
+  const TempFile scene("docs_fine_table.yaml", "nodes:\n  t: { type: cam.table, params: { file: '" + table.path() +
+                                                   "', angle_origin: start_of_lift, base_radius: 35 mm } }\noutputs: [ t.max_lift ]\n");
+  const CommandResult r = run_cli("--plugin-dir '" + std::string(MECHGRAPH_PLUGIN_DIR) + "' run '" + scene.path() + "'");
+  INFO(r.err);
+  CHECK(r.exit_code == 2);
+  CHECK(r.err.find("--max-memory") != std::string::npos);
+  CHECK(r.err.find("t.file (about " + q[2] + " rows, smoothing none)") != std::string::npos);
+}
