@@ -3,7 +3,8 @@
 // are noise) and smoothed (curvature, acceleration, event and residual against the exact law's
 // closed forms); GCV against the lambda that is best in hindsight; the resolution read from the
 // file; the deviation from a connected master law; hard tables (six rows, a step, rows closer
-// than the resolution); the example scene through the CLI.
+// than the resolution); the example scene through the CLI. (What docs/methods/valvetrain.md quotes
+// of these tables is recomputed in tests/docs/docs_numbers_valvetrain_test.cpp.)
 #include "cam_conformance_cases.hpp"
 #include "cam_test_support.hpp"
 #include "registration.hpp"
@@ -345,33 +346,4 @@ TEST_CASE("the measured-table scene through the CLI: raw, smoothed and GCV again
   CHECK_THAT(value("smoothed.residual_rms"), WithinRel(1e-6 / std::sqrt(12.0), 0.02));
   CHECK(value("raw.max_jerk") > 5 * value("smoothed.max_jerk"));
   CHECK_THAT(value("smoothed.max_jerk"), WithinRel(value("gcv.max_jerk"), 0.05));
-}
-
-TEST_CASE("docs: the measured-table paragraph of valvetrain.md quotes what the tool computes", "[cams][table][smoothing][docs]") {
-  // docs/methods/valvetrain.md, "Measured lift tables": the quartic sampled every 2 deg and rounded
-  // to 1 um; the raw interpolant's smallest flat-follower radius, its peak acceleration's excess and
-  // its jerk against the law's. The numbers are read from the doc and recomputed here (it quoted
-  // 4.72 mm where the tool gives 4.63 mm).
-  std::ifstream in(std::string(MECHGRAPH_SOURCE_DIR) + "/docs/methods/valvetrain.md");
-  REQUIRE(in);
-  std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  for (char& c : doc)
-    if (c == '\n') c = ' ';
-  std::smatch m;
-  REQUIRE(std::regex_search(doc, m,
-                            std::regex("r0 \\+ h \\+ h''` comes out ([0-9.]+) mm instead of ([0-9.]+) +\\(r0 = 24.5 mm\\), its peak "
-                                       "acceleration ([0-9]+) % high and its jerk ([a-z]+) times the law's")));
-  const Quartic exact;
-  const TempFile file("quartic_doc.csv", measured_csv(exact, 2.0 * deg, 3));
-  const Evaluation raw = evaluate_node(table_type(), {{"file", file.path()}, {"base_radius", "24.5 mm"}});
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2f", scalar(raw, "min_curvature_radius") / mm);
-  CHECK(m[1].str() == text);
-  std::snprintf(text, sizeof text, "%.2f", exact.min_curvature_radius() / mm);
-  CHECK(m[2].str() == text);
-  CHECK(std::stoi(m[3].str()) == static_cast<int>(std::lround(100.0 * (scalar(raw, "max_acceleration") / exact.peak_acceleration() - 1.0))));
-  const char* words[] = {"", "", "two", "three", "four", "five", "six"};
-  const long times = std::lround(scalar(raw, "max_jerk") / exact.peak_jerk());
-  REQUIRE(times < 7);
-  CHECK(m[4].str() == words[times]);
 }
