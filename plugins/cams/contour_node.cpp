@@ -240,7 +240,7 @@ class ContourNodeType final : public NodeType {
                           "it. Default under a roller (rolling, translating or pivoted): 1648 MPa, the surface fatigue "
                           "strength of induction-hardened steel on steel at 1e8 cycles, no design factor (Shigley's "
                           "Mechanical Engineering Design, 9th ed., p. 329); under a flat face (sliding, translating or pivoted): 1200 MPa, "
-                          "an assumption for hardened steel with no published table behind it. Set the value for your "
+                          "an assumed value for hardened steel, no published table value found. Set the value for your "
                           "materials, heat treatment and life (docs/methods/valvetrain.md)",
                           "MPa")
             .optional()
