@@ -239,9 +239,10 @@ class ContourNodeType final : public NodeType {
                           "largest Hertz contact pressure the materials accept; a note when max_contact_stress exceeds "
                           "it. Default under a roller (rolling, translating or pivoted): 1648 MPa, the surface fatigue "
                           "strength of induction-hardened steel on steel at 1e8 cycles, no design factor (Shigley's "
-                          "Mechanical Engineering Design, 9th ed., p. 329); under a flat face (sliding, translating or pivoted): 1200 MPa, "
-                          "an assumed value for hardened steel, no published table value found. Set the value for your "
-                          "materials, heat treatment and life (docs/methods/valvetrain.md)",
+                          "Mechanical Engineering Design, 9th ed., p. 329); under a flat face (sliding, translating "
+                          "or pivoted): 1200 MPa, an assumed value for hardened steel, no published table value "
+                          "found. Set the value for your materials, heat treatment and life "
+                          "(docs/methods/valvetrain.md)",
                           "MPa")
             .optional()
             .positive()
@@ -438,7 +439,9 @@ class ContourNodeType final : public NodeType {
     }
     if (load.given()) {
       const bool own_limit = p.has("contact_stress_limit");
-      const double limit = own_limit ? p.number("contact_stress_limit") : roller ? kRollingStressLimitDefault : kSlidingStressLimitDefault;
+      const double limit = own_limit ? p.number("contact_stress_limit")
+                           : roller  ? kRollingStressLimitDefault
+                                     : kSlidingStressLimitDefault;
       if (peaks[1].value > limit) {
         std::ostringstream m;
         m << "contact stress: " << peaks[1].value * 1e-6 << " MPa at cam angle " << peaks[1].x * 180.0 / pi << " deg exceeds ";
