@@ -359,8 +359,8 @@ TEST_CASE("contour: the default contact stress limit is the cited value for each
     auto run = [&](double load_n) {
       char load[120];
       std::snprintf(load, sizeof load, " load: %.17g N, contact_length: 10 mm } }\n", load_n);
-      const std::string params_open = c.contour.back() == '{' ? "" : ",";
-      return run_yaml("nodes:\n" + cam + c.followers + "  cut: { type: cam.contour, " + c.contour + params_open + load +
+      const std::string separator = c.contour.back() == '{' ? "" : ",";
+      return run_yaml("nodes:\n" + cam + c.followers + "  cut: { type: cam.contour, " + c.contour + separator + load +
                           "outputs: [cut.max_contact_stress]\n",
                       project_registry());
     };
