@@ -327,3 +327,51 @@ TEST_CASE("contour: pressure angle and contact stress limits, and the constant l
   CHECK_FALSE(any_note(notes_of(own, "roll"), "pressure angle:"));
   CHECK(any_note(notes_of(own, "roll"), "exceeds contact_stress_limit"));
 }
+
+TEST_CASE("contour: the default contact stress limit is the cited value for each follower type", "[cams][contour]") {
+  // docs/methods/valvetrain.md, "Where the defaults come from": under a roller (rolling) 1648 MPa,
+  // induction-hardened steel on steel at 1e8 cycles (Shigley, 9th ed., p. 329); under a flat face
+  // (sliding) 1200 MPa, an assumption. The peak stress goes as sqrt(load): the load is set to put it
+  // 0.1 % below and 0.1 % above the value, and the note must come only above, naming the value.
+  using mechgraph::testing::project_registry;
+  using mechgraph::testing::run_yaml;
+  using mechgraph::testing::scalar_output;
+  struct Case {
+    const char* name;
+    std::string followers;  // follower nodes, if any
+    std::string contour;    // the contour node's inputs and params (before the load)
+    double limit;
+    const char* words;
+  };
+  const std::string cam = "  cam: { type: cam.harmonic, params: { max_lift: 8 mm, action_angle: 140 deg, base_radius: 30 mm } }\n";
+  const Case cases[] = {
+      {"translating flat", "", "inputs: { cam: cam.law }, params: { follower: flat", 1200e6, "the default for a flat face (sliding), 1200 MPa"},
+      {"translating roller", "", "inputs: { cam: cam.law }, params: { follower: roller, roller_radius: 8 mm", 1648e6,
+       "the default for a roller (rolling), 1648 MPa"},
+      {"pivoted flat", "  finger: { type: follower.pivoted_flat, params: { pivot_x: -60 mm, pivot_y: 50 mm, face_offset: 2 mm } }\n",
+       "inputs: { cam: cam.law, follower: finger.follower }, params: {", 1200e6, "the default for a flat face (sliding), 1200 MPa"},
+      {"pivoted roller",
+       "  rocker: { type: follower.pivoted_roller, params: { pivot_x: -45 mm, pivot_y: 40 mm, arm_length: 40 mm, roller_radius: 8 mm } }\n",
+       "inputs: { cam: cam.law, follower: rocker.follower }, params: {", 1648e6, "the default for a roller (rolling), 1648 MPa"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.name);
+    auto run = [&](double load_n) {
+      char load[120];
+      std::snprintf(load, sizeof load, " load: %.17g N, contact_length: 10 mm } }\n", load_n);
+      const std::string separator = c.contour.back() == '{' ? "" : ",";
+      return run_yaml("nodes:\n" + cam + c.followers + "  cut: { type: cam.contour, " + c.contour + separator + load +
+                          "outputs: [cut.max_contact_stress]\n",
+                      project_registry());
+    };
+    const double probe_load = 1000.0;
+    const double probe_stress = scalar_output(run(probe_load), "cut.max_contact_stress");
+    REQUIRE(probe_stress > 0.0);
+    const double load_at_limit = probe_load * (c.limit / probe_stress) * (c.limit / probe_stress);
+    const mechgraph::RunResult below = run(load_at_limit * 0.999 * 0.999);
+    const mechgraph::RunResult above = run(load_at_limit * 1.001 * 1.001);
+    CHECK_THAT(scalar_output(below, "cut.max_contact_stress"), Catch::Matchers::WithinRel(0.999 * c.limit, 1e-6));
+    CHECK_FALSE(any_note(notes_of(below, "cut"), " MPa at cam angle "));  // the stress note, not the pressure angle's
+    CHECK(any_note(notes_of(above, "cut"), c.words));
+  }
+}
