@@ -208,7 +208,7 @@ static_assert(offsetof(mg_node_type, struct_size) == 0);
 static_assert(offsetof(mg_node_type, desc) == 8);
 static_assert(offsetof(mg_node_type, impl) == 16);
 static_assert(offsetof(mg_node_type, evaluate) == 24);
-static_assert(offsetof(mg_node_type, reserved_batch) == 32);
+static_assert(offsetof(mg_node_type, query) == 32);
 static_assert(sizeof(mg_object_vtbl) == 48);
 static_assert(offsetof(mg_object_vtbl, struct_size) == 0);
 static_assert(offsetof(mg_object_vtbl, retain) == 8);

@@ -13,6 +13,7 @@
  *   mg_param_decl up to field_count       mg_port_decl    up to flags
  *   mg_counter_decl up to name            mg_effect_decl  whole
  *   mg_plugin (plugin.h) up to node_types
+ *   mg_angle_frame, mg_note_decl, mg_presentation, mg_channel_decl (present.h): whole, as in 1.0
  */
 #ifndef MECHGRAPH_C_NODE_H
 #define MECHGRAPH_C_NODE_H
@@ -157,8 +158,12 @@ typedef struct mg_node_type {
   /* Pure and re-entrant; may run on many threads at once. Borrowed: args and everything they reach,
      for the call only. Returns MG_OK or a status (after fail() for MG_ERR_NODE). Must not throw. */
   mg_status (*evaluate)(const struct mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx);
-  /* NULL in 1.0: several cases in one call comes in a later minor. */
-  void* reserved_batch;
+  /* Optional (NULL: none). The node type's table of interface `name` at `version`, or NULL: how a
+     node type offers a capability that came after 1.0 (several cases in one call, its own work
+     forecast ...) without changing this struct, as mg_object_vtbl::query does for objects. The
+     same pointer for the same question; tables live until the process ends. SDK 1.0 defines no
+     node type interface, so a 1.0 host never calls it. */
+  const void* (*query)(const struct mg_node_type* self, const char* name, uint32_t version);
 } mg_node_type;
 
 MG_EXTERN_C_END
