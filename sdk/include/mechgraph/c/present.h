@@ -39,7 +39,7 @@ typedef struct mg_channel_decl {
   const char* label;        /* "valve lift"; NULL: the name with '_' as ' ' */
   const char* display_unit; /* NULL: SI or the scene's units */
   int32_t angle_frame;      /* index into mg_node_desc::frames, -1 none; for d/dphi: the angle counted */
-  int32_t derivative_order; /* MG_ROLE_DERIVATIVE_FAMILY: 0 the value, 1, 2, 3 ... */
+  int32_t derivative_order; /* MG_ROLE_DERIVATIVE_FAMILY: 0 the value, 1, 2, 3 ...; -1 none */
   uint32_t flags;           /* MG_CH_* */
   const mg_code* codes;
   size_t code_count;
