@@ -116,13 +116,14 @@ ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
   return s;
 }
 
-// The id of frame `index` of the type's `frames` (already read), "" for -1.
-std::string frame_id(std::int32_t index, const std::vector<AngleFrame>& frames, const std::string& what) {
-  if (index == -1) return {};
-  if (index < 0 || static_cast<std::size_t>(index) >= frames.size())
-    throw PluginError(what + " names angle frame " + std::to_string(index) + ", but the type declares " +
-                      std::to_string(frames.size()) + " (an index into mg_node_desc::frames, or -1)");
-  return frames[static_cast<std::size_t>(index)].id;
+// The id of the frame `ref` names (MG_FRAME(i) of the type's `frames`, already read), "" for
+// MG_NO_FRAME.
+std::string frame_id(std::int32_t ref, const std::vector<AngleFrame>& frames, const std::string& what) {
+  if (ref == MG_NO_FRAME) return {};
+  if (ref < 0 || static_cast<std::size_t>(ref) > frames.size())
+    throw PluginError(what + " names angle frame " + std::to_string(ref) + ", but the type declares " +
+                      std::to_string(frames.size()) + " (MG_FRAME(index into mg_node_desc::frames), or MG_NO_FRAME)");
+  return frames[static_cast<std::size_t>(ref) - 1].id;
 }
 
 ChannelDecl channel_decl(const mg_channel_decl& d, const std::vector<AngleFrame>& frames, const std::string& what_port) {
@@ -209,7 +210,7 @@ PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames,
   p.optional = (d.flags & MG_PORT_OPTIONAL) != 0;
   p.display_unit = text(MG_FIELD_OR(&d, mg_port_decl, display_unit, nullptr));
   p.label = text(MG_FIELD_OR(&d, mg_port_decl, label, nullptr));
-  p.angle_frame = frame_id(MG_FIELD_OR(&d, mg_port_decl, angle_frame, -1), frames, what);
+  p.angle_frame = frame_id(MG_FIELD_OR(&d, mg_port_decl, angle_frame, MG_NO_FRAME), frames, what);
   if (const mg_presentation* shown = MG_FIELD_OR(&d, mg_port_decl, presentation, nullptr)) p.presentation = presentation(*shown, frames, what);
   return p;
 }

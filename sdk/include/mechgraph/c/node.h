@@ -8,7 +8,8 @@
  *
  * Required prefixes. A host reads a description's fields up to these whatever the writer's
  * struct_size, and refuses a shorter struct; every field after them may be absent in a writer's
- * struct (an older 1.x) and then counts as its default (NULL, 0, -1 for a frame index):
+ * struct (an older 1.x) and then counts as its default (NULL, 0; MG_NO_FRAME for a frame). A
+ * zeroed field means its default everywhere:
  *   mg_node_type  up to evaluate          mg_node_desc    up to output_count
  *   mg_param_decl up to field_count       mg_port_decl    up to flags
  *   mg_counter_decl up to name            mg_effect_decl  whole
@@ -78,7 +79,7 @@ typedef struct mg_param_decl {
   size_t field_count;
   const char* display_unit; /* "mm"; NULL: SI */
   const char* label;        /* NULL: the name with '_' as ' ' */
-  int32_t angle_frame;      /* index into mg_node_desc::frames, -1 none */
+  int32_t angle_frame;      /* MG_FRAME(i) of mg_node_desc::frames, MG_NO_FRAME (0) none */
 } mg_param_decl;
 
 #define MG_PORT_MULTIPLE 0x1u /* an input that takes a list of connections */
@@ -95,7 +96,7 @@ typedef struct mg_port_decl {
   uint32_t flags;             /* MG_PORT_* */
   const char* display_unit;
   const char* label;
-  int32_t angle_frame;                          /* -1 none */
+  int32_t angle_frame;                          /* MG_FRAME(i), MG_NO_FRAME (0) none */
   const struct mg_presentation* presentation;   /* tables and series; NULL: plain */
 } mg_port_decl;
 

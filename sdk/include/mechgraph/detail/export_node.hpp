@@ -124,13 +124,14 @@ class NodeTypeExport {
   static std::int32_t c_param_kind(ParamKind k) { return static_cast<std::int32_t>(k) + 1; }  // MG_PARAM_* order
   static const char* optional_text(const std::string& s) { return s.empty() ? nullptr : s.c_str(); }
 
-  // The index of frame `id` in NodeInfo::frames, -1 for none; an id the type does not declare
-  // refuses the plugin at its entry (the conformance kit names it in the plugin's own tests).
+  // Frame `id` as C names it, MG_FRAME(its index in NodeInfo::frames), MG_NO_FRAME for none; an id
+  // the type does not declare refuses the plugin at its entry (the conformance kit names it in the
+  // plugin's own tests).
   std::int32_t frame_index(const std::string& id) const {
-    if (id.empty()) return -1;
+    if (id.empty()) return MG_NO_FRAME;
     const auto& frames = type_->info().frames;
     for (std::size_t i = 0; i < frames.size(); ++i)
-      if (frames[i].id == id) return static_cast<std::int32_t>(i);
+      if (frames[i].id == id) return MG_FRAME(i);
     throw std::invalid_argument("node type '" + type_->info().type + "' names angle frame '" + id + "', which it does not declare");
   }
   mg_channel_decl channel_decl(const ChannelDecl& c) {
@@ -228,7 +229,7 @@ class NodeTypeExport {
     d.fields = fields.data();
     d.field_count = fields.size();
     d.display_unit = p.display_unit.c_str();
-    d.angle_frame = -1;
+    d.angle_frame = MG_NO_FRAME;
     d.range_reason = p.range_reason.empty() ? nullptr : p.range_reason.c_str();
     return d;
   }
