@@ -53,9 +53,9 @@ elif [ -n "$tagged" ]; then
 else
   [ "$(git -C "$src" rev-parse --is-shallow-repository)" = false ] ||
     fail "a shallow clone without tag $tag: fetch the history (git fetch --unshallow --tags)"
-  ref=$(git -C "$src" log --diff-filter=A --format=%H -- sdk/ABI_REFERENCE | tail -n 1)
+  ref=$(git -C "$src" log -1 --format=%H -G'^commit:' -- sdk/ABI_REFERENCE)
   [ -n "$ref" ] || fail "sdk/ABI_REFERENCE is not committed, and there is no tag $tag"
-  how="the commit that added sdk/ABI_REFERENCE (no tag $tag in this clone)"
+  how="the commit that last changed the commit: line of sdk/ABI_REFERENCE (no tag $tag in this clone)"
 fi
 say "reference: $(git -C "$src" log -1 --format='%h %s' "$ref") ($how)"
 
