@@ -60,8 +60,13 @@ fi
 say "reference: $(git -C "$src" log -1 --format='%h %s' "$ref") ($how)"
 
 # 2. The reference's tree, built and installed (cached by commit).
-cache=${MECHGRAPH_SDK_REFERENCE_CACHE:-$build/sdk-reference}/${ref:0:12}
+cache_root=${MECHGRAPH_SDK_REFERENCE_CACHE:-$build/sdk-reference}
+cache=$cache_root/${ref:0:12}
 ref_src=$cache/src
+# One reference kept (a build is about 1 GB): the others go, unless a run names its own.
+if [ -z "${MECHGRAPH_SDK_REFERENCE:-}" ] && [ -d "$cache_root" ]; then
+  find "$cache_root" -mindepth 1 -maxdepth 1 -type d ! -name "${ref:0:12}" -exec rm -rf {} +
+fi
 prefix=$cache/prefix
 if [ ! -f "$cache/.unpacked" ]; then
   rm -rf "$cache"
