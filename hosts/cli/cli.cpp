@@ -1,5 +1,6 @@
 #include "cli.hpp"
 
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <mechgraph/errors.hpp>
@@ -86,9 +87,8 @@ std::string format_value(double si, Dimension dimension, const std::string& unit
   } else {
     shown = to_unit(si, dimension, unit);
   }
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.6g", shown);
-  return label.empty() ? std::string(buffer) : std::string(buffer) + " " + label;
+  const std::string number = shown_number(shown, si, noise_floor(dimension, 0.0));
+  return label.empty() ? number : number + " " + label;
 }
 
 }  // namespace mechgraph::cli

@@ -9,6 +9,7 @@
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/text_escape.hpp>
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
@@ -66,12 +67,12 @@ void print_short_table(std::ostream& os, const Table& t, const Presentation& pre
     head.push_back(terminal_text(c.name, TerminalLines::one) + (unit.empty() ? "" : " [" + terminal_text(unit, TerminalLines::one) + "]"));
     width.push_back(std::max<std::size_t>(head.back().size(), 12));
     const ChannelDecl* decl = presentation.find(c.name);
+    const double floor = noise_floor(c.dimension, table_largest(t, c.dimension));
     for (std::size_t j = 0; j < t.axis.values.size(); ++j) {
       const double shown = c.display_unit.empty() ? c.values[j] : to_unit(c.values[j], c.dimension, c.display_unit);
-      char cell[32];
-      std::snprintf(cell, sizeof cell, "%.6g", shown);
+      const std::string cell = shown_number(shown, c.values[j], floor);
       const std::string_view name = decl ? decl->code_name(c.values[j]) : std::string_view();
-      cells[j][k] = name.empty() ? std::string(cell) : std::string(cell) + " " + terminal_text(name, TerminalLines::one);
+      cells[j][k] = name.empty() ? cell : cell + " " + terminal_text(name, TerminalLines::one);
       width[k] = std::max(width[k], cells[j][k].size());
     }
   }

@@ -11,6 +11,7 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/text_escape.hpp>
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <spdlog/spdlog.h>
@@ -1112,9 +1113,8 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
         const ChannelDecl* decl = declared.channel(cols[k]->name);
         const std::string_view name = decl ? decl->code_name(cols[k]->values[i]) : std::string_view();
         const double v = unit[k].empty() ? cols[k]->values[i] : to_unit(cols[k]->values[i], cols[k]->dimension, unit[k]);
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%.6g", v);
-        row.push_back(name.empty() ? std::string(buffer) : std::string(name) + " (" + buffer + ")");
+        const std::string number = shown_number(v, cols[k]->values[i], noise_floor(cols[k]->dimension, table_largest(t, cols[k]->dimension)));
+        row.push_back(name.empty() ? number : std::string(name) + " (" + number + ")");
       }
       page_table.body.push_back(std::move(row));
     }

@@ -11,6 +11,7 @@
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <algorithm>
@@ -137,45 +138,22 @@ std::string unit_with_reference(const std::string& unit, const std::string& refe
   return unit + " (" + reference + ")";
 }
 
-std::string reader_unit(const Dimension& d) {
-  // A length and its derivatives over an angle, lengths, angles and areas the way a drawing gives
-  // them; everything else stays SI (N, m/s, Hz ...).
-  const Dimension per_angle[] = {dim::length / dim::angle, dim::length / dim::angle.pow(2), dim::length / dim::angle.pow(3)};
-  const char* per_angle_unit[] = {"mm/deg", "mm/deg^2", "mm/deg^3"};
-  for (std::size_t n = 0; n < 3; ++n)
-    if (d == per_angle[n]) return per_angle_unit[n];
-  if (d == dim::length) return "mm";
-  if (d == dim::angle) return "deg";
-  if (d == dim::area) return "mm^2";
-  if (d == dim::area * dim::angle) return "mm^2*deg";
-  if (d == dim::area * dim::time) return "mm^2*s";
-  return {};
-}
+
 
 std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report, const RunResult& result, const Graph& graph) {
-  const DisplayUnits& units = graph.display_units;
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header{"", "unit"};
   for (const std::string& c : report.columns) header.push_back(c);
   rows.push_back(std::move(header));
-  // A dimension is shown in one unit throughout the table: the scene's `units:`, else the unit of
-  // the first row of that dimension (its own or its port's), so 0.0085 mm/deg^2 and 0.0439 m/rad^2
-  // never stand one under the other.
-  std::vector<std::pair<Dimension, std::string>> chosen;
-  auto unit_of = [&](const OutputValue& o, const std::string& row_unit) {
-    const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
-    if (!row_unit.empty()) {
-      if (known == chosen.end()) chosen.emplace_back(o.dimension, row_unit);
-      return row_unit;
-    }
-    if (known != chosen.end()) return known->second;
-    std::string u = units.unit_for(o.dimension, o.display_unit);
-    if (u.empty()) u = reader_unit(o.dimension);
-    chosen.emplace_back(o.dimension, u);
-    return u;
-  };
+  const std::vector<std::string> row_units = report_row_units(report, result, graph);
+  std::size_t row_index = 0;
   for (const auto& row : report.rows) {
     std::vector<std::string> cells{row.label, row.unit};
+    // A row's cells are one quantity side by side: one of them at rounding level beside the others
+    // reads 0 (shown_number.hpp).
+    double largest = 0.0;
+    for (const auto& cell : row.cells)
+      if (cell) largest = std::max(largest, std::abs(report_cell_value(result, row, *cell)));
     for (const auto& cell : row.cells) {
       if (!cell) {
         cells.push_back("-");
@@ -183,18 +161,17 @@ std::vector<std::vector<std::string>> report_cells(const ResolvedReport& report,
       }
       const OutputValue& o = result.outputs[cell->output];
       const double value = report_cell_value(result, row, *cell);
-      const std::string unit = unit_of(o, row.unit);
+      const std::string& unit = row_units[row_index];
       if (cells[1] == row.unit && o.dimension.si_unit() != "1") {
         const PortSpec* spec = cell->output < graph.outputs.size() ? graph.outputs[cell->output].spec : nullptr;
         const NodeInfo* info = spec ? &graph.nodes[graph.outputs[cell->output].node].info() : nullptr;
         cells[1] = unit_with_reference(unit.empty() ? o.dimension.si_unit() : unit, info ? angle_reference(*info, *spec) : "");
       }
       const double shown = unit.empty() ? value : to_unit(value, o.dimension, unit);
-      char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%.6g", shown);
-      cells.push_back(buffer);
+      cells.push_back(shown_number(shown, value, noise_floor(o.dimension, largest)));
     }
     rows.push_back(std::move(cells));
+    ++row_index;
   }
   return rows;
 }

@@ -7,6 +7,8 @@
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
 
+#include "report_units.hpp"
+
 #include <filesystem>
 #include <ostream>
 #include <string>
@@ -25,9 +27,7 @@ std::string angle_reference(const NodeInfo& info, const PortSpec& port);
 /// `unit` with the angle named when it holds degrees: "mm^2*deg (shaft)".
 std::string unit_with_reference(const std::string& unit, const std::string& reference);
 
-/// The unit a report row without one shows a dimension in when the scene has no `units:` for it
-/// and the port no unit of its own: mm, deg, mm/deg^n, mm^2, mm^2*deg, mm^2*s; "" (SI) otherwise.
-std::string reader_unit(const Dimension& d);
+
 
 /// A report table as cells: the header row (label, unit, the columns), then a row per report row,
 /// values formatted with 6 significant digits in the row's unit; a row without one shows its

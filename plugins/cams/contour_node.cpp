@@ -7,7 +7,7 @@
 #include "contour.hpp"
 #include "registration.hpp"
 
-#include <followers/follower_types.hpp>
+#include <mechgraph/domain/translating_followers.hpp>
 
 #include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
@@ -509,7 +509,7 @@ class ContourNodeType final : public NodeType {
         throw NodeError("follower", "the law's lift is that of a roller of radius " + mm(law_roller) +
                                         " (its cam node's follower); cut it for that roller, or make the law for a flat face");
       if (p.has("roller_radius")) throw NodeError("roller_radius", "roller_radius is set but follower is flat");
-      return followers::make_flat();
+      return std::make_shared<const reference::TranslatingFlat>();
     }
     double rr = 0.0;
     if (p.has("roller_radius")) {
@@ -526,7 +526,7 @@ class ContourNodeType final : public NodeType {
     if (!(std::abs(offset) < law.base_radius() + rr))
       throw NodeError("offset", "|offset| " + mm(std::abs(offset)) + " must stay below base radius + roller radius " +
                                     mm(law.base_radius() + rr));
-    return followers::make_roller(rr, offset);
+    return std::make_shared<const reference::TranslatingRoller>(rr, offset);
   }
 
   // The worst follow margin of the pair over the turn (Follower::follow_margin: >= 0 undercut) for

@@ -25,7 +25,8 @@ class Quantity(NamedTuple):
     display_unit: str
 
     def __str__(self) -> str:
-        return f"{self.display_value:.6g} {self.display_unit}".rstrip()
+        # six significant digits; rounding noise (an angle below 1e-9 of a turn) reads 0
+        return f"{_core.shown_number(self.display_value, self.value, self.unit)} {self.display_unit}".rstrip()
 
 
 def _column_label(name: str, unit: str) -> str:
@@ -200,9 +201,10 @@ class Result:
     def report_tables(self):
         """The scene's report tables (``report:``) as pandas DataFrames, one per table: a row per
         report row (the index holds its label), a ``unit`` column, then one column of numbers per
-        report column (NaN for an empty cell). A row is in its own ``unit:``, else in the unit the
-        table shows that dimension in (the scene's ``units:``, else the first such row's port
-        unit), else SI. ``attrs["title"]`` is the table's title. Empty when the run asked for
+        report column (NaN for an empty cell). A row is in the unit the page and the terminal show
+        it in: its own ``unit:``, else the unit the table already shows that dimension in, else
+        the scene's ``units:`` or its port's unit, else the reader's unit (mm, deg, mm/deg^n,
+        mm^2, mm^2*deg, mm^2*s), else SI. ``attrs["title"]`` is the table's title. Empty when the run asked for
         other ``outputs=`` (the report is then not evaluated)."""
         import pandas as pd
 

@@ -22,6 +22,7 @@
 #include <mechgraph/display_units.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/shown_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <pybind11/numpy.h>
@@ -348,6 +349,11 @@ PYBIND11_MODULE(_core, m) {
     const UnitScale u = parse_unit(unit);
     return py::make_tuple(u.scale, u.offset, si_unit_label(u.dimension));
   });
+  m.def("shown_number", [](double shown, double si, const std::string& si_unit, double largest_si) {
+    // `shown` as a person reads it: 6 significant digits, rounding noise as 0 (shown_number.hpp)
+    const UnitScale u = parse_unit(si_unit.empty() ? std::string("1") : si_unit);
+    return shown_number(shown, si, noise_floor(u.dimension, largest_si));
+  }, py::arg("shown"), py::arg("si"), py::arg("si_unit"), py::arg("largest_si") = 0.0);
   m.def("to_unit", [](double si, const std::string& unit) {
     // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
     const UnitScale u = parse_unit(unit);

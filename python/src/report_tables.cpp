@@ -1,5 +1,7 @@
 #include "report_tables.hpp"
 
+#include <report_units.hpp>
+
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
 
@@ -11,10 +13,11 @@ std::vector<ReportTableValues> report_table_values(const Graph& graph, const Run
   std::vector<ReportTableValues> tables;
   for (const ResolvedReport& report : graph.reports) {
     ReportTableValues table{report.title, report.columns, {}};
-    std::vector<std::pair<Dimension, std::string>> chosen;  // one unit per dimension in a table
-    for (const ResolvedReport::Row& row : report.rows) {
-      ReportTableValues::Row out{row.label, row.unit, {}};
-      bool unit_known = false;
+    // The units of the terminal and the page: one rule (hosts/cli/result_files.hpp).
+    const std::vector<std::string> units = cli::report_row_units(report, result, graph);
+    for (std::size_t r = 0; r < report.rows.size(); ++r) {
+      const ResolvedReport::Row& row = report.rows[r];
+      ReportTableValues::Row out{row.label, units[r], {}};
       for (const auto& cell : row.cells) {
         if (!cell) {
           out.values.emplace_back();
@@ -22,16 +25,8 @@ std::vector<ReportTableValues> report_table_values(const Graph& graph, const Run
         }
         const OutputValue& o = result.outputs.at(cell->output);
         const double value = report_cell_value(result, row, *cell);
-        if (!unit_known) {
-          const auto known = std::find_if(chosen.begin(), chosen.end(), [&](const auto& c) { return c.first == o.dimension; });
-          if (!row.unit.empty()) out.unit = row.unit;
-          else if (known != chosen.end()) out.unit = known->second;
-          else out.unit = graph.display_units.unit_for(o.dimension, o.display_unit);
-          if (out.unit.empty() && !o.dimension.dimensionless()) out.unit = o.dimension.si_unit();
-          if (known == chosen.end()) chosen.emplace_back(o.dimension, out.unit);
-          unit_known = true;
-        }
-        out.values.push_back(out.unit.empty() ? value : to_unit(value, o.dimension, out.unit));
+        out.values.push_back(units[r].empty() ? value : to_unit(value, o.dimension, units[r]));
+        if (out.unit.empty() && !o.dimension.dimensionless()) out.unit = o.dimension.si_unit();  // SI, named
       }
       table.rows.push_back(std::move(out));
     }

@@ -242,3 +242,68 @@ def test_a_refused_value_names_the_node_and_parameter_it_reached(cams, sets):
     with pytest.raises(mechgraph.SceneError) as e:
         cams.run(set=sets, outputs=["kurz.max_lift"])
     assert (e.value.node, e.value.parameter) == ("kurz", next(iter(sets)).split(".")[1]), str(e.value)
+
+
+def test_a_scalar_at_rounding_level_shows_as_0_and_keeps_its_value():
+    # The midpoint of events at -65 and +65 deg of a symmetric polydyne lobe: rounding noise, shown 0
+    # (the same rule as the terminal and the report: core/include/mechgraph/shown_number.hpp).
+    scene = mechgraph.Scene.from_text(
+        "nodes:\n"
+        "  cam: { type: cam.polydyne, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 17 mm,"
+        " exponents: [2, 14, 26, 38, 50] } }\n"
+        "outputs: [ cam.events ]\n")
+    r = scene.run()
+    noise = float(r["cam.events"]["centreline"][0])
+    q = mechgraph.Quantity(noise, "rad", math.degrees(noise), "deg")
+    assert str(q) == "0 deg"
+    assert str(mechgraph.Quantity(0.92, "rad", math.degrees(0.92), "deg")) == "52.7121 deg"
+    assert str(mechgraph.Quantity(1.1e-11, "m", 1.1e-8, "mm")) == "1.1e-08 mm"   # a length alone keeps its digits
+
+
+UNITLESS_ROWS = """title: rows that name no unit, of ports that name none
+nodes:
+  kurz: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm } }
+  arc:  { type: cam.three_arc, params: { max_lift: 9 mm, action_angle: 120 deg, base_radius: 18 mm, nose_radius: 6 mm } }
+outputs: [ kurz.max_lift ]
+report:
+  columns: [ Kurz, three-arc ]
+  rows:
+    - [ greatest acceleration, [ kurz.max_acceleration, arc.max_acceleration ] ]
+    - [ least acceleration, [ kurz.min_acceleration, arc.min_acceleration ] ]
+    - [ lift, [ kurz.max_lift, arc.max_lift ] ]
+"""
+
+
+@pytest.mark.parametrize("name", ["valvetrain_cams", "valvetrain_dynamics", "polydyne_synthesis", "backlash_chain",
+                                  "unitless_rows"])
+def test_report_tables_show_the_units_and_numbers_of_the_page(name, scenes, cli, tmp_path):
+    # One rule of units for the page's tables and Python's (report_row_units): the same unit per
+    # row, the same numbers to the page's six digits. The last scene's rows name no unit and their
+    # ports none either: both show the reader's unit (mm/deg^2), not SI in one and mm/deg^2 in the other.
+    import csv
+    import subprocess
+
+    file = scenes / f"{name}.yaml"
+    if name == "unitless_rows":
+        file = tmp_path / "unitless_rows.yaml"
+        file.write_text(UNITLESS_ROWS, encoding="utf-8")
+    done = subprocess.run([str(cli), "-q", "report", str(file), "--out", str(tmp_path / "r")],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr
+    frames = mechgraph.Scene.load(file).run().report_tables()
+    if name == "unitless_rows":
+        assert list(frames[0]["unit"]) == ["mm/deg^2", "mm/deg^2", "mm"]
+    assert frames
+    for k, frame in enumerate(frames, start=1):
+        with open(tmp_path / "r" / f"table_{k}.csv", newline="", encoding="utf-8") as f:
+            rows = list(csv.reader(f))[1:]
+        assert len(rows) == len(frame)
+        for page_row, (label, py_row) in zip(rows, frame.iterrows()):
+            assert page_row[0] == label
+            # the page says which angle ("deg (cam)"); Python's unit stays one pint can read
+            assert page_row[1].split(" (")[0] == py_row["unit"], label
+            for text, value in zip(page_row[2:], py_row.iloc[1:]):
+                if text in ("", "-"):
+                    assert math.isnan(value)
+                else:
+                    assert math.isclose(float(text), value, rel_tol=5e-6, abs_tol=1e-9 * max(1.0, abs(value))), (label, text, value)

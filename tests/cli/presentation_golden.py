@@ -84,8 +84,8 @@ def page_words(page, out):
     for tag, inner in TAGS.findall(text):
         words = html.unescape(re.sub(r"<[^>]+>", " ", inner))
         words = " ".join(words.split())
-        if not re.search(r"[A-Za-z]", words):
-            continue  # tic labels and numeric cells
+        if not re.search(r"[A-Za-z]", masked(words)):
+            continue  # tic labels and numeric cells (1.5e-05 too: a number, not words)
         if tag == "p" and words.startswith("mechgraph "):
             continue  # version, SHA-1 and plugin versions
         out.append(masked("page %s: %s" % (tag, words)))

@@ -7,6 +7,7 @@
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <followers/follower_types.hpp>
 
 #include <catch2/catch.hpp>
 #include <dlfcn.h>
@@ -150,4 +151,71 @@ TEST_CASE("an exception thrown in a C++ node crosses the C boundary as an error 
   CHECK_THAT(message(0), Contains("node 't' (objsa.throws)") && Contains("not a std::exception"));
   CHECK_THAT(message(1), Contains("node 't' (objsa.throws)") && Contains("memory"));
   CHECK_THAT(message(2), Contains("node 't' (objsa.throws)") && Contains("a runtime_error from the plugin"));
+}
+
+TEST_CASE("followers cross: an SDK 1.x follower rides a pre-1.0 contour, a pre-1.0 follower is read by an SDK 1.x node",
+          "[plugins][sdk1][objects][follower]") {
+  const RunResult run = run_yaml(R"(nodes:
+  kurz: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 20 mm } }
+  theirs: { type: objsa.follower, params: { roller_radius: 8 mm, offset: 3 mm } }
+  ours: { type: follower.offset_roller, params: { roller_radius: 8 mm, offset: 3 mm } }
+  c_theirs: { type: cam.contour, inputs: { cam: kurz.law, follower: theirs.follower } }
+  c_ours: { type: cam.contour, inputs: { cam: kurz.law, follower: ours.follower } }
+  arm: { type: follower.pivoted_roller, params: { pivot_x: -35 mm, pivot_y: 30 mm, arm_length: 35 mm, roller_radius: 10 mm } }
+  read_arm: { type: objsb.read_follower, inputs: { follower: arm.follower } }
+  read_home: { type: objsa.read_follower, inputs: { follower: theirs.follower } }
+  read_away: { type: objsb.read_follower, inputs: { follower: theirs.follower } }
+  read_ours: { type: objsb.read_follower, inputs: { follower: ours.follower } }
+outputs: [ c_theirs.max_pressure_angle, c_ours.max_pressure_angle, c_theirs.undercut_margin, c_ours.undercut_margin,
+           read_arm.x, read_arm.y, read_arm.pressure_angle, read_arm.curvature_radius, read_arm.follower_angle,
+           read_arm.cam_lever, read_arm.roller_radius, read_arm.pivoted, read_arm.type_name_length, read_arm.native,
+           read_home.native, read_away.native, read_away.x, read_away.curvature_radius, read_ours.x, read_ours.curvature_radius ]
+)",
+                                 objects_registry());
+  // The contour through the C table computes what it computes with the built-in follower: the same
+  // mathematics (the SDK's reference roller) on either side of the boundary.
+  CHECK(scalar_output(run, "c_theirs.max_pressure_angle") ==
+        Approx(scalar_output(run, "c_ours.max_pressure_angle")).epsilon(1e-13).margin(1e-16));
+  CHECK(scalar_output(run, "c_theirs.undercut_margin") ==
+        Approx(scalar_output(run, "c_ours.undercut_margin")).epsilon(1e-13).margin(1e-16));
+  // A pre-1.0 pivoted roller read through mechgraph.follower/1 by an SDK 1.x plugin: every field of
+  // the contact and the fixed figures, against the follower's own C++ answer.
+  const auto arm = followers::make_pivoted_roller(-0.035, 0.030, 0.035, 0.010);
+  const FollowerContact c = arm->contact(0.3, {0.002, 0.005, -0.010, 0.0}, 0.02, false);
+  CHECK(scalar_output(run, "read_arm.x") == Approx(c.x).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_arm.y") == Approx(c.y).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_arm.pressure_angle") == Approx(c.pressure_angle).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_arm.curvature_radius") == Approx(c.curvature_radius).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_arm.follower_angle") == Approx(c.follower_angle).epsilon(1e-14).margin(1e-18));
+  CHECK(c.follower_angle != 0.0);
+  CHECK(scalar_output(run, "read_arm.cam_lever") == Approx(arm->cam_lever(0.02)).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_arm.roller_radius") == 0.010);
+  CHECK(scalar_output(run, "read_arm.pivoted") == 1.0);
+  CHECK(scalar_output(run, "read_arm.type_name_length") == static_cast<double>(std::string("follower.pivoted_roller").size()));
+  CHECK(scalar_output(run, "read_arm.native") == 0.0);
+  // Home again it is its maker's own object; in the other plugin a view that computes the same.
+  CHECK(scalar_output(run, "read_home.native") == 1.0);
+  CHECK(scalar_output(run, "read_away.native") == 0.0);
+  CHECK(scalar_output(run, "read_away.x") == Approx(scalar_output(run, "read_ours.x")).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_away.curvature_radius") ==
+        Approx(scalar_output(run, "read_ours.curvature_radius")).epsilon(1e-14).margin(1e-18));
+}
+
+TEST_CASE("a follower that cannot sit on the base circle says so across the boundary, naming its parameter",
+          "[plugins][sdk1][objects][follower]") {
+  std::string message;
+  try {
+    run_yaml(R"(nodes:
+  kurz: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 20 mm } }
+  theirs: { type: objsa.follower, params: { roller_radius: 8 mm, offset: 30 mm } }
+  contour: { type: cam.contour, inputs: { cam: kurz.law, follower: theirs.follower } }
+outputs: [ contour.max_pressure_angle ]
+)",
+             objects_registry());
+  } catch (const std::exception& e) {
+    message = e.what();
+  }
+  // Thrown in objsa as NodeError("offset"), carried as MG_ERR_NODE with the parameter, thrown again
+  // in the cams plugin and named with the node by the evaluator.
+  CHECK_THAT(message, Contains("contour") && Contains("offset") && Contains("below base radius + roller radius 28 mm"));
 }

@@ -4,6 +4,7 @@
 // table never changes (docs/design/sdk-1.0.md, rules 1-2). The numbers are LP64's (x86_64,
 // aarch64), the platform the SDK promises. A failure here is an ABI break: add a new struct or a
 // new version of the table instead.
+#include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/dimension.hpp>
@@ -75,6 +76,23 @@ static_assert(offsetof(mg_valve_motion_v1, knots) == 40);
 static_assert(offsetof(mg_valve_motion_v1, rocker_ratio) == 48);
 static_assert(offsetof(mg_valve_motion_v1, lash) == 56);
 static_assert(offsetof(mg_valve_motion_v1, cam) == 64);
+static_assert(sizeof(mg_follower_contact) == 64);
+static_assert(offsetof(mg_follower_contact, x) == 0);
+static_assert(offsetof(mg_follower_contact, y) == 8);
+static_assert(offsetof(mg_follower_contact, pitch_x) == 16);
+static_assert(offsetof(mg_follower_contact, pitch_y) == 24);
+static_assert(offsetof(mg_follower_contact, pressure_angle) == 32);
+static_assert(offsetof(mg_follower_contact, curvature_radius) == 40);
+static_assert(offsetof(mg_follower_contact, face_position) == 48);
+static_assert(offsetof(mg_follower_contact, follower_angle) == 56);
+static_assert(sizeof(mg_follower_v1) == 56);
+static_assert(offsetof(mg_follower_v1, struct_size) == 0);
+static_assert(offsetof(mg_follower_v1, type_name) == 8);
+static_assert(offsetof(mg_follower_v1, describe) == 16);
+static_assert(offsetof(mg_follower_v1, roller_radius) == 24);
+static_assert(offsetof(mg_follower_v1, pivoted) == 32);
+static_assert(offsetof(mg_follower_v1, cam_lever) == 40);
+static_assert(offsetof(mg_follower_v1, contact) == 48);
 static_assert(sizeof(mg_tolerance_link) == 40);
 static_assert(offsetof(mg_tolerance_link, label) == 0);
 static_assert(offsetof(mg_tolerance_link, mean) == 8);

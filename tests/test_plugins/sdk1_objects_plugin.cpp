@@ -6,9 +6,12 @@
 //   <id>.motion       a ValveMotion over a cam law (valve lift = ratio * cam lift)
 //   <id>.read_motion  reads a valve motion and its cam at 0.3 rad; `native`, `cam_native` as above
 //   <id>.play         a JointPlay (plain data): one term of two links
+//   <id>.follower     a Follower made here: the SDK's reference translating roller (roller_radius, offset)
+//   <id>.read_follower reads a follower's contact at 0.3 rad over a given lift; `native` as above
 //   <id>.throws       throws what `what` says (0: an int, 1: std::bad_alloc, 2: std::runtime_error)
 // objects_live() (exported, for the test) counts this plugin's laws and motions alive.
 #include <mechgraph/domain/tolerance.hpp>
+#include <mechgraph/domain/translating_followers.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 #include <mechgraph/plugin_sdk1.hpp>
 
@@ -183,6 +186,53 @@ class PlayNode final : public Node {
   }
 };
 
+class FollowerNode final : public Node {
+ public:
+  FollowerNode() {
+    info_.type = type_name("follower");
+    info_.summary = "a translating roller follower (the SDK's reference one)";
+    info_.params = {ParamSpec::number("roller_radius", dim::length, "roller radius").with_default(0.008).positive(),
+                    ParamSpec::number("offset", dim::length, "offset of the roller's line").with_default(0.0)};
+    info_.outputs = {PortSpec::handle("follower", std::string(Follower::kind_name), "the follower")};
+  }
+  void evaluate(const ParamSet& p, const InputSet&, OutputSet& out, EvalContext&) const override {
+    out.set("follower", Value::handle(std::make_shared<const reference::TranslatingRoller>(p.number("roller_radius"), p.number("offset"))));
+  }
+};
+
+class ReadFollower final : public Node {
+ public:
+  ReadFollower() {
+    info_.type = type_name("read_follower");
+    info_.summary = "reads a follower's contact at 0.3 rad over the lift h = 2 mm, h' = 5 mm/rad, h'' = -10 mm/rad^2";
+    info_.params = {ParamSpec::number("base_radius", dim::length, "base radius").with_default(0.02).positive()};
+    info_.inputs = {PortSpec::handle("follower", std::string(Follower::kind_name), "a follower")};
+    info_.outputs = {PortSpec::scalar("x", dim::length, "contact x"), PortSpec::scalar("y", dim::length, "contact y"),
+                     PortSpec::scalar("pressure_angle", dim::angle, "pressure angle"),
+                     PortSpec::scalar("curvature_radius", dim::length, "contour radius of curvature"),
+                     PortSpec::scalar("follower_angle", dim::angle, "arm's turn"),
+                     PortSpec::scalar("cam_lever", dim::length, "lever at the base radius"),
+                     PortSpec::scalar("roller_radius", dim::length, "roller radius"),
+                     PortSpec::scalar("pivoted", dim::none, "1: pivoted"),
+                     PortSpec::scalar("type_name_length", dim::none, "characters of its type name"),
+                     PortSpec::scalar("native", dim::none, "1: this plugin's own follower")};
+  }
+  void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext&) const override {
+    const auto f = in.handle<Follower>("follower");
+    const FollowerContact c = f->contact(0.3, {0.002, 0.005, -0.010, 0.0}, p.number("base_radius"), false);
+    out.set_scalar("x", c.x);
+    out.set_scalar("y", c.y);
+    out.set_scalar("pressure_angle", c.pressure_angle);
+    out.set_scalar("curvature_radius", c.curvature_radius);
+    out.set_scalar("follower_angle", c.follower_angle);
+    out.set_scalar("cam_lever", f->cam_lever(p.number("base_radius")));
+    out.set_scalar("roller_radius", f->roller_radius());
+    out.set_scalar("pivoted", f->pivoted() ? 1.0 : 0.0);
+    out.set_scalar("type_name_length", static_cast<double>(f->type_name().size()));
+    out.set_scalar("native", dynamic_cast<const reference::TranslatingRoller*>(f.get()) ? 1.0 : 0.0);
+  }
+};
+
 class Throws final : public Node {
  public:
   Throws() {
@@ -202,7 +252,8 @@ class Throws final : public Node {
 
 NodeTypeList make_node_types() {
   return {std::make_shared<const LawNode>(), std::make_shared<const Relay>(), std::make_shared<const MotionNode>(),
-          std::make_shared<const ReadMotion>(), std::make_shared<const PlayNode>(), std::make_shared<const Throws>()};
+          std::make_shared<const ReadMotion>(), std::make_shared<const PlayNode>(), std::make_shared<const Throws>(),
+          std::make_shared<const FollowerNode>(), std::make_shared<const ReadFollower>()};
 }
 
 }  // namespace

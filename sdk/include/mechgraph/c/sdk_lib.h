@@ -7,6 +7,7 @@
 
 #include <mechgraph/c/base.h>
 #include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
@@ -46,7 +47,7 @@ MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg
                           const mg_object* object, const mg_cam_law_v1* cam_law,
                           const mg_cam_law_closed_form_v1* closed_form, const mg_cam_law_higher_v1* higher,
                           const mg_valve_motion_v1* valve_motion, const mg_joint_play_v1* joint_play,
-                          const mg_owner* owner);
+                          const mg_follower_v1* follower, const mg_owner* owner);
 
 MG_EXTERN_C_END
 

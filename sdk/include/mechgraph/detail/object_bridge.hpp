@@ -6,19 +6,24 @@
 //  - export_object: a C++ DomainObject as an mg_object (one allocation, an atomic reference count,
 //    the C++ object kept alive by a shared_ptr). A CamLaw answers mechgraph.cam_law/1 and the
 //    optional closed_form/1 and higher_derivatives/1 (a C++ `false`, "cannot say", is
-//    MG_ERR_UNSUPPORTED); a ValveMotion answers mechgraph.valve_motion/1; a JointPlay (plain data)
+//    MG_ERR_UNSUPPORTED); a ValveMotion answers mechgraph.valve_motion/1; a Follower answers
+//    mechgraph.follower/1 (a NodeError from contact() crosses as MG_ERR_NODE naming its parameter
+//    and comes back as the same NodeError); a JointPlay (plain data)
 //    answers mechgraph.joint_play/1 and is copied on import, not viewed. Any other kind crosses as
 //    an opaque object that answers only its private interface name. An object that is itself the
 //    view of a foreign mg_object is passed on as that original object (retained): no chain of
 //    wrappers ever forms.
 //  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
 //    its C++ object (no C hop); another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
-//    ForeignOpaque) that holds one reference and releases it when the last C++ holder lets go.
+//    ForeignFollower, ForeignOpaque) that holds one reference and releases it when the last C++ holder lets go.
 // Pure maths behind the tables never throws across: an exception there is MG_ERR_INTERNAL.
+#include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/domain/follower.hpp>
+#include <mechgraph/errors.hpp>
 #include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 
@@ -47,7 +52,8 @@ struct SdkInterface {
   std::uint32_t version;
 };
 inline constexpr SdkInterface sdk_interfaces[] = {
-    {CamLaw::kind_name, MG_CAM_LAW, 1}, {ValveMotion::kind_name, MG_VALVE_MOTION, 1}, {JointPlay::kind_name, MG_JOINT_PLAY, 1}};
+    {CamLaw::kind_name, MG_CAM_LAW, 1}, {ValveMotion::kind_name, MG_VALVE_MOTION, 1}, {JointPlay::kind_name, MG_JOINT_PLAY, 1},
+    {Follower::kind_name, MG_FOLLOWER, 1}};
 inline const SdkInterface* sdk_interface_of_kind(std::string_view kind) {
   for (const SdkInterface& i : sdk_interfaces)
     if (i.kind == kind) return &i;
@@ -73,7 +79,7 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignObject {
 struct MECHGRAPH_DETAIL_HIDDEN Exported : mg_object {
   mutable std::atomic<std::uint32_t> refs{1};
   std::shared_ptr<const DomainObject> self;
-  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*
+  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*, const Follower*
   std::string maker;              // the node type that made it
   std::string interface;          // an opaque object's private interface name
   const mg_object* cam = nullptr; // a valve motion's cam law, exported (one reference held)
@@ -240,6 +246,71 @@ inline const void* valve_query(const mg_object*, const char* name, uint32_t vers
   return version == 1 && name && std::strcmp(name, MG_VALVE_MOTION) == 0 ? &valve_motion_table : nullptr;
 }
 
+// --- mechgraph.follower/1 over a C++ Follower ------------------------------------------------
+inline const Follower& follower_of(const mg_object* o) { return *static_cast<const Follower*>(exported(o).primary); }
+inline void send_text(const mg_text_sink& sink, std::string_view text) {
+  if (sink.append) sink.append(sink.self, text.data(), text.size());
+}
+inline mg_text_sink string_sink(std::string* s) {
+  return {s, [](void* self, const char* text, size_t size) { static_cast<std::string*>(self)->append(text, size); }};
+}
+inline void follower_type_name(const mg_object* o, mg_text_sink out) {
+  try {
+    send_text(out, follower_of(o).type_name());
+  } catch (...) {
+  }
+}
+inline void follower_describe(const mg_object* o, mg_text_sink out) {
+  try {
+    send_text(out, follower_of(o).describe());
+  } catch (...) {
+  }
+}
+inline double follower_roller_radius(const mg_object* o) {
+  try {
+    return follower_of(o).roller_radius();
+  } catch (...) {
+    return nan_result;
+  }
+}
+inline int32_t follower_pivoted(const mg_object* o) {
+  try {
+    return follower_of(o).pivoted() ? 1 : 0;
+  } catch (...) {
+    return 0;
+  }
+}
+inline double follower_cam_lever(const mg_object* o, double base_radius) {
+  try {
+    return follower_of(o).cam_lever(base_radius);
+  } catch (...) {
+    return nan_result;
+  }
+}
+inline mg_status follower_contact(const mg_object* o, double phi, const mg_lift4* lift, double base_radius, int32_t clockwise,
+                                  mg_follower_contact* out, const mg_error* err) {
+  try {
+    const FollowerContact c =
+        follower_of(o).contact(phi, {lift->h, lift->dh, lift->d2h, lift->d3h}, base_radius, clockwise != 0);
+    *out = {c.x, c.y, c.pitch_x, c.pitch_y, c.pressure_angle, c.curvature_radius, c.face_position, c.follower_angle};
+    return MG_OK;
+  } catch (const NodeError& e) {
+    if (err && err->struct_size >= sizeof(mg_error)) {
+      send_text(err->parameter, e.parameter());
+      send_text(err->message, e.what());
+    }
+    return MG_ERR_NODE;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+MECHGRAPH_DETAIL_HIDDEN inline const mg_follower_v1 follower_table{sizeof(mg_follower_v1), &follower_type_name, &follower_describe,
+                                                                   &follower_roller_radius, &follower_pivoted,
+                                                                   &follower_cam_lever, &follower_contact};
+inline const void* follower_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_FOLLOWER) == 0 ? &follower_table : nullptr;
+}
+
 // --- mechgraph.joint_play/1 over a C++ JointPlay: its data, built once at export ---------------
 inline void joint_play_data(const mg_object* o, mg_joint_play_data_v1* out) { *out = exported(o).play; }
 MECHGRAPH_DETAIL_HIDDEN inline const mg_joint_play_v1 joint_play_table{sizeof(mg_joint_play_v1), &joint_play_data};
@@ -289,6 +360,8 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl cam_law_vtbl{sizeof(mg_objec
                                                                  &cam_query, &exported_maker, &object_origin};
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl valve_motion_vtbl{
     sizeof(mg_object_vtbl), &exported_retain, &exported_release, &valve_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl follower_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
+                                                                  &follower_query, &exported_maker, &object_origin};
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl joint_play_vtbl{
     sizeof(mg_object_vtbl), &exported_retain, &exported_release, &joint_play_query, &exported_maker, &object_origin};
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl opaque_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
@@ -316,6 +389,9 @@ inline const mg_object* export_object(const std::shared_ptr<const DomainObject>&
     e->primary = motion;
     // Its cam law, exported once: keeps the motion alive (aliasing) as long as someone holds the law.
     e->cam = export_object(std::shared_ptr<const CamLaw>(object, &motion->cam()), maker, {});
+  } else if (const auto* follower = dynamic_cast<const Follower*>(object.get())) {
+    e->vtbl = &follower_vtbl;
+    e->primary = follower;
   } else if (const auto* play = dynamic_cast<const JointPlay*>(object.get())) {
     e->vtbl = &joint_play_vtbl;
     e->primary = play;
@@ -414,6 +490,52 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignCamLaw final : public CamLaw, public Foreig
   std::vector<double> breakpoints_;
 };
 
+/// A follower made elsewhere, seen as a C++ Follower. Its names and fixed dimensions are read once;
+/// an infeasible contact (MG_ERR_NODE) comes back as the NodeError naming the follower's parameter.
+class MECHGRAPH_DETAIL_HIDDEN ForeignFollower final : public Follower, public ForeignObject {
+ public:
+  explicit ForeignFollower(const mg_object* o) : t_(query_table<mg_follower_v1>(o, MG_FOLLOWER)), ref_(o) {
+    if (!t_) throw_foreign(o, MG_FOLLOWER, "does not answer mechgraph.follower version 1 (MG_ERR_MISSING_FEATURE)");
+    t_->type_name(o, string_sink(&type_name_));
+    t_->describe(o, string_sink(&describe_));
+    roller_radius_ = t_->roller_radius(o);
+    pivoted_ = t_->pivoted(o) != 0;
+  }
+  const mg_object* c_object() const override { return ref_.get(); }
+  std::string_view type_name() const override { return type_name_; }
+  std::string describe() const override { return describe_; }
+  double roller_radius() const override { return roller_radius_; }
+  bool pivoted() const override { return pivoted_; }
+  double cam_lever(double base_radius) const override { return t_->cam_lever(ref_.get(), base_radius); }
+  FollowerContact contact(double phi, const LiftDerivatives& d, double base_radius, bool clockwise) const override {
+    const mg_lift4 lift = c_lift(d);
+    mg_follower_contact c{};
+    std::string parameter, message;
+    const mg_error err{sizeof(mg_error), string_sink(&parameter), string_sink(&message)};
+    const mg_status s = t_->contact(ref_.get(), phi, &lift, base_radius, clockwise ? 1 : 0, &c, &err);
+    if (s == MG_ERR_NODE)
+      throw NodeError(parameter, message.empty() ? "the " + named() + " cannot sit on this base circle" : message);
+    if (s != MG_OK) throw_foreign(ref_.get(), MG_FOLLOWER, std::string("failed at a contact: ") + mg_status_name(s));
+    FollowerContact out;
+    out.x = c.x;
+    out.y = c.y;
+    out.pitch_x = c.pitch_x;
+    out.pitch_y = c.pitch_y;
+    out.pressure_angle = c.pressure_angle;
+    out.curvature_radius = c.curvature_radius;
+    out.face_position = c.face_position;
+    out.follower_angle = c.follower_angle;
+    return out;
+  }
+
+ private:
+  const mg_follower_v1* t_;
+  ForeignReference ref_;
+  std::string type_name_, describe_;
+  double roller_radius_ = 0;
+  bool pivoted_ = false;
+};
+
 /// An object of an interface this library has no C++ class for (a plugin's private one).
 class MECHGRAPH_DETAIL_HIDDEN ForeignOpaque final : public DomainObject, public ForeignObject {
  public:
@@ -488,6 +610,7 @@ inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std
       case 0: return std::make_shared<const ForeignCamLaw>(o);
       case 1: return std::make_shared<const ForeignValveMotion>(o);
       case 2: return import_play_data(o);
+      case 3: return std::make_shared<const ForeignFollower>(o);
       default: break;
     }
   return std::make_shared<const ForeignOpaque>(o, std::string(interface), version);

@@ -1,0 +1,35 @@
+# cmake -DNM=nm -DPLUGIN_DIR=build/lib/mechgraph/plugins -DNAMES="backlash;cams;..." -P plugin_isolation_check.cmake
+# No built-in plugin carries another plugin's code (issue 30, item 3: plugins meet only through
+# the declared interfaces): each plugin's own code lives in namespace mechgraph::<its name>, so a
+# symbol of mechgraph::<another plugin's name>:: in its binary means it links or compiles in that
+# plugin's sources. Shared code belongs in the SDK (header-only, like the reference translating
+# followers of mechgraph/domain/translating_followers.hpp).
+cmake_minimum_required(VERSION 3.25)
+set(found "")
+foreach(plugin IN LISTS NAMES)
+  set(file "${PLUGIN_DIR}/mechgraph_${plugin}.so")
+  if(NOT EXISTS "${file}")
+    message(FATAL_ERROR "no plugin ${file}")
+  endif()
+  execute_process(COMMAND ${NM} --demangle ${file} OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "${NM} could not read ${file}")
+  endif()
+  string(FIND "${listing}" "mechgraph::${plugin}::" own)
+  if(own EQUAL -1)
+    message(FATAL_ERROR "mechgraph_${plugin}.so has no symbol of mechgraph::${plugin}:: (has the namespace changed? the check would see nothing)")
+  endif()
+  foreach(other IN LISTS NAMES)
+    if(NOT other STREQUAL plugin)
+      string(FIND "${listing}" "mechgraph::${other}::" at)
+      if(NOT at EQUAL -1)
+        list(APPEND found "mechgraph_${plugin}.so carries code of the ${other} plugin (mechgraph::${other}::)")
+      endif()
+    endif()
+  endforeach()
+endforeach()
+if(found)
+  string(REPLACE ";" "\n  " found "${found}")
+  message(FATAL_ERROR "a plugin links another plugin:\n  ${found}")
+endif()
+message(STATUS "no plugin carries another's code: ${NAMES}")
