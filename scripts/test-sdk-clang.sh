@@ -7,8 +7,9 @@
 set -euo pipefail
 src=$(cd "$(dirname "$0")/.." && pwd)
 build=$(cd "${1:-$src/build}" && pwd)
-clangxx=${CLANGXX:-$(command -v clang++ || true)}
-[ -n "$clangxx" ] || { echo "test-sdk-clang: no clang++" >&2; exit 1; }
+clangxx=${CLANGXX:-}
+[ -n "$clangxx" ] && [ "$clangxx" != MECHGRAPH_CLANGXX-NOTFOUND ] || clangxx=$(command -v clang++ || true)
+[ -n "$clangxx" ] || { echo "test-sdk-clang: no clang++ (apt-get install clang; scripts/install-deps.sh installs it)" >&2; exit 1; }
 work=$(mktemp -d "${TMPDIR:-/tmp}/mechgraph-sdk-clang.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 unset MECHGRAPH_PLUGIN_PATH

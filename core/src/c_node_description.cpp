@@ -116,7 +116,75 @@ ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
   return s;
 }
 
-PortSpec port_spec(const mg_port_decl& d, const std::string& what_type, const char* side, std::uint32_t* version) {
+// The id of the frame `ref` names (MG_FRAME(i) of the type's `frames`, already read), "" for
+// MG_NO_FRAME.
+std::string frame_id(std::int32_t ref, const std::vector<AngleFrame>& frames, const std::string& what) {
+  if (ref == MG_NO_FRAME) return {};
+  if (ref < 0 || static_cast<std::size_t>(ref) > frames.size())
+    throw PluginError(what + " names angle frame " + std::to_string(ref) + ", but the type declares " +
+                      std::to_string(frames.size()) + " (MG_FRAME(index into mg_node_desc::frames), or MG_NO_FRAME)");
+  return frames[static_cast<std::size_t>(ref) - 1].id;
+}
+
+ChannelDecl channel_decl(const mg_channel_decl& d, const std::vector<AngleFrame>& frames, const std::string& what_port) {
+  if (!d.name) throw PluginError(what_port + ": a declared channel has no name");
+  const std::string what = what_port + " channel '" + std::string(d.name) + "'";
+  ChannelDecl c;
+  c.name = d.name;
+  c.dimension = from_c_dim(d.dim, what);
+  c.label = text(d.label);
+  c.display_unit = text(d.display_unit);
+  c.angle_frame = frame_id(d.angle_frame, frames, what);
+  c.derivative_order = d.derivative_order;
+  c.flags = d.flags;
+  if (d.code_count > 0 && !d.codes) throw PluginError(what + ": its codes are a null pointer");
+  for (std::size_t i = 0; i < d.code_count; ++i) {
+    if (!d.codes[i].name) throw PluginError(what + ": code " + std::to_string(i) + " has no name");
+    c.codes.push_back({d.codes[i].value, d.codes[i].name, text(d.codes[i].doc)});
+  }
+  c.from_mark = text(d.from_mark);
+  return c;
+}
+
+// mg_presentation, mg_channel_decl, mg_angle_frame and mg_note_decl came with SDK 1.0 whole: a
+// writer fills them whole (node.h, "Required prefixes").
+Presentation presentation(const mg_presentation& d, const std::vector<AngleFrame>& frames, const std::string& what) {
+  require_prefix(&d, sizeof(mg_presentation), what + ": its mg_presentation");
+  Presentation p;
+  p.role = static_cast<Role>(d.role);  // an unknown role is drawn plain (present.h)
+  if (d.axis) {
+    require_prefix(d.axis, sizeof(mg_channel_decl), what + ": its axis declaration");
+    p.with_axis(channel_decl(*d.axis, frames, what + " axis"));
+  }
+  for (std::size_t i = 0; i < d.channel_count; ++i)
+    p.with(channel_decl(*element(d.channels, i, sizeof(mg_channel_decl), what + " channel"), frames, what));
+  p.x_channel = text(d.x_channel);
+  if (d.pair_count > 0 && !d.pairs) throw PluginError(what + ": its x/y pairs are a null pointer");
+  for (std::size_t i = 0; i < d.pair_count; ++i) {
+    const mg_xy_pair& xy = d.pairs[i];
+    if (!xy.x || !xy.y) throw PluginError(what + ": x/y pair " + std::to_string(i) + " names no channel");
+    p.pairs.push_back({xy.x, xy.y, text(xy.layer), text(xy.label), xy.stroke});
+  }
+  if (d.point_count > 0 && !d.points) throw PluginError(what + ": its points are a null pointer");
+  for (std::size_t i = 0; i < d.point_count; ++i) {
+    const mg_point_marks& m = d.points[i];
+    if (!m.port) throw PluginError(what + ": points " + std::to_string(i) + " name no port");
+    PointMarks marks;
+    marks.port = m.port;
+    marks.row = m.row;
+    marks.x_channels = names(m.x_channels, m.count, what + " points x channels");
+    marks.labels = names(m.labels, m.count, what + " points labels");
+    marks.y_from_axis = m.y_from_axis != 0;
+    marks.caption = text(m.caption);
+    p.points.push_back(std::move(marks));
+  }
+  p.figure_title = text(d.figure_title);
+  p.caption = text(d.caption);
+  return p;
+}
+
+PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames, const std::string& what_type, const char* side,
+                   std::uint32_t* version) {
   if (!d.name) throw PluginError(what_type + ": an " + side + " port has no name");
   const std::string what = what_type + " " + side + " '" + d.name + "'";
   PortSpec p;
@@ -141,6 +209,9 @@ PortSpec port_spec(const mg_port_decl& d, const std::string& what_type, const ch
   p.multiple = (d.flags & MG_PORT_MULTIPLE) != 0;
   p.optional = (d.flags & MG_PORT_OPTIONAL) != 0;
   p.display_unit = text(MG_FIELD_OR(&d, mg_port_decl, display_unit, nullptr));
+  p.label = text(MG_FIELD_OR(&d, mg_port_decl, label, nullptr));
+  p.angle_frame = frame_id(MG_FIELD_OR(&d, mg_port_decl, angle_frame, MG_NO_FRAME), frames, what);
+  if (const mg_presentation* shown = MG_FIELD_OR(&d, mg_port_decl, presentation, nullptr)) p.presentation = presentation(*shown, frames, what);
   return p;
 }
 
@@ -166,14 +237,37 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
   info.type = d->type;
   info.version = d->version;
   info.summary = text(d->summary);
+  // The frames first: ports and channels name them by index. Fields after the outputs may be
+  // absent in an older writer's description.
+  const std::size_t frame_count = MG_FIELD_OR(d, mg_node_desc, frame_count, 0);
+  for (std::size_t i = 0; i < frame_count; ++i) {
+    const mg_angle_frame* f = element(d->frames, i, sizeof(mg_angle_frame), what + " angle frame");
+    if (!f->id || !*f->id) throw PluginError(what + ": angle frame " + std::to_string(i) + " has no id");
+    AngleFrame frame;
+    frame.id = f->id;
+    frame.label = text(f->label);
+    frame.unit_tag = text(f->unit_tag);
+    frame.zero = text(f->zero);
+    frame.scale = f->scale;
+    frame.offset_param = text(f->offset_param);
+    frame.mark_spacing = f->mark_spacing;
+    frame.mark_labels = names(f->mark_labels, f->mark_label_count, what + " angle frame '" + frame.id + "' mark labels");
+    frame.before = text(f->before);
+    frame.after = text(f->after);
+    info.frames.push_back(std::move(frame));
+  }
+  for (std::size_t i = 0; i < frame_count; ++i)  // base frames once every id is known
+    info.frames[i].base_frame =
+        frame_id(MG_ELEMENT(mg_angle_frame, d->frames, i)->base_frame, info.frames, what + " angle frame '" + info.frames[i].id + "'");
   for (std::size_t i = 0; i < d->param_count; ++i)
     info.params.push_back(param_spec(*element(d->params, i, offsetof(mg_param_decl, display_unit), what + " parameter"), what));
   for (std::size_t i = 0; i < d->input_count; ++i)
-    info.inputs.push_back(port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), what, "input", nullptr));
+    info.inputs.push_back(
+        port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), info.frames, what, "input", nullptr));
   out.output_interface_versions.assign(d->output_count, 0);
   for (std::size_t i = 0; i < d->output_count; ++i)
-    info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), what + " output"), what,
-                                     "output", &out.output_interface_versions[i]));
+    info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), what + " output"), info.frames,
+                                     what, "output", &out.output_interface_versions[i]));
   // Everything after the outputs may be absent in an older writer's description.
   const std::size_t effect_count = MG_FIELD_OR(d, mg_node_desc, effect_count, 0);
   for (std::size_t i = 0; i < effect_count; ++i) {
@@ -193,6 +287,12 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
   for (std::size_t i = 0; i < dep_count; ++i) {
     if (!d->deps[i].output) throw PluginError(what + ": an output dependency names no output");
     info.output_dependencies[d->deps[i].output] = names(d->deps[i].inputs, d->deps[i].input_count, what + " output dependencies");
+  }
+  const std::size_t note_count = MG_FIELD_OR(d, mg_node_desc, note_count, 0);
+  for (std::size_t i = 0; i < note_count; ++i) {
+    const mg_note_decl* n = element(d->notes, i, sizeof(mg_note_decl), what + " note");
+    if (!n->output) throw PluginError(what + ": a note names no output");
+    info.notes.push_back({n->output, text(n->when_param), text(n->doc)});
   }
   return out;
 }

@@ -174,6 +174,7 @@ mg_status suite_set_table(mg_eval_ctx* c, uint32_t index, const mg_table* t) {
     for (size_t i = 0; i < t->channel_count; ++i) out.channels.push_back(column(t->channels[i], t->rows, what));
     out.closed_curve = (t->flags & MG_TABLE_CLOSED_CURVE) != 0;
     out.histogram = (t->flags & MG_TABLE_HISTOGRAM) != 0;
+    out.turns_clockwise = (t->flags & MG_TABLE_TURNS_CW) != 0;
     for (size_t i = 0; i < t->mark_count; ++i)
       out.axis_marks.push_back({t->marks[i].label ? t->marks[i].label : "", t->marks[i].value});
     c->outputs.set(port->name, Value::table(std::move(out)));
@@ -292,7 +293,8 @@ class CallViews {
         for (const Table::Mark& m : t.axis_marks) marks.push_back({m.label.c_str(), m.value});
         mg_table& c = add(tables_);
         c = mg_table{sizeof(mg_table), t.axis.values.size(), column(t.axis), channels.data(), channels.size(),
-                     (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u),
+                     (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u) |
+                         (t.turns_clockwise ? MG_TABLE_TURNS_CW : 0u),
                      marks.data(), marks.size(), {}};
         out.kind = MG_VALUE_TABLE;
         out.u.table = &c;
@@ -385,9 +387,9 @@ class CNodeType final : public NodeType {
 const mg_eval_suite_v1& c_eval_suite() { return eval_suite; }
 
 std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where) {
-  if (type.struct_size < offsetof(mg_node_type, reserved_batch))
+  if (type.struct_size < offsetof(mg_node_type, query))
     throw PluginError(where + ": a node type's mg_node_type is " + std::to_string(type.struct_size) +
-                      " bytes (struct_size), shorter than the " + std::to_string(offsetof(mg_node_type, reserved_batch)) +
+                      " bytes (struct_size), shorter than the " + std::to_string(offsetof(mg_node_type, query)) +
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
   return std::make_shared<const CNodeType>(type, c_node_declaration(type, where));

@@ -119,6 +119,12 @@ TEST_CASE("SDK 1.x plugins that cannot load are refused with a precise reason", 
     CHECK_THROWS_WITH(r.load_file(test_plugin("test_c_refuses")),
                       Contains("its entry refused to load") && Contains("no licence for this machine (cmin refuses to load)"));
   }
+  SECTION("a port naming an angle frame its type does not declare: the port and the reference named") {
+    PluginRegistry r;
+    CHECK_THROWS_WITH(r.load_file(test_plugin("test_c_bad_frame")),
+                      Contains("node type 'cmin.parabola' output 'peak' names angle frame 1, but the type declares 0"));
+    CHECK(r.plugins().empty());
+  }
 }
 
 TEST_CASE("a C node polls the host's cancellation and stops", "[plugins][sdk1]") {

@@ -226,7 +226,7 @@ static_assert(offsetof(mg_node_type, struct_size) == 0);
 static_assert(offsetof(mg_node_type, desc) == 8);
 static_assert(offsetof(mg_node_type, impl) == 16);
 static_assert(offsetof(mg_node_type, evaluate) == 24);
-static_assert(offsetof(mg_node_type, reserved_batch) == 32);
+static_assert(offsetof(mg_node_type, query) == 32);
 static_assert(sizeof(mg_object_vtbl) == 48);
 static_assert(offsetof(mg_object_vtbl, struct_size) == 0);
 static_assert(offsetof(mg_object_vtbl, retain) == 8);
@@ -298,6 +298,8 @@ static_assert(offsetof(mg_angle_frame, label) == 16);
 static_assert(offsetof(mg_angle_frame, unit_tag) == 24);
 static_assert(offsetof(mg_angle_frame, zero) == 32);
 static_assert(offsetof(mg_angle_frame, base_frame) == 40);
+// A frame reference is the index plus one: a zeroed field means no frame.
+static_assert(MG_NO_FRAME == 0 && MG_FRAME(0) == 1 && MG_FRAME(2) == 3);
 static_assert(offsetof(mg_angle_frame, scale) == 48);
 static_assert(offsetof(mg_angle_frame, offset_param) == 56);
 static_assert(offsetof(mg_angle_frame, mark_spacing) == 64);

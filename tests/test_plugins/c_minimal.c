@@ -5,6 +5,7 @@
      C_MINIMAL_OLDER      structs as an older 1.x wrote them (shorter struct_size; strided arrays)
      C_MINIMAL_NEWER      built against SDK 1.(host minor + 1): refused, naming both versions
      C_MINIMAL_REFUSES    the entry returns NULL with a reason
+     C_MINIMAL_BAD_FRAME  a port names an angle frame the type does not declare: refused
      C_MINIMAL_POLLS      a second node type that works until the host cancels */
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/node.h>
@@ -95,10 +96,15 @@ static const older_port_decl outputs[OUTPUT_COUNT] = {
     {sizeof(older_port_decl), "curve", MG_VALUE_TABLE, {0, 0, 0, 0, 0, 0, 0, 0}, "y = height x^2 over x", NULL, 0, 0},
     {sizeof(older_port_decl), "peak", MG_VALUE_SCALAR, {1, 0, 0, 0, 0, 0, 0, 0}, "y at x = 1", NULL, 0, 0}};
 #else
+#ifdef C_MINIMAL_BAD_FRAME
+#define PEAK_FRAME MG_FRAME(0) /* the type declares no frame */
+#else
+#define PEAK_FRAME MG_NO_FRAME
+#endif
 static const mg_port_decl outputs[OUTPUT_COUNT] = {
     {sizeof(mg_port_decl), "curve", MG_VALUE_TABLE, {0, 0, 0, 0, 0, 0, 0, 0}, "y = height x^2 over x", NULL, 0, 0, NULL,
-     "parabola", -1, NULL},
-    {sizeof(mg_port_decl), "peak", MG_VALUE_SCALAR, {1, 0, 0, 0, 0, 0, 0, 0}, "y at x = 1", NULL, 0, 0, "mm", "peak", -1,
+     "parabola", MG_NO_FRAME, NULL},
+    {sizeof(mg_port_decl), "peak", MG_VALUE_SCALAR, {1, 0, 0, 0, 0, 0, 0, 0}, "y at x = 1", NULL, 0, 0, "mm", "peak", PEAK_FRAME,
      NULL}};
 #endif
 
@@ -124,7 +130,7 @@ static void declare_number(mg_param_decl* p, const char* name, mg_dim dim, const
   p->default_value.present = 1;
   p->default_value.number = fallback;
   p->display_unit = unit;
-  p->angle_frame = -1;
+  p->angle_frame = MG_NO_FRAME;
 }
 
 static void declare(void) {
@@ -173,7 +179,7 @@ static mg_status wait_node(const mg_node_type* self, const mg_eval_args* args, m
 }
 static mg_param_decl wait_params[1];
 static const mg_port_decl wait_outputs[1] = {
-    {sizeof(mg_port_decl), "done", MG_VALUE_SCALAR, {0, 0, 0, 0, 0, 0, 0, 0}, "steps done", NULL, 0, 0, NULL, NULL, -1, NULL}};
+    {sizeof(mg_port_decl), "done", MG_VALUE_SCALAR, {0, 0, 0, 0, 0, 0, 0, 0}, "steps done", NULL, 0, 0, NULL, NULL, MG_NO_FRAME, NULL}};
 static mg_node_desc wait_desc;
 static mg_node_type wait_type;
 static void declare_wait(void) {

@@ -127,13 +127,13 @@ static mg_status live(const mg_node_type* self, const mg_eval_args* args, mg_eva
 
 static mg_param_decl law_params[3];
 static const mg_port_decl law_out[1] = {{sizeof(mg_port_decl), "law", MG_VALUE_OBJECT, NONE, "the cam law", MG_CAM_LAW, 1, 0,
-                                         NULL, NULL, -1, NULL}};
+                                         NULL, NULL, MG_NO_FRAME, NULL}};
 static const mg_port_decl peak_in[1] = {{sizeof(mg_port_decl), "law", MG_VALUE_OBJECT, NONE, "a cam law", MG_CAM_LAW, 1, 0,
-                                         NULL, NULL, -1, NULL}};
+                                         NULL, NULL, MG_NO_FRAME, NULL}};
 static const mg_port_decl peak_out[1] = {{sizeof(mg_port_decl), "lift", MG_VALUE_SCALAR, LENGTH, "lift at the nose", NULL, 0,
-                                          0, "mm", NULL, -1, NULL}};
+                                          0, "mm", NULL, MG_NO_FRAME, NULL}};
 static const mg_port_decl live_out[1] = {{sizeof(mg_port_decl), "count", MG_VALUE_SCALAR, NONE, "objects alive", NULL, 0, 0,
-                                          NULL, NULL, -1, NULL}};
+                                          NULL, NULL, MG_NO_FRAME, NULL}};
 static mg_node_desc descs[3];
 static mg_node_type node_types[3];
 static const mg_node_type* type_list[3] = {&node_types[0], &node_types[1], &node_types[2]};
@@ -152,7 +152,7 @@ static void number(mg_param_decl* p, const char* name, mg_dim dim, const char* d
   p->default_value.kind = MG_PARAM_NUMBER;
   p->default_value.present = 1;
   p->default_value.number = fallback;
-  p->angle_frame = -1;
+  p->angle_frame = MG_NO_FRAME;
 }
 
 static void node(int i, const char* type, const char* summary, const mg_param_decl* params, size_t param_count,

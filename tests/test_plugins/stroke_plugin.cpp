@@ -4,8 +4,14 @@
 // angle + phase, marked every 120 deg as P1, P2, P3), a table of port events with named codes whose
 // angles are drawn as points on the family, a scalar angle in the shaft frame, and a note made
 // with the port events when `phase` is given. The host's reports know none of these names
-// (tests/cli/foreign_presentation_test.cpp).
+// (tests/cli/foreign_presentation_test.cpp). Built twice: with the pre-1.0 entry (C++ classes
+// cross) and, with STROKE_SDK1, through the SDK 1.x C boundary, where every declaration crosses as
+// the C structs of c/present.h; the host must present both alike.
+#ifdef STROKE_SDK1
+#include <mechgraph/plugin_sdk1.hpp>
+#else
 #include <mechgraph/plugin_abi.hpp>
+#endif
 
 #include <cmath>
 #include <numbers>
@@ -114,4 +120,8 @@ NodeTypeList make_types() { return {std::make_shared<Stroke>()}; }
 
 }  // namespace
 
+#ifdef STROKE_SDK1
+MECHGRAPH_PLUGIN_1("test_stroke", "0.1.0", &make_types)
+#else
 MECHGRAPH_PLUGIN("test_stroke", "0.1.0", &make_types)
+#endif

@@ -33,6 +33,8 @@ typedef struct mg_host {
 /* One evaluation call; opaque, valid during the call only. */
 typedef struct mg_eval_ctx mg_eval_ctx;
 
+/* Log levels. A host shows a level above MG_LOG_WARN as MG_LOG_WARN, below MG_LOG_DEBUG as
+   MG_LOG_DEBUG. */
 #define MG_LOG_DEBUG 0
 #define MG_LOG_INFO 1
 #define MG_LOG_WARN 2

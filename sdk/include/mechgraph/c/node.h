@@ -8,11 +8,13 @@
  *
  * Required prefixes. A host reads a description's fields up to these whatever the writer's
  * struct_size, and refuses a shorter struct; every field after them may be absent in a writer's
- * struct (an older 1.x) and then counts as its default (NULL, 0, -1 for a frame index):
+ * struct (an older 1.x) and then counts as its default (NULL, 0; MG_NO_FRAME for a frame). A
+ * zeroed field means its default everywhere:
  *   mg_node_type  up to evaluate          mg_node_desc    up to output_count
  *   mg_param_decl up to field_count       mg_port_decl    up to flags
  *   mg_counter_decl up to name            mg_effect_decl  whole
  *   mg_plugin (plugin.h) up to node_types
+ *   mg_angle_frame, mg_note_decl, mg_presentation, mg_channel_decl (present.h): whole, as in 1.0
  */
 #ifndef MECHGRAPH_C_NODE_H
 #define MECHGRAPH_C_NODE_H
@@ -77,7 +79,7 @@ typedef struct mg_param_decl {
   size_t field_count;
   const char* display_unit; /* "mm"; NULL: SI */
   const char* label;        /* NULL: the name with '_' as ' ' */
-  int32_t angle_frame;      /* index into mg_node_desc::frames, -1 none */
+  int32_t angle_frame;      /* MG_FRAME(i) of mg_node_desc::frames, MG_NO_FRAME (0) none */
 } mg_param_decl;
 
 #define MG_PORT_MULTIPLE 0x1u /* an input that takes a list of connections */
@@ -94,7 +96,7 @@ typedef struct mg_port_decl {
   uint32_t flags;             /* MG_PORT_* */
   const char* display_unit;
   const char* label;
-  int32_t angle_frame;                          /* -1 none */
+  int32_t angle_frame;                          /* MG_FRAME(i), MG_NO_FRAME (0) none */
   const struct mg_presentation* presentation;   /* tables and series; NULL: plain */
 } mg_port_decl;
 
@@ -157,8 +159,12 @@ typedef struct mg_node_type {
   /* Pure and re-entrant; may run on many threads at once. Borrowed: args and everything they reach,
      for the call only. Returns MG_OK or a status (after fail() for MG_ERR_NODE). Must not throw. */
   mg_status (*evaluate)(const struct mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx);
-  /* NULL in 1.0: several cases in one call comes in a later minor. */
-  void* reserved_batch;
+  /* Optional (NULL: none). The node type's table of interface `name` at `version`, or NULL: how a
+     node type offers a capability that came after 1.0 (several cases in one call, its own work
+     forecast ...) without changing this struct, as mg_object_vtbl::query does for objects. The
+     same pointer for the same question; tables live until the process ends. SDK 1.0 defines no
+     node type interface, so a 1.0 host never calls it. */
+  const void* (*query)(const struct mg_node_type* self, const char* name, uint32_t version);
 } mg_node_type;
 
 MG_EXTERN_C_END

@@ -22,7 +22,9 @@ typedef struct mg_object_vtbl {
   /* The table of interface `name` at `version`, or NULL. The same pointer for the same question;
      tables live until the process ends. Every object answers its primary interface. */
   const void* (*query)(const mg_object* self, const char* name, uint32_t version);
-  const char* (*maker)(const mg_object* self); /* the node type that made it (messages) */
+  /* The node type that made it ("plugin.kind"), for messages: NUL-terminated, valid while the
+     object lives. */
+  const char* (*maker)(const mg_object* self);
   const void* origin;                          /* identity of the producing plugin's SDK layer */
 } mg_object_vtbl;
 

@@ -12,6 +12,11 @@
 
 MG_EXTERN_C_BEGIN
 
+/* A reference to frame `index` of mg_node_desc::frames, as angle_frame and base_frame fields hold it:
+   the index plus one, so that 0, what a zeroed struct holds, means "no frame". */
+#define MG_FRAME(index) ((int32_t)(index) + 1)
+#define MG_NO_FRAME 0
+
 #define MG_ROLE_PLAIN 0              /* each channel over the axis, compared across nodes */
 #define MG_ROLE_DERIVATIVE_FAMILY 1  /* channels are f, f', f'', ... over the axis: a stacked panel */
 #define MG_ROLE_CURVE_OVER_CHANNEL 2 /* channels drawn over x_channel, not over the axis */
@@ -38,8 +43,8 @@ typedef struct mg_channel_decl {
   mg_dim dim;
   const char* label;        /* "valve lift"; NULL: the name with '_' as ' ' */
   const char* display_unit; /* NULL: SI or the scene's units */
-  int32_t angle_frame;      /* index into mg_node_desc::frames, -1 none; for d/dphi: the angle counted */
-  int32_t derivative_order; /* MG_ROLE_DERIVATIVE_FAMILY: 0 the value, 1, 2, 3 ... */
+  int32_t angle_frame;      /* MG_FRAME(i): frame i of mg_node_desc::frames; 0 none. For d/dphi: the angle counted */
+  int32_t derivative_order; /* MG_ROLE_DERIVATIVE_FAMILY: 0 the value, 1, 2, 3 ...; -1 none */
   uint32_t flags;           /* MG_CH_* */
   const mg_code* codes;
   size_t code_count;
@@ -90,7 +95,7 @@ typedef struct mg_angle_frame {
   const char* unit_tag; /* shown as "deg (tag)" */
   const char* zero;     /* where zero is, in words (describe, JSON) */
   /* Optional mapping from another frame: this = scale * base + offset_param (SI). A figure is drawn
-     in this frame when every node has offset_param set, else in the base frame. -1: none. */
+     in this frame when every node has offset_param set, else in the base frame. MG_FRAME(i), 0: none. */
   int32_t base_frame;
   double scale;
   const char* offset_param;

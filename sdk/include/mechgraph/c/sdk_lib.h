@@ -7,6 +7,8 @@
 
 #include <mechgraph/c/base.h>
 #include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/follower.h>
+#include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
@@ -33,16 +35,19 @@ MG_API const char* mg_status_name(mg_status status);
    does not answer `name`/`version`. */
 MG_API mg_status mg_check_object(const mg_object* object, const char* name, uint32_t version, mg_text_sink problem);
 
-/* Does nothing. It names every public struct of the SDK, so that abidw, which sees only the types
-   reachable from exported functions, puts every one of them in the ABI dump
-   (scripts/abi-dump.sh). */
+/* Does nothing. It names every public struct of SDK 1.0 (the others are reachable from these),
+   so that abidw, which sees only the types reachable from exported functions, puts every one of
+   them in the ABI dump (scripts/abi-dump.sh) and abidiff compares them with the sdk-1.0 release
+   (scripts/test-sdk-compat.sh). Frozen like every function here: a later minor that adds a
+   struct or an interface table adds its own anchor, mg_abi_anchor_1_<minor>. */
 MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg_log_suite_v1* log,
                           const mg_eval_suite_v1* eval, const mg_memory_suite_v1* memory,
                           const mg_node_type* node_type, const mg_eval_args* args, const mg_error* error,
                           const mg_series* series, const mg_table* table, const mg_value* value,
                           const mg_object* object, const mg_cam_law_v1* cam_law,
                           const mg_cam_law_closed_form_v1* closed_form, const mg_cam_law_higher_v1* higher,
-                          const mg_valve_motion_v1* valve_motion, const mg_owner* owner);
+                          const mg_valve_motion_v1* valve_motion, const mg_joint_play_v1* joint_play,
+                          const mg_follower_v1* follower, const mg_owner* owner);
 
 MG_EXTERN_C_END
 

@@ -83,6 +83,15 @@ class NodeTypeExport {
  public:
   NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id) : type_(std::move(type)) {
     const NodeInfo& info = type_->info();
+    // Presentation (c/present.h): frames and channels name a frame by its index in `frames`.
+    for (const AngleFrame& f : info.frames) {
+      const auto& labels = names(f.mark_labels);
+      frames_.push_back(mg_angle_frame{sizeof(mg_angle_frame), f.id.c_str(), f.label.c_str(), f.unit_tag.c_str(),
+                                       f.zero.c_str(), frame_index(f.base_frame), f.scale, optional_text(f.offset_param),
+                                       f.mark_spacing, labels.data(), labels.size(), f.before.c_str(), f.after.c_str()});
+    }
+    for (const NoteDecl& n : info.notes)
+      notes_.push_back(mg_note_decl{sizeof(mg_note_decl), n.output.c_str(), optional_text(n.when_param), n.doc.c_str()});
     for (const ParamSpec& p : info.params) params_.push_back(param_decl(p));
     for (const PortSpec& p : info.inputs) inputs_.push_back(port_decl(p, plugin_id, input_interfaces_));
     for (const PortSpec& p : info.outputs) outputs_.push_back(port_decl(p, plugin_id, output_interfaces_));
@@ -99,7 +108,7 @@ class NodeTypeExport {
     desc_ = mg_node_desc{sizeof(mg_node_desc), info.type.c_str(), info.version, info.summary.c_str(),
                          params_.data(), params_.size(), inputs_.data(), inputs_.size(), outputs_.data(), outputs_.size(),
                          effects_.data(), effects_.size(), counters_.data(), counters_.size(), deps_.data(), deps_.size(),
-                         nullptr, 0, nullptr, 0};
+                         frames_.data(), frames_.size(), notes_.data(), notes_.size()};
     c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, nullptr};
   }
   NodeTypeExport(const NodeTypeExport&) = delete;
@@ -113,6 +122,65 @@ class NodeTypeExport {
     return out;
   }
   static std::int32_t c_param_kind(ParamKind k) { return static_cast<std::int32_t>(k) + 1; }  // MG_PARAM_* order
+  static const char* optional_text(const std::string& s) { return s.empty() ? nullptr : s.c_str(); }
+
+  // Frame `id` as C names it, MG_FRAME(its index in NodeInfo::frames), MG_NO_FRAME for none; an id
+  // the type does not declare refuses the plugin at its entry (the conformance kit names it in the
+  // plugin's own tests).
+  std::int32_t frame_index(const std::string& id) const {
+    if (id.empty()) return MG_NO_FRAME;
+    const auto& frames = type_->info().frames;
+    for (std::size_t i = 0; i < frames.size(); ++i)
+      if (frames[i].id == id) return MG_FRAME(i);
+    throw std::invalid_argument("node type '" + type_->info().type + "' names angle frame '" + id + "', which it does not declare");
+  }
+  mg_channel_decl channel_decl(const ChannelDecl& c) {
+    mg_channel_decl d{};
+    d.struct_size = sizeof d;
+    d.name = c.name.c_str();
+    d.dim = c_dim(c.dimension);
+    d.label = optional_text(c.label);
+    d.display_unit = optional_text(c.display_unit);
+    d.angle_frame = frame_index(c.angle_frame);
+    d.derivative_order = c.derivative_order;
+    d.flags = c.flags;
+    auto& codes = codes_.emplace_back();
+    for (const Code& k : c.codes) codes.push_back({k.value, k.name.c_str(), k.doc.c_str()});
+    d.codes = codes.data();
+    d.code_count = codes.size();
+    d.from_mark = optional_text(c.from_mark);
+    return d;
+  }
+  const mg_presentation* presentation(const Presentation& p) {
+    if (p.empty()) return nullptr;
+    mg_presentation& d = presentations_.emplace_back();
+    d.struct_size = sizeof d;
+    d.role = static_cast<std::int32_t>(p.role);
+    if (p.has_axis) d.axis = &axes_.emplace_back(channel_decl(p.axis));
+    auto& channels = channel_lists_.emplace_back();
+    for (const ChannelDecl& c : p.channels) channels.push_back(channel_decl(c));
+    d.channels = channels.data();
+    d.channel_count = channels.size();
+    d.x_channel = optional_text(p.x_channel);
+    auto& pairs = pairs_.emplace_back();
+    for (const XyPair& xy : p.pairs) pairs.push_back({xy.x.c_str(), xy.y.c_str(), xy.layer.c_str(), optional_text(xy.label), xy.stroke});
+    d.pairs = pairs.data();
+    d.pair_count = pairs.size();
+    auto& points = points_.emplace_back();
+    for (const PointMarks& m : p.points) {
+      if (m.labels.size() != m.x_channels.size())
+        throw std::invalid_argument("node type '" + type_->info().type + "': points from '" + m.port + "' have " +
+                                    std::to_string(m.x_channels.size()) + " x channels but " + std::to_string(m.labels.size()) + " labels");
+      const auto& xs = names(m.x_channels);
+      const auto& labels = names(m.labels);
+      points.push_back({m.port.c_str(), m.row, xs.data(), labels.data(), xs.size(), m.y_from_axis ? 1 : 0, optional_text(m.caption)});
+    }
+    d.points = points.data();
+    d.point_count = points.size();
+    d.figure_title = optional_text(p.figure_title);
+    d.caption = optional_text(p.caption);
+    return &d;
+  }
 
   mg_param_value c_value(const ParamValue& v, const ParamSpec& spec) {
     mg_param_value out{};
@@ -161,12 +229,12 @@ class NodeTypeExport {
     d.fields = fields.data();
     d.field_count = fields.size();
     d.display_unit = p.display_unit.c_str();
-    d.angle_frame = -1;
+    d.angle_frame = MG_NO_FRAME;
     d.range_reason = p.range_reason.empty() ? nullptr : p.range_reason.c_str();
     return d;
   }
   // `interfaces` gets the port's interface name (empty for values), in declaration order.
-  static mg_port_decl port_decl(const PortSpec& p, std::string_view plugin_id, std::deque<std::string>& interfaces) {
+  mg_port_decl port_decl(const PortSpec& p, std::string_view plugin_id, std::deque<std::string>& interfaces) {
     mg_port_decl d{};
     d.struct_size = sizeof d;
     d.name = p.name.c_str();
@@ -191,7 +259,9 @@ class NodeTypeExport {
     d.doc = p.doc.c_str();
     d.flags = (p.multiple ? MG_PORT_MULTIPLE : 0u) | (p.optional ? MG_PORT_OPTIONAL : 0u);
     d.display_unit = p.display_unit.c_str();
-    d.angle_frame = -1;
+    d.label = optional_text(p.label);
+    d.angle_frame = frame_index(p.angle_frame);
+    d.presentation = presentation(p.presentation);
     return d;
   }
 
@@ -230,6 +300,7 @@ class NodeTypeExport {
         for (std::size_t i = 0; i < t.channel_count; ++i) out.channels.push_back(cxx_column(t.channels[i], t.rows));
         out.closed_curve = (t.flags & MG_TABLE_CLOSED_CURVE) != 0;
         out.histogram = (t.flags & MG_TABLE_HISTOGRAM) != 0;
+        out.turns_clockwise = (t.flags & MG_TABLE_TURNS_CW) != 0;
         for (std::size_t i = 0; i < t.mark_count; ++i) out.axis_marks.push_back({t.marks[i].label ? t.marks[i].label : "", t.marks[i].value});
         return Value::table(std::move(out));
       }
@@ -272,7 +343,8 @@ class NodeTypeExport {
         for (const Table::Mark& m : t.axis_marks) holder->marks.push_back({m.label.c_str(), m.value});
         holder->table = mg_table{sizeof(mg_table), t.axis.values.size(), c_column(t.axis), holder->channels.data(),
                                  holder->channels.size(),
-                                 (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u),
+                                 (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u) |
+                                     (t.turns_clockwise ? MG_TABLE_TURNS_CW : 0u),
                                  holder->marks.data(), holder->marks.size(), {holder.get(), &Holder::release}};
         const mg_table* c = &holder->table;
         holder.release();
@@ -330,6 +402,14 @@ class NodeTypeExport {
   std::vector<mg_effect_decl> effects_;
   std::vector<mg_counter_decl> counters_;
   std::vector<mg_output_deps> deps_;
+  std::vector<mg_angle_frame> frames_;
+  std::vector<mg_note_decl> notes_;
+  std::deque<mg_presentation> presentations_;
+  std::deque<mg_channel_decl> axes_;
+  std::deque<std::vector<mg_channel_decl>> channel_lists_;
+  std::deque<std::vector<mg_code>> codes_;
+  std::deque<std::vector<mg_xy_pair>> pairs_;
+  std::deque<std::vector<mg_point_marks>> points_;
   mg_node_desc desc_{};
   mg_node_type c_type_{};
 };

@@ -37,7 +37,7 @@ typedef struct mg_follower_v1 {
   /* Pivoted: the pivot's distance to the base-circle contact (the arm turns by h / lever);
      0 for a translating follower. */
   double (*cam_lever)(const mg_object* self, double base_radius);
-  /* MG_ERR_INVALID_INPUT with err naming the follower's parameter when it cannot sit on that base
+  /* MG_ERR_NODE with err naming the follower's parameter when it cannot sit on that base
      circle; no allocation on success. */
   mg_status (*contact)(const mg_object* self, double phi, const mg_lift4* lift, double base_radius, int32_t clockwise,
                        mg_follower_contact* out, const mg_error* err);
