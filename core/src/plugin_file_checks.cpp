@@ -93,10 +93,15 @@ bool plugin_exports_symbol(const std::filesystem::path& file, const std::string&
   ElfFile elf(file, where);
   const Elf64_Ehdr h = elf.header();
   if (h.e_shoff == 0 || h.e_shnum == 0 || h.e_shentsize < sizeof(Elf64_Shdr)) return false;
+  // The section headers in one read, checked to lie within the file before anything is allocated.
+  const std::uint64_t headers_size = std::uint64_t{h.e_shnum} * h.e_shentsize;
+  if (elf.beyond(h.e_shoff, headers_size)) throw PluginError(where + ": a section header lies beyond the file");
+  std::vector<char> headers(headers_size);
+  if (!elf.read(h.e_shoff, headers.data(), headers.size())) throw PluginError(where + ": a section header lies beyond the file");
   auto section = [&](std::uint64_t index) {
     Elf64_Shdr s{};
-    if (index >= h.e_shnum || !elf.read(h.e_shoff + index * h.e_shentsize, &s, sizeof s))
-      throw PluginError(where + ": a section header lies beyond the file");
+    if (index >= h.e_shnum) throw PluginError(where + ": a section header lies beyond the file");
+    std::memcpy(&s, headers.data() + index * h.e_shentsize, sizeof s);
     return s;
   };
   for (std::uint64_t i = 0; i < h.e_shnum; ++i) {

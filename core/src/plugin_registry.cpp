@@ -74,7 +74,8 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
                       "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
   }
   // The child loads it and runs the whole handshake; only a file it accepted is loaded here.
-  detail::probe_plugin_in_child(file, where);
+  if (!probes_) probes_ = std::make_shared<detail::ProbeCache>();
+  detail::probe_plugin_in_child(file, where, *probes_);
   auto library = std::make_shared<Library>();
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);
