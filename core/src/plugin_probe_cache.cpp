@@ -64,12 +64,14 @@ std::string probe_key(const std::filesystem::path& file) {
 
 bool ProbeCache::accepted_before(const std::string& key) {
   if (key.empty()) return false;
+  const std::lock_guard lock(mutex_);
   if (!lines_) lines_ = read_probe_cache();
   return has_line(*lines_, key);
 }
 
 void ProbeCache::remember(const std::string& key) {
   if (key.empty() || key.find('\n') != std::string::npos) return;
+  const std::lock_guard lock(mutex_);
   if (lines_) lines_->append("\n" + key + "\n");
   const std::filesystem::path cache = probe_cache_file();
   if (cache.empty()) return;

@@ -5,6 +5,7 @@
 // accepted file: its absolute path, size, change time and inode. A file that changes is probed
 // again. Private to libmechgraph.
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -17,7 +18,7 @@ std::string probe_key(const std::filesystem::path& file);
 /// The cache as one registry sees it: the file is read once, when the first plugin is looked up
 /// (a folder of plugins costs one read, not one per plugin), and what this registry accepts is
 /// appended to the file and remembered. Lines other processes append later are not seen: such a
-/// file is probed once more, never loaded unprobed. Not thread-safe (neither is loading).
+/// file is probed once more, never loaded unprobed. Copies of a registry share it: it is locked.
 class ProbeCache {
  public:
   /// Whether a file with this key was accepted before.
@@ -26,6 +27,7 @@ class ProbeCache {
   void remember(const std::string& key);
 
  private:
+  std::mutex mutex_;
   std::optional<std::string> lines_;  // the file's lines, read on first use, and the keys remembered since
 };
 
