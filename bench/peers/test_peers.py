@@ -15,7 +15,8 @@ What is tested, each against an independent value:
   * the Monte Carlo peer: the clipped-normal moments against numerical integration, the tail-kept
     quantiles against numpy's quantile of all the samples, the sample moments against the exact
     ones;
-  * run.sh --quick end to end: every peer verified and timed, three ratio lines, exit status 0.
+  * run.sh --quick end to end: every peer verified and timed, three ratio lines, exit status 0;
+  * side_by_side.py with one build on both sides: the rows agree, both sides timed, a ratio line.
 """
 
 import math
@@ -206,6 +207,20 @@ class RunScript(unittest.TestCase):
         self.assertEqual(proc.stdout.count("verify grid peer (0.045 deg): ok"), 1)
         self.assertEqual(proc.stdout.count("verify closed-form peer: ok"), 1)
         self.assertEqual(proc.stdout.count("verify Monte Carlo peer: ok"), 1)
+
+
+@unittest.skipUnless(HAVE_MECHGRAPH, f"no mechgraph at {MECHGRAPH}")
+class SideBySide(unittest.TestCase):
+
+    def test_one_build_against_itself(self):
+        proc = subprocess.run([sys.executable, os.path.join(HERE, "side_by_side.py"), "--before", MECHGRAPH,
+                               "--after", MECHGRAPH, "--cases", "10", "--rounds", "2"], capture_output=True, text=True)
+        self.assertEqual(proc.returncode, 0, proc.stdout[-3000:] + proc.stderr[-3000:])
+        self.assertIn("30 designs", proc.stdout)
+        lines = proc.stdout.splitlines()
+        for side in ("before", "after"):
+            self.assertEqual(sum(line.startswith(side + " ") and "wall fastest" in line for line in lines), 1)
+        self.assertIn("after / before, designs/s (fastest runs):", proc.stdout)
 
 
 if __name__ == "__main__":

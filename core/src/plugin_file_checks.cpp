@@ -89,14 +89,21 @@ void check_plugin_elf(const std::filesystem::path& file, const std::string& wher
   }
 }
 
-bool plugin_exports_symbol(const std::filesystem::path& file, const std::string& name, const std::string& where) {
+std::vector<bool> plugin_exports_symbols(const std::filesystem::path& file, const std::vector<std::string>& names,
+                                         const std::string& where) {
+  std::vector<bool> found(names.size(), false);
   ElfFile elf(file, where);
   const Elf64_Ehdr h = elf.header();
-  if (h.e_shoff == 0 || h.e_shnum == 0 || h.e_shentsize < sizeof(Elf64_Shdr)) return false;
+  if (h.e_shoff == 0 || h.e_shnum == 0 || h.e_shentsize < sizeof(Elf64_Shdr)) return found;
+  // The section headers in one read, checked to lie within the file before anything is allocated.
+  const std::uint64_t headers_size = std::uint64_t{h.e_shnum} * h.e_shentsize;
+  if (elf.beyond(h.e_shoff, headers_size)) throw PluginError(where + ": a section header lies beyond the file");
+  std::vector<char> headers(headers_size);
+  if (!elf.read(h.e_shoff, headers.data(), headers.size())) throw PluginError(where + ": a section header lies beyond the file");
   auto section = [&](std::uint64_t index) {
     Elf64_Shdr s{};
-    if (index >= h.e_shnum || !elf.read(h.e_shoff + index * h.e_shentsize, &s, sizeof s))
-      throw PluginError(where + ": a section header lies beyond the file");
+    if (index >= h.e_shnum) throw PluginError(where + ": a section header lies beyond the file");
+    std::memcpy(&s, headers.data() + index * h.e_shentsize, sizeof s);
     return s;
   };
   for (std::uint64_t i = 0; i < h.e_shnum; ++i) {
@@ -120,12 +127,16 @@ bool plugin_exports_symbol(const std::filesystem::path& file, const std::string&
       std::memcpy(&sym, table.data() + k * symbols.sh_entsize, sizeof sym);
       const unsigned binding = ELF64_ST_BIND(sym.st_info);
       if (sym.st_shndx == SHN_UNDEF || (binding != STB_GLOBAL && binding != STB_WEAK)) continue;
-      // The name and its terminating zero, where this symbol's name starts.
-      if (sym.st_name >= text.size() || name.size() + 1 > text.size() - sym.st_name) continue;
-      if (std::memcmp(text.data() + sym.st_name, name.c_str(), name.size() + 1) == 0) return true;
+      if (sym.st_name >= text.size()) continue;
+      for (std::size_t n = 0; n < names.size(); ++n) {
+        // The name and its terminating zero, where this symbol's name starts.
+        const std::string& name = names[n];
+        if (name.size() + 1 <= text.size() - sym.st_name && std::memcmp(text.data() + sym.st_name, name.c_str(), name.size() + 1) == 0)
+          found[n] = true;
+      }
     }
   }
-  return false;
+  return found;
 }
 
 }  // namespace mechgraph::detail

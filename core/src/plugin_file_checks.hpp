@@ -5,6 +5,7 @@
 // loader, so its static constructors never run. Private to libmechgraph.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace mechgraph::detail {
 
@@ -17,10 +18,12 @@ void check_plugin_ownership(const std::filesystem::path& path, const std::string
 /// mapped past its end and take the process down with SIGBUS).
 void check_plugin_elf(const std::filesystem::path& file, const std::string& where);
 
-/// Whether the file's dynamic symbol table (.dynsym) defines a global or weak symbol `name`, read
-/// from the file with bounds on every offset and size, without mapping it. A file without section
-/// headers or without .dynsym defines nothing. Throws PluginError on a table that lies beyond the
-/// file. Call after check_plugin_elf.
-bool plugin_exports_symbol(const std::filesystem::path& file, const std::string& name, const std::string& where);
+/// Which of `names` the file's dynamic symbol table (.dynsym) defines as a global or weak symbol
+/// (result[i] for names[i]), read from the file with bounds on every offset and size, without
+/// mapping it, in one pass over the table. A file without section headers or without .dynsym
+/// defines nothing. Throws PluginError on a table that lies beyond the file. Call after
+/// check_plugin_elf.
+std::vector<bool> plugin_exports_symbols(const std::filesystem::path& file, const std::vector<std::string>& names,
+                                         const std::string& where);
 
 }  // namespace mechgraph::detail

@@ -2,86 +2,19 @@
 
 #include "plugin_handshake.hpp"
 
-#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
-
-#include <spdlog/spdlog.h>
 
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 
 namespace mechgraph::detail {
 namespace {
-
-// Files that loaded cleanly in a child before, so that a process start does not fork once per
-// plugin every time: $XDG_CACHE_HOME/mechgraph/plugin-probes (else ~/.cache/...), one line per
-// file, appended. A file that changes is probed again.
-std::filesystem::path probe_cache_file() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return std::filesystem::path(xdg) / "mechgraph" / "plugin-probes";
-  if (const char* home = std::getenv("HOME"); home && *home) return std::filesystem::path(home) / ".cache" / "mechgraph" / "plugin-probes";
-  return {};
-}
-
-std::string probe_key(const std::filesystem::path& file) {
-  struct stat st {};
-  if (::stat(file.c_str(), &st) != 0) return {};
-  return file.string() + " " + std::to_string(st.st_size) + " " + std::to_string(st.st_ctim.tv_sec) + "." +
-         std::to_string(st.st_ctim.tv_nsec) + " " + std::to_string(st.st_ino);
-}
-
-// The cache is only a shortcut: whatever is wrong with it (a FIFO or a folder in its place, a
-// huge or garbled file) costs a probe, never a hang or a crash. Read with a bound, like any file
-// this process does not control.
-constexpr std::size_t probe_cache_limit = std::size_t{1} << 20;
-
-bool probed_before(const std::string& key) {
-  const std::filesystem::path cache = probe_cache_file();
-  if (key.empty() || cache.empty()) return false;
-  std::string text;
-  try {
-    text = read_bounded_file(cache, probe_cache_limit);
-  } catch (const FileReadError& e) {
-    spdlog::debug("plugin probe cache ignored: {}", e.what());
-    return false;
-  }
-  std::string_view rest(text);
-  while (!rest.empty()) {
-    const std::size_t end = std::min(rest.find('\n'), rest.size());
-    if (rest.substr(0, end) == key) return true;
-    rest.remove_prefix(std::min(end + 1, rest.size()));
-  }
-  return false;
-}
-
-void remember_probe(const std::string& key) {
-  const std::filesystem::path cache = probe_cache_file();
-  if (key.empty() || cache.empty() || key.find('\n') != std::string::npos) return;
-  std::error_code ec;
-  std::filesystem::create_directories(cache.parent_path(), ec);
-  // Only a regular file (or none) is appended to: a FIFO there would block the open, a device or
-  // a folder is not ours to write. Too big: start again.
-  struct stat st {};
-  if (::lstat(cache.c_str(), &st) == 0) {
-    if (!S_ISREG(st.st_mode)) return;
-    if (static_cast<std::uintmax_t>(st.st_size) > probe_cache_limit / 2) std::filesystem::remove(cache, ec);
-  }
-  const int fd = ::open(cache.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY, 0644);
-  if (fd < 0) return;
-  struct stat opened {};
-  const std::string line = key + "\n";
-  // One short append: whole lines even with several writers.
-  if (::fstat(fd, &opened) == 0 && S_ISREG(opened.st_mode)) (void)!::write(fd, line.data(), line.size());
-  ::close(fd);
-}
 
 // What the child writes to its pipe just before it ends: one verdict byte, then for a refusal the
 // reason (at most one atomic pipe write). Nothing written (the plugin ended the child itself) is a
@@ -135,9 +68,9 @@ pid_t fork_with_retries() {
 
 }  // namespace
 
-void probe_plugin_in_child(const std::filesystem::path& file, const std::string& where) {
+void probe_plugin_in_child(const std::filesystem::path& file, const std::string& where, ProbeCache& cache) {
   const std::string key = probe_key(file);
-  if (probed_before(key)) return;
+  if (cache.accepted_before(key)) return;
   // Non-blocking: a process the plugin started may hold the write end open after the child ends.
   int report[2];
   if (::pipe2(report, O_CLOEXEC | O_NONBLOCK) != 0)
@@ -189,7 +122,7 @@ void probe_plugin_in_child(const std::filesystem::path& file, const std::string&
   if (buffer[0] == probe_refused) throw PluginError(std::string(buffer + 1, static_cast<std::size_t>(got - 1)));
   if (buffer[0] != probe_accepted || got != 1)
     throw PluginError(where + ": loading it gave the probe no verdict it understands; refused");
-  remember_probe(key);
+  cache.remember(key);
 }
 
 }  // namespace mechgraph::detail

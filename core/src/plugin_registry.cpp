@@ -62,9 +62,11 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   detail::check_plugin_ownership(file, where, false);
   detail::check_plugin_elf(file, where);
   // An SDK 1.x plugin exports mechgraph_plugin_entry_1 (the C boundary); a pre-1.0 one the C++ entry.
-  const bool sdk1 = detail::plugin_exports_symbol(file, MG_PLUGIN_ENTRY, where);
-  if (!sdk1 && !detail::plugin_exports_symbol(file, plugin_entry_name, where)) {
-    if (detail::plugin_exports_symbol(file, legacy_plugin_entry_name, where))
+  const std::vector<bool> entries =
+      detail::plugin_exports_symbols(file, {MG_PLUGIN_ENTRY, plugin_entry_name, legacy_plugin_entry_name}, where);
+  const bool sdk1 = entries[0], cxx_entry = entries[1], legacy_entry = entries[2];
+  if (!sdk1 && !cxx_entry) {
+    if (legacy_entry)
       throw PluginError(where + ": was built for mechgraph plugin ABI 3 or older (its entry is the old '" +
                         std::string(legacy_plugin_entry_name) + "' alias); this mechgraph " MECHGRAPH_SDK_VERSION
                         " uses ABI version " + std::to_string(plugin_abi_version) +
@@ -74,7 +76,8 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
                       "'; it is not a mechgraph plugin (a plugin declares one with MECHGRAPH_PLUGIN)");
   }
   // The child loads it and runs the whole handshake; only a file it accepted is loaded here.
-  detail::probe_plugin_in_child(file, where);
+  if (!probes_) probes_ = std::make_shared<detail::ProbeCache>();
+  detail::probe_plugin_in_child(file, where, *probes_);
   auto library = std::make_shared<Library>();
   boost::dll::fs::error_code ec;
   library->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local, ec);

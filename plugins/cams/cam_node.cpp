@@ -35,21 +35,25 @@ RampSpec read_ramp(const ParamSet& params) {
   r.type = *type;
   r.height = params.has("ramp_height") ? params.number("ramp_height") : 0.0;
   r.length = params.has("ramp_length") ? params.number("ramp_length") : 0.0;
-  std::ostringstream m;
+  // The stream is made only for a refusal: every evaluation reads the ramp, few are refused.
   if (!(std::isfinite(r.height) && r.height >= 0.0)) {
+    std::ostringstream m;
     m << "ramp_height must be >= 0 (got " << r.height * 1e3 << " mm)";
     throw NodeError("ramp_height", m.str());
   }
   if (!(std::isfinite(r.length) && r.length >= 0.0)) {
+    std::ostringstream m;
     m << "ramp_length must be >= 0 (got " << r.length * 180.0 / pi << " deg)";
     throw NodeError("ramp_length", m.str());
   }
   if (r.type == RampType::none) {
     if (r.height != 0.0) {
+      std::ostringstream m;
       m << "ramp_height is " << r.height * 1e3 << " mm but ramp is none; choose ramp: constant_velocity or cosine";
       throw NodeError("ramp_height", m.str());
     }
     if (r.length != 0.0) {
+      std::ostringstream m;
       m << "ramp_length is " << r.length * 180.0 / pi << " deg but ramp is none; choose ramp: constant_velocity or cosine";
       throw NodeError("ramp_length", m.str());
     }
@@ -89,25 +93,26 @@ class CamNodeType final : public NodeType {
     info_.type = std::move(d.type);
     info_.version = d.version;
     info_.summary = std::move(d.summary);
-    info_.params = {
-        ParamSpec::number("max_lift", dim::length,
-                          "maximum follower lift at the nose; with a ramp the total lift: the ramp's share "
-                          "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
-                          "mm")
-            .positive()
-            .at_most(1e3)
-            .because("> 0: a lift event must lift; <= 1 km: squares of a lift (time-area, energies) stay far inside a double")
-            .with_example(9e-3),
-        ParamSpec::number("action_angle", dim::angle,
-                          "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
-                          "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
-                          "deg")
-            .at_least(min_action_angle)
-            .below(2.0 * std::numbers::pi)
-            .because(">= 0.1 deg: below it h / phi^2 and h / phi^3 leave the range of a double for some lift; < 360 deg: the event fits in one turn")
-            .with_example(130.0 * std::numbers::pi / 180.0),
-        ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().because("> 0: a radius").with_example(60e-3),
-    };
+    // Every declaration is moved into info_ (a node type is built at every process start): the
+    // fluent setters return a reference, which a braced list or a push_back would copy.
+    const auto param = [this](ParamSpec& p) { info_.params.push_back(std::move(p)); };
+    param(ParamSpec::number("max_lift", dim::length,
+                            "maximum follower lift at the nose; with a ramp the total lift: the ramp's share "
+                            "(ramp_height + its end velocity faded out by the nose, see ramp) plus the main law's",
+                            "mm")
+              .positive()
+              .at_most(1e3)
+              .because("> 0: a lift event must lift; <= 1 km: squares of a lift (time-area, energies) stay far inside a double")
+              .with_example(9e-3));
+    param(ParamSpec::number("action_angle", dim::angle,
+                            "total cam angle of the lift event of the main law (ramps add 2 ramp_length); from 0.1 deg, "
+                            "below which the derivatives (h / phi^2, h / phi^3) leave the range of a double for any lift",
+                            "deg")
+              .at_least(min_action_angle)
+              .below(2.0 * std::numbers::pi)
+              .because(">= 0.1 deg: below it h / phi^2 and h / phi^3 leave the range of a double for some lift; < 360 deg: the event fits in one turn")
+              .with_example(130.0 * std::numbers::pi / 180.0));
+    param(ParamSpec::number("base_radius", dim::length, "base-circle radius", "mm").positive().because("> 0: a radius").with_example(60e-3));
     if (derived_) {
       for (std::size_t i = 0; i < 2; ++i) {
         info_.params[i].optional();
@@ -115,59 +120,54 @@ class CamNodeType final : public NodeType {
       }
     }
     for (auto& p : d.params) info_.params.push_back(std::move(p));
-    info_.params.push_back(
-        ParamSpec::choice("ramp", ramp_type_names(),
-                          "opening/closing ramps taking up the lash, superposed on the law: none; "
-                          "constant_velocity (lift grows linearly to ramp_height over ramp_length: the velocity "
-                          "jumps at the start of the ramp, an acceleration impulse, not shockless); cosine "
-                          "(ramp_height (1 - cos(pi x/2)): velocity continuous, finite acceleration step at the start). "
-                          "The ramp's end velocity is carried into the main lift and faded to zero at the nose by a "
-                          "3-4-5 polynomial, so lift, velocity (and for cosine acceleration) are continuous at the "
-                          "ramp/main junction; the event grows to action_angle + 2 ramp_length, symmetric")
-            .with_default("none"));
-    info_.params.push_back(ParamSpec::number("ramp_height", dim::length,
-                                             "lift at the end of each ramp (set with a ramp, 0 without)", "mm")
-                               .with_default(0.0)
-                               .non_negative()
-                               .because(">= 0: a lift (0: no ramp)"));
-    info_.params.push_back(ParamSpec::number("ramp_length", dim::angle,
-                                             "cam angle of each ramp, before and after the action angle (set with a "
-                                             "ramp, 0 without)",
-                                             "deg")
-                               .with_default(0.0)
-                               .non_negative()
-                               .below(pi - 0.5 * min_action_angle)
-                               .because(">= 0: an angle (0: no ramp); < 180 - 0.05 deg: action_angle (at least 0.1 deg) plus two ramps must stay below 360 deg"));
-    info_.params.push_back(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
-                               .with_default(16.0)
-                               .at_least(8)
-                               .at_most(1e6)
-                               .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: 8 already agree with 3200 to 1e-13, more only costs time")
-                               .as_knob());
+    param(ParamSpec::choice("ramp", ramp_type_names(),
+                            "opening/closing ramps taking up the lash, superposed on the law: none; "
+                            "constant_velocity (lift grows linearly to ramp_height over ramp_length: the velocity "
+                            "jumps at the start of the ramp, an acceleration impulse, not shockless); cosine "
+                            "(ramp_height (1 - cos(pi x/2)): velocity continuous, finite acceleration step at the start). "
+                            "The ramp's end velocity is carried into the main lift and faded to zero at the nose by a "
+                            "3-4-5 polynomial, so lift, velocity (and for cosine acceleration) are continuous at the "
+                            "ramp/main junction; the event grows to action_angle + 2 ramp_length, symmetric")
+              .with_default("none"));
+    param(ParamSpec::number("ramp_height", dim::length, "lift at the end of each ramp (set with a ramp, 0 without)", "mm")
+              .with_default(0.0)
+              .non_negative()
+              .because(">= 0: a lift (0: no ramp)"));
+    param(ParamSpec::number("ramp_length", dim::angle,
+                            "cam angle of each ramp, before and after the action angle (set with a ramp, 0 without)",
+                            "deg")
+              .with_default(0.0)
+              .non_negative()
+              .below(pi - 0.5 * min_action_angle)
+              .because(">= 0: an angle (0: no ramp); < 180 - 0.05 deg: action_angle (at least 0.1 deg) plus two ramps must stay below 360 deg"));
+    param(ParamSpec::integer("samples", "samples per smooth piece for the extremum searches (each extremum then refined to full precision, by the root of its derivative or Brent; 16 agree with 3200 to 1e-13 on every example cam and 8 already do, mechgraph bench shows it)")
+              .with_default(16.0)
+              .at_least(8)
+              .at_most(1e6)
+              .because(">= 8: fewer cannot certify a piece's interpolant; <= 1e6: 8 already agree with 3200 to 1e-13, more only costs time")
+              .as_knob());
     info_.params.push_back(checking_lift_param("cam"));
     info_.params.push_back(nose_timing_param());
-    info_.params.push_back(ParamSpec::integer("curve_points", "points of the svaj table, evenly spaced over the event "
-                                                              "widened by a tenth of its width each side")
-                               .with_default(361.0)
-                               .at_least(3)
-                               .at_most(1e6)
-                               .because(">= 3: a curve needs its two ends and a point between; <= 1e6: a table for plotting, bounded in memory"));
-    info_.outputs = {
-        PortSpec::handle("law", std::string(CamLaw::kind_name), "follower lift over cam angle with 3 derivatives"),
-        PortSpec::scalar("max_lift", dim::length, "follower (tappet) lift at the nose, ramps included", "mm"),
-        PortSpec::scalar("max_velocity", dim::length / dim::angle, "max |dh/dphi|", "mm/deg"),
-        PortSpec::scalar("max_acceleration", dim::length / dim::angle.pow(2), "max d2h/dphi2"),
-        PortSpec::scalar("min_acceleration", dim::length / dim::angle.pow(2), "min (most negative) d2h/dphi2"),
-        PortSpec::scalar("accel_angle", dim::angle, "achieved positive-acceleration phase from the start of lift", "deg"),
-        PortSpec::scalar("min_curvature_radius", dim::length,
-                         "smallest radius of curvature of the contour for the law's own follower (a flat face unless "
-                         "the law was made for a roller); negative where that follower would undercut: cam.contour "
-                         "checks the cam with its follower",
-                         "mm"),
-    };
+    param(ParamSpec::integer("curve_points", "points of the svaj table, evenly spaced over the event "
+                                             "widened by a tenth of its width each side")
+              .with_default(361.0)
+              .at_least(3)
+              .at_most(1e6)
+              .because(">= 3: a curve needs its two ends and a point between; <= 1e6: a table for plotting, bounded in memory"));
+    info_.outputs.push_back(PortSpec::handle("law", std::string(CamLaw::kind_name), "follower lift over cam angle with 3 derivatives"));
+    info_.outputs.push_back(PortSpec::scalar("max_lift", dim::length, "follower (tappet) lift at the nose, ramps included", "mm"));
+    info_.outputs.push_back(PortSpec::scalar("max_velocity", dim::length / dim::angle, "max |dh/dphi|", "mm/deg"));
+    info_.outputs.push_back(PortSpec::scalar("max_acceleration", dim::length / dim::angle.pow(2), "max d2h/dphi2"));
+    info_.outputs.push_back(PortSpec::scalar("min_acceleration", dim::length / dim::angle.pow(2), "min (most negative) d2h/dphi2"));
+    info_.outputs.push_back(PortSpec::scalar("accel_angle", dim::angle, "achieved positive-acceleration phase from the start of lift", "deg"));
+    info_.outputs.push_back(PortSpec::scalar("min_curvature_radius", dim::length,
+                                             "smallest radius of curvature of the contour for the law's own follower (a flat face unless "
+                                             "the law was made for a roller); negative where that follower would undercut: cam.contour "
+                                             "checks the cam with its follower",
+                                             "mm"));
     info_.outputs.push_back(svaj_port("svaj", "lift, velocity, acceleration and jerk over cam angle (and crank angle), curve_points rows"));
     info_.frames = cam_angle_frames();
-    info_.notes = {timing_note()};
+    info_.notes.push_back(timing_note());
     for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
     for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
     info_.inputs = std::move(d.extra_inputs);

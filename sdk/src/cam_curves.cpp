@@ -249,7 +249,11 @@ std::vector<AngleFrame> cam_angle_frames(bool installed) {
   crank.mark_labels = {"TDC", "BDC"};
   crank.before = "B";
   crank.after = "A";
-  return {cam, crank};
+  std::vector<AngleFrame> frames;  // moved in: a braced list would copy both
+  frames.reserve(2);
+  frames.push_back(std::move(cam));
+  frames.push_back(std::move(crank));
+  return frames;
 }
 
 NoteDecl timing_note() {
@@ -270,7 +274,9 @@ PortSpec svaj_port(std::string name, std::string doc) {
   events.labels = {"opens", "closes"};
   events.caption = "events at {axis} lift";
   p.points.push_back(std::move(events));
-  return PortSpec::table(std::move(name), std::move(doc)).presented(std::move(p));
+  PortSpec port = PortSpec::table(std::move(name), std::move(doc));
+  port.presented(std::move(p));
+  return port;
 }
 
 Presentation over_cam_angle(std::string axis, Role role) {
@@ -289,29 +295,33 @@ std::vector<PortSpec> lift_event_ports(const std::string& whose) {
     events.with(ChannelDecl::of(n, dim::angle).in_frame("crank"));
   for (const char* n : {"opening", "closing", "centreline"})
     events.with(ChannelDecl::of(std::string(n) + "_atdc", dim::angle).labelled(std::string(n) + " after TDC").in_frame("crank"));
-  return {
-      PortSpec::table("events", "opening, closing, duration and centreline of the " + whose +
+  // Each port moved into the list: a braced list, or a push_back of what the fluent setters return
+  // (a reference), would copy it with its presentation.
+  std::vector<PortSpec> ports;
+  ports.reserve(9);
+  const auto add = [&ports](PortSpec& port) { ports.push_back(std::move(port)); };
+  add(PortSpec::table("events", "opening, closing, duration and centreline of the " + whose +
                                     " in cam and crank angle at checking_lift, 0.050 in and the seat, a row per "
                                     "checking lift reached (with nose_timing also from the overlap TDC)")
-          .presented(std::move(events)),
-      PortSpec::scalar("opening_angle", dim::angle, "cam angle where the " + whose + " lift rises through checking_lift", "deg").in_frame("cam"),
-      PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg").in_frame("cam"),
-      PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg").in_frame("cam"),
-      PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg").in_frame("crank"),
-      PortSpec::scalar("centreline", dim::angle,
+          .presented(std::move(events)));
+  add(PortSpec::scalar("opening_angle", dim::angle, "cam angle where the " + whose + " lift rises through checking_lift", "deg").in_frame("cam"));
+  add(PortSpec::scalar("closing_angle", dim::angle, "cam angle where the " + whose + " lift falls through checking_lift", "deg").in_frame("cam"));
+  add(PortSpec::scalar("duration", dim::angle, "cam angle between opening and closing at checking_lift", "deg").in_frame("cam"));
+  add(PortSpec::scalar("crank_duration", dim::angle, "duration at checking_lift in crank degrees (2 x cam)", "deg").in_frame("crank"));
+  add(PortSpec::scalar("centreline", dim::angle,
                        "halfway between opening and closing at checking_lift, cam angle from the nose (0 on a symmetric "
                        "lobe)",
                        "deg")
-          .in_frame("cam"),
-      PortSpec::scalar("nose_angle", dim::angle,
+          .in_frame("cam"));
+  add(PortSpec::scalar("nose_angle", dim::angle,
                        "cam angle of the maximum " + whose + " lift (the nose), from the law's zero (the svaj axis); "
                        "on a dwell at full lift, the dwell's middle, exactly halfway between its ends",
                        "deg")
-          .in_frame("cam"),
-      PortSpec::scalar("event_centre", dim::angle,
+          .in_frame("cam"));
+  add(PortSpec::scalar("event_centre", dim::angle,
                        "halfway between the ends of the lift event (seat to seat), cam angle from the nose", "deg")
-          .in_frame("cam"),
-  };
+          .in_frame("cam"));
+  return ports;
 }
 
 bool lift_events_wanted(const EvalContext& ctx) {

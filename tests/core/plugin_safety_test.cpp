@@ -2,6 +2,7 @@
 // that crashes while it loads, a file
 // or folder others can write. Each is refused with its path and reason before the dynamic loader
 // maps it; load_directory skips it and loads the rest.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace mechgraph;
@@ -203,4 +205,64 @@ TEST_CASE("the ELF symbol reader finds the entry of every built-in plugin and of
     INFO(system);
     CHECK_THROWS_WITH(PluginRegistry().load_file(system), Contains("has no entry") || Contains("owned by"));
   }
+}
+
+namespace {
+
+// Sets an environment variable for the scope, and unsets it after.
+struct ScopedVariable {
+  std::string name;
+  ScopedVariable(std::string n, const std::string& value) : name(std::move(n)) { ::setenv(name.c_str(), value.c_str(), 1); }
+  ~ScopedVariable() { ::unsetenv(name.c_str()); }
+};
+
+}  // namespace
+
+// The probe cache saves a process start one probe child per plugin: a file it names, unchanged,
+// is loaded without one. It is read once per registry and looked up as whole lines, so a start
+// costs the same with a cache of thousands of lines (one per file any build tree on the machine
+// loaded) and a line that merely contains the file's key does not count.
+TEST_CASE("a plugin the probe cache names is loaded without a probe; only its whole line counts",
+          "[plugins][safety][probe]") {
+  const MarkerFile marker("probe_cache");
+  const fs::path dir = fresh_dir(fs::temp_directory_path(), "mg_probe_cache_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "plugins");
+  fs::permissions(dir / "plugins", fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                       fs::perms::others_read | fs::perms::others_exec);
+  const fs::path plugin = dir / "plugins" / "mechgraph_marker_good.so";
+  fs::copy_file(test_plugin("test_marker_good"), plugin);
+  const ScopedVariable cache_home("XDG_CACHE_HOME", (dir / "cache").string());
+  const fs::path probes = dir / "cache" / "mechgraph" / "plugin-probes";
+  // How many processes ran the plugin's constructors in one start of the command: 2 when it was
+  // probed (the probe's child, then the host), 1 when the cache had it.
+  const auto processes_that_loaded_it = [&] {
+    fs::remove(marker.path);
+    const CommandResult r = run_cli("-q --only-plugin-dir '" + (dir / "plugins").string() + "' plugins");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return marks(marker.path).size();
+  };
+  // The key the cache remembers a file by: its path, size, change time and inode.
+  struct stat st {};
+  REQUIRE(::stat(plugin.c_str(), &st) == 0);
+  const std::string key = fs::canonical(plugin).string() + " " + std::to_string(st.st_size) + " " +
+                          std::to_string(st.st_ctim.tv_sec) + "." + std::to_string(st.st_ctim.tv_nsec) + " " +
+                          std::to_string(st.st_ino);
+  std::string others;  // a cache shared by many build trees
+  for (int i = 0; i < 2000; ++i)
+    others += "/elsewhere/build" + std::to_string(i) + "/mechgraph_marker_good.so 4096 1795902881.259305667 " + std::to_string(i) + "\n";
+
+  SECTION("the first start probes and remembers it; the next ones load it without a probe") {
+    CHECK(processes_that_loaded_it() == 2);
+    CHECK(slurp(probes).find(key + "\n") != std::string::npos);
+    CHECK(processes_that_loaded_it() == 1);
+    write_file(probes, others + key + "\n" + others);
+    CHECK(processes_that_loaded_it() == 1);
+  }
+  SECTION("a line that only contains the key is not the key") {
+    fs::create_directories(probes.parent_path());
+    write_file(probes, others + "x" + key + "\n" + key + " 1\n" + others);
+    CHECK(processes_that_loaded_it() == 2);
+  }
+  fs::remove_all(dir);
 }

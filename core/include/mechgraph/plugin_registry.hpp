@@ -11,6 +11,9 @@
 #include <vector>
 
 namespace mechgraph {
+namespace detail {
+class ProbeCache;
+}
 
 struct PluginInfo {
   std::string id;
@@ -80,6 +83,7 @@ class PluginRegistry {
   std::vector<SkippedPlugin> skipped_;
   std::vector<std::pair<std::string, RegisteredType>> types_;
   Lifetime lifetime_ = Lifetime::process;
+  std::shared_ptr<detail::ProbeCache> probes_;  // the probe cache, read once for all the files loaded
 };
 
 }  // namespace mechgraph
