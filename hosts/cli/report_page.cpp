@@ -161,7 +161,10 @@ void write_figure_rows(std::ostream& out, const Figure& f) {
   } else {
     std::size_t rows = 0;
     for (std::size_t k = 0; k < f.curves.size(); ++k) {
-      const std::string prefix = f.curves.size() > 1 && !f.curve_titles[k].empty() ? f.curve_titles[k] + " " : "";
+      // Each curve's columns say whose it is: its legend entry, or in small multiples its panel's title.
+      std::string whose = f.curve_titles[k];
+      if (whose.empty() && k < f.panel_of.size() && f.panel_of[k] < f.panel_titles.size()) whose = f.panel_titles[f.panel_of[k]];
+      const std::string prefix = f.curves.size() > 1 && !whose.empty() ? whose + " " : "";
       out << (k ? "," : "") << csv_field(prefix + f.curves[k].first.name) << "," << csv_field(prefix + f.curves[k].second.name);
       rows = std::max(rows, std::min(f.curves[k].first.values.size(), f.curves[k].second.values.size()));
     }
@@ -389,8 +392,8 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
 }
 
 // The names legends use: a node's column title in the scene's report tables ("three-arc" for arc,
-// v_arc and ta_arc), else the one column every node it feeds is in (the valve motion that only the
-// 7500 rpm simulation reads is that column's), else the node's own name. A node in several
+// v_arc and ta_arc), else the one column every node it feeds is in (a node that only one column's
+// node reads is that column's), else the node's own name. A node in several
 // columns (one that sums up the others) has no one column and keeps its name. Two curves of one
 // figure that would read alike (three-arc by the source's rule and by the free-length rule) get
 // the node's name beside.
