@@ -9,7 +9,8 @@
 
 namespace mechgraph::cli {
 
-void write_gnuplot_datablock(std::ostream& script, const std::string& name, const std::vector<const std::vector<double>*>& columns) {
+void write_gnuplot_datablock(std::ostream& script, const std::string& name, const std::vector<const std::vector<double>*>& columns,
+                             const std::vector<std::size_t>& pieces_from) {
   const bool identifier = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
   });
@@ -19,7 +20,11 @@ void write_gnuplot_datablock(std::ostream& script, const std::string& name, cons
   script << '$' << name << " << EOD\n";
   std::string line;
   char buffer[32];
+  std::size_t next_piece = 0;
   for (std::size_t i = 0; i < rows; ++i) {
+    bool piece = false;
+    while (next_piece < pieces_from.size() && pieces_from[next_piece] <= i) piece = piece || pieces_from[next_piece++] == i;
+    if (piece && i > 0) script << '\n';  // a blank line: gnuplot draws no line across it
     line.clear();
     bool finite = true;
     for (const std::vector<double>* c : columns) {

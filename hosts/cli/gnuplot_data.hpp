@@ -7,6 +7,7 @@
 // into the script as gnuplot_string constants (text_escape.hpp), and the data as numbers in a
 // datablock (`$NAME << EOD` ... `EOD`), whose lines hold nothing but numbers, so no text can end
 // the block or shift a column.
+#include <cstddef>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -18,7 +19,10 @@ namespace mechgraph::cli {
 /// significant digits), `EOD`. A row stops at the shortest column; a row holding a non-finite
 /// number is left out (gnuplot would read "inf" as text). `name` must be an identifier (letters,
 /// digits, '_'), chosen by the caller, never user text: std::invalid_argument otherwise.
-void write_gnuplot_datablock(std::ostream& script, const std::string& name, const std::vector<const std::vector<double>*>& columns);
+/// `pieces_from`: rows (ascending) before which a blank line is written, so that gnuplot draws the
+/// curve in pieces and no line joins row i - 1 to row i (a jump of the curve there).
+void write_gnuplot_datablock(std::ostream& script, const std::string& name, const std::vector<const std::vector<double>*>& columns,
+                             const std::vector<std::size_t>& pieces_from = {});
 
 /// `set xtics OPTIONS (LABEL 0, LABEL 1, ...)`: tic labels at 0, 1, 2 ... each a gnuplot_string
 /// constant; `options` is the caller's fixed text ("rotate by -30"), never user text. Nothing for

@@ -37,6 +37,9 @@ namespace {
 
 // Tables with at most this many rows are shown as tables, not plotted (a list of events).
 constexpr std::size_t table_rows_shown = 12;
+// A channel compared across more nodes than this is drawn as small multiples (a panel per node):
+// more curves in one plot hide one another.
+constexpr std::size_t overlaid_at_most = 3;
 
 std::string file_safe(std::string text) {
   for (char& c : text)
@@ -86,6 +89,7 @@ struct Column {
   std::string name;   // CSV header: "first height [mm]"
   std::string unit;
   std::vector<double> values;
+  std::vector<std::size_t> pieces_from;  // rows (ascending) where a new piece starts: no line from the row before
 };
 
 // `title` is what the reader calls it (a label), `frame_tag` the tag of its angle frame when it is
@@ -138,6 +142,13 @@ struct Figure {
   std::string points_title;
   std::vector<std::string> arrows;  // "x0 y0 x1 y1" in the plot's units, drawn with a head (rotation)
   std::string caption;              // said under the plot
+  // panel: a title inside each panel (small multiples: the node), and one y range for all panels
+  std::vector<std::string> panel_titles;
+  bool same_y = false;
+  // lines: the x range drawn when it is not the curves' and marks' (a working range), and marks
+  // beyond it, named at the plot's edge with their value
+  std::optional<std::pair<double, double>> x_range;
+  std::vector<std::pair<std::string, double>> edge_marks;
 };
 
 // Wide CSV: x and y columns of every curve side by side, shorter ones padded with empty cells.
@@ -151,7 +162,10 @@ void write_figure_rows(std::ostream& out, const Figure& f) {
   } else {
     std::size_t rows = 0;
     for (std::size_t k = 0; k < f.curves.size(); ++k) {
-      const std::string prefix = f.curves.size() > 1 && !f.curve_titles[k].empty() ? f.curve_titles[k] + " " : "";
+      // Each curve's columns say whose it is: its legend entry, or in small multiples its panel's title.
+      std::string whose = f.curve_titles[k];
+      if (whose.empty() && k < f.panel_of.size() && f.panel_of[k] < f.panel_titles.size()) whose = f.panel_titles[f.panel_of[k]];
+      const std::string prefix = f.curves.size() > 1 && !whose.empty() ? whose + " " : "";
       out << (k ? "," : "") << csv_field(prefix + f.curves[k].first.name) << "," << csv_field(prefix + f.curves[k].second.name);
       rows = std::max(rows, std::min(f.curves[k].first.values.size(), f.curves[k].second.values.size()));
     }
@@ -205,8 +219,19 @@ void write_panel(std::ostream& s, const Figure& f) {
   for (const auto& [x, y] : f.curves)
     for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
   const double top = 0.93, bottom = 0.08, gap = 0.012, height = (top - bottom) / static_cast<double>(panels);
+  // Room on the right for a legend only when a curve has a title.
+  const bool keyed = std::any_of(f.curve_titles.begin(), f.curve_titles.end(), [](const std::string& t) { return !t.empty(); });
   s << "set multiplot title " << gnuplot_string(f.title) << "\nset xrange [" << lo << ":" << hi << "]\n"
-    << "set lmargin at screen 0.11\nset rmargin at screen 0.76\n";
+    << "set lmargin at screen 0.11\nset rmargin at screen " << (keyed ? 0.76 : 0.95) << "\n";
+  if (f.same_y) {
+    // Small multiples share one y scale, so that the panels compare at a glance.
+    double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+    for (const auto& [x, y] : f.curves)
+      for (double v : y.values)
+        if (std::isfinite(v)) y_lo = std::min(y_lo, v), y_hi = std::max(y_hi, v);
+    const double pad = y_hi > y_lo ? 0.05 * (y_hi - y_lo) : std::max(1.0, std::abs(y_hi));
+    if (std::isfinite(y_lo)) s << "set yrange [" << y_lo - pad << ":" << y_hi + pad << "]\n";
+  }
   for (std::size_t p = 0; p < panels; ++p) {
     s << "set tmargin at screen " << top - height * static_cast<double>(p) << "\nset bmargin at screen "
       << top - height * static_cast<double>(p + 1) + gap << "\n";
@@ -215,6 +240,8 @@ void write_panel(std::ostream& s, const Figure& f) {
     else s << "set format x '%g'\nset xlabel " << gnuplot_string(f.xlabel) << "\n";
     if (p == 0) s << "set key outside right top\n";
     else s << "unset key\n";
+    if (p < f.panel_titles.size())
+      s << "set label " << gnuplot_string(f.panel_titles[p]) << " at graph 0.01, graph 0.9 left front font ',10'\n";
     write_marks(s, f.marks);
     std::vector<std::size_t> which;
     for (std::size_t k = 0; k < f.curves.size(); ++k)
@@ -257,7 +284,8 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
       s << "plot $bars using 0:1 with boxes lc rgb '#3060a0'\n";
     } else {
       for (std::size_t k = 0; k < f.curves.size(); ++k)
-        write_gnuplot_datablock(s, "curve" + std::to_string(k), {&f.curves[k].first.values, &f.curves[k].second.values});
+        write_gnuplot_datablock(s, "curve" + std::to_string(k), {&f.curves[k].first.values, &f.curves[k].second.values},
+                                f.curves[k].second.pieces_from);
     }
     if (f.kind == Figure::Kind::bars) {
     } else if (f.kind == Figure::Kind::histogram) {
@@ -302,7 +330,25 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
         in >> x0 >> y0 >> x1 >> y1;
         s << "set arrow from " << x0 << "," << y0 << " to " << x1 << "," << y1 << " head filled size screen 0.02,20 lw 1.5 lc rgb '#404040'\n";
       }
-      if (!f.marks.empty()) {
+      if (f.x_range) {
+        // A working range: the marks within it drawn, those beyond named at the edge they lie past.
+        const auto [lo, hi] = *f.x_range;
+        const double pad = 0.08 * (hi - lo);  // room for a mark's label right of its line
+        s << "set xrange [" << lo - pad << ":" << hi + pad << "]\n";
+        write_marks(s, f.marks);
+        const std::string unit = f.curves.empty() ? std::string() : bare_unit(f.curves.front().first.unit);
+        std::size_t left = 0, right = 0;
+        for (const auto& [label, at] : f.edge_marks) {
+          char value[48];
+          std::snprintf(value, sizeof value, "%.4g", at);
+          const std::string text = label + " at " + value + (unit.empty() ? "" : " " + unit);
+          const bool before = at < lo;
+          // Low on the plot: the marks' own labels stand at its top.
+          const double y = 0.05 + 0.07 * static_cast<double>(before ? left++ : right++);
+          s << "set label " << gnuplot_string(before ? "<- " + text : text + " ->") << " at graph " << (before ? 0.01 : 0.99)
+            << ", graph " << y << (before ? " left" : " right") << " front font ',9' textcolor rgb '#c03030'\n";
+        }
+      } else if (!f.marks.empty()) {
         // The x range holds the curves and every mark.
         double lo = std::numeric_limits<double>::infinity(), hi = -lo;
         for (const auto& [x, y] : f.curves)
@@ -347,18 +393,50 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
 }
 
 // The names legends use: a node's column title in the scene's report tables ("three-arc" for arc,
-// v_arc and ta_arc), else the node's own name. Two curves of one figure that would read alike
-// (three-arc by the source's rule and by the free-length rule) get the node's name beside.
+// v_arc and ta_arc), else the one column every node it feeds is in (a node that only one column's
+// node reads is that column's), else the node's own name. A node in several
+// columns (one that sums up the others) has no one column and keeps its name. Two curves of one
+// figure that would read alike (three-arc by the source's rule and by the free-length rule) get
+// the node's name beside.
 class Legend {
  public:
   explicit Legend(const Graph& graph) {
+    std::map<std::size_t, std::vector<std::string>> columns;  // node -> the distinct columns its cells are in
     for (const ResolvedReport& r : graph.reports)
       for (const auto& row : r.rows)
         for (std::size_t c = 0; c < row.cells.size() && c < r.columns.size(); ++c) {
           if (!row.cells[c] || row.cells[c]->output >= graph.outputs.size()) continue;
-          const std::string& node = graph.nodes[graph.outputs[row.cells[c]->output].node].name;
-          column_of_.emplace(node, r.columns[c]);
+          auto& list = columns[graph.outputs[row.cells[c]->output].node];
+          if (std::find(list.begin(), list.end(), r.columns[c]) == list.end()) list.push_back(r.columns[c]);
         }
+    // Downstream: the nodes each node feeds.
+    std::vector<std::vector<std::size_t>> feeds(graph.nodes.size());
+    for (std::size_t n = 0; n < graph.nodes.size(); ++n)
+      for (std::size_t up : graph.nodes[n].upstream)
+        if (up < feeds.size()) feeds[up].push_back(n);
+    for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
+      std::vector<std::string> found;
+      if (const auto it = columns.find(n); it != columns.end()) {
+        found = it->second;
+      } else {
+        // The columns of the nearest nodes downstream that are in a report table.
+        std::vector<std::size_t> next = feeds[n];
+        std::vector<bool> seen(graph.nodes.size(), false);
+        while (!next.empty()) {
+          const std::size_t m = next.back();
+          next.pop_back();
+          if (seen[m]) continue;
+          seen[m] = true;
+          if (const auto it = columns.find(m); it != columns.end()) {
+            for (const std::string& c : it->second)
+              if (std::find(found.begin(), found.end(), c) == found.end()) found.push_back(c);
+          } else {
+            next.insert(next.end(), feeds[m].begin(), feeds[m].end());
+          }
+        }
+      }
+      if (found.size() == 1) column_of_.emplace(graph.nodes[n].name, found.front());
+    }
   }
   std::string operator()(const std::string& node) const {
     const auto it = column_of_.find(node);
@@ -382,10 +460,52 @@ class Legend {
 
 std::string node_of(const OutputValue& o) { return o.label.substr(0, o.label.find('.')); }
 
+// Names in a title, separated by ", ", or by "; " when a name has a comma of its own ("elastic,
+// contacts (7500 rpm)").
+std::string name_list(const std::vector<std::string>& names) {
+  const bool commas = std::any_of(names.begin(), names.end(), [](const std::string& n) { return n.find(',') != std::string::npos; });
+  std::string text;
+  for (std::size_t k = 0; k < names.size(); ++k) text += (k ? (commas ? "; " : ", ") : "") + names[k];
+  return text;
+}
+
 const OutputValue* find_output(const RunResult& result, const std::string& label) {
   for (const OutputValue& o : result.outputs)
     if (o.label == label) return &o;
   return nullptr;
+}
+
+// The axis values (SI) of every row of the events outputs (role events) of `o`'s node whose axis is
+// the same quantity, in the same angle frame, as `o`'s table's: where the channels of `o` flagged
+// jumps_at_events may jump.
+std::vector<double> event_axis_values(const Graph& graph, const RunResult& result, const OutputValue& o) {
+  const Table& t = o.value.as_table();
+  const Presentation& mine = declared_port(graph, o.label).presentation();
+  const std::string frame = mine.has_axis ? mine.axis.angle_frame : std::string();
+  std::vector<double> at;
+  for (const OutputValue& e : result.outputs) {
+    if (&e == &o || node_of(e) != node_of(o) || e.value.kind() != ValueKind::table) continue;
+    const Presentation& p = declared_port(graph, e.label).presentation();
+    const Table& events = e.value.as_table();
+    if (p.role != Role::events || !(events.axis.dimension == t.axis.dimension)) continue;
+    if ((p.has_axis ? p.axis.angle_frame : std::string()) != frame) continue;
+    at.insert(at.end(), events.axis.values.begin(), events.axis.values.end());
+  }
+  std::sort(at.begin(), at.end());
+  return at;
+}
+
+// The rows of a curve over `axis` where a new piece starts because an event (sorted) lies after
+// the row before it and at or before this row: no line is drawn across a jump.
+std::vector<std::size_t> pieces_at(const std::vector<double>& axis, const std::vector<double>& events) {
+  std::vector<std::size_t> from;
+  if (events.empty()) return from;
+  for (std::size_t i = 1; i < axis.size(); ++i) {
+    const double lo = std::min(axis[i - 1], axis[i]), hi = std::max(axis[i - 1], axis[i]);
+    const auto next = std::upper_bound(events.begin(), events.end(), lo);
+    if (next != events.end() && *next <= hi) from.push_back(i);
+  }
+  return from;
 }
 
 // An angle quoted from the nearest of a frame's periodic marks: |a - mark| + before/after + the
@@ -424,10 +544,9 @@ Figure derivative_panel(const Graph& graph, const RunResult& result, const std::
   f.kind = Figure::Kind::panel;
   f.name = file_safe(stem + "_" + port);
   std::vector<std::string> nodes;
-  std::string who;
-  for (std::size_t k = 0; k < outs.size(); ++k) who += (k ? ", " : "") + legend(node_of(*outs[k]));
-  std::string ids;
-  for (std::size_t k = 0; k < outs.size(); ++k) ids += (k ? ", " : "") + node_of(*outs[k]);
+  std::vector<std::string> names, id_list;
+  for (const OutputValue* o : outs) names.push_back(legend(node_of(*o))), id_list.push_back(node_of(*o));
+  const std::string who = name_list(names), ids = name_list(id_list);
   f.title = (p.figure_title.empty() ? spoken(port) : p.figure_title) + " of " + who + (who == ids ? "" : " (" + ids + ")");
   std::vector<const ChannelDecl*> orders;
   for (const ChannelDecl& c : p.channels)
@@ -588,6 +707,31 @@ Figure curve_over_channel(const Graph& graph, const OutputValue& o, const Legend
     f.curves.emplace_back(std::move(cx), std::move(y));
   }
   for (const Table::Mark& m : t.axis_marks) f.marks.emplace_back(m.label, to_unit(m.value, xc->dimension, x_unit));
+  // A working range (the x channel flagged range_of_rows): what the rows span and the marks near
+  // it; a mark beyond it by more than a quarter of the span is named at the plot's edge instead,
+  // and a line from it is cut there.
+  const ChannelDecl* x_decl = d.channel(p.x_channel);
+  if (x_decl && (x_decl->flags & channel_flag::range_of_rows) != 0 && !x.values.empty()) {
+    const auto [least, greatest] = std::minmax_element(x.values.begin(), x.values.end());
+    double lo = *least, hi = *greatest;
+    const double reach = 0.25 * (hi - lo);
+    std::vector<std::pair<std::string, double>> near;
+    for (const auto& [label, at] : f.marks) {
+      if (at >= *least - reach && at <= *greatest + reach) {
+        near.emplace_back(label, at);
+        lo = std::min(lo, at);
+        hi = std::max(hi, at);
+      } else {
+        f.edge_marks.emplace_back(label, at);
+      }
+    }
+    if (hi > lo) {
+      f.marks = std::move(near);
+      f.x_range = std::make_pair(lo, hi);
+    } else {
+      f.edge_marks.clear();
+    }
+  }
   f.caption = p.caption;
   return f;
 }
@@ -595,12 +739,13 @@ Figure curve_over_channel(const Graph& graph, const OutputValue& o, const Legend
 // A drawing to scale (role drawing_to_scale): its declared x/y pairs (0 an outline, 1 a
 // construction line, 2 a part shown at rest), the least circle about the origin of the first
 // outline, and an arrow showing the way the part turns (Table::turns_clockwise).
-Figure drawing_figure(const OutputValue& o, const Presentation& presentation, const DisplayUnits& units) {
+Figure drawing_figure(const OutputValue& o, const Presentation& presentation, const DisplayUnits& units, const Legend& legend) {
   const Table& t = o.value.as_table();
   Figure f;
   f.kind = Figure::Kind::to_scale;
   f.name = file_safe(o.label);
-  f.title = o.label + " (to scale)";
+  const std::string node = node_of(o), name = legend(node);
+  f.title = spoken(o.label.substr(o.label.find('.') + 1)) + " of " + name + (name == node ? "" : " (" + node + ")") + " (to scale)";
   std::optional<std::size_t> outline;  // the first outline (stroke 0)
   for (const XyPair& pair : presentation.pairs) {
     const Table::Column* xc = t.find(pair.x);
@@ -684,7 +829,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
     if (o.value.kind() == ValueKind::table) {
       const Table& t = o.value.as_table();
       if (t.closed_curve) {
-        Figure f = drawing_figure(o, declared_port(graph, o.label).presentation(), units);
+        Figure f = drawing_figure(o, declared_port(graph, o.label).presentation(), units, legend);
         if (!f.curves.empty()) figures.push_back(std::move(f));
         continue;
       }
@@ -811,9 +956,9 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       return it != dims.end() && channels_of[static_cast<std::size_t>(it - dims.begin())] > 1;
     };
     auto who = [&](const std::vector<const OutputValue*>& list) {
-      std::string text;
-      for (std::size_t k = 0; k < list.size(); ++k) text += (k ? ", " : "") + legend(node_of(*list[k]));
-      return text;
+      std::vector<std::string> names;
+      for (const OutputValue* o : list) names.push_back(legend(node_of(*o)));
+      return name_list(names);
     };
     // Curvature of every node's table together.
     for (const Table::Column& channel : first.channels) {
@@ -846,14 +991,23 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       legend.disambiguate(f, nodes);
       if (!f.curves.empty()) figures.push_back(std::move(f));
     }
+    // A channel flagged jumps_at_events is drawn in pieces between its node's events.
+    auto pieces = [&](const OutputValue& o, const Table::Column& c) {
+      return (flags_of(c) & channel_flag::jumps_at_events) != 0 ? pieces_at(o.value.as_table().axis.values, event_axis_values(graph, result, o))
+                                                              : std::vector<std::size_t>{};
+    };
     if (outs.size() > 1) {
-      // Several nodes' tables: a plot per lone channel, a curve per node.
+      // Several nodes' tables: a plot per lone channel, a curve per node; more nodes than an
+      // overlay keeps apart are small multiples instead, a panel per node on one x axis and one y
+      // scale.
+      const bool multiples = outs.size() > overlaid_at_most;
       for (const Table::Column& channel : first.channels) {
         if (apart(channel) || shared_dimension(channel)) continue;
         Figure f;
         f.name = file_safe(stem + "_" + channel.name);
         const std::string all = who(outs);
-        f.title = declared.label(channel.name) + (all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
+        f.title = declared.label(channel.name) + (multiples ? ", a panel per node"
+                                                  : all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
         std::vector<std::string> nodes;
         for (const OutputValue* o : outs) {
           const Table& t = o->value.as_table();
@@ -863,13 +1017,25 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
                            column_tag(declared, t.axis.name, t.axis.dimension));
           Column y = shown(declared.label(channel.name), c->dimension, c->values, c->display_unit, units,
                            column_tag(declared, channel.name, c->dimension));
+          y.pieces_from = pieces(*o, *c);
           f.xlabel = x.name;
           f.ylabel = y.name;
           f.curve_titles.push_back(legend(node_of(*o)));
           nodes.push_back(node_of(*o));
+          if (multiples) {
+            f.panel_of.push_back(f.panel_ylabels.size());
+            f.panel_ylabels.push_back(y.name);
+          }
           f.curves.emplace_back(std::move(x), std::move(y));
         }
         legend.disambiguate(f, nodes);
+        if (multiples) {
+          // Each panel says its node; the curves need no legend.
+          f.kind = Figure::Kind::panel;
+          f.same_y = true;
+          f.panel_titles = f.curve_titles;
+          f.curve_titles.assign(f.curves.size(), std::string());
+        }
         figures.push_back(std::move(f));
       }
     }
@@ -887,6 +1053,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
           Column x = shown(declared.label(t.axis.name), t.axis.dimension, t.axis.values, t.axis.display_unit, units,
                            column_tag(declared, t.axis.name, t.axis.dimension));
           Column y = shown(declared.label(c.name), c.dimension, c.values, c.display_unit, units, column_tag(declared, c.name, c.dimension));
+          y.pieces_from = pieces(*o, c);
           f.xlabel = x.name;
           spoken_names.push_back(declared.label(c.name));
           f.ylabel = y.unit;

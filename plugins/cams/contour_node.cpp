@@ -5,6 +5,7 @@
 // face needs; and the refusal of a pair the follower cannot follow (undercut), naming the follower
 // (docs/methods/followers.md, docs/methods/valvetrain.md "Contact stress").
 #include "contour.hpp"
+#include "follower_drawing.hpp"
 #include "registration.hpp"
 
 #include <mechgraph/domain/translating_followers.hpp>
@@ -30,49 +31,6 @@ Presentation contour_drawing() {
              {"pitch_x", "pitch_y", "pitch", "pitch curve", 1},
              {"follower_x", "follower_y", "follower", "follower at the nose", 2}};
   return p;
-}
-
-// `n` points evenly spaced along the path through `corners` (a polyline), the last on its end.
-void along_path(const std::vector<std::pair<double, double>>& corners, std::size_t n, std::vector<double>& x, std::vector<double>& y) {
-  std::vector<double> at{0.0};
-  for (std::size_t k = 1; k < corners.size(); ++k)
-    at.push_back(at.back() + std::hypot(corners[k].first - corners[k - 1].first, corners[k].second - corners[k - 1].second));
-  std::size_t piece = 1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double s = n > 1 ? at.back() * static_cast<double>(i) / static_cast<double>(n - 1) : 0.0;
-    while (piece + 1 < at.size() && at[piece] < s) ++piece;
-    const double span = at[piece] - at[piece - 1];
-    const double u = span > 0.0 ? std::clamp((s - at[piece - 1]) / span, 0.0, 1.0) : 1.0;
-    x.push_back(corners[piece - 1].first + u * (corners[piece].first - corners[piece - 1].first));
-    y.push_back(corners[piece - 1].second + u * (corners[piece].second - corners[piece - 1].second));
-  }
-}
-
-// The follower drawn at rest where it stands at the nose (the point of the contour furthest from
-// the centre), as `n` points of one path: a roller, the circle of its radius about the furthest
-// point of the pitch curve; a flat face, the face square to the line from the centre through the
-// nose (1.2 base radii long) and its stem along that line (0.8 base radii).
-void follower_at_nose(const ContourPoints& c, double roller_radius, std::vector<double>& x, std::vector<double>& y) {
-  const std::size_t n = c.points.size();
-  double r_base = std::numeric_limits<double>::infinity(), r_max = 0.0;
-  std::size_t nose = 0, far = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double r = std::hypot(c.points[i].x, c.points[i].y);
-    r_base = std::min(r_base, r);
-    if (r > r_max) r_max = r, nose = i;
-    if (std::hypot(c.points[i].pitch_x, c.points[i].pitch_y) > std::hypot(c.points[far].pitch_x, c.points[far].pitch_y)) far = i;
-  }
-  if (roller_radius > 0.0) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double a = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n > 1 ? n - 1 : 1);
-      x.push_back(c.points[far].pitch_x + roller_radius * std::cos(a));
-      y.push_back(c.points[far].pitch_y + roller_radius * std::sin(a));
-    }
-    return;
-  }
-  const double nx = c.points[nose].x, ny = c.points[nose].y, ux = nx / r_max, uy = ny / r_max, half = 0.6 * r_base;
-  along_path({{nx - uy * half, ny + ux * half}, {nx + uy * half, ny - ux * half}, {nx, ny}, {nx + ux * 0.8 * r_base, ny + uy * 0.8 * r_base}},
-             n, x, y);
 }
 
 constexpr double pi = std::numbers::pi;
@@ -356,45 +314,6 @@ class ContourNodeType final : public NodeType {
       return hertz_line_stress(load.at(phi), inv_r, length, e_star);
     };
 
-    if (ctx.wanted("contour") || ctx.wanted("points")) {
-      const ContourPoints c = trace_contour(*law, f, clockwise, p.number("chord_error"), evaluations);
-      Table t;
-      t.closed_curve = true;
-      t.turns_clockwise = clockwise;
-      // The axis names the direction the cam turns, so that a CSV of the contour says it too (its
-      // header: cam_angle_ccw [deg] or cam_angle_cw [deg]).
-      t.axis = {clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
-      auto& x = t.add_channel("x", dim::length, "mm").values;
-      x.reserve(c.points.size());
-      for (const auto& g : c.points) x.push_back(g.x);
-      auto& y = t.add_channel("y", dim::length, "mm").values;
-      for (const auto& g : c.points) y.push_back(g.y);
-      if (roller) {
-        auto& px = t.add_channel("pitch_x", dim::length, "mm").values;
-        for (const auto& g : c.points) px.push_back(g.pitch_x);
-        auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
-        for (const auto& g : c.points) py.push_back(g.pitch_y);
-      }
-      {
-        std::vector<double> fx, fy;
-        follower_at_nose(c, f.roller_radius(), fx, fy);
-        t.add_channel("follower_x", dim::length, "mm").values = std::move(fx);
-        t.add_channel("follower_y", dim::length, "mm").values = std::move(fy);
-      }
-      // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
-      if (f.pivoted())
-        out.note(std::string("contour: the cam turns ") + (clockwise ? "clockwise" : "counterclockwise") +
-                 " seen from the front under the " + f.named() +
-                 "; the drawing is the cam at cam angle 0 with the follower above it on +y");
-      else
-        out.note(clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
-                             "cam angle phi lies phi counterclockwise from +y (nose at phi = 0)"
-                           : "contour: the cam turns counterclockwise seen from the front; in the drawing the follower "
-                             "axis at cam angle phi lies phi clockwise from +y (nose at phi = 0)");
-      out.set_scalar("points", static_cast<double>(c.points.size()));
-      out.set("contour", Value::table(std::move(t)));
-    }
-
     // Peaks over the whole turn: |pressure angle|, contact pressure, and h' both ways (face). The
     // load steps where a table over part of the turn starts and ends: pieces split there too.
     for (double step : load.steps())
@@ -419,6 +338,45 @@ class ContourNodeType final : public NodeType {
         v_max,
         {v_min.x, -v_min.value}};
     const double kappa_max = pieces.maximum(3).value, kappa_min = pieces.minimum(3).value;
+
+    if (ctx.wanted("contour") || ctx.wanted("points")) {
+      const ContourPoints c = trace_contour(*law, f, clockwise, p.number("chord_error"), evaluations);
+      Table t;
+      t.closed_curve = true;
+      t.turns_clockwise = clockwise;
+      // The axis names the direction the cam turns, so that a CSV of the contour says it too (its
+      // header: cam_angle_ccw [deg] or cam_angle_cw [deg]).
+      t.axis = {clockwise ? "cam_angle_cw" : "cam_angle_ccw", dim::angle, c.phi, "deg"};
+      auto& x = t.add_channel("x", dim::length, "mm").values;
+      x.reserve(c.points.size());
+      for (const auto& g : c.points) x.push_back(g.x);
+      auto& y = t.add_channel("y", dim::length, "mm").values;
+      for (const auto& g : c.points) y.push_back(g.y);
+      if (roller) {
+        auto& px = t.add_channel("pitch_x", dim::length, "mm").values;
+        for (const auto& g : c.points) px.push_back(g.pitch_x);
+        auto& py = t.add_channel("pitch_y", dim::length, "mm").values;
+        for (const auto& g : c.points) py.push_back(g.pitch_y);
+      }
+      {
+        // A flat face at the width its contact sweeps (min_face_width), a pivoted one with its arm and pivot.
+        FollowerDrawing drawn = draw_follower_at_nose(*law, f, c, clockwise, v_min.value, v_max.value, c.points.size());
+        t.add_channel("follower_x", dim::length, "mm").values = std::move(drawn.x);
+        t.add_channel("follower_y", dim::length, "mm").values = std::move(drawn.y);
+      }
+      // Which way the drawn contour turns (docs/methods/valvetrain.md, "The cam contour").
+      if (f.pivoted())
+        out.note(std::string("contour: the cam turns ") + (clockwise ? "clockwise" : "counterclockwise") +
+                 " seen from the front under the " + f.named() +
+                 "; the drawing is the cam at cam angle 0 with the follower above it on +y");
+      else
+        out.note(clockwise ? "contour: the cam turns clockwise seen from the front; in the drawing the follower axis at "
+                             "cam angle phi lies phi counterclockwise from +y (nose at phi = 0)"
+                           : "contour: the cam turns counterclockwise seen from the front; in the drawing the follower "
+                             "axis at cam angle phi lies phi clockwise from +y (nose at phi = 0)");
+      out.set_scalar("points", static_cast<double>(c.points.size()));
+      out.set("contour", Value::table(std::move(t)));
+    }
     evaluations += pieces.work().evaluations;
     out.set_scalar("min_convex_radius", kappa_max > 0.0 ? 1.0 / kappa_max : r0);
     out.set_scalar("max_concave_curvature", kappa_min < 0.0 ? -kappa_min : 0.0);

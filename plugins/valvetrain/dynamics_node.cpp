@@ -234,7 +234,11 @@ class DynamicsType final : public NodeType {
     info_.outputs = {
         PortSpec::table("curves", "over the last revolution's cam angle: lift x, quasi-static x_qs, kinematic lift, drive "
                                   "displacement y, velocity, contact force, spring force")
-            .presented(over_cam_angle()),
+            // An impact turns the velocity round and a landing loads the cam at once: both jump at
+            // the events' cam angles and are drawn in pieces there.
+            .presented(over_cam_angle()
+                           .with(ChannelDecl::of("velocity", dim::velocity).flag(channel_flag::jumps_at_events))
+                           .with(ChannelDecl::of("contact_force", dim::force).flag(channel_flag::jumps_at_events))),
         PortSpec::scalar("max_deviation", dim::length, "max |x - x_qs| over the last revolution (dense output)", "mm"),
         PortSpec::scalar("residual_amplitude", dim::length, "max |x - x_qs| on the closing side (after the nose)", "mm"),
         PortSpec::scalar("min_contact_force", dim::force,

@@ -33,6 +33,9 @@ Presentation force_over_lift() {
   p.caption = "lift measured from the installed height; free length and solid height at the lifts where the spring "
               "would reach them";
   p.with(ChannelDecl::of("crank_angle", dim::angle).in_frame("crank").flag(channel_flag::alt_axis));
+  // The working range is what the valve travels; the free-length point lies far below it and is
+  // named at the plot's edge, the spring line cut there.
+  p.with(ChannelDecl::of("valve_lift", dim::length).flag(channel_flag::range_of_rows));
   p.with(ChannelDecl::of("spring_force", dim::force).line_from("free length"));
   p.with(ChannelDecl::of("inertia_force", dim::force).flag(channel_flag::not_drawn));
   p.with(ChannelDecl::of("required_force", dim::force).flag(channel_flag::positive_only));

@@ -42,7 +42,7 @@ TEST_CASE("mechgraph report: a self-contained page with every curve plotted, ren
       {"backlash_chain.yaml", "chain", 3,
        {"chain.joint_contribution_rss", "Against the specification", "samples outside spec",
         "chain.mc_histogram against the spec limits", ">USL<"}},
-      {"cam_contour.yaml", "contour", 4, {"flat.contour (to scale)", "roller.contour (to scale)", "pitch curve"}},
+      {"cam_contour.yaml", "contour", 4, {"contour of flat tappet (flat) (to scale)", "contour of roller 11 mm, offset 3 mm (roller) (to scale)", "pitch curve"}},
   };
   for (const Case& c : cases) {
     INFO(c.scene);

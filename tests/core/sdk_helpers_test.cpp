@@ -103,3 +103,16 @@ TEST_CASE("the kit passes a good law and names what a bad one breaks", "[sdk]") 
   undercut.min_curvature_radius = -1e-3;
   CHECK_THROWS_WITH(refuse_undercut(undercut, 0.04, {}, 16), Contains("undercut") && Contains("raise base_radius"));
 }
+
+TEST_CASE("the kit refuses a channel that jumps at events on a type with no events output", "[sdk][presentation]") {
+  NodeInfo info;
+  info.type = "t.jumpy";
+  Presentation p;
+  p.with(ChannelDecl::of("speed").flag(channel_flag::jumps_at_events));
+  info.outputs = {PortSpec::table("curves", "speed over time").presented(p)};
+  CHECK_THAT(testing::detail::presentation_problem(info), Catch::Matchers::Contains("no output of role events"));
+  Presentation events;
+  events.role = Role::events;
+  info.outputs.push_back(PortSpec::table("events", "impacts").presented(events));
+  CHECK(testing::detail::presentation_problem(info).empty());
+}

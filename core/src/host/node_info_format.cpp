@@ -98,7 +98,9 @@ std::vector<std::string> flag_names(std::uint32_t flags) {
   std::vector<std::string> out;
   const std::pair<std::uint32_t, const char*> known[] = {{channel_flag::alt_axis, "alt_axis"}, {channel_flag::curvature, "curvature"},
                                                          {channel_flag::positive_only, "positive_only"}, {channel_flag::not_drawn, "not_drawn"},
-                                                         {channel_flag::line_from_mark, "line_from_mark"}};
+                                                         {channel_flag::line_from_mark, "line_from_mark"},
+                                                         {channel_flag::jumps_at_events, "jumps_at_events"},
+                                                         {channel_flag::range_of_rows, "range_of_rows"}};
   for (const auto& [bit, name] : known)
     if (flags & bit) out.emplace_back(name);
   return out;

@@ -39,6 +39,14 @@ inline constexpr std::uint32_t curvature = 0x02u;       // a radius of curvature
 inline constexpr std::uint32_t positive_only = 0x04u;   // drawn only where > 0
 inline constexpr std::uint32_t not_drawn = 0x08u;       // in CSV and JSON, not in figures
 inline constexpr std::uint32_t line_from_mark = 0x10u;  // a straight line from mark `from_mark` (at 0) to the row of the largest x
+/// May jump where an events output of the same node (role events, its axis the same quantity and
+/// frame as this table's) has a row: drawn in pieces between those axis values, never a line
+/// across one (an impact's velocity, the cam force at a landing).
+inline constexpr std::uint32_t jumps_at_events = 0x20u;
+/// As a figure's x (curve_over_channel's x_channel): the range is the working range the rows
+/// span; a mark beyond it by more than a quarter of that span is named at the plot's edge with its
+/// value instead of stretching the axis, and a line from it is cut at the edge.
+inline constexpr std::uint32_t range_of_rows = 0x40u;
 }  // namespace channel_flag
 
 /// One named value of an enumeration channel ("1 contact_lost"): shown by name wherever the

@@ -29,6 +29,8 @@ MG_EXTERN_C_BEGIN
 #define MG_CH_POSITIVE_ONLY 0x04u  /* drawn only where > 0 */
 #define MG_CH_NOT_DRAWN 0x08u      /* in CSV/JSON, not in figures */
 #define MG_CH_LINE_FROM_MARK 0x10u /* a straight line from mark `from_mark` (at 0) to the last row */
+#define MG_CH_JUMPS_AT_EVENTS 0x20u /* may jump at the axis values of the node's MG_ROLE_EVENTS rows: never joined across */
+#define MG_CH_RANGE_OF_ROWS 0x40u  /* as a figure's x: the rows' span; a mark far beyond is named at the edge */
 
 /* A named value of a code channel ("1 contact_lost"). Frozen. */
 typedef struct mg_code {

@@ -115,6 +115,11 @@ inline std::string presentation_problem(const NodeInfo& info) {
       if (code.name.empty() || !values.insert(code.value).second || !names.insert(code.name).second)
         return where + " channel '" + c.name + "': code " + std::to_string(code.value) + " '" + code.name + "' empty or not unique";
     if ((c.flags & channel_flag::line_from_mark) && c.from_mark.empty()) return where + " channel '" + c.name + "': a line from a mark names no mark";
+    if (c.flags & channel_flag::jumps_at_events) {
+      bool events = false;
+      for (const PortSpec& o : info.outputs) events = events || o.presentation.role == Role::events;
+      if (!events) return where + " channel '" + c.name + "': it jumps at events, but the type has no output of role events";
+    }
     return {};
   };
   for (const std::vector<PortSpec>* ports : {&info.inputs, &info.outputs})
