@@ -163,10 +163,10 @@ inline Reference::Reference(const Design& d)
     : d_(d), sigma_(d.clockwise ? -1 : 1), k_(d.pivot_x <= 0 ? 1 : -1), Rc_(d.circle_radius), eps_(d.eccentricity) {
   bool ok = true;
   if (pivoted()) psi_ref_ = raw_motion(centre_x(constant(0)), centre_y(constant(0)), Rc_, ok).v;
-  // The lowest point of the motion: the best of 3600 samples, then Newton on its slope.
+  // The lowest point of the motion: the best of 720 samples, then Newton on its slope.
   Real best = 0, lowest = 0;
-  for (int i = 0; i < 3600; ++i) {
-    const Real phi = -pi_l + 2 * pi_l * i / 3600;
+  for (int i = 0; i < 720; ++i) {
+    const Real phi = -pi_l + 2 * pi_l * i / 720;
     const Real q = motion({phi, 1, 0}, ok).v;
     if (i == 0 || q < lowest) lowest = q, best = phi;
   }
