@@ -287,11 +287,13 @@ class ContourNodeType final : public NodeType {
     knots.insert(knots.begin(), -pi);
     knots.push_back(pi);
     const int samples = static_cast<int>(p.integer("samples"));
-    const double worst_follow = refuse_undercut(*law, f, clockwise, knots, samples, evaluations);
-    // As a length: a flat face's follow margin is -rho; a roller's 1/(rho + rr) - 1/rr, the least
-    // convex pitch radius rho + rr = 1/(margin + 1/rr), less the roller's radius.
-    const double rr_follower = f.roller_radius();
-    out.set_scalar("undercut_margin", rr_follower > 0.0 ? 1.0 / (worst_follow + 1.0 / rr_follower) - rr_follower : -worst_follow);
+    const double worst_at = refuse_undercut(*law, f, clockwise, knots, samples, evaluations);
+    // As a length: the contour's radius of curvature where the follow margin is worst. A flat
+    // face's margin is -rho; a roller's 1/(rho + rr) - 1/rr falls as rho grows where the pitch
+    // curve is convex and is below -1/rr where it is concave, so its worst is the least convex
+    // radius. (Read off the contact, not back from the margin: 1/(margin + 1/rr) - rr lost the
+    // digits of rho / rr, 3.5e-10 of a 10 m radius under a 1 um roller.)
+    out.set_scalar("undercut_margin", f.contact(worst_at, law->at(worst_at), r0, clockwise).curvature_radius);
     const auto contact_at = [&](double phi, const LiftDerivatives& d) { return f.contact(phi, d, r0, clockwise); };
 
     ContactLoad load;
@@ -529,12 +531,12 @@ class ContourNodeType final : public NodeType {
   // above the roller's (rho_p > rr), and at a concave stretch |rho| above it too, or it cannot follow.
   // The refusal names the follower and the smallest base radius that works with this lift law
   // (grown by 1.5x, then bisected to 0.001 mm; a base radius the follower cannot sit on counts as
-  // too small).
+  // too small). Returns the cam angle of the worst follow margin of a pair that follows.
   static double refuse_undercut(const CamLaw& law, const Follower& f, bool clockwise, const std::vector<double>& knots,
                                 int samples, long& evaluations) {
     const double r0 = law.base_radius();
     const numerics::Extremum worst = worst_margin(law, f, clockwise, r0, knots, samples, evaluations);
-    if (!(worst.value >= 0.0)) return worst.value;
+    if (!(worst.value >= 0.0)) return worst.x;
     const auto works = [&](double r) {
       try {
         return !(worst_margin(law, f, clockwise, r, knots, samples, evaluations).value >= 0.0);

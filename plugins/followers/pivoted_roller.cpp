@@ -1,7 +1,8 @@
 // Roller of radius rr on an arm of length L turning about the pivot P (docs/methods/followers.md,
 // "Pivoted roller"). Roller centre (fixed frame) C = P + L e(psi).
 //  - On the base circle |C| = r0 + rr: with P = |P| (cos beta, sin beta) and
-//    c = ((r0 + rr)^2 - |P|^2 - L^2) / (2 L |P|), psi0 = beta - pi + k acos(-c).
+//    c = ((r0 + rr)^2 - |P|^2 - L^2) / (2 L |P|), psi0 = beta - pi + k acos(-c), taken as
+//    atan2(sqrt((1 - c)(1 + c)), -c) with 1 +- c in factors (no digits lost near the reach's ends).
 //  - The pitch curve in the cam's frame, C_cam = R(-sigma phi) C; with A and B its first and
 //    second derivatives over phi written in the fixed frame:
 //    A = -sigma J C + L J e psi', B = -C + 2 sigma L e psi' - L e psi'^2 + L J e psi''.
@@ -32,14 +33,20 @@ class PivotedRoller final : public Follower {
   double cam_lever(double) const override { return arm_; }
   FollowerContact contact(double phi, const LiftDerivatives& d, double r0, bool clockwise) const override {
     const double sigma = clockwise ? -1.0 : 1.0;
-    const double a_pivot = norm(pivot_);
-    const double c_base = ((r0 + rr_) * (r0 + rr_) - a_pivot * a_pivot - arm_ * arm_) / (2.0 * arm_ * a_pivot);
-    if (!(std::abs(c_base) < 1.0))
+    const double a_pivot = norm(pivot_), reach = r0 + rr_;
+    // 1 + c and 1 - c factored (the law of cosines by Kahan): as the arm nears either end of its
+    // reach, c = (reach^2 - |P|^2 - L^2) / (2 L |P|) from the squares would lose the digits that
+    // acos(-c) needs there.
+    const double one_plus = (reach - a_pivot + arm_) * (reach + a_pivot - arm_) / (2.0 * arm_ * a_pivot);
+    const double one_minus = (a_pivot + arm_ - reach) * (a_pivot + arm_ + reach) / (2.0 * arm_ * a_pivot);
+    if (!(one_plus > 0.0 && one_minus > 0.0))
       throw NodeError("arm_length", "the " + named() + " cannot reach the base circle: the roller centre must sit " +
                                         mm(r0 + rr_) + " from the cam centre, the pivot is " + mm(a_pivot) +
                                         " from it; the arm must lie between " + mm(std::abs(a_pivot - r0 - rr_)) +
                                         " and " + mm(a_pivot + r0 + rr_));
-    const double psi0 = std::atan2(pivot_.y, pivot_.x) - std::numbers::pi + k_ * std::acos(-c_base);
+    // acos(-c) = atan2(sqrt((1 - c)(1 + c)), -c).
+    const double psi0 = std::atan2(pivot_.y, pivot_.x) - std::numbers::pi +
+                        k_ * std::atan2(std::sqrt(one_minus * one_plus), 0.5 * (one_minus - one_plus));
     const ArmTurn t = arm_turn(psi0, k_, arm_, d);
     const Vec2 e{std::cos(t.psi), std::sin(t.psi)};
     const Vec2 je = quarter_turn(e);

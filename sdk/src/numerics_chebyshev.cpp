@@ -193,7 +193,11 @@ std::size_t chebyshev_resolved_length(std::span<const double> coefficients, doub
   envelope[n - 1] = std::abs(coefficients[n - 1]);
   for (std::size_t j = n - 1; j-- > 0;) envelope[j] = std::max(std::abs(coefficients[j]), envelope[j + 1]);
   if (envelope[0] == 0.0) return 1;
-  for (double& e : envelope) e /= envelope[0];
+  // Scaled by the largest coefficient (read once: dividing by envelope[0] in the loop would
+  // scale only the first entry and leave the rest absolute, so a function of size 1e-15 looked
+  // resolved by its first coefficient and one of size 1e9 never resolved).
+  const double largest = envelope[0];
+  for (double& e : envelope) e /= largest;
   std::size_t plateau = 0, j2 = 0;
   bool found = false;
   const double log_tol = std::log(tolerance), tol_2_3 = std::pow(tolerance, 2.0 / 3.0);

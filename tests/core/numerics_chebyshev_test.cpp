@@ -84,3 +84,21 @@ TEST_CASE("Chebyshev maximum candidates: two near-equal peaks with a valley betw
   CHECK_THAT(top_t, WithinAbs(0.5, 1e-6));
   CHECK_THAT(top_v, WithinAbs(f(0.5000000005), 1e-15));
 }
+
+TEST_CASE("Chebyshev resolved length does not depend on the function's size (1e-300 to 1e300)", "[numerics]") {
+  // The chop is relative to the largest coefficient. It once divided by envelope[0] inside the
+  // loop that overwrote it: every entry but the first stayed absolute, so a function of size 1e-15
+  // was "resolved" by one coefficient (the maximum of 1e-15 sin(pi x) came out 0.4 % low) and one of
+  // size 1e9 never resolved.
+  std::vector<double> values(65), c;
+  std::size_t reference = 0;
+  for (const double size : {1.0, 1e-300, 1e-15, 1e-13, 1e9, 1e300}) {
+    INFO("size " << size);
+    for (int j = 0; j <= 64; ++j) values[static_cast<std::size_t>(j)] = -size * std::sin(std::numbers::pi * chebyshev_point(j, 64));
+    chebyshev_coefficients(values, c);
+    const std::size_t length = chebyshev_resolved_length(c, std::numeric_limits<double>::epsilon());
+    if (size == 1.0) reference = length;
+    CHECK(length >= 18);
+    CHECK(length == reference);
+  }
+}

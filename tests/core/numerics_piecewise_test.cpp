@@ -44,3 +44,16 @@ TEST_CASE("extrema and sign changes on piecewise functions", "[numerics]") {
   CHECK_THAT(roots[2], WithinAbs(3 * std::numbers::pi, 1e-13));
   CHECK_FALSE(first_sign_change([](double) { return 1.0; }, knots, 5, evaluations));
 }
+
+TEST_CASE("the extremes of a function are found alike at any size of its values (1e-300 to 1e300)", "[numerics]") {
+  // A contact's face position of 1e-15 m, a stress of 1e9 Pa: the searches are relative.
+  for (const double size : {1.0, 1e-300, 1e-15, 1e-13, 1e9, 1e300}) {
+    INFO("size " << size);
+    const std::vector<double> knots{-std::numbers::pi, std::numbers::pi};
+    SmoothPieces pieces([&](double x, double* v, double*) { v[0] = -size * std::sin(x); }, 1, knots, 16);
+    CHECK_THAT(pieces.maximum(0).value, WithinRel(size, 1e-14));
+    CHECK_THAT(pieces.maximum(0).x, WithinAbs(-0.5 * std::numbers::pi, 1e-7));
+    CHECK_THAT(pieces.minimum(0).value, WithinRel(-size, 1e-14));
+    CHECK(pieces.work().unresolved == 0);
+  }
+}

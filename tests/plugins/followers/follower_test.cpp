@@ -1,9 +1,7 @@
 // Followers against independent geometry (docs/methods/followers.md):
-//  - a circular-arc (eccentric circle) cam under a pivoted flat face and a pivoted roller: the arm's
-//    angle in closed form from the circle centre's distance to the pivot gives the lift law; the
-//    contour the follower makes from it must be that circle again (every contact point at the
-//    circle's radius from its centre, the stated radius of curvature the circle's), and the
-//    pressure angle the one between the circle's normal and the arm's motion there;
+//  - a circular-arc (eccentric circle) cam under every follower, its motion in closed form, the
+//    contour the circle again: tests/stability/follower_stability_test.cpp (with the conformance
+//    kit on the ordinary designs, and every parameter walked to its limits);
 //  - a cycloidal cam under each pivoted follower: the contour against the brute-force envelope of
 //    the follower's positions (every face or roller at 3600 cam angles: none cuts the contour, each
 //    touches it to the chord error);
@@ -21,7 +19,6 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <functional>
 #include <numbers>
 #include <regex>
 
@@ -33,32 +30,6 @@ constexpr double deg = pi / 180.0;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
-// A lift law given by a closed-form function over the whole turn (zero at +-pi), its derivatives
-// by five-point central differences (step 1e-3 rad: truncation and rounding both below 1e-11 of
-// the lift's scale here). Only the contact geometry reads it, never at the ends.
-class ClosedFormLaw final : public CamLaw {
- public:
-  ClosedFormLaw(std::function<double(double)> h, double r0) : h_(std::move(h)), r0_(r0) {}
-  double event_begin() const override { return -pi + 1e-9; }
-  double event_end() const override { return pi - 1e-9; }
-  std::vector<double> breakpoints() const override { return {}; }
-  double max_lift() const override { return h_(0.0); }
-  double base_radius() const override { return r0_; }
-  LiftDerivatives evaluate_in_event(double phi) const override {
-    const double s = 1e-3;
-    const double f[5] = {h_(phi - 2 * s), h_(phi - s), h_(phi), h_(phi + s), h_(phi + 2 * s)};
-    LiftDerivatives d;
-    d.lift = f[2];
-    d.velocity = (f[0] - 8 * f[1] + 8 * f[3] - f[4]) / (12 * s);
-    d.acceleration = (-f[0] + 16 * f[1] - 30 * f[2] + 16 * f[3] - f[4]) / (12 * s * s);
-    return d;
-  }
-
- private:
-  std::function<double(double)> h_;
-  double r0_;
-};
-
 struct Vec {
   double x, y;
 };
@@ -68,98 +39,6 @@ Vec to_fixed(Vec v, double phi, double sigma) {
   return {v.x * c - v.y * s, v.x * s + v.y * c};
 }
 Vec to_cam(Vec v, double phi, double sigma) { return to_fixed(v, -phi, sigma); }
-
-// The eccentric circle: radius Rc, centre eps from the cam centre towards the nose (+y at phi = 0).
-constexpr double Rc = 20e-3, eps = 4e-3, r0 = Rc - eps;
-
-TEST_CASE("pivoted flat face on an eccentric circle: the arm angle in closed form gives back the circle",
-          "[followers][pivoted]") {
-  const double f = 2e-3;
-  for (const double px : {-35e-3, 33e-3})
-    for (const bool clockwise : {false, true}) {
-      INFO("pivot_x " << px << (clockwise ? " cw" : " ccw"));
-      const double py = 30e-3, sigma = clockwise ? -1.0 : 1.0, k = px <= 0.0 ? 1.0 : -1.0;
-      // The face (outward normal k J e(psi), distance m.P - f from the cam centre) touches the
-      // circle where m.(P - c) = f + Rc: psi = angle(P - c) - pi + k asin((f + Rc) / |P - c|).
-      auto psi_of = [&](double cx, double cy, double radius) {
-        const double dx = px - cx, dy = py - cy;
-        return std::atan2(dy, dx) - pi + k * std::asin((f + radius) / std::hypot(dx, dy));
-      };
-      const double psi0 = psi_of(0.0, 0.0, r0);
-      const double lever = std::sqrt(px * px + py * py - (r0 + f) * (r0 + f));
-      auto turn = [&](double phi) {
-        const Vec c = to_fixed({0.0, eps}, phi, sigma);
-        return k * std::remainder(psi_of(c.x, c.y, Rc) - psi0, 2 * pi);
-      };
-      const ClosedFormLaw law([&](double phi) { return lever * turn(phi); }, r0);
-      const auto follower = make_pivoted_flat(px, py, f);
-      CHECK_THAT(follower->cam_lever(r0), WithinRel(lever, 1e-14));
-      CHECK(law.at(0.0).lift > 7e-3);  // about the circle's 8 mm throw
-      for (double phi = -170 * deg; phi <= 170 * deg; phi += 5 * deg) {
-        const FollowerContact c = follower->contact(phi, law.at(phi), r0, clockwise);
-        CHECK_THAT(std::hypot(c.x, c.y - eps), WithinAbs(Rc, 1e-10));
-        CHECK_THAT(c.curvature_radius, WithinRel(Rc, 1e-7) || WithinAbs(Rc, 1e-10));
-        CHECK_THAT(c.follower_angle, WithinAbs(turn(phi), 1e-13));
-        // The contact point lies on the face: at distance f from the pivot's line along the arm.
-        const Vec x = to_fixed({c.x, c.y}, phi, sigma);
-        const double psi = psi0 + k * turn(phi);
-        const double mx = -k * std::sin(psi), my = k * std::cos(psi);
-        CHECK_THAT(mx * (x.x - px) + my * (x.y - py), WithinAbs(-f, 1e-10));
-        // The pressure angle: between the circle's normal at the contact (from its centre) and the
-        // way the arm's point there moves as it lifts, k J (x - P).
-        const Vec centre = to_fixed({0.0, eps}, phi, sigma);
-        const double nx = x.x - centre.x, ny = x.y - centre.y;
-        const double vx = -k * (x.y - py), vy = k * (x.x - px);
-        const double expected = std::atan2(std::abs(nx * vy - ny * vx), nx * vx + ny * vy);
-        CHECK_THAT(std::abs(c.pressure_angle), WithinAbs(expected, 1e-9));
-      }
-      const auto report = mechgraph::testing::check_follower(*follower, law, clockwise);
-      INFO(report.str());
-      CHECK(report.passed());
-    }
-}
-
-TEST_CASE("pivoted roller on an eccentric circle: pitch circle and contour in closed form", "[followers][pivoted]") {
-  const double rr = 7e-3, arm = 38e-3;
-  for (const double px : {-36e-3, 34e-3})
-    for (const bool clockwise : {false, true}) {
-      INFO("pivot_x " << px << (clockwise ? " cw" : " ccw"));
-      const double py = 28e-3, sigma = clockwise ? -1.0 : 1.0, k = px <= 0.0 ? 1.0 : -1.0;
-      // The roller centre P + L e(psi) lies Rc + rr from the circle centre c:
-      // cos(psi - angle(P - c)) = ((Rc + rr)^2 - |P - c|^2 - L^2) / (2 L |P - c|).
-      auto psi_of = [&](double cx, double cy, double radius) {
-        const double dx = px - cx, dy = py - cy, d = std::hypot(dx, dy);
-        const double cosine = ((radius + rr) * (radius + rr) - d * d - arm * arm) / (2 * arm * d);
-        return std::atan2(dy, dx) - pi + k * std::acos(-cosine);
-      };
-      const double psi0 = psi_of(0.0, 0.0, r0);
-      auto turn = [&](double phi) {
-        const Vec c = to_fixed({0.0, eps}, phi, sigma);
-        return k * std::remainder(psi_of(c.x, c.y, Rc) - psi0, 2 * pi);
-      };
-      const ClosedFormLaw law([&](double phi) { return arm * turn(phi); }, r0);
-      const auto follower = make_pivoted_roller(px, py, arm, rr);
-      for (double phi = -170 * deg; phi <= 170 * deg; phi += 5 * deg) {
-        const FollowerContact c = follower->contact(phi, law.at(phi), r0, clockwise);
-        CHECK_THAT(std::hypot(c.pitch_x, c.pitch_y - eps), WithinAbs(Rc + rr, 1e-10));
-        CHECK_THAT(std::hypot(c.x, c.y - eps), WithinAbs(Rc, 1e-10));
-        CHECK_THAT(c.curvature_radius, WithinRel(Rc, 1e-7) || WithinAbs(Rc, 1e-10));
-        // The roller centre in the fixed frame is on the arm's circle about the pivot.
-        const Vec centre = to_fixed({c.pitch_x, c.pitch_y}, phi, sigma);
-        CHECK_THAT(std::hypot(centre.x - px, centre.y - py), WithinAbs(arm, 1e-12));
-        // The pressure angle: between the circle's normal through the roller centre and the way the
-        // roller centre moves as the arm lifts, k J (C - P).
-        const Vec circle = to_fixed({0.0, eps}, phi, sigma);
-        const double nx = centre.x - circle.x, ny = centre.y - circle.y;
-        const double vx = -k * (centre.y - py), vy = k * (centre.x - px);
-        const double expected = std::atan2(std::abs(nx * vy - ny * vx), nx * vx + ny * vy);
-        CHECK_THAT(std::abs(c.pressure_angle), WithinAbs(expected, 1e-9));
-      }
-      const auto report = mechgraph::testing::check_follower(*follower, law, clockwise);
-      INFO(report.str());
-      CHECK(report.passed());
-    }
-}
 
 // The cam for the envelope tests: cycloidal, 7 mm over 140 deg on a 40 mm base circle. A translating
 // flat face needs r0 > 2 pi H / beta^2 - h(3/4 of the rise) = 29.5 - 6.4 = 23 mm; a pivoted one
