@@ -130,6 +130,7 @@ TEST_CASE("docs: every output listing (a fenced block without a language) is com
       {"elastic (valvetrain.dynamics) knob tolerance", "docs: bench.md, the tolerance listing and the integrators' floor on the elastic drive"},
       {"sdk/include/mechgraph/", ""},               // README: the source tree's layout
       {"bench/peers/run.sh [--quick]", ""},          // peers.md: a usage synopsis
+      {"/usr/bin/python3 bench/peers/side_by_side.py", ""},  // peers.md: a usage synopsis
       {"mechgraph sweep SCENE (--vary", ""},         // sweeps.md: a usage synopsis
       {"plugin '.../mechgraph_foreign.so'", ""},     // writing-plugins.md: an error message's wording
       {"fixed part -> hinge 1", ""},                 // backlash.md: the chain as a diagram
