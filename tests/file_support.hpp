@@ -6,6 +6,8 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 namespace mechgraph::testing {
 
 /// The bytes of `file` ("" when it cannot be read).
@@ -25,6 +27,15 @@ inline std::filesystem::path fresh_dir(const std::filesystem::path& parent, cons
   const std::filesystem::path dir = parent / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  return dir;
+}
+
+/// `name` in this process's own temporary folder `<prefix>_<pid>`: gone (a command that refuses an
+/// existing --out folder may make it), its parent made.
+inline std::filesystem::path absent_dir(const std::string& prefix, const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / (prefix + "_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir.parent_path());
   return dir;
 }
 

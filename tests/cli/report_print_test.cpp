@@ -20,12 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_folder(const std::string& name) {
-  const fs::path base = fs::temp_directory_path() / ("mg_print_" + std::to_string(::getpid())) / name;
-  fs::remove_all(base);
-  fs::create_directories(base.parent_path());
-  return base;
-}
+fs::path fresh_folder(const std::string& name) { return absent_dir("mg_print", name); }
 
 std::string scene(const char* name) { return std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/" + name; }
 
