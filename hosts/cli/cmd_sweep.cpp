@@ -212,12 +212,14 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ("resume", "go on with the unfinished FILE.part of the same sweep")
       ("force", "replace an existing FILE or unfinished FILE.part that mechgraph wrote (FILE.json says so)")
       ("cache-size", po::value<std::string>()->default_value(std::to_string(MemoCache::default_capacity)),
-       "node results kept in the memo cache, 0 to 10^9 (least recently used dropped)");
+       "node results kept in the memo cache, 0 to 10^9 (least recently used dropped)")
+      ("block-size", po::value<std::string>()->default_value(std::to_string(SweepOptions::default_block_size)),
+       "cases evaluated together when every node on the path can (the block path), 0 to 10^6; 0 or 1: every case alone. The rows are the same");
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm,
                            "mechgraph sweep SCENE (--vary NAME=FROM:TO:N ... | --cases FILE.csv | --sample NAME=LO:HI ... --n N [--seed S] | --study)\n"
                            "                       [--threads N] [--out FILE] [--format csv|jsonl] [--shard I/N|auto] [--resume]\n"
-                           "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--cache-size N] [--force]"))
+                           "                       [--set NAME=VALUE ...] [--outputs a.b,c.d] [--cache-size N] [--block-size N] [--force]"))
     return ok;
   const std::string format_name = vm["format"].as<std::string>();
   if (format_name != "csv" && format_name != "jsonl") throw UsageError("--format " + format_name + ": valid formats are csv, jsonl");
@@ -229,6 +231,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const Shard shard = vm.count("shard") ? parse_shard(vm["shard"].as<std::string>()) : Shard{};
   if (vm.count("n")) parse_count(vm["n"].as<std::string>(), "--n", max_sweep_cases);
   const std::size_t cache_size = parse_count(vm["cache-size"].as<std::string>(), "--cache-size", 1000000000);
+  const std::size_t block_size = parse_count(vm["block-size"].as<std::string>(), "--block-size", 1000000);
 
   const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
@@ -244,6 +247,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   SweepOptions options;
   for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
   options.threads = threads;
+  options.block_size = block_size;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
   // The work of every case of this shard, each with its own values (a cases file's, a grid's, a
   // sample's), against the budget, and the memory of the largest case times the threads (a sweep's
@@ -315,9 +319,9 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   progress.finish(written, failed);
   const bool complete = written == total;
   file.finish(complete, written, failed);
-  spdlog::info("sweep: {} cases in {:.3g} s ({:.4g}/s on {} threads), {} failed; memo cache {} hits, {} misses, {} dropped",
+  spdlog::info("sweep: {} cases in {:.3g} s ({:.4g}/s on {} threads), {} failed; {} in blocks; memo cache {} hits, {} misses, {} dropped",
                summary.run, summary.seconds, summary.seconds > 0 ? summary.run / summary.seconds : 0.0, options.threads,
-               failed, cache.hits(), cache.misses(), cache.evictions());
+               failed, summary.in_blocks, cache.hits(), cache.misses(), cache.evictions());
   if (!complete) {
     spdlog::warn("sweep stopped: {} of {} cases written{}", written, total,
                  file.to_stdout() ? "" : "; 'mechgraph sweep ... --resume' goes on from there");

@@ -1,5 +1,8 @@
 #include "cam_node.hpp"
 
+#include <mechgraph/block.hpp>
+#include <mechgraph/domain/cam_law_block.hpp>
+
 #include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/domain/cam_geometry.hpp>
 #include "ramps.hpp"
@@ -85,7 +88,7 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
   return max_lift - share;
 }
 
-class CamNodeType final : public NodeType {
+class CamNodeType final : public NodeType, public BlockEvaluation {
  public:
   explicit CamNodeType(CamLawDefinition d)
       : make_(std::move(d.make)), cost_(std::move(d.cost)), derived_(d.derives_lift_and_action) {
@@ -233,16 +236,25 @@ class CamNodeType final : public NodeType {
     return m.str();
   }
 
-  void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx) const override {
-    const RampSpec ramp = read_ramp(params);
+  // The law of the parameters, ramps included; `basics` and `ramp` as it was made from them.
+  std::shared_ptr<const CamLaw> make_law(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx,
+                                         CamBasics& basics, RampSpec& ramp) const {
+    ramp = read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
     if (ramp.type != RampType::none && !(has_lift && has_action))
       throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
     const double action_angle = has_action ? params.number("action_angle") : 0.0;
-    const CamBasics basics{has_lift ? main_lift(ramp, params.number("max_lift"), action_angle) : 0.0, action_angle,
-                           params.number("base_radius"), has_lift, has_action, &inputs, &ctx};
+    basics = CamBasics{has_lift ? main_lift(ramp, params.number("max_lift"), action_angle) : 0.0, action_angle,
+                       params.number("base_radius"), has_lift, has_action, &inputs, &ctx};
     std::shared_ptr<const CamLaw> law = make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
+    return law;
+  }
+
+  void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx) const override {
+    CamBasics basics;
+    RampSpec ramp;
+    const std::shared_ptr<const CamLaw> law = make_law(params, inputs, out, ctx, basics, ramp);
     const int samples = static_cast<int>(params.integer("samples"));
     // A sweep that does not read the curvature radius only needs the contour proven free of undercut.
     // So do the peaks and the phase: each is computed only when something reads it.
@@ -275,6 +287,69 @@ class CamNodeType final : public NodeType {
                       evaluations);
       ctx.report_work("evaluations", static_cast<double>(evaluations));
     }
+  }
+
+  // Blocks: the law and the scalar outputs, by the same functions as evaluate(); the svaj table,
+  // the events and laws that read inputs stay with single evaluations. An undercut note is not
+  // made (a sweep's rows carry no notes): the summary runs only for the outputs read.
+  bool block_supported(const BlockRequest& request) const override {
+    if (!info_.inputs.empty()) return false;
+    for (const std::string& output : request.wanted) {
+      const PortSpec* port = info_.find_output(output);
+      if (!port || (output != "law" && port->kind != ValueKind::scalar)) return false;
+    }
+    for (const std::string& name : request.varied)
+      if (name == "samples" || name == "curve_points") return false;
+    return true;
+  }
+
+  void evaluate_block(const BlockParams& p, const BlockInputs&, BlockOutputs& out, BlockCases& cases,
+                      EvalContext& ctx) const override {
+    const InputSet no_inputs;
+    std::vector<std::shared_ptr<const CamLaw>> laws(cases.size());
+    const CamSummaryParts parts{out.scalar("max_velocity") || out.scalar("max_acceleration") || out.scalar("min_acceleration"),
+                                out.scalar("accel_angle") != nullptr, out.scalar("min_curvature_radius") != nullptr};
+    const bool summary_wanted = parts.peaks || parts.phase || parts.curvature;
+    // The law-specific scalar outputs read downstream (three-arc radii, ...).
+    std::vector<std::pair<std::string, double*>> extras;
+    for (const auto& [port, column] : out.scalars())
+      if (port != "max_lift" && port != "max_velocity" && port != "max_acceleration" && port != "min_acceleration" &&
+          port != "accel_angle" && port != "min_curvature_radius")
+        extras.emplace_back(port, out.scalar(port));
+    double evaluations = 0.0;
+    for_each_live_case(cases, [&](std::size_t k) {
+      const ParamSet& params = p.of_case(k);
+      CamBasics basics;
+      RampSpec ramp;
+      OutputSet extra;
+      laws[k] = make_law(params, no_inputs, extra, ctx, basics, ramp);
+      const CamLaw& law = *laws[k];
+      if (double* column = out.scalar("max_lift")) column[k] = law.max_lift();
+      for (const auto& [port, column] : extras) {
+        auto it = extra.all().find(port);
+        if (it == extra.all().end() || it->second.kind() != ValueKind::scalar) {
+          cases.fail(k);  // not made for this case: the single evaluation says why
+          return;
+        }
+        column[k] = it->second.as_scalar();
+      }
+      if (!summary_wanted) return;
+      const CamSummary s = summarize(law, static_cast<int>(params.integer("samples")), parts);
+      evaluations += static_cast<double>(s.evaluations);
+      const auto put = [&](const char* port, bool known, double value) {
+        if (double* column = out.scalar(port)) {
+          if (!known) return cases.fail(k);
+          column[k] = value;
+        }
+      };
+      put("max_velocity", s.peaks_known, s.max_velocity);
+      put("max_acceleration", s.peaks_known, s.max_acceleration);
+      put("min_acceleration", s.peaks_known, s.min_acceleration);
+      put("accel_angle", s.phase_known, s.accel_angle);
+      put("min_curvature_radius", s.curvature_exact, s.min_curvature_radius);
+    });
+    ctx.report_work("evaluations", evaluations);
+    out.set_handle("law", std::make_shared<const CamLawBlock>(std::move(laws)));
   }
 
  private:

@@ -8,6 +8,9 @@
 #include "node_types.hpp"
 #include "valve_motion.hpp"
 
+#include <mechgraph/block.hpp>
+#include <mechgraph/domain/valve_motion_block.hpp>
+
 #include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -15,6 +18,7 @@
 #include <string>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace mechgraph::valvetrain {
@@ -22,7 +26,79 @@ namespace {
 
 constexpr double max_rectangles = 1e8;  // a rectangle sum finer than this is a mistake, not a method
 
-class TimeAreaType final : public NodeType {
+// The seat of the parameters (the three-stage passage checked for its dimensions).
+SeatGeometry seat_of(const ParamSet& p) {
+  SeatGeometry seat{p.number("seat_diameter"), p.number("seat_angle")};
+  if (p.text("flow_area") == "three_stage") {
+    for (const char* name : {"seat_width", "port_diameter"})
+      if (!p.has(name)) throw NodeError(name, std::string("flow_area: three_stage needs ") + name);
+    seat.three_stage = true;
+    seat.seat_width = p.number("seat_width");
+    seat.port_diameter = p.number("port_diameter");
+    seat.stem_diameter = p.number("stem_diameter");
+  }
+  return seat;
+}
+
+// Closed form (the law's integrals I1 of h and I2 of h^2 over the open period of width L): with
+// the valve lift x = i h - lash and f = k1 x + k2 x^2, int f = k1 int x + k2 int x^2,
+// int x = i I1 - lash L, int x^2 = i^2 I2 - 2 i lash I1 + lash^2 L.
+double closed_form_angle_area(double k1, double k2, double i, double lash, double L, double I1, double I2) {
+  return k1 * (i * I1 - lash * L) + k2 * (i * i * I2 - 2.0 * i * lash * I1 + lash * lash * L);
+}
+
+// The angle-area of `motion` through `area` by the method of the parameters.
+double angle_area_of(const ValveMotion& motion, const FlowArea& area, const ParamSet& p, long& evaluations) {
+  auto f = [&](double phi) { return area(motion.at(phi).lift); };
+  double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
+  const double ob = motion.open_begin(), oe = motion.open_end();
+  if (p.text("method") == "exact" && area.quadratic(k1, k2) && motion.cam().lift_integrals(ob, oe, I1, I2)) {
+    evaluations += 2;  // the law's two primitives, at both ends
+    return closed_form_angle_area(k1, k2, motion.rocker_ratio(), motion.lash(), oe - ob, I1, I2);
+  }
+  if (p.text("method") == "exact") {
+    // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
+    // the lift joins the search knots: a stage lift just below it is crossed twice close together,
+    // and the top keeps those two crossings in different pieces.
+    std::vector<double> knots = motion.knots();
+    if (!area.stage_lifts().empty()) {
+      // Every crossing of every stage lift, from one certified interpolation of the lift.
+      numerics::SmoothPieces lift([&](double x, double* v, double*) { v[0] = motion.at(x).lift; }, 1, knots, 16);
+      for (double stage_lift : area.stage_lifts())
+        for (double x : lift.crossings(0, stage_lift)) knots.push_back(x);
+      evaluations += lift.work().evaluations;
+    }
+    std::sort(knots.begin(), knots.end());
+    return numerics::integrate_piecewise(f, knots, p.number("tolerance"), evaluations);
+  }
+  const double step = p.number("step");
+  const double span = oe - ob;
+  if (step > span / 2.0) throw NodeError("step", "the rectangle step must be at most half the open period");
+  // The source's sum over phi_i = begin + i step, counted by index so a tiny step cannot stall.
+  const double count = std::floor(span / step);
+  if (count > max_rectangles) {
+    std::ostringstream msg;
+    msg << "a step of " << step * 180.0 / std::numbers::pi << " deg needs " << count << " rectangles over the "
+        << span * 180.0 / std::numbers::pi << " deg open period; at most " << max_rectangles
+        << " are allowed (use method: exact for a tight answer)";
+    throw NodeError("step", msg.str());
+  }
+  double sum = 0.0;
+  const long n = static_cast<long>(count);
+  for (long i = 0; i <= n; ++i) sum += f(ob + static_cast<double>(i) * step);
+  evaluations += n + 1;
+  return sum * step;
+}
+
+// The flow area grows as the square of the lift: a lift too large for that square (far beyond
+// any valve, but a law can be given one) overflows; refused, naming the input.
+void require_finite_area(double angle_area, double camshaft_speed, const CamLaw& cam, double rocker_ratio) {
+  if (!std::isfinite(angle_area) || !std::isfinite(angle_area / camshaft_speed))
+    throw NodeError("valve", "the time-area of this valve motion (cam lift " + std::to_string(cam.max_lift()) +
+                                 " m, rocker ratio " + std::to_string(rocker_ratio) + ") is beyond the range of a double");
+}
+
+class TimeAreaType final : public NodeType, public BlockEvaluation {
  public:
   TimeAreaType() {
     info_.type = "valvetrain.time_area";
@@ -78,73 +154,59 @@ class TimeAreaType final : public NodeType {
 
   void evaluate(const ParamSet& p, const InputSet& in, OutputSet& out, EvalContext& ctx) const override {
     const auto motion = in.handle<ValveMotion>("valve");
-    SeatGeometry seat{p.number("seat_diameter"), p.number("seat_angle")};
-    if (p.text("flow_area") == "three_stage") {
-      for (const char* name : {"seat_width", "port_diameter"})
-        if (!p.has(name)) throw NodeError(name, std::string("flow_area: three_stage needs ") + name);
-      seat.three_stage = true;
-      seat.seat_width = p.number("seat_width");
-      seat.port_diameter = p.number("port_diameter");
-      seat.stem_diameter = p.number("stem_diameter");
-    }
-    const FlowArea area(seat);
-    auto f = [&](double phi) { return area(motion->at(phi).lift); };
+    const FlowArea area(seat_of(p));
     long evaluations = 0;
-    double angle_area = 0.0;
-    double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
-    const double ob = motion->open_begin(), oe = motion->open_end();
-    if (p.text("method") == "exact" && area.quadratic(k1, k2) && motion->cam().lift_integrals(ob, oe, I1, I2)) {
-      // Closed form (the law's integrals of h and h^2): with the valve lift x = i h - lash over the
-      // open period of width L, int f = k1 int x + k2 int x^2, int x = i I1 - lash L,
-      // int x^2 = i^2 I2 - 2 i lash I1 + lash^2 L.
-      const double i = motion->rocker_ratio(), lash = motion->lash(), L = oe - ob;
-      angle_area = k1 * (i * I1 - lash * L) + k2 * (i * i * I2 - 2.0 * i * lash * I1 + lash * lash * L);
-      evaluations += 2;  // the law's two primitives, at both ends
-    } else if (p.text("method") == "exact") {
-      // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
-      // the lift joins the search knots: a stage lift just below it is crossed twice close together,
-      // and the top keeps those two crossings in different pieces.
-      std::vector<double> knots = motion->knots();
-      if (!area.stage_lifts().empty()) {
-        // Every crossing of every stage lift, from one certified interpolation of the lift.
-        numerics::SmoothPieces lift([&](double x, double* v, double*) { v[0] = motion->at(x).lift; }, 1, knots, 16);
-        for (double stage_lift : area.stage_lifts())
-          for (double x : lift.crossings(0, stage_lift)) knots.push_back(x);
-        evaluations += lift.work().evaluations;
-      }
-      std::sort(knots.begin(), knots.end());
-      angle_area = numerics::integrate_piecewise(f, knots, p.number("tolerance"), evaluations);
-    } else {
-      const double step = p.number("step");
-      const double span = motion->open_end() - motion->open_begin();
-      if (step > span / 2.0) throw NodeError("step", "the rectangle step must be at most half the open period");
-      // The source's sum over phi_i = begin + i step, counted by index so a tiny step cannot stall.
-      const double count = std::floor(span / step);
-      if (count > max_rectangles) {
-        std::ostringstream msg;
-        msg << "a step of " << step * 180.0 / std::numbers::pi << " deg needs " << count << " rectangles over the "
-            << span * 180.0 / std::numbers::pi << " deg open period; at most " << max_rectangles
-            << " are allowed (use method: exact for a tight answer)";
-        throw NodeError("step", msg.str());
-      }
-      double sum = 0.0;
-      const long n = static_cast<long>(count);
-      for (long i = 0; i <= n; ++i) sum += f(motion->open_begin() + static_cast<double>(i) * step);
-      evaluations += n + 1;
-      angle_area = sum * step;
-    }
+    const double angle_area = angle_area_of(*motion, area, p, evaluations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     const double open_angle = motion->open_end() - motion->open_begin();
-    // The flow area grows as the square of the lift: a lift too large for that square (far beyond
-    // any valve, but a law can be given one) overflows; refused here, naming the input.
-    if (!std::isfinite(angle_area) || !std::isfinite(angle_area / motion->camshaft_speed()))
-      throw NodeError("valve", "the time-area of this valve motion (cam lift " + std::to_string(motion->cam().max_lift()) +
-                                   " m, rocker ratio " + std::to_string(motion->rocker_ratio()) +
-                                   ") is beyond the range of a double");
+    require_finite_area(angle_area, motion->camshaft_speed(), motion->cam(), motion->rocker_ratio());
     out.set_scalar("angle_area", angle_area);
     out.set_scalar("time_area", angle_area / motion->camshaft_speed());
     out.set_scalar("mean_flow_area", angle_area / open_angle);
     out.set_scalar("open_duration", open_angle / motion->camshaft_speed());
+  }
+
+  // Blocks: every method and seat (only numbers vary from case to case); the closed form straight
+  // from the block's columns, any other method through the case's ValveMotion.
+  bool block_supported(const BlockRequest&) const override { return true; }
+
+  void evaluate_block(const BlockParams& p, const BlockInputs& in, BlockOutputs& out, BlockCases& cases,
+                      EvalContext& ctx) const override {
+    const auto& motions = in.handle<ValveMotionBlock>("valve");
+    double* time_area = out.scalar("time_area");
+    double* angle_area_out = out.scalar("angle_area");
+    double* mean_flow_area = out.scalar("mean_flow_area");
+    double* open_duration = out.scalar("open_duration");
+    const bool exact = p.fixed().text("method") == "exact";
+    const bool seat_varies = p.varies("seat_diameter") || p.varies("seat_angle") || p.varies("seat_width") ||
+                             p.varies("port_diameter") || p.varies("stem_diameter");
+    std::optional<FlowArea> fixed_area;
+    if (!seat_varies) fixed_area.emplace(seat_of(p.fixed()));
+    long evaluations = 0;
+    for_each_live_case(cases, [&](std::size_t k) {
+      const std::size_t r = motions.row(k);
+      const CamLaw& cam = motions.cam(k);
+      std::optional<FlowArea> case_area;
+      if (seat_varies) case_area.emplace(seat_of(p.of_case(k)));
+      const FlowArea& area = seat_varies ? *case_area : *fixed_area;
+      const double ob = motions.open_begin[r], oe = motions.open_end[r], i = motions.rocker_ratio[r], e = motions.lash[r];
+      const double w = motions.camshaft_speed[r];
+      double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0, angle_area = 0.0;
+      if (exact && area.quadratic(k1, k2) && cam.lift_integrals(ob, oe, I1, I2)) {
+        evaluations += 2;
+        angle_area = closed_form_angle_area(k1, k2, i, e, oe - ob, I1, I2);
+      } else {
+        const CamValveMotion motion(motions.shared_cam(k), w, i, e, OpenPeriod{ob, oe});
+        angle_area = angle_area_of(motion, area, p.of_case(k), evaluations);
+      }
+      require_finite_area(angle_area, w, cam, i);
+      const double open_angle = oe - ob;
+      if (angle_area_out) angle_area_out[k] = angle_area;
+      if (time_area) time_area[k] = angle_area / w;
+      if (mean_flow_area) mean_flow_area[k] = angle_area / open_angle;
+      if (open_duration) open_duration[k] = open_angle / w;
+    });
+    ctx.report_work("evaluations", static_cast<double>(evaluations));
   }
 
  private:

@@ -4,11 +4,41 @@
 // otherwise; derivatives i h', i h'', i h''' over cam angle; in time multiply by w_k, w_k^2, w_k^3
 // with the camshaft speed w_k = w_crank / 2 (four-stroke).
 #include <mechgraph/domain/valve_motion.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
 
 #include <memory>
 #include <vector>
 
 namespace mechgraph::valvetrain {
+
+/// The cam angles where the valve opens (the lash taken up) and closes.
+struct OpenPeriod {
+  double begin = 0.0, end = 0.0;  // rad
+};
+
+/// The open period of the valve on `cam` through rocker ratio i with a lash: the first rising and
+/// the last falling crossing of i h = lash (the whole event without lash). Throws NodeError("lash")
+/// when the valve never opens. Shared by the single and the block evaluation.
+OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash, int samples, long& evaluations);
+
+/// Valve lift and its derivatives over cam angle at phi: i h - lash (clipped at 0 against
+/// rounding at the crossings) and i h', i h'', i h''' inside the open period, zero outside.
+inline LiftDerivatives valve_lift_at(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, double phi) {
+  if (phi < open.begin || phi > open.end) return {};
+  const LiftDerivatives h = cam.at(phi);
+  const double lift = rocker_ratio * h.lift - lash;
+  return {lift > 0.0 ? lift : 0.0, rocker_ratio * h.velocity, rocker_ratio * h.acceleration, rocker_ratio * h.jerk};
+}
+
+/// The valve's peaks over its open period over cam angle (velocity in m/rad, acceleration in
+/// m/rad^2), from the cam's monotone runs where it declares them, else from one certified
+/// interpolation of each smooth piece. Shared by the single and the block evaluation.
+struct ValvePeaks {
+  numerics::Extremum velocity;  // the largest |velocity|
+  numerics::Extremum max_acceleration, min_acceleration;
+};
+ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
+                            long& evaluations);
 
 /// The valve motion a cam law, a rocker ratio and a lash give (the ValveMotion contract).
 class CamValveMotion final : public ValveMotion {
@@ -16,6 +46,8 @@ class CamValveMotion final : public ValveMotion {
   /// Throws NodeError("lash") when the valve never opens.
   CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash,
               int samples, long& evaluations);
+  /// With the open period known (find_open_period).
+  CamValveMotion(std::shared_ptr<const CamLaw> cam, double camshaft_speed, double rocker_ratio, double lash, OpenPeriod open);
 
   /// Valve lift [m] and its derivatives over cam angle [m/rad^k]; zero while closed.
   LiftDerivatives at(double phi) const override;

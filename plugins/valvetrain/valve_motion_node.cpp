@@ -4,7 +4,9 @@
 #include "node_types.hpp"
 #include "valve_motion.hpp"
 
+#include <mechgraph/block.hpp>
 #include <mechgraph/domain/cam_curves.hpp>
+#include <mechgraph/domain/valve_motion_block.hpp>
 #include <mechgraph/domain/cam_law_runs.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -14,7 +16,7 @@
 namespace mechgraph::valvetrain {
 namespace {
 
-class ValveMotionType final : public NodeType {
+class ValveMotionType final : public NodeType, public BlockEvaluation {
  public:
   ValveMotionType() {
     info_.type = "valvetrain.valve_motion";
@@ -75,39 +77,12 @@ class ValveMotionType final : public NodeType {
     auto motion = std::make_shared<const CamValveMotion>(in.handle<CamLaw>("cam"), camshaft_speed, p.number("rocker_ratio"),
                                                       p.number("lash"), samples, evaluations);
     const std::vector<double>& knots = motion->knots();
-    // |velocity| and both acceleration extremes from one interpolation of the open period (each
-    // function smooth on each piece; |velocity| is the larger of its two signed extremes). The
-    // valve's full lift is the cam's declared one through the rocker, less the lash (the CamLaw
-    // contract: max_lift() is the law's maximum, checked against dense sampling by the kit).
+    // The valve's full lift is the cam's declared one through the rocker, less the lash (the
+    // CamLaw contract: max_lift() is the law's maximum, checked against dense sampling by the kit).
     const numerics::Extremum lift{0.0, motion->rocker_ratio() * motion->cam().max_lift() - motion->lash()};
-    numerics::Extremum acc_max, acc_min, v_max, v_min;
-    const auto velocity_runs = CamLawRuns::of(motion->cam(), 1);
-    const auto acceleration_runs = CamLawRuns::of(motion->cam(), 2);
-    if (velocity_runs && acceleration_runs) {
-      // The cam's monotone runs (closed form): the valve's peaks over the open period are at the
-      // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp).
-      const double a = motion->open_begin(), b = motion->open_end(), i = motion->rocker_ratio();
-      auto scaled = [i](numerics::Extremum e) { return numerics::Extremum{e.x, i * e.value}; };
-      const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, a, b, evaluations);
-      v_min = scaled(peaks[0].min);
-      v_max = scaled(peaks[0].max);
-      acc_min = scaled(peaks[1].min);
-      acc_max = scaled(peaks[1].max);
-    } else {
-      numerics::SmoothPieces pieces(
-          [&](double x, double* v, double*) {
-            const LiftDerivatives d = motion->at(x);
-            v[0] = d.velocity;
-            v[1] = d.acceleration;
-          },
-          2, knots, samples);
-      acc_max = pieces.maximum(1);
-      acc_min = pieces.minimum(1);
-      v_max = pieces.maximum(0);
-      v_min = pieces.minimum(0);
-      evaluations += pieces.work().evaluations;
-    }
-    const numerics::Extremum velocity = -v_min.value > v_max.value ? numerics::Extremum{v_min.x, -v_min.value} : v_max;
+    const ValvePeaks peaks = find_valve_peaks(motion->cam(), {motion->open_begin(), motion->open_end()}, motion->rocker_ratio(),
+                                              motion->lash(), samples, evaluations);
+    const numerics::Extremum velocity = peaks.velocity, acc_max = peaks.max_acceleration, acc_min = peaks.min_acceleration;
     const double w = camshaft_speed;
     if (ctx.wanted("lift_curve")) {  // a few hundred evaluations: only when something reads it
       Series curve;
@@ -150,6 +125,54 @@ class ValveMotionType final : public NodeType {
     out.set_scalar("min_acceleration", w * w * acc_min.value);
     out.set_scalar("open_angle", motion->open_end() - motion->open_begin());
     out.set("motion", Value::handle(std::move(motion)));
+  }
+
+  // Blocks: the motion and its scalars, by the same functions as evaluate() (the curves, the
+  // svaj table and the events stay with single evaluations).
+  bool block_supported(const BlockRequest& request) const override {
+    for (const std::string& output : request.wanted)
+      if (output != "motion" && output != "max_lift" && output != "max_velocity" && output != "max_acceleration" &&
+          output != "min_acceleration" && output != "open_angle")
+        return false;
+    for (const std::string& name : request.varied)
+      if (name == "samples" || name == "curve_points") return false;
+    return true;
+  }
+
+  void evaluate_block(const BlockParams& p, const BlockInputs& in, BlockOutputs& out, BlockCases& cases,
+                      EvalContext& ctx) const override {
+    const auto& cams = in.handle<CamLawBlock>("cam");
+    const BlockColumn rpm = p.number("rpm"), rocker = p.number("rocker_ratio"), lash = p.number("lash");
+    const int samples = static_cast<int>(p.fixed().integer("samples"));
+    auto motions = std::make_shared<ValveMotionBlock>(in.shared_handle<CamLawBlock>("cam"),
+                                                      cases.size());
+    double* max_lift = out.scalar("max_lift");
+    double* max_velocity = out.scalar("max_velocity");
+    double* max_acceleration = out.scalar("max_acceleration");
+    double* min_acceleration = out.scalar("min_acceleration");
+    double* open_angle = out.scalar("open_angle");
+    const bool peaks_wanted = max_velocity || max_acceleration || min_acceleration;
+    long evaluations = 0;
+    for_each_live_case(cases, [&](std::size_t k) {
+      const CamLaw& cam = cams.law(k);
+      const double w = rpm[k] / 2.0, i = rocker[k], e = lash[k];  // w_k = w / 2
+      const OpenPeriod open = find_open_period(cam, i, e, samples, evaluations);
+      motions->open_begin[k] = open.begin;
+      motions->open_end[k] = open.end;
+      motions->rocker_ratio[k] = i;
+      motions->lash[k] = e;
+      motions->camshaft_speed[k] = w;
+      if (max_lift) max_lift[k] = i * cam.max_lift() - e;
+      if (open_angle) open_angle[k] = open.end - open.begin;
+      if (peaks_wanted) {
+        const ValvePeaks peaks = find_valve_peaks(cam, open, i, e, samples, evaluations);
+        if (max_velocity) max_velocity[k] = w * peaks.velocity.value;
+        if (max_acceleration) max_acceleration[k] = w * w * peaks.max_acceleration.value;
+        if (min_acceleration) min_acceleration[k] = w * w * peaks.min_acceleration.value;
+      }
+    });
+    ctx.report_work("evaluations", static_cast<double>(evaluations));
+    out.set_handle("motion", std::move(motions));
   }
 
  private:

@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/sweep/block_plan.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/worker_threads.hpp>
 
@@ -10,7 +11,10 @@
 #include <exception>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <thread>
+
+#include <spdlog/spdlog.h>
 
 namespace mechgraph {
 
@@ -21,7 +25,21 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
   const unsigned threads = static_cast<unsigned>(std::clamp<std::size_t>(options.threads, 1, std::max<std::size_t>(n, 1)));
   // Fewer cases than threads: the rest go to independent nodes inside each case.
   const unsigned node_threads = std::max(1u, options.threads / threads);
-  const std::size_t window = options.window ? options.window : 64 * static_cast<std::size_t>(threads);
+  // Blocks of cases when every node on the path offers them (sweep/block_plan.hpp); a case the
+  // block path cannot do is redone alone below, so the rows do not depend on it.
+  std::optional<BlockPlan> plan;
+  if (options.block_size > 1 && n > 1) {
+    plan.emplace(base, binder);
+    if (!plan->usable()) {
+      spdlog::debug("sweep: every case alone ({})", plan->why_not());
+      plan.reset();
+    }
+  }
+  const std::size_t chunk = plan ? options.block_size : 1;
+  // Blocks in flight: two per thread at least, whatever window was asked for.
+  std::size_t window = options.window ? options.window : 64 * static_cast<std::size_t>(threads);
+  if (plan) window = std::max(window, 2 * chunk * static_cast<std::size_t>(threads));
+  std::atomic<std::size_t> in_blocks{0};
 
   std::atomic<std::size_t> next{0};
   std::mutex mutex;
@@ -41,15 +59,9 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
     binder.mark_unmemoised(graph);
     std::optional<CaseBinder::Slots> slots;  // the varied parameters of this worker's graph
     if (!binder.rebuilds()) slots = binder.bind(graph);
-    while (!stopping()) {
-      const std::size_t k = next.fetch_add(1);
-      if (k >= n) break;
-      {
-        std::unique_lock lock(mutex);
-        emitted_more.wait(lock, [&] { return k < next_to_emit + window; });
-      }
-      CaseResult result;
-      result.index = options.cases[k];
+    BlockPlan::WorkerState block_state;
+    // One case alone: the per-case path, with its messages.
+    auto run_alone = [&](CaseResult& result) {
       try {
         if (slots) binder.apply(*slots, graph, table.cases[result.index]);
         else binder.apply(graph, table.cases[result.index]);
@@ -66,8 +78,31 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
         result.failure = CaseFailure::evaluation;
         result.error = terminal_text(e.what(), TerminalLines::one);
       }
+    };
+    while (!stopping()) {
+      const std::size_t first = next.fetch_add(chunk);
+      if (first >= n) break;
+      const std::size_t end = std::min(n, first + chunk);
+      {
+        std::unique_lock lock(mutex);
+        emitted_more.wait(lock, [&] { return end - 1 < next_to_emit + window; });
+      }
+      std::vector<CaseResult> results(end - first);
+      std::vector<BlockPlan::CaseOutcome> outcomes;
+      if (plan)
+        outcomes = plan->run(graph, table, std::span<const std::size_t>(options.cases).subspan(first, end - first), block_state);
+      for (std::size_t k = first; k < end; ++k) {
+        CaseResult& result = results[k - first];
+        result.index = options.cases[k];
+        if (plan && outcomes[k - first].outputs) {
+          result.outputs = std::move(*outcomes[k - first].outputs);
+          in_blocks.fetch_add(1, std::memory_order_relaxed);
+        } else {
+          run_alone(result);
+        }
+      }
       std::unique_lock lock(mutex);
-      ring[k % window] = std::move(result);
+      for (std::size_t k = first; k < end; ++k) ring[k % window] = std::move(results[k - first]);
       // Whoever completes the oldest case hands every finished one in order to `emit`.
       while (ring[next_to_emit % window]) {
         CaseResult ready = std::move(*ring[next_to_emit % window]);
@@ -103,6 +138,7 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
   });
   if (emit_failure) std::rethrow_exception(emit_failure);
   summary.stopped = summary.run < n;
+  summary.in_blocks = in_blocks.load();
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return summary;
 }

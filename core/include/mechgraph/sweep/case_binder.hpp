@@ -48,11 +48,15 @@ class CaseBinder {
   void mark_unmemoised(Graph& graph) const;
   const std::vector<SweepVariable>& variables() const { return variables_; }
 
- private:
+  /// A node parameter a variable reaches.
   struct Target {
     std::size_t node;
     const ParamSpec* spec;
   };
+  /// Per variable, the node parameters it is written to (in the order apply() writes them).
+  const std::vector<std::vector<Target>>& targets() const { return targets_; }
+
+ private:
   const SceneSpec& scene_;
   const PluginRegistry& registry_;
   std::vector<Override> overrides_;

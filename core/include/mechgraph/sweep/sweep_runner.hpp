@@ -30,10 +30,15 @@ struct SweepOptions {
   std::vector<std::size_t> cases;             // the cases to run, in the order they are emitted
   const std::atomic<bool>* stop = nullptr;    // when set, no new case starts; started ones finish
   std::size_t window = 0;                     // cases run ahead of the oldest unfinished (0: 64 per thread)
+  /// Cases per block on the block path (sweep/block_plan.hpp), taken when every node the sweep
+  /// needs offers it; 0 runs every case alone. The rows are the same either way.
+  std::size_t block_size = default_block_size;
+  static constexpr std::size_t default_block_size = 256;
 };
 
 struct SweepSummary {
   std::size_t run = 0, failed = 0;
+  std::size_t in_blocks = 0;  // cases whose results came from the block path
   bool stopped = false;  // `stop` was set before every case had started
   double seconds = 0.0;
 };
