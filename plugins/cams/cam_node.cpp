@@ -9,6 +9,7 @@
 
 #include <mechgraph/numerics/piecewise.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -172,7 +173,10 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     info_.frames = cam_angle_frames();
     info_.notes.push_back(timing_note());
     for (PortSpec& port : lift_event_ports("cam")) info_.outputs.push_back(std::move(port));
-    for (auto& p : d.extra_outputs) info_.outputs.push_back(std::move(p));
+    for (auto& p : d.extra_outputs) {
+      if (p.kind == ValueKind::scalar) extra_scalars_.push_back(p.name);
+      info_.outputs.push_back(std::move(p));
+    }
     info_.inputs = std::move(d.extra_inputs);
     info_.output_dependencies = std::move(d.output_dependencies);
     info_.work_counters = {"evaluations"};
@@ -294,10 +298,8 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   // made (a sweep's rows carry no notes): the summary runs only for the outputs read.
   bool block_supported(const BlockRequest& request) const override {
     if (!info_.inputs.empty()) return false;
-    for (const std::string& output : request.wanted) {
-      const PortSpec* port = info_.find_output(output);
-      if (!port || (output != "law" && port->kind != ValueKind::scalar)) return false;
-    }
+    for (const std::string& output : request.wanted)
+      if (!block_output(output)) return false;
     for (const std::string& name : request.varied)
       if (name == "samples" || name == "curve_points") return false;
     return true;
@@ -312,10 +314,8 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     const bool summary_wanted = parts.peaks || parts.phase || parts.curvature;
     // The law-specific scalar outputs read downstream (three-arc radii, ...).
     std::vector<std::pair<std::string, double*>> extras;
-    for (const auto& [port, column] : out.scalars())
-      if (port != "max_lift" && port != "max_velocity" && port != "max_acceleration" && port != "min_acceleration" &&
-          port != "accel_angle" && port != "min_curvature_radius")
-        extras.emplace_back(port, out.scalar(port));
+    for (const std::string& port : extra_scalars_)
+      if (double* column = out.scalar(port)) extras.emplace_back(port, column);
     double evaluations = 0.0;
     for_each_live_case(cases, [&](std::size_t k) {
       const ParamSet& params = p.of_case(k);
@@ -353,7 +353,16 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   }
 
  private:
+  // The outputs a block makes: the law, its common scalars and the law's own scalars.
+  bool block_output(const std::string& port) const {
+    for (const char* common : {"law", "max_lift", "max_velocity", "max_acceleration", "min_acceleration", "accel_angle",
+                               "min_curvature_radius"})
+      if (port == common) return true;
+    return std::find(extra_scalars_.begin(), extra_scalars_.end(), port) != extra_scalars_.end();
+  }
+
   NodeInfo info_;
+  std::vector<std::string> extra_scalars_;  // the law's own scalar outputs (CamLawDefinition::extra_outputs)
   CamLawFactory make_;
   CamLawCostFunction cost_;
   bool derived_ = false;

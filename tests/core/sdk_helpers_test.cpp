@@ -116,3 +116,47 @@ TEST_CASE("the kit refuses a channel that jumps at events on a type with no even
   info.outputs.push_back(PortSpec::table("events", "impacts").presented(events));
   CHECK(testing::detail::presentation_problem(info).empty());
 }
+
+namespace {
+
+// A node type with blocks: y = 2 x, or (with `off_by` set) a block path that drifts from it.
+class Doubler final : public NodeType, public BlockEvaluation {
+ public:
+  explicit Doubler(double off_by = 0.0) : off_by_(off_by) {
+    info_.type = "t.doubler";
+    info_.params = {ParamSpec::number("x", dim::length, "input", "mm").with_default(1e-3)};
+    info_.outputs = {PortSpec::scalar("y", dim::length, "2 x", "mm")};
+  }
+  const NodeInfo& info() const override { return info_; }
+  void evaluate(const ParamSet& p, const InputSet&, OutputSet& out, EvalContext&) const override {
+    out.set_scalar("y", 2.0 * p.number("x"));
+  }
+  bool block_supported(const BlockRequest&) const override { return true; }
+  void evaluate_block(const BlockParams& p, const BlockInputs&, BlockOutputs& out, BlockCases& cases, EvalContext&) const override {
+    const BlockColumn x = p.number("x");
+    double* y = out.scalar("y");
+    for_each_live_case(cases, [&](std::size_t i) {
+      if (y) y[i] = 2.0 * x[i] + off_by_;
+    });
+  }
+
+ private:
+  NodeInfo info_;
+  double off_by_;
+};
+
+}  // namespace
+
+TEST_CASE("the kit holds a node type's blocks to its single evaluation, bit for bit", "[sdk][blocks]") {
+  const auto verdict = [](const NodeType& type) {
+    const testing::Report report = testing::check_node_type(type);
+    for (const auto& c : report.checks())
+      if (c.name == testing::block_check) return c;
+    FAIL("no block check in:\n" << report.str());
+    return testing::Check{};
+  };
+  CHECK(verdict(Doubler()).status == testing::Check::Status::passed);
+  const auto drifting = verdict(Doubler(1e-18));
+  CHECK(drifting.status == testing::Check::Status::failed);
+  CHECK_THAT(drifting.detail, Contains("case 0, output 'y'"));
+}

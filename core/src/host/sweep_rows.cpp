@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <type_traits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -381,10 +382,16 @@ void SweepRows::append_line(std::string& out, const CaseResult& result, int exit
   // through append_csv_field, no string per cell.
   std::string error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
   if (result.failure == CaseFailure::none && !error.empty()) exit_code = evaluation_error;
+  // A number as to_chars writes it is a cell append_csv_field leaves as it is (digits, '.', 'e',
+  // a leading '-' that reads as a number): appended straight.
   char buffer[32];
   auto number = [&](auto x) {
     const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
-    append_csv_field(out, std::string_view(buffer, static_cast<std::size_t>(end - buffer)));
+    const std::string_view text(buffer, static_cast<std::size_t>(end - buffer));
+    if constexpr (std::is_floating_point_v<decltype(x)>) {
+      if (!std::isfinite(x)) return append_csv_field(out, text);  // never met: outputs are finite
+    }
+    out.append(text);
   };
   number(result.index);
   thread_local std::string input;

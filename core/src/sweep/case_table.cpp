@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <unordered_set>
 
@@ -293,6 +294,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
   int number = 0;
   bool header = false;
   std::vector<std::string> header_units;  // a bare number in a cell is in its column's unit
+  std::vector<std::optional<UnitScale>> column_units;  // that unit, parsed (none: unitless or not a unit)
   while (std::getline(in, line)) {
     ++number;
     if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte order mark
@@ -317,6 +319,12 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
           throw SceneError(where + ":" + std::to_string(number) + ":1: column '" + excerpt(name) + "' appears twice");
         table.variables.push_back({name, unit});
         header_units.push_back(unit);
+        std::optional<UnitScale> scale;
+        try {
+          if (!unit.empty()) scale = parse_unit(" " + unit);  // as parse_quantity reads what follows the number
+        } catch (const UnitError&) {
+        }
+        column_units.push_back(scale);
       }
       continue;
     }
@@ -336,6 +344,21 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         throw SceneError(where + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
                          excerpt(table.variables[v].name) + "' has no value");
       const std::string& unit = header_units[v];
+      // A plain number under a column with a unit, the common cell, read at once: what
+      // parse_quantity makes of "CELL UNIT" (the number by from_chars, then (x + offset) * scale
+      // with the column's unit parsed once), else the general reading below, with its messages.
+      if (const std::optional<UnitScale>& u = column_units[v]) {
+        const char* first = cell.data() + (cell.front() == '+' ? 1 : 0);
+        const char* last = cell.data() + cell.size();
+        double x = 0.0;
+        const auto [end, ec] = std::from_chars(first, last, x);
+        const double si = (x + u->offset) * u->scale;
+        if (ec == std::errc() && end == last && std::isfinite(x) && std::isfinite(si)) {
+          row.push_back(CaseValue{cell + " " + unit, si, u->dimension});
+          column += static_cast<int>(fields[v].size()) + 1;
+          continue;
+        }
+      }
       const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
       CaseValue value = read_case_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell, at);
       if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell) + "' is not a number in " + excerpt(unit));

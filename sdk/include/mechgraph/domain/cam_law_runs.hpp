@@ -5,7 +5,7 @@
 // On a run [e_i, e_i+1] the function f = h^(order) is continuous and monotone, so
 //  - its extremes over [a, b] are among f(a), f(b) and the one-sided values at the cuts inside;
 //  - a crossing of a level inside a run is bracketed by the run's ends (one sign change at most)
-//    and found by TOMS 748 on the law itself; where f jumps across the level at a cut, the cut is
+//    and found on the law itself (Newton on the next derivative, safeguarded by bisection); where f jumps across the level at a cut, the cut is
 //    the crossing.
 // One-sided values at a cut are read where the generic search reads its knots
 // (numerics::one_sided_point: 1e-13 of the run's width inside, at least 4 ulps of the angle, at
@@ -49,6 +49,12 @@ class CamLawRuns {
  private:
   CamLawRuns(const CamLaw& law, int order, std::vector<double> edges) : law_(&law), order_(order), edges_(std::move(edges)) {}
   double value(double x) const;
+  double value_of(const LiftDerivatives& d) const {
+    return order_ == 0 ? d.lift : order_ == 1 ? d.velocity : d.acceleration;
+  }
+  /// The crossing of `level` inside one run between a and b, where g = h^(order) - level is ga and gb
+  /// of opposite signs.
+  double root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const;
   numerics::Extremum extreme(double a, double b, double sign, long& evaluations) const;
 
   const CamLaw* law_;

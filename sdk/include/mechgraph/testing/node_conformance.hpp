@@ -16,6 +16,7 @@
 #include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/node.hpp>
+#include <mechgraph/testing/block_conformance.hpp>
 #include <mechgraph/testing/cam_law_conformance.hpp>
 #include <mechgraph/testing/domain_conformance.hpp>
 #include <mechgraph/testing/follower_conformance.hpp>
@@ -327,6 +328,7 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
   } catch (const std::exception& e) {
     r.add(suite, "deterministic: the same inputs give the same bits", false, std::string("the second evaluation threw: ") + e.what());
   }
+  check_block_evaluation(type, params, inputs, first.outputs, r, suite);
   if (options.threads > 1) {
     // All threads start together (a gate opened once every thread that could start has started)
     // and evaluate several times each, so the evaluations overlap. Threads that cannot start (a
