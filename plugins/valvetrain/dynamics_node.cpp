@@ -6,7 +6,9 @@
 // extremes (deviations, least contact force, greatest spring force, bounce height) are followed on
 // the integrator's dense output between them ("Extremes and events from the dense output"). The
 // spring's coil bind (always, with elastic_drive) and a travel stop are stiff contacts on the valve;
-// the events table lists every departure from the cam's law with its cam angle, speed and force.
+// the events table lists every departure from the cam's law and every other jump of the valve's
+// speed or the cam's force (the landing on the seat with the cam in contact, the lash taken up; the
+// rigid drive's too) with its cam angle, speed and force.
 #include "node_types.hpp"
 #include "valve_simulation.hpp"
 
@@ -27,13 +29,17 @@ namespace {
 constexpr double pi = std::numbers::pi;
 
 // The code of an event in the events table (its port's description lists them), 0: not listed.
-// Lift-off and the ordinary seating (with the cam in contact, no bounce before) follow the law
-// and are left out.
+// Every event at which the valve's speed or the cam's force jumps has a row: the curves that jump
+// (declared jumps_at_events) are drawn in pieces between the rows, so a jump without one would be
+// drawn as a steep line. The ordinary seating (cam in contact, no bounce before) follows the law,
+// but the seat stops the valve's speed there: it is listed as such (9). Lift-off is not: the
+// drive's spring lifts the valve from rest, its speed and the cam's force stay continuous. The
+// lash take-up (10) is no event of the simulation: add_lash_take_up, rigid_events_table.
 double event_code(const EventRecord& e, bool after_bounce) {
   if (e.kind == "contact_loss") return 1.0;
   if (e.kind == "contact_regain") return 2.0;
   if (e.kind == "bounce") return 3.0;
-  if (e.kind == "landing") return !e.cam_contact || after_bounce ? 4.0 : 0.0;
+  if (e.kind == "landing") return !e.cam_contact || after_bounce ? 4.0 : 9.0;
   if (e.kind == "coil_bind") return 5.0;
   if (e.kind == "coil_bind_release") return 6.0;
   if (e.kind == "stop") return 7.0;
@@ -50,19 +56,50 @@ std::vector<Code> event_codes() {
           {5.0, "coil_bind", "the spring goes solid"},
           {6.0, "coil_bind_left", "the spring leaves solid"},
           {7.0, "stop_hit", "the travel stop is hit"},
-          {8.0, "stop_left", "the travel stop is left"}};
+          {8.0, "stop_left", "the travel stop is left"},
+          {9.0, "seated_on_cam", "the valve lands on its seat with the cam in contact (the seat stops its speed)"},
+          {10.0, "lash_taken_up", "the cam reaches the seated valve's follower: a rigid drive lifts the valve at the "
+                                  "drive's speed, a unilateral elastic drive's damper loads the cam at once"}};
 }
 
-// The events of the last revolution (from `last`, s) as a table over cam angle; the peak force of
-// a lift limit's engagement from the limit-force monitor's segment that begins with it.
-Table events_table(const SimulationResult& run, const std::vector<MonitorSegment>& limit_segments, double last, double w,
-                   double period) {
+// An events table without rows, its channels declared (the port's description says what they are).
+Table empty_events_table() {
   Table t;
   t.axis = {"cam_angle", dim::angle, {}, "deg"};
   t.add_channel("event", dim::none);
   t.add_channel("speed", dim::velocity, "m/s");
   t.add_channel("cam_force", dim::force, "N");
   t.add_channel("peak_force", dim::force, "N");
+  return t;
+}
+
+// A row at `angle`, after the rows at or before it (the rows stay in cam-angle order).
+void add_event(Table& t, double angle, double code, double speed, double cam_force, double peak_force) {
+  const auto at = std::upper_bound(t.axis.values.begin(), t.axis.values.end(), angle) - t.axis.values.begin();
+  t.axis.values.insert(t.axis.values.begin() + at, angle);
+  const double row[] = {code, speed, cam_force, peak_force};
+  for (std::size_t c = 0; c < 4; ++c) t.channels[c].values.insert(t.channels[c].values.begin() + at, row[c]);
+}
+
+// The rigid drive's events: the valve follows x = max(0, y) over the open period (the ValveMotion
+// contract), so where the drive y = i h - lash passes zero its speed jumps from rest to the
+// drive's w y' (the cam takes up the lash) and back to rest (it seats), and the cam's force from 0
+// to M w^2 y'' + P0 and back. Both are listed (docs/methods/valvetrain.md, "Events table"), with
+// the cam's force just after: at the opening the rigid drive's, at the seat none.
+Table rigid_events_table(const ValveMotion& motion, double M, double P0) {
+  const double w = motion.camshaft_speed();
+  const LiftDerivatives opening = motion.drive(motion.open_begin()), closing = motion.drive(motion.open_end());
+  Table t = empty_events_table();
+  add_event(t, motion.open_begin(), 10.0, w * std::abs(opening.velocity), M * w * w * opening.acceleration + P0, 0.0);
+  add_event(t, motion.open_end(), 9.0, w * std::abs(closing.velocity), 0.0, 0.0);
+  return t;
+}
+
+// The events of the last revolution (from `last`, s) as a table over cam angle; the peak force of
+// a lift limit's engagement from the limit-force monitor's segment that begins with it.
+Table events_table(const SimulationResult& run, const std::vector<MonitorSegment>& limit_segments, double last, double w,
+                   double period) {
+  Table t = empty_events_table();
   bool after_bounce = false;
   for (const EventRecord& e : run.events) {
     const double code = event_code(e, after_bounce);
@@ -72,13 +109,30 @@ Table events_table(const SimulationResult& run, const std::vector<MonitorSegment
     if (code == 5.0 || code == 7.0)
       for (const MonitorSegment& m : limit_segments)
         if (std::abs(m.begin - e.t) <= 1e-12 * period) peak = std::max(peak, m.greatest.value);
-    t.axis.values.push_back(-pi + w * (e.t - last));
-    t.channels[0].values.push_back(code);
-    t.channels[1].values.push_back(e.speed);
-    t.channels[2].values.push_back(e.cam_force);
-    t.channels[3].values.push_back(peak);
+    add_event(t, -pi + w * (e.t - last), code, e.speed, e.cam_force, peak);
   }
   return t;
+}
+
+// A lone valve held on its seat (ChainModel::rigid_when_seated) on a unilateral drive: the
+// simulation does not follow its contact with the cam across the lash (the held valve cannot
+// move), but where the drive y = i h - lash passes zero at the opening the cam reaches the
+// follower, and the drive's damper loads the cam at once with c_0 y' (ChainModel::
+// force_after_event, as at a regain). Its row (10), if the valve is seated then: seated at the
+// curve point before the opening, and no seat event between that point and the opening.
+void add_lash_take_up(Table& t, const ValveMotion& motion, const ValveSimulation& sim, const std::vector<double>& phi) {
+  const SimulationResult& run = sim.run;
+  const double open = motion.open_begin(), w = motion.camshaft_speed();
+  const auto after = std::upper_bound(phi.begin(), phi.end(), open);
+  if (after == phi.begin()) return;
+  const auto j = static_cast<std::size_t>(after - phi.begin()) - 1;
+  const double t_open = sim.last_start + (open + pi) / w;
+  if (!run.mode[j].seated) return;
+  for (const EventRecord& e : run.events)
+    if (e.t > run.t[j] && e.t <= t_open && (e.kind == "lift_off" || e.kind == "landing" || e.kind == "bounce")) return;
+  const LiftDerivatives y = motion.drive(open);
+  const DriveValue at{y.lift, w * y.velocity, w * w * y.acceleration};
+  add_event(t, open, 10.0, w * std::abs(y.velocity), sim.model.force_after_event(at, ChainState(2 * sim.model.positions(), 0.0)), 0.0);
 }
 
 std::string degrees(double radians) {
@@ -120,7 +174,7 @@ class DynamicsType final : public NodeType {
  public:
   DynamicsType() {
     info_.type = "valvetrain.dynamics";
-    info_.version = 3;
+    info_.version = 4;
     info_.summary = "valve motion on an elastic drive (single mass), cam contact, seat, coil bind and travel stop as "
                     "located events; rigid when elastic_drive is off";
     info_.params = {
@@ -257,10 +311,13 @@ class DynamicsType final : public NodeType {
                          "N"),
         PortSpec::scalar("solid_lift", dim::length,
                          "valve lift at which the spring goes solid (coil bind), from the spring's coil geometry", "mm"),
-        PortSpec::table("events", "every departure from the cam's law in the last revolution, one row each at its cam "
-                                  "angle: event 1 contact lost, 2 contact regained (the follower lands on the cam), "
-                                  "3 bounce on the seat, 4 seated off the cam or after bounces, 5 coil bind (the spring "
-                                  "goes solid), 6 coil bind left, 7 travel stop hit, 8 stop left; speed: of approach or "
+        PortSpec::table("events", "every departure from the cam's law in the last revolution and every jump of the "
+                                  "valve's speed or the cam's force, one row each at its cam angle: event 1 contact "
+                                  "lost, 2 contact regained (the follower lands on the cam), 3 bounce on the seat, "
+                                  "4 seated off the cam or after bounces, 5 coil bind (the spring goes solid), 6 coil "
+                                  "bind left, 7 travel stop hit, 8 stop left, 9 landed on the seat with the cam in contact (the law's closing), 10 lash "
+                                  "taken up (the cam reaches the seated valve: a rigid drive lifts it at the drive's "
+                                  "speed, a unilateral drive's damper loads the cam at once); speed: of approach or "
                                   "separation; cam_force: the cam's force just after; peak_force: the contact's greatest "
                                   "force until it is left (coil bind, stop)")
             .presented(over_cam_angle("cam_angle", Role::events)
@@ -272,7 +329,7 @@ class DynamicsType final : public NodeType {
     info_.effects = {
         {"elastic_drive", "the drive as a spring-damper between cam and valve (single mass), the spring's coil bind as a "
                           "stiff contact; off: rigid drive",
-         {"max_deviation", "residual_amplitude", "natural_frequencies", "events", "solid_lift"},
+         {"max_deviation", "residual_amplitude", "natural_frequencies", "solid_lift"},
          {"drive_stiffness", "damping_ratio", "tolerance", "integrator", "revolutions", "coil_bind_stiffness",
           "coil_bind_restitution"}},
         {"travel_stop", "a stop at stop_lift: a stiff contact with its own restitution (needs elastic_drive)", {},
@@ -355,6 +412,7 @@ class DynamicsType final : public NodeType {
         if (x.lift > 0.0) min_contact = std::min(min_contact, force);
       }
       seating_velocity = w * std::abs(motion->at(motion->open_end() - 1e-12).velocity);
+      out.set("events", Value::table(rigid_events_table(*motion, M, P0)));
       for (const char* counter : {"steps", "rhs_evaluations", "events"}) ctx.report_work(counter, 0.0);
     } else {
       DriveSettings settings;
@@ -498,7 +556,9 @@ class DynamicsType final : public NodeType {
         }
       }
       if (std::isfinite(solid_lift)) out.set_scalar("solid_lift", solid_lift);
-      out.set("events", Value::table(events_table(run, run.extremes[limit_force], last, w, period)));
+      Table events = events_table(run, run.extremes[limit_force], last, w, period);
+      if (settings.contact_loss && model.rigid_when_seated()) add_lash_take_up(events, *motion, sim, phi);
+      out.set("events", Value::table(std::move(events)));
       describe_events(run, last, w, out);
       ChainState s;
       for (std::size_t j = 0; j < phi.size(); ++j) {

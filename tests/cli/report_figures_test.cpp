@@ -41,31 +41,81 @@ std::string figure_svg(const std::string& page, const std::string& title) {
   return begin == std::string::npos || end == std::string::npos ? std::string() : page.substr(begin, end + 6 - begin);
 }
 
-// The `d` attributes of the paths gnuplot draws each plot's curves with, a list per gnuplot_plot_N
-// group in the order of the SVG (small multiples: a group per panel; the border and grid lie
-// outside the groups).
+// The `d` attributes of the paths in the gnuplot_plot_N group that starts at `group`.
+std::vector<std::string> group_paths(const std::string& svg, std::size_t group) {
+  int depth = 1;
+  std::size_t i = group;
+  while (depth > 0) {
+    const auto open = svg.find("<g", i + 1), close = svg.find("</g>", i + 1);
+    if (close == std::string::npos) break;
+    if (open != std::string::npos && open < close) {
+      ++depth;
+      i = open;
+    } else {
+      --depth;
+      i = close;
+    }
+  }
+  const std::string body = svg.substr(group, i - group);
+  std::vector<std::string> paths;
+  for (auto p = body.find("d='"); p != std::string::npos; p = body.find("d='", p + 3))
+    paths.push_back(body.substr(p + 3, body.find('\'', p + 3) - p - 3));
+  return paths;
+}
+
+// The paths of each plot's curves, a list per gnuplot_plot_N group in the order of the SVG (small
+// multiples: a group per panel; the border and grid lie outside the groups).
 std::vector<std::vector<std::string>> curve_paths(const std::string& svg) {
   std::vector<std::vector<std::string>> groups;
-  for (auto group = svg.find("<g id=\"gnuplot_plot_"); group != std::string::npos; group = svg.find("<g id=\"gnuplot_plot_", group + 1)) {
-    int depth = 1;
-    std::size_t i = group;
-    while (depth > 0) {
-      const auto open = svg.find("<g", i + 1), close = svg.find("</g>", i + 1);
-      if (close == std::string::npos) break;
-      if (open != std::string::npos && open < close) {
-        ++depth;
-        i = open;
-      } else {
-        --depth;
-        i = close;
-      }
-    }
-    const std::string body = svg.substr(group, i - group);
-    std::vector<std::string>& paths = groups.emplace_back();
-    for (auto p = body.find("d='"); p != std::string::npos; p = body.find("d='", p + 3))
-      paths.push_back(body.substr(p + 3, body.find('\'', p + 3) - p - 3));
-  }
+  for (auto group = svg.find("<g id=\"gnuplot_plot_"); group != std::string::npos; group = svg.find("<g id=\"gnuplot_plot_", group + 1))
+    groups.push_back(group_paths(svg, group));
   return groups;
+}
+
+// The curve paths of the small-multiples panel named `label` (gnuplot writes a panel's label after
+// its plot group), empty if there is none.
+std::vector<std::string> panel_paths(const std::string& svg, const std::string& label) {
+  const auto at = svg.find("<text>" + label + "</text>");
+  if (at == std::string::npos) return {};
+  const auto group = svg.rfind("<g id=\"gnuplot_plot_", at);
+  return group == std::string::npos ? std::vector<std::string>{} : group_paths(svg, group);
+}
+
+// The points of the paths, in px, with whether a line joins each to the point before it.
+struct PathPoint {
+  double x = 0.0, y = 0.0;
+  bool joined = false;
+};
+std::vector<PathPoint> path_points(const std::vector<std::string>& paths) {
+  std::vector<PathPoint> points;
+  for (const std::string& d : paths) {
+    std::istringstream in(d);
+    std::string token;
+    bool have = false;
+    while (in >> token) {
+      const auto comma = token.find(',');
+      if (comma == std::string::npos || (token[0] != 'M' && token[0] != 'L')) {
+        have = false;
+        continue;
+      }
+      points.push_back({std::stod(token.substr(1, comma - 1)), std::stod(token.substr(comma + 1)), token[0] == 'L' && have});
+      have = true;
+    }
+  }
+  return points;
+}
+
+// The lines of a curve over the cam angle from -180 to 180 deg (its first and last points, the
+// ends of the axis) that cross the cam angle `deg`: their two points lie on both sides of it.
+int lines_across(const std::vector<PathPoint>& points, double deg) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const PathPoint& p : points) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
+  const double x = lo + (deg + 180.0) / 360.0 * (hi - lo), rounding = 0.02;  // px, the SVG's 2 decimals
+  int across = 0;
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (points[i].joined && std::min(points[i - 1].x, points[i].x) < x - rounding && std::max(points[i - 1].x, points[i].x) > x + rounding)
+      ++across;
+  return across;
 }
 
 // The greatest vertical step between two points a path joins with a line (a move starts afresh).
@@ -126,6 +176,24 @@ int column_of(const std::string& csv, const std::string& prefix) {
   return -1;
 }
 
+// An events CSV beside the report as (cam angle in deg, event name) rows.
+std::vector<std::pair<double, std::string>> event_rows(const std::string& csv) {
+  const int angle = column_of(csv, "cam_angle ["), name = column_of(csv, "event_name");
+  std::vector<std::pair<double, std::string>> rows;
+  if (angle < 0 || name < 0) return rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (static_cast<int>(cells.size()) > std::max(angle, name))
+      rows.emplace_back(std::stod(cells[static_cast<std::size_t>(angle)]), cells[static_cast<std::size_t>(name)]);
+  }
+  return rows;
+}
+
 double scalar_from_json(const std::string& json, const std::string& label) {
   const auto at = json.find("\"" + label + "\"");
   REQUIRE(at != std::string::npos);
@@ -157,6 +225,40 @@ TEST_CASE("report: dynamics across five runs as small multiples, jumps never joi
   // name list with commas inside its names is separated by ';'.
   CHECK_THAT(page, Contains("Lift, velocity, acceleration and jerk of v; same, with ramps (5600 rpm); elastic, contacts (7500 rpm) "
                             "(v, v_ramp, v_fast)"));
+}
+
+TEST_CASE("report: the seating and the rigid drive's lash take-up are not joined either", "[cli][report][figures]") {
+  // A jump is broken at its node's events rows; two had none and were drawn as steep lines: the
+  // rigid drive's lash take-up (it had no events table) and the landing on the seat with the cam
+  // in contact (the bilateral drive never leaves it). Their rows now name them; no line of a
+  // velocity panel crosses any row of its run.
+  const fs::path dir = report_of(scene("valvetrain_dynamics.yaml"), "dynamics_seating");
+  const std::string velocity = figure_svg(slurp(dir / "report.html"), "velocity, a panel per node");
+  REQUIRE(!velocity.empty());
+  struct Run {
+    const char* node;
+    const char* column;
+    std::vector<std::string> events;  // the rows' names, where the test knows them all
+  };
+  for (const Run& run : {Run{"rigid", "rigid (5600 rpm)", {"lash_taken_up", "seated_on_cam"}},
+                         Run{"elastic", "elastic, bilateral (5600 rpm)", {"seated_on_cam", "seated_on_cam"}},
+                         Run{"contacts", "elastic, contacts (5600 rpm)", {}}, Run{"with_ramp", "same, with ramps (5600 rpm)", {}},
+                         Run{"overspeed", "elastic, contacts (7500 rpm)", {}}}) {
+    INFO(run.node);
+    const auto rows = event_rows(slurp(dir / (std::string(run.node) + ".events.csv")));
+    REQUIRE(!rows.empty());
+    if (!run.events.empty()) {
+      std::vector<std::string> names;
+      for (const auto& row : rows) names.push_back(row.second);
+      CHECK(names == run.events);
+    }
+    const std::vector<PathPoint> points = path_points(panel_paths(velocity, run.column));
+    REQUIRE(points.size() > 1000);  // the curve's 1441 points
+    for (const auto& [angle, name] : rows) {
+      INFO(name << " at " << angle << " deg");
+      CHECK(lines_across(points, angle) == 0);
+    }
+  }
 }
 
 TEST_CASE("report: the spring figure spans the working range, the free length named at its edge", "[cli][report][figures]") {

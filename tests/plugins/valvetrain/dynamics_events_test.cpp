@@ -1,7 +1,8 @@
-// valvetrain.dynamics: the events table (every departure from the cam's law), coil bind at the
-// spring's solid length, the travel stop, and the bilateral drive's note. The lift limits' closed
-// forms (impact, restitution, free flight) are in lift_limit_test.cpp; here the node's outputs
-// are checked against each other and against bounds that follow from the model.
+// valvetrain.dynamics: the events table (every departure from the cam's law, every jump of the
+// curves declared to jump), coil bind at the spring's solid length, the travel stop, and the
+// bilateral drive's note. The lift limits' closed forms (impact, restitution, free flight) are in
+// lift_limit_test.cpp; here the node's outputs are checked against each other and against bounds
+// that follow from the model.
 #include "dynamics_scenes.hpp"
 
 #include <catch2/catch.hpp>
@@ -86,9 +87,13 @@ TEST_CASE("dynamics events: the valve that floats at 7500 rpm, every loss and re
   CHECK(has_note(r, "dyn", "the follower leaves the cam"));
 }
 
-TEST_CASE("dynamics events: a valve train that follows its cam has an empty table", "[valvetrain][dynamics][events]") {
+TEST_CASE("dynamics events: a valve train that follows its cam lists only its lash take-up and seating",
+          "[valvetrain][dynamics][events]") {
   // The ramped cam's float speed is about 3800 rpm (scenes/valvetrain_dynamics.yaml): at 3000 rpm
-  // its valve stays on the cam; without seat_impact it seats at its first landing.
+  // its valve stays on the cam. No departure from the law, but two jumps: the cam takes up the
+  // lash (10: the unilateral drive's damper loads it at once) and the valve lands on its seat with
+  // the cam in contact (9: the seat stops its speed; without seat_impact no bounce, the chain may
+  // carry it on and it lands again).
   const std::string ramped =
       "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm, "
       "ramp: cosine, ramp_height: 0.2 mm, ramp_length: 20 deg } }";
@@ -96,9 +101,14 @@ TEST_CASE("dynamics events: a valve train that follows its cam has an empty tabl
                                                "dyn.events, dyn.floats, dyn.solid_lift, dyn.max_deviation", "3000 rpm"));
   CHECK(num(r, "dyn.floats") == 0.0);
   const Table& events = output(r, "dyn.events").as_table();
-  CHECK(events.axis.values.empty());
   CHECK(events.channels.size() == 4);
-  for (const auto& c : events.channels) CHECK(c.values.empty());
+  const auto& code = channel(events, "event");
+  REQUIRE(code.size() >= 2);
+  CHECK(code.front() == 10.0);
+  CHECK(events.axis.values.front() < 0.0);  // on the opening flank
+  CHECK(count_code(events, 9.0) == static_cast<long>(code.size()) - 1);
+  CHECK(events.axis.values[1] > 0.0);  // the seatings on the closing flank
+  for (double speed : channel(events, "speed")) CHECK(speed > 0.0);
   CHECK(num(r, "dyn.solid_lift") > 8e-3 * 1.5 - 0.25e-3);  // the spring design keeps it above full lift
   CHECK_FALSE(has_note(r, "dyn", "bilateral"));
 }
@@ -108,7 +118,10 @@ TEST_CASE("dynamics: the bilateral drive's pull is named in a note", "[valvetrai
   REQUIRE(num(r, "dyn.min_contact_force") < 0.0);
   CHECK(has_note(r, "dyn", "bilateral drive"));
   CHECK(has_note(r, "dyn", "no real cam"));
-  CHECK(output(r, "dyn.events").as_table().axis.values.empty());  // bilateral: nothing leaves the cam
+  // Bilateral: nothing leaves the cam; the rows are its landings on the seat with the cam in contact.
+  const Table& events = output(r, "dyn.events").as_table();
+  REQUIRE(!events.axis.values.empty());
+  CHECK(count_code(events, 9.0) == static_cast<long>(events.axis.values.size()));
 }
 
 TEST_CASE("dynamics: coil bind stops a spring sized for 4000 rpm run at 7500 rpm at its solid length",
@@ -230,4 +243,91 @@ TEST_CASE("dynamics events: the cam force just after a regain is the drive's dam
   }
   REQUIRE(ratio.size() >= 3);
   for (double c : ratio) CHECK_THAT(c, WithinRel(ratio.front(), 1e-6));
+}
+
+namespace {
+
+// The curves' channels the node declares to jump at its events (jumps_at_events): the report draws
+// them in pieces between the events table's rows, so every jump must have a row.
+std::vector<std::string> channels_that_jump() {
+  const RegisteredType* type = project_registry().find("valvetrain.dynamics");
+  REQUIRE(type);
+  std::vector<std::string> names;
+  for (const ChannelDecl& c : type->type->info().find_output("curves")->presentation.channels)
+    if (c.flags & channel_flag::jumps_at_events) names.push_back(c.name);
+  return names;
+}
+
+// The steps of a curve between neighbouring points that stand out of both neighbouring steps (a
+// jump between two points, not a steep but smooth stretch) with no events row between the two
+// points: phi_{i-1} < event <= phi_i, the interval the report breaks the curve at. On a fine grid a
+// smooth curve's neighbouring steps are nearly alike; a jump is many times either.
+std::vector<double> jumps_without_row(const std::vector<double>& phi, const std::vector<double>& y, const std::vector<double>& events) {
+  double scale = 0.0;
+  for (double v : y) scale = std::max(scale, std::abs(v));
+  const auto row_between = [&](std::size_t i) {
+    const auto next = std::upper_bound(events.begin(), events.end(), phi[i - 1]);
+    return next != events.end() && *next <= phi[i];
+  };
+  std::vector<double> at;
+  for (std::size_t i = 2; i + 1 < phi.size(); ++i) {
+    const double step = std::abs(y[i] - y[i - 1]);
+    const double beside = std::max(std::abs(y[i - 1] - y[i - 2]), std::abs(y[i + 1] - y[i]));
+    if (step > 1e-3 * scale && step > 8.0 * beside && !row_between(i)) at.push_back(phi[i] * 180.0 / pi);
+  }
+  return at;
+}
+
+}  // namespace
+
+TEST_CASE("dynamics events: every jump of a curve declared to jump has a row, the rigid drive's too",
+          "[valvetrain][dynamics][events][jumps]") {
+  // The rigid drive lifts the valve at the drive's speed where it takes up the lash and sets it
+  // down at that speed; the bilateral drive's valve seats with the cam in contact. Before these had
+  // rows (the rigid drive had no events table) the report drew their jumps as steep lines.
+  const std::vector<std::string> jumping = channels_that_jump();
+  REQUIRE(jumping.size() >= 2);  // velocity and the cam's force
+  const std::string ramped =
+      "{ type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 17 mm, "
+      "ramp: cosine, ramp_height: 0.2 mm, ramp_length: 20 deg } }";
+  struct Case {
+    const char* name;
+    std::string cam, effects, rpm;
+  };
+  for (const Case& c : {Case{"rigid", kurz, "", "5600 rpm"}, Case{"rigid, ramped", ramped, "", "5600 rpm"},
+                        Case{"bilateral", kurz, "elastic_drive", "5600 rpm"},
+                        Case{"bilateral, ramped", ramped, "elastic_drive", "5600 rpm"},
+                        Case{"contacts, on the cam", ramped, "elastic_drive, contact_loss", "3000 rpm"},
+                        Case{"contacts and seat", kurz, "elastic_drive, contact_loss, seat_impact", "5600 rpm"},
+                        Case{"multi mass", kurz, "elastic_drive, multi_mass", "5600 rpm"},
+                        Case{"multi mass, contacts and seat", kurz, "elastic_drive, multi_mass, contact_loss, seat_impact", "5600 rpm"},
+                        Case{"coil masses, contacts", kurz, "elastic_drive, spring_surge, contact_loss", "5600 rpm"},
+                        Case{"travel stop", kurz, "elastic_drive, contact_loss, travel_stop", "5600 rpm"}}) {
+    INFO(c.name);
+    const std::string params = c.effects.empty() ? "curve_points: 14401"
+                               : std::string(c.effects.find("multi_mass") != std::string::npos
+                                                 ? "stiffnesses: [ 20000 N/mm, 20000 N/mm, 20000 N/mm, 20000 N/mm ], "
+                                                 : "drive_stiffness: 4000 N/mm, ") +
+                                     (c.effects.find("travel_stop") != std::string::npos ? "stop_lift: 10 mm, " : "") +
+                                     "revolutions: 3, curve_points: 14401";
+    const std::string dyn = "{ type: valvetrain.dynamics, inputs: { valve: v.motion, design: sd.design }, effects: [ " + c.effects +
+                            " ], params: { " + params + " } }";
+    const RunResult r = run_scene(dynamics_scene(c.cam, dyn, "dyn.events, dyn.curves, dyn.seating_velocity", c.rpm));
+    const Table& events = output(r, "dyn.events").as_table();
+    const Table& curves = output(r, "dyn.curves").as_table();
+    REQUIRE(std::is_sorted(events.axis.values.begin(), events.axis.values.end()));
+    // Every run opens and seats its valve: the seating is a row (9 with the cam in contact).
+    CHECK(count_code(events, 9.0) + count_code(events, 4.0) >= 1);
+    if (c.effects.empty()) {
+      // Rigid: lifted by the cam (10), then seated (9), the speeds the drive's.
+      REQUIRE(events.axis.values.size() == 2);
+      CHECK(channel(events, "event") == std::vector<double>{10.0, 9.0});
+      for (double speed : channel(events, "speed")) CHECK(speed > 0.0);
+      CHECK_THAT(channel(events, "speed")[1], WithinRel(num(r, "dyn.seating_velocity"), 1e-6));
+    }
+    for (const std::string& name : jumping) {
+      INFO(name);
+      CHECK(jumps_without_row(curves.axis.values, channel(curves, name), events.axis.values) == std::vector<double>{});
+    }
+  }
 }
