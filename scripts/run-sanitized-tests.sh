@@ -12,7 +12,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMECHGRAPH_PYTHON=OFF -DCMAKE_CXX_FLAGS="$flags -O1" \
+# Line tables only (-g1): a report still names file and line of every frame, and the build of a
+# cold machine is about a quarter faster than with full debug information (-g).
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMECHGRAPH_PYTHON=OFF -DMECHGRAPH_BENCH=OFF \
+  -DCMAKE_CXX_FLAGS="$flags -O1" -DCMAKE_CXX_FLAGS_DEBUG="-g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags" >&2
 cmake --build build-asan --parallel "$(nproc)" >&2
 cd build-asan
