@@ -82,11 +82,11 @@ expect "$work/report/heddle.stations.csv" ",rise_start," "report: the code names
 head -n 1 "$work"/report/plot_*_heddle_motion*.csv > "$work/motion-header.txt"
 expect "$work/motion-header.txt" "heddle lift rate [mm/deg (drum)]" "report: the figure's CSV in display units with the frame"
 
-# sweep: a grid over the lift; columns in display units (the sweep's CSV names no frame yet, for
-# any plugin); max_velocity = 1.875 H / beta: 0.9375, 1.40625, 1.875 mm/deg for H = 40, 60, 80 mm.
+# sweep: a grid over the lift; columns in display units with the frame an angle counts; max_velocity
+# = 1.875 H / beta: 0.9375, 1.40625, 1.875 mm/deg for H = 40, 60, 80 mm.
 mg sweep "$scene" --vary heddle.heddle_lift=40mm:80mm:3 --outputs heddle.max_velocity,pivot.play_max --out "$work/sweep.csv" \
   > "$work/sweep.log" 2>&1 || { cat "$work/sweep.log" >&2; fail "sweep failed"; }
-expect "$work/sweep.csv" "case,heddle.heddle_lift [mm],heddle.max_velocity [mm/deg" "sweep: the columns' units"
+expect "$work/sweep.csv" "case,heddle.heddle_lift [mm],heddle.max_velocity [mm/deg (drum)]" "sweep: the columns' units and frames"
 expect "$work/sweep.csv" "pivot.play_max [um]" "sweep"
 /usr/bin/python3 - "$work/sweep.csv" <<'PY' || fail "sweep: the rows are not 0.9375, 1.40625, 1.875 mm/deg"
 import csv, sys
@@ -99,7 +99,7 @@ mg bench "$scene" --node heddle > "$work/bench.txt" 2>&1 || { cat "$work/bench.t
 expect "$work/bench.txt" "within 1e-09: samples = " "bench: the knob measured and a setting recommended"
 
 # Python: the installed module, the plugin loaded from its folder; values and tables in display
-# units. (The Python module shows no frame tags or code names yet, for any plugin.)
+# units, the frames angles count and the codes' names.
 site=$(dirname "$(dirname "$(find "$prefix" -path '*dist-packages/mechgraph/__init__.py' -print -quit)")")
 if [ -d "$site" ] && [ "$site" != . ]; then
   (cd "$work" && PYTHONPATH=$site /usr/bin/python3 - "$plugin_dir" "$scene" > "$work/python.txt" 2>&1) <<'PY' || { cat "$work/python.txt" >&2; fail "Python"; }
@@ -112,6 +112,8 @@ assert abs(r.value("heddle.max_velocity", units="display") - 1.40625) < 1e-9
 assert abs(r.value("pivot.play_max", units="display") - 240.0) < 1e-9
 stations = r.table("heddle.stations")
 assert list(stations["kind"]) == [1.0, 2.0, 3.0], stations
+assert list(stations["kind_name"]) == ["rise_start", "top", "return_end"], stations
+assert r.quantity("heddle.max_velocity").frame == "drum", r.quantity("heddle.max_velocity")
 motion = r.table("heddle.heddle_motion", units="display")
 assert list(motion.columns) == ["drum_angle [deg]", "heddle_lift [mm]", "lift_rate [mm/deg]", "lift_accel [mm/deg^2]"], list(motion.columns)
 assert len(motion) == 121

@@ -123,6 +123,7 @@ def read_rows(path):
         if not m:
             continue
         name, unit = m.groups()
+        unit = re.sub(r" \(.*\)$", "", unit)  # "deg (crank)": the angle the column counts, not its scale
         if "." in name:
             scale = UNIT_SCALE[unit]
             outputs[name] = np.array([float(r[j]) * scale if r[j] else math.nan for r in body])

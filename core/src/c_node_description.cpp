@@ -261,9 +261,10 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
         frame_id(MG_ELEMENT(mg_angle_frame, d->frames, i)->base_frame, info.frames, what + " angle frame '" + info.frames[i].id + "'");
   for (std::size_t i = 0; i < d->param_count; ++i)
     info.params.push_back(param_spec(*element(d->params, i, offsetof(mg_param_decl, display_unit), what + " parameter"), what));
+  out.input_interface_versions.assign(d->input_count, 0);
   for (std::size_t i = 0; i < d->input_count; ++i)
-    info.inputs.push_back(
-        port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), info.frames, what, "input", nullptr));
+    info.inputs.push_back(port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), info.frames,
+                                    what, "input", &out.input_interface_versions[i]));
   out.output_interface_versions.assign(d->output_count, 0);
   for (std::size_t i = 0; i < d->output_count; ++i)
     info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), what + " output"), info.frames,

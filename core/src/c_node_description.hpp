@@ -15,6 +15,7 @@ namespace mechgraph::detail {
 /// What the host keeps of a C node type's declaration beside its NodeInfo.
 struct CNodeDeclaration {
   NodeInfo info;
+  std::vector<std::uint32_t> input_interface_versions;   // per input (objects), 0 otherwise
   std::vector<std::uint32_t> output_interface_versions;  // per output (objects), 0 otherwise
 };
 

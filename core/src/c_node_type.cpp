@@ -2,6 +2,7 @@
 
 #include "c_node_description.hpp"
 
+#include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/cancellation.hpp>
@@ -15,13 +16,6 @@
 
 namespace mechgraph::detail {
 namespace {
-
-// The C interface an object port carries: an SDK interface's name for the kind of its C++ class,
-// else the port's kind, which is then the interface name itself (a plugin's private one).
-std::string interface_of_port(const PortSpec& port) {
-  if (const SdkInterface* known = sdk_interface_of_kind(port.handle_kind)) return known->name;
-  return port.handle_kind;
-}
 
 std::string text(mg_str s) { return s.data ? std::string(s.data, s.size) : std::string(); }
 
@@ -336,18 +330,44 @@ class CallViews {
   std::vector<std::unique_ptr<ObjectReference>> objects_;
 };
 
+// The node type's mechgraph.node.forecast/1 table (node_forecast.h), asked for once, or nullptr
+// when it has none: a 1.0 writer's mg_node_type may end before `query`, query may be NULL or
+// answer NULL, and a table without its function counts as none.
+const mg_node_forecast_v1* node_forecast(const mg_node_type& type) {
+  if (!MG_HAS_FIELD(&type, mg_node_type, query) || !type.query) return nullptr;
+  const auto* table = static_cast<const mg_node_forecast_v1*>(type.query(&type, MG_NODE_FORECAST, 1));
+  return table && MG_HAS_FIELD(table, mg_node_forecast_v1, forecast) && table->forecast ? table : nullptr;
+}
+
 class CNodeType final : public NodeType {
  public:
   CNodeType(const mg_node_type& type, CNodeDeclaration declaration)
-      : type_(type), info_(std::move(declaration.info)), output_versions_(std::move(declaration.output_interface_versions)) {}
+      : type_(type),
+        forecast_(node_forecast(type)),
+        info_(std::move(declaration.info)),
+        input_versions_(std::move(declaration.input_interface_versions)),
+        output_versions_(std::move(declaration.output_interface_versions)) {}
   const NodeInfo& info() const override { return info_; }
+  PortInterfaceVersions interface_versions() const { return {input_versions_, output_versions_}; }
+
+  // Its own forecast when it offers mechgraph.node.forecast/1 (SDK 1.1), else none: the host then
+  // counts by the conventions (work_estimate.hpp).
+  std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const override {
+    if (!forecast_) return std::nullopt;
+    CallViews views;
+    const std::vector<mg_param_value> c_params = param_views(params, views);
+    std::vector<double> c_sizes(info_.inputs.size(), 0.0);
+    for (std::size_t i = 0; i < info_.inputs.size(); ++i)
+      if (const auto it = sizes.find(info_.inputs[i].name); it != sizes.end()) c_sizes[i] = it->second;
+    mg_work_forecast out{};
+    std::string driver;
+    if (forecast_->forecast(&type_, c_params.data(), c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
+  }
 
   void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs, EvalContext& context) const override {
     CallViews views;
-    std::vector<mg_param_value> c_params;
-    c_params.reserve(info_.params.size());
-    for (const ParamSpec& spec : info_.params)
-      c_params.push_back(params.has(spec.name) ? views.param(params.get(spec.name), spec) : CallViews::absent(spec));
+    const std::vector<mg_param_value> c_params = param_views(params, views);
     std::vector<std::vector<mg_value>> values(info_.inputs.size());
     std::vector<mg_input> c_inputs(info_.inputs.size());
     for (std::size_t i = 0; i < info_.inputs.size(); ++i) {
@@ -377,14 +397,28 @@ class CNodeType final : public NodeType {
   }
 
  private:
+  std::vector<mg_param_value> param_views(const ParamSet& params, CallViews& views) const {
+    std::vector<mg_param_value> c_params;
+    c_params.reserve(info_.params.size());
+    for (const ParamSpec& spec : info_.params)
+      c_params.push_back(params.has(spec.name) ? views.param(params.get(spec.name), spec) : CallViews::absent(spec));
+    return c_params;
+  }
+
   const mg_node_type& type_;
+  const mg_node_forecast_v1* forecast_;
   NodeInfo info_;
-  std::vector<std::uint32_t> output_versions_;
+  std::vector<std::uint32_t> input_versions_, output_versions_;
 };
 
 }  // namespace
 
 const mg_eval_suite_v1& c_eval_suite() { return eval_suite; }
+
+std::string interface_of_port(const PortSpec& port) {
+  if (const SdkInterface* known = sdk_interface_of_kind(port.handle_kind)) return known->name;
+  return port.handle_kind;
+}
 
 std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where) {
   if (type.struct_size < offsetof(mg_node_type, query))
@@ -393,6 +427,19 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
   return std::make_shared<const CNodeType>(type, c_node_declaration(type, where));
+}
+
+PortInterfaceVersions port_interface_versions(const NodeType& type) {
+  if (const auto* c = dynamic_cast<const CNodeType*>(&type)) return c->interface_versions();
+  const auto bridged = [](const std::vector<PortSpec>& ports) {
+    std::vector<std::uint32_t> versions;
+    for (const PortSpec& p : ports) {
+      const SdkInterface* known = p.kind == ValueKind::handle ? sdk_interface_of_kind(p.handle_kind) : nullptr;
+      versions.push_back(known ? known->version : 0);
+    }
+    return versions;
+  };
+  return {bridged(type.info().inputs), bridged(type.info().outputs)};
 }
 
 }  // namespace mechgraph::detail

@@ -9,14 +9,29 @@
 #include <mechgraph/node.hpp>
 
 #include <memory>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace mechgraph::detail {
 
 /// The eval suite v1 the host gives C plugins (mechgraph.eval/1).
 const mg_eval_suite_v1& c_eval_suite();
 
+/// The C interface an object port carries: an SDK interface's name for the kind of its C++ class
+/// ("mechgraph.cam_law" for cam_law), else the port's kind, which is then the interface name itself
+/// (a plugin's private one).
+std::string interface_of_port(const PortSpec& port);
+
 /// Wraps `type` (checked: PluginError naming `where` and the field on a malformed description).
 std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where);
+
+/// The interface versions of a node type's object ports, by port index (RegisteredType): an SDK
+/// 1.x type's declared ones; for any other type the version of the SDK interface its port's C++
+/// class is bridged as (object_bridge.hpp), 0 for a private kind or a port that is no object.
+struct PortInterfaceVersions {
+  std::vector<std::uint32_t> inputs, outputs;
+};
+PortInterfaceVersions port_interface_versions(const NodeType& type);
 
 }  // namespace mechgraph::detail

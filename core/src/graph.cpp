@@ -1,5 +1,7 @@
 #include <mechgraph/graph.hpp>
 
+#include "c_node_type.hpp"
+
 #include <sys/stat.h>
 #include <mechgraph/semantic_version.hpp>
 
@@ -373,6 +375,7 @@ class GraphBuilder {
                               unknown_name_message("output port", ref.port, outs));
         }
         check_compatible(*out, *spec, ref, owner + ", input '" + in.port + "'");
+        check_interface_version(graph_.nodes[*producer], *out, node, *spec, ref, owner + ", input '" + in.port + "'");
         check_effect_on(*producer, ref.port, ref.where, owner + ", input '" + in.port + "': '" + ref.str() + "'");
         input.sources.push_back({*producer, ref.port});
         if (std::find(node.upstream.begin(), node.upstream.end(), *producer) == node.upstream.end())
@@ -400,6 +403,24 @@ class GraphBuilder {
     if (ok && in.kind != ValueKind::handle) ok = out.dimension == in.dimension;
     if (!ok)
       fail(ref.where, what + ": '" + ref.str() + "' is " + describe_port(out) + ", the input expects " + describe_port(in));
+  }
+
+  // An object port's interface at a version (docs/design/sdk-1.0.md, 1.7): the producer must offer
+  // at least the version the consumer reads, else the consumer would query a table the object does
+  // not have. 0 on either side is a port without a version (a private pre-1.0 kind): names only.
+  void check_interface_version(const GraphNode& producer, const PortSpec& out, const GraphNode& consumer, const PortSpec& in,
+                               const PortRef& ref, const std::string& what) const {
+    if (in.kind != ValueKind::handle) return;
+    const NodeInfo& pinfo = producer.info();
+    const NodeInfo& cinfo = consumer.info();
+    const std::uint32_t offered = producer.type->interface_version(true, static_cast<std::size_t>(&out - pinfo.outputs.data()));
+    const std::uint32_t needed = consumer.type->interface_version(false, static_cast<std::size_t>(&in - cinfo.inputs.data()));
+    if (offered == 0 || needed == 0 || offered >= needed) return;
+    fail(ref.where, what + ": '" + ref.str() + "' of node '" + producer.name + "' (" + pinfo.type + ", plugin '" +
+                        producer.type->plugin_id + "') offers interface " + detail::interface_of_port(in) + " version " +
+                        std::to_string(offered) + ", but node '" + consumer.name + "' (" + cinfo.type + ", plugin '" +
+                        consumer.type->plugin_id + "') needs version " + std::to_string(needed) +
+                        " or later; update the plugin of '" + producer.name + "'");
   }
 
   void check_cycles() const {

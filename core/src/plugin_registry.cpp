@@ -1,5 +1,6 @@
 #include <mechgraph/plugin_registry.hpp>
 
+#include "c_node_type.hpp"
 #include "plugin_file_checks.hpp"
 #include "plugin_handshake.hpp"
 #include "plugin_probe.hpp"
@@ -123,7 +124,8 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
                         other->plugin_id + "' (" + other_path + ") already provides");
     }
     info.node_types.push_back(name);
-    added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id});
+    detail::PortInterfaceVersions versions = detail::port_interface_versions(*t);
+    added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs)});
   }
   for (auto& a : added) types_.push_back(std::move(a));
   spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());

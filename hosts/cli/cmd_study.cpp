@@ -52,10 +52,18 @@ std::string shown_unit(const StudyColumn& c) {
   return u == "1" ? "" : u;
 }
 
+// The header of an output's column in the rows of a sweep of the study (sweep_rows.hpp).
+std::string study_column_name(const Graph& graph, const StudyColumn& c) {
+  for (std::size_t j = 0; j < graph.outputs.size(); ++j)
+    if (graph.outputs[j].label == c.label) return sweep_column_name(graph, j);
+  const std::string u = shown_unit(c);
+  return u.empty() ? c.label : c.label + " [" + u + "]";
+}
+
 // The rows of `mechgraph sweep SCENE --study` (one file, or shards merged): each case once, its
 // inputs those of this study's design (so the seed, method and samples agree), its outputs read
 // back to the doubles the rows were written from.
-StudyData read_study_rows(const std::string& file, const CaseTable& table, const std::vector<StudyColumn>& columns) {
+StudyData read_study_rows(const std::string& file, const Graph& graph, const CaseTable& table, const std::vector<StudyColumn>& columns) {
   LineReader reader(file, max_row_bytes);
   std::string line;
   if (!reader.next(line)) throw UsageError(file + ": empty; expected the rows of 'mechgraph sweep SCENE --study'");
@@ -70,8 +78,7 @@ StudyData read_study_rows(const std::string& file, const CaseTable& table, const
     throw UsageError(file + ":1: not the rows of a sweep (a header 'case', inputs, outputs, 'exit', 'error')");
   std::vector<std::size_t> at(columns.size());
   for (std::size_t c = 0; c < columns.size(); ++c) {
-    const std::string u = shown_unit(columns[c]);
-    const auto k = column_of(u.empty() ? columns[c].label : columns[c].label + " [" + u + "]");
+    const auto k = column_of(study_column_name(graph, columns[c]));
     if (!k) throw UsageError(file + ":1: no column for output '" + columns[c].label + "' (the study reads the scene's scalar outputs)");
     at[c] = *k;
   }
@@ -272,7 +279,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     // The design again (it depends on the seed alone), the values from the rows.
     outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs);
     outcome->threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->table, outcome->columns);
+    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->graph, outcome->table, outcome->columns);
     finish_study(*outcome);
   } else {
     WorkBudget budget = work_budget(vm);

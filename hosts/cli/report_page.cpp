@@ -960,6 +960,14 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
       for (const OutputValue* o : list) names.push_back(legend(node_of(*o)));
       return name_list(names);
     };
+    // A plain table's declared figure title names a figure of all its drawn channels; a figure of
+    // some of them adds which ("Seal gaps over a turn: upper gap").
+    std::size_t drawn = 0;
+    for (const Table::Column& c : first.channels) drawn += apart(c) ? 0 : 1;
+    auto titled = [&](const std::string& what, std::size_t channels) {
+      if (presentation.figure_title.empty()) return what;
+      return channels == drawn ? presentation.figure_title : presentation.figure_title + ": " + what;
+    };
     // Curvature of every node's table together.
     for (const Table::Column& channel : first.channels) {
       if (!is_curvature_radius(channel)) continue;
@@ -1006,7 +1014,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         Figure f;
         f.name = file_safe(stem + "_" + channel.name);
         const std::string all = who(outs);
-        f.title = declared.label(channel.name) + (multiples ? ", a panel per node"
+        f.title = titled(declared.label(channel.name), 1) + (multiples ? ", a panel per node"
                                                   : all.size() <= 70 ? " of " + all : ", a curve per node (the legend)");
         std::vector<std::string> nodes;
         for (const OutputValue* o : outs) {
@@ -1066,7 +1074,7 @@ std::vector<Figure> plan_figures(const Graph& graph, const RunResult& result, st
         const std::string what = names.size() <= 60 ? names : quantity(dims[g]);
         f.ylabel = f.ylabel.empty() ? what : what + " [" + f.ylabel + "]";
         const std::string name = legend(node_of(*o));
-        f.title = names + " of " + name + (name == node_of(*o) ? "" : " (" + node_of(*o) + ")");
+        f.title = titled(names, f.curves.size()) + " of " + name + (name == node_of(*o) ? "" : " (" + node_of(*o) + ")");
         f.name = file_safe(o->label + "_" + f.curve_titles.front());
         figures.push_back(std::move(f));
       }

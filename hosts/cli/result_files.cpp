@@ -127,16 +127,6 @@ void write_json(std::ostream& os, const Graph& graph, const RunResult& result, c
   os << "\n";
 }
 
-std::string angle_reference(const NodeInfo& info, const PortSpec& port) {
-  if (port.dimension.angle == 0) return {};
-  const AngleFrame* frame = info.find_frame(port.angle_frame);
-  return frame ? frame->unit_tag : std::string();
-}
-
-std::string unit_with_reference(const std::string& unit, const std::string& reference) {
-  if (reference.empty() || unit.find("deg") == std::string::npos) return unit;
-  return unit + " (" + reference + ")";
-}
 
 
 

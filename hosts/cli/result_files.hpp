@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 
+#include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/host/report_units.hpp>
 
 #include <filesystem>
@@ -23,11 +24,10 @@ namespace mechgraph::cli {
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs);
 
-/// The tag of the angle frame a port of an angle dimension (or a rate per angle) declares
-/// (NodeInfo::frames, PortSpec::angle_frame); "" otherwise.
-std::string angle_reference(const NodeInfo& info, const PortSpec& port);
-/// `unit` with the angle named when it holds degrees: "mm^2*deg (shaft)".
-std::string unit_with_reference(const std::string& unit, const std::string& reference);
+// Angle references (the frame a port declares, "deg (crank)"): host::angle_reference and
+// host::unit_with_reference, the rule the sweep's header and Python share.
+using host::angle_reference;
+using host::unit_with_reference;
 
 
 

@@ -17,16 +17,20 @@ SI_UNITS, DISPLAY_UNITS = "si", "display"
 class Quantity(NamedTuple):
     """A scalar output: ``value`` in SI with its SI ``unit``, and the same in the unit a report
     shows it in (the scene's display unit or the port's; the SI unit when it has none), or in the
-    unit asked of :meth:`Result.quantity`."""
+    unit asked of :meth:`Result.quantity`. ``frame`` is the angle it counts as its port declares
+    it ('crank', 'cam'; '' when none), shown after degrees as the terminal and the report show it:
+    ``54.4 deg (crank)``."""
 
     value: float
     unit: str
     display_value: float
     display_unit: str
+    frame: str = ""
 
     def __str__(self) -> str:
         # six significant digits; rounding noise (an angle below 1e-9 of a turn) reads 0
-        return f"{_core.shown_number(self.display_value, self.value, self.unit)} {self.display_unit}".rstrip()
+        unit = _core.unit_with_reference(self.display_unit, self.frame)
+        return f"{_core.shown_number(self.display_value, self.value, self.unit)} {unit}".rstrip()
 
 
 def _column_label(name: str, unit: str) -> str:
@@ -143,9 +147,16 @@ class Result:
             raise TypeError(f"output '{label}' is a {self.kind(label)}, not a scalar")
         si_unit = source.unit(label)
         shown = unit if unit is not None else source.display_unit(label)
+        frame = self.frame(label)
         if not shown:
-            return Quantity(si, si_unit, si, si_unit)
-        return Quantity(si, si_unit, _in_unit(si, si_unit, shown, f"output '{label}'"), shown)
+            return Quantity(si, si_unit, si, si_unit, frame)
+        return Quantity(si, si_unit, _in_unit(si, si_unit, shown, f"output '{label}'"), shown, frame)
+
+    def frame(self, label: str) -> str:
+        """The angle a scalar's or a series' values count, as its port declares it ('crank',
+        'cam'; '' when it declares none or the values are no angle): what the terminal and the
+        report show after degrees (``deg (crank)``). A table's are in ``table(label).attrs["frames"]``."""
+        return self._source(label).declarations(label)["frames"][0]
 
     def axis(self, label: str, units: str = SI_UNITS) -> Tuple[np.ndarray, str, List[str]]:
         """A series' axis, the axis' unit and the element labels (may be empty): in SI, or with
@@ -161,8 +172,12 @@ class Result:
         """A table (or a series) as a pandas DataFrame, columns labelled ``name [unit]``: in SI
         (``units="si"``, the default) or in the scene's units (``units="display"``: its
         ``units:``, else each column's own display unit, else SI). ``attrs`` hold ``histogram``
-        (bool) and ``marks`` (reference values on the axis, such as a specification's limits, in
-        the axis' unit of the frame)."""
+        (bool), ``marks`` (reference values on the axis, such as a specification's limits, in
+        the axis' unit of the frame) and ``frames`` (column label -> the angle it counts as its
+        port declares it, 'crank'; columns that declare none are left out). A column of declared
+        codes (an events table's ``event``) is followed by ``<name>_name``, the codes' names as a
+        pandas Categorical, as the CLI's CSV has it; ``attrs["codes"]`` maps the column to
+        ``{value: name}``."""
         import pandas as pd
 
         if units not in (SI_UNITS, DISPLAY_UNITS):
@@ -176,19 +191,31 @@ class Result:
             frame = pd.DataFrame({_column_label("axis", axis_unit): axis, _column_label(label, unit): values})
             if names:
                 frame.index = names
+            declared = source.declarations(label)["frames"]  # values, axis
+            frame.attrs["frames"] = {c: f for c, f in zip(frame.columns, [declared[1], declared[0]]) if f}
             return frame
         if kind != "table":
             raise TypeError(f"output '{label}' is a {kind}, not a table")
         value = source.value(label)
         columns = [value["axis"]] + value["channels"]
         shown = source.shown_units(label) if units == DISPLAY_UNITS else [""] * len(columns)
-        data, axis_shown = {}, columns[0]["unit"]
-        for i, (c, unit) in enumerate(zip(columns, shown)):
+        declared = source.declarations(label)
+        data, axis_shown, frames, codes = {}, columns[0]["unit"], {}, {}
+        for i, (c, unit, tag, named) in enumerate(zip(columns, shown, declared["frames"], declared["codes"])):
             unit = unit or c["unit"]
-            data[_column_label(c["name"], unit)] = _in_unit(c["values"], c["unit"], unit, f"'{label}', column '{c['name']}'")
+            name = _column_label(c["name"], unit)
+            data[name] = _in_unit(c["values"], c["unit"], unit, f"'{label}', column '{c['name']}'")
+            if tag:
+                frames[name] = tag
+            if named:  # the codes' names beside the numbers, as the CLI's CSV has them
+                codes[name] = {v: n for v, n, _ in named}
+                data[f"{c['name']}_name"] = pd.Categorical([codes[name].get(v, "") for v in c["values"]],
+                                                            categories=list(dict.fromkeys(n for _, n, _ in named)))
             if i == 0:
                 axis_shown = unit
         frame = pd.DataFrame(data)
+        frame.attrs["frames"] = frames
+        frame.attrs["codes"] = codes
         frame.attrs["histogram"] = value["histogram"]
         frame.attrs["marks"] = [(name, float(_in_unit(x, columns[0]["unit"], axis_shown, "a mark")))
                                 for name, x in value["marks"]]

@@ -11,6 +11,7 @@
 #include "value_arrays.hpp"
 
 #include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/host/sweep_rows.hpp>
 
 #include <mechgraph/host/plugin_search.hpp>
@@ -192,7 +193,61 @@ struct RunOutcome {
     for (const OutputValue& o : run->result.outputs) valid.push_back(o.label);
     throw py::key_error(unknown_name_message("output", label, valid));
   }
+
+  // The declaration behind output `label` ("node.port"): its node type's description and the
+  // port, or nullptrs (a label the scene's nodes do not declare).
+  std::pair<const NodeInfo*, const PortSpec*> declared(const std::string& label) const {
+    const auto dot = label.find('.');
+    if (dot == std::string::npos) return {nullptr, nullptr};
+    for (const NodeSpec& n : session->scene().nodes)
+      if (n.name == label.substr(0, dot)) {
+        const RegisteredType* t = session->registry().find(n.type);
+        if (!t) break;
+        const NodeInfo& info = t->type->info();
+        return {&info, info.find_output(label.substr(dot + 1))};
+      }
+    return {nullptr, nullptr};
+  }
 };
+
+// What output `label` declares for its presentation (presentation.hpp), per column as
+// shown_units lists them (a scalar: its value; a series: its values, then its axis; a table: its
+// axis, then its channels): `frames`, the angle each counts ("crank"; "" none: angle_reference.hpp,
+// the rule of the terminal, the report and the sweep's header), and `codes`, a column's named
+// values as [(value, name, doc)] (empty for one without), as the CLI's tables and CSV name them.
+py::dict output_declarations(const RunOutcome& r, const std::string& label) {
+  const OutputValue& o = r.find(label);
+  const auto [info, port] = r.declared(label);
+  py::list frames, codes;
+  const auto column = [&](const std::string& name, const Dimension& d) {
+    frames.append(info && port ? host::column_angle_reference(*info, *port, name, d) : std::string());
+    py::list named;
+    if (const ChannelDecl* decl = port ? port->presentation.find(name) : nullptr)
+      for (const Code& c : decl->codes) named.append(py::make_tuple(c.value, python_text(c.name), python_text(c.doc)));
+    codes.append(named);
+  };
+  switch (o.value.kind()) {
+    case ValueKind::table: {
+      const Table& t = o.value.as_table();
+      column(t.axis.name, t.axis.dimension);
+      for (const Table::Column& c : t.channels) column(c.name, c.dimension);
+      break;
+    }
+    case ValueKind::series:
+      frames.append(info && port ? host::angle_reference(*info, *port) : std::string());
+      frames.append(info && port ? host::angle_reference(*info, port->angle_frame, o.value.as_series().axis_dimension) : std::string());
+      codes.append(py::list());
+      codes.append(py::list());
+      break;
+    default:
+      frames.append(info && port ? host::angle_reference(*info, *port) : std::string());
+      codes.append(py::list());
+  }
+  py::dict out;
+  out["frames"] = frames;
+  out["codes"] = codes;
+  return out;
+}
 
 py::dict provenance(const RunOutcome& r) {
   // The run's own values given again to a graph built as the run's was: what was really used.
@@ -356,6 +411,7 @@ PYBIND11_MODULE(_core, m) {
     const UnitScale u = parse_unit(si_unit.empty() ? std::string("1") : si_unit);
     return shown_number(shown, si, noise_floor(u.dimension, largest_si));
   }, py::arg("shown"), py::arg("si"), py::arg("si_unit"), py::arg("largest_si") = 0.0);
+  m.def("unit_with_reference", &host::unit_with_reference);  // "deg" + "crank" -> "deg (crank)"
   m.def("to_unit", [](double si, const std::string& unit) {
     // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
     const UnitScale u = parse_unit(unit);
@@ -424,6 +480,7 @@ PYBIND11_MODULE(_core, m) {
         }
         return out;
       })
+      .def("declarations", &output_declarations)
       .def("report_tables", [](const RunOutcome& r) {
         const Graph graph = r.session->graph_for(*r.run->sets, r.outputs);
         py::list tables;
@@ -564,8 +621,13 @@ PYBIND11_MODULE(_core, m) {
         for (std::size_t i = 0; i < n; ++i)
           o->data.failures[i] = exits[i] == 0 ? CaseFailure::none : exits[i] == 2 ? CaseFailure::scene : CaseFailure::evaluation;
         for (const StudyColumn& c : o->columns) {
-          const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
-          const std::string name = unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
+          std::string name;  // the column a sweep of these cases writes (sweep_rows.hpp)
+          for (std::size_t j = 0; j < o->graph.outputs.size() && name.empty(); ++j)
+            if (o->graph.outputs[j].label == c.label) name = host::sweep_column_name(o->graph, j);
+          if (name.empty()) {
+            const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+            name = unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
+          }
           if (!columns.contains(name)) throw SceneError("study rows: no column '" + name + "'");
           std::vector<double> values = columns[py::str(name)].cast<std::vector<double>>();
           if (values.size() != n) throw SceneError("study rows: column '" + name + "' has " + std::to_string(values.size()) + " values");

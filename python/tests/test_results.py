@@ -307,3 +307,42 @@ def test_report_tables_show_the_units_and_numbers_of_the_page(name, scenes, cli,
                     assert math.isnan(value)
                 else:
                     assert math.isclose(float(text), value, rel_tol=5e-6, abs_tol=1e-9 * max(1.0, abs(value))), (label, text, value)
+
+
+PUMP = """nodes:
+  p: { type: pump.stroke, params: { stroke: 20 mm, points: 17 } }
+outputs: [ p.peak_angle, p.port_events, p.motion ]
+"""
+
+
+@pytest.mark.parametrize("plugin", ["test_stroke", "test_stroke_sdk1"])
+def test_frames_and_code_names_as_the_command_line_shows_them(plugin, cli, tmp_path):
+    # A node type from outside (tests/test_plugins/stroke_plugin.cpp) declares its angle frames and
+    # its events' codes; Python presents them from the declarations, as the terminal and CSV do.
+    import subprocess
+    from conftest import BINARY
+
+    plugins = BINARY / "test_plugins" / plugin
+    mechgraph.load_plugins([str(plugins)], only=True)
+    try:
+        scene_file = tmp_path / "pump.yaml"
+        scene_file.write_text(PUMP, encoding="utf-8")
+        r = mechgraph.Scene.load(scene_file).run()
+        q = r.quantity("p.peak_angle")
+        assert q.display_unit == "deg" and q.frame == "shaft"
+        assert str(q) == "-90 deg (shaft)"
+        assert r.frame("p.peak_angle") == "shaft"
+        shown = subprocess.run([str(cli), "-q", "--only-plugin-dir", str(plugins), "run", str(scene_file)],
+                               capture_output=True, text=True, check=True).stdout
+        assert "p.peak_angle = -90 deg (shaft)" in shown
+        events = r.table("p.port_events")
+        assert list(events.columns)[:3] == ["travel [m]", "kind", "kind_name"]
+        assert list(events["kind_name"]) == ["suction_port", "delivery_port"]
+        assert list(events["kind_name"].cat.categories) == ["suction_port", "delivery_port"]
+        assert events.attrs["codes"] == {"kind": {1.0: "suction_port", 2.0: "delivery_port"}}
+        assert events.attrs["frames"] == {"opens_shaft [rad]": "shaft", "opens_rotor [rad]": "rotor", "closes_rotor [rad]": "rotor"}
+        motion = r.table("p.motion", units="display")
+        assert motion.attrs["frames"] == {"shaft_angle [deg]": "shaft", "rotor_angle [deg]": "rotor",
+                                          "speed [mm/deg]": "shaft", "accel [mm/deg^2]": "shaft"}
+    finally:
+        mechgraph.load_plugins()

@@ -132,3 +132,52 @@ TEST_CASE("a foreign type's declarations read the same through the SDK 1.x C bou
   CHECK_THAT(c_path.out, Contains("\"frames\":[{\"id\":\"shaft\"") && Contains("\"notes\""));
   CHECK(c_path.out == old_path.out);
 }
+
+TEST_CASE("a sweep's header names the angle frame an output's port declares, as the report does", "[cli][sweep][presentation]") {
+  for (const char* plugin : stroke_plugins) {
+    INFO(plugin);
+    const fs::path dir = scratch_dir(std::string("foreign_sweep_") + plugin);
+    const fs::path rows = dir / "rows.csv";
+    fs::remove(rows);
+    const auto r = run_cli("-q " + stroke_dir(plugin) + "sweep '" + stroke_scene(dir, false).string() +
+                           "' --vary p.stroke=10mm:20mm:2 --outputs p.peak_angle --out '" + rows.string() + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::string text = slurp(rows);
+    CHECK(text.substr(0, text.find('\n')) == "case,p.stroke [mm],p.peak_angle [deg (shaft)],exit,error");
+    // --resume reads the header back as its own (the second case still to run).
+    const std::size_t second_row = text.find('\n', text.find('\n') + 1) + 1;
+    fs::remove(rows);
+    std::ofstream(rows.string() + ".part") << text.substr(0, second_row);
+    const auto resumed = run_cli("-q " + stroke_dir(plugin) + "sweep '" + stroke_scene(dir, false).string() +
+                                 "' --vary p.stroke=10mm:20mm:2 --outputs p.peak_angle --out '" + rows.string() + "' --resume");
+    INFO(resumed.err);
+    CHECK(resumed.exit_code == 0);
+    CHECK(slurp(rows) == text);
+  }
+}
+
+TEST_CASE("a plain table's declared figure title is the title of its figure", "[cli][report][presentation]") {
+  for (const char* plugin : stroke_plugins) {
+    INFO(plugin);
+    const fs::path dir = scratch_dir(std::string("foreign_gaps_") + plugin);
+    const fs::path out = dir / "report";
+    fs::remove_all(out);
+    std::ofstream(dir / "gaps.yaml") << "nodes:\n  p: { type: pump.stroke }\n  q: { type: pump.stroke, params: { stroke: 10 mm } }\n"
+                                        "outputs: [p.gaps]\n";
+    std::ofstream(dir / "two.yaml") << "nodes:\n  p: { type: pump.stroke }\n  q: { type: pump.stroke, params: { stroke: 10 mm } }\n"
+                                       "outputs: [p.gaps, q.gaps]\n";
+    const auto r = run_cli("-q " + stroke_dir(plugin) + "report '" + (dir / "gaps.yaml").string() + "' --out '" + out.string() + "'");
+    INFO(r.out << r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::string page = slurp(out / "report.html");
+    CHECK_THAT(page, Contains("Seal gaps over a turn of p"));
+    CHECK_THAT(page, !Contains("upper gap, lower gap of p"));
+    CHECK_THAT(page, Contains("shaft angle [deg (shaft)]"));
+    fs::remove_all(out);
+    const auto two = run_cli("-q " + stroke_dir(plugin) + "report '" + (dir / "two.yaml").string() + "' --out '" + out.string() + "'");
+    REQUIRE(two.exit_code == 0);
+    // Two nodes' tables: each node's figure, titled as declared.
+    CHECK_THAT(slurp(out / "report.html"), Contains("Seal gaps over a turn of p") && Contains("Seal gaps over a turn of q"));
+  }
+}

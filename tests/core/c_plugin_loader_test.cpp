@@ -5,8 +5,11 @@
 #include <mechgraph/c/base.h>
 #include <mechgraph/cancellation.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/work_estimate.hpp>
 
 #include <catch2/catch.hpp>
+
+#include <fstream>
 
 using namespace mechgraph;
 using namespace mechgraph::testing;
@@ -35,7 +38,7 @@ TEST_CASE("a plugin written in C loads through mechgraph_plugin_entry_1 with its
   REQUIRE(r.plugins().size() == 1);
   CHECK(r.plugins()[0].id == "cmin");
   CHECK(r.plugins()[0].version == "1.0.0");
-  CHECK(r.plugins()[0].fingerprint == "sdk1.0; C");
+  CHECK(r.plugins()[0].fingerprint == "sdk1." + std::to_string(MG_SDK_MINOR) + "; C");
   const RegisteredType* t = r.find("cmin.parabola");
   REQUIRE(t != nullptr);
   const NodeInfo& info = t->type->info();
@@ -104,6 +107,18 @@ TEST_CASE("an SDK 1.x plugin whose structs are shorter (an older 1.x) loads, abs
   CHECK(info.work_counters.empty());  // its mg_node_desc ends before the counters
   const RunResult run = run_yaml(parabola_scene, r);
   CHECK(scalar_output(run, "p.peak") == Approx(0.02).epsilon(1e-12).margin(1e-15));
+  // A 1.0 plugin answers no node type interface: its work is counted by the conventions
+  // (an integer parameter named points: one item a point).
+  CHECK(estimate_work(graph_from(parabola_scene, r)).work == 3.0);
+}
+
+TEST_CASE("the host asks a C node type for its own work forecast (mechgraph.node.forecast/1) by name and version",
+          "[plugins][sdk1]") {
+  const WorkEstimate estimate = estimate_work(graph_from(parabola_scene, c_registry()));
+  CHECK(estimate.work == 3000.0);  // 1000 items a point, as cmin.parabola forecasts, not 3 by the conventions
+  CHECK(estimate.memory == 48.0);
+  REQUIRE_FALSE(estimate.terms.empty());
+  CHECK(estimate.terms[0].what == "p.points (1000 items a point) (cmin.parabola)");
 }
 
 TEST_CASE("SDK 1.x plugins that cannot load are refused with a precise reason", "[plugins][sdk1]") {
@@ -169,4 +184,56 @@ outputs: [ law.law ]
                     Contains("node 'law' (cobj.law) produced a cam_law at output 'law' that breaks the "
                              "cam_law contract: its event begins at -229.183 deg"));
   CHECK(scalar_output(run_yaml(live, r), "n.count") == 0.0);  // the refused one was released too
+}
+
+TEST_CASE("a producer of an older interface version than its consumer needs is refused at scene load", "[plugins][sdk1]") {
+  // cobj.read_gauge needs the private interface cobj.gauge at version 2; cobj.gauge offers 2,
+  // cobjold.gauge (another plugin) only 1.
+  PluginRegistry r;
+  r.load_file(test_plugin("test_c_objects"));
+  r.load_file(test_plugin("test_c_old_gauge"));
+  CHECK(r.find("cobj.read_gauge")->interface_version(false, 0) == 2);
+  CHECK(r.find("cobjold.gauge")->interface_version(true, 0) == 1);
+  CHECK(scalar_output(run_yaml(R"(nodes:
+  g: { type: cobj.gauge }
+  read: { type: cobj.read_gauge, inputs: { gauge: g.gauge } }
+outputs: [ read.reading ]
+)", r), "read.reading") == 42.0);
+  CHECK_THROWS_WITH(graph_from(R"(nodes:
+  g: { type: cobjold.gauge }
+  read: { type: cobj.read_gauge, inputs: { gauge: g.gauge } }
+outputs: [ read.reading ]
+)", r),
+                    Contains("scene.yaml:3:51: node 'read' (cobj.read_gauge), input 'gauge': 'g.gauge' of node 'g' "
+                             "(cobjold.gauge, plugin 'cobjold') offers interface cobj.gauge version 1, but node 'read' "
+                             "(cobj.read_gauge, plugin 'cobj') needs version 2 or later"));
+  // A pre-1.0 C++ type's object ports count as the SDK interface version they are bridged as.
+  const PluginRegistry& project = project_registry();
+  const RegisteredType* law = nullptr;
+  for (const auto& name : {"cam.kurz", "cam.cycloidal"})
+    if (!law) law = project.find(name);
+  REQUIRE(law != nullptr);
+  const auto& outputs = law->type->info().outputs;
+  const PortSpec* port = law->type->info().find_output("law");
+  REQUIRE(port != nullptr);
+  CHECK(law->interface_version(true, static_cast<std::size_t>(port - outputs.data())) == 1);
+}
+
+TEST_CASE("run refuses a too-old interface producer with exit 2, naming the place, both nodes and both versions",
+          "[plugins][sdk1][cli]") {
+  const auto dir = scratch_dir("old_gauge_scene");
+  const auto scene = dir / "gauge.yaml";
+  {
+    std::ofstream out(scene);
+    out << "nodes:\n  g: { type: cobjold.gauge }\n  read: { type: cobj.read_gauge, inputs: { gauge: g.gauge } }\n"
+           "outputs: [ read.reading ]\n";
+  }
+  const CommandResult r = run_cli("--only-plugin-dir '" + test_plugin("test_c_objects").parent_path().string() +
+                                  "' --plugin-dir '" + test_plugin("test_c_old_gauge").parent_path().string() + "' run '" +
+                                  scene.string() + "'");
+  CHECK(r.exit_code == 2);
+  CHECK_THAT(r.err, Contains("gauge.yaml:3:51: node 'read' (cobj.read_gauge), input 'gauge'"));
+  CHECK_THAT(r.err, Contains("offers interface cobj.gauge version 1, but node 'read' (cobj.read_gauge, plugin 'cobj') "
+                             "needs version 2 or later"));
+  std::filesystem::remove_all(dir);
 }

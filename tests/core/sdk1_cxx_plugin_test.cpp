@@ -3,7 +3,9 @@
 // host beside a pre-1.0 plugin: the two paths meet in one scene.
 #include "test_support.hpp"
 
+#include <mechgraph/c/base.h>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/work_estimate.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -37,7 +39,8 @@ TEST_CASE("C++ node types behind the C boundary run beside a pre-1.0 plugin, whi
     r.load_file(test_plugin("test_arith"));
     r.load_file(test_plugin(build));
     REQUIRE(r.plugins().size() == 2);
-    CHECK_THAT(r.plugins()[1].fingerprint, Contains(build == "test_sdk1_clang" ? "sdk1.0; clang" : "sdk1.0; gcc"));
+    CHECK_THAT(r.plugins()[1].fingerprint,
+               Contains("sdk1." + std::to_string(MG_SDK_MINOR) + (build == "test_sdk1_clang" ? "; clang" : "; gcc")));
     const RunResult run = run_yaml(scene, r);
     CHECK(scalar_output(run, "s.out") == Approx(0.012).epsilon(1e-12).margin(1e-15));
     const Table& t = output(run, "c.table").as_table();
@@ -47,6 +50,18 @@ TEST_CASE("C++ node types behind the C boundary run beside a pre-1.0 plugin, whi
     CHECK(output(run, "c.series").as_series().values.back() == Approx(0.002).epsilon(1e-12).margin(1e-15));
     CHECK(run.runs[1].notes == std::vector<std::string>{"scaled in C++ behind the C boundary"});
     CHECK(run.runs[1].work.at("products") == 1.0);
+    // NodeType::forecast crosses as mechgraph.node.forecast/1 (SDK 1.1); a type without one (scale)
+    // is counted by the conventions.
+    const WorkEstimate estimate = estimate_work(graph_from(scene, r));
+    const auto term = [&](const std::string& what) -> const WorkEstimate::Term* {
+      for (const WorkEstimate::Term& t : estimate.terms)
+        if (t.what == what) return &t;
+      return nullptr;
+    };
+    const WorkEstimate::Term* curve = term("c.points = 3 (cxx1.curve)");
+    REQUIRE(curve != nullptr);
+    CHECK(curve->work == 1500.0);
+    CHECK(curve->memory == 192.0);
     // A NodeError thrown in the plugin crosses as MG_ERR_NODE and names the node and the parameter.
     CHECK_THROWS_MATCHES(run_yaml(R"(nodes:
   c: { type: cxx1.curve, params: { a: -1 mm } }

@@ -8,6 +8,7 @@
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/present.h>

@@ -354,6 +354,15 @@ static_assert(std::is_trivially_copyable_v<mg_value> && std::is_standard_layout_
 static_assert(std::is_trivially_copyable_v<mg_table> && std::is_standard_layout_v<mg_table>);
 static_assert(std::is_trivially_copyable_v<mg_presentation> && std::is_standard_layout_v<mg_presentation>);
 
+// SDK 1.1: mechgraph.node.forecast version 1 (node_forecast.h).
+static_assert(sizeof(mg_work_forecast) == 24);
+static_assert(offsetof(mg_work_forecast, items) == 0);
+static_assert(offsetof(mg_work_forecast, memory) == 8);
+static_assert(offsetof(mg_work_forecast, output_size) == 16);
+static_assert(sizeof(mg_node_forecast_v1) == 16);
+static_assert(offsetof(mg_node_forecast_v1, struct_size) == 0);
+static_assert(offsetof(mg_node_forecast_v1, forecast) == 8);
+
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.
   CHECK(MG_SDK_MAJOR == 1);

@@ -2,7 +2,8 @@
 # libmechgraph_sdk.so.1 exports the SDK and nothing else (sdk/libmechgraph_sdk.map): the C
 # functions mg_*, and, temporarily until migration step 6, the C++ helpers in namespace mechgraph
 # (with their type info, vtables and guard variables). Every symbol carries the version
-# MECHGRAPH_SDK_1.0, and the four C functions of sdk_lib.h are there.
+# MECHGRAPH_SDK_1.0, but the C functions a later minor added (MECHGRAPH_SDK_1.<minor>: mg_*
+# only), and the C functions of sdk_lib.h are there.
 cmake_minimum_required(VERSION 3.25)
 execute_process(COMMAND ${NM} -D --defined-only --demangle ${LIBRARY} OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
@@ -17,7 +18,12 @@ foreach(line IN LISTS lines)
   endif()
   # "ADDRESS TYPE NAME@@VERSION" (an absolute symbol names the version node itself)
   string(REGEX REPLACE "^[0-9a-f]* [A-Za-z] " "" symbol "${line}")
-  if(symbol STREQUAL "MECHGRAPH_SDK_1.0")
+  if(symbol MATCHES "^MECHGRAPH_SDK_1\\.[0-9]+$")
+    continue()
+  endif()
+  if(symbol MATCHES "^mg_[a-z0-9_]+@@?MECHGRAPH_SDK_1\\.[1-9][0-9]*$")
+    string(REGEX REPLACE "@@?MECHGRAPH_SDK_1\\.[0-9]+$" "" name "${symbol}")
+    list(APPEND c_functions "${name}")
     continue()
   endif()
   if(NOT symbol MATCHES "@@?MECHGRAPH_SDK_1\\.0$")
@@ -31,7 +37,7 @@ foreach(line IN LISTS lines)
     list(APPEND strays "${name}")
   endif()
 endforeach()
-foreach(required mg_sdk_version mg_status_name mg_check_object mg_abi_anchor)
+foreach(required mg_sdk_version mg_status_name mg_check_object mg_abi_anchor mg_abi_anchor_1_1)
   if(NOT required IN_LIST c_functions)
     list(APPEND strays "missing: ${required}")
   endif()

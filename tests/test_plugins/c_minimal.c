@@ -1,14 +1,18 @@
 /* A plugin written in C against the SDK 1.x boundary alone (sdk/include/mechgraph/c): no C++, no
    link to any mechgraph library. One node type, cmin.parabola: a table y = height * x^2 over
    x in [0, 1] and its peak, refusing a height above `limit` through the eval suite's error sink.
+   It offers its own work forecast (mechgraph.node.forecast/1, SDK 1.1) through mg_node_type::query:
+   1000 items a point, driven by "points".
    Built as it is and, with C_MINIMAL_VARIANT, as the loader tests' variants:
-     C_MINIMAL_OLDER      structs as an older 1.x wrote them (shorter struct_size; strided arrays)
+     C_MINIMAL_OLDER      structs as an older 1.x wrote them (shorter struct_size; strided arrays),
+                          a 1.0 plugin: no query, so the host counts its work by the conventions
      C_MINIMAL_NEWER      built against SDK 1.(host minor + 1): refused, naming both versions
      C_MINIMAL_REFUSES    the entry returns NULL with a reason
      C_MINIMAL_BAD_FRAME  a port names an angle frame the type does not declare: refused
      C_MINIMAL_POLLS      a second node type that works until the host cancels */
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_forecast.h>
 
 #include <math.h>
 #include <stdlib.h>
@@ -108,6 +112,25 @@ static const mg_port_decl outputs[OUTPUT_COUNT] = {
      NULL}};
 #endif
 
+#ifndef C_MINIMAL_OLDER
+static mg_status parabola_forecast(const mg_node_type* self, const mg_param_value* args, const double* input_sizes,
+                                   mg_work_forecast* out, mg_text_sink driver) {
+  static const char said[] = "points (1000 items a point)";
+  (void)self;
+  (void)input_sizes;
+  out->items = 1000.0 * args[P_POINTS].number;
+  out->memory = 16.0 * args[P_POINTS].number;
+  out->output_size = args[P_POINTS].number;
+  driver.append(driver.self, said, sizeof said - 1);
+  return MG_OK;
+}
+static const mg_node_forecast_v1 forecast_table = {sizeof(mg_node_forecast_v1), parabola_forecast};
+static const void* parabola_query(const mg_node_type* self, const char* name, uint32_t version) {
+  (void)self;
+  return strcmp(name, MG_NODE_FORECAST) == 0 && version == 1 ? &forecast_table : NULL;
+}
+#endif
+
 static mg_param_decl params[PARAM_COUNT];
 #ifndef C_MINIMAL_OLDER
 static const mg_counter_decl counters[1] = {{sizeof(mg_counter_decl), "points", "rows computed"}};
@@ -162,6 +185,9 @@ static void declare(void) {
   parabola_type.struct_size = sizeof parabola_type;
   parabola_type.desc = &desc;
   parabola_type.evaluate = parabola;
+#ifndef C_MINIMAL_OLDER
+  parabola_type.query = parabola_query;
+#endif
 }
 
 #ifdef C_MINIMAL_POLLS
@@ -231,6 +257,7 @@ const mg_plugin* mechgraph_plugin_entry_1(const mg_host* host, mg_text_sink why)
   plugin.sdk_minor = MG_SDK_MINOR;
 #ifdef C_MINIMAL_OLDER
   plugin.struct_size = (uint32_t)offsetof(mg_plugin, interface_count);
+  plugin.sdk_minor = 0;
 #endif
 #ifdef C_MINIMAL_NEWER
   plugin.sdk_minor = MG_SDK_MINOR + 1;

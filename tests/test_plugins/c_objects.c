@@ -3,7 +3,13 @@
      cobj.law   outputs a cam law (mechgraph.cam_law/1): h = lift cos^2(pi phi / (2 w)) on (-w, w);
                 with `wide: 1` its event reaches beyond +-180 deg, which the host must refuse
      cobj.peak  takes a cam law and outputs its lift at the nose, through the law's C table
-     cobj.live  outputs how many of this plugin's objects are alive (releases are counted) */
+     cobj.live  outputs how many of this plugin's objects are alive (releases are counted)
+     cobj.gauge outputs an object of this plugin's private interface "cobj.gauge" at version 2 (its
+                table answers versions 1 and 2)
+     cobj.read_gauge takes a "cobj.gauge" of version 2 or later and outputs its reading
+   Built with C_OBJECTS_OLD_GAUGE it is another plugin, "cobjold", with one node type,
+   cobjold.gauge, that offers "cobj.gauge" at version 1 only: a producer too old for cobj.read_gauge,
+   which the host refuses at scene load. */
 #include <mechgraph/c/domain/cam_law.h>
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/plugin.h>
@@ -78,6 +84,46 @@ static const char* law_maker(const mg_object* o) {
 static const char origin = 0;
 static const mg_object_vtbl law_vtbl = {sizeof(mg_object_vtbl), law_retain, law_release, law_query, law_maker, &origin};
 
+/* The private interface "cobj.gauge": version 1 reads a number; version 2 (the same table here)
+   is what cobj.read_gauge asks for. */
+#ifdef C_OBJECTS_OLD_GAUGE
+#define GAUGE_VERSION 1u
+#define PLUGIN_ID "cobjold"
+#else
+#define GAUGE_VERSION 2u
+#define PLUGIN_ID "cobj"
+#endif
+typedef struct gauge_v1 {
+  uint32_t struct_size;
+  double (*reading)(const mg_object* self);
+} gauge_v1;
+
+typedef struct gauge {
+  mg_object base;
+  atomic_int refs;
+  double reading;
+} gauge;
+
+static void gauge_retain(const mg_object* o) { atomic_fetch_add(&((gauge*)(void*)o)->refs, 1); }
+static void gauge_release(const mg_object* o) {
+  gauge* g = (gauge*)(void*)o;
+  if (atomic_fetch_sub(&g->refs, 1) == 1) {
+    free(g);
+    atomic_fetch_sub(&live_objects, 1);
+  }
+}
+static double gauge_reading(const mg_object* o) { return ((const gauge*)(const void*)o)->reading; }
+static const gauge_v1 gauge_table = {sizeof(gauge_v1), gauge_reading};
+static const void* gauge_query(const mg_object* o, const char* name, uint32_t version) {
+  (void)o;
+  return strcmp(name, "cobj.gauge") == 0 && version >= 1 && version <= GAUGE_VERSION ? &gauge_table : NULL;
+}
+static const char* gauge_maker(const mg_object* o) {
+  (void)o;
+  return PLUGIN_ID ".gauge";
+}
+static const mg_object_vtbl gauge_vtbl = {sizeof(mg_object_vtbl), gauge_retain, gauge_release, gauge_query, gauge_maker, &origin};
+
 static mg_str str(const char* s) {
   mg_str out;
   out.data = s;
@@ -114,6 +160,33 @@ static mg_status peak(const mg_node_type* self, const mg_eval_args* args, mg_eva
   return MG_OK;
 }
 
+static mg_status make_gauge(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) {
+  gauge* g = (gauge*)malloc(sizeof(gauge));
+  (void)self;
+  (void)args;
+  if (!g) return MG_ERR_NO_MEMORY;
+  g->base.vtbl = &gauge_vtbl;
+  atomic_init(&g->refs, 1);
+  g->reading = 42.0;
+  atomic_fetch_add(&live_objects, 1);
+  return eval->set_object(ctx, 0, &g->base);
+}
+
+static mg_status read_gauge(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) {
+  const mg_object* o;
+  const gauge_v1* t;
+  (void)self;
+  if (args->inputs[0].count != 1 || args->inputs[0].values[0].kind != MG_VALUE_OBJECT) return MG_ERR_BAD_ARGUMENT;
+  o = args->inputs[0].values[0].u.object;
+  t = (const gauge_v1*)o->vtbl->query(o, "cobj.gauge", GAUGE_VERSION);
+  if (!t) {
+    eval->fail(ctx, str("gauge"), str("the gauge does not answer cobj.gauge version 2"));
+    return MG_ERR_MISSING_FEATURE;
+  }
+  eval->set_scalar(ctx, 0, t->reading(o));
+  return MG_OK;
+}
+
 static mg_status live(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) {
   (void)self;
   (void)args;
@@ -134,9 +207,15 @@ static const mg_port_decl peak_out[1] = {{sizeof(mg_port_decl), "lift", MG_VALUE
                                           0, "mm", NULL, MG_NO_FRAME, NULL}};
 static const mg_port_decl live_out[1] = {{sizeof(mg_port_decl), "count", MG_VALUE_SCALAR, NONE, "objects alive", NULL, 0, 0,
                                           NULL, NULL, MG_NO_FRAME, NULL}};
-static mg_node_desc descs[3];
-static mg_node_type node_types[3];
-static const mg_node_type* type_list[3] = {&node_types[0], &node_types[1], &node_types[2]};
+static const mg_port_decl gauge_out[1] = {{sizeof(mg_port_decl), "gauge", MG_VALUE_OBJECT, NONE, "a gauge", "cobj.gauge",
+                                           GAUGE_VERSION, 0, NULL, NULL, MG_NO_FRAME, NULL}};
+static const mg_port_decl read_gauge_in[1] = {{sizeof(mg_port_decl), "gauge", MG_VALUE_OBJECT, NONE, "a gauge", "cobj.gauge",
+                                              GAUGE_VERSION, 0, NULL, NULL, MG_NO_FRAME, NULL}};
+static const mg_port_decl read_gauge_out[1] = {{sizeof(mg_port_decl), "reading", MG_VALUE_SCALAR, NONE, "the gauge's reading",
+                                               NULL, 0, 0, NULL, NULL, MG_NO_FRAME, NULL}};
+static mg_node_desc descs[5];
+static mg_node_type node_types[5];
+static const mg_node_type* type_list[5] = {&node_types[0], &node_types[1], &node_types[2], &node_types[3], &node_types[4]};
 static mg_plugin plugin;
 
 static void number(mg_param_decl* p, const char* name, mg_dim dim, const char* doc, double fallback) {
@@ -175,6 +254,7 @@ static void node(int i, const char* type, const char* summary, const mg_param_de
 }
 
 const mg_plugin* mechgraph_plugin_entry_1(const mg_host* host, mg_text_sink why) {
+  memset(&plugin, 0, sizeof plugin);
   eval = (const mg_eval_suite_v1*)host->fetch(host->host_data, MG_SUITE_EVAL, 1);
   if (!eval) {
     why.append(why.self, "no eval suite", 13);
@@ -186,16 +266,24 @@ const mg_plugin* mechgraph_plugin_entry_1(const mg_host* host, mg_text_sink why)
     number(&law_params[1], "half_width", angle, "half the event", 1.0);
     number(&law_params[2], "wide", none, "1: an event four times as wide (beyond +-180 deg)", 0.0);
   }
+#ifdef C_OBJECTS_OLD_GAUGE
+  node(0, "cobjold.gauge", "a gauge of the interface's first version", NULL, 0, NULL, 0, gauge_out, make_gauge);
+  plugin.node_type_count = 1;
+  (void)make_law, (void)peak, (void)live, (void)read_gauge, (void)law_out, (void)peak_in, (void)peak_out, (void)live_out;
+  (void)read_gauge_in, (void)read_gauge_out;
+#else
   node(0, "cobj.law", "a cosine-squared cam law (a C object)", law_params, 3, NULL, 0, law_out, make_law);
   node(1, "cobj.peak", "the lift of a cam law at the nose", NULL, 0, peak_in, 1, peak_out, peak);
   node(2, "cobj.live", "how many objects of this plugin are alive", NULL, 0, NULL, 0, live_out, live);
-  memset(&plugin, 0, sizeof plugin);
+  node(3, "cobj.gauge", "a gauge (a private interface at version 2)", NULL, 0, NULL, 0, gauge_out, make_gauge);
+  node(4, "cobj.read_gauge", "the reading of a gauge of version 2 or later", NULL, 0, read_gauge_in, 1, read_gauge_out, read_gauge);
+  plugin.node_type_count = 5;
+#endif
   plugin.struct_size = sizeof plugin;
   plugin.sdk_major = MG_SDK_MAJOR;
   plugin.sdk_minor = MG_SDK_MINOR;
-  plugin.plugin_id = "cobj";
+  plugin.plugin_id = PLUGIN_ID;
   plugin.plugin_version = "1.0.0";
-  plugin.node_type_count = 3;
   plugin.node_types = type_list;
   return &plugin;
 }

@@ -57,6 +57,11 @@ class Curve final : public NodeType {
     if (context.wanted("table")) outputs.set("table", Value::table(std::move(t)));
     outputs.set("series", Value::series(std::move(s)));
   }
+  // Its own count (it reaches the host through mechgraph.node.forecast/1): 500 items a row.
+  std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes&) const override {
+    const double n = static_cast<double>(params.integer("points"));
+    return WorkForecast{500.0 * n, 64.0 * n, n, "points = " + std::to_string(params.integer("points"))};
+  }
 
  private:
   NodeInfo info_;

@@ -3,7 +3,8 @@
 // derivatives over shaft angle as one derivative family, a second frame (rotor angle = 3 x shaft
 // angle + phase, marked every 120 deg as P1, P2, P3), a table of port events with named codes whose
 // angles are drawn as points on the family, a scalar angle in the shaft frame, and a note made
-// with the port events when `phase` is given. The host's reports know none of these names
+// with the port events when `phase` is given, and a plain table (no role) with a figure title of
+// its own: the gap at the plunger's two seals over shaft angle. The host's reports know none of these names
 // (tests/cli/foreign_presentation_test.cpp). Built twice: with the pre-1.0 entry (C++ classes
 // cross) and, with STROKE_SDK1, through the SDK 1.x C boundary, where every declaration crosses as
 // the C structs of c/present.h; the host must present both alike.
@@ -73,7 +74,12 @@ class Stroke final : public NodeType {
     events.with(ChannelDecl::of("opens_rotor", dim::angle).in_frame("rotor").labelled("opening on the rotor"));
     events.with(ChannelDecl::of("closes_rotor", dim::angle).in_frame("rotor").labelled("closing on the rotor"));
 
+    Presentation gaps;  // plain: a plot per dimension, titled as declared
+    gaps.figure_title = "Seal gaps over a turn";
+    gaps.with_axis(ChannelDecl::of("shaft_angle", dim::angle).in_frame("shaft"));
+
     info_.outputs = {PortSpec::table("motion", "position, speed and acceleration over shaft angle").presented(motion),
+                     PortSpec::table("gaps", "the gap at the upper and the lower seal over shaft angle").presented(gaps),
                      PortSpec::table("port_events", "where the ports open and close, a row per port").presented(events),
                      PortSpec::scalar("peak_angle", dim::angle, "shaft angle of the greatest speed", "deg").in_frame("shaft")};
   }
@@ -98,6 +104,19 @@ class Stroke final : public NodeType {
     }
     ctx.report_work("points", static_cast<double>(n));
     out.set("motion", Value::table(std::move(t)));
+    if (ctx.wanted("gaps")) {
+      Table g;
+      g.axis = {"shaft_angle", dim::angle, {}, "deg"};
+      g.add_channel("upper_gap", dim::length, "mm");
+      g.add_channel("lower_gap", dim::length, "mm");
+      for (std::size_t i = 0; i < n; ++i) {
+        const double a = -pi + 2.0 * pi * static_cast<double>(i) / static_cast<double>(n - 1);
+        g.axis.values.push_back(a);
+        g.channels[0].values.push_back(1e-5 * (1.0 + 0.5 * std::sin(a)));
+        g.channels[1].values.push_back(1e-5 * (1.0 - 0.5 * std::sin(a)));
+      }
+      out.set("gaps", Value::table(std::move(g)));
+    }
     out.set_scalar("peak_angle", -pi / 2.0);
     if (ctx.wanted("port_events")) {
       const double phase = p.has("phase") ? p.number("phase") : 0.0;

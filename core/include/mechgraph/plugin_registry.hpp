@@ -4,6 +4,7 @@
 // alive through its deleter, so nothing can outlive the code that destroys it.
 #include <mechgraph/node.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -29,6 +30,17 @@ struct RegisteredType {
   std::shared_ptr<const NodeType> type;
   std::shared_ptr<const void> library;  // the loaded library (opaque for users of this header)
   std::string plugin_id;
+  /// The version of the interface each object port carries (docs/design/sdk-1.0.md, 1.7), by the
+  /// port's index in info().inputs and info().outputs: what an SDK 1.x type declares
+  /// (mg_port_decl::interface_version); for a pre-1.0 C++ type, the version of the SDK interface its
+  /// C++ class is bridged as. 0: not an object port, or a private interface without a version.
+  std::vector<std::uint32_t> input_interface_versions{}, output_interface_versions{};
+
+  /// The interface version of input (`output` false) or output port `index`, 0 when unknown.
+  std::uint32_t interface_version(bool output, std::size_t index) const {
+    const auto& versions = output ? output_interface_versions : input_interface_versions;
+    return index < versions.size() ? versions[index] : 0;
+  }
 
   /// Wraps an object the plugin produced so that it keeps the plugin's library alive.
   std::shared_ptr<const DomainObject> keep_alive(std::shared_ptr<const DomainObject> object) const;

@@ -1,5 +1,6 @@
 #include <mechgraph/host/sweep_rows.hpp>
 
+#include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/host/exit_codes.hpp>
 #include <mechgraph/host/usage_error.hpp>
 #include <mechgraph/shown_number.hpp>
@@ -33,9 +34,11 @@ std::string exact(double x) {
   return std::string(buffer, end);
 }
 
-// The unit a port's values are shown in: its display unit, else SI.
-std::string unit_of(const RequestedOutput& o) {
-  return o.spec->display_unit.empty() ? o.spec->dimension.si_unit() : o.spec->display_unit;
+// The unit a port's values are shown in: its display unit, else SI; with the angle its port
+// counts when that unit holds degrees ("deg (crank)", angle_reference.hpp: the report's rule).
+std::string unit_of(const Graph& graph, const RequestedOutput& o) {
+  const std::string unit = o.spec->display_unit.empty() ? o.spec->dimension.si_unit() : o.spec->display_unit;
+  return o.node < graph.nodes.size() ? unit_with_reference(unit, angle_reference(graph.nodes[o.node].info(), *o.spec)) : unit;
 }
 
 // A flat JSON object as the rows are written ({"key":value,...}; values strings, numbers, null,
@@ -228,6 +231,11 @@ int exit_code_of(CaseFailure failure) {
   return evaluation_error;
 }
 
+std::string sweep_column_name(const Graph& graph, std::size_t output) {
+  const RequestedOutput& o = graph.outputs.at(output);
+  return with_unit(o.label, unit_of(graph, o));
+}
+
 SweepRows::SweepRows(const Graph& graph, const CaseTable& table, RowFormat format)
     : graph_(graph), table_(table), format_(format) {}
 
@@ -247,13 +255,13 @@ std::vector<std::string> SweepRows::output_headers(const CaseResult* success, st
   for (std::size_t j = 0; j < graph_.outputs.size(); ++j) {
     const RequestedOutput& o = graph_.outputs[j];
     if (o.spec->kind == ValueKind::scalar) {
-      names.push_back(with_unit(o.label, unit_of(o)));
+      names.push_back(sweep_column_name(graph_, j));
       columns.push_back(column(j, std::nullopt));
     } else if (o.spec->kind == ValueKind::series && success) {
       const Series& s = success->outputs[j].as_series();
       for (std::size_t e = 0; e < s.values.size(); ++e) {
         const std::string element = e < s.labels.size() ? s.labels[e] : std::to_string(e);
-        names.push_back(with_unit(o.label + "[" + element + "]", unit_of(o)));
+        names.push_back(with_unit(o.label + "[" + element + "]", unit_of(graph_, o)));
         columns.push_back(column(j, e));
       }
     }
@@ -294,7 +302,7 @@ void SweepRows::adopt(const std::vector<std::string>& header) {
   for (std::size_t j = 0, h = fixed; j < graph_.outputs.size(); ++j) {
     const RequestedOutput& o = graph_.outputs[j];
     if (o.spec->kind == ValueKind::scalar) {
-      if (h >= header.size() - 2 || bare(header[h]) != csv_text(with_unit(o.label, unit_of(o))))
+      if (h >= header.size() - 2 || bare(header[h]) != csv_text(sweep_column_name(graph_, j)))
         throw UsageError("the file being resumed has no column for '" + o.label + "' where this sweep writes it");
       columns.push_back(column(j, std::nullopt));
       ++h;

@@ -1,7 +1,8 @@
 #pragma once
 // The rows of `mechgraph sweep`: one per case, `case`, the varied inputs, the requested outputs
 // (a scalar is one column, a series one column per element), then `exit` and `error`. Headers
-// read `name [unit]`; values are in the column's unit, written with 17 significant digits so a
+// read `name [unit]` (an angle with the frame its port declares, `name [deg (crank)]`, the
+// report's rule: angle_reference.hpp); values are in the column's unit, written with 17 significant digits so a
 // row reads back to the same doubles (the shortest such text). The columns of a series are known once a case has produced
 // it, so rows wait until the first case succeeds (or the sweep ends) to fix the header.
 //
@@ -26,6 +27,10 @@
 namespace mechgraph::host {
 
 enum class RowFormat { csv, jsonl };
+
+/// The header of the column of scalar output `output` of `graph` (its label, its unit and the
+/// angle it counts): what a sweep writes and a study reading its rows looks for.
+std::string sweep_column_name(const Graph& graph, std::size_t output);
 
 struct SweepRow {
   std::vector<std::string> cells;  // as text; numbers unquoted in JSON Lines

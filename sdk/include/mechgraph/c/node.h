@@ -163,7 +163,8 @@ typedef struct mg_node_type {
      node type offers a capability that came after 1.0 (several cases in one call, its own work
      forecast ...) without changing this struct, as mg_object_vtbl::query does for objects. The
      same pointer for the same question; tables live until the process ends. SDK 1.0 defines no
-     node type interface, so a 1.0 host never calls it. */
+     node type interface, so a 1.0 host never calls it; SDK 1.1 defines mechgraph.node.forecast
+     (node_forecast.h), which a 1.1 host asks for once per type. */
   const void* (*query)(const struct mg_node_type* self, const char* name, uint32_t version);
 } mg_node_type;
 

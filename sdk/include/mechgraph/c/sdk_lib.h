@@ -12,6 +12,7 @@
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/present.h>
@@ -48,6 +49,10 @@ MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg
                           const mg_cam_law_closed_form_v1* closed_form, const mg_cam_law_higher_v1* higher,
                           const mg_valve_motion_v1* valve_motion, const mg_joint_play_v1* joint_play,
                           const mg_follower_v1* follower, const mg_owner* owner);
+
+/* SDK 1.1: does nothing; names the structs 1.1 added (node_forecast.h), as mg_abi_anchor does
+   for 1.0's. */
+MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1* node_forecast, const mg_work_forecast* work_forecast);
 
 MG_EXTERN_C_END
 

@@ -13,6 +13,7 @@
 // plugin's own nodes can read. Until the C++ helpers leave libmechgraph_sdk (migration step 6) the plugin still calls them, so it
 // must share the host's C++ standard library ABI (libstdc++; any compiler).
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
@@ -78,6 +79,10 @@ class SuiteContext final : public EvalContext {
   mg_eval_ctx* ctx_;
 };
 
+inline void tell(mg_text_sink why, std::string_view text) {
+  if (why.append) why.append(why.self, text.data(), text.size());
+}
+
 /// One C++ NodeType and the C description that stands for it; lives until the process ends.
 class NodeTypeExport {
  public:
@@ -109,7 +114,7 @@ class NodeTypeExport {
                          params_.data(), params_.size(), inputs_.data(), inputs_.size(), outputs_.data(), outputs_.size(),
                          effects_.data(), effects_.size(), counters_.data(), counters_.size(), deps_.data(), deps_.size(),
                          frames_.data(), frames_.size(), notes_.data(), notes_.size()};
-    c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, nullptr};
+    c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, &NodeTypeExport::query};
   }
   NodeTypeExport(const NodeTypeExport&) = delete;
   NodeTypeExport& operator=(const NodeTypeExport&) = delete;
@@ -391,6 +396,34 @@ class NodeTypeExport {
     }
   }
 
+  // The node type's own interfaces (node.h, query): mechgraph.node.forecast/1 over
+  // NodeType::forecast (SDK 1.1, node_forecast.h).
+  static const void* query(const mg_node_type*, const char* name, std::uint32_t version) noexcept {
+    static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
+    return name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0 ? &forecast_table : nullptr;
+  }
+  static mg_status forecast(const mg_node_type* self, const mg_param_value* params, const double* input_sizes,
+                            mg_work_forecast* out, mg_text_sink driver) noexcept {
+    try {
+      const NodeInfo& info = static_cast<const NodeTypeExport*>(self->impl)->type_->info();
+      ParamSet cxx_params;
+      for (std::size_t i = 0; i < info.params.size(); ++i)
+        if (params[i].present) cxx_params.set(info.params[i].name, cxx_value(params[i], info.params[i]));
+      InputSizes sizes;
+      for (std::size_t i = 0; i < info.inputs.size(); ++i)
+        if (input_sizes[i] > 0) sizes[info.inputs[i].name] = input_sizes[i];
+      const std::optional<WorkForecast> f = static_cast<const NodeTypeExport*>(self->impl)->type_->forecast(cxx_params, sizes);
+      if (!f) return MG_ERR_UNSUPPORTED;
+      *out = mg_work_forecast{f->items, f->memory, f->output_size};
+      tell(driver, f->driver);
+      return MG_OK;
+    } catch (const std::bad_alloc&) {
+      return MG_ERR_NO_MEMORY;
+    } catch (...) {
+      return MG_ERR_INTERNAL;
+    }
+  }
+
   std::shared_ptr<const NodeType> type_;
   std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
@@ -413,10 +446,6 @@ class NodeTypeExport {
   mg_node_desc desc_{};
   mg_node_type c_type_{};
 };
-
-inline void tell(mg_text_sink why, std::string_view text) {
-  if (why.append) why.append(why.self, text.data(), text.size());
-}
 
 /// The body of mechgraph_plugin_entry_1 (MECHGRAPH_PLUGIN_1): called once per process.
 inline const mg_plugin* plugin_entry_1(const mg_host* host, mg_text_sink why, const char* id, const char* version,
