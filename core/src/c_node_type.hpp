@@ -19,7 +19,7 @@ namespace mechgraph::detail {
 const mg_eval_suite_v1& c_eval_suite();
 
 /// The C interface an object port carries: an SDK interface's name for the kind of its C++ class
-/// ("mechgraph.cam_law" for cam_law), else the port's kind, which is then the interface name itself
+/// ("mechgraph.KIND" for an SDK kind KIND), else the port's kind, which is then the interface name itself
 /// (a plugin's private one).
 std::string interface_of_port(const PortSpec& port);
 

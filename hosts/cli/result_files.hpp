@@ -24,7 +24,7 @@ namespace mechgraph::cli {
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs);
 
-// Angle references (the frame a port declares, "deg (crank)"): host::angle_reference and
+// Angle references (the frame a port declares, "deg (shaft)"): host::angle_reference and
 // host::unit_with_reference, the rule the sweep's header and Python share.
 using host::angle_reference;
 using host::unit_with_reference;

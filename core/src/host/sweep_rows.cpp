@@ -35,7 +35,7 @@ std::string exact(double x) {
 }
 
 // The unit a port's values are shown in: its display unit, else SI; with the angle its port
-// counts when that unit holds degrees ("deg (crank)", angle_reference.hpp: the report's rule).
+// counts when that unit holds degrees ("deg (shaft)", angle_reference.hpp: the report's rule).
 std::string unit_of(const Graph& graph, const RequestedOutput& o) {
   const std::string unit = o.spec->display_unit.empty() ? o.spec->dimension.si_unit() : o.spec->display_unit;
   return o.node < graph.nodes.size() ? unit_with_reference(unit, angle_reference(graph.nodes[o.node].info(), *o.spec)) : unit;

@@ -1,6 +1,6 @@
 #pragma once
 // Which angle a value counts, as its port declares it (presentation.hpp: a port's or a channel's
-// angle frame, whose unit_tag is shown after degrees: "deg (crank)", "mm/deg (drum)"). One rule for
+// angle frame, whose unit_tag is shown after degrees: "deg (shaft)", "mm/deg (drum)"). One rule for
 // the terminal, the report, the sweep's CSV header and Python (docs/design/sdk-1.0.md, 1.6).
 #include <mechgraph/node.hpp>
 
@@ -9,7 +9,7 @@
 namespace mechgraph::host {
 
 /// The tag of the frame `frame_id` of `info` for a value of dimension `d`: the frame's unit_tag
-/// ("crank"), or "" when `d` has no angle in it or the type declares no such frame.
+/// ("shaft"), or "" when `d` has no angle in it or the type declares no such frame.
 std::string angle_reference(const NodeInfo& info, const std::string& frame_id, const Dimension& d);
 
 /// The tag of a scalar or series port's values (its own angle frame, its dimension).
@@ -21,7 +21,7 @@ inline std::string angle_reference(const NodeInfo& info, const PortSpec& port) {
 /// declaration names; "" when it declares none.
 std::string column_angle_reference(const NodeInfo& info, const PortSpec& port, const std::string& name, const Dimension& d);
 
-/// `unit` followed by the reference, "deg (crank)", when the unit counts degrees and there is a
+/// `unit` followed by the reference, "deg (shaft)", when the unit counts degrees and there is a
 /// reference; `unit` as it is otherwise (SI radians carry no tag).
 std::string unit_with_reference(const std::string& unit, const std::string& reference);
 

@@ -1,7 +1,7 @@
 #pragma once
 // The rows of `mechgraph sweep`: one per case, `case`, the varied inputs, the requested outputs
 // (a scalar is one column, a series one column per element), then `exit` and `error`. Headers
-// read `name [unit]` (an angle with the frame its port declares, `name [deg (crank)]`, the
+// read `name [unit]` (an angle with the frame its port declares, `name [deg (shaft)]`, the
 // report's rule: angle_reference.hpp); values are in the column's unit, written with 17 significant digits so a
 // row reads back to the same doubles (the shortest such text). The columns of a series are known once a case has produced
 // it, so rows wait until the first case succeeds (or the sweep ends) to fix the header.
