@@ -302,7 +302,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
                    "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
       return interrupted;
     }
-    spdlog::info("study: {} cases in {:.3g} s, {} failed", summary.run, summary.seconds, summary.failed);
+    spdlog::info("study: {} cases in {:.3g} s, {} failed; {} in blocks", summary.run, summary.seconds, summary.failed, summary.in_blocks);
   }
   const StudySpec& spec = outcome->spec;
   const StudyAnswers& answers = outcome->answers;
