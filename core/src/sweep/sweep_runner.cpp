@@ -89,8 +89,14 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
       }
       std::vector<CaseResult> results(end - first);
       std::vector<BlockPlan::CaseOutcome> outcomes;
-      if (plan)
-        outcomes = plan->run(graph, table, std::span<const std::size_t>(options.cases).subspan(first, end - first), block_state);
+      if (plan) {
+        // Whatever stops a block (no memory for its columns) leaves its cases to the per-case path.
+        try {
+          outcomes = plan->run(graph, table, std::span<const std::size_t>(options.cases).subspan(first, end - first), block_state);
+        } catch (...) {
+          outcomes.assign(end - first, {});
+        }
+      }
       for (std::size_t k = first; k < end; ++k) {
         CaseResult& result = results[k - first];
         result.index = options.cases[k];
