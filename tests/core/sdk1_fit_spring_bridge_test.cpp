@@ -128,6 +128,27 @@ TEST_CASE("a fit with a distribution outside MG_DISTRIBUTION_* is refused naming
   CHECK_THROWS_WITH(detail::import_object(&o, MG_FIT, 1), Contains("'10 bad' shaft") && Contains("distribution 7"));
 }
 
+TEST_CASE("a spring or spring model whose table lacks a function is refused naming the interface and its maker",
+          "[sdk1][objects][spring]") {
+  static mg_spring_v1 spring_table{};
+  static mg_spring_model_v1 model_table{};
+  spring_table.struct_size = sizeof spring_table;  // every function NULL
+  model_table.struct_size = sizeof model_table;
+  static const char origin = 0;
+  static const mg_object_vtbl vtbl{sizeof(mg_object_vtbl), [](const mg_object*) {}, [](const mg_object*) {},
+                                   [](const mg_object*, const char* name, uint32_t v) -> const void* {
+                                     if (v != 1) return nullptr;
+                                     if (std::string(name) == MG_SPRING) return &spring_table;
+                                     if (std::string(name) == MG_SPRING_MODEL) return &model_table;
+                                     return nullptr;
+                                   },
+                                   [](const mg_object*) { return "c.hollow"; }, &origin};
+  const mg_object o{&vtbl};
+  CHECK_THROWS_WITH(detail::import_object(&o, MG_SPRING, 1), Contains("mechgraph.spring") && Contains("c.hollow") && Contains("missing"));
+  CHECK_THROWS_WITH(detail::import_object(&o, MG_SPRING_MODEL, 1),
+                    Contains("mechgraph.spring_model") && Contains("c.hollow") && Contains("missing"));
+}
+
 TEST_CASE("a spring crosses as mechgraph.spring/1 with the same numbers and is released once", "[sdk1][objects][spring]") {
   const auto spring = std::make_shared<const TestSpring>(SpringLine{250.0, 30e3, 9e-3});
   const mg_object* c = detail::export_object(spring, "springs.test", "");

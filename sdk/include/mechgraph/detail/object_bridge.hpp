@@ -376,7 +376,8 @@ inline Distribution distribution_from_c(std::int32_t d, const std::string& what)
 }
 inline std::shared_ptr<const Fit> import_fit_data(const mg_object* o) {
   const auto* t = static_cast<const mg_fit_v1*>(o->vtbl->query(o, MG_FIT, 1));
-  if (!t || t->struct_size < sizeof(mg_fit_v1)) throw std::runtime_error("a fit object does not answer mechgraph.fit version 1");
+  if (!t || t->struct_size < sizeof(mg_fit_v1) || !t->data)
+    throw std::runtime_error("a fit object does not answer mechgraph.fit version 1 (no table, or one without its function)");
   mg_fit_data_v1 d{};
   t->data(o, &d);
   std::string designation(d.designation ? d.designation : "");
@@ -737,6 +738,9 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignSpring final : public Spring, public Foreig
  public:
   explicit ForeignSpring(const mg_object* o) : t_(query_table<mg_spring_v1>(o, MG_SPRING)), ref_(o) {
     if (!t_) throw_foreign(o, MG_SPRING, "does not answer mechgraph.spring version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->force || !t_->stiffness || !t_->stroke || !t_->mass || !t_->effective_mass || !t_->surge_frequency || !t_->stress ||
+        !t_->allowable_stress || !t_->coils)
+      throw_foreign(o, MG_SPRING, "answers mechgraph.spring version 1 with a function missing from its table");
     stroke_ = t_->stroke(o);
     mass_ = t_->mass(o);
     effective_mass_ = t_->effective_mass(o);
@@ -771,6 +775,8 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignSpringModel final : public SpringModel, pub
  public:
   explicit ForeignSpringModel(const mg_object* o) : t_(query_table<mg_spring_model_v1>(o, MG_SPRING_MODEL)), ref_(o) {
     if (!t_) throw_foreign(o, MG_SPRING_MODEL, "does not answer mechgraph.spring_model version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->type_name || !t_->size)
+      throw_foreign(o, MG_SPRING_MODEL, "answers mechgraph.spring_model version 1 with a function missing from its table");
     t_->type_name(o, string_sink(&type_name_));
   }
   const mg_object* c_object() const override { return ref_.get(); }
