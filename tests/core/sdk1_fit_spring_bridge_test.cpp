@@ -3,7 +3,8 @@
 // table as another library would (the object's vtable given another origin, so import_object takes
 // the C path instead of unwrapping), gives the same numbers, and every reference is released once.
 // The plugins' side (fits, springs and joints on MECHGRAPH_PLUGIN_1 feeding the pre-1.0 valvetrain)
-// is covered by the scene tests.
+// is covered by the scene tests. Beside them: a foreign table with a function missing (NULL) is
+// refused at import for every SDK interface, not called.
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/errors.hpp>
 
@@ -128,25 +129,30 @@ TEST_CASE("a fit with a distribution outside MG_DISTRIBUTION_* is refused naming
   CHECK_THROWS_WITH(detail::import_object(&o, MG_FIT, 1), Contains("'10 bad' shaft") && Contains("distribution 7"));
 }
 
-TEST_CASE("a spring or spring model whose table lacks a function is refused naming the interface and its maker",
-          "[sdk1][objects][spring]") {
-  static mg_spring_v1 spring_table{};
-  static mg_spring_model_v1 model_table{};
-  spring_table.struct_size = sizeof spring_table;  // every function NULL
-  model_table.struct_size = sizeof model_table;
+TEST_CASE("an object whose SDK table lacks a function is refused at import naming the interface and its maker",
+          "[sdk1][objects]") {
+  // One zeroed table, long enough for any of them: struct_size says "complete", every function is NULL.
+  struct Hollow {
+    uint32_t struct_size;
+    void* functions[16];
+  };
+  static Hollow table{};
+  static_assert(sizeof(Hollow) >= sizeof(mg_spring_v1) && sizeof(Hollow) >= sizeof(mg_cam_law_v1));
+  table.struct_size = sizeof(Hollow);
   static const char origin = 0;
   static const mg_object_vtbl vtbl{sizeof(mg_object_vtbl), [](const mg_object*) {}, [](const mg_object*) {},
-                                   [](const mg_object*, const char* name, uint32_t v) -> const void* {
-                                     if (v != 1) return nullptr;
-                                     if (std::string(name) == MG_SPRING) return &spring_table;
-                                     if (std::string(name) == MG_SPRING_MODEL) return &model_table;
-                                     return nullptr;
-                                   },
+                                   [](const mg_object*, const char*, uint32_t v) -> const void* { return v == 1 ? &table : nullptr; },
                                    [](const mg_object*) { return "c.hollow"; }, &origin};
   const mg_object o{&vtbl};
-  CHECK_THROWS_WITH(detail::import_object(&o, MG_SPRING, 1), Contains("mechgraph.spring") && Contains("c.hollow") && Contains("missing"));
-  CHECK_THROWS_WITH(detail::import_object(&o, MG_SPRING_MODEL, 1),
-                    Contains("mechgraph.spring_model") && Contains("c.hollow") && Contains("missing"));
+  for (const char* interface : {MG_SPRING, MG_SPRING_MODEL, MG_CAM_LAW, MG_FOLLOWER, MG_VALVE_MOTION}) {
+    INFO(interface);
+    CHECK_THROWS_WITH(detail::import_object(&o, interface, 1),
+                      Contains(interface) && Contains("c.hollow") && Contains("function missing"));
+  }
+  for (const char* interface : {MG_FIT, MG_JOINT_PLAY}) {
+    INFO(interface);
+    CHECK_THROWS_WITH(detail::import_object(&o, interface, 1), Contains(interface) && Contains("without its function"));
+  }
 }
 
 TEST_CASE("a spring crosses as mechgraph.spring/1 with the same numbers and is released once", "[sdk1][objects][spring]") {

@@ -340,7 +340,8 @@ inline void export_play_data(Exported& e, const JointPlay& play) {
 }
 inline std::shared_ptr<const JointPlay> import_play_data(const mg_object* o) {
   const auto* t = static_cast<const mg_joint_play_v1*>(o->vtbl->query(o, MG_JOINT_PLAY, 1));
-  if (!t || t->struct_size < sizeof(mg_joint_play_v1)) throw std::runtime_error("a joint_play object does not answer mechgraph.joint_play version 1");
+  if (!t || t->struct_size < sizeof(mg_joint_play_v1) || !t->data)
+    throw std::runtime_error("a joint_play object does not answer mechgraph.joint_play version 1 (no table, or one without its function)");
   mg_joint_play_data_v1 d{};
   t->data(o, &d);
   const auto text = [](const char* s) { return std::string(s ? s : ""); };
@@ -570,6 +571,10 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignCamLaw final : public CamLaw, public Foreig
         hd_(query_table<mg_cam_law_higher_v1>(o, MG_CAM_LAW_HIGHER)),
         ref_(o) {
     if (!t_) throw_foreign(o, MG_CAM_LAW, "does not answer mechgraph.cam_law version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->event || !t_->evaluate || !t_->evaluate_many || !t_->breakpoints || !t_->max_lift || !t_->base_radius || !t_->roller_radius)
+      throw_foreign(o, MG_CAM_LAW, "answers mechgraph.cam_law version 1 with a function missing from its table");
+    if (cf_ && (!cf_->monotone_breaks || !cf_->lift_integrals)) cf_ = nullptr;  // optional: incomplete is absent
+    if (hd_ && !hd_->d4_d5) hd_ = nullptr;
     t_->event(o, &begin_, &end_);
     max_lift_ = t_->max_lift(o);
     base_radius_ = t_->base_radius(o);
@@ -630,6 +635,8 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignFollower final : public Follower, public Fo
  public:
   explicit ForeignFollower(const mg_object* o) : t_(query_table<mg_follower_v1>(o, MG_FOLLOWER)), ref_(o) {
     if (!t_) throw_foreign(o, MG_FOLLOWER, "does not answer mechgraph.follower version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->type_name || !t_->describe || !t_->roller_radius || !t_->pivoted || !t_->cam_lever || !t_->contact)
+      throw_foreign(o, MG_FOLLOWER, "answers mechgraph.follower version 1 with a function missing from its table");
     t_->type_name(o, string_sink(&type_name_));
     t_->describe(o, string_sink(&describe_));
     roller_radius_ = t_->roller_radius(o);
@@ -699,6 +706,8 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, pub
  public:
   explicit ForeignValveMotion(const mg_object* o) : t_(query_table<mg_valve_motion_v1>(o, MG_VALVE_MOTION)), ref_(o) {
     if (!t_) throw_foreign(o, MG_VALVE_MOTION, "does not answer mechgraph.valve_motion version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->at || !t_->at_many || !t_->camshaft_speed || !t_->open_period || !t_->knots || !t_->rocker_ratio || !t_->lash || !t_->cam)
+      throw_foreign(o, MG_VALVE_MOTION, "answers mechgraph.valve_motion version 1 with a function missing from its table");
     const mg_object* cam = t_->cam(o);
     if (!cam) throw_foreign(o, MG_VALVE_MOTION, "gives no cam law");
     cam_ = std::dynamic_pointer_cast<const CamLaw>(import_object(cam, MG_CAM_LAW, 1));
