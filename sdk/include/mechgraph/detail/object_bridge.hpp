@@ -18,7 +18,8 @@
 //  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
 //    its C++ object (no C hop); another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
 //    ForeignFollower, ForeignSpringModel, ForeignSpring, ForeignOpaque) that holds one reference and
-//    releases it when the last C++ holder lets go.
+//    releases it when the last C++ holder lets go. A table with a required function missing (NULL)
+//    is refused there, naming the interface and the maker; an incomplete optional one is absent.
 // Pure maths behind the tables never throws across: an exception there is MG_ERR_INTERNAL.
 #include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/domain/follower.h>
