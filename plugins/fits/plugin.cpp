@@ -1,7 +1,8 @@
 // The fits plugin: hole/shaft fits from ISO 286 designations or explicit deviations.
+// Through the SDK 1.x C boundary (MECHGRAPH_PLUGIN_1): its fits cross as mechgraph.fit/1.
 #include "fit_nodes.hpp"
 
-#include <mechgraph/plugin_abi.hpp>
+#include <mechgraph/plugin_sdk1.hpp>
 
 namespace {
 mechgraph::NodeTypeList make_node_types() {
@@ -9,4 +10,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("fits", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("fits", MECHGRAPH_SDK_VERSION, &make_node_types)

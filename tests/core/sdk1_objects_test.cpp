@@ -138,6 +138,30 @@ outputs: [ p.play_max, chain.rod_backlash_limit, chain.rod_backlash_mean ]
   CHECK(scalar_output(run, "chain.rod_backlash_mean") == Approx(60e-6).epsilon(1e-12).margin(1e-15));
 }
 
+TEST_CASE("a fit made in C crosses as mechgraph.fit/1 into the joints plugin and on into a stack-up",
+          "[plugins][sdk1][objects][fit]") {
+  {
+    const RunResult run = run_yaml(R"(nodes:
+  cf: { type: cobj.fit }
+  pin: { type: joint.pin, inputs: { fits: [cf.fit] }, params: { label: c pin } }
+  chain:
+    type: backlash.chain
+    inputs: { joints: [pin.play] }
+    params: { transfer_ratios: [1], actuator_backlash: 0 um, actuator_backlash_limit: 0 um, lever_arm: 100 mm }
+outputs: [ pin.play_min, pin.play_max, pin.play_mean, chain.rod_backlash_limit, chain.rod_backlash_mean ]
+)",
+                                   objects_registry());
+    // cobj.fit: hole +21/0 um, shaft -7/-20 um: clearance 7 .. 41 um, mean 10.5 + 13.5 = 24 um.
+    CHECK(scalar_output(run, "pin.play_min") == Approx(7e-6).epsilon(1e-12).margin(1e-15));
+    CHECK(scalar_output(run, "pin.play_max") == Approx(41e-6).epsilon(1e-12).margin(1e-15));
+    CHECK(scalar_output(run, "pin.play_mean") == Approx(24e-6).epsilon(1e-12).margin(1e-15));
+    CHECK(scalar_output(run, "chain.rod_backlash_mean") == Approx(24e-6).epsilon(1e-12).margin(1e-15));
+  }
+  // The host copied the fit's data on import and released the C object once.
+  const RunResult after = run_yaml("nodes:\n  live: { type: cobj.live }\noutputs: [ live.count ]\n", objects_registry());
+  CHECK(scalar_output(after, "live.count") == 0.0);
+}
+
 TEST_CASE("an exception thrown in a C++ node crosses the C boundary as an error naming the node", "[plugins][sdk1]") {
   const auto message = [](int what) {
     try {

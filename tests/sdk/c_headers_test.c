@@ -3,8 +3,10 @@
    Returns 0 when every check holds, else the number of the first that fails. */
 #include <mechgraph/c/base.h>
 #include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
+#include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>

@@ -4,8 +4,10 @@
 // table never changes (docs/design/sdk-1.0.md, rules 1-2). The numbers are LP64's (x86_64,
 // aarch64), the platform the SDK promises. A failure here is an ABI break: add a new struct or a
 // new version of the table instead.
+#include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
+#include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/dimension.hpp>
 
@@ -362,6 +364,52 @@ static_assert(offsetof(mg_work_forecast, output_size) == 16);
 static_assert(sizeof(mg_node_forecast_v1) == 16);
 static_assert(offsetof(mg_node_forecast_v1, struct_size) == 0);
 static_assert(offsetof(mg_node_forecast_v1, forecast) == 8);
+
+// SDK 1.1: mechgraph.fit version 1 (domain/fit.h).
+static_assert(sizeof(mg_limit_pair) == 16);
+static_assert(offsetof(mg_limit_pair, upper) == 0);
+static_assert(offsetof(mg_limit_pair, lower) == 8);
+static_assert(sizeof(mg_fit_data_v1) == 56);
+static_assert(offsetof(mg_fit_data_v1, designation) == 0);
+static_assert(offsetof(mg_fit_data_v1, nominal) == 8);
+static_assert(offsetof(mg_fit_data_v1, hole) == 16);
+static_assert(offsetof(mg_fit_data_v1, shaft) == 32);
+static_assert(offsetof(mg_fit_data_v1, hole_distribution) == 48);
+static_assert(offsetof(mg_fit_data_v1, shaft_distribution) == 52);
+static_assert(sizeof(mg_fit_v1) == 16);
+static_assert(offsetof(mg_fit_v1, struct_size) == 0);
+static_assert(offsetof(mg_fit_v1, data) == 8);
+
+// SDK 1.1: mechgraph.spring and mechgraph.spring_model version 1 (domain/spring.h).
+static_assert(sizeof(mg_spring_line) == 24);
+static_assert(offsetof(mg_spring_line, preload) == 0);
+static_assert(offsetof(mg_spring_line, rate) == 8);
+static_assert(offsetof(mg_spring_line, stroke) == 16);
+static_assert(sizeof(mg_coil_geometry) == 56);
+static_assert(offsetof(mg_coil_geometry, wire_diameter) == 0);
+static_assert(offsetof(mg_coil_geometry, mean_diameter) == 8);
+static_assert(offsetof(mg_coil_geometry, active_coils) == 16);
+static_assert(offsetof(mg_coil_geometry, total_coils) == 24);
+static_assert(offsetof(mg_coil_geometry, solid_length) == 32);
+static_assert(offsetof(mg_coil_geometry, free_length) == 40);
+static_assert(offsetof(mg_coil_geometry, rate) == 48);
+static_assert(sizeof(mg_spring_v1) == 80);
+static_assert(offsetof(mg_spring_v1, struct_size) == 0);
+static_assert(offsetof(mg_spring_v1, force) == 8);
+static_assert(offsetof(mg_spring_v1, stiffness) == 16);
+static_assert(offsetof(mg_spring_v1, stroke) == 24);
+static_assert(offsetof(mg_spring_v1, mass) == 32);
+static_assert(offsetof(mg_spring_v1, effective_mass) == 40);
+static_assert(offsetof(mg_spring_v1, surge_frequency) == 48);
+static_assert(offsetof(mg_spring_v1, stress) == 56);
+static_assert(offsetof(mg_spring_v1, allowable_stress) == 64);
+static_assert(offsetof(mg_spring_v1, coils) == 72);
+static_assert(sizeof(mg_spring_model_v1) == 24);
+static_assert(offsetof(mg_spring_model_v1, struct_size) == 0);
+static_assert(offsetof(mg_spring_model_v1, type_name) == 8);
+static_assert(offsetof(mg_spring_model_v1, size) == 16);
+static_assert(std::is_trivially_copyable_v<mg_fit_data_v1> && std::is_standard_layout_v<mg_fit_data_v1>);
+static_assert(std::is_trivially_copyable_v<mg_coil_geometry> && std::is_standard_layout_v<mg_coil_geometry>);
 
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.

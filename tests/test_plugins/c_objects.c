@@ -7,10 +7,13 @@
      cobj.gauge outputs an object of this plugin's private interface "cobj.gauge" at version 2 (its
                 table answers versions 1 and 2)
      cobj.read_gauge takes a "cobj.gauge" of version 2 or later and outputs its reading
+     cobj.fit   outputs a fit (mechgraph.fit/1, SDK 1.1, plain data): 20 mm, hole +21/0 um uniform,
+                shaft -7/-20 um normal
    Built with C_OBJECTS_OLD_GAUGE it is another plugin, "cobjold", with one node type,
    cobjold.gauge, that offers "cobj.gauge" at version 1 only: a producer too old for cobj.read_gauge,
    which the host refuses at scene load. */
 #include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/plugin.h>
 
@@ -124,6 +127,41 @@ static const char* gauge_maker(const mg_object* o) {
 }
 static const mg_object_vtbl gauge_vtbl = {sizeof(mg_object_vtbl), gauge_retain, gauge_release, gauge_query, gauge_maker, &origin};
 
+/* mechgraph.fit/1: plain data that lives as long as the object (here: static). */
+typedef struct fit {
+  mg_object base;
+  atomic_int refs;
+} fit;
+static void fit_retain(const mg_object* o) { atomic_fetch_add(&((fit*)(void*)o)->refs, 1); }
+static void fit_release(const mg_object* o) {
+  fit* f = (fit*)(void*)o;
+  if (atomic_fetch_sub(&f->refs, 1) == 1) {
+    free(f);
+    atomic_fetch_sub(&live_objects, 1);
+  }
+}
+static void fit_data(const mg_object* o, mg_fit_data_v1* out) {
+  (void)o;
+  out->designation = "20 c-fit";
+  out->nominal = 0.020;
+  out->hole.upper = 21e-6;
+  out->hole.lower = 0.0;
+  out->shaft.upper = -7e-6;
+  out->shaft.lower = -20e-6;
+  out->hole_distribution = MG_DISTRIBUTION_UNIFORM;
+  out->shaft_distribution = MG_DISTRIBUTION_NORMAL;
+}
+static const mg_fit_v1 fit_table = {sizeof(mg_fit_v1), fit_data};
+static const void* fit_query(const mg_object* o, const char* name, uint32_t version) {
+  (void)o;
+  return version == 1 && strcmp(name, MG_FIT) == 0 ? &fit_table : NULL;
+}
+static const char* fit_maker(const mg_object* o) {
+  (void)o;
+  return PLUGIN_ID ".fit";
+}
+static const mg_object_vtbl fit_vtbl = {sizeof(mg_object_vtbl), fit_retain, fit_release, fit_query, fit_maker, &origin};
+
 static mg_str str(const char* s) {
   mg_str out;
   out.data = s;
@@ -187,6 +225,17 @@ static mg_status read_gauge(const mg_node_type* self, const mg_eval_args* args, 
   return MG_OK;
 }
 
+static mg_status make_fit(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) {
+  fit* f = (fit*)malloc(sizeof(fit));
+  (void)self;
+  (void)args;
+  if (!f) return MG_ERR_NO_MEMORY;
+  f->base.vtbl = &fit_vtbl;
+  atomic_init(&f->refs, 1);
+  atomic_fetch_add(&live_objects, 1);
+  return eval->set_object(ctx, 0, &f->base);
+}
+
 static mg_status live(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) {
   (void)self;
   (void)args;
@@ -213,9 +262,12 @@ static const mg_port_decl read_gauge_in[1] = {{sizeof(mg_port_decl), "gauge", MG
                                               GAUGE_VERSION, 0, NULL, NULL, MG_NO_FRAME, NULL}};
 static const mg_port_decl read_gauge_out[1] = {{sizeof(mg_port_decl), "reading", MG_VALUE_SCALAR, NONE, "the gauge's reading",
                                                NULL, 0, 0, NULL, NULL, MG_NO_FRAME, NULL}};
-static mg_node_desc descs[5];
-static mg_node_type node_types[5];
-static const mg_node_type* type_list[5] = {&node_types[0], &node_types[1], &node_types[2], &node_types[3], &node_types[4]};
+static const mg_port_decl fit_out[1] = {{sizeof(mg_port_decl), "fit", MG_VALUE_OBJECT, NONE, "a fit", MG_FIT, 1, 0, NULL,
+                                         NULL, MG_NO_FRAME, NULL}};
+static mg_node_desc descs[6];
+static mg_node_type node_types[6];
+static const mg_node_type* type_list[6] = {&node_types[0], &node_types[1], &node_types[2],
+                                           &node_types[3], &node_types[4], &node_types[5]};
 static mg_plugin plugin;
 
 static void number(mg_param_decl* p, const char* name, mg_dim dim, const char* doc, double fallback) {
@@ -270,14 +322,15 @@ const mg_plugin* mechgraph_plugin_entry_1(const mg_host* host, mg_text_sink why)
   node(0, "cobjold.gauge", "a gauge of the interface's first version", NULL, 0, NULL, 0, gauge_out, make_gauge);
   plugin.node_type_count = 1;
   (void)make_law, (void)peak, (void)live, (void)read_gauge, (void)law_out, (void)peak_in, (void)peak_out, (void)live_out;
-  (void)read_gauge_in, (void)read_gauge_out;
+  (void)read_gauge_in, (void)read_gauge_out, (void)make_fit, (void)fit_out;
 #else
   node(0, "cobj.law", "a cosine-squared cam law (a C object)", law_params, 3, NULL, 0, law_out, make_law);
   node(1, "cobj.peak", "the lift of a cam law at the nose", NULL, 0, peak_in, 1, peak_out, peak);
   node(2, "cobj.live", "how many objects of this plugin are alive", NULL, 0, NULL, 0, live_out, live);
   node(3, "cobj.gauge", "a gauge (a private interface at version 2)", NULL, 0, NULL, 0, gauge_out, make_gauge);
   node(4, "cobj.read_gauge", "the reading of a gauge of version 2 or later", NULL, 0, read_gauge_in, 1, read_gauge_out, read_gauge);
-  plugin.node_type_count = 5;
+  node(5, "cobj.fit", "a fit (a C object of mechgraph.fit, SDK 1.1)", NULL, 0, NULL, 0, fit_out, make_fit);
+  plugin.node_type_count = 6;
 #endif
   plugin.struct_size = sizeof plugin;
   plugin.sdk_major = MG_SDK_MAJOR;

@@ -110,4 +110,5 @@ MG_API void mg_abi_anchor(const mg_host*, const mg_plugin*, const mg_log_suite_v
                           const mg_cam_law_closed_form_v1*, const mg_cam_law_higher_v1*, const mg_valve_motion_v1*,
                           const mg_joint_play_v1*, const mg_follower_v1*, const mg_owner*) {}
 
-MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1*, const mg_work_forecast*) {}
+MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1*, const mg_work_forecast*, const mg_fit_v1*, const mg_spring_model_v1*,
+                              const mg_spring_v1*) {}

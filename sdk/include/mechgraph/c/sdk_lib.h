@@ -7,8 +7,10 @@
 
 #include <mechgraph/c/base.h>
 #include <mechgraph/c/domain/cam_law.h>
+#include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
+#include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
@@ -50,9 +52,10 @@ MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg
                           const mg_valve_motion_v1* valve_motion, const mg_joint_play_v1* joint_play,
                           const mg_follower_v1* follower, const mg_owner* owner);
 
-/* SDK 1.1: does nothing; names the structs 1.1 added (node_forecast.h), as mg_abi_anchor does
-   for 1.0's. */
-MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1* node_forecast, const mg_work_forecast* work_forecast);
+/* SDK 1.1: does nothing; names the structs 1.1 added (node_forecast.h, domain/fit.h,
+   domain/spring.h), as mg_abi_anchor does for 1.0's. */
+MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1* node_forecast, const mg_work_forecast* work_forecast,
+                              const mg_fit_v1* fit, const mg_spring_model_v1* spring_model, const mg_spring_v1* spring);
 
 MG_EXTERN_C_END
 

@@ -8,21 +8,29 @@
 //    optional closed_form/1 and higher_derivatives/1 (a C++ `false`, "cannot say", is
 //    MG_ERR_UNSUPPORTED); a ValveMotion answers mechgraph.valve_motion/1; a Follower answers
 //    mechgraph.follower/1 (a NodeError from contact() crosses as MG_ERR_NODE naming its parameter
-//    and comes back as the same NodeError); a JointPlay (plain data)
-//    answers mechgraph.joint_play/1 and is copied on import, not viewed. Any other kind crosses as
+//    and comes back as the same NodeError); a JointPlay and a Fit (plain data) answer
+//    mechgraph.joint_play/1 and mechgraph.fit/1 and are copied on import, not viewed; a SpringModel
+//    answers mechgraph.spring_model/1 (its size() hands over a new mechgraph.spring/1 object, a
+//    NodeError crossing as MG_ERR_NODE as for a follower) and a Spring mechgraph.spring/1. Any other kind crosses as
 //    an opaque object that answers only its private interface name. An object that is itself the
 //    view of a foreign mg_object is passed on as that original object (retained): no chain of
 //    wrappers ever forms.
 //  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
 //    its C++ object (no C hop); another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
-//    ForeignFollower, ForeignOpaque) that holds one reference and releases it when the last C++ holder lets go.
+//    ForeignFollower, ForeignSpringModel, ForeignSpring, ForeignOpaque) that holds one reference and
+//    releases it when the last C++ holder lets go. A table with a required function missing (NULL)
+//    is refused there, naming the interface and the maker; an incomplete optional one is absent.
 // Pure maths behind the tables never throws across: an exception there is MG_ERR_INTERNAL.
+#include <mechgraph/c/domain/fit.h>
 #include <mechgraph/c/domain/follower.h>
 #include <mechgraph/c/domain/joint_play.h>
+#include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/domain/cam_law.hpp>
+#include <mechgraph/domain/fit.hpp>
 #include <mechgraph/domain/follower.hpp>
+#include <mechgraph/domain/spring.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
@@ -53,7 +61,8 @@ struct SdkInterface {
 };
 inline constexpr SdkInterface sdk_interfaces[] = {
     {CamLaw::kind_name, MG_CAM_LAW, 1}, {ValveMotion::kind_name, MG_VALVE_MOTION, 1}, {JointPlay::kind_name, MG_JOINT_PLAY, 1},
-    {Follower::kind_name, MG_FOLLOWER, 1}};
+    {Follower::kind_name, MG_FOLLOWER, 1}, {Fit::kind_name, MG_FIT, 1}, {SpringModel::kind_name, MG_SPRING_MODEL, 1},
+    {Spring::kind_name, MG_SPRING, 1}};  // SDK 1.1: fit, spring_model, spring
 inline const SdkInterface* sdk_interface_of_kind(std::string_view kind) {
   for (const SdkInterface& i : sdk_interfaces)
     if (i.kind == kind) return &i;
@@ -79,13 +88,14 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignObject {
 struct MECHGRAPH_DETAIL_HIDDEN Exported : mg_object {
   mutable std::atomic<std::uint32_t> refs{1};
   std::shared_ptr<const DomainObject> self;
-  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*, const Follower*
+  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*, const Follower*, const Spring*, const SpringModel*
   std::string maker;              // the node type that made it
   std::string interface;          // an opaque object's private interface name
   const mg_object* cam = nullptr; // a valve motion's cam law, exported (one reference held)
   std::vector<mg_tolerance_link> links;  // a joint play's data, as C
   std::vector<mg_play_term> terms;
   mg_joint_play_data_v1 play{};
+  mg_fit_data_v1 fit{};                  // a fit's data, as C
   ~Exported() {
     if (cam) cam->vtbl->release(cam);
   }
@@ -331,7 +341,8 @@ inline void export_play_data(Exported& e, const JointPlay& play) {
 }
 inline std::shared_ptr<const JointPlay> import_play_data(const mg_object* o) {
   const auto* t = static_cast<const mg_joint_play_v1*>(o->vtbl->query(o, MG_JOINT_PLAY, 1));
-  if (!t || t->struct_size < sizeof(mg_joint_play_v1)) throw std::runtime_error("a joint_play object does not answer mechgraph.joint_play version 1");
+  if (!t || t->struct_size < sizeof(mg_joint_play_v1) || !t->data)
+    throw std::runtime_error("a joint_play object does not answer mechgraph.joint_play version 1 (no table, or one without its function)");
   mg_joint_play_data_v1 d{};
   t->data(o, &d);
   const auto text = [](const char* s) { return std::string(s ? s : ""); };
@@ -350,6 +361,115 @@ inline std::shared_ptr<const JointPlay> import_play_data(const mg_object* o) {
   return std::make_shared<const JointPlay>(text(d.joint), std::move(terms));
 }
 
+// --- mechgraph.fit/1 over a C++ Fit: its data, built once at export (SDK 1.1) ------------------
+inline void fit_data(const mg_object* o, mg_fit_data_v1* out) { *out = exported(o).fit; }
+MECHGRAPH_DETAIL_HIDDEN inline const mg_fit_v1 fit_table{sizeof(mg_fit_v1), &fit_data};
+inline const void* fit_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_FIT) == 0 ? &fit_table : nullptr;
+}
+inline void export_fit_data(Exported& e, const Fit& fit) {
+  e.fit = {fit.designation().c_str(), fit.nominal(), {fit.hole().upper, fit.hole().lower}, {fit.shaft().upper, fit.shaft().lower},
+           static_cast<std::int32_t>(fit.hole_distribution()), static_cast<std::int32_t>(fit.shaft_distribution())};
+}
+inline Distribution distribution_from_c(std::int32_t d, const std::string& what) {
+  if (d < MG_DISTRIBUTION_NORMAL || d > MG_DISTRIBUTION_TRIANGULAR)
+    throw std::runtime_error(what + " has distribution " + std::to_string(d) + ", not one of MG_DISTRIBUTION_*");
+  return static_cast<Distribution>(d);
+}
+inline std::shared_ptr<const Fit> import_fit_data(const mg_object* o) {
+  const auto* t = static_cast<const mg_fit_v1*>(o->vtbl->query(o, MG_FIT, 1));
+  if (!t || t->struct_size < sizeof(mg_fit_v1) || !t->data)
+    throw std::runtime_error("a fit object does not answer mechgraph.fit version 1 (no table, or one without its function)");
+  mg_fit_data_v1 d{};
+  t->data(o, &d);
+  std::string designation(d.designation ? d.designation : "");
+  const std::string what = "the fit '" + designation + "'";
+  return std::make_shared<const Fit>(std::move(designation), d.nominal, LimitPair{d.hole.upper, d.hole.lower},
+                                     LimitPair{d.shaft.upper, d.shaft.lower}, distribution_from_c(d.hole_distribution, what + " hole"),
+                                     distribution_from_c(d.shaft_distribution, what + " shaft"));
+}
+
+// --- mechgraph.spring/1 over a C++ Spring (SDK 1.1) ----------------------------------------------
+inline const Spring& spring_of(const mg_object* o) { return *static_cast<const Spring*>(exported(o).primary); }
+template <double (Spring::*get)(double) const>
+double spring_at(const mg_object* o, double x) {
+  try {
+    return (spring_of(o).*get)(x);
+  } catch (...) {
+    return nan_result;
+  }
+}
+template <double (Spring::*get)() const>
+double spring_number(const mg_object* o) {
+  try {
+    return (spring_of(o).*get)();
+  } catch (...) {
+    return nan_result;
+  }
+}
+inline size_t spring_coils(const mg_object* o, mg_coil_geometry* out, size_t capacity) {
+  try {
+    const std::vector<CoilGeometry> coils = spring_of(o).coils();
+    if (out)
+      for (std::size_t i = 0; i < std::min(coils.size(), capacity); ++i) {
+        const CoilGeometry& c = coils[i];
+        out[i] = {c.wire_diameter, c.mean_diameter, c.active_coils, c.total_coils, c.solid_length, c.free_length, c.rate};
+      }
+    return coils.size();
+  } catch (...) {
+    return 0;
+  }
+}
+MECHGRAPH_DETAIL_HIDDEN inline const mg_spring_v1 spring_table{sizeof(mg_spring_v1),
+                                                               &spring_at<&Spring::force>,
+                                                               &spring_at<&Spring::stiffness>,
+                                                               &spring_number<&Spring::stroke>,
+                                                               &spring_number<&Spring::mass>,
+                                                               &spring_number<&Spring::effective_mass>,
+                                                               &spring_number<&Spring::surge_frequency>,
+                                                               &spring_at<&Spring::stress>,
+                                                               &spring_number<&Spring::allowable_stress>,
+                                                               &spring_coils};
+inline const void* spring_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_SPRING) == 0 ? &spring_table : nullptr;
+}
+
+// --- mechgraph.spring_model/1 over a C++ SpringModel (SDK 1.1) -----------------------------------
+inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
+                                      std::string_view private_interface);
+inline const SpringModel& spring_model_of(const mg_object* o) { return *static_cast<const SpringModel*>(exported(o).primary); }
+inline void spring_model_type_name(const mg_object* o, mg_text_sink out) {
+  try {
+    send_text(out, spring_model_of(o).type_name());
+  } catch (...) {
+  }
+}
+inline mg_status spring_model_size(const mg_object* o, const mg_spring_line* line, const mg_object** out, const mg_error* err) {
+  if (!out || !line) return MG_ERR_BAD_ARGUMENT;
+  *out = nullptr;
+  try {
+    const std::shared_ptr<const Spring> spring = spring_model_of(o).size({line->preload, line->rate, line->stroke});
+    if (!spring) return MG_ERR_INTERNAL;
+    *out = export_object(spring, exported(o).maker, {});
+    return MG_OK;
+  } catch (const NodeError& e) {
+    if (err && err->struct_size >= sizeof(mg_error)) {
+      send_text(err->parameter, e.parameter());
+      send_text(err->message, e.what());
+    }
+    return MG_ERR_NODE;
+  } catch (const std::bad_alloc&) {
+    return MG_ERR_NO_MEMORY;
+  } catch (...) {
+    return MG_ERR_INTERNAL;
+  }
+}
+MECHGRAPH_DETAIL_HIDDEN inline const mg_spring_model_v1 spring_model_table{sizeof(mg_spring_model_v1), &spring_model_type_name,
+                                                                           &spring_model_size};
+inline const void* spring_model_query(const mg_object*, const char* name, uint32_t version) {
+  return version == 1 && name && std::strcmp(name, MG_SPRING_MODEL) == 0 ? &spring_model_table : nullptr;
+}
+
 // --- an object without a C table: answers only its private interface ------------------------
 MECHGRAPH_DETAIL_HIDDEN inline const std::uint32_t opaque_table = sizeof(std::uint32_t);
 inline const void* opaque_query(const mg_object* o, const char* name, uint32_t version) {
@@ -364,6 +484,12 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl follower_vtbl{sizeof(mg_obje
                                                                   &follower_query, &exported_maker, &object_origin};
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl joint_play_vtbl{
     sizeof(mg_object_vtbl), &exported_retain, &exported_release, &joint_play_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl fit_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
+                                                             &fit_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl spring_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
+                                                                &spring_query, &exported_maker, &object_origin};
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl spring_model_vtbl{
+    sizeof(mg_object_vtbl), &exported_retain, &exported_release, &spring_model_query, &exported_maker, &object_origin};
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl opaque_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
                                                                 &opaque_query, &exported_maker, &object_origin};
 
@@ -396,6 +522,16 @@ inline const mg_object* export_object(const std::shared_ptr<const DomainObject>&
     e->vtbl = &joint_play_vtbl;
     e->primary = play;
     export_play_data(*e, *play);
+  } else if (const auto* fit = dynamic_cast<const Fit*>(object.get())) {
+    e->vtbl = &fit_vtbl;
+    e->primary = fit;
+    export_fit_data(*e, *fit);
+  } else if (const auto* spring = dynamic_cast<const Spring*>(object.get())) {
+    e->vtbl = &spring_vtbl;
+    e->primary = spring;
+  } else if (const auto* model = dynamic_cast<const SpringModel*>(object.get())) {
+    e->vtbl = &spring_model_vtbl;
+    e->primary = model;
   } else {
     e->vtbl = &opaque_vtbl;
     e->interface = private_interface.empty() ? std::string(object->kind()) : std::string(private_interface);
@@ -436,6 +572,10 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignCamLaw final : public CamLaw, public Foreig
         hd_(query_table<mg_cam_law_higher_v1>(o, MG_CAM_LAW_HIGHER)),
         ref_(o) {
     if (!t_) throw_foreign(o, MG_CAM_LAW, "does not answer mechgraph.cam_law version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->event || !t_->evaluate || !t_->evaluate_many || !t_->breakpoints || !t_->max_lift || !t_->base_radius || !t_->roller_radius)
+      throw_foreign(o, MG_CAM_LAW, "answers mechgraph.cam_law version 1 with a function missing from its table");
+    if (cf_ && (!cf_->monotone_breaks || !cf_->lift_integrals)) cf_ = nullptr;  // optional: incomplete is absent
+    if (hd_ && !hd_->d4_d5) hd_ = nullptr;
     t_->event(o, &begin_, &end_);
     max_lift_ = t_->max_lift(o);
     base_radius_ = t_->base_radius(o);
@@ -496,6 +636,8 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignFollower final : public Follower, public Fo
  public:
   explicit ForeignFollower(const mg_object* o) : t_(query_table<mg_follower_v1>(o, MG_FOLLOWER)), ref_(o) {
     if (!t_) throw_foreign(o, MG_FOLLOWER, "does not answer mechgraph.follower version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->type_name || !t_->describe || !t_->roller_radius || !t_->pivoted || !t_->cam_lever || !t_->contact)
+      throw_foreign(o, MG_FOLLOWER, "answers mechgraph.follower version 1 with a function missing from its table");
     t_->type_name(o, string_sink(&type_name_));
     t_->describe(o, string_sink(&describe_));
     roller_radius_ = t_->roller_radius(o);
@@ -565,6 +707,8 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, pub
  public:
   explicit ForeignValveMotion(const mg_object* o) : t_(query_table<mg_valve_motion_v1>(o, MG_VALVE_MOTION)), ref_(o) {
     if (!t_) throw_foreign(o, MG_VALVE_MOTION, "does not answer mechgraph.valve_motion version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->at || !t_->at_many || !t_->camshaft_speed || !t_->open_period || !t_->knots || !t_->rocker_ratio || !t_->lash || !t_->cam)
+      throw_foreign(o, MG_VALVE_MOTION, "answers mechgraph.valve_motion version 1 with a function missing from its table");
     const mg_object* cam = t_->cam(o);
     if (!cam) throw_foreign(o, MG_VALVE_MOTION, "gives no cam law");
     cam_ = std::dynamic_pointer_cast<const CamLaw>(import_object(cam, MG_CAM_LAW, 1));
@@ -599,6 +743,83 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, pub
   std::vector<double> knots_;
 };
 
+/// A spring made elsewhere, seen as a C++ Spring. Its fixed figures and coils are read once.
+class MECHGRAPH_DETAIL_HIDDEN ForeignSpring final : public Spring, public ForeignObject {
+ public:
+  explicit ForeignSpring(const mg_object* o) : t_(query_table<mg_spring_v1>(o, MG_SPRING)), ref_(o) {
+    if (!t_) throw_foreign(o, MG_SPRING, "does not answer mechgraph.spring version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->force || !t_->stiffness || !t_->stroke || !t_->mass || !t_->effective_mass || !t_->surge_frequency || !t_->stress ||
+        !t_->allowable_stress || !t_->coils)
+      throw_foreign(o, MG_SPRING, "answers mechgraph.spring version 1 with a function missing from its table");
+    stroke_ = t_->stroke(o);
+    mass_ = t_->mass(o);
+    effective_mass_ = t_->effective_mass(o);
+    surge_ = t_->surge_frequency(o);
+    allowable_ = t_->allowable_stress(o);
+    std::vector<mg_coil_geometry> c(t_->coils(o, nullptr, 0));
+    c.resize(std::min(c.size(), t_->coils(o, c.data(), c.size())));
+    for (const mg_coil_geometry& g : c)
+      coils_.push_back({g.wire_diameter, g.mean_diameter, g.active_coils, g.total_coils, g.solid_length, g.free_length, g.rate});
+  }
+  const mg_object* c_object() const override { return ref_.get(); }
+  double force(double x) const override { return t_->force(ref_.get(), x); }
+  double stiffness(double x) const override { return t_->stiffness(ref_.get(), x); }
+  double stress(double x) const override { return t_->stress(ref_.get(), x); }
+  double stroke() const override { return stroke_; }
+  double mass() const override { return mass_; }
+  double effective_mass() const override { return effective_mass_; }
+  double surge_frequency() const override { return surge_; }
+  double allowable_stress() const override { return allowable_; }
+  std::vector<CoilGeometry> coils() const override { return coils_; }
+
+ private:
+  const mg_spring_v1* t_;
+  ForeignReference ref_;
+  double stroke_ = 0, mass_ = 0, effective_mass_ = 0, surge_ = 0, allowable_ = 0;
+  std::vector<CoilGeometry> coils_;
+};
+
+/// A spring model made elsewhere, seen as a C++ SpringModel: size() hands back the sized spring
+/// as a C++ Spring, and a model's refusal (MG_ERR_NODE) as the NodeError naming its parameter.
+class MECHGRAPH_DETAIL_HIDDEN ForeignSpringModel final : public SpringModel, public ForeignObject {
+ public:
+  explicit ForeignSpringModel(const mg_object* o) : t_(query_table<mg_spring_model_v1>(o, MG_SPRING_MODEL)), ref_(o) {
+    if (!t_) throw_foreign(o, MG_SPRING_MODEL, "does not answer mechgraph.spring_model version 1 (MG_ERR_MISSING_FEATURE)");
+    if (!t_->type_name || !t_->size)
+      throw_foreign(o, MG_SPRING_MODEL, "answers mechgraph.spring_model version 1 with a function missing from its table");
+    t_->type_name(o, string_sink(&type_name_));
+  }
+  const mg_object* c_object() const override { return ref_.get(); }
+  std::string_view type_name() const override { return type_name_; }
+  std::shared_ptr<const Spring> size(const SpringLine& line) const override {
+    const mg_spring_line c{line.preload, line.rate, line.stroke};
+    const mg_object* made = nullptr;
+    std::string parameter, message;
+    const mg_error err{sizeof(mg_error), string_sink(&parameter), string_sink(&message)};
+    const mg_status s = t_->size(ref_.get(), &c, &made, &err);
+    if (s == MG_ERR_NODE) {
+      if (made) made->vtbl->release(made);
+      throw NodeError(parameter, message.empty() ? type_name_ + " cannot give this spring line" : message);
+    }
+    if (s != MG_OK || !made) {
+      if (made) made->vtbl->release(made);
+      throw_foreign(ref_.get(), MG_SPRING_MODEL, std::string("failed to size a spring: ") + mg_status_name(s));
+    }
+    struct HandedOver {  // the new reference size() gave us: released once, whatever follows
+      const mg_object* o;
+      ~HandedOver() { o->vtbl->release(o); }
+    } const handed_over{made};
+    auto spring = std::dynamic_pointer_cast<const Spring>(import_object(made, MG_SPRING, 1));
+    if (!spring) throw_foreign(ref_.get(), MG_SPRING_MODEL, "gave a spring that is not one");
+    return spring;
+  }
+
+ private:
+  const mg_spring_model_v1* t_;
+  ForeignReference ref_;
+  std::string type_name_;
+};
+
 /// The C++ view of `o` (borrowed) as a port declaring `interface`/`version` sees it. Throws
 /// std::runtime_error naming the interface when the object does not answer it.
 inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version) {
@@ -611,6 +832,9 @@ inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std
       case 1: return std::make_shared<const ForeignValveMotion>(o);
       case 2: return import_play_data(o);
       case 3: return std::make_shared<const ForeignFollower>(o);
+      case 4: return import_fit_data(o);
+      case 5: return std::make_shared<const ForeignSpringModel>(o);
+      case 6: return std::make_shared<const ForeignSpring>(o);
       default: break;
     }
   return std::make_shared<const ForeignOpaque>(o, std::string(interface), version);

@@ -37,6 +37,8 @@ class MECHGRAPH_INTERFACE Fit final : public DomainObject {
   double nominal() const { return nominal_; }
   const LimitPair& hole() const { return hole_; }
   const LimitPair& shaft() const { return shaft_; }
+  Distribution hole_distribution() const { return hole_distribution_; }
+  Distribution shaft_distribution() const { return shaft_distribution_; }
   double clearance_min() const { return hole_.lower - shaft_.upper; }
   double clearance_max() const { return hole_.upper - shaft_.lower; }
   double clearance_mean() const { return hole_.mean() - shaft_.mean(); }
