@@ -2,6 +2,7 @@
 // rows as the per-case path, case for case, for the stage 1-3 study of the peers over a Latin
 // hypercube of every parameter that changes a law's shape; failed cases redone alone with the
 // per-case message; the same rows on any number of threads; no blocks where a node has none.
+#include "sweep_support.hpp"
 #include "test_support.hpp"
 
 #include <mechgraph/memo_cache.hpp>
@@ -37,20 +38,6 @@ outputs: [ ta_arc.time_area, ta_kurz.time_area, ta_poly.time_area,
            v_arc.min_acceleration, v_poly.min_acceleration, v_kurz.max_velocity, v_poly.open_angle,
            arc.max_lift, arc.nose_radius ]
 )";
-
-struct Prepared {
-  SceneSpec scene;
-  Graph graph;
-  CaseTable table;
-  std::unique_ptr<CaseBinder> binder;
-};
-
-Prepared prepare(const std::string& yaml, CaseTable table, const PluginRegistry& registry) {
-  Prepared p{parse_scene(yaml, "blocks.yaml"), {}, std::move(table), nullptr};
-  p.graph = build_graph(p.scene, registry);
-  p.binder = std::make_unique<CaseBinder>(p.graph, p.scene, registry, std::vector<Override>{}, p.table.variables);
-  return p;
-}
 
 struct Swept {
   std::vector<CaseResult> rows;

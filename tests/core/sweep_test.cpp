@@ -1,6 +1,7 @@
 // Sweeps in process: cases made by grid, CSV and Latin hypercube; case values written into a built
 // graph (checked against building the graph with --set, the second method); the bounded memo
 // cache; rows in case order and bit-identical for any thread count; failed cases and stopping.
+#include "sweep_support.hpp"
 #include "test_support.hpp"
 
 #include <mechgraph/error_subject.hpp>
@@ -33,20 +34,6 @@ nodes:
   s: { type: test.add, inputs: { a: a.out, b: b.out }, params: { gain: 2 } }
 outputs: [ s.sum, a.out ]
 )";
-
-struct Prepared {
-  SceneSpec scene;
-  Graph graph;
-  CaseTable table;
-  std::unique_ptr<CaseBinder> binder;
-};
-
-Prepared prepare(const std::string& yaml, CaseTable table, const PluginRegistry& registry = arith_registry()) {
-  Prepared p{parse_scene(yaml, "sweep.yaml"), {}, std::move(table), nullptr};
-  p.graph = build_graph(p.scene, registry);
-  p.binder = std::make_unique<CaseBinder>(p.graph, p.scene, registry, std::vector<Override>{}, p.table.variables);
-  return p;
-}
 
 std::vector<CaseResult> sweep_all(const Prepared& p, unsigned threads, MemoCache& cache) {
   SweepOptions options;
