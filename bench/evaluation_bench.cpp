@@ -69,7 +69,8 @@ BENCHMARK(BM_SweepRpm50)->Unit(benchmark::kMillisecond);
 // hypercube of lift, action and accel angle, base radius, rpm and lash: every node runs for every
 // case. One "design" is one cam
 // through the three stages, so a case is three designs; designs/s is the figure the goal
-// and bench/peers compare. Arg: threads.
+// and bench/peers compare. Args: threads, cases per block (0: every case alone, the per-case
+// path; 256: the default block path).
 void BM_SweepStages123(benchmark::State& state) {
   SceneSpec scene = study();
   scene.report.clear();
@@ -90,6 +91,7 @@ void BM_SweepStages123(benchmark::State& state) {
   const CaseBinder binder(g, scene, registry(), {}, cases.variables);
   SweepOptions options;
   options.threads = static_cast<unsigned>(state.range(0));
+  options.block_size = static_cast<std::size_t>(state.range(1));
   for (std::size_t i = 0; i < cases.cases.size(); ++i) options.cases.push_back(i);
   std::size_t failed = 0;
   for (auto _ : state) {
@@ -99,7 +101,7 @@ void BM_SweepStages123(benchmark::State& state) {
   state.counters["designs/s"] = benchmark::Counter(3.0 * cases.cases.size() * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["failed"] = static_cast<double>(failed) / state.iterations();
 }
-BENCHMARK(BM_SweepStages123)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SweepStages123)->Args({1, 0})->Args({1, 256})->Args({2, 0})->Args({2, 256})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The time-area knob: exact quadrature against the source's rectangle sum.
 void BM_TimeAreaMethod(benchmark::State& state) {
