@@ -1,5 +1,7 @@
 #include <mechgraph/evaluator.hpp>
 
+#include "node_context.hpp"
+
 #include <mechgraph/error_subject.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/hash.hpp>
@@ -61,39 +63,6 @@ void hash_file(Hasher& h, const std::string& path) {
   }
 }
 
-class NodeContext final : public EvalContext {
- public:
-  // `run` null: a sweep's lean run, which keeps no counters but still refuses a non-finite one.
-  NodeContext(const GraphNode& node, NodeRun* run) : node_(node), run_(run) {}
-  bool effect(std::string_view name) const override {
-    for (const std::string& e : node_.effects_read)
-      if (e == name) return true;
-    return false;
-  }
-  void log(LogLevel level, std::string_view message) override {
-    switch (level) {
-      case LogLevel::debug: spdlog::debug("[{}] {}", node_.name, message); break;
-      case LogLevel::info: spdlog::info("[{}] {}", node_.name, message); break;
-      case LogLevel::warn: spdlog::warn("[{}] {}", node_.name, message); break;
-    }
-  }
-  void report_work(std::string_view counter, double amount) override {
-    if (run_) {
-      run_->work[std::string(counter)] += amount;
-    } else if (!std::isfinite(amount) && !bad_counter_) {
-      bad_counter_ = std::pair<std::string, double>(counter, amount);
-    }
-  }
-  bool wanted(std::string_view output) const override {
-    return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
-  }
-  const std::optional<std::pair<std::string, double>>& bad_counter() const { return bad_counter_; }
-
- private:
-  const GraphNode& node_;
-  NodeRun* run_;
-  std::optional<std::pair<std::string, double>> bad_counter_;
-};
 
 std::string format_double(double x) {
   std::ostringstream os;

@@ -18,7 +18,6 @@
 #include <string>
 #include <cmath>
 #include <numbers>
-#include <optional>
 #include <sstream>
 
 namespace mechgraph::valvetrain {
@@ -166,8 +165,8 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     out.set_scalar("open_duration", open_angle / motion->camshaft_speed());
   }
 
-  // Blocks: every method and seat (only numbers vary from case to case); the closed form straight
-  // from the block's columns, any other method through the case's ValveMotion.
+  // Blocks: every method and seat (only numbers vary from case to case), each case through
+  // angle_area_of as evaluate() takes it, on the case's ValveMotion read from the block's columns.
   bool block_supported(const BlockRequest&) const override { return true; }
 
   void evaluate_block(const BlockParams& p, const BlockInputs& in, BlockOutputs& out, BlockCases& cases,
@@ -177,30 +176,15 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     double* angle_area_out = out.scalar("angle_area");
     double* mean_flow_area = out.scalar("mean_flow_area");
     double* open_duration = out.scalar("open_duration");
-    const bool exact = p.fixed().text("method") == "exact";
-    const bool seat_varies = p.varies("seat_diameter") || p.varies("seat_angle") || p.varies("seat_width") ||
-                             p.varies("port_diameter") || p.varies("stem_diameter");
-    std::optional<FlowArea> fixed_area;
-    if (!seat_varies) fixed_area.emplace(seat_of(p.fixed()));
     long evaluations = 0;
     for_each_live_case(cases, [&](std::size_t k) {
       const std::size_t r = motions.row(k);
-      const CamLaw& cam = motions.cam(k);
-      std::optional<FlowArea> case_area;
-      if (seat_varies) case_area.emplace(seat_of(p.of_case(k)));
-      const FlowArea& area = seat_varies ? *case_area : *fixed_area;
-      const double ob = motions.open_begin[r], oe = motions.open_end[r], i = motions.rocker_ratio[r], e = motions.lash[r];
-      const double w = motions.camshaft_speed[r];
-      double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0, angle_area = 0.0;
-      if (exact && area.quadratic(k1, k2) && cam.lift_integrals(ob, oe, I1, I2)) {
-        evaluations += 2;
-        angle_area = closed_form_angle_area(k1, k2, i, e, oe - ob, I1, I2);
-      } else {
-        const CamValveMotion motion(motions.shared_cam(k), w, i, e, OpenPeriod{ob, oe});
-        angle_area = angle_area_of(motion, area, p.of_case(k), evaluations);
-      }
-      require_finite_area(angle_area, w, cam, i);
-      const double open_angle = oe - ob;
+      const double w = motions.camshaft_speed[r], i = motions.rocker_ratio[r];
+      const CamValveMotion motion(motions.shared_cam(k), w, i, motions.lash[r], OpenPeriod{motions.open_begin[r], motions.open_end[r]});
+      const ParamSet& params = p.of_case(k);
+      const double angle_area = angle_area_of(motion, FlowArea(seat_of(params)), params, evaluations);
+      require_finite_area(angle_area, w, motion.cam(), i);
+      const double open_angle = motion.open_end() - motion.open_begin();
       if (angle_area_out) angle_area_out[k] = angle_area;
       if (time_area) time_area[k] = angle_area / w;
       if (mean_flow_area) mean_flow_area[k] = angle_area / open_angle;

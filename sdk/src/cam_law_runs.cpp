@@ -35,7 +35,9 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
   // where a step would leave it or does not halve the one before, the bracket is bisected instead
   // (Press et al., Numerical Recipes, rtsafe). So it converges whatever g' does, and quadratically
   // near a simple root: 4 to 6 evaluations where TOMS 748 on g alone took 10 to 15. It stops when
-  // a step is below 2 ulps of the root or the bracket has no double inside.
+  // a step is below 2 ulps of the root or the bracket has no double inside. (Boost's
+  // newton_raphson_iterate moves its bracket by the steps' signs, not g's, and raises an error
+  // where it judges there is no root; here the run guarantees the bracket, and it is kept by g.)
   auto slope_of = [this](const LiftDerivatives& d) {
     return order_ == 0 ? d.velocity : order_ == 1 ? d.acceleration : d.jerk;
   };
@@ -75,7 +77,6 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
 }
 
 double CamLawRuns::value(double x) const { return value_of(law_->at(x)); }
-
 
 numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
   const Peaks p = peaks({this}, a, b, evaluations).front();

@@ -3,7 +3,7 @@
 #include <mechgraph/block.hpp>
 #include <mechgraph/plugin_registry.hpp>
 
-#include <spdlog/spdlog.h>
+#include "../node_context.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,32 +13,6 @@ namespace mechgraph {
 namespace {
 
 std::string owner_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
-
-// What a node sees while it evaluates a block: its effects and what is read of it, a logger, and
-// the work counters (summed over the block; only checked to be finite, as a sweep's lean run does).
-class BlockContext final : public EvalContext {
- public:
-  explicit BlockContext(const GraphNode& node) : node_(node) {}
-  bool effect(std::string_view name) const override {
-    return std::find(node_.effects_read.begin(), node_.effects_read.end(), name) != node_.effects_read.end();
-  }
-  void log(LogLevel level, std::string_view message) override {
-    switch (level) {
-      case LogLevel::debug: spdlog::debug("[{}] {}", node_.name, message); break;
-      case LogLevel::info: spdlog::info("[{}] {}", node_.name, message); break;
-      case LogLevel::warn: spdlog::warn("[{}] {}", node_.name, message); break;
-    }
-  }
-  void report_work(std::string_view, double amount) override { bad_counter_ = bad_counter_ || !std::isfinite(amount); }
-  bool wanted(std::string_view output) const override {
-    return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
-  }
-  bool bad_counter() const { return bad_counter_; }
-
- private:
-  const GraphNode& node_;
-  bool bad_counter_ = false;
-};
 
 using Produced = BlockPlan::WorkerState::Produced;
 
@@ -67,7 +41,7 @@ bool evaluate_block_node(GraphNode& node, const BlockEvaluation& type, std::map<
   BlockOutputs outputs(size);
   for (const std::string& port : node.wanted)
     if (const PortSpec* spec = node.info().find_output(port); spec && spec->kind == ValueKind::scalar) outputs.want_scalar(port);
-  BlockContext context(node);
+  NodeContext context(node, nullptr);  // counters summed over the block, only checked to be finite
   try {
     type.evaluate_block(params, inputs, outputs, live, context);
     if (context.bad_counter()) return false;
@@ -101,7 +75,7 @@ bool evaluate_block_node(GraphNode& node, const BlockEvaluation& type, std::map<
 
 }  // namespace
 
-BlockPlan::BlockPlan(const Graph& graph, const CaseBinder& binder) {
+BlockPlan::BlockPlan(const Graph& graph, const CaseBinder& binder) : binder_(binder) {
   if (binder.rebuilds()) {
     why_not_ = "a varied parameter sits inside a list or record";
     return;
@@ -172,17 +146,14 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
   }
   if (state.constants_failed) return outcomes;  // every case alone: the first gives the message
 
-  // The varied parameters as columns, each value checked as CaseBinder::apply checks it; a value
-  // it would refuse leaves its case to the per-case path, which refuses it with its message.
+  // The varied parameters as columns, each value checked by the binder's own rule; a value it
+  // would refuse leaves its case to the per-case path, which refuses it with its message.
   BlockCases cases(n);
   std::vector<std::vector<double>> columns(targets_.size(), std::vector<double>(n, 0.0));
   for (std::size_t v = 0; v < targets_.size(); ++v)
     for (std::size_t k = 0; k < n; ++k) {
       const CaseValue& value = table.cases[indices[k]][v];
-      bool ok = value.si && std::isfinite(*value.si);
-      for (const CaseBinder::Target& t : targets_[v])
-        ok = ok && value.dimension == t.spec->dimension && t.spec->value_problem(*value.si).empty();
-      if (ok) columns[v][k] = *value.si;
+      if (binder_.writes_number(v, value)) columns[v][k] = *value.si;
       else cases.fail(k);
     }
   // Per node, the column of each varied parameter: the last variable that writes it wins, as in apply().

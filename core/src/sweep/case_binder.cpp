@@ -17,6 +17,12 @@ namespace {
 
 std::string owner_of(const GraphNode& node) { return "node '" + node.name + "' (" + node.info().type + ")"; }
 
+// The rule a number of a case meets to be written into a number or integer parameter: a finite
+// number of the parameter's dimension inside its range. apply() says which part a value breaks.
+bool admits_number(const ParamSpec& spec, const CaseValue& value) {
+  return value.si && std::isfinite(*value.si) && value.dimension == spec.dimension && spec.value_problem(*value.si).empty();
+}
+
 // The start of a message about variable `name`: "sweep: 'rpm'" or, for a run's set=, "set rpm".
 std::string about(BinderUse use, const std::string& name) {
   return use == BinderUse::sweep ? "sweep: '" + name + "'" : "set " + name;
@@ -142,6 +148,13 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
       switch (spec.kind) {
         case ParamKind::number:
         case ParamKind::integer: {
+          if (admits_number(spec, value)) {
+            // Written in place: a number needs no new ParamValue.
+            slot.kind = spec.kind;
+            slot.number = spec.kind == ParamKind::integer ? static_cast<double>(static_cast<long>(*value.si)) : *value.si;
+            break;
+          }
+          // Refused: the message says which part of the rule the value breaks.
           if (!value.si) {
             std::string why = "not a number with a unit";
             try {
@@ -156,12 +169,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
           if (!(value.dimension == spec.dimension))
             throw SceneErrorAt(subject(), what() + ": " + param() + " is " + spec.dimension.describe() + " (" + spec.dimension.si_unit() +
                              "), the value is " + (value.dimension.dimensionless() ? "a bare number" : value.dimension.describe()));
-          if (const std::string problem = spec.value_problem(*value.si); !problem.empty())
-            throw SceneErrorAt(subject(), what() + ": " + param() + " " + problem);
-          // Written in place: a number needs no new ParamValue.
-          slot.kind = spec.kind;
-          slot.number = spec.kind == ParamKind::integer ? static_cast<double>(static_cast<long>(*value.si)) : *value.si;
-          break;
+          throw SceneErrorAt(subject(), what() + ": " + param() + " " + spec.value_problem(*value.si));
         }
         case ParamKind::choice:
           if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
@@ -174,6 +182,12 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
       }
     }
   }
+}
+
+bool CaseBinder::writes_number(std::size_t v, const CaseValue& value) const {
+  for (const Target& t : targets_[v])
+    if (t.spec->kind != ParamKind::number || !admits_number(*t.spec, value)) return false;
+  return true;
 }
 
 }  // namespace mechgraph

@@ -23,7 +23,8 @@ class DomainBlock;
 
 class BlockPlan {
  public:
-  /// The plan for sweeping `table` over `graph` (built from the scene, bound by `binder`). It is
+  /// The plan for sweeping over `graph` (built from the scene, bound by `binder`, which must
+  /// outlive the plan). It is
   /// usable when the binder writes numbers in place (no rebuilt graphs), every varied parameter is
   /// a number, every requested output a scalar, and every needed node offers BlockEvaluation and
   /// says yes to what is read of it; else why_not() says which node or value stands in the way.
@@ -58,6 +59,7 @@ class BlockPlan {
                                WorkerState& state) const;
 
  private:
+  const CaseBinder& binder_;
   std::vector<std::vector<CaseBinder::Target>> targets_;  // per variable
   std::vector<char> varied_;                  // per graph node: a case changes it
   std::string why_not_;

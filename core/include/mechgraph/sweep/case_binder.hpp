@@ -40,6 +40,10 @@ class CaseBinder {
   Slots bind(Graph& graph) const;
   /// apply() through slots bound on the graph: the same checks and messages.
   void apply(const Slots& slots, const Graph& graph, const std::vector<CaseValue>& values) const;
+  /// Whether apply() writes `value` of variable v, a number, into every real-number parameter it
+  /// reaches without refusing it (the block path of sweeps takes such values as columns, and
+  /// leaves any other to apply() and its message).
+  bool writes_number(std::size_t v, const CaseValue& value) const;
 
   bool rebuilds() const { return rebuild_; }
   /// Marks the nodes a case changes (the targets of the varied parameters and everything
