@@ -85,16 +85,30 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
                                                  long& evaluations) {
-  // The points each run set reads (as extreme() does), evaluated once each across the sets.
-  std::vector<std::pair<double, LiftDerivatives>> read;
-  auto at = [&](const CamLaw& law, double x) -> const LiftDerivatives& {
-    for (const auto& [y, d] : read)
-      if (y == x) return d;
+  // The points each run set reads (as extreme() does), evaluated once each across the sets: the
+  // first few kept on the stack (a law has a handful of runs), any more in a vector.
+  struct Read {
+    double x;
+    LiftDerivatives d;
+  };
+  constexpr std::size_t kept_on_stack = 32;
+  Read first_read[kept_on_stack];
+  std::size_t count = 0;
+  std::vector<Read> more_read;
+  auto at = [&](const CamLaw& law, double x) -> LiftDerivatives {
+    for (std::size_t i = 0; i < std::min(count, kept_on_stack); ++i)
+      if (first_read[i].x == x) return first_read[i].d;
+    for (const Read& r : more_read)
+      if (r.x == x) return r.d;
     ++evaluations;
-    read.emplace_back(x, law.at(x));
-    return read.back().second;
+    const Read r{x, law.at(x)};
+    if (count < kept_on_stack) first_read[count] = r;
+    else more_read.push_back(r);
+    ++count;
+    return r.d;
   };
   std::vector<Peaks> out;
+  out.reserve(runs.size());
   for (const CamLawRuns* r : runs) {
     const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
     Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
@@ -105,7 +119,7 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
       if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
       const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives& v = at(*r->law_, std::clamp(x, inner_lo, inner_hi));
+        const LiftDerivatives v = at(*r->law_, std::clamp(x, inner_lo, inner_hi));
         const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};

@@ -31,6 +31,15 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
   // plain parameters in place; the values inside lists do not change how long the lists are, so
   // the estimate of the bound copy holds for the rebuilt graph.
   const CaseBinder::Slots slots = binder.bind(copy);
+  // Whether some case changes a parameter of node i other than a real number (the conventions
+  // read integers; anything else counts as changing them).
+  std::vector<char> integers_vary(graph.nodes.size(), 0);
+  for (const std::vector<CaseBinder::Target>& targets : binder.targets())
+    for (const CaseBinder::Target& t : targets)
+      if (t.node < integers_vary.size() && (!t.spec || t.spec->kind != ParamKind::number)) integers_vary[t.node] = 1;
+  std::vector<RepeatedNodeEstimate> repeated;
+  repeated.reserve(varied.size());
+  for (std::size_t i : varied) repeated.emplace_back(copy, i, writing[i] != 0, integers_vary[i] != 0);
   double largest = -1;
   for (std::size_t c : cases) {
     if (c >= table.cases.size()) continue;
@@ -40,9 +49,9 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
       continue;  // this case is refused before it runs: no work
     }
     double work = fixed_work, memory = fixed_memory;
-    for (std::size_t i : varied) {
-      const NodeEstimate e = estimate_node(copy, i, sizes, writing[i] != 0, false);
-      sizes[i] = e.output_size;
+    for (std::size_t k = 0; k < varied.size(); ++k) {
+      const NodeEstimate e = repeated[k](copy, sizes);
+      sizes[varied[k]] = e.output_size;
       work += e.work;
       memory += e.memory;
     }
