@@ -10,7 +10,6 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
-#include <cstdio>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -210,14 +209,12 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     f.output_size = law.pieces;
     if (!law.driver.empty() && law.items + searches >= points) {
       f.driver = law.driver;
+    } else if (points >= searches) {
+      f.driver = "curve_points = " + std::to_string(static_cast<long>(points));
     } else {
-      char text[96];
-      if (points >= searches)
-        std::snprintf(text, sizeof text, "curve_points = %ld", static_cast<long>(points));
-      else
-        std::snprintf(text, sizeof text, "samples = %ld (per piece, %ld pieces)", static_cast<long>(samples),
-                      static_cast<long>(law.pieces));
-      f.driver = text;
+      f.driver.reserve(48);
+      f.driver.append("samples = ").append(std::to_string(static_cast<long>(samples)));
+      f.driver.append(" (per piece, ").append(std::to_string(static_cast<long>(law.pieces))).append(" pieces)");
     }
     return f;
   }

@@ -15,17 +15,27 @@ using numerics::one_sided_point;
 
 int sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 
+// CamLaw::at at an angle between the first and last edges of the runs, which are the event's
+// bounds inside (-pi, pi): no angle to reduce, and the bounds read without calling the law.
+LiftDerivatives at_edge_bounded(const CamLaw& law, const std::vector<double>& edges, double x) {
+  if (x <= edges.front() || x >= edges.back()) return {};
+  return law.evaluate_in_event(x);
+}
+
 }  // namespace
 
 std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
   if (order < 0 || order > 2) return std::nullopt;
   std::vector<double> breaks;
   if (!law.monotone_breaks(order, breaks)) return std::nullopt;
-  std::vector<double> edges{law.event_begin()};
+  const double end = law.event_end();
+  std::vector<double> edges;
+  edges.reserve(breaks.size() + 2);
+  edges.push_back(law.event_begin());
   for (double b : breaks)  // a cut outside the event or out of order would void the certificate: refuse it
-    if (!(b > edges.back()) || !(b < law.event_end())) return std::nullopt;
+    if (!(b > edges.back()) || !(b < end)) return std::nullopt;
     else edges.push_back(b);
-  edges.push_back(law.event_end());
+  edges.push_back(end);
   return CamLawRuns(law, order, std::move(edges));
 }
 
@@ -46,7 +56,7 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
   double x = a - ga * (b - a) / (gb - ga);
   if (!(x > std::min(a, b) && x < std::max(a, b))) x = 0.5 * (a + b);
   double step_before = std::abs(b - a), step = step_before;
-  LiftDerivatives d = law_->at(x);
+  LiftDerivatives d = at_edge_bounded(*law_, edges_, x);
   ++evaluations;
   double g = value_of(d) - level, slope = slope_of(d);
   for (int iteration = 0; iteration < 200 && g != 0.0; ++iteration) {
@@ -66,7 +76,7 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
       if (x == before) break;
     }
     if (std::abs(step) <= 2.0 * std::numeric_limits<double>::epsilon() * std::abs(x)) break;
-    d = law_->at(x);
+    d = at_edge_bounded(*law_, edges_, x);
     ++evaluations;
     g = value_of(d) - level;
     slope = slope_of(d);
@@ -76,7 +86,7 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
   return x;
 }
 
-double CamLawRuns::value(double x) const { return value_of(law_->at(x)); }
+double CamLawRuns::value(double x) const { return value_of(at_edge_bounded(*law_, edges_, x)); }
 
 numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
   const Peaks p = peaks({this}, a, b, evaluations).front();
@@ -95,13 +105,13 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
   Read first_read[kept_on_stack];
   std::size_t count = 0;
   std::vector<Read> more_read;
-  auto at = [&](const CamLaw& law, double x) -> LiftDerivatives {
+  auto at = [&](const CamLawRuns& runs, double x) -> LiftDerivatives {
     for (std::size_t i = 0; i < std::min(count, kept_on_stack); ++i)
       if (first_read[i].x == x) return first_read[i].d;
     for (const Read& r : more_read)
       if (r.x == x) return r.d;
     ++evaluations;
-    const Read r{x, law.at(x)};
+    const Read r{x, at_edge_bounded(*runs.law_, runs.edges_, x)};
     if (count < kept_on_stack) first_read[count] = r;
     else more_read.push_back(r);
     ++count;
@@ -119,7 +129,7 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
       if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
       const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives v = at(*r->law_, std::clamp(x, inner_lo, inner_hi));
+        const LiftDerivatives v = at(*r, std::clamp(x, inner_lo, inner_hi));
         const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};

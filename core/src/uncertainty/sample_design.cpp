@@ -26,14 +26,6 @@ double open_unit(std::uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) 
 // The streams of counter_hash: which use of random numbers a value belongs to.
 constexpr std::uint64_t stream_monte_carlo = 1, stream_lhs_jitter = 2, stream_lhs_permutation = 3, stream_sobol_shift = 4;
 
-std::string exact_text(double x, const Dimension& d) {
-  char buffer[40];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
-  std::string text(buffer, end);
-  if (!d.dimensionless()) text += " " + d.si_unit();
-  return text;
-}
-
 }  // namespace
 
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j) {

@@ -40,6 +40,10 @@ struct CaseValue {
   Dimension dimension;             // of the number
 };
 
+/// x in SI as text that reads back as exactly x: the shortest such digits and the SI unit of `d`
+/// ("0.0025 m"); the text of a generated case value.
+std::string exact_text(double x, const Dimension& d);
+
 /// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
 /// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.
 CaseValue read_case_value(const std::string& text, const std::string& context);
