@@ -100,6 +100,8 @@ std::string exact_text(double x, const Dimension& d) {
   return text;
 }
 
+std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
+
 namespace {
 
 // splitmix64: a small generator whose output is fixed by its definition on every platform.
@@ -166,12 +168,12 @@ void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
     // its column, or 1e308 m in mm, which overflows).
     const std::optional<UnitScale>& u = parse_unit_cached(unit);
     if (!u || !(u->dimension == value.dimension)) {
-      out += value.text;
+      out += value.written();
       return;
     }
     x = *value.si / u->scale - u->offset;
     if (!std::isfinite(x)) {
-      out += value.text;
+      out += value.written();
       return;
     }
   }

@@ -149,7 +149,7 @@ CaseTable make_study_cases(const StudySpec& spec) {
     std::vector<CaseValue> values(d);
     for (std::size_t j = 0; j < d; ++j) {
       const Dimension& dim = spec.parameters[j].marginal.dimension;
-      values[j] = {exact_text(x[j], dim), x[j], dim};
+      values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
     }
     return values;
   };
