@@ -178,7 +178,13 @@ bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const 
   // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
   // it. On the nose h = a cos t - (r0 - r2), t = |phi| <= alpha <= 90 deg (checked at
   // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
+  // The lift itself (order 0) rises on the whole rise and falls on the whole return: h' changes
+  // sign at the nose only, so the nose is its one cut.
   if (roller_radius_ > 0.0 || order < 0 || order > 2) return false;
+  if (order == 0) {
+    breaks = {0.0};
+    return true;
+  }
   const double alpha = switch_angle_;
   breaks = {-alpha, 0.0, alpha};
   if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {
