@@ -103,25 +103,36 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
                                                  long& evaluations) {
-  // The points each run set reads (as extreme() does), evaluated once each across the sets: the
-  // first few kept on the stack (a law has a handful of runs), any more in a vector.
+  // The points each run set reads (as extreme() does), evaluated once each across the sets. They
+  // are kept sorted by angle, so a point read before is found by bisection (the sets share most
+  // of their cuts): the first few on the stack (a law has a handful of runs), any more in a vector.
   struct Read {
     double x;
     LiftDerivatives d;
   };
   constexpr std::size_t kept_on_stack = 32;
-  Read first_read[kept_on_stack];
+  Read on_stack[kept_on_stack];
+  std::vector<Read> on_heap;
+  Read* read = on_stack;
   std::size_t count = 0;
-  std::vector<Read> more_read;
   auto at = [&](const CamLawRuns& runs, double x) -> LiftDerivatives {
-    for (std::size_t i = 0; i < std::min(count, kept_on_stack); ++i)
-      if (first_read[i].x == x) return first_read[i].d;
-    for (const Read& r : more_read)
-      if (r.x == x) return r.d;
+    Read* const end = read + count;
+    Read* const place = std::lower_bound(read, end, x, [](const Read& r, double y) { return r.x < y; });
+    if (place != end && place->x == x) return place->d;
     ++evaluations;
     const Read r{x, at_edge_bounded(*runs.law_, runs.edges_, x)};
-    if (count < kept_on_stack) first_read[count] = r;
-    else more_read.push_back(r);
+    const std::size_t where = static_cast<std::size_t>(place - read);
+    if (count == kept_on_stack && read == on_stack) {  // more than the stack holds: to the heap
+      on_heap.assign(on_stack, on_stack + count);
+      read = nullptr;
+    }
+    if (read == on_stack) {
+      std::move_backward(read + where, read + count, read + count + 1);
+      read[where] = r;
+    } else {
+      on_heap.insert(on_heap.begin() + static_cast<std::ptrdiff_t>(where), r);
+      read = on_heap.data();
+    }
     ++count;
     return r.d;
   };
