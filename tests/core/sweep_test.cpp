@@ -361,11 +361,18 @@ nodes:
   t: { type: test.table, params: { points: 4 } }
 outputs: [ s.sum, q.curve, t.curves ]
 )";
-  Prepared p = prepare(yaml, make_grid({parse_vary("len=1mm:4mm:3"), parse_vary("s.gain=1,3"), parse_vary("q.points=10,100000"),
+  // 4800 cases: more than one chunk of the parallel estimate.
+  Prepared p = prepare(yaml, make_grid({parse_vary("len=1mm:4mm:600"), parse_vary("s.gain=1,3"), parse_vary("q.points=10,100000"),
                                         parse_vary("t.points=7,9")}));
   std::vector<std::size_t> all(p.table.cases.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all);
+  for (unsigned threads : {2u, 3u}) {  // the same figures on any number of threads
+    const SweepEstimate on = estimate_cases(p.graph, *p.binder, p.table, all, threads);
+    CHECK(on.total.work == e.total.work);
+    CHECK(on.largest_memory == e.largest_memory);
+    CHECK(on.largest_case == e.largest_case);
+  }
   double work = 0, largest_memory = 0, largest_work = -1;
   std::size_t largest_case = 0;
   for (std::size_t c : all) {
