@@ -462,3 +462,11 @@ TEST_CASE("Sobol' indices of several outputs at once: each as alone, bit for bit
   shorter.f_a.pop_back();
   CHECK_THROWS_AS(sobol_indices({&outputs[0], &shorter}, 8, 0.9, 11, 1), std::invalid_argument);
 }
+
+TEST_CASE("Counter rows: the same numbers as counter_uniform, bit for bit", "[uncertainty]") {
+  for (std::uint64_t seed : {0ull, 1ull, 0xFFFFFFFFFFFFFFFFull})
+    for (std::uint64_t i : {0ull, 7ull, 1ull << 40}) {
+      const CounterRow row(seed, 11, i);
+      for (std::uint64_t j : {0ull, 1ull, 999ull, 1ull << 50}) CHECK(row(j) == counter_uniform(seed, 11, i, j));
+    }
+}

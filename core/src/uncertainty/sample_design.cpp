@@ -36,6 +36,11 @@ double counter_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t i
   return open_unit(counter_hash(seed, stream, i, j));
 }
 
+CounterRow::CounterRow(std::uint64_t seed, std::uint64_t stream, std::uint64_t i)
+    : prefix_(splitmix(splitmix(splitmix(seed) ^ stream) ^ i)) {}
+
+double CounterRow::operator()(std::uint64_t j) const { return open_unit(splitmix(prefix_ ^ j)); }
+
 UnitDesign::UnitDesign(SamplingMethod method, std::size_t n, std::size_t dims, std::uint64_t seed)
     : method_(method), n_(n), dims_(dims), seed_(seed) {
   if (method == SamplingMethod::latin_hypercube) {

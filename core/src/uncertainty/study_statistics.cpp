@@ -190,8 +190,7 @@ SobolEstimate estimate_drawn(const SobolRows& rows, const std::vector<std::uint3
   double n = 0.0, sum = 0.0, squares = 0.0;
   std::fill(first.begin(), first.end(), 0.0);
   std::fill(total.begin(), total.end(), 0.0);
-  for (std::size_t i = 0; i < count; ++i) {
-    if (times[i] == 0) continue;
+  for (std::size_t i = 0; i < count; ++i) {  // no branch on w = 0: its terms add +0, exactly nothing
     const double w = static_cast<double>(times[i]);
     const double* r = rows.row(i);
     const double a = r[0], b = r[1];
@@ -285,8 +284,9 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
       for (std::size_t r; (r = next.fetch_add(1)) < bootstrap;) {
         // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
         std::fill(times.begin(), times.end(), 0u);
+        const CounterRow draw(seed, stream_bootstrap, r);
         for (std::size_t i = 0; i < n; ++i)
-          ++times[std::min(static_cast<std::size_t>(counter_uniform(seed, stream_bootstrap, r, i) * static_cast<double>(n)), n - 1)];
+          ++times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1)];
         for (std::size_t o = 0; o < outputs; ++o) {
           const SobolEstimate e = estimate_drawn(prepared[o].rows, times, first_sums, total_sums);
           for (std::size_t j = 0; j < d; ++j) {
