@@ -12,6 +12,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 // The per-call state behind the opaque mg_block_ctx of node_block.h.
@@ -107,6 +108,23 @@ class ParamViews {
   std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
 };
 
+// An output block of a C node as the host keeps it: the C++ view that sweeps and pre-1.0 consumers
+// read, and the C block as it came (its owner released once, when the last holder lets go),
+// which C consumers get as it is, so that its producer may find its own block again.
+struct AdoptedBlock {
+  AdoptedBlock(const mg_object_block& c, BlockOwner&& o, std::shared_ptr<const DomainBlock> v)
+      : block(c), owner(std::move(o)), view(std::move(v)) {}
+  mg_object_block block;  // its owner is for its producer to recognise; `owner` releases it
+  BlockOwner owner;
+  std::shared_ptr<const DomainBlock> view;
+};
+// The deleter of the view handed to sweeps: it keeps the AdoptedBlock, and finds it again
+// (std::get_deleter) when the view is an input of another C node.
+struct KeepAdopted {
+  std::shared_ptr<const AdoptedBlock> adopted;
+  void operator()(const DomainBlock*) const {}
+};
+
 template <class Container>
 std::size_t index_of(const Container& items, std::string_view name) {
   for (std::size_t i = 0; i < items.size(); ++i)
@@ -154,11 +172,13 @@ class CBlockNodeType final : public NodeType, public BlockEvaluation {
         const BlockColumn c = params.number(info.params[i].name);
         columns[i] = {c.data, c.stride};
       }
-    // Inputs: scalar columns as they are, blocks of objects exported for the call (released after it).
+    // Inputs: scalar columns as they are; a block a C node made as it came, another exported for
+    // the call (released after it). The laws passed in are known when they come back out.
     std::vector<mg_block_input> c_inputs(info.inputs.size(), mg_block_input{{nullptr, 0}, nullptr});
     std::vector<mg_object_block> input_blocks(info.inputs.size());
     std::vector<BlockOwner> input_owners;
     input_owners.reserve(info.inputs.size());
+    KnownLaws known;
     for (std::size_t i = 0; i < info.inputs.size(); ++i) {
       const PortSpec& port = info.inputs[i];
       try {
@@ -166,10 +186,15 @@ class CBlockNodeType final : public NodeType, public BlockEvaluation {
           const BlockColumn c = inputs.scalar(port.name);
           c_inputs[i].scalar = {c.data, c.stride};
         } else if (port.kind == ValueKind::handle) {
-          input_blocks[i] = export_block(inputs.shared_handle<DomainBlock>(port.name), "");
-          input_owners.emplace_back(input_blocks[i].owner);
-          input_blocks[i].owner = {};  // borrowed by the plugin
+          const std::shared_ptr<const DomainBlock> block = inputs.shared_handle<DomainBlock>(port.name);
+          if (const KeepAdopted* adopted = std::get_deleter<KeepAdopted>(block)) {
+            input_blocks[i] = adopted->adopted->block;
+          } else {
+            input_blocks[i] = export_block(block, "");
+            input_owners.emplace_back(input_blocks[i].owner);
+          }
           c_inputs[i].objects = &input_blocks[i];
+          if (!known.objects) known = {input_blocks[i].objects, input_blocks[i].object_count, block.get()};
         }
       } catch (const NodeError&) {
         // not connected: {NULL, 0} and NULL
@@ -186,7 +211,8 @@ class CBlockNodeType final : public NodeType, public BlockEvaluation {
     const mg_block_args args{sizeof(mg_block_args), n,   fixed.data(),          columns.data(), c_inputs.data(),
                              scalar_outputs.data(),  object_outputs.data(), status.data(), &block_host, &call};
     const mg_status result = blocks_.evaluate_block(&c_type_, &args);
-    // Whatever the status, what was handed over is released once, after it is imported.
+    // Whatever the status, what was handed over is released once: with its C++ view when it is
+    // adopted, here when not.
     std::vector<BlockOwner> output_owners;
     output_owners.reserve(info.outputs.size());
     for (const mg_object_block& b : object_outputs) output_owners.emplace_back(b.owner);
@@ -195,7 +221,10 @@ class CBlockNodeType final : public NodeType, public BlockEvaluation {
     for (std::size_t i = 0; i < info.outputs.size(); ++i) {
       const PortSpec& port = info.outputs[i];
       if (port.kind != ValueKind::handle || object_outputs[i].struct_size == 0) continue;
-      outputs.set_handle(port.name, import_block(object_outputs[i], port.handle_kind, n, "output block '" + port.name + "'"));
+      std::shared_ptr<const DomainBlock> view =
+          import_block(object_outputs[i], port.handle_kind, n, "output block '" + port.name + "'", known);
+      const auto adopted = std::make_shared<const AdoptedBlock>(object_outputs[i], std::move(output_owners[i]), std::move(view));
+      outputs.set_handle(port.name, std::shared_ptr<const DomainBlock>(adopted->view.get(), KeepAdopted{adopted}));
     }
     for (std::size_t k = 0; k < n; ++k)
       if (status[k] != MG_OK) cases.fail(k);

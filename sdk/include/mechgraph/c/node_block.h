@@ -43,10 +43,13 @@ typedef struct mg_block_column {
    (c/domain/valve_motion_block.h: a valve motion block is its cases' cam laws and five figures);
    `figures` holds figure_count of them, each over the block's cases (stride 0 or 1). Without a
    block form the objects are the interface's own and there are no figures.
-   As an input: borrowed for the call, owner empty. As an output: handed over to the host with
-   one reference to each non-NULL object, which owner.release (called exactly once) gives back
-   with the arrays; owner.release NULL only for static storage that holds no references. Frozen
-   with mechgraph.node.block version 1. */
+   As an output: handed over to the host with one reference to each non-NULL object, which
+   owner.release (called exactly once, by the host) gives back with the arrays; owner.release NULL
+   only for static storage that holds no references. As an input: borrowed for the call; the host
+   may pass a producer's block on as it came, so the consumer never calls its owner. `origin`
+   identifies the producing library's SDK layer (as mg_object_vtbl::origin): a library that finds
+   its own origin on an input may take owner.ctx for its own block (no copy). Frozen with
+   mechgraph.node.block version 1. */
 typedef struct mg_object_block {
   uint32_t struct_size;
   size_t object_count;
@@ -54,6 +57,7 @@ typedef struct mg_object_block {
   const mg_block_column* figures;
   size_t figure_count;
   mg_owner owner;
+  const void* origin;
 } mg_object_block;
 
 /* What the host gives for each declared input: a scalar port's column, or an object port's block

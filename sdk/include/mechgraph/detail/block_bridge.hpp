@@ -77,13 +77,32 @@ inline mg_object_block export_block(const std::shared_ptr<const DomainBlock>& bl
     throw std::invalid_argument("a block of '" + std::string(block->kind()) + "' has no C form (c/node_block.h)");
   }
   mg_object_block out{sizeof(mg_object_block), e->objects.size(), e->objects.data(), e->figures.data(), e->figures.size(),
-                      {e.get(), &ExportedBlock::release}};
+                      {e.get(), &ExportedBlock::release}, &object_origin};
   e.release();
   return out;
 }
 
+/// Laws the importer already holds a view of: the laws of a block it passed in (its C objects
+/// and its C++ block, a CamLawBlock or a ValveMotionBlock), which come back in the blocks it gets
+/// out (a valve motion block's cams) and need no second view.
+struct KnownLaws {
+  const mg_object* const* objects = nullptr;
+  std::size_t count = 0;
+  const DomainBlock* block = nullptr;
+  // Case i's law when the C object `o` is the one passed in for it, else nullptr.
+  std::shared_ptr<const CamLaw> find(std::size_t i, const mg_object* o) const {
+    if (!objects || count == 0) return nullptr;
+    const std::size_t j = count == 1 ? 0 : i;
+    if (j >= count || objects[j] != o) return nullptr;
+    if (const auto* laws = dynamic_cast<const CamLawBlock*>(block)) return laws->shared(j);
+    if (const auto* motions = dynamic_cast<const ValveMotionBlock*>(block)) return motions->shared_cam(j);
+    return nullptr;
+  }
+};
+
 /// The laws of `in` (borrowed) as a CamLawBlock; `what` names the block in messages.
-inline std::shared_ptr<const CamLawBlock> import_laws(const mg_object_block& in, std::size_t cases, const std::string& what) {
+inline std::shared_ptr<const CamLawBlock> import_laws(const mg_object_block& in, std::size_t cases, const std::string& what,
+                                                      const KnownLaws& known = {}) {
   if (in.object_count != 1 && in.object_count != cases)
     throw std::invalid_argument(what + " holds " + std::to_string(in.object_count) + " objects for a block of " + std::to_string(cases) +
                                 " cases");
@@ -91,19 +110,23 @@ inline std::shared_ptr<const CamLawBlock> import_laws(const mg_object_block& in,
   std::vector<std::shared_ptr<const CamLaw>> laws(in.object_count);
   for (std::size_t i = 0; i < in.object_count; ++i) {
     if (!in.objects[i]) continue;  // a failed case
+    if ((laws[i] = known.find(i, in.objects[i]))) continue;
     laws[i] = std::dynamic_pointer_cast<const CamLaw>(import_object(in.objects[i], MG_CAM_LAW, 1));
     if (!laws[i]) throw std::invalid_argument(what + ": object " + std::to_string(i) + " is no cam law");
   }
   return std::make_shared<const CamLawBlock>(std::move(laws));
 }
 
-/// The C++ block of `in` (borrowed) for a port of kind `kind` in a block of `cases` cases.
+/// The C++ block of `in` (borrowed) for a port of kind `kind` in a block of `cases` cases: the very
+/// C++ block when this library exported it, else a view of its objects and a copy of its figures.
 inline std::shared_ptr<const DomainBlock> import_block(const mg_object_block& in, std::string_view kind, std::size_t cases,
-                                                       const std::string& what) {
+                                                       const std::string& what, const KnownLaws& known = {}) {
   if (in.struct_size < sizeof(mg_object_block)) throw std::invalid_argument(what + " is a malformed mg_object_block (struct_size)");
-  const SdkInterface* known = sdk_interface_of_kind(kind);
-  const std::size_t position = known ? static_cast<std::size_t>(known - sdk_interfaces) : SIZE_MAX;
-  if (position == 0) return import_laws(in, cases, what);  // mechgraph.cam_law
+  if (in.origin == &object_origin && in.owner.ctx && in.owner.release == &ExportedBlock::release)
+    return static_cast<const ExportedBlock*>(in.owner.ctx)->keep;  // made here: no C hop
+  const SdkInterface* sdk = sdk_interface_of_kind(kind);
+  const std::size_t position = sdk ? static_cast<std::size_t>(sdk - sdk_interfaces) : SIZE_MAX;
+  if (position == 0) return import_laws(in, cases, what, known);  // mechgraph.cam_law
   if (position == 1) {                                     // mechgraph.valve_motion: its cams and five figures
     if (in.figure_count < MG_VALVE_MOTION_BLOCK_FIGURES || !in.figures)
       throw std::invalid_argument(what + " has " + std::to_string(in.figure_count) + " figures, not the " +
@@ -114,7 +137,7 @@ inline std::shared_ptr<const DomainBlock> import_block(const mg_object_block& in
       one = one && in.figures[f].stride == 0;
     }
     const std::size_t rows = one ? 1 : cases;
-    auto block = std::make_shared<ValveMotionBlock>(import_laws(in, cases, what), rows);
+    auto block = std::make_shared<ValveMotionBlock>(import_laws(in, cases, what, known), rows);
     const auto copy = [&](std::vector<double>& to, int figure) {
       const mg_block_column& c = in.figures[figure];
       for (std::size_t i = 0; i < rows; ++i) to[i] = c.values[i * c.stride];
