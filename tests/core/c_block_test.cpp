@@ -3,7 +3,9 @@
 // the host). The built-in cams and valvetrain built on MECHGRAPH_PLUGIN_1 (test_plugins/builtin_sdk1)
 // give the stage 1-3 sweep the very rows the pre-1.0 build gives, in blocks and case by case; a
 // case a node refuses is redone alone and carries its message; the conformance kit's block check
-// runs through C; the objects of blocks (test_sdk1_objects_a/b) are released exactly once.
+// runs through C; the objects of blocks (test_sdk1_objects_a/b) are released exactly once; a plugin
+// written in C (test_plugins/c_blocks.c) offers blocks, and one that breaks the contract has every
+// case run alone with the same rows.
 #include "sweep_support.hpp"
 #include "test_support.hpp"
 
@@ -195,4 +197,31 @@ outputs: [ b.lift_at_half, a.lift_at_half, a.native, b.native, a.integral ]
   }
   CHECK(live_objects("test_sdk1_objects_a") == 0);
   CHECK(live_objects("test_sdk1_objects_b") == 0);
+}
+
+TEST_CASE("blocks through C: a plugin written in C offers blocks; one that breaks the contract runs case by case",
+          "[sweep][blocks][sdk1]") {
+  // b reads a's y as a column; x of a varies, x of b is fixed. x = 20 is refused by a.
+  const char* scene = R"(params: { x: 2 }
+nodes:
+  a: { type: cblk.square, params: { x: $x } }
+  b: { type: cblk.square, params: { x: 3 }, inputs: { offset: a.y } }
+outputs: [ a.y, b.y ]
+)";
+  for (const char* plugin : {"test_c_blocks", "test_c_blocks_broken"}) {
+    INFO(plugin);
+    PluginRegistry registry;
+    registry.load_file(test_plugin(plugin));
+    const Prepared p = prepare(scene, make_grid({parse_vary("x=1,2,20,-4,5")}), registry);
+    REQUIRE(BlockPlan(p.graph, *p.binder).usable());
+    const Swept blocks = sweep(p, 4);
+    const Swept alone = sweep(p, 0);
+    require_same_rows(blocks, alone);
+    CHECK(blocks.summary.failed == 1);
+    REQUIRE(blocks.rows.size() == 5);
+    CHECK_THAT(blocks.rows[2].error, Contains("x above 10 is refused here") && Contains("node 'a'"));
+    CHECK(blocks.rows[3].outputs[1].as_scalar() == 16.0 + 9.0);
+    // The broken one's blocks are dropped whole (a counter it does not declare): no case from a block.
+    CHECK(blocks.summary.in_blocks == (std::string(plugin) == "test_c_blocks" ? 4u : 0u));
+  }
 }
