@@ -71,9 +71,9 @@ struct Swept {
   SweepSummary summary;
 };
 
-Swept sweep(const Prepared& p, std::size_t block_size) {
+Swept sweep(const Prepared& p, std::size_t block_size, unsigned threads = 1) {
   SweepOptions options;
-  options.threads = 1;
+  options.threads = threads;
   options.block_size = block_size;
   for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
   MemoCache cache;
@@ -121,6 +121,7 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   CHECK(c_alone.summary.in_blocks == 0);
   require_same_rows(c_blocks, c_alone);
   require_same_rows(c_blocks, sweep(pre, 64));
+  require_same_rows(c_blocks, sweep(c, 16, 2));  // two threads, smaller blocks
   // Only the speed varies: each cam's law block is one law for every case (object_count 1).
   const auto speeds = [] { return make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}); };
   const Swept constant_cams = sweep(prepare(stages123(), speeds(), sdk1_registry()), 4);

@@ -122,7 +122,7 @@ struct BlockExport {
         if (a->scalar_outputs[i]) {
           const auto it = outputs.scalars().find(port.name);
           std::copy_n(it->second.data(), n, a->scalar_outputs[i]);
-        } else if (port.kind == ValueKind::handle) {
+        } else if (port.kind == ValueKind::handle && a->host->wanted(a->ctx, static_cast<std::uint32_t>(i))) {
           const auto it = outputs.handles().find(port.name);
           if (it != outputs.handles().end() && it->second) a->object_outputs[i] = export_block(it->second, info.type);
         }
