@@ -1,5 +1,7 @@
 #include <mechgraph/domain/cam_law_runs.hpp>
 
+#include "piece_points.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,8 +12,8 @@ namespace {
 
 // Where a run's one-sided values are read: numerics::one_sided_point, as the generic search reads
 // its knots (1e-13 of the width inside, at least 4 ulps, at most the middle).
-using numerics::has_interior;
-using numerics::one_sided_point;
+using numerics::detail::has_interior;
+using numerics::detail::one_sided_point;
 
 int sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 

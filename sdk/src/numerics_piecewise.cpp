@@ -2,6 +2,8 @@
 
 #include <mechgraph/numerics/chebyshev.hpp>
 
+#include "piece_points.hpp"
+
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -43,17 +45,9 @@ int starting_intervals(int samples) {
 
 }  // namespace
 
-double one_sided_point(double from, double to) {
-  const double width = std::abs(to - from), toward = to > from ? 1.0 : -1.0;
-  const double inset = std::max(1e-13 * width, 4.0 * eps * std::max(std::abs(from), std::abs(to)));
-  const double mid = from + 0.5 * (to - from);
-  double x = from + toward * inset;
-  if (toward * (x - mid) > 0.0) x = mid;
-  if (x == from) x = std::nextafter(from, to);  // a piece of two ulps: its middle
-  return x;
-}
+double one_sided_point(double from, double to) { return detail::one_sided_point(from, to); }
 
-bool has_interior(double a, double b) { return std::nextafter(a, b) < b; }
+bool has_interior(double a, double b) { return detail::has_interior(a, b); }
 
 SmoothPieces::SmoothPieces(Sampler sample, std::size_t count, std::span<const double> knots, int samples_per_piece)
     : sample_(std::move(sample)), count_(count), scratch_(count), slopes_(count) {

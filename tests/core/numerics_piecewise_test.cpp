@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -56,4 +57,28 @@ TEST_CASE("the extremes of a function are found alike at any size of its values 
     CHECK_THAT(pieces.minimum(0).value, WithinRel(-size, 1e-14));
     CHECK(pieces.work().unresolved == 0);
   }
+}
+
+TEST_CASE("has_interior and one_sided_point step by ulps as std::nextafter does", "[numerics]") {
+  // The searches step to the next double without the library call; the reference is nextafter.
+  const double tiny = std::numeric_limits<double>::denorm_min(), big = std::numeric_limits<double>::max();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> values{0.0, -0.0, tiny, -tiny, 1e-310, -1e-310, 1e-300, 0.5, 1.0, -1.0, 3.0, -2.5, 1e300, big, -big, inf, -inf};
+  for (double a : values)
+    for (double b : values) {
+      INFO(a << " -> " << b);
+      CHECK(has_interior(a, b) == (std::nextafter(a, b) < b));
+      if (!std::isfinite(a) || !std::isfinite(b) || a == b) continue;
+      const double x = one_sided_point(a, b);
+      CHECK(x != a);
+      CHECK(std::abs(x - a) <= std::abs(b - a));  // never beyond the other end
+      CHECK((b > a ? x > a : x < a));
+    }
+  // Two adjacent doubles: no interior; three: the middle one is each end's one-sided point.
+  const double one_up = std::nextafter(1.0, 2.0), two_up = std::nextafter(one_up, 2.0);
+  CHECK_FALSE(has_interior(1.0, one_up));
+  CHECK(has_interior(1.0, two_up));
+  CHECK(one_sided_point(1.0, two_up) == one_up);
+  CHECK(one_sided_point(two_up, 1.0) == one_up);
+  CHECK(one_sided_point(-tiny, tiny) == 0.0);
 }
