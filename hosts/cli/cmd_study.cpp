@@ -277,8 +277,9 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   std::unique_ptr<StudyOutcome> outcome;
   if (vm.count("rows")) {
     // The design again (it depends on the seed alone), the values from the rows.
-    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs);
-    outcome->threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers);
+    outcome->threads = workers;
     outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->graph, outcome->table, outcome->columns);
     finish_study(*outcome);
   } else {

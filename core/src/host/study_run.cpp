@@ -192,7 +192,8 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
-                                                  const std::string& seed, const std::optional<std::string>& outputs) {
+                                                  const std::string& seed, const std::optional<std::string>& outputs,
+                                                  unsigned threads) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
@@ -201,7 +202,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
   check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
   outcome->columns = study_columns(outcome->graph);
-  outcome->table = make_study_cases(outcome->spec);
+  outcome->table = make_study_cases(outcome->spec, threads);
   return outcome;
 }
 
@@ -217,11 +218,11 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
                                               unsigned threads, const std::atomic<bool>* stop) {
-  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs);
+  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads);
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables);
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   outcome->threads = threads;
   check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);

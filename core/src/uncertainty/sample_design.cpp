@@ -1,10 +1,14 @@
 #include <mechgraph/uncertainty/sample_design.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/worker_threads.hpp>
 
 #include <boost/random/sobol.hpp>
 
 #include <algorithm>
+#include <mutex>
+#include <exception>
+#include <atomic>
 #include <charconv>
 #include <memory>
 #include <cmath>
@@ -122,7 +126,7 @@ std::vector<double> cholesky(const StudySpec& spec) {
 
 }  // namespace
 
-CaseTable make_study_cases(const StudySpec& spec) {
+CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   const std::size_t d = spec.parameters.size(), n = spec.samples;
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
   if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_case_cells)
@@ -134,43 +138,63 @@ CaseTable make_study_cases(const StudySpec& spec) {
                  (spec.sensitivity ? ", Saltelli design (" + std::to_string(per_sample) + " cases a sample)" : "");
   const UnitDesign design(spec.method, n, spec.sensitivity ? 2 * d : d, spec.seed);
   const std::vector<double> l = spec.correlations.empty() ? std::vector<double>{} : cholesky(spec);
-  table.cases.reserve(n * per_sample);
-  std::vector<double> u(design.dims()), z(d), a(d), b(d);
-  const auto to_values = [&](const double* unit, std::vector<double>& x) {
-    if (l.empty()) {
-      for (std::size_t j = 0; j < d; ++j) x[j] = spec.parameters[j].marginal.quantile(unit[j]);
-      return;
+  table.cases.resize(n * per_sample);
+  // Sample i fills rows i * per_sample ...: samples are independent (each point of the design is
+  // fixed by its index), so chunks of them run on `threads` workers with the same table.
+  constexpr std::size_t samples_per_chunk = 4096;
+  const std::size_t chunks = (n + samples_per_chunk - 1) / samples_per_chunk;
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::exception_ptr failure;
+  const unsigned workers = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(chunks, 1)));
+  run_on_workers(workers, [&](unsigned) {
+    try {
+      std::vector<double> u(design.dims()), z(d), a(d), b(d), ab(d);
+      const auto to_values = [&](const double* unit, std::vector<double>& x) {
+        if (l.empty()) {
+          for (std::size_t j = 0; j < d; ++j) x[j] = spec.parameters[j].marginal.quantile(unit[j]);
+          return;
+        }
+        // Gaussian copula: normal scores, correlated by L, back to (0, 1), through each quantile.
+        for (std::size_t j = 0; j < d; ++j) z[j] = standard_normal_quantile(unit[j]);
+        for (std::size_t j = 0; j < d; ++j) {
+          double s = 0.0;
+          for (std::size_t k = 0; k <= j; ++k) s += l[j * d + k] * z[k];
+          const double v = std::clamp(standard_normal_cdf(s), 0x1.0p-60, 1.0 - 0x1.0p-53);
+          x[j] = spec.parameters[j].marginal.quantile(v);
+        }
+      };
+      const auto row = [&](const std::vector<double>& x) {
+        std::vector<CaseValue> values(d);
+        for (std::size_t j = 0; j < d; ++j) {
+          const Dimension& dim = spec.parameters[j].marginal.dimension;
+          values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
+        }
+        return values;
+      };
+      for (std::size_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
+        for (std::size_t i = chunk * samples_per_chunk; i < std::min(n, (chunk + 1) * samples_per_chunk); ++i) {
+          std::vector<CaseValue>* out = table.cases.data() + i * per_sample;
+          design.point(i, u.data());
+          to_values(u.data(), a);
+          out[0] = row(a);
+          if (!spec.sensitivity) continue;
+          to_values(u.data() + d, b);
+          out[1] = row(b);
+          for (std::size_t j = 0; j < d; ++j) {
+            ab = a;
+            ab[j] = b[j];
+            out[2 + j] = row(ab);
+          }
+        }
+      }
+    } catch (...) {
+      std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = chunks;
     }
-    // Gaussian copula: normal scores, correlated by L, back to (0, 1), through each quantile.
-    for (std::size_t j = 0; j < d; ++j) z[j] = standard_normal_quantile(unit[j]);
-    for (std::size_t j = 0; j < d; ++j) {
-      double s = 0.0;
-      for (std::size_t k = 0; k <= j; ++k) s += l[j * d + k] * z[k];
-      const double v = std::clamp(standard_normal_cdf(s), 0x1.0p-60, 1.0 - 0x1.0p-53);
-      x[j] = spec.parameters[j].marginal.quantile(v);
-    }
-  };
-  const auto row = [&](const std::vector<double>& x) {
-    std::vector<CaseValue> values(d);
-    for (std::size_t j = 0; j < d; ++j) {
-      const Dimension& dim = spec.parameters[j].marginal.dimension;
-      values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
-    }
-    return values;
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    design.point(i, u.data());
-    to_values(u.data(), a);
-    table.cases.push_back(row(a));
-    if (!spec.sensitivity) continue;
-    to_values(u.data() + d, b);
-    table.cases.push_back(row(b));
-    for (std::size_t j = 0; j < d; ++j) {
-      std::vector<double> ab = a;
-      ab[j] = b[j];
-      table.cases.push_back(row(ab));
-    }
-  }
+  });
+  if (failure) std::rethrow_exception(failure);
   return table;
 }
 

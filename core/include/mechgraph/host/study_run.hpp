@@ -68,11 +68,13 @@ struct StudyOutcome {
 /// `parameters`, which are merged by name); `block` may be absent.
 RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block);
 
-/// Reads the study (`block` over the scene's), builds and checks its graph and makes its design,
-/// running nothing: the outcome's spec, scene, graph, columns and table.
+/// Reads the study (`block` over the scene's), builds and checks its graph and makes its design
+/// (on `threads` workers, the same table on any number), running nothing: the outcome's spec,
+/// scene, graph, columns and table.
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
-                                                  const std::string& seed, const std::optional<std::string>& outputs);
+                                                  const std::string& seed, const std::optional<std::string>& outputs,
+                                                  unsigned threads = 1);
 
 /// Analyses outcome.data into outcome.answers and outcome.json.
 void finish_study(StudyOutcome& outcome);

@@ -54,6 +54,6 @@ class UnitDesign {
 /// Every case of the study as a sweep's cases (the parameter names --set uses, values in SI as
 /// exact text), `origin` naming the design and seed. Throws SceneError when the correlations are
 /// not a valid correlation matrix (naming the first of them).
-CaseTable make_study_cases(const StudySpec& spec);
+CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 
 }  // namespace mechgraph
