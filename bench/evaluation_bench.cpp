@@ -9,6 +9,7 @@
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
+#include <mechgraph/work_estimate.hpp>
 
 #include "bench_support.hpp"
 
@@ -127,9 +128,11 @@ uncertainty:
     lash:   { uniform: { lower: 0.1 mm, upper: 0.4 mm } }
 nodes:)");
   const SceneSpec scene = parse_scene(yaml, "stages123_study.yaml");
+  WorkBudget budget;  // a study's, as `mechgraph study` sets it
+  budget.max_work = sweep_default_max_work;
   std::size_t cases = 0;
   for (auto _ : state) {
-    const auto outcome = host::run_scene_study(scene, registry(), {}, std::nullopt, "", "", "", std::nullopt, WorkBudget{},
+    const auto outcome = host::run_scene_study(scene, registry(), {}, std::nullopt, "", "", "", std::nullopt, budget,
                                                static_cast<unsigned>(state.range(0)), nullptr);
     cases = outcome->answers.cases;
     benchmark::DoNotOptimize(outcome->answers.outputs.data());
