@@ -179,37 +179,50 @@ SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pi
   return e;
 }
 
-// The same estimators over a resample given as the number of times each base sample was drawn
-// (`times`, summing to N): one pass in the order of the rows, each row weighted by its count, with
-// the variance from the weighted sums of squares, sum w (a^2 + b^2) - 2N mean^2 (the rows are
-// centred on the mean of all outputs, so the two terms do not cancel). It streams the rows once,
-// where the draws in the order drawn would read a random row each time.
-SobolEstimate estimate_drawn(const SobolRows& rows, const std::vector<std::uint32_t>& times, std::vector<double>& first,
-                             std::vector<double>& total) {
-  const std::size_t d = rows.width - 2, count = times.size();
-  double n = 0.0, sum = 0.0, squares = 0.0;
-  std::fill(first.begin(), first.end(), 0.0);
-  std::fill(total.begin(), total.end(), 0.0);
-  for (std::size_t i = 0; i < count; ++i) {  // no branch on w = 0: its terms add +0, exactly nothing
-    const double w = static_cast<double>(times[i]);
+// The same estimators over resamples given as the number of times each base sample was drawn
+// (`times`, `count` resamples side by side: times[i * count + k] for resample k, each summing to
+// N): one pass in the order of the rows, each row weighted by each resample's count, with the
+// variance from the weighted sums of squares, sum w (a^2 + b^2) - 2N mean^2 (the rows are centred
+// on the mean of all outputs, so the two terms do not cancel). It streams the rows once for
+// `count` resamples, where the draws in the order drawn would read a random row each time; each
+// resample's sums are the same, term by term and in the same order, as it alone would give.
+constexpr std::size_t resamples_at_once = 8;
+
+void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size_t count, SobolEstimate* out) {
+  const std::size_t d = rows.width - 2, samples = rows.values.size() / rows.width;
+  double n[resamples_at_once] = {}, sum[resamples_at_once] = {}, squares[resamples_at_once] = {};
+  std::vector<double> first(d * resamples_at_once, 0.0), total(d * resamples_at_once, 0.0);
+  double w[resamples_at_once] = {};
+  for (std::size_t i = 0; i < samples; ++i) {  // no branch on w = 0: its terms add +0, exactly nothing
+    for (std::size_t k = 0; k < count; ++k) w[k] = static_cast<double>(times[i * count + k]);
     const double* r = rows.row(i);
-    const double a = r[0], b = r[1];
-    n += w;
-    sum += w * (a + b);
-    squares += w * (a * a + b * b);
+    const double a = r[0], b = r[1], ab_sum = a + b, ab_squares = a * a + b * b;
+    for (std::size_t k = 0; k < count; ++k) {
+      n[k] += w[k];
+      sum[k] += w[k] * ab_sum;
+      squares[k] += w[k] * ab_squares;
+    }
     for (std::size_t j = 0; j < d; ++j) {
-      const double ab = r[2 + j];
-      first[j] += w * (b * (ab - a));
-      total[j] += w * ((a - ab) * (a - ab));
+      const double ab = r[2 + j], first_term = b * (ab - a), total_term = (a - ab) * (a - ab);
+      double* f = first.data() + j * resamples_at_once;
+      double* t = total.data() + j * resamples_at_once;
+      for (std::size_t k = 0; k < count; ++k) {
+        f[k] += w[k] * first_term;
+        t[k] += w[k] * total_term;
+      }
     }
   }
-  const double mean = sum / (2 * n);
-  SobolEstimate e{std::max(0.0, squares - 2 * n * mean * mean) / (2 * n - 1), std::vector<double>(d), std::vector<double>(d)};
-  for (std::size_t j = 0; j < d; ++j) {
-    e.first[j] = e.variance > 0 ? first[j] / n / e.variance : 0.0;
-    e.total[j] = e.variance > 0 ? total[j] / (2 * n) / e.variance : 0.0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double mean = sum[k] / (2 * n[k]);
+    SobolEstimate& e = out[k];
+    e.variance = std::max(0.0, squares[k] - 2 * n[k] * mean * mean) / (2 * n[k] - 1);
+    e.first.assign(d, 0.0);
+    e.total.assign(d, 0.0);
+    for (std::size_t j = 0; j < d; ++j) {
+      e.first[j] = e.variance > 0 ? first[j * resamples_at_once + k] / n[k] / e.variance : 0.0;
+      e.total[j] = e.variance > 0 ? total[j * resamples_at_once + k] / (2 * n[k]) / e.variance : 0.0;
+    }
   }
-  return e;
 }
 
 // The percentile interval of `draws` at `confidence` (type 7 quantiles of the sorted draws).
@@ -279,20 +292,25 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
   std::exception_ptr failure;
   run_on_workers(static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, bootstrap))), [&](unsigned) {
     try {
-      std::vector<std::uint32_t> times(n);
-      std::vector<double> first_sums(d), total_sums(d);
-      for (std::size_t r; (r = next.fetch_add(1)) < bootstrap;) {
-        // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
-        std::fill(times.begin(), times.end(), 0u);
-        const CounterRow draw(seed, stream_bootstrap, r);
-        for (std::size_t i = 0; i < n; ++i)
-          ++times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1)];
+      // Resamples in groups drawn side by side: one pass over each output's rows serves a group.
+      std::vector<std::uint32_t> times(n * resamples_at_once);
+      SobolEstimate estimates[resamples_at_once];
+      for (std::size_t first_r; (first_r = next.fetch_add(resamples_at_once)) < bootstrap;) {
+        const std::size_t count = std::min(resamples_at_once, bootstrap - first_r);
+        std::fill(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(n * count), 0u);
+        for (std::size_t k = 0; k < count; ++k) {
+          // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
+          const CounterRow draw(seed, stream_bootstrap, first_r + k);
+          for (std::size_t i = 0; i < n; ++i)
+            ++times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1) * count + k];
+        }
         for (std::size_t o = 0; o < outputs; ++o) {
-          const SobolEstimate e = estimate_drawn(prepared[o].rows, times, first_sums, total_sums);
-          for (std::size_t j = 0; j < d; ++j) {
-            first_draws[slot(o, j, r)] = e.first[j];
-            total_draws[slot(o, j, r)] = e.total[j];
-          }
+          estimate_drawn(prepared[o].rows, times.data(), count, estimates);
+          for (std::size_t k = 0; k < count; ++k)
+            for (std::size_t j = 0; j < d; ++j) {
+              first_draws[slot(o, j, first_r + k)] = estimates[k].first[j];
+              total_draws[slot(o, j, first_r + k)] = estimates[k].total[j];
+            }
         }
       }
     } catch (...) {
