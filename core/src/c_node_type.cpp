@@ -8,9 +8,12 @@
 #include <mechgraph/cancellation.hpp>
 #include <mechgraph/errors.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -330,6 +333,45 @@ class CallViews {
   std::vector<std::unique_ptr<ObjectReference>> objects_;
 };
 
+// `n` elements of one call's C arguments: on the stack up to N (no allocation for the usual node),
+// on the heap beyond. Elements are left uninitialised: the caller writes each one.
+template <class T, std::size_t N>
+class CallArray {
+ public:
+  explicit CallArray(std::size_t n) : data_(n <= N ? stack_.data() : (heap_ = std::make_unique_for_overwrite<T[]>(n)).get()) {}
+  CallArray(const CallArray&) = delete;
+  CallArray& operator=(const CallArray&) = delete;
+  T* data() { return data_; }
+  T& operator[](std::size_t i) { return data_[i]; }
+
+ private:
+  std::array<T, N> stack_;
+  std::unique_ptr<T[]> heap_;
+  T* data_;
+};
+
+// Indices of `items` in the order of their names: a set (a std::map by name) and the declaration
+// are then matched in one pass, with no lookup per name.
+template <class Spec>
+std::vector<std::size_t> by_name(const std::vector<Spec>& items) {
+  std::vector<std::size_t> order(items.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return items[a].name < items[b].name; });
+  return order;
+}
+
+// For each declared item (by_name order), the entry of `set` (a std::map by name) with its name,
+// or nullptr: f(declared index, const mapped_type* or nullptr).
+template <class Spec, class Map, class F>
+void match_by_name(const std::vector<Spec>& items, const std::vector<std::size_t>& order, const Map& set, F&& f) {
+  auto it = set.begin();
+  for (const std::size_t k : order) {
+    const std::string& name = items[k].name;
+    while (it != set.end() && it->first < name) ++it;
+    f(k, it != set.end() && it->first == name ? &it->second : nullptr);
+  }
+}
+
 // The node type's mechgraph.node.forecast/1 table (node_forecast.h), asked for once, or nullptr
 // when it has none: a 1.0 writer's mg_node_type may end before `query`, query may be NULL or
 // answer NULL, and a table without its function counts as none.
@@ -345,6 +387,8 @@ class CNodeType final : public NodeType {
       : type_(type),
         forecast_(node_forecast(type)),
         info_(std::move(declaration.info)),
+        params_by_name_(by_name(info_.params)),
+        inputs_by_name_(by_name(info_.inputs)),
         input_versions_(std::move(declaration.input_interface_versions)),
         output_versions_(std::move(declaration.output_interface_versions)) {}
   const NodeInfo& info() const override { return info_; }
@@ -355,7 +399,8 @@ class CNodeType final : public NodeType {
   std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const override {
     if (!forecast_) return std::nullopt;
     CallViews views;
-    const std::vector<mg_param_value> c_params = param_views(params, views);
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    param_views(params, views, c_params.data());
     std::vector<double> c_sizes(info_.inputs.size(), 0.0);
     for (std::size_t i = 0; i < info_.inputs.size(); ++i)
       if (const auto it = sizes.find(info_.inputs[i].name); it != sizes.end()) c_sizes[i] = it->second;
@@ -365,15 +410,25 @@ class CNodeType final : public NodeType {
     return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
   }
 
+  // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
+  // matched with the declaration in one pass each (by_name), not looked up name by name.
   void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs, EvalContext& context) const override {
     CallViews views;
-    const std::vector<mg_param_value> c_params = param_views(params, views);
-    std::vector<std::vector<mg_value>> values(info_.inputs.size());
-    std::vector<mg_input> c_inputs(info_.inputs.size());
-    for (std::size_t i = 0; i < info_.inputs.size(); ++i) {
-      const std::string& port = info_.inputs[i].name;
-      for (std::size_t k = 0, n = inputs.count(port); k < n; ++k) values[i].push_back(views.value(inputs.value(port, k)));
-      c_inputs[i] = {values[i].data(), values[i].size()};
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    param_views(params, views, c_params.data());
+    const std::size_t ports = info_.inputs.size();
+    CallArray<const std::vector<Value>*, 8> connected(ports);
+    std::size_t count = 0;
+    match_by_name(info_.inputs, inputs_by_name_, inputs.all(), [&](std::size_t k, const std::vector<Value>* values) {
+      connected[k] = values;
+      count += values ? values->size() : 0;
+    });
+    CallArray<mg_value, 16> values(count);
+    CallArray<mg_input, 8> c_inputs(ports);
+    for (std::size_t i = 0, next = 0; i < ports; ++i) {
+      c_inputs[i] = {values.data() + next, connected[i] ? connected[i]->size() : 0};
+      if (connected[i])
+        for (const Value& v : *connected[i]) values[next++] = views.value(v);
     }
     const mg_eval_args args{sizeof(mg_eval_args), c_params.data(), c_inputs.data()};
     mg_eval_ctx call{info_, output_versions_, outputs, context, false, {}, {}, {}, {}};
@@ -397,17 +452,17 @@ class CNodeType final : public NodeType {
   }
 
  private:
-  std::vector<mg_param_value> param_views(const ParamSet& params, CallViews& views) const {
-    std::vector<mg_param_value> c_params;
-    c_params.reserve(info_.params.size());
-    for (const ParamSpec& spec : info_.params)
-      c_params.push_back(params.has(spec.name) ? views.param(params.get(spec.name), spec) : CallViews::absent(spec));
-    return c_params;
+  // c_params[i] for each declared parameter i.
+  void param_views(const ParamSet& params, CallViews& views, mg_param_value* c_params) const {
+    match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) {
+      c_params[k] = value ? views.param(*value, info_.params[k]) : CallViews::absent(info_.params[k]);
+    });
   }
 
   const mg_node_type& type_;
   const mg_node_forecast_v1* forecast_;
   NodeInfo info_;
+  std::vector<std::size_t> params_by_name_, inputs_by_name_;
   std::vector<std::uint32_t> input_versions_, output_versions_;
 };
 
