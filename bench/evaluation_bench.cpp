@@ -194,6 +194,33 @@ void BM_NodeCallEntries(benchmark::State& state) {
 BENCHMARK(BM_NodeCallEntries)->ArgNames({"entry", "adds"})->ArgsProduct({{0, 1}, {0, 8}})->Unit(benchmark::kNanosecond);
 #endif
 
+#if defined(MECHGRAPH_TEST_STROKE_PLUGIN) && defined(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN)
+// A node that makes tables (pump.stroke: a 181-row motion table, port events, seal gaps and a scalar), through
+// the pre-1.0 entry (0) and MECHGRAPH_PLUGIN_1 (1): what the boundary costs a node with real output.
+void BM_StrokeEntries(benchmark::State& state) {
+  static const PluginRegistry pre_1_0 = [] {
+    PluginRegistry r;
+    r.load_file(MECHGRAPH_TEST_STROKE_PLUGIN);
+    return r;
+  }();
+  static const PluginRegistry sdk1 = [] {
+    PluginRegistry r;
+    r.load_file(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN);
+    return r;
+  }();
+  const Graph g = build_graph(parse_scene("title: a pump\nnodes:\n  p: { type: pump.stroke, params: { phase: 30 deg } }\n"
+                                          "outputs: [ p.motion, p.gaps, p.port_events, p.peak_angle ]\n",
+                                          "stroke.yaml"),
+                             state.range(0) == 0 ? pre_1_0 : sdk1);
+  for (auto _ : state) {
+    MemoCache cache;
+    benchmark::DoNotOptimize(evaluate(g, cache));
+  }
+  state.SetLabel(state.range(0) == 0 ? "pre-1.0 entry" : "MECHGRAPH_PLUGIN_1");
+}
+BENCHMARK(BM_StrokeEntries)->ArgName("entry")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+#endif
+
 BENCHMARK_MAIN();
 
 namespace {

@@ -244,9 +244,9 @@ class CallViews {
         break;
       case ParamKind::record_list: {
         out.kind = MG_PARAM_RECORD_LIST;
-        std::vector<mg_record>& records = add(records_);
+        std::vector<mg_record>& records = add(stores().records_);
         for (const Record& r : v.records) {
-          std::vector<mg_param_value>& fields = add(fields_);
+          std::vector<mg_param_value>& fields = add(stores().fields_);
           for (const ParamSpec& f : spec.fields) {
             const auto it = r.find(f.name);
             fields.push_back(it != r.end() ? param(it->second, f) : absent(f));
@@ -271,10 +271,10 @@ class CallViews {
       case ValueKind::scalar: out.kind = MG_VALUE_SCALAR; out.u.scalar = v.as_scalar(); break;
       case ValueKind::series: {
         const Series& s = v.as_series();
-        mg_series& c = add(series_);
+        mg_series& c = add(stores().series_);
         c = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), to_c_dim(s.axis_dimension), nullptr, {}};
         if (!s.labels.empty()) {
-          std::vector<const char*>& labels = add(labels_);
+          std::vector<const char*>& labels = add(stores().labels_);
           for (const std::string& l : s.labels) labels.push_back(l.c_str());
           c.labels = labels.data();
         }
@@ -284,11 +284,11 @@ class CallViews {
       }
       case ValueKind::table: {
         const Table& t = v.as_table();
-        std::vector<mg_column>& channels = add(columns_);
+        std::vector<mg_column>& channels = add(stores().columns_);
         for (const Table::Column& col : t.channels) channels.push_back(column(col));
-        std::vector<mg_mark>& marks = add(marks_);
+        std::vector<mg_mark>& marks = add(stores().marks_);
         for (const Table::Mark& m : t.axis_marks) marks.push_back({m.label.c_str(), m.value});
-        mg_table& c = add(tables_);
+        mg_table& c = add(stores().tables_);
         c = mg_table{sizeof(mg_table), t.axis.values.size(), column(t.axis), channels.data(), channels.size(),
                      (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u) |
                          (t.turns_clockwise ? MG_TABLE_TURNS_CW : 0u),
@@ -300,7 +300,7 @@ class CallViews {
       case ValueKind::handle: {
         out.kind = MG_VALUE_OBJECT;
         // A foreign object's original, or a pre-1.0 plugin's C++ object exported for the call.
-        out.u.object = objects_.emplace_back(std::make_unique<ObjectReference>(export_object(v.as_handle(), "", "")))->object;
+        out.u.object = stores().objects_.emplace_back(std::make_unique<ObjectReference>(export_object(v.as_handle(), "", "")))->object;
         break;
       }
     }
@@ -317,20 +317,29 @@ class CallViews {
   static T& add(std::vector<std::unique_ptr<T>>& store) {
     return *store.emplace_back(std::make_unique<T>());
   }
-  std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
-  std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
-  std::vector<std::unique_ptr<mg_series>> series_;
-  std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
-  std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
-  std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
-  std::vector<std::unique_ptr<mg_table>> tables_;
   // Owns one reference for the call.
   struct ObjectReference {
     const mg_object* object;
     explicit ObjectReference(const mg_object* o) : object(o) {}
     ~ObjectReference() { object->vtbl->release(object); }
   };
-  std::vector<std::unique_ptr<ObjectReference>> objects_;
+  // Made only when a call needs one of them (a record list, a series, a table, an object): a call
+  // of scalars and numbers neither makes nor destroys any.
+  struct Stores {
+    std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
+    std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
+    std::vector<std::unique_ptr<mg_series>> series_;
+    std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
+    std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
+    std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
+    std::vector<std::unique_ptr<mg_table>> tables_;
+    std::vector<std::unique_ptr<ObjectReference>> objects_;
+  };
+  Stores& stores() {
+    if (!stores_) stores_ = std::make_unique<Stores>();
+    return *stores_;
+  }
+  std::unique_ptr<Stores> stores_;
 };
 
 // `n` elements of one call's C arguments: on the stack up to N (no allocation for the usual node),

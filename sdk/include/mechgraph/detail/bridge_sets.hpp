@@ -168,7 +168,8 @@ class BridgeSets {
   /// emptied, and an output the node does not declare removed with the set made again.
   void release() noexcept {
     for (std::vector<Value>* values : input_slots_) values->clear();
-    for (const auto& [slot, index] : output_slots_) *slot = unset_output();
+    for (const auto& [slot, index] : output_slots_)
+      if (!is_unset(*slot)) *slot = unset_output();
     outputs.clear_notes();
     if (outputs.all().size() != output_slots_.size()) {
       try {
