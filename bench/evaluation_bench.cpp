@@ -1,9 +1,11 @@
 // How fast the framework evaluates the valve-train study, cold and through the memo cache, and
 // what a sweep over engine speed costs when only the speed-dependent nodes re-run.
 //   build/bench/mechgraph_bench --benchmark_min_time=0.2
+#include <mechgraph/bounded_read.hpp>
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/graph.hpp>
+#include <mechgraph/host/study_run.hpp>
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
@@ -102,6 +104,39 @@ void BM_SweepStages123(benchmark::State& state) {
   state.counters["failed"] = static_cast<double>(failed) / state.iterations();
 }
 BENCHMARK(BM_SweepStages123)->Args({1, 0})->Args({1, 256})->Args({2, 0})->Args({2, 256})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// An uncertainty study of the stage 1-3 graph (bench/peers/stages123_study.yaml): six uniform
+// parameters, scrambled Sobol' points with Saltelli's design (8 evaluations a base sample) and
+// Sobol' indices with 200 bootstrap resamples, everything a `mechgraph study` does but reading the
+// scene and printing. Args: threads, base samples. evaluations/s counts the study's cases.
+void BM_StudyStages123(benchmark::State& state) {
+  const std::string samples = std::to_string(state.range(1));
+  std::string yaml = read_bounded_file(std::string(MECHGRAPH_SOURCE_DIR) + "/bench/peers/stages123_study.yaml");
+  yaml.replace(yaml.find("\nnodes:"), 7, R"(
+uncertainty:
+  method: sobol
+  samples: )" + samples + R"(
+  seed: 1
+  sensitivity: true
+  parameters:
+    lift:   { uniform: { lower: 7 mm, upper: 9 mm } }
+    action: { uniform: { lower: 120 deg, upper: 140 deg } }
+    accel:  { uniform: { lower: 15 deg, upper: 21 deg } }
+    r0:     { uniform: { lower: 24 mm, upper: 28 mm } }
+    rpm:    { uniform: { lower: 4000 rpm, upper: 7000 rpm } }
+    lash:   { uniform: { lower: 0.1 mm, upper: 0.4 mm } }
+nodes:)");
+  const SceneSpec scene = parse_scene(yaml, "stages123_study.yaml");
+  std::size_t cases = 0;
+  for (auto _ : state) {
+    const auto outcome = host::run_scene_study(scene, registry(), {}, std::nullopt, "", "", "", std::nullopt, WorkBudget{},
+                                               static_cast<unsigned>(state.range(0)), nullptr);
+    cases = outcome->answers.cases;
+    benchmark::DoNotOptimize(outcome->answers.outputs.data());
+  }
+  state.counters["evaluations/s"] = benchmark::Counter(static_cast<double>(cases * state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_StudyStages123)->Args({1, 2500})->Args({2, 2500})->Args({2, 125000})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 // The time-area knob: exact quadrature against the source's rectangle sum.
 void BM_TimeAreaMethod(benchmark::State& state) {

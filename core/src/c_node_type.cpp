@@ -1,5 +1,6 @@
 #include "c_node_type.hpp"
 
+#include "c_block_node_type.hpp"
 #include "c_node_description.hpp"
 
 #include <mechgraph/c/node_forecast.h>
@@ -490,10 +491,11 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
                       " bytes (struct_size), shorter than the " + std::to_string(offsetof(mg_node_type, query)) +
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
-  return std::make_shared<const CNodeType>(type, c_node_declaration(type, where));
+  return with_c_blocks(std::make_shared<const CNodeType>(type, c_node_declaration(type, where)), type);
 }
 
 PortInterfaceVersions port_interface_versions(const NodeType& type) {
+  if (const NodeType* behind = c_type_behind_blocks(type)) return port_interface_versions(*behind);
   if (const auto* c = dynamic_cast<const CNodeType*>(&type)) return c->interface_versions();
   const auto bridged = [](const std::vector<PortSpec>& ports) {
     std::vector<std::uint32_t> versions;

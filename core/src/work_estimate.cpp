@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <set>
 
 namespace mechgraph {
@@ -84,11 +85,11 @@ std::vector<char> writing_nodes(const Graph& graph) {
   return writing;
 }
 
-NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vector<double>& output_sizes, bool writes,
-                           bool with_terms) {
-  const GraphNode& n = graph.nodes[index];
-  NodeEstimate e;
-  InputSizes sizes;
+namespace {
+
+// The size of each connected input (the largest of its sources' outputs, at least 1), written
+// into `sizes` (one entry per connected port); returns the largest.
+double input_sizes(const GraphNode& n, const std::vector<double>& output_sizes, InputSizes& sizes) {
   double largest_input = 1;
   for (const GraphNode::Input& in : n.inputs) {
     double size = 0;
@@ -98,41 +99,103 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
     sizes[in.port] = size;
     largest_input = std::max(largest_input, size);
   }
-  std::optional<WorkForecast> forecast;
+  return largest_input;
+}
+
+std::optional<WorkForecast> forecast_of(const GraphNode& n, const InputSizes& sizes) {
   try {
-    forecast = n.type->type->forecast(n.params, sizes);
+    return n.type->type->forecast(n.params, sizes);
   } catch (...) {
     // The contract says never; a plugin that throws anyway is counted by the conventions.
-    forecast.reset();
+    return std::nullopt;
   }
+}
+
+// The rows its curves are written with when the type gives a forecast: the points convention.
+double forecast_rows(const GraphNode& n) {
   double rows = 0;
-  if (forecast) {
-    e.work = figure(forecast->items);
-    e.memory = figure(forecast->memory);
-    e.output_size = std::max(figure(forecast->output_size), 1.0);
-    if (with_terms)
-      e.terms.push_back({n.name + (forecast->driver.empty() ? std::string() : "." + forecast->driver) + " (" + n.info().type + ")",
-                         e.work, 0, e.memory});
-    // The rows its curves are written with still follow the points convention.
-    for (const auto& [name, value] : n.params.all())
-      if (value.kind == ParamKind::integer && ends_with(name, "points")) rows = std::max(rows, value.number);
+  for (const auto& [name, value] : n.params.all())
+    if (value.kind == ParamKind::integer && ends_with(name, "points")) rows = std::max(rows, value.number);
+  return rows;
+}
+
+void take_forecast(const GraphNode& n, const WorkForecast& forecast, NodeEstimate& e, bool with_terms) {
+  e.work = figure(forecast.items);
+  e.memory = figure(forecast.memory);
+  e.output_size = std::max(figure(forecast.output_size), 1.0);
+  if (with_terms)
+    e.terms.push_back({n.name + (forecast.driver.empty() ? std::string() : "." + forecast.driver) + " (" + n.info().type + ")",
+                       e.work, 0, e.memory});
+}
+
+// A type without a forecast: the conventions, then every input's pieces beyond the first, which
+// the node's searches resolve. Returns the rows of its curves.
+double take_conventions(const GraphNode& n, const InputSizes& sizes, double largest_input, NodeEstimate& e, bool with_terms) {
+  double rows = 0;
+  count_by_conventions(n, e, rows, with_terms);
+  e.output_size = largest_input;
+  for (const auto& [port, size] : sizes) {
+    if (!(size > 1)) continue;
+    const double work = size * inputs_items_per_piece, memory = size * memory_per_input_piece;
+    e.work += work;
+    e.memory += memory;
+    if (with_terms) e.terms.push_back({n.name + "." + port + " (an input of " + amount(size) + " pieces)", work, 0, memory});
+  }
+  return rows;
+}
+
+void take_rows(const GraphNode& n, double rows, NodeEstimate& e, bool with_terms) {
+  const double r = rows > 0 ? rows : default_rows;
+  e.bytes = r * bytes_per_row;
+  if (with_terms) e.terms.push_back({n.name + "'s curves (" + amount(r) + " rows)", 0, e.bytes, 0});
+}
+
+}  // namespace
+
+NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vector<double>& output_sizes, bool writes,
+                           bool with_terms) {
+  const GraphNode& n = graph.nodes[index];
+  NodeEstimate e;
+  InputSizes sizes;
+  const double largest_input = input_sizes(n, output_sizes, sizes);
+  double rows = 0;
+  if (const std::optional<WorkForecast> forecast = forecast_of(n, sizes)) {
+    take_forecast(n, *forecast, e, with_terms);
+    rows = forecast_rows(n);
   } else {
-    count_by_conventions(n, e, rows, with_terms);
-    e.output_size = largest_input;
-    // Every input's pieces beyond the first are resolved by the node's searches.
-    for (const auto& [port, size] : sizes) {
-      if (!(size > 1)) continue;
-      const double work = size * inputs_items_per_piece, memory = size * memory_per_input_piece;
-      e.work += work;
-      e.memory += memory;
-      if (with_terms) e.terms.push_back({n.name + "." + port + " (an input of " + amount(size) + " pieces)", work, 0, memory});
-    }
+    rows = take_conventions(n, sizes, largest_input, e, with_terms);
   }
-  if (writes) {
-    const double r = rows > 0 ? rows : default_rows;
-    e.bytes = r * bytes_per_row;
-    if (with_terms) e.terms.push_back({n.name + "'s curves (" + amount(r) + " rows)", 0, e.bytes, 0});
+  if (writes) take_rows(n, rows, e, with_terms);
+  return e;
+}
+
+RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary)
+    : index_(index), writes_(writes), integers_vary_(integers_vary) {
+  const GraphNode& n = graph.nodes[index];
+  input_sizes(n, std::vector<double>(graph.nodes.size(), 1.0), sizes_);  // the keys, once
+  if (!integers_vary_) rows_ = forecast_rows(n);
+}
+
+NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vector<double>& output_sizes) {
+  const GraphNode& n = graph.nodes[index_];
+  // The same map as estimate_node's: every key is written again (its entries stay allocated).
+  const double largest_input = input_sizes(n, output_sizes, sizes_);
+  NodeEstimate e;
+  double rows = 0;
+  if (const std::optional<WorkForecast> forecast = forecast_of(n, sizes_)) {
+    take_forecast(n, *forecast, e, false);
+    rows = integers_vary_ ? forecast_rows(n) : rows_;
+  } else if (!integers_vary_ && conventions_ && conventions_sizes_ == sizes_) {
+    // The conventions read integer parameters, list lengths and input sizes only: none changed.
+    e = *conventions_;
+    rows = conventions_rows_;
+  } else {
+    rows = take_conventions(n, sizes_, largest_input, e, false);
+    conventions_ = e;
+    conventions_sizes_ = sizes_;
+    conventions_rows_ = rows;
   }
+  if (writes_) take_rows(n, rows, e, false);
   return e;
 }
 

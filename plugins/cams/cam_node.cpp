@@ -189,12 +189,19 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   // interpolated at summary_items_per_piece points or so, samples raising the start), then the
   // svaj table's points.
   std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes&) const override {
+    // A sweep asks this once per case: one lookup per parameter, one string made.
+    const auto value = [&params](std::string_view name) -> const ParamValue* {
+      auto it = params.all().find(name);
+      return it != params.all().end() ? &it->second : nullptr;
+    };
     CamLawCost law = cost_ ? cost_(params) : CamLawCost{};
-    if (params.has("ramp") && params.text("ramp") != "none") law.pieces += 4.0;  // a ramp's pieces each side
-    const double samples = params.has("samples") ? static_cast<double>(params.integer("samples")) : 16.0;
+    if (const ParamValue* ramp = value("ramp"); ramp && ramp->text != "none") law.pieces += 4.0;  // a ramp's pieces each side
+    const ParamValue* samples_value = value("samples");
+    const double samples = samples_value ? static_cast<double>(static_cast<long>(samples_value->number)) : 16.0;
     const double per_piece = summary_items_per_piece * std::max(1.0, samples / 32.0);
     const double searches = law.pieces * law.search_factor * per_piece;
-    const double points = params.has("curve_points") ? static_cast<double>(params.integer("curve_points")) : 0.0;
+    const ParamValue* points_value = value("curve_points");
+    const double points = points_value ? static_cast<double>(static_cast<long>(points_value->number)) : 0.0;
     WorkForecast f;
     f.items = law.items + searches + points;
     f.memory = law.memory + law.pieces * law.search_factor * summary_bytes_per_piece * std::max(1.0, samples / 32.0) +
@@ -205,8 +212,9 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     } else if (points >= searches) {
       f.driver = "curve_points = " + std::to_string(static_cast<long>(points));
     } else {
-      f.driver = "samples = " + std::to_string(static_cast<long>(samples)) + " (per piece, " +
-                 std::to_string(static_cast<long>(law.pieces)) + " pieces)";
+      f.driver.reserve(48);
+      f.driver.append("samples = ").append(std::to_string(static_cast<long>(samples)));
+      f.driver.append(" (per piece, ").append(std::to_string(static_cast<long>(law.pieces))).append(" pieces)");
     }
     return f;
   }
@@ -242,8 +250,8 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
 
   // The law of the parameters, ramps included; `basics` and `ramp` as it was made from them.
   std::shared_ptr<const CamLaw> make_law(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx,
-                                         CamBasics& basics, RampSpec& ramp) const {
-    ramp = read_ramp(params);
+                                         CamBasics& basics, RampSpec& ramp, const RampSpec* known_ramp = nullptr) const {
+    ramp = known_ramp ? *known_ramp : read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
     if (ramp.type != RampType::none && !(has_lift && has_action))
       throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
@@ -316,15 +324,23 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     std::vector<std::pair<std::string, double*>> extras;
     for (const std::string& port : extra_scalars_)
       if (double* column = out.scalar(port)) extras.emplace_back(port, column);
+    // The columns, found once for the block (null: not read downstream).
+    double* const max_lift = out.scalar("max_lift");
+    double* const peak_columns[] = {out.scalar("max_velocity"), out.scalar("max_acceleration"), out.scalar("min_acceleration"),
+                                    out.scalar("accel_angle"), out.scalar("min_curvature_radius")};
     double evaluations = 0.0;
+    // The ramp is read once for the block when no case changes it (a refusal stays per case).
+    const bool ramp_varies = p.varies("ramp_height") || p.varies("ramp_length");
+    std::optional<RampSpec> block_ramp;
     for_each_live_case(cases, [&](std::size_t k) {
       const ParamSet& params = p.of_case(k);
       CamBasics basics;
       RampSpec ramp;
       OutputSet extra;
-      laws[k] = make_law(params, no_inputs, extra, ctx, basics, ramp);
+      if (!ramp_varies && !block_ramp) block_ramp = read_ramp(params);
+      laws[k] = make_law(params, no_inputs, extra, ctx, basics, ramp, ramp_varies ? nullptr : &*block_ramp);
       const CamLaw& law = *laws[k];
-      if (double* column = out.scalar("max_lift")) column[k] = law.max_lift();
+      if (max_lift) max_lift[k] = law.max_lift();
       for (const auto& [port, column] : extras) {
         auto it = extra.all().find(port);
         if (it == extra.all().end() || it->second.kind() != ValueKind::scalar) {
@@ -336,17 +352,17 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
       if (!summary_wanted) return;
       const CamSummary s = summarize(law, static_cast<int>(params.integer("samples")), parts);
       evaluations += static_cast<double>(s.evaluations);
-      const auto put = [&](const char* port, bool known, double value) {
-        if (double* column = out.scalar(port)) {
+      const auto put = [&](double* column, bool known, double value) {
+        if (column) {
           if (!known) return cases.fail(k);
           column[k] = value;
         }
       };
-      put("max_velocity", s.peaks_known, s.max_velocity);
-      put("max_acceleration", s.peaks_known, s.max_acceleration);
-      put("min_acceleration", s.peaks_known, s.min_acceleration);
-      put("accel_angle", s.phase_known, s.accel_angle);
-      put("min_curvature_radius", s.curvature_exact, s.min_curvature_radius);
+      put(peak_columns[0], s.peaks_known, s.max_velocity);
+      put(peak_columns[1], s.peaks_known, s.max_acceleration);
+      put(peak_columns[2], s.peaks_known, s.min_acceleration);
+      put(peak_columns[3], s.phase_known, s.accel_angle);
+      put(peak_columns[4], s.curvature_exact, s.min_curvature_radius);
     });
     ctx.report_work("evaluations", evaluations);
     out.set_handle("law", std::make_shared<const CamLawBlock>(std::move(laws)));

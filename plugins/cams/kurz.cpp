@@ -68,9 +68,12 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   const double phi_2 = jerk_continuous ? pi * pi * phi_3 * phi_3 / (12.0 * phi_y) : phi_y - sigma * phi_y;
   const double phi_1 = jerk_continuous ? phi_y - phi_2 : sigma * phi_y;
   const char* split_parameter = rise_split ? "rise_split" : "accel_angle";
-  std::vector<ShapeSegment> positive{{std::make_shared<const QuarterSineRise>(), phi_1},
-                                     {std::make_shared<const QuarterCosineFall>(), phi_2}};
-  std::vector<ShapeSegment> negative{{std::make_shared<const ParabolaToVertex>(), phi_3}};
+  // The shapes hold no state: one of each serves every law (a sweep makes a law per case).
+  static const auto quarter_sine = std::make_shared<const QuarterSineRise>();
+  static const auto quarter_cosine = std::make_shared<const QuarterCosineFall>();
+  static const auto parabola = std::make_shared<const ParabolaToVertex>();
+  std::vector<ShapeSegment> positive{{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
+  std::vector<ShapeSegment> negative{{parabola, phi_3}};
   std::shared_ptr<const ShocklessLaw> law;
   try {
     law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,

@@ -169,6 +169,8 @@ std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& expone
         series->square_primitive[static_cast<std::size_t>(n[i] + n[j]) + 1] += c[i] * c[j] / (n[i] + n[j] + 1);
     }
   }
+  series->lift_primitive_sparse = SparsePolynomial(series->lift_primitive);
+  series->square_primitive_sparse = SparsePolynomial(series->square_primitive);
   // q_0..q_3 all have degree n_max - 5: one table, four coefficients per power.
   series->interleaved.resize(series->q[0].size());
   for (std::size_t m = 0; m < 4; ++m)
@@ -196,21 +198,53 @@ PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radiu
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)),
       series_(series_for(exponents_)) {}
 
+SparsePolynomial::SparsePolynomial(const std::vector<long double>& dense) {
+  int previous = -1;
+  for (std::size_t k = dense.size(); k-- > 0;) {
+    if (dense[k] == 0.0L) continue;
+    if (previous >= 0) terms_.back().gap = gap_index(previous - static_cast<int>(k));
+    terms_.push_back({dense[k], 0});
+    previous = static_cast<int>(k);
+  }
+  if (previous >= 0) terms_.back().gap = gap_index(previous);
+}
+
+std::size_t SparsePolynomial::gap_index(int gap) {
+  for (std::size_t i = 0; i < gaps_.size(); ++i)
+    if (gaps_[i] == gap) return i;
+  gaps_.push_back(gap);
+  return gaps_.size() - 1;
+}
+
+long double SparsePolynomial::operator()(long double u) const {
+  // p(u) = (((c_1 u^g_1 + c_2) u^g_2 + c_3) ... ) u^g_last, with c_1 the highest power's.
+  constexpr std::size_t few = 8;
+  long double on_stack[few];
+  std::vector<long double> more;
+  long double* power = gaps_.size() <= few ? on_stack : (more.resize(gaps_.size()), more.data());
+  for (std::size_t i = 0; i < gaps_.size(); ++i) {
+    long double p = 1.0L, base = u;  // u^gap by squaring
+    for (int e = gaps_[i]; e > 0; e >>= 1, base *= base)
+      if (e & 1) p *= base;
+    power[i] = p;
+  }
+  long double sum = 0.0L;
+  for (const Term& t : terms_) sum = (sum + t.coefficient) * power[t.gap];
+  return sum;
+}
+
 bool PolydyneLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
   // h = H x(|phi| / phi_p): the primitives S(phi) = sign(phi) phi_p F(|phi| / phi_p) with the
-  // polynomial primitives F of x and x^2 (from the nose, so no cancellation near the seat).
-  auto horner = [](const std::vector<long double>& p, long double u) {
-    long double sum = 0.0L;
-    for (std::size_t k = p.size(); k-- > 0;) sum = sum * u + p[k];
-    return sum;
-  };
+  // polynomial primitives F of x and x^2 (from the nose, so no cancellation near the seat), by
+  // their nonzero terms.
   const long double phi_p = half_action_, H = max_lift_;
-  auto S = [&](double phi, const std::vector<long double>& p) {
+  auto S = [&](double phi, const SparsePolynomial& p) {
     const long double u = std::min<long double>(std::abs(static_cast<long double>(phi)) / phi_p, 1.0L);
-    return (phi < 0.0 ? -1.0L : 1.0L) * phi_p * horner(p, u);
+    return (phi < 0.0 ? -1.0L : 1.0L) * phi_p * p(u);
   };
-  integral = static_cast<double>(H * (S(b, series_->lift_primitive) - S(a, series_->lift_primitive)));
-  integral_of_square = static_cast<double>(H * H * (S(b, series_->square_primitive) - S(a, series_->square_primitive)));
+  integral = static_cast<double>(H * (S(b, series_->lift_primitive_sparse) - S(a, series_->lift_primitive_sparse)));
+  integral_of_square =
+      static_cast<double>(H * H * (S(b, series_->square_primitive_sparse) - S(a, series_->square_primitive_sparse)));
   return true;
 }
 

@@ -39,6 +39,27 @@ std::vector<int> validate_polydyne_exponents(const std::vector<double>& exponent
 std::vector<std::pair<std::int64_t, std::int64_t>> polydyne_coefficients_exact(const std::vector<int>& exponents);
 
 /// The polynomials q_m (x^(m)(u)/h = (1 - u)^(5-m) q_m(u), m = 0..5) of one exponent set.
+/// A polynomial of few nonzero terms (the primitives of a polydyne and of its square: a handful
+/// of powers up to 2 n_max + 1), by Horner's rule over the gaps between its powers, each power of
+/// u a gap needs made once per evaluation: about 40 long double operations where the dense rule
+/// takes 2 n_max + 2.
+class SparsePolynomial {
+ public:
+  SparsePolynomial() = default;
+  explicit SparsePolynomial(const std::vector<long double>& dense);  // monomial coefficients
+  long double operator()(long double u) const;
+
+ private:
+  struct Term {
+    long double coefficient;
+    std::size_t gap;  // index into gaps_ of the gap down to the next lower power (or to 0)
+  };
+  std::size_t gap_index(int gap);
+
+  std::vector<Term> terms_;  // nonzero, highest power first
+  std::vector<int> gaps_;    // the distinct gaps
+};
+
 struct PolydyneSeries {
   std::array<std::vector<long double>, 6> q;        // monomial coefficients, exact to long double
   std::vector<std::array<double, 4>> interleaved;   // q_0..q_3 in double, power by power
@@ -49,6 +70,7 @@ struct PolydyneSeries {
   std::array<std::vector<double>, 4> sign_changes;
   /// int_0^U x du and int_0^U x^2 du as polynomials in U (monomial coefficients).
   std::vector<long double> lift_primitive, square_primitive;
+  SparsePolynomial lift_primitive_sparse, square_primitive_sparse;  // the same, by their nonzero terms
 };
 
 class PolydyneLaw final : public CamLaw {

@@ -265,6 +265,12 @@ bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const
   if (order < 0 || order > 2) return false;
   for (const Piece& p : pieces_)
     if (!p.shape->monotone()) return false;
+  if (order == 0) {
+    // The velocity is 0 at the start, rises through the positive phase and falls back to 0 at the
+    // nose through the negative one (mirrored on the return): h' changes sign at the nose only.
+    breaks = {0.0};
+    return true;
+  }
   breaks = breakpoints_;
   if (!std::binary_search(breaks.begin(), breaks.end(), 0.0)) breaks.insert(std::upper_bound(breaks.begin(), breaks.end(), 0.0), 0.0);
   return true;

@@ -99,9 +99,10 @@ class ShocklessLaw final : public CamLaw {
   std::vector<double> breakpoints() const override { return breakpoints_; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
-  /// With monotone shapes: the junctions and the nose, for every order (the shapes are non-negative
-  /// bumps, A+ > 0 > A-: h'' keeps one sign per phase, so h' rises then falls back to 0 at the
-  /// nose and the lift is monotone on each side of it).
+  /// With monotone shapes: the junctions and the nose for the velocity and the acceleration, the
+  /// nose alone for the lift (the shapes are non-negative bumps, A+ > 0 > A-: h'' keeps one sign
+  /// per phase, so h' rises then falls back to 0 at the nose and the lift is monotone on each side
+  /// of it).
   bool monotone_breaks(int order, std::vector<double>& breaks) const override;
   /// With shapes that give their moments: the integrals of h and h^2 in closed form.
   bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;

@@ -55,7 +55,11 @@ ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* p
   // Direction of the common normal N - F = (a + e cos phi_p, e sin phi_p), from the nose.
   g.junction_normal = std::atan2(e * std::sin(g.half_action), g.nose_centre + e * std::cos(g.half_action));
   g.flank_angle = g.half_action - g.junction_normal;
-  // Each closing condition on its own, so the message names the one that failed.
+  // Each closing condition on its own, so the message names the one that failed (the stream is
+  // made only then: a sweep makes a contour per case).
+  const bool closes = std::isfinite(g.flank_radius) && e > 0.0 && g.nose_centre > 0.0 && g.flank_radius > g.nose_radius &&
+                      g.flank_angle > 0.0 && g.junction_normal > 0.0 && !(g.junction_normal > 0.5 * pi);
+  if (closes) return g;
   std::ostringstream msg;
   if (!std::isfinite(g.flank_radius) || !(e > 0.0))
     msg << "the flank radius " << mm(g.flank_radius) << " must be finite and larger than the base radius";
@@ -174,7 +178,13 @@ bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const 
   // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
   // it. On the nose h = a cos t - (r0 - r2), t = |phi| <= alpha <= 90 deg (checked at
   // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
+  // The lift itself (order 0) rises on the whole rise and falls on the whole return: h' changes
+  // sign at the nose only, so the nose is its one cut.
   if (roller_radius_ > 0.0 || order < 0 || order > 2) return false;
+  if (order == 0) {
+    breaks = {0.0};
+    return true;
+  }
   const double alpha = switch_angle_;
   breaks = {-alpha, 0.0, alpha};
   if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {

@@ -15,6 +15,7 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <string>
 #include <cmath>
 #include <numbers>
@@ -177,12 +178,20 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     double* mean_flow_area = out.scalar("mean_flow_area");
     double* open_duration = out.scalar("open_duration");
     long evaluations = 0;
+    // The seat is read once for the block when no case changes it (a refusal stays per case).
+    bool seat_varies = false;
+    for (const char* name : {"seat_diameter", "seat_angle", "seat_width", "port_diameter", "stem_diameter"})
+      seat_varies = seat_varies || p.varies(name);
+    std::optional<FlowArea> block_area;
     for_each_live_case(cases, [&](std::size_t k) {
       const std::size_t r = motions.row(k);
       const double w = motions.camshaft_speed[r], i = motions.rocker_ratio[r];
       const CamValveMotion motion(motions.shared_cam(k), w, i, motions.lash[r], OpenPeriod{motions.open_begin[r], motions.open_end[r]});
       const ParamSet& params = p.of_case(k);
-      const double angle_area = angle_area_of(motion, FlowArea(seat_of(params)), params, evaluations);
+      std::optional<FlowArea> own_area;
+      if (!seat_varies && !block_area) block_area.emplace(seat_of(params));
+      const FlowArea& area = seat_varies ? own_area.emplace(seat_of(params)) : *block_area;
+      const double angle_area = angle_area_of(motion, area, params, evaluations);
       require_finite_area(angle_area, w, motion.cam(), i);
       const double open_angle = motion.open_end() - motion.open_begin();
       if (angle_area_out) angle_area_out[k] = angle_area;

@@ -15,44 +15,65 @@ using numerics::one_sided_point;
 
 int sign_of(double v) { return v > 0.0 ? 1 : v < 0.0 ? -1 : 0; }
 
+// CamLaw::at at an angle between the first and last edges of the runs, which are the event's
+// bounds inside (-pi, pi): no angle to reduce, and the bounds read without calling the law.
+LiftDerivatives at_edge_bounded(const CamLaw& law, const std::vector<double>& edges, double x) {
+  if (x <= edges.front() || x >= edges.back()) return {};
+  return law.evaluate_in_event(x);
+}
+
 }  // namespace
 
 std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
   if (order < 0 || order > 2) return std::nullopt;
   std::vector<double> breaks;
   if (!law.monotone_breaks(order, breaks)) return std::nullopt;
-  std::vector<double> edges{law.event_begin()};
+  const double end = law.event_end();
+  std::vector<double> edges;
+  edges.reserve(breaks.size() + 2);
+  edges.push_back(law.event_begin());
   for (double b : breaks)  // a cut outside the event or out of order would void the certificate: refuse it
-    if (!(b > edges.back()) || !(b < law.event_end())) return std::nullopt;
+    if (!(b > edges.back()) || !(b < end)) return std::nullopt;
     else edges.push_back(b);
-  edges.push_back(law.event_end());
+  edges.push_back(end);
   return CamLawRuns(law, order, std::move(edges));
 }
 
 double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
-  // g = h^(order) - level changes sign once on [a, b], and h^(order) is monotone there. Newton's
-  // steps on g' = h^(order+1), which the same evaluation of the law gives, kept inside the bracket:
-  // where a step would leave it or does not halve the one before, the bracket is bisected instead
-  // (Press et al., Numerical Recipes, rtsafe). So it converges whatever g' does, and quadratically
-  // near a simple root: 4 to 6 evaluations where TOMS 748 on g alone took 10 to 15. It stops when
-  // a step is below 2 ulps of the root or the bracket has no double inside. (Boost's
+  // g = h^(order) - level changes sign once on [a, b], and h^(order) is monotone there. Halley's
+  // steps, x -= t / (1 - t g'' / (2 g')) with t = g / g' (g' = h^(order+1) and g'' = h^(order+2),
+  // which the same evaluation of the law gives; Newton's step t where g'' is not given, for the
+  // acceleration's runs, or where the correction is large), kept inside the bracket: where a step
+  // would leave it or does not halve the one before, the bracket is bisected instead (Press et al.,
+  // Numerical Recipes, rtsafe). So it converges whatever g' does, and cubically near a simple root:
+  // 3 or 4 evaluations where Newton took 5 to 9 and TOMS 748 on g alone 10 to 15. It stops when a
+  // step is below 2 ulps of the root or the bracket has no double inside. (Boost's
   // newton_raphson_iterate moves its bracket by the steps' signs, not g's, and raises an error
   // where it judges there is no root; here the run guarantees the bracket, and it is kept by g.)
   auto slope_of = [this](const LiftDerivatives& d) {
     return order_ == 0 ? d.velocity : order_ == 1 ? d.acceleration : d.jerk;
   };
+  auto curvature_of = [this](const LiftDerivatives& d) { return order_ == 0 ? d.acceleration : d.jerk; };
   double lo = ga < 0.0 ? a : b, hi = ga < 0.0 ? b : a;  // g(lo) < 0 < g(hi)
   // Start where the chord crosses zero (inside the bracket, away from its ends).
   double x = a - ga * (b - a) / (gb - ga);
   if (!(x > std::min(a, b) && x < std::max(a, b))) x = 0.5 * (a + b);
   double step_before = std::abs(b - a), step = step_before;
-  LiftDerivatives d = law_->at(x);
+  LiftDerivatives d = at_edge_bounded(*law_, edges_, x);
   ++evaluations;
   double g = value_of(d) - level, slope = slope_of(d);
   for (int iteration = 0; iteration < 200 && g != 0.0; ++iteration) {
-    const bool newton_leaves = ((x - hi) * slope - g) * ((x - lo) * slope - g) > 0.0;
-    const bool newton_slow = std::abs(2.0 * g) > std::abs(step_before * slope);
-    if (newton_leaves || newton_slow || !std::isfinite(g / slope)) {
+    // One division for both steps (a loop of dependent divisions is what a root costs).
+    const double inverse_slope = 1.0 / slope;
+    double proposal = g * inverse_slope;  // Newton's
+    if (order_ < 2) {
+      const double correction = 0.5 * proposal * curvature_of(d) * inverse_slope;
+      if (std::abs(correction) < 0.5) proposal /= 1.0 - correction;  // Halley's
+    }
+    const double candidate = x - proposal;
+    const bool leaves = !(candidate >= std::min(lo, hi) && candidate <= std::max(lo, hi));
+    const bool slow = std::abs(2.0 * proposal) > std::abs(step_before);
+    if (leaves || slow || !std::isfinite(proposal)) {
       step_before = step;
       step = 0.5 * (hi - lo);
       const double mid = lo + step;
@@ -60,13 +81,12 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
       x = mid;
     } else {
       step_before = step;
-      step = g / slope;
-      const double before = x;
-      x -= step;
-      if (x == before) break;
+      step = proposal;
+      if (candidate == x) break;
+      x = candidate;
     }
     if (std::abs(step) <= 2.0 * std::numeric_limits<double>::epsilon() * std::abs(x)) break;
-    d = law_->at(x);
+    d = at_edge_bounded(*law_, edges_, x);
     ++evaluations;
     g = value_of(d) - level;
     slope = slope_of(d);
@@ -76,7 +96,7 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
   return x;
 }
 
-double CamLawRuns::value(double x) const { return value_of(law_->at(x)); }
+double CamLawRuns::value(double x) const { return value_of(at_edge_bounded(*law_, edges_, x)); }
 
 numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& evaluations) const {
   const Peaks p = peaks({this}, a, b, evaluations).front();
@@ -85,16 +105,41 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
                                                  long& evaluations) {
-  // The points each run set reads (as extreme() does), evaluated once each across the sets.
-  std::vector<std::pair<double, LiftDerivatives>> read;
-  auto at = [&](const CamLaw& law, double x) -> const LiftDerivatives& {
-    for (const auto& [y, d] : read)
-      if (y == x) return d;
+  // The points each run set reads (as extreme() does), evaluated once each across the sets. They
+  // are kept sorted by angle, so a point read before is found by bisection (the sets share most
+  // of their cuts): the first few on the stack (a law has a handful of runs), any more in a vector.
+  struct Read {
+    double x;
+    LiftDerivatives d;
+  };
+  constexpr std::size_t kept_on_stack = 32;
+  Read on_stack[kept_on_stack];
+  std::vector<Read> on_heap;
+  Read* read = on_stack;
+  std::size_t count = 0;
+  auto at = [&](const CamLawRuns& runs, double x) -> LiftDerivatives {
+    Read* const end = read + count;
+    Read* const place = std::lower_bound(read, end, x, [](const Read& r, double y) { return r.x < y; });
+    if (place != end && place->x == x) return place->d;
     ++evaluations;
-    read.emplace_back(x, law.at(x));
-    return read.back().second;
+    const Read r{x, at_edge_bounded(*runs.law_, runs.edges_, x)};
+    const std::size_t where = static_cast<std::size_t>(place - read);
+    if (count == kept_on_stack && read == on_stack) {  // more than the stack holds: to the heap
+      on_heap.assign(on_stack, on_stack + count);
+      read = nullptr;
+    }
+    if (read == on_stack) {
+      std::move_backward(read + where, read + count, read + count + 1);
+      read[where] = r;
+    } else {
+      on_heap.insert(on_heap.begin() + static_cast<std::ptrdiff_t>(where), r);
+      read = on_heap.data();
+    }
+    ++count;
+    return r.d;
   };
   std::vector<Peaks> out;
+  out.reserve(runs.size());
   for (const CamLawRuns* r : runs) {
     const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
     Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
@@ -105,7 +150,7 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
       if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
       const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives& v = at(*r->law_, std::clamp(x, inner_lo, inner_hi));
+        const LiftDerivatives v = at(*r, std::clamp(x, inner_lo, inner_hi));
         const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};

@@ -8,7 +8,9 @@
 #include <mechgraph/errors.hpp>
 #include <mechgraph/memo_cache.hpp>
 #include <mechgraph/units.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
+#include <mechgraph/work_estimate.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -16,6 +18,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <numeric>
 #include <set>
 
 using namespace mechgraph;
@@ -345,4 +348,43 @@ outputs: [ ta.time_area, valve.max_acceleration, train.mass_without_spring ]
     CHECK(r.outputs[1].as_scalar() == scalar_output(alone, "valve.max_acceleration"));
     CHECK(r.outputs[2].as_scalar() == scalar_output(alone, "train.mass_without_spring"));
   }
+}
+
+TEST_CASE("sweep budget: the per-case estimate equals each case estimated alone (second method)", "[sweep][bounds]") {
+  // Types without a forecast (the conventions): a real number changes nothing they count, an
+  // integer does; RepeatedNodeEstimate keeps the first and recounts the second.
+  const std::string yaml = R"(params: { len: 2 mm }
+nodes:
+  c: { type: test.constant, params: { value: $len } }
+  s: { type: test.add, inputs: { a: c.out, b: c.out }, params: { gain: 2 } }
+  q: { type: test.series, params: { points: 5 } }
+  t: { type: test.table, params: { points: 4 } }
+outputs: [ s.sum, q.curve, t.curves ]
+)";
+  // 4800 cases: more than one chunk of the parallel estimate.
+  Prepared p = prepare(yaml, make_grid({parse_vary("len=1mm:4mm:600"), parse_vary("s.gain=1,3"), parse_vary("q.points=10,100000"),
+                                        parse_vary("t.points=7,9")}));
+  std::vector<std::size_t> all(p.table.cases.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all);
+  for (unsigned threads : {2u, 3u}) {  // the same figures on any number of threads
+    const SweepEstimate on = estimate_cases(p.graph, *p.binder, p.table, all, threads);
+    CHECK(on.total.work == e.total.work);
+    CHECK(on.largest_memory == e.largest_memory);
+    CHECK(on.largest_case == e.largest_case);
+  }
+  double work = 0, largest_memory = 0, largest_work = -1;
+  std::size_t largest_case = 0;
+  for (std::size_t c : all) {
+    Graph copy = p.graph;
+    p.binder->apply(p.binder->bind(copy), copy, p.table.cases[c]);
+    const WorkEstimate alone = estimate_work(copy);
+    work += alone.work;
+    largest_memory = std::max(largest_memory, alone.memory);
+    if (alone.work > largest_work) largest_work = alone.work, largest_case = c;
+  }
+  CHECK_THAT(e.total.work, WithinRel(work, 1e-12));
+  CHECK_THAT(e.largest_memory, WithinRel(largest_memory, 1e-12));
+  CHECK(e.largest_case == largest_case);
+  CHECK(p.table.cases[e.largest_case][2].text == "100000");
 }

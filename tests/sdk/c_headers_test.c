@@ -8,8 +8,10 @@
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
+#include <mechgraph/c/domain/valve_motion_block.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_block.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/plugin.h>

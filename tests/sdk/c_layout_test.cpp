@@ -411,6 +411,53 @@ static_assert(offsetof(mg_spring_model_v1, size) == 16);
 static_assert(std::is_trivially_copyable_v<mg_fit_data_v1> && std::is_standard_layout_v<mg_fit_data_v1>);
 static_assert(std::is_trivially_copyable_v<mg_coil_geometry> && std::is_standard_layout_v<mg_coil_geometry>);
 
+// SDK 1.2: mechgraph.node.block version 1 (node_block.h).
+static_assert(sizeof(mg_block_column) == 16);
+static_assert(offsetof(mg_block_column, values) == 0);
+static_assert(offsetof(mg_block_column, stride) == 8);
+static_assert(sizeof(mg_object_block) == 64);
+static_assert(offsetof(mg_object_block, struct_size) == 0);
+static_assert(offsetof(mg_object_block, object_count) == 8);
+static_assert(offsetof(mg_object_block, objects) == 16);
+static_assert(offsetof(mg_object_block, figures) == 24);
+static_assert(offsetof(mg_object_block, figure_count) == 32);
+static_assert(offsetof(mg_object_block, owner) == 40);
+static_assert(offsetof(mg_object_block, origin) == 56);
+static_assert(sizeof(mg_block_input) == 24);
+static_assert(offsetof(mg_block_input, scalar) == 0);
+static_assert(offsetof(mg_block_input, objects) == 16);
+static_assert(sizeof(mg_block_host_v1) == 48);
+static_assert(offsetof(mg_block_host_v1, struct_size) == 0);
+static_assert(offsetof(mg_block_host_v1, effect) == 8);
+static_assert(offsetof(mg_block_host_v1, wanted) == 16);
+static_assert(offsetof(mg_block_host_v1, cancelled) == 24);
+static_assert(offsetof(mg_block_host_v1, log) == 32);
+static_assert(offsetof(mg_block_host_v1, add_work) == 40);
+static_assert(sizeof(mg_block_request) == 32);
+static_assert(offsetof(mg_block_request, struct_size) == 0);
+static_assert(offsetof(mg_block_request, params) == 8);
+static_assert(offsetof(mg_block_request, wanted) == 16);
+static_assert(offsetof(mg_block_request, varied) == 24);
+static_assert(sizeof(mg_block_args) == 80);
+static_assert(offsetof(mg_block_args, struct_size) == 0);
+static_assert(offsetof(mg_block_args, size) == 8);
+static_assert(offsetof(mg_block_args, params) == 16);
+static_assert(offsetof(mg_block_args, param_columns) == 24);
+static_assert(offsetof(mg_block_args, inputs) == 32);
+static_assert(offsetof(mg_block_args, scalar_outputs) == 40);
+static_assert(offsetof(mg_block_args, object_outputs) == 48);
+static_assert(offsetof(mg_block_args, status) == 56);
+static_assert(offsetof(mg_block_args, host) == 64);
+static_assert(offsetof(mg_block_args, ctx) == 72);
+static_assert(sizeof(mg_node_block_v1) == 24);
+static_assert(offsetof(mg_node_block_v1, struct_size) == 0);
+static_assert(offsetof(mg_node_block_v1, supported) == 8);
+static_assert(offsetof(mg_node_block_v1, evaluate_block) == 16);
+static_assert(std::is_trivially_copyable_v<mg_object_block> && std::is_standard_layout_v<mg_object_block>);
+static_assert(std::is_trivially_copyable_v<mg_block_args> && std::is_standard_layout_v<mg_block_args>);
+static_assert(MG_VALVE_MOTION_BLOCK_OPEN_BEGIN == 0 && MG_VALVE_MOTION_BLOCK_OPEN_END == 1 && MG_VALVE_MOTION_BLOCK_ROCKER_RATIO == 2 &&
+              MG_VALVE_MOTION_BLOCK_LASH == 3 && MG_VALVE_MOTION_BLOCK_CAMSHAFT_SPEED == 4 && MG_VALVE_MOTION_BLOCK_FIGURES == 5);
+
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.
   CHECK(MG_SDK_MAJOR == 1);

@@ -1,8 +1,10 @@
 // C++ domain objects through the SDK 1.x C boundary (mechgraph/detail/object_bridge.hpp), built
 // twice from this file, as plugins `objsa` and `objsb` (OBJECTS_PLUGIN_ID), so that one's objects
 // are foreign to the other:
-//   <id>.law          a CamLaw made here: h = lift cos^2(pi phi / (2 w)) on (-w, w)
-//   <id>.relay        passes a cam law on; `native` 1 when it arrived as this plugin's own C++ law
+//   <id>.law          a CamLaw made here: h = lift cos^2(pi phi / (2 w)) on (-w, w); refuses a lift
+//                     above 50 mm; also in blocks of cases (BlockEvaluation, c/node_block.h)
+//   <id>.relay        passes a cam law on; `native` 1 when it arrived as this plugin's own C++ law;
+//                     also in blocks (the law block passed on, the scalars per case)
 //   <id>.motion       a ValveMotion over a cam law (valve lift = ratio * cam lift)
 //   <id>.read_motion  reads a valve motion and its cam at 0.3 rad; `native`, `cam_native` as above
 //   <id>.play         a JointPlay (plain data): one term of two links
@@ -10,6 +12,8 @@
 //   <id>.read_follower reads a follower's contact at 0.3 rad over a given lift; `native` as above
 //   <id>.throws       throws what `what` says (0: an int, 1: std::bad_alloc, 2: std::runtime_error)
 // objects_live() (exported, for the test) counts this plugin's laws and motions alive.
+#include <mechgraph/block.hpp>
+#include <mechgraph/domain/cam_law_block.hpp>
 #include <mechgraph/domain/tolerance.hpp>
 #include <mechgraph/domain/translating_followers.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
@@ -95,7 +99,7 @@ class Node : public NodeType {
   NodeInfo info_;
 };
 
-class LawNode final : public Node {
+class LawNode final : public Node, public BlockEvaluation {
  public:
   LawNode() {
     info_.type = type_name("law");
@@ -105,11 +109,24 @@ class LawNode final : public Node {
     info_.outputs = {PortSpec::handle("law", std::string(CamLaw::kind_name), "the law")};
   }
   void evaluate(const ParamSet& p, const InputSet&, OutputSet& out, EvalContext&) const override {
-    out.set("law", Value::handle(std::make_shared<const CosineLaw>(p.number("lift"), p.number("half_width"))));
+    out.set("law", Value::handle(make(p.number("lift"), p.number("half_width"))));
+  }
+  bool block_supported(const BlockRequest&) const override { return true; }
+  void evaluate_block(const BlockParams& p, const BlockInputs&, BlockOutputs& out, BlockCases& cases, EvalContext&) const override {
+    const BlockColumn lift = p.number("lift"), half_width = p.number("half_width");
+    std::vector<std::shared_ptr<const CamLaw>> laws(cases.size());
+    for_each_live_case(cases, [&](std::size_t i) { laws[i] = make(lift[i], half_width[i]); });
+    out.set_handle("law", std::make_shared<const CamLawBlock>(std::move(laws)));
+  }
+
+ private:
+  static std::shared_ptr<const CamLaw> make(double lift, double half_width) {
+    if (lift > 0.05) throw NodeError("lift", "a cosine-squared law of more than 50 mm lift is not made here");
+    return std::make_shared<const CosineLaw>(lift, half_width);
   }
 };
 
-class Relay final : public Node {
+class Relay final : public Node, public BlockEvaluation {
  public:
   Relay() {
     info_.type = type_name("relay");
@@ -125,9 +142,28 @@ class Relay final : public Node {
     out.set("law", in.value("law"));
     out.set_scalar("native", dynamic_cast<const CosineLaw*>(law.get()) ? 1.0 : 0.0);
     out.set_scalar("lift_at_half", law->at(0.5 * law->event_end()).lift);
+    out.set_scalar("integral", integral_of(*law));
+  }
+  bool block_supported(const BlockRequest&) const override { return true; }
+  void evaluate_block(const BlockParams&, const BlockInputs& in, BlockOutputs& out, BlockCases& cases, EvalContext&) const override {
+    const auto& laws = in.handle<CamLawBlock>("law");
+    double* native = out.scalar("native");
+    double* lift_at_half = out.scalar("lift_at_half");
+    double* integral = out.scalar("integral");
+    for_each_live_case(cases, [&](std::size_t i) {
+      const CamLaw& law = laws.law(i);
+      if (native) native[i] = dynamic_cast<const CosineLaw*>(&law) ? 1.0 : 0.0;
+      if (lift_at_half) lift_at_half[i] = law.at(0.5 * law.event_end()).lift;
+      if (integral) integral[i] = integral_of(law);
+    });
+    out.set_handle("law", in.shared_handle<CamLawBlock>("law"));
+  }
+
+ private:
+  static double integral_of(const CamLaw& law) {
     double integral = -1.0, of_square = 0.0;
-    if (!law->lift_integrals(law->event_begin(), law->event_end(), integral, of_square)) integral = -1.0;
-    out.set_scalar("integral", integral);
+    if (!law.lift_integrals(law.event_begin(), law.event_end(), integral, of_square)) integral = -1.0;
+    return integral;
   }
 };
 

@@ -409,3 +409,64 @@ nodes: {}
     CHECK_THAT(std::string(e.what()), Contains("study.yaml:3:43") && Contains("Q7"));
   }
 }
+
+TEST_CASE("Sobol' indices of several outputs at once: each as alone, bit for bit, on any threads", "[uncertainty]") {
+  // Three outputs of the same base samples (one with a zero variance); the resamples are drawn
+  // once for all of them and each output's indices and intervals equal its own computation.
+  const std::size_t n = 3000, d = 3;
+  std::vector<SobolSamples> outputs(3);
+  for (std::size_t o = 0; o < outputs.size(); ++o) {
+    SobolSamples& f = outputs[o];
+    f.f_ab.assign(d, {});
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto model = [&](double x1, double x2, double x3) {
+        return o == 2 ? 4.0 : o == 0 ? x1 + 2 * x2 * x2 + 0.1 * x3 : std::sin(x1) * (1 + x3 * x3) + x2;
+      };
+      double a[3], b[3];
+      for (std::size_t j = 0; j < d; ++j) a[j] = counter_uniform(5, 1, i, j), b[j] = counter_uniform(5, 2, i, j);
+      f.f_a.push_back(model(a[0], a[1], a[2]));
+      f.f_b.push_back(model(b[0], b[1], b[2]));
+      for (std::size_t j = 0; j < d; ++j) {
+        double m[3] = {a[0], a[1], a[2]};
+        m[j] = b[j];
+        f.f_ab[j].push_back(model(m[0], m[1], m[2]));
+      }
+    }
+  }
+  const std::vector<const SobolSamples*> all{&outputs[0], &outputs[1], &outputs[2]};
+  const std::vector<SobolIndices> together = sobol_indices(all, 64, 0.9, 11, 1);
+  const std::vector<SobolIndices> on_three = sobol_indices(all, 64, 0.9, 11, 3);
+  REQUIRE(together.size() == 3);
+  for (std::size_t o = 0; o < 3; ++o) {
+    INFO("output " << o);
+    const SobolIndices alone = sobol_indices(outputs[o].f_a, outputs[o].f_b, outputs[o].f_ab, 64, 0.9, 11, 2);
+    CHECK(together[o].variance == alone.variance);
+    REQUIRE(together[o].indices.size() == d);
+    for (std::size_t j = 0; j < d; ++j) {
+      for (const SobolIndices* r : {&together[o], &on_three[o]}) {
+        CHECK(r->indices[j].first == alone.indices[j].first);
+        CHECK(r->indices[j].total == alone.indices[j].total);
+        CHECK(r->indices[j].first_interval.lower == alone.indices[j].first_interval.lower);
+        CHECK(r->indices[j].total_interval.upper == alone.indices[j].total_interval.upper);
+      }
+    }
+  }
+  // Output 0 is additive: S_j = ST_j, and the intervals hold the estimates.
+  for (std::size_t j = 0; j < d; ++j) {
+    CHECK_THAT(together[0].indices[j].first, Catch::Matchers::WithinAbs(together[0].indices[j].total, 0.05));
+    CHECK(*together[0].indices[j].total_interval.lower <= together[0].indices[j].total);
+    CHECK(*together[0].indices[j].total_interval.upper >= together[0].indices[j].total);
+  }
+  CHECK(together[2].variance == 0.0);
+  SobolSamples shorter = outputs[1];
+  shorter.f_a.pop_back();
+  CHECK_THROWS_AS(sobol_indices({&outputs[0], &shorter}, 8, 0.9, 11, 1), std::invalid_argument);
+}
+
+TEST_CASE("Counter rows: the same numbers as counter_uniform, bit for bit", "[uncertainty]") {
+  for (std::uint64_t seed : {0ull, 1ull, 0xFFFFFFFFFFFFFFFFull})
+    for (std::uint64_t i : {0ull, 7ull, 1ull << 40}) {
+      const CounterRow row(seed, 11, i);
+      for (std::uint64_t j : {0ull, 1ull, 999ull, 1ull << 50}) CHECK(row(j) == counter_uniform(seed, 11, i, j));
+    }
+}

@@ -21,6 +21,7 @@
 #include <mechgraph/graph.hpp>
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,25 @@ struct NodeEstimate {
 NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vector<double>& output_sizes, bool writes,
                            bool with_terms);
 
+/// estimate_node for one node case after case (the cases of a sweep): the same figures, with what
+/// no case changes kept between calls. The map of input sizes is refreshed in place; a type without
+/// a forecast is counted by the conventions again only when its inputs' sizes change or some case
+/// changes an integer parameter of it (`integers_vary`): the conventions read integer parameters,
+/// list lengths and input sizes, never a real number (tests/core/work_estimate_test.cpp).
+class RepeatedNodeEstimate {
+ public:
+  RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary);
+  NodeEstimate operator()(const Graph& graph, const std::vector<double>& output_sizes);
+
+ private:
+  std::size_t index_;
+  bool writes_, integers_vary_;
+  InputSizes sizes_;
+  double rows_ = 0;
+  std::optional<NodeEstimate> conventions_;
+  InputSizes conventions_sizes_;
+  double conventions_rows_ = 0;
+};
 /// Whether each node has a requested series or table output (whose rows are written).
 std::vector<char> writing_nodes(const Graph& graph);
 

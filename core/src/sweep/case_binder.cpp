@@ -126,7 +126,7 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
   if (rebuild_) {
     std::vector<Override> overrides = overrides_;
     for (std::size_t v = 0; v < variables_.size(); ++v)
-      overrides.push_back({variables_[v].name, values[v].text, variables_[v].name + "=" + values[v].text});
+      overrides.push_back({variables_[v].name, values[v].written(), variables_[v].name + "=" + values[v].written()});
     graph = build_graph(scene_, registry_, overrides);
     return;
   }
@@ -137,7 +137,7 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
   for (std::size_t v = 0; v < variables_.size(); ++v) {
     const CaseValue& value = values[v];
     // The messages are built only when one is thrown (a sweep applies millions of values).
-    const auto what = [&] { return variables_[v].name + " = '" + excerpt(value.text) + "'"; };
+    const auto what = [&] { return variables_[v].name + " = '" + excerpt(value.written()) + "'"; };
     for (std::size_t k = 0; k < targets_[v].size(); ++k) {
       const Target& t = targets_[v][k];
       const GraphNode& node = graph.nodes[t.node];
@@ -172,11 +172,11 @@ void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector
           throw SceneErrorAt(subject(), what() + ": " + param() + " " + spec.value_problem(*value.si));
         }
         case ParamKind::choice:
-          if (std::find(spec.choices.begin(), spec.choices.end(), value.text) == spec.choices.end())
-            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + unknown_name_message("choice", value.text, spec.choices));
-          slot = ParamValue::of_choice(value.text);
+          if (std::find(spec.choices.begin(), spec.choices.end(), value.written()) == spec.choices.end())
+            throw SceneErrorAt(subject(), what() + ": " + param() + ": " + unknown_name_message("choice", value.written(), spec.choices));
+          slot = ParamValue::of_choice(value.written());
           break;
-        case ParamKind::text: slot = ParamValue::of_text(value.text); break;
+        case ParamKind::text: slot = ParamValue::of_text(value.written()); break;
         case ParamKind::number_list:
         case ParamKind::record_list: break;  // rebuilt, never bound
       }

@@ -1,61 +1,120 @@
 #include <mechgraph/sweep/case_estimate.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/worker_threads.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
 #include <string>
 
 namespace mechgraph {
+namespace {
+
+// What one run of consecutive cases adds up to: its work (in case order), its largest memory, and
+// its case of the most work (the first of equals).
+struct ChunkEstimate {
+  double work = 0, largest_memory = 0, largest_work = -1;
+  std::size_t largest_case = 0;
+};
+
+// The cases are estimated in chunks of this many, each chunk on whichever worker takes it and
+// added up in chunk order: the same figures whatever the number of threads.
+constexpr std::size_t cases_per_chunk = 4096;
+
+}  // namespace
 
 SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
-                             const std::vector<std::size_t>& cases) {
+                             const std::vector<std::size_t>& cases, unsigned threads) {
   SweepEstimate result;
   const std::vector<char> writing = writing_nodes(graph);
   // The nodes no value reaches are estimated once, in order; their sizes feed the varied ones.
-  Graph copy = graph;
-  binder.mark_unmemoised(copy);  // memoised == false: a target of a variable or downstream of one
+  Graph marked = graph;
+  binder.mark_unmemoised(marked);  // memoised == false: a target of a variable or downstream of one
   std::vector<std::size_t> varied;
-  std::vector<double> sizes(graph.nodes.size(), 1.0);
+  std::vector<double> fixed_sizes(graph.nodes.size(), 1.0);
   double fixed_work = 0, fixed_memory = 0;
   for (std::size_t i : graph.order) {
-    if (!copy.nodes[i].memoised) {
+    if (!marked.nodes[i].memoised) {
       varied.push_back(i);
       continue;
     }
-    const NodeEstimate e = estimate_node(graph, i, sizes, writing[i] != 0, false);
-    sizes[i] = e.output_size;
+    const NodeEstimate e = estimate_node(graph, i, fixed_sizes, writing[i] != 0, false);
+    fixed_sizes[i] = e.output_size;
     fixed_work += e.work;
     fixed_memory += e.memory;
   }
+  // Whether some case changes a parameter of node i other than a real number (the conventions
+  // read integers; anything else counts as changing them).
+  std::vector<char> integers_vary(graph.nodes.size(), 0);
+  for (const std::vector<CaseBinder::Target>& targets : binder.targets())
+    for (const CaseBinder::Target& t : targets)
+      if (t.node < integers_vary.size() && (!t.spec || t.spec->kind != ParamKind::number)) integers_vary[t.node] = 1;
+
   // A binder that rebuilds each case's graph (a value inside a list or record) still binds the
   // plain parameters in place; the values inside lists do not change how long the lists are, so
   // the estimate of the bound copy holds for the rebuilt graph.
-  const CaseBinder::Slots slots = binder.bind(copy);
-  double largest = -1;
-  for (std::size_t c : cases) {
-    if (c >= table.cases.size()) continue;
+  const std::size_t chunks = (cases.size() + cases_per_chunk - 1) / cases_per_chunk;
+  std::vector<ChunkEstimate> chunk_estimates(chunks);
+  std::atomic<std::size_t> next{0};
+  std::mutex failure_mutex;
+  std::exception_ptr failure;
+  const unsigned workers = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(chunks, 1)));
+  run_on_workers(workers, [&](unsigned) {
     try {
-      binder.apply(slots, copy, table.cases[c]);
-    } catch (const SceneError&) {
-      continue;  // this case is refused before it runs: no work
+      Graph copy = marked;  // each worker's own graph and estimators
+      const CaseBinder::Slots slots = binder.bind(copy);
+      std::vector<RepeatedNodeEstimate> repeated;
+      repeated.reserve(varied.size());
+      for (std::size_t i : varied) repeated.emplace_back(copy, i, writing[i] != 0, integers_vary[i] != 0);
+      std::vector<double> sizes = fixed_sizes;
+      for (std::size_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
+        ChunkEstimate& out = chunk_estimates[chunk];
+        const std::size_t end = std::min(cases.size(), (chunk + 1) * cases_per_chunk);
+        for (std::size_t k = chunk * cases_per_chunk; k < end; ++k) {
+          const std::size_t c = cases[k];
+          if (c >= table.cases.size()) continue;
+          try {
+            binder.apply(slots, copy, table.cases[c]);
+          } catch (const SceneError&) {
+            continue;  // this case is refused before it runs: no work
+          }
+          double work = fixed_work, memory = fixed_memory;
+          for (std::size_t v = 0; v < varied.size(); ++v) {
+            const NodeEstimate e = repeated[v](copy, sizes);
+            sizes[varied[v]] = e.output_size;
+            work += e.work;
+            memory += e.memory;
+          }
+          out.work += work;
+          out.largest_memory = std::max(out.largest_memory, memory);
+          if (work > out.largest_work) {
+            out.largest_work = work;
+            out.largest_case = c;
+          }
+        }
+      }
+    } catch (...) {
+      std::lock_guard lock(failure_mutex);
+      if (!failure) failure = std::current_exception();
+      next = chunks;
     }
-    double work = fixed_work, memory = fixed_memory;
-    for (std::size_t i : varied) {
-      const NodeEstimate e = estimate_node(copy, i, sizes, writing[i] != 0, false);
-      sizes[i] = e.output_size;
-      work += e.work;
-      memory += e.memory;
-    }
-    result.total.work += work;
-    result.largest_memory = std::max(result.largest_memory, memory);
-    if (work > largest) {
-      largest = work;
-      result.largest_case = c;
+  });
+  if (failure) std::rethrow_exception(failure);
+  double largest = -1;
+  for (const ChunkEstimate& e : chunk_estimates) {
+    result.total.work += e.work;
+    result.largest_memory = std::max(result.largest_memory, e.largest_memory);
+    if (e.largest_work > largest) {
+      largest = e.largest_work;
+      result.largest_case = e.largest_case;
     }
   }
   // The terms (for the message) are the largest case's, estimated once more with their words.
   if (largest >= 0) {
-    binder.apply(slots, copy, table.cases[result.largest_case]);
+    Graph copy = marked;
+    binder.apply(binder.bind(copy), copy, table.cases[result.largest_case]);
     WorkEstimate e = estimate_work(copy);
     for (WorkEstimate::Term& t : e.terms) t.what += " in case " + std::to_string(result.largest_case);
     result.total.terms = std::move(e.terms);
@@ -67,7 +126,7 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
 
 void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
                         const std::vector<std::size_t>& cases, const WorkBudget& budget, unsigned threads) {
-  const SweepEstimate e = estimate_cases(graph, binder, table, cases);
+  const SweepEstimate e = estimate_cases(graph, binder, table, cases, threads);
   const double n = static_cast<double>(cases.size());
   const std::string where = "over " + std::to_string(cases.size()) + " case" + (cases.size() == 1 ? "" : "s");
   check_work_budget(graph, e.total, budget, 1, false, std::min(n, static_cast<double>(std::max(threads, 1u))), where);

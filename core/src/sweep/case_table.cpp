@@ -85,14 +85,24 @@ void append_shown_number(std::string& out, double x) {
   out.append(buffer, end);
 }
 
-// A number in SI as text that parses back to the same double (%.17g, by std::to_chars).
-std::string exact_text(double x, Dimension d) {
+}  // namespace
+
+std::string exact_text(double x, const Dimension& d) {
+  // The shortest digits that read back as x (std::to_chars without a precision), then the unit:
+  // one string made.
   char buffer[40];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
-  std::string text(buffer, end);
-  if (!d.dimensionless()) text += " " + d.si_unit();
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  const std::string unit = d.dimensionless() ? std::string() : d.si_unit();
+  std::string text;
+  text.reserve(static_cast<std::size_t>(end - buffer) + 1 + unit.size());
+  text.append(buffer, end);
+  if (!unit.empty()) text.append(1, ' ').append(unit);
   return text;
 }
+
+std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
+
+namespace {
 
 // splitmix64: a small generator whose output is fixed by its definition on every platform.
 struct SplitMix64 {
@@ -158,12 +168,12 @@ void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
     // its column, or 1e308 m in mm, which overflows).
     const std::optional<UnitScale>& u = parse_unit_cached(unit);
     if (!u || !(u->dimension == value.dimension)) {
-      out += value.text;
+      out += value.written();
       return;
     }
     x = *value.si / u->scale - u->offset;
     if (!std::isfinite(x)) {
-      out += value.text;
+      out += value.written();
       return;
     }
   }

@@ -26,14 +26,6 @@ double open_unit(std::uint64_t x) { return (static_cast<double>(x >> 11) + 0.5) 
 // The streams of counter_hash: which use of random numbers a value belongs to.
 constexpr std::uint64_t stream_monte_carlo = 1, stream_lhs_jitter = 2, stream_lhs_permutation = 3, stream_sobol_shift = 4;
 
-std::string exact_text(double x, const Dimension& d) {
-  char buffer[40];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
-  std::string text(buffer, end);
-  if (!d.dimensionless()) text += " " + d.si_unit();
-  return text;
-}
-
 }  // namespace
 
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j) {
@@ -43,6 +35,11 @@ std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t stream, std::uint64
 double counter_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j) {
   return open_unit(counter_hash(seed, stream, i, j));
 }
+
+CounterRow::CounterRow(std::uint64_t seed, std::uint64_t stream, std::uint64_t i)
+    : prefix_(splitmix(splitmix(splitmix(seed) ^ stream) ^ i)) {}
+
+double CounterRow::operator()(std::uint64_t j) const { return open_unit(splitmix(prefix_ ^ j)); }
 
 UnitDesign::UnitDesign(SamplingMethod method, std::size_t n, std::size_t dims, std::uint64_t seed)
     : method_(method), n_(n), dims_(dims), seed_(seed) {
@@ -157,7 +154,7 @@ CaseTable make_study_cases(const StudySpec& spec) {
     std::vector<CaseValue> values(d);
     for (std::size_t j = 0; j < d; ++j) {
       const Dimension& dim = spec.parameters[j].marginal.dimension;
-      values[j] = {exact_text(x[j], dim), x[j], dim};
+      values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
     }
     return values;
   };

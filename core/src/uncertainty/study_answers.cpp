@@ -37,6 +37,8 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
   answers.samples = statistical.size();
   for (const SpecLimits& l : spec.limits) output_index(data, l.output, l.where);  // every limit names a studied output
 
+  std::vector<SobolSamples> sobol_samples(spec.sensitivity ? data.outputs.size() : 0);
+  std::vector<std::vector<std::size_t>> sobol_kept(sobol_samples.size());  // the base samples each output kept
   for (std::size_t o = 0; o < data.outputs.size(); ++o) {
     OutputAnswer a;
     a.column = data.outputs[o];
@@ -65,20 +67,35 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
     a.histogram = histogram(values, spec.bins, low, high);
     if (spec.sensitivity) {
       // Base samples whose d + 2 cases all have a value.
-      std::vector<double> f_a, f_b;
-      std::vector<std::vector<double>> f_ab(d);
+      SobolSamples& f = sobol_samples[o];
+      f.f_ab.resize(d);
       for (std::size_t i = 0; i * per_sample < answers.cases; ++i) {
         const std::size_t k = i * per_sample;
         bool whole = k + per_sample <= answers.cases;
         for (std::size_t r = 0; whole && r < per_sample; ++r) whole = std::isfinite(column[k + r]);
         if (!whole) continue;
-        f_a.push_back(column[k]);
-        f_b.push_back(column[k + 1]);
-        for (std::size_t j = 0; j < d; ++j) f_ab[j].push_back(column[k + 2 + j]);
+        sobol_kept[o].push_back(i);
+        f.f_a.push_back(column[k]);
+        f.f_b.push_back(column[k + 1]);
+        for (std::size_t j = 0; j < d; ++j) f.f_ab[j].push_back(column[k + 2 + j]);
       }
-      a.sobol = sobol_indices(f_a, f_b, f_ab, spec.bootstrap, spec.confidence, spec.seed, threads);
     }
     answers.outputs.push_back(std::move(a));
+  }
+  if (spec.sensitivity) {
+    // The outputs that kept the same base samples share their resamples (the usual case: all).
+    std::vector<char> done(data.outputs.size(), 0);
+    for (std::size_t o = 0; o < data.outputs.size(); ++o) {
+      if (done[o]) continue;
+      std::vector<std::size_t> group;
+      for (std::size_t p = o; p < data.outputs.size(); ++p)
+        if (!done[p] && sobol_kept[p] == sobol_kept[o]) group.push_back(p), done[p] = 1;
+      std::vector<const SobolSamples*> samples;
+      for (std::size_t p : group) samples.push_back(&sobol_samples[p]);
+      std::vector<SobolIndices> indices = sobol_indices(samples, spec.bootstrap, spec.confidence, spec.seed, threads);
+      for (std::size_t g = 0; g < group.size(); ++g) answers.outputs[group[g]].sobol = std::move(indices[g]);
+      for (std::size_t p : group) sobol_samples[p] = {};  // freed as soon as used
+    }
   }
   for (const StudyEvent& e : spec.events) {
     EventAnswer a;

@@ -10,8 +10,10 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <cmath>
 
 namespace mechgraph {
@@ -136,25 +138,76 @@ struct SobolEstimate {
   std::vector<double> first, total;
 };
 
-// The estimators over the base samples `pick` (indices into the arrays), outputs centred by `centre`.
-SobolEstimate estimate(const std::vector<double>& f_a, const std::vector<double>& f_b, const std::vector<std::vector<double>>& f_ab,
-                       const std::vector<std::size_t>& pick, double centre) {
+// The outputs of each base sample side by side, centred: f(A), f(B), f(AB^1) ... f(AB^d) in one
+// row, so that a resample reads one short contiguous row per draw instead of d + 2 scattered values.
+struct SobolRows {
+  std::size_t width;  // d + 2
+  std::vector<double> values;
+  const double* row(std::size_t i) const { return values.data() + i * width; }
+};
+
+// The estimators over the base samples `pick` (indices into the rows): two passes over the picks,
+// the mean first, then the variance and every index's sums (each sum in the order of the picks).
+SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pick, std::vector<double>& first,
+                       std::vector<double>& total) {
   const double n = static_cast<double>(pick.size());
+  const std::size_t d = rows.width - 2;
   double sum = 0.0;
-  for (std::size_t i : pick) sum += (f_a[i] - centre) + (f_b[i] - centre);
+  for (std::size_t i : pick) {
+    const double* r = rows.row(i);
+    sum += r[0] + r[1];
+  }
   const double mean = sum / (2 * n);
   double squares = 0.0;
-  for (std::size_t i : pick) squares += (f_a[i] - centre - mean) * (f_a[i] - centre - mean) + (f_b[i] - centre - mean) * (f_b[i] - centre - mean);
-  SobolEstimate e{squares / (2 * n - 1), {}, {}};
-  for (const std::vector<double>& f_j : f_ab) {
-    double first = 0.0, total = 0.0;
-    for (std::size_t i : pick) {
-      const double a = f_a[i] - centre, b = f_b[i] - centre, ab = f_j[i] - centre;
-      first += b * (ab - a);
-      total += (a - ab) * (a - ab);
+  std::fill(first.begin(), first.end(), 0.0);
+  std::fill(total.begin(), total.end(), 0.0);
+  for (std::size_t i : pick) {
+    const double* r = rows.row(i);
+    const double a = r[0], b = r[1];
+    squares += (a - mean) * (a - mean) + (b - mean) * (b - mean);
+    for (std::size_t j = 0; j < d; ++j) {
+      const double ab = r[2 + j];
+      first[j] += b * (ab - a);
+      total[j] += (a - ab) * (a - ab);
     }
-    e.first.push_back(e.variance > 0 ? first / n / e.variance : 0.0);
-    e.total.push_back(e.variance > 0 ? total / (2 * n) / e.variance : 0.0);
+  }
+  SobolEstimate e{squares / (2 * n - 1), std::vector<double>(d), std::vector<double>(d)};
+  for (std::size_t j = 0; j < d; ++j) {
+    e.first[j] = e.variance > 0 ? first[j] / n / e.variance : 0.0;
+    e.total[j] = e.variance > 0 ? total[j] / (2 * n) / e.variance : 0.0;
+  }
+  return e;
+}
+
+// The same estimators over a resample given as the number of times each base sample was drawn
+// (`times`, summing to N): one pass in the order of the rows, each row weighted by its count, with
+// the variance from the weighted sums of squares, sum w (a^2 + b^2) - 2N mean^2 (the rows are
+// centred on the mean of all outputs, so the two terms do not cancel). It streams the rows once,
+// where the draws in the order drawn would read a random row each time.
+SobolEstimate estimate_drawn(const SobolRows& rows, const std::vector<std::uint32_t>& times, std::vector<double>& first,
+                             std::vector<double>& total) {
+  const std::size_t d = rows.width - 2, count = times.size();
+  double n = 0.0, sum = 0.0, squares = 0.0;
+  std::fill(first.begin(), first.end(), 0.0);
+  std::fill(total.begin(), total.end(), 0.0);
+  for (std::size_t i = 0; i < count; ++i) {  // no branch on w = 0: its terms add +0, exactly nothing
+    const double w = static_cast<double>(times[i]);
+    const double* r = rows.row(i);
+    const double a = r[0], b = r[1];
+    n += w;
+    sum += w * (a + b);
+    squares += w * (a * a + b * b);
+    for (std::size_t j = 0; j < d; ++j) {
+      const double ab = r[2 + j];
+      first[j] += w * (b * (ab - a));
+      total[j] += w * ((a - ab) * (a - ab));
+    }
+  }
+  const double mean = sum / (2 * n);
+  SobolEstimate e{std::max(0.0, squares - 2 * n * mean * mean) / (2 * n - 1), std::vector<double>(d), std::vector<double>(d)};
+  for (std::size_t j = 0; j < d; ++j) {
+    e.first[j] = e.variance > 0 ? first[j] / n / e.variance : 0.0;
+    e.total[j] = e.variance > 0 ? total[j] / (2 * n) / e.variance : 0.0;
   }
   return e;
 }
@@ -169,40 +222,77 @@ Interval percentile(std::vector<double> draws, double confidence) {
 
 }  // namespace
 
-SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<double>& f_b,
-                           const std::vector<std::vector<double>>& f_ab, std::size_t bootstrap, double confidence,
-                           std::uint64_t seed, unsigned threads) {
-  SobolIndices out;
-  const std::size_t n = f_a.size();
-  out.samples = n;
-  if (n < 2) return out;
+namespace {
+
+// One output's rows, centred on the mean of all its values, and its point estimate.
+struct SobolOutput {
+  SobolRows rows;
+  SobolEstimate point;
+};
+
+SobolOutput prepare(const SobolSamples& f) {
+  const std::size_t n = f.f_a.size(), d = f.f_ab.size();
   double sum = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
-    sum += f_a[i] + f_b[i];
-    for (const auto& f_j : f_ab) sum += f_j[i];
+    sum += f.f_a[i] + f.f_b[i];
+    for (const auto& f_j : f.f_ab) sum += f_j[i];
   }
-  const double centre = sum / static_cast<double>(n * (2 + f_ab.size()));
+  const double centre = sum / static_cast<double>(n * (2 + d));
+  SobolOutput out{{d + 2, std::vector<double>(n * (d + 2))}, {}};
+  for (std::size_t i = 0; i < n; ++i) {
+    double* r = out.rows.values.data() + i * out.rows.width;
+    r[0] = f.f_a[i] - centre;
+    r[1] = f.f_b[i] - centre;
+    for (std::size_t j = 0; j < d; ++j) r[2 + j] = f.f_ab[j][i] - centre;
+  }
   std::vector<std::size_t> all(n);
   for (std::size_t i = 0; i < n; ++i) all[i] = i;
-  const SobolEstimate point = estimate(f_a, f_b, f_ab, all, centre);
-  out.variance = point.variance;
-  const std::size_t d = f_ab.size();
+  std::vector<double> first_sums(d), total_sums(d);
+  out.point = estimate(out.rows, all, first_sums, total_sums);
+  return out;
+}
+
+}  // namespace
+
+std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& samples, std::size_t bootstrap,
+                                        double confidence, std::uint64_t seed, unsigned threads) {
+  const std::size_t outputs = samples.size();
+  std::vector<SobolIndices> result(outputs);
+  if (outputs == 0) return result;
+  const std::size_t n = samples.front()->f_a.size();
+  for (const SobolSamples* f : samples)
+    if (f->f_a.size() != n || f->f_b.size() != n || f->f_ab.size() != samples.front()->f_ab.size())
+      throw std::invalid_argument("sobol_indices: the outputs do not share their base samples");
+  for (SobolIndices& r : result) r.samples = n;
+  if (n < 2) return result;
+  const std::size_t d = samples.front()->f_ab.size();
+  std::vector<SobolOutput> prepared;
+  prepared.reserve(outputs);
+  for (const SobolSamples* f : samples) prepared.push_back(prepare(*f));
   // Each resample's draws come from the counter generator by (replicate, draw), so replicates run
   // on any number of threads and land in their own slots: the same bits whatever `threads` is.
-  std::vector<std::vector<double>> first_draws(d, std::vector<double>(bootstrap)), total_draws(d, std::vector<double>(bootstrap));
+  // A resample is drawn once and serves every output.
+  std::vector<double> first_draws(outputs * d * bootstrap), total_draws(outputs * d * bootstrap);
+  const auto slot = [&](std::size_t o, std::size_t j, std::size_t r) { return (o * d + j) * bootstrap + r; };
   std::atomic<std::size_t> next{0};
   std::mutex failure_mutex;
   std::exception_ptr failure;
   run_on_workers(static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, bootstrap))), [&](unsigned) {
     try {
-      std::vector<std::size_t> pick(n);
+      std::vector<std::uint32_t> times(n);
+      std::vector<double> first_sums(d), total_sums(d);
       for (std::size_t r; (r = next.fetch_add(1)) < bootstrap;) {
+        // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
+        std::fill(times.begin(), times.end(), 0u);
+        const CounterRow draw(seed, stream_bootstrap, r);
         for (std::size_t i = 0; i < n; ++i)
-          pick[i] = std::min(static_cast<std::size_t>(counter_uniform(seed, stream_bootstrap, r, i) * static_cast<double>(n)), n - 1);
-        const SobolEstimate e = estimate(f_a, f_b, f_ab, pick, centre);
-        for (std::size_t j = 0; j < d; ++j) {
-          first_draws[j][r] = e.first[j];
-          total_draws[j][r] = e.total[j];
+          ++times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1)];
+        for (std::size_t o = 0; o < outputs; ++o) {
+          const SobolEstimate e = estimate_drawn(prepared[o].rows, times, first_sums, total_sums);
+          for (std::size_t j = 0; j < d; ++j) {
+            first_draws[slot(o, j, r)] = e.first[j];
+            total_draws[slot(o, j, r)] = e.total[j];
+          }
         }
       }
     } catch (...) {
@@ -212,17 +302,31 @@ SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<dou
     }
   });
   if (failure) std::rethrow_exception(failure);
-  for (std::size_t j = 0; j < d; ++j) {
-    SobolIndex s;
-    s.first = point.first[j];
-    s.total = point.total[j];
-    if (bootstrap > 1) {
-      s.first_interval = percentile(first_draws[j], confidence);
-      s.total_interval = percentile(total_draws[j], confidence);
+  for (std::size_t o = 0; o < outputs; ++o) {
+    result[o].variance = prepared[o].point.variance;
+    for (std::size_t j = 0; j < d; ++j) {
+      SobolIndex s;
+      s.first = prepared[o].point.first[j];
+      s.total = prepared[o].point.total[j];
+      if (bootstrap > 1) {
+        const auto draws = [&](const std::vector<double>& all) {
+          return std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(slot(o, j, 0)),
+                                     all.begin() + static_cast<std::ptrdiff_t>(slot(o, j, 0) + bootstrap));
+        };
+        s.first_interval = percentile(draws(first_draws), confidence);
+        s.total_interval = percentile(draws(total_draws), confidence);
+      }
+      result[o].indices.push_back(s);
     }
-    out.indices.push_back(s);
   }
-  return out;
+  return result;
+}
+
+SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<double>& f_b,
+                           const std::vector<std::vector<double>>& f_ab, std::size_t bootstrap, double confidence,
+                           std::uint64_t seed, unsigned threads) {
+  const SobolSamples samples{f_a, f_b, f_ab};
+  return sobol_indices(std::vector<const SobolSamples*>{&samples}, bootstrap, confidence, seed, threads).front();
 }
 
 }  // namespace mechgraph

@@ -112,3 +112,6 @@ MG_API void mg_abi_anchor(const mg_host*, const mg_plugin*, const mg_log_suite_v
 
 MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1*, const mg_work_forecast*, const mg_fit_v1*, const mg_spring_model_v1*,
                               const mg_spring_v1*) {}
+
+MG_API void mg_abi_anchor_1_2(const mg_node_block_v1*, const mg_block_args*, const mg_block_request*, const mg_block_host_v1*,
+                              const mg_object_block*, const mg_block_input*, const mg_block_column*) {}

@@ -19,9 +19,10 @@ struct SweepEstimate {
 };
 
 /// Estimates each case of `cases` (indices into `table`). A case whose values the binder refuses
-/// costs nothing (it fails before any work). Linear in the cases times the nodes they reach.
+/// costs nothing (it fails before any work). Linear in the cases times the nodes they reach; on
+/// `threads` workers, chunks of cases added up in order: the same figures on any number.
 SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
-                             const std::vector<std::size_t>& cases);
+                             const std::vector<std::size_t>& cases, unsigned threads = 1);
 
 /// estimate_cases checked against `budget`: work over all cases, memory of the largest case times
 /// `threads` (at most the number of cases) running at once. Throws SceneError naming the case.

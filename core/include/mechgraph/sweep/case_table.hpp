@@ -35,10 +35,18 @@ std::string excerpt(std::string_view text, std::size_t limit = 200);
 /// One value of one case: a number with its dimension (SI), or a word (a choice such as an
 /// integrator's name) for parameters that take one.
 struct CaseValue {
-  std::string text;                // as written, or made from the number
+  std::string text;                // as written, or made from the number; empty for a number generated in bulk
   std::optional<double> si;        // when it is a number
   Dimension dimension;             // of the number
+
+  /// The value as text: `text`, or for a number without one its exact_text (a study's million
+  /// cases keep their numbers only, and a message or a rebuilt scene asks for the text).
+  std::string written() const;
 };
+
+/// x in SI as text that reads back as exactly x: the shortest such digits and the SI unit of `d`
+/// ("0.0025 m"); the text of a generated case value.
+std::string exact_text(double x, const Dimension& d);
 
 /// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
 /// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.

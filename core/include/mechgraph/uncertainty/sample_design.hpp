@@ -21,6 +21,16 @@ namespace mechgraph {
 std::uint64_t counter_hash(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j);
 /// counter_hash as a double strictly inside (0, 1): 53 bits and half a step.
 double counter_uniform(std::uint64_t seed, std::uint64_t stream, std::uint64_t i, std::uint64_t j);
+/// counter_uniform for one (seed, stream, i) and many j: the chain's first three rounds made once.
+/// row(j) == counter_uniform(seed, stream, i, j), bit for bit.
+class CounterRow {
+ public:
+  CounterRow(std::uint64_t seed, std::uint64_t stream, std::uint64_t i);
+  double operator()(std::uint64_t j) const;
+
+ private:
+  std::uint64_t prefix_;
+};
 
 /// Point i (0 <= i < n) of the method's design in `dims` dimensions, each coordinate in (0, 1).
 /// Monte Carlo: counter_uniform. Latin hypercube: coordinate j of point i lies in stratum

@@ -75,5 +75,15 @@ struct SobolIndices {
 SobolIndices sobol_indices(const std::vector<double>& f_a, const std::vector<double>& f_b,
                            const std::vector<std::vector<double>>& f_ab, std::size_t bootstrap, double confidence,
                            std::uint64_t seed, unsigned threads = 1);
+/// f(A), f(B) and f(AB^(j)) of one output.
+struct SobolSamples {
+  std::vector<double> f_a, f_b;
+  std::vector<std::vector<double>> f_ab;
+};
+/// sobol_indices of several outputs over the same N base samples, each result the same as
+/// sobol_indices on that output alone: each resample is drawn once and serves every output.
+/// Throws std::invalid_argument when the outputs differ in N or in the number of parameters.
+std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& samples, std::size_t bootstrap,
+                                        double confidence, std::uint64_t seed, unsigned threads = 1);
 
 }  // namespace mechgraph

@@ -12,8 +12,10 @@
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
+#include <mechgraph/c/domain/valve_motion_block.h>
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_block.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/plugin.h>
@@ -56,6 +58,13 @@ MG_API void mg_abi_anchor(const mg_host* host, const mg_plugin* plugin, const mg
    domain/spring.h), as mg_abi_anchor does for 1.0's. */
 MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1* node_forecast, const mg_work_forecast* work_forecast,
                               const mg_fit_v1* fit, const mg_spring_model_v1* spring_model, const mg_spring_v1* spring);
+
+/* SDK 1.2: does nothing; names the structs 1.2 added (node_block.h), as mg_abi_anchor does for
+   1.0's. */
+MG_API void mg_abi_anchor_1_2(const mg_node_block_v1* node_block, const mg_block_args* block_args,
+                              const mg_block_request* block_request, const mg_block_host_v1* block_host,
+                              const mg_object_block* object_block, const mg_block_input* block_input,
+                              const mg_block_column* block_column);
 
 MG_EXTERN_C_END
 

@@ -17,6 +17,7 @@
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/detail/bridge_sets.hpp>
+#include <mechgraph/detail/export_block.hpp>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/version.hpp>
@@ -135,6 +136,8 @@ class NodeTypeExport {
   const mg_node_type* c_type() const { return &c_type_; }
 
  private:
+  template <class>
+  friend struct BlockExport;  // blocks of cases (export_block.hpp): type_
   const std::vector<const char*>& names(const std::vector<std::string>& list) {
     auto& out = lists_.emplace_back();
     for (const std::string& s : list) out.push_back(s.c_str());
@@ -379,10 +382,12 @@ class NodeTypeExport {
   }
 
   // The node type's own interfaces (node.h, query): mechgraph.node.forecast/1 over
-  // NodeType::forecast (SDK 1.1, node_forecast.h).
-  static const void* query(const mg_node_type*, const char* name, std::uint32_t version) noexcept {
+  // NodeType::forecast (SDK 1.1, node_forecast.h); mechgraph.node.block/1 over BlockEvaluation
+  // (SDK 1.2, node_block.h) when the type implements it.
+  static const void* query(const mg_node_type* self, const char* name, std::uint32_t version) noexcept {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
-    return name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0 ? &forecast_table : nullptr;
+    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return &forecast_table;
+    return BlockExport<NodeTypeExport>::query(*static_cast<const NodeTypeExport*>(self->impl)->type_, name, version);
   }
   static mg_status forecast(const mg_node_type* self, const mg_param_value* params, const double* input_sizes,
                             mg_work_forecast* out, mg_text_sink driver) noexcept {

@@ -5,8 +5,8 @@
 // On a run [e_i, e_i+1] the function f = h^(order) is continuous and monotone, so
 //  - its extremes over [a, b] are among f(a), f(b) and the one-sided values at the cuts inside;
 //  - a crossing of a level inside a run is bracketed by the run's ends (one sign change at most)
-//    and found on the law itself (Newton on the next derivative, safeguarded by bisection); where f jumps across the level at a cut, the cut is
-//    the crossing.
+//    and found on the law itself (Halley's steps on the next two derivatives, safeguarded by
+//    bisection); where f jumps across the level at a cut, the cut is the crossing.
 // One-sided values at a cut are read where the generic search reads its knots
 // (numerics::one_sided_point: 1e-13 of the run's width inside, at least 4 ulps of the angle, at
 // most the middle), so both paths agree on a jump to rounding on runs of any width from two ulps;
