@@ -9,9 +9,12 @@
 #include <mechgraph/cancellation.hpp>
 #include <mechgraph/errors.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <new>
+#include <numeric>
 #include <stdexcept>
 #include <vector>
 
@@ -242,9 +245,9 @@ class CallViews {
         break;
       case ParamKind::record_list: {
         out.kind = MG_PARAM_RECORD_LIST;
-        std::vector<mg_record>& records = add(records_);
+        std::vector<mg_record>& records = add(stores().records_);
         for (const Record& r : v.records) {
-          std::vector<mg_param_value>& fields = add(fields_);
+          std::vector<mg_param_value>& fields = add(stores().fields_);
           for (const ParamSpec& f : spec.fields) {
             const auto it = r.find(f.name);
             fields.push_back(it != r.end() ? param(it->second, f) : absent(f));
@@ -269,10 +272,10 @@ class CallViews {
       case ValueKind::scalar: out.kind = MG_VALUE_SCALAR; out.u.scalar = v.as_scalar(); break;
       case ValueKind::series: {
         const Series& s = v.as_series();
-        mg_series& c = add(series_);
+        mg_series& c = add(stores().series_);
         c = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), to_c_dim(s.axis_dimension), nullptr, {}};
         if (!s.labels.empty()) {
-          std::vector<const char*>& labels = add(labels_);
+          std::vector<const char*>& labels = add(stores().labels_);
           for (const std::string& l : s.labels) labels.push_back(l.c_str());
           c.labels = labels.data();
         }
@@ -282,11 +285,11 @@ class CallViews {
       }
       case ValueKind::table: {
         const Table& t = v.as_table();
-        std::vector<mg_column>& channels = add(columns_);
+        std::vector<mg_column>& channels = add(stores().columns_);
         for (const Table::Column& col : t.channels) channels.push_back(column(col));
-        std::vector<mg_mark>& marks = add(marks_);
+        std::vector<mg_mark>& marks = add(stores().marks_);
         for (const Table::Mark& m : t.axis_marks) marks.push_back({m.label.c_str(), m.value});
-        mg_table& c = add(tables_);
+        mg_table& c = add(stores().tables_);
         c = mg_table{sizeof(mg_table), t.axis.values.size(), column(t.axis), channels.data(), channels.size(),
                      (t.closed_curve ? MG_TABLE_CLOSED_CURVE : 0u) | (t.histogram ? MG_TABLE_HISTOGRAM : 0u) |
                          (t.turns_clockwise ? MG_TABLE_TURNS_CW : 0u),
@@ -298,7 +301,7 @@ class CallViews {
       case ValueKind::handle: {
         out.kind = MG_VALUE_OBJECT;
         // A foreign object's original, or a pre-1.0 plugin's C++ object exported for the call.
-        out.u.object = objects_.emplace_back(std::make_unique<ObjectReference>(export_object(v.as_handle(), "", "")))->object;
+        out.u.object = stores().objects_.emplace_back(std::make_unique<ObjectReference>(export_object(v.as_handle(), "", "")))->object;
         break;
       }
     }
@@ -315,21 +318,69 @@ class CallViews {
   static T& add(std::vector<std::unique_ptr<T>>& store) {
     return *store.emplace_back(std::make_unique<T>());
   }
-  std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
-  std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
-  std::vector<std::unique_ptr<mg_series>> series_;
-  std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
-  std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
-  std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
-  std::vector<std::unique_ptr<mg_table>> tables_;
   // Owns one reference for the call.
   struct ObjectReference {
     const mg_object* object;
     explicit ObjectReference(const mg_object* o) : object(o) {}
     ~ObjectReference() { object->vtbl->release(object); }
   };
-  std::vector<std::unique_ptr<ObjectReference>> objects_;
+  // Made only when a call needs one of them (a record list, a series, a table, an object): a call
+  // of scalars and numbers neither makes nor destroys any.
+  struct Stores {
+    std::vector<std::unique_ptr<std::vector<mg_record>>> records_;
+    std::vector<std::unique_ptr<std::vector<mg_param_value>>> fields_;
+    std::vector<std::unique_ptr<mg_series>> series_;
+    std::vector<std::unique_ptr<std::vector<const char*>>> labels_;
+    std::vector<std::unique_ptr<std::vector<mg_column>>> columns_;
+    std::vector<std::unique_ptr<std::vector<mg_mark>>> marks_;
+    std::vector<std::unique_ptr<mg_table>> tables_;
+    std::vector<std::unique_ptr<ObjectReference>> objects_;
+  };
+  Stores& stores() {
+    if (!stores_) stores_ = std::make_unique<Stores>();
+    return *stores_;
+  }
+  std::unique_ptr<Stores> stores_;
 };
+
+// `n` elements of one call's C arguments: on the stack up to N (no allocation for the usual node),
+// on the heap beyond. Elements are left uninitialised: the caller writes each one.
+template <class T, std::size_t N>
+class CallArray {
+ public:
+  explicit CallArray(std::size_t n) : data_(n <= N ? stack_.data() : (heap_ = std::make_unique_for_overwrite<T[]>(n)).get()) {}
+  CallArray(const CallArray&) = delete;
+  CallArray& operator=(const CallArray&) = delete;
+  T* data() { return data_; }
+  T& operator[](std::size_t i) { return data_[i]; }
+
+ private:
+  std::array<T, N> stack_;
+  std::unique_ptr<T[]> heap_;
+  T* data_;
+};
+
+// Indices of `items` in the order of their names: a set (a std::map by name) and the declaration
+// are then matched in one pass, with no lookup per name.
+template <class Spec>
+std::vector<std::size_t> by_name(const std::vector<Spec>& items) {
+  std::vector<std::size_t> order(items.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return items[a].name < items[b].name; });
+  return order;
+}
+
+// For each declared item (by_name order), the entry of `set` (a std::map by name) with its name,
+// or nullptr: f(declared index, const mapped_type* or nullptr).
+template <class Spec, class Map, class F>
+void match_by_name(const std::vector<Spec>& items, const std::vector<std::size_t>& order, const Map& set, F&& f) {
+  auto it = set.begin();
+  for (const std::size_t k : order) {
+    const std::string& name = items[k].name;
+    while (it != set.end() && it->first < name) ++it;
+    f(k, it != set.end() && it->first == name ? &it->second : nullptr);
+  }
+}
 
 // The node type's mechgraph.node.forecast/1 table (node_forecast.h), asked for once, or nullptr
 // when it has none: a 1.0 writer's mg_node_type may end before `query`, query may be NULL or
@@ -346,6 +397,8 @@ class CNodeType final : public NodeType {
       : type_(type),
         forecast_(node_forecast(type)),
         info_(std::move(declaration.info)),
+        params_by_name_(by_name(info_.params)),
+        inputs_by_name_(by_name(info_.inputs)),
         input_versions_(std::move(declaration.input_interface_versions)),
         output_versions_(std::move(declaration.output_interface_versions)) {}
   const NodeInfo& info() const override { return info_; }
@@ -356,7 +409,8 @@ class CNodeType final : public NodeType {
   std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const override {
     if (!forecast_) return std::nullopt;
     CallViews views;
-    const std::vector<mg_param_value> c_params = param_views(params, views);
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    param_views(params, views, c_params.data());
     std::vector<double> c_sizes(info_.inputs.size(), 0.0);
     for (std::size_t i = 0; i < info_.inputs.size(); ++i)
       if (const auto it = sizes.find(info_.inputs[i].name); it != sizes.end()) c_sizes[i] = it->second;
@@ -366,15 +420,25 @@ class CNodeType final : public NodeType {
     return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
   }
 
+  // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
+  // matched with the declaration in one pass each (by_name), not looked up name by name.
   void evaluate(const ParamSet& params, const InputSet& inputs, OutputSet& outputs, EvalContext& context) const override {
     CallViews views;
-    const std::vector<mg_param_value> c_params = param_views(params, views);
-    std::vector<std::vector<mg_value>> values(info_.inputs.size());
-    std::vector<mg_input> c_inputs(info_.inputs.size());
-    for (std::size_t i = 0; i < info_.inputs.size(); ++i) {
-      const std::string& port = info_.inputs[i].name;
-      for (std::size_t k = 0, n = inputs.count(port); k < n; ++k) values[i].push_back(views.value(inputs.value(port, k)));
-      c_inputs[i] = {values[i].data(), values[i].size()};
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    param_views(params, views, c_params.data());
+    const std::size_t ports = info_.inputs.size();
+    CallArray<const std::vector<Value>*, 8> connected(ports);
+    std::size_t count = 0;
+    match_by_name(info_.inputs, inputs_by_name_, inputs.all(), [&](std::size_t k, const std::vector<Value>* values) {
+      connected[k] = values;
+      count += values ? values->size() : 0;
+    });
+    CallArray<mg_value, 16> values(count);
+    CallArray<mg_input, 8> c_inputs(ports);
+    for (std::size_t i = 0, next = 0; i < ports; ++i) {
+      c_inputs[i] = {values.data() + next, connected[i] ? connected[i]->size() : 0};
+      if (connected[i])
+        for (const Value& v : *connected[i]) values[next++] = views.value(v);
     }
     const mg_eval_args args{sizeof(mg_eval_args), c_params.data(), c_inputs.data()};
     mg_eval_ctx call{info_, output_versions_, outputs, context, false, {}, {}, {}, {}};
@@ -398,17 +462,17 @@ class CNodeType final : public NodeType {
   }
 
  private:
-  std::vector<mg_param_value> param_views(const ParamSet& params, CallViews& views) const {
-    std::vector<mg_param_value> c_params;
-    c_params.reserve(info_.params.size());
-    for (const ParamSpec& spec : info_.params)
-      c_params.push_back(params.has(spec.name) ? views.param(params.get(spec.name), spec) : CallViews::absent(spec));
-    return c_params;
+  // c_params[i] for each declared parameter i.
+  void param_views(const ParamSet& params, CallViews& views, mg_param_value* c_params) const {
+    match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) {
+      c_params[k] = value ? views.param(*value, info_.params[k]) : CallViews::absent(info_.params[k]);
+    });
   }
 
   const mg_node_type& type_;
   const mg_node_forecast_v1* forecast_;
   NodeInfo info_;
+  std::vector<std::size_t> params_by_name_, inputs_by_name_;
   std::vector<std::uint32_t> input_versions_, output_versions_;
 };
 

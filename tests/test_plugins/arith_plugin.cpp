@@ -1,7 +1,13 @@
 // A small, well-formed plugin for the framework's own tests: arithmetic on lengths, a series,
 // a domain object, a node that emits NaN (a bug the evaluator must catch), one that fails
-// properly, and one with an effect.
+// properly, and one with an effect. Built twice: with the pre-1.0 entry (test_arith) and, with
+// ARITH_SDK1, through the SDK 1.x C boundary (test_arith_sdk1), so that the bench measures one node
+// type through both entries (bench/evaluation_bench.cpp, BM_NodeCallEntries).
+#ifdef ARITH_SDK1
+#include <mechgraph/plugin_sdk1.hpp>
+#else
 #include <mechgraph/plugin_abi.hpp>
+#endif
 
 #include <cmath>
 #include <cstdlib>
@@ -176,4 +182,8 @@ NodeTypeList make_types() {
 
 }  // namespace
 
+#ifdef ARITH_SDK1
+MECHGRAPH_PLUGIN_1("test_arith", "1.2.3", &make_types)
+#else
 MECHGRAPH_PLUGIN("test_arith", "1.2.3", &make_types)
+#endif

@@ -160,6 +160,14 @@ struct NodeInfo {
 class InputSet {
  public:
   void add(const std::string& port, Value v) { values_[port].push_back(std::move(v)); }
+  /// The values of `port`, made (empty) when absent; a port without values counts as not
+  /// connected. For a host or the SDK's bridge that reuses one set for many evaluations.
+  std::vector<Value>& slot(std::string_view port) {
+    auto it = values_.find(port);
+    return it != values_.end() ? it->second : values_.emplace(std::string(port), std::vector<Value>{}).first->second;
+  }
+  /// Every port's values, by port name (ports with no values may be listed, empty).
+  const std::map<std::string, std::vector<Value>, std::less<>>& all() const { return values_; }
   std::size_t count(std::string_view port) const;
   const Value& value(std::string_view port, std::size_t i = 0) const;
   double scalar(std::string_view port, std::size_t i = 0) const { return value(port, i).as_scalar(); }
@@ -186,6 +194,13 @@ class OutputSet {
   /// printed with the results and kept with them in the memo cache.
   void note(std::string text) { notes_.push_back(std::move(text)); }
   const std::vector<std::string>& notes() const { return notes_; }
+  /// For a host or the SDK's bridge that reuses one set for many evaluations: the value stored
+  /// for `port`, made (as an empty Value) when absent, and a way to empty the notes.
+  Value& slot(std::string_view port) {
+    auto it = values_.find(port);
+    return it != values_.end() ? it->second : values_.emplace(std::string(port), Value{}).first->second;
+  }
+  void clear_notes() { notes_.clear(); }
 
  private:
   std::map<std::string, Value, std::less<>> values_;

@@ -8,6 +8,7 @@
 #include <mechgraph/block.hpp>
 #include <mechgraph/c/node_block.h>
 #include <mechgraph/detail/block_bridge.hpp>
+#include <mechgraph/detail/bridge_sets.hpp>
 #include <mechgraph/node.hpp>
 
 #include <algorithm>
@@ -52,7 +53,7 @@ class MECHGRAPH_DETAIL_HIDDEN BlockHostContext final : public EvalContext {
 };
 
 /// mechgraph.node.block/1 over the BlockEvaluation of the C++ type behind an exported node type.
-/// `Export` is NodeTypeExport (export_node.hpp): its `type_` and its `cxx_value`.
+/// `Export` is NodeTypeExport (export_node.hpp): its `type_`.
 template <class Export>
 struct BlockExport {
   /// The table when `name`/`version` is this interface and the type evaluates blocks, else NULL.
@@ -66,8 +67,8 @@ struct BlockExport {
   static const NodeType& type_of(const mg_node_type* self) { return *static_cast<const Export*>(self->impl)->type_; }
   static ParamSet params_of(const NodeInfo& info, const mg_param_value* params) {
     ParamSet out;
-    for (std::size_t i = 0; i < info.params.size(); ++i)
-      if (params[i].present) out.set(info.params[i].name, Export::cxx_value(params[i], info.params[i]));
+    std::vector<ParamValue*> slots;
+    load_params(out, slots, info.params, params);  // bridge_sets.hpp
     return out;
   }
 

@@ -2,8 +2,9 @@
 // C++ node types exported through the SDK 1.x C boundary (docs/design/sdk-1.0.md, section 3):
 // header-only, compiled into the plugin with hidden visibility, so no C++ type, exception or
 // allocator crosses to the host. Each NodeType's NodeInfo becomes an mg_node_desc once, at the
-// entry; each evaluation rebuilds a ParamSet and an InputSet from the C arguments, runs the node,
-// and hands its outputs to the host through the eval suite by index. Every exception is caught
+// entry; each evaluation refreshes the ParamSet, InputSet and OutputSet this node type keeps on
+// this thread from the C arguments (mechgraph/detail/bridge_sets.hpp: no allocation once they have
+// their shape), runs the node, and hands its outputs to the host through the eval suite by index. Every exception is caught
 // here (OpenFX's ladder): NodeError -> fail() + MG_ERR_NODE, std::bad_alloc -> MG_ERR_NO_MEMORY,
 // anything else -> fail() + MG_ERR_INTERNAL.
 //
@@ -15,12 +16,14 @@
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/plugin.h>
+#include <mechgraph/detail/bridge_sets.hpp>
 #include <mechgraph/detail/export_block.hpp>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/version.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cstring>
 #include <deque>
 #include <memory>
@@ -43,7 +46,6 @@ inline HostSuites& host_suites() {
 
 inline mg_str c_text(std::string_view s) { return {s.data(), s.size()}; }
 inline mg_dim c_dim(const Dimension& d) { return {d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
-inline Dimension cxx_dim(const mg_dim& d) { return {d.length, d.mass, d.time, d.angle, d.temperature}; }
 
 template <class Container>
 std::uint32_t index_of(const Container& items, std::string_view name) {
@@ -84,10 +86,22 @@ inline void tell(mg_text_sink why, std::string_view text) {
   if (why.append) why.append(why.self, text.data(), text.size());
 }
 
+// Each thread's BridgeSets, by NodeTypeExport::sets_index_; this plugin's own (hidden), made when
+// a thread first evaluates a type, kept until the thread ends (they hold no object between calls).
+MECHGRAPH_DETAIL_HIDDEN inline std::vector<std::unique_ptr<BridgeSets>>& thread_bridge_sets() {
+  thread_local std::vector<std::unique_ptr<BridgeSets>> sets;
+  return sets;
+}
+MECHGRAPH_DETAIL_HIDDEN inline std::size_t next_bridge_sets_index() {
+  static std::atomic<std::size_t> next{0};
+  return next++;
+}
+
 /// One C++ NodeType and the C description that stands for it; lives until the process ends.
 class NodeTypeExport {
  public:
-  NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id) : type_(std::move(type)) {
+  NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id)
+      : type_(std::move(type)), sets_index_(next_bridge_sets_index()) {
     const NodeInfo& info = type_->info();
     // Presentation (c/present.h): frames and channels name a frame by its index in `frames`.
     for (const AngleFrame& f : info.frames) {
@@ -123,7 +137,7 @@ class NodeTypeExport {
 
  private:
   template <class>
-  friend struct BlockExport;  // blocks of cases (export_block.hpp): type_ and cxx_value
+  friend struct BlockExport;  // blocks of cases (export_block.hpp): type_
   const std::vector<const char*>& names(const std::vector<std::string>& list) {
     auto& out = lists_.emplace_back();
     for (const std::string& s : list) out.push_back(s.c_str());
@@ -273,49 +287,6 @@ class NodeTypeExport {
     return d;
   }
 
-  static ParamValue cxx_value(const mg_param_value& v, const ParamSpec& spec) {
-    ParamValue out;
-    out.kind = spec.kind;
-    out.number = v.number;
-    if (v.text.data) out.text.assign(v.text.data, v.text.size);
-    if (v.numbers) out.numbers.assign(v.numbers, v.numbers + v.number_count);
-    for (std::size_t r = 0; r < v.record_count; ++r) {
-      Record record;
-      for (std::size_t f = 0; f < v.records[r].field_count && f < spec.fields.size(); ++f)
-        if (v.records[r].fields[f].present) record[spec.fields[f].name] = cxx_value(v.records[r].fields[f], spec.fields[f]);
-      out.records.push_back(std::move(record));
-    }
-    return out;
-  }
-  static Table::Column cxx_column(const mg_column& c, std::size_t rows) {
-    return {c.name ? c.name : "", cxx_dim(c.dim), std::vector<double>(c.values, c.values + rows), c.display_unit ? c.display_unit : ""};
-  }
-  static Value cxx_input(const mg_value& v, const std::string& interface) {
-    switch (v.kind) {
-      case MG_VALUE_OBJECT: return Value::handle(import_object(v.u.object, interface, 1));
-      case MG_VALUE_SCALAR: return Value::scalar(v.u.scalar);
-      case MG_VALUE_SERIES: {
-        const mg_series& s = *v.u.series;
-        Series out{{s.axis, s.axis + s.size}, {s.values, s.values + s.size}, cxx_dim(s.axis_dim), {}};
-        if (s.labels)
-          for (std::size_t i = 0; i < s.size; ++i) out.labels.emplace_back(s.labels[i] ? s.labels[i] : "");
-        return Value::series(std::move(out));
-      }
-      case MG_VALUE_TABLE: {
-        const mg_table& t = *v.u.table;
-        Table out;
-        out.axis = cxx_column(t.axis, t.rows);
-        for (std::size_t i = 0; i < t.channel_count; ++i) out.channels.push_back(cxx_column(t.channels[i], t.rows));
-        out.closed_curve = (t.flags & MG_TABLE_CLOSED_CURVE) != 0;
-        out.histogram = (t.flags & MG_TABLE_HISTOGRAM) != 0;
-        out.turns_clockwise = (t.flags & MG_TABLE_TURNS_CW) != 0;
-        for (std::size_t i = 0; i < t.mark_count; ++i) out.axis_marks.push_back({t.marks[i].label ? t.marks[i].label : "", t.marks[i].value});
-        return Value::table(std::move(out));
-      }
-      default: throw std::invalid_argument("an input value of a kind this bridge does not import");
-    }
-  }
-
   // The host adopts a table or series: the plugin's Value (a shared pointer) keeps the arrays alive
   // until the host releases it.
   struct Holder {
@@ -329,12 +300,13 @@ class NodeTypeExport {
   };
   static mg_column c_column(const Table::Column& c) { return {c.name.c_str(), c_dim(c.dimension), c.display_unit.c_str(), c.values.data()}; }
 
-  mg_status put_output(const mg_eval_suite_v1& suite, mg_eval_ctx* ctx, std::uint32_t index, const Value& v) const {
+  // `v` is moved into what the host adopts.
+  mg_status put_output(const mg_eval_suite_v1& suite, mg_eval_ctx* ctx, std::uint32_t index, Value& v) const {
     switch (v.kind()) {
       case ValueKind::scalar: suite.set_scalar(ctx, index, v.as_scalar()); return MG_OK;
       case ValueKind::series: {
         auto holder = std::make_unique<Holder>();
-        holder->value = v;
+        holder->value = std::move(v);
         const Series& s = holder->value.as_series();
         for (const std::string& l : s.labels) holder->labels.push_back(l.c_str());
         holder->series = mg_series{sizeof(mg_series), s.values.size(), s.axis.data(), s.values.data(), c_dim(s.axis_dimension),
@@ -345,7 +317,7 @@ class NodeTypeExport {
       }
       case ValueKind::table: {
         auto holder = std::make_unique<Holder>();
-        holder->value = v;
+        holder->value = std::move(v);
         const Table& t = holder->value.as_table();
         for (const Table::Column& c : t.channels) holder->channels.push_back(c_column(c));
         for (const Table::Mark& m : t.axis_marks) holder->marks.push_back({m.label.c_str(), m.value});
@@ -364,27 +336,37 @@ class NodeTypeExport {
     return MG_ERR_UNSUPPORTED;
   }
 
+  // This thread's sets for this type, made on first use.
+  BridgeSets& thread_sets() const {
+    auto& all = thread_bridge_sets();
+    if (all.size() <= sets_index_) all.resize(sets_index_ + 1);
+    if (!all[sets_index_]) all[sets_index_] = std::make_unique<BridgeSets>(type_->info());
+    return *all[sets_index_];
+  }
+
   static mg_status evaluate(const mg_node_type* self, const mg_eval_args* args, mg_eval_ctx* ctx) noexcept {
     const mg_eval_suite_v1& suite = *host_suites().eval;
     const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
-    const NodeInfo& info = exported.type_->info();
     try {
-      ParamSet params;
-      for (std::size_t i = 0; i < info.params.size(); ++i)
-        if (args->params[i].present) params.set(info.params[i].name, cxx_value(args->params[i], info.params[i]));
-      InputSet inputs;
-      for (std::size_t i = 0; i < info.inputs.size(); ++i)
-        for (std::size_t k = 0; k < args->inputs[i].count; ++k) inputs.add(info.inputs[i].name, cxx_input(args->inputs[i].values[k], exported.input_interfaces_[i]));
-      OutputSet outputs;
-      SuiteContext context(info, ctx);
-      exported.type_->evaluate(params, inputs, outputs, context);
-      for (const std::string& note : outputs.notes()) suite.note(ctx, c_text(note));
-      for (const auto& [name, value] : outputs.all()) {
-        const std::uint32_t index = index_of(info.outputs, name);
-        if (index == UINT32_MAX) throw std::logic_error("set output '" + name + "', which it does not declare");
-        if (const mg_status s = exported.put_output(suite, ctx, index, value); s != MG_OK) return s;
+      BridgeSets* sets = &exported.thread_sets();
+      std::unique_ptr<BridgeSets> nested;  // an evaluation of this type inside one on this thread
+      if (sets->busy) {
+        nested = std::make_unique<BridgeSets>(exported.type_->info());
+        sets = nested.get();
       }
-      return MG_OK;
+      struct InUse {  // whatever happens, the sets hold nothing of this call afterwards
+        BridgeSets& sets;
+        explicit InUse(BridgeSets& s) : sets(s) { sets.busy = true; }
+        ~InUse() {
+          sets.release();
+          sets.busy = false;
+        }
+      } const in_use(*sets);
+      sets->load(*args, exported.input_interfaces_);
+      SuiteContext context(exported.type_->info(), ctx);
+      exported.type_->evaluate(sets->params, sets->inputs, sets->outputs, context);
+      for (const std::string& note : sets->outputs.notes()) suite.note(ctx, c_text(note));
+      return sets->put_outputs([&](std::uint32_t index, Value& v) { return exported.put_output(suite, ctx, index, v); });
     } catch (const NodeError& e) {
       suite.fail(ctx, c_text(e.parameter()), c_text(e.what()));
       return MG_ERR_NODE;
@@ -412,8 +394,8 @@ class NodeTypeExport {
     try {
       const NodeInfo& info = static_cast<const NodeTypeExport*>(self->impl)->type_->info();
       ParamSet cxx_params;
-      for (std::size_t i = 0; i < info.params.size(); ++i)
-        if (params[i].present) cxx_params.set(info.params[i].name, cxx_value(params[i], info.params[i]));
+      std::vector<ParamValue*> slots;
+      load_params(cxx_params, slots, info.params, params);
       InputSizes sizes;
       for (std::size_t i = 0; i < info.inputs.size(); ++i)
         if (input_sizes[i] > 0) sizes[info.inputs[i].name] = input_sizes[i];
@@ -430,6 +412,7 @@ class NodeTypeExport {
   }
 
   std::shared_ptr<const NodeType> type_;
+  std::size_t sets_index_;  // in thread_bridge_sets()
   std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
   std::deque<std::vector<mg_param_decl>> fields_;
