@@ -1,12 +1,9 @@
 #include <mechgraph/sweep/case_estimate.hpp>
 
 #include <mechgraph/errors.hpp>
-#include <mechgraph/worker_threads.hpp>
+#include <mechgraph/chunked_work.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <mutex>
 #include <string>
 
 namespace mechgraph {
@@ -57,51 +54,45 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
   // the estimate of the bound copy holds for the rebuilt graph.
   const std::size_t chunks = (cases.size() + cases_per_chunk - 1) / cases_per_chunk;
   std::vector<ChunkEstimate> chunk_estimates(chunks);
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  const unsigned workers = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(chunks, 1)));
-  run_on_workers(workers, [&](unsigned) {
-    try {
-      Graph copy = marked;  // each worker's own graph and estimators
-      const CaseBinder::Slots slots = binder.bind(copy);
-      std::vector<RepeatedNodeEstimate> repeated;
-      repeated.reserve(varied.size());
-      for (std::size_t i : varied) repeated.emplace_back(copy, i, writing[i] != 0, integers_vary[i] != 0);
-      std::vector<double> sizes = fixed_sizes;
-      for (std::size_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
-        ChunkEstimate& out = chunk_estimates[chunk];
-        const std::size_t end = std::min(cases.size(), (chunk + 1) * cases_per_chunk);
-        for (std::size_t k = chunk * cases_per_chunk; k < end; ++k) {
-          const std::size_t c = cases[k];
-          if (c >= table.cases.size()) continue;
-          try {
-            binder.apply(slots, copy, table.cases[c]);
-          } catch (const SceneError&) {
-            continue;  // this case is refused before it runs: no work
-          }
-          double work = fixed_work, memory = fixed_memory;
-          for (std::size_t v = 0; v < varied.size(); ++v) {
-            const NodeEstimate e = repeated[v](copy, sizes);
-            sizes[varied[v]] = e.output_size;
-            work += e.work;
-            memory += e.memory;
-          }
-          out.work += work;
-          out.largest_memory = std::max(out.largest_memory, memory);
-          if (work > out.largest_work) {
-            out.largest_work = work;
-            out.largest_case = c;
-          }
-        }
+  struct Worker {  // each worker's own graph and estimators
+    Graph copy;
+    CaseBinder::Slots slots;
+    std::vector<RepeatedNodeEstimate> repeated;
+    std::vector<double> sizes;
+  };
+  const auto make_worker = [&] {
+    Worker w{marked, {}, {}, fixed_sizes};
+    w.slots = binder.bind(w.copy);
+    w.repeated.reserve(varied.size());
+    for (std::size_t i : varied) w.repeated.emplace_back(w.copy, i, writing[i] != 0, integers_vary[i] != 0);
+    return w;
+  };
+  run_chunks(chunks, threads, make_worker, [&](Worker& w, std::size_t chunk) {
+    ChunkEstimate& out = chunk_estimates[chunk];
+    const std::size_t end = std::min(cases.size(), (chunk + 1) * cases_per_chunk);
+    for (std::size_t k = chunk * cases_per_chunk; k < end; ++k) {
+      const std::size_t c = cases[k];
+      if (c >= table.cases.size()) continue;
+      try {
+        binder.apply(w.slots, w.copy, table.cases[c]);
+      } catch (const SceneError&) {
+        continue;  // this case is refused before it runs: no work
       }
-    } catch (...) {
-      std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = chunks;
+      double work = fixed_work, memory = fixed_memory;
+      for (std::size_t v = 0; v < varied.size(); ++v) {
+        const NodeEstimate e = w.repeated[v](w.copy, w.sizes);
+        w.sizes[varied[v]] = e.output_size;
+        work += e.work;
+        memory += e.memory;
+      }
+      out.work += work;
+      out.largest_memory = std::max(out.largest_memory, memory);
+      if (work > out.largest_work) {
+        out.largest_work = work;
+        out.largest_case = c;
+      }
     }
   });
-  if (failure) std::rethrow_exception(failure);
   double largest = -1;
   for (const ChunkEstimate& e : chunk_estimates) {
     result.total.work += e.work;

@@ -1,14 +1,11 @@
 #include <mechgraph/uncertainty/sample_design.hpp>
 
 #include <mechgraph/errors.hpp>
-#include <mechgraph/worker_threads.hpp>
+#include <mechgraph/chunked_work.hpp>
 
 #include <boost/random/sobol.hpp>
 
 #include <algorithm>
-#include <mutex>
-#include <exception>
-#include <atomic>
 #include <charconv>
 #include <memory>
 #include <cmath>
@@ -143,58 +140,49 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   // fixed by its index), so chunks of them run on `threads` workers with the same table.
   constexpr std::size_t samples_per_chunk = 4096;
   const std::size_t chunks = (n + samples_per_chunk - 1) / samples_per_chunk;
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  const unsigned workers = static_cast<unsigned>(std::clamp<std::size_t>(threads, 1, std::max<std::size_t>(chunks, 1)));
-  run_on_workers(workers, [&](unsigned) {
-    try {
-      std::vector<double> u(design.dims()), z(d), a(d), b(d), ab(d);
-      const auto to_values = [&](const double* unit, std::vector<double>& x) {
-        if (l.empty()) {
-          for (std::size_t j = 0; j < d; ++j) x[j] = spec.parameters[j].marginal.quantile(unit[j]);
-          return;
-        }
-        // Gaussian copula: normal scores, correlated by L, back to (0, 1), through each quantile.
-        for (std::size_t j = 0; j < d; ++j) z[j] = standard_normal_quantile(unit[j]);
-        for (std::size_t j = 0; j < d; ++j) {
-          double s = 0.0;
-          for (std::size_t k = 0; k <= j; ++k) s += l[j * d + k] * z[k];
-          const double v = std::clamp(standard_normal_cdf(s), 0x1.0p-60, 1.0 - 0x1.0p-53);
-          x[j] = spec.parameters[j].marginal.quantile(v);
-        }
-      };
-      const auto row = [&](const std::vector<double>& x) {
-        std::vector<CaseValue> values(d);
-        for (std::size_t j = 0; j < d; ++j) {
-          const Dimension& dim = spec.parameters[j].marginal.dimension;
-          values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
-        }
-        return values;
-      };
-      for (std::size_t chunk; (chunk = next.fetch_add(1)) < chunks;) {
-        for (std::size_t i = chunk * samples_per_chunk; i < std::min(n, (chunk + 1) * samples_per_chunk); ++i) {
-          std::vector<CaseValue>* out = table.cases.data() + i * per_sample;
-          design.point(i, u.data());
-          to_values(u.data(), a);
-          out[0] = row(a);
-          if (!spec.sensitivity) continue;
-          to_values(u.data() + d, b);
-          out[1] = row(b);
-          for (std::size_t j = 0; j < d; ++j) {
-            ab = a;
-            ab[j] = b[j];
-            out[2 + j] = row(ab);
-          }
-        }
+  struct Worker {
+    std::vector<double> u, z, a, b, ab;
+  };
+  const auto make_worker = [&] { return Worker{std::vector<double>(design.dims()), std::vector<double>(d), std::vector<double>(d),
+                                               std::vector<double>(d), std::vector<double>(d)}; };
+  run_chunks(chunks, threads, make_worker, [&](Worker& w, std::size_t chunk) {
+    const auto to_values = [&](const double* unit, std::vector<double>& x) {
+      if (l.empty()) {
+        for (std::size_t j = 0; j < d; ++j) x[j] = spec.parameters[j].marginal.quantile(unit[j]);
+        return;
       }
-    } catch (...) {
-      std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = chunks;
+      // Gaussian copula: normal scores, correlated by L, back to (0, 1), through each quantile.
+      for (std::size_t j = 0; j < d; ++j) w.z[j] = standard_normal_quantile(unit[j]);
+      for (std::size_t j = 0; j < d; ++j) {
+        double s = 0.0;
+        for (std::size_t k = 0; k <= j; ++k) s += l[j * d + k] * w.z[k];
+        const double v = std::clamp(standard_normal_cdf(s), 0x1.0p-60, 1.0 - 0x1.0p-53);
+        x[j] = spec.parameters[j].marginal.quantile(v);
+      }
+    };
+    const auto row = [&](const std::vector<double>& x) {
+      std::vector<CaseValue> values(d);
+      for (std::size_t j = 0; j < d; ++j) {
+        const Dimension& dim = spec.parameters[j].marginal.dimension;
+        values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
+      }
+      return values;
+    };
+    for (std::size_t i = chunk * samples_per_chunk; i < std::min(n, (chunk + 1) * samples_per_chunk); ++i) {
+      std::vector<CaseValue>* out = table.cases.data() + i * per_sample;
+      design.point(i, w.u.data());
+      to_values(w.u.data(), w.a);
+      out[0] = row(w.a);
+      if (!spec.sensitivity) continue;
+      to_values(w.u.data() + d, w.b);
+      out[1] = row(w.b);
+      for (std::size_t j = 0; j < d; ++j) {
+        w.ab = w.a;
+        w.ab[j] = w.b[j];
+        out[2 + j] = row(w.ab);
+      }
     }
   });
-  if (failure) std::rethrow_exception(failure);
   return table;
 }
 

@@ -6,13 +6,10 @@
 #include <boost/math/distributions/beta.hpp>
 #include <boost/math/distributions/binomial.hpp>
 
-#include <mechgraph/worker_threads.hpp>
+#include <mechgraph/chunked_work.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 #include <cmath>
 
@@ -287,39 +284,31 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
   // A resample is drawn once and serves every output.
   std::vector<double> first_draws(outputs * d * bootstrap), total_draws(outputs * d * bootstrap);
   const auto slot = [&](std::size_t o, std::size_t j, std::size_t r) { return (o * d + j) * bootstrap + r; };
-  std::atomic<std::size_t> next{0};
-  std::mutex failure_mutex;
-  std::exception_ptr failure;
-  run_on_workers(static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, bootstrap))), [&](unsigned) {
-    try {
-      // Resamples in groups drawn side by side: one pass over each output's rows serves a group.
-      std::vector<std::uint32_t> times(n * resamples_at_once);
-      SobolEstimate estimates[resamples_at_once];
-      for (std::size_t first_r; (first_r = next.fetch_add(resamples_at_once)) < bootstrap;) {
-        const std::size_t count = std::min(resamples_at_once, bootstrap - first_r);
-        std::fill(times.begin(), times.begin() + static_cast<std::ptrdiff_t>(n * count), 0u);
-        for (std::size_t k = 0; k < count; ++k) {
-          // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
-          const CounterRow draw(seed, stream_bootstrap, first_r + k);
-          for (std::size_t i = 0; i < n; ++i)
-            ++times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1) * count + k];
-        }
-        for (std::size_t o = 0; o < outputs; ++o) {
-          estimate_drawn(prepared[o].rows, times.data(), count, estimates);
-          for (std::size_t k = 0; k < count; ++k)
-            for (std::size_t j = 0; j < d; ++j) {
-              first_draws[slot(o, j, first_r + k)] = estimates[k].first[j];
-              total_draws[slot(o, j, first_r + k)] = estimates[k].total[j];
-            }
-        }
-      }
-    } catch (...) {
-      std::lock_guard lock(failure_mutex);
-      if (!failure) failure = std::current_exception();
-      next = bootstrap;
-    }
-  });
-  if (failure) std::rethrow_exception(failure);
+  // Resamples in groups drawn side by side: one pass over each output's rows serves a group.
+  struct Worker {
+    std::vector<std::uint32_t> times;
+    SobolEstimate estimates[resamples_at_once];
+  };
+  const std::size_t groups = (bootstrap + resamples_at_once - 1) / resamples_at_once;
+  run_chunks(groups, threads, [&] { return Worker{std::vector<std::uint32_t>(n * resamples_at_once), {}}; },
+             [&](Worker& w, std::size_t group) {
+               const std::size_t first_r = group * resamples_at_once, count = std::min(resamples_at_once, bootstrap - first_r);
+               std::fill(w.times.begin(), w.times.begin() + static_cast<std::ptrdiff_t>(n * count), 0u);
+               for (std::size_t k = 0; k < count; ++k) {
+                 // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
+                 const CounterRow draw(seed, stream_bootstrap, first_r + k);
+                 for (std::size_t i = 0; i < n; ++i)
+                   ++w.times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1) * count + k];
+               }
+               for (std::size_t o = 0; o < outputs; ++o) {
+                 estimate_drawn(prepared[o].rows, w.times.data(), count, w.estimates);
+                 for (std::size_t k = 0; k < count; ++k)
+                   for (std::size_t j = 0; j < d; ++j) {
+                     first_draws[slot(o, j, first_r + k)] = w.estimates[k].first[j];
+                     total_draws[slot(o, j, first_r + k)] = w.estimates[k].total[j];
+                   }
+               }
+             });
   for (std::size_t o = 0; o < outputs; ++o) {
     result[o].variance = prepared[o].point.variance;
     for (std::size_t j = 0; j < d; ++j) {
