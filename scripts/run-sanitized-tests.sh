@@ -19,5 +19,11 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DMECHGRAPH_PYTHON=OF
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags" >&2
 cmake --build build-asan --parallel "$(nproc)" >&2
 cd build-asan
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+# LeakSanitizer does not walk threads' TLS for roots (use_tls=0): its tracer (gcc 12's runtime)
+# crashed walking TLS at the exit of `report --pdf` run by the test binary ("Tracer caught signal
+# 11"; it began when the SDK 1.x bridge's thread_local sets came into the plugins; the same
+# command run by hand passes). Without TLS roots a block held only from TLS would be reported as a
+# leak: the check can only report more, never fewer.
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:allocator_may_return_null=1 LSAN_OPTIONS=use_tls=0 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure --parallel "$(nproc)" --timeout 900 --label-exclude 'sdk|docs-slow'
