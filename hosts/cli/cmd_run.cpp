@@ -49,7 +49,8 @@ namespace {
 constexpr std::size_t printed_table_rows = 40;
 
 // A channel with declared codes shows each row's name beside the number ("1 contact_lost").
-void print_short_table(std::ostream& os, const Table& t, const Presentation& presentation) {
+// A unit of degrees says which angle its column counts, as the column declares it ("[deg (cam)]").
+void print_short_table(std::ostream& os, const Table& t, const DeclaredPort& declared) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
   const auto unit_of = [](const Table::Column& c) {
@@ -64,9 +65,10 @@ void print_short_table(std::ostream& os, const Table& t, const Presentation& pre
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const Table::Column& c = *columns[k];
     const std::string unit = unit_of(c);
-    head.push_back(terminal_text(c.name, TerminalLines::one) + (unit.empty() ? "" : " [" + terminal_text(unit, TerminalLines::one) + "]"));
+    const std::string shown = unit_with_reference(unit, declared.column_tag(c));
+    head.push_back(terminal_text(c.name, TerminalLines::one) + (shown.empty() ? "" : " [" + terminal_text(shown, TerminalLines::one) + "]"));
     width.push_back(std::max<std::size_t>(head.back().size(), 12));
-    const ChannelDecl* decl = presentation.find(c.name);
+    const ChannelDecl* decl = declared.channel(c.name);
     const double floor = noise_floor(c.dimension, table_largest(t, c.dimension));
     for (std::size_t j = 0; j < t.axis.values.size(); ++j) {
       const double shown = c.display_unit.empty() ? c.values[j] : to_unit(c.values[j], c.dimension, c.display_unit);
@@ -155,7 +157,7 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
         const std::size_t rows = o.value.as_table().axis.values.size();
         if (rows > 0 && rows <= printed_table_rows) {
           text << "\n";
-          print_short_table(text, o.value.as_table(), graph.outputs[i].spec ? graph.outputs[i].spec->presentation : Presentation{});
+          print_short_table(text, o.value.as_table(), declared_port(graph, o.label));
           continue;
         }
       }

@@ -3,6 +3,7 @@
 // output label ("node.port") names, its presentation and the angle frames. Hosts present results
 // from these only, never from names (docs/design/sdk-1.0.md, sections 1.6 and 5).
 #include <mechgraph/graph.hpp>
+#include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/node.hpp>
 
 #include <string>
@@ -28,6 +29,13 @@ struct DeclaredPort {
     const AngleFrame* f = frame(id);
     return f ? f->unit_tag : std::string();
   }
+  /// The tag of table column `c` (its channel's or axis' declared frame): "cam" makes a column
+  /// of degrees "opening [deg (cam)]" (angle_reference.hpp); "" when it declares none.
+  std::string column_tag(const Table::Column& c) const {
+    return info && port ? host::column_angle_reference(*info, *port, c.name, c.dimension) : std::string();
+  }
+  /// The tags of a series' values and of its axis (the port's frame).
+  std::string values_tag(const Dimension& d) const { return info && port ? host::angle_reference(*info, port->angle_frame, d) : std::string(); }
   /// The label a reader sees for a channel: its declared label, else its name with '_' as ' '.
   std::string label(const std::string& name) const {
     if (const ChannelDecl* c = channel(name)) return c->shown_label();

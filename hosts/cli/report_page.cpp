@@ -1280,7 +1280,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
                                        html_text(page_table.header_unit.back()) + "]</span>");
     }
     // The CSV beside the table is in the units the table shows.
-    write_table_csv(dir / csv, t, unit, declared.presentation());
+    write_table_csv(dir / csv, t, unit, declared);
     for (std::size_t i = 0; i < t.axis.values.size(); ++i) {
       std::vector<std::string> row;
       for (std::size_t k = 0; k < cols.size(); ++k) {

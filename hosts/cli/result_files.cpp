@@ -23,9 +23,9 @@
 namespace mechgraph::cli {
 
 // The text of a table's and a series' CSV (below), written whole by write_table_csv / write_csv.
-void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const Presentation& presentation);
-void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& column_units, const Presentation& presentation);
-void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units);
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const DeclaredPort& declared);
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& column_units, const DeclaredPort& declared);
+void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units, const DeclaredPort& declared);
 
 void write_json(std::ostream& os, const Graph& graph, const RunResult& result, const PluginRegistry& registry,
                 const RunInputs& inputs) {
@@ -229,22 +229,22 @@ void print_series(std::ostream& os, const OutputValue& o) {
 
 // One CSV per table: the axis, then each channel; header `name [unit]`, in the scene's display
 // units (SI where the scene names none), or in the units the caller gives per column.
-void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units, const Presentation& presentation) {
-  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units, presentation); });
+void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units, const DeclaredPort& declared) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, units, declared); });
 }
 
 void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units,
-                     const Presentation& presentation) {
-  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, column_units, presentation); });
+                     const DeclaredPort& declared) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_table_rows(out, t, column_units, declared); });
 }
 
-void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const Presentation& presentation) {
+void write_table_rows(std::ostream& out, const Table& t, const DisplayUnits& units, const DeclaredPort& declared) {
   std::vector<std::string> unit{units.unit_for(t.axis.dimension)};
   for (const Table::Column& c : t.channels) unit.push_back(units.unit_for(c.dimension));
-  write_table_rows(out, t, unit, presentation);
+  write_table_rows(out, t, unit, declared);
 }
 
-void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& unit, const Presentation& presentation) {
+void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::string>& unit, const DeclaredPort& declared) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);
   if (unit.size() != columns.size())
@@ -252,9 +252,10 @@ void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::
   // A channel with declared codes is followed by their names.
   std::vector<const ChannelDecl*> named(columns.size(), nullptr);
   for (std::size_t k = 0; k < columns.size(); ++k)
-    if (const ChannelDecl* decl = presentation.find(columns[k]->name); decl && !decl->codes.empty()) named[k] = decl;
+    if (const ChannelDecl* decl = declared.channel(columns[k]->name); decl && !decl->codes.empty()) named[k] = decl;
   for (std::size_t k = 0; k < columns.size(); ++k) {
-    out << (k ? "," : "") << csv_field(columns[k]->name + " [" + (unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k]) + "]");
+    const std::string shown = unit[k].empty() ? columns[k]->dimension.si_unit() : unit[k];
+    out << (k ? "," : "") << csv_field(columns[k]->name + " [" + unit_with_reference(shown, declared.column_tag(*columns[k])) + "]");
     if (named[k]) out << "," << csv_field(columns[k]->name + "_name");
   }
   out << "\n" << std::setprecision(17);
@@ -268,15 +269,17 @@ void write_table_rows(std::ostream& out, const Table& t, const std::vector<std::
   }
 }
 
-void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units) {
-  write_file_whole(file, true, [&](std::ostream& out) { write_series_rows(out, o, units); });
+void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units, const DeclaredPort& declared) {
+  write_file_whole(file, true, [&](std::ostream& out) { write_series_rows(out, o, units, declared); });
 }
 
-void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units) {
+void write_series_rows(std::ostream& out, const OutputValue& o, const DisplayUnits& units, const DeclaredPort& declared) {
   const Series& s = o.value.as_series();
   const std::string axis_unit = units.unit_for(s.axis_dimension), value_unit = units.unit_for(o.dimension);
-  out << csv_field("axis [" + (axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit) + "]") << ","
-      << csv_field(o.label + " [" + (value_unit.empty() ? o.dimension.si_unit() : value_unit) + "]") << "\n";
+  const std::string axis_shown = axis_unit.empty() ? s.axis_dimension.si_unit() : axis_unit;
+  const std::string value_shown = value_unit.empty() ? o.dimension.si_unit() : value_unit;
+  out << csv_field("axis [" + unit_with_reference(axis_shown, declared.values_tag(s.axis_dimension)) + "]") << ","
+      << csv_field(o.label + " [" + unit_with_reference(value_shown, declared.values_tag(o.dimension)) + "]") << "\n";
   out << std::setprecision(17);
   for (std::size_t i = 0; i < s.values.size(); ++i)
     out << (axis_unit.empty() ? s.axis[i] : to_unit(s.axis[i], s.axis_dimension, axis_unit)) << ","
@@ -288,10 +291,10 @@ void write_result_files(const std::filesystem::path& dir, const Graph& graph, co
                         const PluginRegistry& registry, const RunInputs& inputs) {
   write_file_whole(dir / "results.json", true, [&](std::ostream& os) { write_json(os, graph, result, registry, inputs); });
   for (const OutputValue& o : result.outputs)
-    if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units);
+    if (o.value.kind() == ValueKind::series) write_csv(dir / (o.label + ".csv"), o, graph.display_units, declared_port(graph, o.label));
     else if (o.value.kind() == ValueKind::table) {
       const DeclaredPort declared = declared_port(graph, o.label);
-      write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units, declared.presentation());
+      write_table_csv(dir / (o.label + ".csv"), o.value.as_table(), graph.display_units, declared);
       if (is_drawable_curve(o.value.as_table(), declared.presentation())) {
         // The producing node's notes go into the drawing too (a drawing says which way it turns).
         const std::string node = o.label.substr(0, o.label.find('.'));

@@ -8,6 +8,7 @@
 #include <mechgraph/graph.hpp>
 
 #include "cli.hpp"
+#include "declared_port.hpp"
 
 #include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/host/report_units.hpp>
@@ -46,16 +47,17 @@ void write_report_csv(const std::filesystem::path& file, const ResolvedReport& r
 /// Short series inline ([a, b, c] unit), labelled ones by name, long ones as a count.
 void print_series(std::ostream& os, const OutputValue& o);
 
-/// One CSV per table / series output; header `name [unit]` in the scene's display units.
+/// One CSV per table / series output; header `name [unit]` in the scene's display units, a unit of
+/// degrees followed by the angle its column declares it counts ("opening [deg (cam)]").
 void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units,
-                     const Presentation& presentation = {});
+                     const DeclaredPort& declared = {});
 /// The same with each column's unit given: `column_units` holds the axis's and then each channel's
 /// ("" keeps SI). A report writes its tables' CSVs in the units its page shows (deg, mm ...).
 /// A channel with declared codes (presentation.hpp) is followed by a column "<channel>_name" with
 /// each row's code name.
 void write_table_csv(const std::filesystem::path& file, const Table& t, const std::vector<std::string>& column_units,
-                     const Presentation& presentation = {});
-void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units);
+                     const DeclaredPort& declared = {});
+void write_csv(const std::filesystem::path& file, const OutputValue& o, const DisplayUnits& units, const DeclaredPort& declared = {});
 
 /// Every file of `run --out` into `dir`: results.json, a CSV per series/table output, a DXF per
 /// closed curve.

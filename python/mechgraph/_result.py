@@ -33,7 +33,10 @@ class Quantity(NamedTuple):
         return f"{_core.shown_number(self.display_value, self.value, self.unit)} {unit}".rstrip()
 
 
-def _column_label(name: str, unit: str) -> str:
+def _column_label(name: str, unit: str, frame: str = "") -> str:
+    """``name [unit]``; a unit of degrees carries the angle its column counts, as declared:
+    ``opening [deg (cam)]`` (the CLI's CSV and the sweep's header write the same)."""
+    unit = _core.unit_with_reference(unit, frame) if unit else unit
     return f"{name} [{unit}]" if unit else name
 
 
@@ -171,7 +174,9 @@ class Result:
     def table(self, label: str, units: str = SI_UNITS):
         """A table (or a series) as a pandas DataFrame, columns labelled ``name [unit]``: in SI
         (``units="si"``, the default) or in the scene's units (``units="display"``: its
-        ``units:``, else each column's own display unit, else SI). ``attrs`` hold ``histogram``
+        ``units:``, else each column's own display unit, else SI). A unit of degrees names the
+        angle its column counts, as declared: ``opening [deg (cam)]``, ``crank_opening [deg
+        (crank)]`` (the CLI's CSV and terminal do the same; radians carry no tag). ``attrs`` hold ``histogram``
         (bool), ``marks`` (reference values on the axis, such as a specification's limits, in
         the axis' unit of the frame) and ``frames`` (column label -> the angle it counts as its
         port declares it, 'crank'; columns that declare none are left out). A column of declared
@@ -188,10 +193,11 @@ class Result:
             axis, axis_unit, names = self.axis(label, units)
             values = self.value(label, units)
             unit = self.display_unit(label) if units == DISPLAY_UNITS else self.unit(label)
-            frame = pd.DataFrame({_column_label("axis", axis_unit): axis, _column_label(label, unit): values})
+            declared = source.declarations(label)["frames"]  # values, axis
+            frame = pd.DataFrame({_column_label("axis", axis_unit, declared[1]): axis,
+                                  _column_label(label, unit, declared[0]): values})
             if names:
                 frame.index = names
-            declared = source.declarations(label)["frames"]  # values, axis
             frame.attrs["frames"] = {c: f for c, f in zip(frame.columns, [declared[1], declared[0]]) if f}
             return frame
         if kind != "table":
@@ -203,7 +209,7 @@ class Result:
         data, axis_shown, frames, codes = {}, columns[0]["unit"], {}, {}
         for i, (c, unit, tag, named) in enumerate(zip(columns, shown, declared["frames"], declared["codes"])):
             unit = unit or c["unit"]
-            name = _column_label(c["name"], unit)
+            name = _column_label(c["name"], unit, tag)
             data[name] = _in_unit(c["values"], c["unit"], unit, f"'{label}', column '{c['name']}'")
             if tag:
                 frames[name] = tag

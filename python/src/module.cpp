@@ -402,8 +402,9 @@ PYBIND11_MODULE(_core, m) {
     spdlog::set_level(l);
   });
   m.def("unit_scale", [](const std::string& unit) {
-    // shown = si / scale - offset, and the SI unit of the unit's dimension ("" dimensionless)
-    const UnitScale u = parse_unit(unit);
+    // shown = si / scale - offset, and the SI unit of the unit's dimension ("" dimensionless); a
+    // column label's angle reference ("deg (crank)") names the angle, not a scale
+    const UnitScale u = parse_unit(host::unit_without_reference(unit));
     return py::make_tuple(u.scale, u.offset, si_unit_label(u.dimension));
   });
   m.def("shown_number", [](double shown, double si, const std::string& si_unit, double largest_si) {

@@ -342,7 +342,10 @@ def test_frames_and_code_names_as_the_command_line_shows_them(plugin, cli, tmp_p
         assert events.attrs["codes"] == {"kind": {1.0: "suction_port", 2.0: "delivery_port"}}
         assert events.attrs["frames"] == {"opens_shaft [rad]": "shaft", "opens_rotor [rad]": "rotor", "closes_rotor [rad]": "rotor"}
         motion = r.table("p.motion", units="display")
-        assert motion.attrs["frames"] == {"shaft_angle [deg]": "shaft", "rotor_angle [deg]": "rotor",
-                                          "speed [mm/deg]": "shaft", "accel [mm/deg^2]": "shaft"}
+        # Degrees name their angle in the label itself, as the CLI's CSV header and terminal do
+        # (radians carry no tag): a column cannot be read in the wrong angle.
+        assert motion.attrs["frames"] == {"shaft_angle [deg (shaft)]": "shaft", "rotor_angle [deg (rotor)]": "rotor",
+                                          "speed [mm/deg (shaft)]": "shaft", "accel [mm/deg^2 (shaft)]": "shaft"}
+        assert mechgraph._core.unit_scale("mm/deg (shaft)") == mechgraph._core.unit_scale("mm/deg")
     finally:
         mechgraph.load_plugins()

@@ -279,7 +279,7 @@ TEST_CASE("report: the CSV beside each table is in the units the table shows", "
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     check_csvs_against_page(dir);
-    if (file.stem() == "ten_lobes") CHECK_THAT(slurp(dir / "a.events.csv"), Contains("checking_lift [in],opening [deg]"));
+    if (file.stem() == "ten_lobes") CHECK_THAT(slurp(dir / "a.events.csv"), Contains("checking_lift [in],opening [deg (cam)]"));
     fs::remove_all(dir);
   }
 }

@@ -123,7 +123,7 @@ TEST_CASE("docs: every output listing (a fenced block without a language) is com
       {"v.opening_angle [deg]: n 128", "docs: README's uncertainty study listing is what study prints"},
       {"One lift law, two followers", "docs: README's contour listing, its note and the events CSV are what run writes"},
       {"flat: contour: the cam turns", "docs: README's contour listing, its note and the events CSV are what run writes"},
-      {"checking_lift [mm],opening [deg]", "docs: README's contour listing, its note and the events CSV are what run writes"},
+      {"checking_lift [mm],opening [deg (cam)]", "docs: README's contour listing, its note and the events CSV are what run writes"},
       {"v_kurz: intake: opens", "docs: README's valve-train study listing is what run-study.sh and run print"},
       {"\"provenance\": {", "docs: README's backlash listing and provenance excerpt are what run prints"},
       {"Roller finger follower", "docs: README's finger-follower listing is what run prints"},

@@ -70,7 +70,7 @@ TEST_CASE("docs: README's contour listing, its note and the events CSV are what 
   check_block("README.md", "flat: contour: the cam turns", out);
   std::ifstream events(dir / "kurz.events.csv");
   REQUIRE(events);
-  check_block("README.md", "checking_lift [mm],opening [deg]", std::string(std::istreambuf_iterator<char>(events), {}));
+  check_block("README.md", "checking_lift [mm],opening [deg (cam)]", std::string(std::istreambuf_iterator<char>(events), {}));
   std::filesystem::remove_all(dir);
 }
 

@@ -18,4 +18,10 @@ std::string unit_with_reference(const std::string& unit, const std::string& refe
   return unit + " (" + reference + ")";
 }
 
+std::string unit_without_reference(const std::string& unit) {
+  const std::size_t open = unit.rfind(" (");
+  if (open == std::string::npos || unit.empty() || unit.back() != ')' || unit.find("deg") >= open) return unit;
+  return unit.substr(0, open);
+}
+
 }  // namespace mechgraph::host
