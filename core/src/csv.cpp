@@ -7,6 +7,18 @@
 
 namespace mechgraph {
 
+bool split_plain_csv_line(std::string_view line, std::vector<std::string_view>& fields) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  fields.clear();
+  if (line.find('"') != std::string_view::npos) return false;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    if (comma == std::string_view::npos) return true;
+    start = comma + 1;
+  }
+}
+
 std::vector<std::string> split_csv_line(std::string_view line) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
   std::vector<std::string> fields(1);
@@ -54,12 +66,16 @@ bool formula_start(char c) { return c == '=' || c == '+' || c == '-' || c == '@'
 }  // namespace
 
 void append_csv_field(std::string& out, std::string_view text) {
-  // Most cells (numbers, plain words) need nothing: appended as they are, without a copy.
-  const bool breaks = text.find_first_of("\n\r") != std::string_view::npos;
+  // Most cells (numbers, plain words) need nothing: appended as they are, without a copy. One
+  // pass finds line breaks and what needs quotes.
+  bool breaks = false, quote = false;
+  for (const char c : text) {
+    breaks |= c == '\n' || c == '\r';
+    quote |= c == ',' || c == '"';
+  }
   // As csv_text decides it: on the text with its line breaks already spaces.
   const char front = text.empty() ? ' ' : (text.front() == '\n' || text.front() == '\r') ? ' ' : text.front();
-  const bool formula = text != "-" && formula_start(front) && !number_cell(text);
-  const bool quote = text.find_first_of(",\"") != std::string_view::npos;
+  const bool formula = formula_start(front) && text != "-" && !number_cell(text);
   if (!breaks && !formula && !quote) {
     out.append(text);
     return;

@@ -55,3 +55,23 @@ TEST_CASE("csv_field equals its definition on random cells of the deciding chara
     REQUIRE(split_csv_line(csv_field(text)) == std::vector<std::string>{csv_text(text)});
   }
 }
+
+TEST_CASE("split_plain_csv_line gives split_csv_line's fields as views, and declines quotes") {
+  // Second method: split_csv_line, over random lines of the characters that decide a split.
+  std::mt19937_64 random(11);
+  const std::string alphabet = ",,a1 .\t\r-";
+  std::uniform_int_distribution<std::size_t> pick(0, alphabet.size() - 1), length(0, 9);
+  std::vector<std::string_view> views;
+  for (int k = 0; k < 20000; ++k) {
+    std::string line;
+    for (std::size_t n = length(random); n > 0; --n) line += alphabet[pick(random)];
+    INFO("line '" << line << "'");
+    REQUIRE(split_plain_csv_line(line, views));
+    const std::vector<std::string> expected = split_csv_line(line);
+    REQUIRE(std::vector<std::string>(views.begin(), views.end()) == expected);
+  }
+  CHECK_FALSE(split_plain_csv_line("a,\"b,c\"", views));
+  CHECK(views.empty());
+  REQUIRE(split_plain_csv_line("", views));
+  CHECK(views == std::vector<std::string_view>{""});
+}

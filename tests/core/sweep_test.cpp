@@ -14,6 +14,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <numbers>
+
 #include <unistd.h>
 
 #include <cmath>
@@ -121,6 +123,16 @@ TEST_CASE("sweep --cases: header units, units in cells, words, and located error
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 1 cells, the header has 2"));
   std::ofstream(file) << "lift [mm],rpm\n8,\n";
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:2:3: 'rpm' has no value"));
+  // A byte order mark, CRLF line ends, padded cells, no line break at the end.
+  std::ofstream(file) << "\xEF\xBB\xBFlift [mm],rpm\r\n 8 ,5000 rpm\r\n\r\n9.5\t,\"6000 rpm\"";
+  const CaseTable u = read_cases_csv(file);
+  REQUIRE(u.cases.size() == 2);
+  CHECK(u.variables[0].name == "lift");
+  CHECK(u.cases[0][0].text == "8 mm");
+  CHECK(u.cases[1][0].text == "9.5 mm");
+  CHECK_THAT(*u.cases[1][1].si, WithinRel(6000.0 * std::numbers::pi / 30.0, 1e-15));
+  std::ofstream(file) << "lift [mm],rpm\r\n8,5000 rpm\r\n\"9\",x y,\r\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 3 cells, the header has 2"));
   std::filesystem::remove_all(dir);
 }
 

@@ -17,6 +17,10 @@ namespace mechgraph {
 
 /// The fields of one line; throws std::invalid_argument for an unterminated quote.
 std::vector<std::string> split_csv_line(std::string_view line);
+/// The fields of a line without quotes as views into it (`fields` reused: nothing allocated once it
+/// has room), the same fields split_csv_line gives; false, and `fields` empty, when the line has a
+/// quote (split_csv_line reads it then).
+bool split_plain_csv_line(std::string_view line, std::vector<std::string_view>& fields);
 
 /// One field, quoted when it has to be; line breaks become spaces; a formula-like text cell gets a
 /// leading ' (see above). split_csv_line(csv_field(t)) gives csv_text(t).

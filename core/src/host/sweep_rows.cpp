@@ -404,9 +404,13 @@ void SweepRows::append_line(std::string& out, const CaseResult& result, int exit
   number(result.index);
   thread_local std::string input;
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
-    input.clear();
-    table_.append_shown(input, result.index, v);
     out += ',';
+    // A number's digits go straight into the row (append_csv_field leaves them as they are);
+    // text as written goes through it.
+    const std::size_t mark = out.size();
+    if (table_.append_shown(out, result.index, v)) continue;
+    input.assign(out, mark);
+    out.resize(mark);
     append_csv_field(out, input);
   }
   const bool values = result.failure == CaseFailure::none && error.empty();

@@ -156,11 +156,11 @@ std::string read_user_file(const std::filesystem::path& file, std::size_t limit,
   }
 }
 
-void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) const {
+bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) const {
   const CaseValue& value = cases[i][v];
   if (!value.si) {
     out += value.text;
-    return;
+    return false;
   }
   double x = *value.si;
   if (const std::string& unit = variables[v].unit; !unit.empty()) {
@@ -169,15 +169,16 @@ void CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
     const std::optional<UnitScale>& u = parse_unit_cached(unit);
     if (!u || !(u->dimension == value.dimension)) {
       out += value.written();
-      return;
+      return false;
     }
     x = *value.si / u->scale - u->offset;
     if (!std::isfinite(x)) {
       out += value.written();
-      return;
+      return false;
     }
   }
   append_shown_number(out, x);
+  return std::isfinite(x);  // always, as values are read and made; else a CSV writer escapes it
 }
 
 std::string CaseTable::shown(std::size_t i, std::size_t v) const {
@@ -295,26 +296,42 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
   return table;
 }
 
+// `s` without the white space at its ends (a view into it).
+std::string_view trimmed_view(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
 CaseTable read_cases_csv(const std::filesystem::path& file) {
-  std::istringstream in(read_user_file(file, max_cases_file_bytes, "--cases"));
+  const std::string content = read_user_file(file, max_cases_file_bytes, "--cases");
   const std::string where = excerpt(file.string());
   CaseTable table;
   table.origin = file.string();
-  std::string line;
   int number = 0;
   bool header = false;
   std::vector<std::string> header_units;  // a bare number in a cell is in its column's unit
   std::vector<std::optional<UnitScale>> column_units;  // that unit, parsed (none: unitless or not a unit)
-  while (std::getline(in, line)) {
+  // A line's fields as views: into the line itself (no quotes, the common line), else into the
+  // fields split_csv_line unquoted. Nothing is allocated per line but the values kept.
+  std::vector<std::string_view> fields;
+  std::vector<std::string> unquoted;
+  // Lines as std::getline gives them: split at '\n', a last line without one included.
+  for (std::size_t at = 0; at < content.size();) {
+    const std::size_t newline = content.find('\n', at);
+    std::string_view line(content.data() + at, (newline == std::string::npos ? content.size() : newline) - at);
+    at = newline == std::string::npos ? content.size() : newline + 1;
     ++number;
-    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte order mark
-    const std::string trimmed = trim(line);
+    if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);  // a UTF-8 byte order mark
+    const std::string_view trimmed = trimmed_view(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
-    std::vector<std::string> fields;
-    try {
-      fields = split_csv_line(line);
-    } catch (const std::invalid_argument& e) {
-      throw SceneError(where + ":" + std::to_string(number) + ":1: " + e.what());
+    if (!split_plain_csv_line(line, fields)) {
+      try {
+        unquoted = split_csv_line(line);
+      } catch (const std::invalid_argument& e) {
+        throw SceneError(where + ":" + std::to_string(number) + ":1: " + e.what());
+      }
+      fields.assign(unquoted.begin(), unquoted.end());
     }
     if (!header) {
       header = true;
@@ -322,7 +339,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       // (linear in the header), never compared with every other name.
       std::unordered_set<std::string> names;
       names.reserve(fields.size());
-      for (const std::string& f : fields) {
+      for (const std::string_view f : fields) {
         auto [name, unit] = split_header(f);
         if (name.empty()) throw SceneError(where + ":" + std::to_string(number) + ":1: a column without a name");
         if (!names.insert(name).second)
@@ -347,9 +364,10 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       throw SceneError(where + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
                        " cells, the header has " + std::to_string(table.variables.size()));
     std::vector<CaseValue> row;
+    row.reserve(fields.size());
     int column = 1;
     for (std::size_t v = 0; v < fields.size(); ++v) {
-      const std::string cell = trim(fields[v]);
+      const std::string_view cell = trimmed_view(fields[v]);
       if (cell.empty())
         throw SceneError(where + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
                          excerpt(table.variables[v].name) + "' has no value");
@@ -364,15 +382,19 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         const auto [end, ec] = std::from_chars(first, last, x);
         const double si = (x + u->offset) * u->scale;
         if (ec == std::errc() && end == last && std::isfinite(x) && std::isfinite(si)) {
-          row.push_back(CaseValue{cell + " " + unit, si, u->dimension});
+          std::string text;  // "CELL UNIT", made once
+          text.reserve(cell.size() + 1 + unit.size());
+          text.append(cell).append(1, ' ').append(unit);
+          row.push_back(CaseValue{std::move(text), si, u->dimension});
           column += static_cast<int>(fields[v].size()) + 1;
           continue;
         }
       }
       const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
-      CaseValue value = read_case_value(!unit.empty() && bare_number(cell) ? cell + " " + unit : cell, at);
-      if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell) + "' is not a number in " + excerpt(unit));
-      if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell);
+      const std::string cell_text(cell);
+      CaseValue value = read_case_value(!unit.empty() && bare_number(cell_text) ? cell_text + " " + unit : cell_text, at);
+      if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
+      if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell_text);
       row.push_back(std::move(value));
       column += static_cast<int>(fields[v].size()) + 1;
     }

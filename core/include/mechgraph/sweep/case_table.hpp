@@ -64,8 +64,10 @@ struct CaseTable {
 
   /// The value of variable v in case i as the output shows it (in the variable's unit).
   std::string shown(std::size_t i, std::size_t v) const;
-  /// shown(i, v) appended to `out` (the rows of a sweep are written without a string per cell).
-  void append_shown(std::string& out, std::size_t i, std::size_t v) const;
+  /// shown(i, v) appended to `out` (the rows of a sweep are written without a string per cell);
+  /// true when what it appended is a finite number's digits as std::to_chars writes them (a CSV
+  /// cell as it is), false for text as written.
+  bool append_shown(std::string& out, std::size_t i, std::size_t v) const;
 };
 
 /// Every number a sweep generates or reads is finite: an infinite or NaN end, list value or
