@@ -182,7 +182,10 @@ std::string fingerprint(const std::string& scene_file, const std::vector<std::st
   for (const std::string& s : sets) h.add(s);
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
   for (const auto& row : table.cases)
-    for (const CaseValue& v : row) h.add(v.written());
+    for (const CaseValue& v : row) {
+      if (!v.text.empty()) h.add(std::string_view(v.text));  // written() without its copy
+      else h.add(v.written());
+    }
   for (const RequestedOutput& o : graph.outputs) h.add(o.label);
   h.add(static_cast<std::uint64_t>(format));
   char hex[20];
