@@ -115,7 +115,7 @@ assert list(stations["kind"]) == [1.0, 2.0, 3.0], stations
 assert list(stations["kind_name"]) == ["rise_start", "top", "return_end"], stations
 assert r.quantity("heddle.max_velocity").frame == "drum", r.quantity("heddle.max_velocity")
 motion = r.table("heddle.heddle_motion", units="display")
-assert list(motion.columns) == ["drum_angle [deg]", "heddle_lift [mm]", "lift_rate [mm/deg]", "lift_accel [mm/deg^2]"], list(motion.columns)
+assert list(motion.columns) == ["drum_angle [deg (drum)]", "heddle_lift [mm]", "lift_rate [mm/deg (drum)]", "lift_accel [mm/deg^2 (drum)]"], list(motion.columns)
 assert len(motion) == 121
 print("python ok")
 PY

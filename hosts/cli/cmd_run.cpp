@@ -49,7 +49,7 @@ namespace {
 constexpr std::size_t printed_table_rows = 40;
 
 // A channel with declared codes shows each row's name beside the number ("1 contact_lost").
-// A unit of degrees says which angle its column counts, as the column declares it ("[deg (cam)]").
+// A unit of degrees says which angle its column counts, as the column declares it ("[deg (shaft)]").
 void print_short_table(std::ostream& os, const Table& t, const DeclaredPort& declared) {
   std::vector<const Table::Column*> columns{&t.axis};
   for (const Table::Column& c : t.channels) columns.push_back(&c);

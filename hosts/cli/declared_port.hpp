@@ -29,8 +29,8 @@ struct DeclaredPort {
     const AngleFrame* f = frame(id);
     return f ? f->unit_tag : std::string();
   }
-  /// The tag of table column `c` (its channel's or axis' declared frame): "cam" makes a column
-  /// of degrees "opening [deg (cam)]" (angle_reference.hpp); "" when it declares none.
+  /// The tag of table column `c` (its channel's or axis' declared frame): "shaft" makes a column
+  /// of degrees "opening [deg (shaft)]" (angle_reference.hpp); "" when it declares none.
   std::string column_tag(const Table::Column& c) const {
     return info && port ? host::column_angle_reference(*info, *port, c.name, c.dimension) : std::string();
   }

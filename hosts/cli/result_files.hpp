@@ -48,7 +48,7 @@ void write_report_csv(const std::filesystem::path& file, const ResolvedReport& r
 void print_series(std::ostream& os, const OutputValue& o);
 
 /// One CSV per table / series output; header `name [unit]` in the scene's display units, a unit of
-/// degrees followed by the angle its column declares it counts ("opening [deg (cam)]").
+/// degrees followed by the angle its column declares it counts ("opening [deg (shaft)]").
 void write_table_csv(const std::filesystem::path& file, const Table& t, const DisplayUnits& units,
                      const DeclaredPort& declared = {});
 /// The same with each column's unit given: `column_units` holds the axis's and then each channel's

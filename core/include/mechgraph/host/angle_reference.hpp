@@ -25,7 +25,7 @@ std::string column_angle_reference(const NodeInfo& info, const PortSpec& port, c
 /// reference; `unit` as it is otherwise (SI radians carry no tag).
 std::string unit_with_reference(const std::string& unit, const std::string& reference);
 
-/// The unit of a label's "deg (crank)" without its reference ("deg"); `unit` as it is when it
+/// The unit of a label's "deg (shaft)" without its reference ("deg"); `unit` as it is when it
 /// carries none. The reference says which angle is counted, never a scale.
 std::string unit_without_reference(const std::string& unit);
 
