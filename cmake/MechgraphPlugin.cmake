@@ -11,6 +11,10 @@
 #    called across, so any C++20 compiler and standard library will do (clang++ -stdlib=libc++ into
 #    the gcc-built host). It needs the Boost and Eigen headers (the numerics use them).
 #    A test program that compiles the plugin's sources links mechgraph::sdk_cxx too.
+#    Why not header-only: those sources are some 2,700 lines that use Boost.Math and Eigen's FFT;
+#    inline, every translation unit of every plugin would compile them (and every SDK header would
+#    pull in Boost). Compiled once per project, they cost a plugin project about 15 files once, and a
+#    plugin only the helpers it reaches (--gc-sections).
 #  - PRE_1_0_ENTRY: a plugin of the pre-1.0 entry (MECHGRAPH_PLUGIN, plugin_abi.hpp) shares C++
 #    classes with the host: it calls libmechgraph_sdk's exported C++ helpers instead, and must be
 #    built by the host's compiler and standard library.
