@@ -94,9 +94,7 @@ function(mechgraph_add_plugin name)
     target_link_libraries(${name} PRIVATE mechgraph_sdk_cxx mechgraph::sdk)
     # The entry is all it exports: no weak symbol of a template (std::, Boost) leaves it either.
     set(exports "${CMAKE_BINARY_DIR}/CMakeFiles/mechgraph_plugin_exports.map")
-    if(NOT EXISTS "${exports}")
-      file(WRITE "${exports}" "{\n  global: mechgraph_plugin_entry_1;\n  local: *;\n};\n")
-    endif()
+    file(CONFIGURE OUTPUT "${exports}" CONTENT "{\n  global: mechgraph_plugin_entry_1;\n  local: *;\n};\n")
     target_link_options(${name} PRIVATE "LINKER:--version-script=${exports}" "LINKER:--gc-sections")
   endif()
   set_target_properties(${name} PROPERTIES
