@@ -12,7 +12,7 @@ if [ "${1:-}" != "--study" ]; then
   packages+=(libbenchmark-dev gnuplot-nox python3-ezdxf chromium python3-pil graphviz poppler-utils
              pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
              python3-pytest python3-venv python3-pip python3-setuptools python3-wheel python3-distributed python3-nbclient python3-ipykernel python3-nbformat
-             clang abigail-tools libc++-dev  # the SDK checks: C headers under clang, abidw/abidiff, a libc++ plugin
+             clang abigail-tools libc++-dev libc++abi-dev  # the SDK checks: C headers under clang, abidw/abidiff, a libc++ plugin
              python3-openturns)  # the uncertainty study checked against OpenTURNS (python/tests/test_study_openturns.py)
 fi
 missing=()

@@ -12,9 +12,10 @@
 #  4. scripts/sdk-abi-compare.sh: abidiff between the reference's libmechgraph_sdk.so.1 and the
 #     current one (new functions and fields appended to growable structs allowed, any other change
 #     fails), and the reference's tests/sdk/c_layout_test.cpp compiled against the current headers;
-#  5. the pre-1.0 C++ ABI version (abi_version.hpp) is the reference's: until the C++ authoring
-#     layer calls only mg_* functions, a plugin of MECHGRAPH_PLUGIN_1 still calls C++ helpers of
-#     libmechgraph_sdk.so.1 with the class layouts it was compiled with.
+#  5. the pre-1.0 C++ ABI version (abi_version.hpp) is the reference's: a plugin of
+#     MECHGRAPH_PLUGIN_1 built against the reference (1.0 to 1.2 did not compile the C++ layer into
+#     the plugin, mechgraph::sdk_cxx) calls C++ helpers of libmechgraph_sdk.so.1 with the class
+#     layouts it was compiled with.
 # The reference's build is kept in BUILD_DIR/sdk-reference/<commit> (MECHGRAPH_SDK_REFERENCE_CACHE
 # to put it elsewhere), so later runs only check it is up to date; its compiler cache entries are
 # the main build's (same relative layout, CCACHE_BASEDIR).
@@ -180,5 +181,5 @@ step "abidiff: libmechgraph_sdk.so.1 compatible with the reference's"
 # 6. The C++ helpers' class layouts (see 5. at the top).
 abi_of() { sed -n 's/^#define MECHGRAPH_PLUGIN_ABI_VERSION //p' "$1/sdk/include/mechgraph/abi_version.hpp"; }
 [ "$(abi_of "$ref_src")" = "$(abi_of "$src")" ] ||
-  fail "the pre-1.0 C++ ABI changed since the reference ($(abi_of "$ref_src") -> $(abi_of "$src")): plugins built with MECHGRAPH_PLUGIN_1 at the reference call C++ helpers of libmechgraph_sdk.so.1 with the old class layouts. Keep the layouts, or make the helpers header-only or mg_* functions first (docs/design/sdk-1.0.md, 3.6)"
+  fail "the pre-1.0 C++ ABI changed since the reference ($(abi_of "$ref_src") -> $(abi_of "$src")): plugins built with MECHGRAPH_PLUGIN_1 at the reference call C++ helpers of libmechgraph_sdk.so.1 with the old class layouts. Keep the layouts: they are part of SDK 1.x (docs/writing-plugins.md, 'Not covered')"
 say "PASS in $((SECONDS - start)) s (reference ${ref:0:12}: examples/plugin, C plugins, $real_plugin in the current host; abidiff clean; C++ ABI $(abi_of "$src"))"

@@ -33,12 +33,12 @@ inline constexpr std::size_t default_read_limit = std::size_t{64} << 20;
 /// ("'PATH' is a folder/FIFO/device..., not a regular file", "'PATH' is N bytes, more than the limit
 /// of M bytes (64 MiB)", "cannot open 'PATH': <strerror>"). A file that grows while it is read
 /// past the limit is refused the same way.
-MECHGRAPH_EXPORT std::string read_bounded_file(const std::filesystem::path& path,
+MECHGRAPH_INTERFACE std::string read_bounded_file(const std::filesystem::path& path,
                                                std::size_t max_bytes = default_read_limit);
 
 /// Up to `max_chars` characters of `text` for an error message, in single quotes, with control and
 /// non-ASCII bytes written as \xNN and "..." where it was cut: an excerpt of untrusted text that
 /// cannot flood or garble a terminal.
-MECHGRAPH_EXPORT std::string quoted_text_excerpt(std::string_view text, std::size_t max_chars = 80);
+MECHGRAPH_INTERFACE std::string quoted_text_excerpt(std::string_view text, std::size_t max_chars = 80);
 
 }  // namespace mechgraph

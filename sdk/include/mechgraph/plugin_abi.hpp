@@ -51,11 +51,22 @@ struct PluginDescriptor {
 
 using PluginEntry = const PluginDescriptor*();
 
+/// This entry hands the host C++ objects, so the plugin must use the host's copy of the SDK's C++
+/// layer (libmechgraph_sdk.so.1), not one compiled into it (mechgraph/export.hpp).
+#ifdef MECHGRAPH_SDK_CXX_IN_PLUGIN
+inline constexpr bool sdk_cxx_shared_with_host = false;
+#else
+inline constexpr bool sdk_cxx_shared_with_host = true;
+#endif
+
 }  // namespace mechgraph
 
 /// Declares the plugin's entry. Use once per plugin, at namespace scope:
 ///   MECHGRAPH_PLUGIN("cams", "0.1.0", &make_cam_node_types)
 #define MECHGRAPH_PLUGIN(id, version, factory)                                                    \
+  static_assert(::mechgraph::sdk_cxx_shared_with_host,                                             \
+                "MECHGRAPH_PLUGIN, the pre-1.0 entry, shares C++ classes with the host: build the "  \
+                "plugin with mechgraph_add_plugin(NAME PRE_1_0_ENTRY ...), or use MECHGRAPH_PLUGIN_1"); \
   extern "C" MECHGRAPH_EXPORT const ::mechgraph::PluginDescriptor* mechgraph_plugin_entry() {      \
     static const ::mechgraph::PluginDescriptor d{::mechgraph::plugin_abi_version, id, version,     \
                                                  ::mechgraph::build_fingerprint, factory,          \

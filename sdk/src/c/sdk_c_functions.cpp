@@ -1,5 +1,7 @@
 // The C functions of libmechgraph_sdk.so.1 (sdk/include/mechgraph/c/sdk_lib.h). Nothing escapes
 // them: every C++ exception becomes a status.
+#include "object_contracts.hpp"
+
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/domain/cam_law.hpp>
 
@@ -95,8 +97,20 @@ MG_API mg_status mg_check_object(const mg_object* object, const char* name, uint
         put(problem, p);
         return MG_ERR_BAD_ARGUMENT;
       }
+      return MG_OK;
     }
-    return MG_OK;  // an interface this library has no checks for (a plugin's private one)
+    std::string p;
+    if (std::strcmp(name, MG_VALVE_MOTION) == 0 && version == 1)
+      p = mechgraph::c_checks::valve_motion_problem(object, static_cast<const mg_valve_motion_v1*>(table));
+    else if (std::strcmp(name, MG_FOLLOWER) == 0 && version == 1)
+      p = mechgraph::c_checks::follower_problem(object, static_cast<const mg_follower_v1*>(table));
+    else if (std::strcmp(name, MG_JOINT_PLAY) == 0 && version == 1)
+      p = mechgraph::c_checks::joint_play_problem(object, static_cast<const mg_joint_play_v1*>(table));
+    if (!p.empty()) {
+      put(problem, p);
+      return MG_ERR_BAD_ARGUMENT;
+    }
+    return MG_OK;  // checked, or an interface this library has no checks for (a plugin's private one)
   } catch (const std::bad_alloc&) {
     return MG_ERR_NO_MEMORY;
   } catch (...) {

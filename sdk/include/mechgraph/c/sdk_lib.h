@@ -34,7 +34,13 @@ MG_API const char* mg_status_name(mg_status status);
 
 /* Checks that `object` keeps the contract of interface `name` at `version` for every SDK interface
    it knows (a cam law: its event inside (-pi, pi), ascending breakpoints strictly inside, finite
-   lift and derivatives at samples and at every piece's middle; no lift beyond max_lift). Returns
+   lift and derivatives at samples and at every piece's middle; no lift beyond max_lift. A valve
+   motion: its table complete, camshaft speed and rocker ratio positive, lash not negative, the
+   open period not empty, the knots ascending from its begin to its end, a cam law, the lift finite
+   and not negative at samples and in every piece. A follower: its table complete, a type name, a
+   roller radius not negative, `pivoted` 0 or 1. A joint play: its table complete, the joint named,
+   terms and links labelled, each link finite with a half range not negative and a known
+   distribution; the text names the term and link). Returns
    MG_OK when it does or when the interface is not the SDK's (a plugin's private one), else
    MG_ERR_BAD_ARGUMENT with what it breaks in `problem`, or MG_ERR_MISSING_FEATURE when the object
    does not answer `name`/`version`. */
