@@ -372,13 +372,25 @@ std::vector<std::size_t> by_name(const std::vector<Spec>& items) {
 
 // For each declared item (by_name order), the entry of `set` (a std::map by name) with its name,
 // or nullptr: f(declared index, const mapped_type* or nullptr).
+// The set usually holds exactly the declared names, so each is first tried for equality with the
+// next entry (a length and one memcmp), and only a mismatch is ordered.
 template <class Spec, class Map, class F>
 void match_by_name(const std::vector<Spec>& items, const std::vector<std::size_t>& order, const Map& set, F&& f) {
   auto it = set.begin();
   for (const std::size_t k : order) {
     const std::string& name = items[k].name;
+    if (it != set.end() && it->first.size() == name.size() && std::memcmp(it->first.data(), name.data(), name.size()) == 0) {
+      f(k, &it->second);
+      ++it;
+      continue;
+    }
     while (it != set.end() && it->first < name) ++it;
-    f(k, it != set.end() && it->first == name ? &it->second : nullptr);
+    if (it != set.end() && it->first == name) {
+      f(k, &it->second);
+      ++it;
+    } else {
+      f(k, nullptr);
+    }
   }
 }
 
@@ -411,9 +423,8 @@ class CNodeType final : public NodeType {
     CallViews views;
     CallArray<mg_param_value, 16> c_params(info_.params.size());
     param_views(params, views, c_params.data());
-    std::vector<double> c_sizes(info_.inputs.size(), 0.0);
-    for (std::size_t i = 0; i < info_.inputs.size(); ++i)
-      if (const auto it = sizes.find(info_.inputs[i].name); it != sizes.end()) c_sizes[i] = it->second;
+    CallArray<double, 8> c_sizes(info_.inputs.size());
+    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
     mg_work_forecast out{};
     std::string driver;
     if (forecast_->forecast(&type_, c_params.data(), c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
