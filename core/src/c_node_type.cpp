@@ -423,12 +423,22 @@ class CNodeType final : public NodeType {
     CallViews views;
     CallArray<mg_param_value, 16> c_params(info_.params.size());
     param_views(params, views, c_params.data());
-    CallArray<double, 8> c_sizes(info_.inputs.size());
-    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
-    mg_work_forecast out{};
-    std::string driver;
-    if (forecast_->forecast(&type_, c_params.data(), c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
-    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
+    return forecast_with(c_params.data(), sizes);
+  }
+  bool has_forecast() const { return forecast_ != nullptr; }
+  // The parameters' entries in `params` by declared index (nullptr: absent), for BoundForecast.
+  std::vector<const ParamValue*> matched_params(const ParamSet& params) const {
+    std::vector<const ParamValue*> out(info_.params.size(), nullptr);
+    match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) { out[k] = value; });
+    return out;
+  }
+  // forecast() with the parameters' entries matched already.
+  std::optional<WorkForecast> forecast_matched(const std::vector<const ParamValue*>& values, const InputSizes& sizes) const {
+    CallViews views;
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    for (std::size_t k = 0; k < values.size(); ++k)
+      c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
+    return forecast_with(c_params.data(), sizes);
   }
 
   // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
@@ -473,6 +483,16 @@ class CNodeType final : public NodeType {
   }
 
  private:
+  // The forecast of parameters already in C (views that live through the call).
+  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
+    CallArray<double, 8> c_sizes(info_.inputs.size());
+    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
+    mg_work_forecast out{};
+    std::string driver;
+    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
+  }
+
   // c_params[i] for each declared parameter i.
   void param_views(const ParamSet& params, CallViews& views, mg_param_value* c_params) const {
     match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) {
@@ -503,6 +523,25 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
   return with_c_blocks(std::make_shared<const CNodeType>(type, c_node_declaration(type, where)), type);
+}
+
+namespace {
+class CBoundForecast final : public BoundForecast {
+ public:
+  CBoundForecast(const CNodeType& type, const ParamSet& params) : type_(type), values_(type.matched_params(params)) {}
+  std::optional<WorkForecast> operator()(const InputSizes& sizes) const override { return type_.forecast_matched(values_, sizes); }
+
+ private:
+  const CNodeType& type_;
+  std::vector<const ParamValue*> values_;  // into the bound set, by declared index
+};
+}  // namespace
+
+std::unique_ptr<const BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params) {
+  if (const NodeType* behind = c_type_behind_blocks(type)) return bind_forecast(*behind, params);
+  const auto* c = dynamic_cast<const CNodeType*>(&type);
+  if (!c || !c->has_forecast()) return nullptr;
+  return std::make_unique<const CBoundForecast>(*c, params);
 }
 
 PortInterfaceVersions port_interface_versions(const NodeType& type) {
