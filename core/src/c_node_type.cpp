@@ -440,6 +440,39 @@ class CNodeType final : public NodeType {
       c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
     return forecast_with(c_params.data(), sizes);
   }
+  // The C views of matched entries, made once (no record list among them: its views need storage
+  // made per call); refresh_views points them at the entries' current values again.
+  std::vector<mg_param_value> views_of(const std::vector<const ParamValue*>& values) const {
+    std::vector<mg_param_value> out;
+    CallViews views;
+    for (std::size_t k = 0; k < values.size(); ++k)
+      out.push_back(values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]));
+    return out;
+  }
+  void refresh_views(const std::vector<const ParamValue*>& values, std::vector<mg_param_value>& c_params) const {
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (!values[k]) continue;
+      const ParamValue& v = *values[k];
+      mg_param_value& c = c_params[k];
+      switch (info_.params[k].kind) {  // the fields CallViews::param sets for the kind
+        case ParamKind::number:
+        case ParamKind::integer: c.number = v.number; break;
+        case ParamKind::choice:
+        case ParamKind::text: c.text = {v.text.data(), v.text.size()}; break;
+        case ParamKind::number_list:
+          c.numbers = v.numbers.data();
+          c.number_count = v.numbers.size();
+          break;
+        case ParamKind::record_list: break;  // not made in place (has_record_list)
+      }
+    }
+  }
+  std::optional<WorkForecast> forecast_views(const mg_param_value* c_params, const InputSizes& sizes) const {
+    return forecast_with(c_params, sizes);
+  }
+  bool has_record_list() const {
+    return std::any_of(info_.params.begin(), info_.params.end(), [](const ParamSpec& p) { return p.kind == ParamKind::record_list; });
+  }
 
   // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
   // matched with the declaration in one pass each (by_name), not looked up name by name.
@@ -526,22 +559,34 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
 }
 
 namespace {
+// The C views are made once and refreshed in place before each call (a number is one store; a
+// text or list is pointed at again, its storage may have moved); a type with a record list
+// parameter has them made per call.
 class CBoundForecast final : public BoundForecast {
  public:
-  CBoundForecast(const CNodeType& type, const ParamSet& params) : type_(type), values_(type.matched_params(params)) {}
-  std::optional<WorkForecast> operator()(const InputSizes& sizes) const override { return type_.forecast_matched(values_, sizes); }
+  CBoundForecast(const CNodeType& type, const ParamSet& params)
+      : type_(type), values_(type.matched_params(params)), in_place_(!type.has_record_list()) {
+    if (in_place_) c_params_ = type.views_of(values_);
+  }
+  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+    if (!in_place_) return type_.forecast_matched(values_, sizes);
+    type_.refresh_views(values_, c_params_);
+    return type_.forecast_views(c_params_.data(), sizes);
+  }
 
  private:
   const CNodeType& type_;
   std::vector<const ParamValue*> values_;  // into the bound set, by declared index
+  bool in_place_;
+  std::vector<mg_param_value> c_params_;  // when in_place_
 };
 }  // namespace
 
-std::unique_ptr<const BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params) {
+std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params) {
   if (const NodeType* behind = c_type_behind_blocks(type)) return bind_forecast(*behind, params);
   const auto* c = dynamic_cast<const CNodeType*>(&type);
   if (!c || !c->has_forecast()) return nullptr;
-  return std::make_unique<const CBoundForecast>(*c, params);
+  return std::make_unique<CBoundForecast>(*c, params);
 }
 
 PortInterfaceVersions port_interface_versions(const NodeType& type) {

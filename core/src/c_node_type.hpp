@@ -43,11 +43,12 @@ PortInterfaceVersions port_interface_versions(const NodeType& type);
 class BoundForecast {
  public:
   virtual ~BoundForecast() = default;
-  /// What NodeType::forecast(params, sizes) gives for the bound set as it is now.
-  virtual std::optional<WorkForecast> operator()(const InputSizes& sizes) const = 0;
+  /// What NodeType::forecast(params, sizes) gives for the bound set as it is now. Not for
+  /// concurrent calls (each worker binds its own).
+  virtual std::optional<WorkForecast> operator()(const InputSizes& sizes) = 0;
 };
 /// nullptr when `type` is not an SDK 1.x type that offers a forecast of its own (the caller then
 /// asks NodeType::forecast).
-std::unique_ptr<const BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params);
+std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params);
 
 }  // namespace mechgraph::detail

@@ -113,7 +113,7 @@ std::optional<WorkForecast> forecast_of(const GraphNode& n, const InputSizes& si
   }
 }
 
-std::optional<WorkForecast> bound_forecast_of(const detail::BoundForecast& forecast, const InputSizes& sizes) {
+std::optional<WorkForecast> bound_forecast_of(detail::BoundForecast& forecast, const InputSizes& sizes) {
   try {
     return forecast(sizes);
   } catch (...) {

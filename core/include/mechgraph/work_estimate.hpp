@@ -91,7 +91,7 @@ class RepeatedNodeEstimate {
   std::optional<NodeEstimate> conventions_;
   InputSizes conventions_sizes_;
   double conventions_rows_ = 0;
-  std::shared_ptr<const detail::BoundForecast> bound_;  // null for a type other than an SDK 1.x one with a forecast
+  std::shared_ptr<detail::BoundForecast> bound_;            // null for a type other than an SDK 1.x one with a forecast
   const ParamSet* bound_params_ = nullptr;              // the set it is bound to
   std::size_t bound_entries_ = 0;                       // its entries then
 };
