@@ -192,3 +192,26 @@ TEST_CASE("a repeated estimate given another graph than its own asks the type af
   bound.nodes[kurz].params.slot("curve_points").number = 5000;
   CHECK(repeated(bound, sizes).work == other_work);
 }
+
+TEST_CASE("a repeated estimate reads texts and lists written in place into its own graph", "[sdk1][forecast][bounds]") {
+  Graph g = graph_from(cams, sdk1_registry());
+  const std::vector<double> sizes(g.nodes.size(), 1.0);
+  std::vector<RepeatedNodeEstimate> repeated;
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) repeated.emplace_back(g, i, false, true);
+  const auto same = [&] {
+    for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+      INFO("node " << g.nodes[i].name);
+      CHECK(repeated[i](g, sizes).work == estimate_node(g, i, sizes, false, false).work);
+    }
+  };
+  same();
+  const double with_ramp = estimate_node(g, 0, sizes, false, false).work;
+  g.nodes[0].params.slot("ramp").text = "none";  // a text: fewer pieces
+  same();
+  CHECK(estimate_node(g, 0, sizes, false, false).work != with_ramp);
+  GraphNode& poly = g.nodes[2];
+  REQUIRE(poly.name == "poly");
+  // A longer list: its storage moved (the forecast must read the new one; ASan would see the old).
+  poly.params.slot("exponents").numbers = {2, 6, 10, 14, 18, 22, 26, 30, 34, 38, 42, 46, 50};
+  same();
+}
