@@ -372,13 +372,25 @@ std::vector<std::size_t> by_name(const std::vector<Spec>& items) {
 
 // For each declared item (by_name order), the entry of `set` (a std::map by name) with its name,
 // or nullptr: f(declared index, const mapped_type* or nullptr).
+// The set usually holds exactly the declared names, so each is first tried for equality with the
+// next entry (a length and one memcmp), and only a mismatch is ordered.
 template <class Spec, class Map, class F>
 void match_by_name(const std::vector<Spec>& items, const std::vector<std::size_t>& order, const Map& set, F&& f) {
   auto it = set.begin();
   for (const std::size_t k : order) {
     const std::string& name = items[k].name;
+    if (it != set.end() && it->first.size() == name.size() && std::memcmp(it->first.data(), name.data(), name.size()) == 0) {
+      f(k, &it->second);
+      ++it;
+      continue;
+    }
     while (it != set.end() && it->first < name) ++it;
-    f(k, it != set.end() && it->first == name ? &it->second : nullptr);
+    if (it != set.end() && it->first == name) {
+      f(k, &it->second);
+      ++it;
+    } else {
+      f(k, nullptr);
+    }
   }
 }
 
@@ -411,13 +423,55 @@ class CNodeType final : public NodeType {
     CallViews views;
     CallArray<mg_param_value, 16> c_params(info_.params.size());
     param_views(params, views, c_params.data());
-    std::vector<double> c_sizes(info_.inputs.size(), 0.0);
-    for (std::size_t i = 0; i < info_.inputs.size(); ++i)
-      if (const auto it = sizes.find(info_.inputs[i].name); it != sizes.end()) c_sizes[i] = it->second;
-    mg_work_forecast out{};
-    std::string driver;
-    if (forecast_->forecast(&type_, c_params.data(), c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
-    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
+    return forecast_with(c_params.data(), sizes);
+  }
+  bool has_forecast() const { return forecast_ != nullptr; }
+  // The parameters' entries in `params` by declared index (nullptr: absent), for BoundForecast.
+  std::vector<const ParamValue*> matched_params(const ParamSet& params) const {
+    std::vector<const ParamValue*> out(info_.params.size(), nullptr);
+    match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) { out[k] = value; });
+    return out;
+  }
+  // forecast() with the parameters' entries matched already.
+  std::optional<WorkForecast> forecast_matched(const std::vector<const ParamValue*>& values, const InputSizes& sizes) const {
+    CallViews views;
+    CallArray<mg_param_value, 16> c_params(info_.params.size());
+    for (std::size_t k = 0; k < values.size(); ++k)
+      c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
+    return forecast_with(c_params.data(), sizes);
+  }
+  // The C views of matched entries, made once (no record list among them: its views need storage
+  // made per call); refresh_views points them at the entries' current values again.
+  std::vector<mg_param_value> views_of(const std::vector<const ParamValue*>& values) const {
+    std::vector<mg_param_value> out;
+    CallViews views;
+    for (std::size_t k = 0; k < values.size(); ++k)
+      out.push_back(values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]));
+    return out;
+  }
+  void refresh_views(const std::vector<const ParamValue*>& values, std::vector<mg_param_value>& c_params) const {
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (!values[k]) continue;
+      const ParamValue& v = *values[k];
+      mg_param_value& c = c_params[k];
+      switch (info_.params[k].kind) {  // the fields CallViews::param sets for the kind
+        case ParamKind::number:
+        case ParamKind::integer: c.number = v.number; break;
+        case ParamKind::choice:
+        case ParamKind::text: c.text = {v.text.data(), v.text.size()}; break;
+        case ParamKind::number_list:
+          c.numbers = v.numbers.data();
+          c.number_count = v.numbers.size();
+          break;
+        case ParamKind::record_list: break;  // not made in place (has_record_list)
+      }
+    }
+  }
+  std::optional<WorkForecast> forecast_views(const mg_param_value* c_params, const InputSizes& sizes) const {
+    return forecast_with(c_params, sizes);
+  }
+  bool has_record_list() const {
+    return std::any_of(info_.params.begin(), info_.params.end(), [](const ParamSpec& p) { return p.kind == ParamKind::record_list; });
   }
 
   // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
@@ -462,6 +516,16 @@ class CNodeType final : public NodeType {
   }
 
  private:
+  // The forecast of parameters already in C (views that live through the call).
+  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
+    CallArray<double, 8> c_sizes(info_.inputs.size());
+    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
+    mg_work_forecast out{};
+    std::string driver;
+    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
+  }
+
   // c_params[i] for each declared parameter i.
   void param_views(const ParamSet& params, CallViews& views, mg_param_value* c_params) const {
     match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) {
@@ -492,6 +556,37 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
   return with_c_blocks(std::make_shared<const CNodeType>(type, c_node_declaration(type, where)), type);
+}
+
+namespace {
+// The C views are made once and refreshed in place before each call (a number is one store; a
+// text or list is pointed at again, its storage may have moved); a type with a record list
+// parameter has them made per call.
+class CBoundForecast final : public BoundForecast {
+ public:
+  CBoundForecast(const CNodeType& type, const ParamSet& params)
+      : type_(type), values_(type.matched_params(params)), in_place_(!type.has_record_list()) {
+    if (in_place_) c_params_ = type.views_of(values_);
+  }
+  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+    if (!in_place_) return type_.forecast_matched(values_, sizes);
+    type_.refresh_views(values_, c_params_);
+    return type_.forecast_views(c_params_.data(), sizes);
+  }
+
+ private:
+  const CNodeType& type_;
+  std::vector<const ParamValue*> values_;  // into the bound set, by declared index
+  bool in_place_;
+  std::vector<mg_param_value> c_params_;  // when in_place_
+};
+}  // namespace
+
+std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params) {
+  if (const NodeType* behind = c_type_behind_blocks(type)) return bind_forecast(*behind, params);
+  const auto* c = dynamic_cast<const CNodeType*>(&type);
+  if (!c || !c->has_forecast()) return nullptr;
+  return std::make_unique<CBoundForecast>(*c, params);
 }
 
 PortInterfaceVersions port_interface_versions(const NodeType& type) {

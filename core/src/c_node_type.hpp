@@ -8,8 +8,9 @@
 #include <mechgraph/c/node.h>
 #include <mechgraph/node.hpp>
 
-#include <memory>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,21 @@ struct PortInterfaceVersions {
   std::vector<std::uint32_t> inputs, outputs;
 };
 PortInterfaceVersions port_interface_versions(const NodeType& type);
+
+/// An SDK 1.x type's own forecast (mechgraph.node.forecast/1) bound to one ParamSet, for a caller
+/// that asks it again and again while only the values change (a sweep's budget, case after case:
+/// RepeatedNodeEstimate). The set's entries are matched with the declaration once, here; each call
+/// then reads the values through the matched entries. The set must outlive the binding and keep
+/// its entries (values written in place, as CaseBinder::apply writes them; none added or removed).
+class BoundForecast {
+ public:
+  virtual ~BoundForecast() = default;
+  /// What NodeType::forecast(params, sizes) gives for the bound set as it is now. Not for
+  /// concurrent calls (each worker binds its own).
+  virtual std::optional<WorkForecast> operator()(const InputSizes& sizes) = 0;
+};
+/// nullptr when `type` is not an SDK 1.x type that offers a forecast of its own (the caller then
+/// asks NodeType::forecast).
+std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params);
 
 }  // namespace mechgraph::detail

@@ -1,5 +1,7 @@
 #include <mechgraph/work_estimate.hpp>
 
+#include "c_node_type.hpp"
+
 #include <mechgraph/errors.hpp>
 
 #include <algorithm>
@@ -111,6 +113,14 @@ std::optional<WorkForecast> forecast_of(const GraphNode& n, const InputSizes& si
   }
 }
 
+std::optional<WorkForecast> bound_forecast_of(detail::BoundForecast& forecast, const InputSizes& sizes) {
+  try {
+    return forecast(sizes);
+  } catch (...) {
+    return std::nullopt;  // as forecast_of
+  }
+}
+
 // The rows its curves are written with when the type gives a forecast: the points convention.
 double forecast_rows(const GraphNode& n) {
   double rows = 0;
@@ -174,6 +184,9 @@ RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index
   const GraphNode& n = graph.nodes[index];
   input_sizes(n, std::vector<double>(graph.nodes.size(), 1.0), sizes_);  // the keys, once
   if (!integers_vary_) rows_ = forecast_rows(n);
+  bound_ = detail::bind_forecast(*n.type->type, n.params);
+  bound_params_ = &n.params;
+  bound_entries_ = n.params.all().size();
 }
 
 NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vector<double>& output_sizes) {
@@ -182,7 +195,10 @@ NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vec
   const double largest_input = input_sizes(n, output_sizes, sizes_);
   NodeEstimate e;
   double rows = 0;
-  if (const std::optional<WorkForecast> forecast = forecast_of(n, sizes_)) {
+  // The bound forecast while this is the set it was bound to, with the entries it had (a set is
+  // written in place, and has no way to remove an entry).
+  const bool bound = bound_ && &n.params == bound_params_ && n.params.all().size() == bound_entries_;
+  if (const std::optional<WorkForecast> forecast = bound ? bound_forecast_of(*bound_, sizes_) : forecast_of(n, sizes_)) {
     take_forecast(n, *forecast, e, false);
     rows = integers_vary_ ? forecast_rows(n) : rows_;
   } else if (!integers_vary_ && conventions_ && conventions_sizes_ == sizes_) {

@@ -21,11 +21,15 @@
 #include <mechgraph/graph.hpp>
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace mechgraph {
+namespace detail {
+class BoundForecast;  // core/src/c_node_type.hpp
+}
 
 struct WorkEstimate {
   struct Term {
@@ -71,6 +75,9 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
 /// a forecast is counted by the conventions again only when its inputs' sizes change or some case
 /// changes an integer parameter of it (`integers_vary`): the conventions read integer parameters,
 /// list lengths and input sizes, never a real number (tests/core/work_estimate_test.cpp).
+/// It is given the graph it was made with each time, whose parameters only change in place
+/// (CaseBinder::apply): an SDK 1.x type's forecast is bound to the node's parameters once
+/// (detail::bind_forecast); given another graph, it asks the type as estimate_node does.
 class RepeatedNodeEstimate {
  public:
   RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary);
@@ -84,6 +91,9 @@ class RepeatedNodeEstimate {
   std::optional<NodeEstimate> conventions_;
   InputSizes conventions_sizes_;
   double conventions_rows_ = 0;
+  std::shared_ptr<detail::BoundForecast> bound_;            // null for a type other than an SDK 1.x one with a forecast
+  const ParamSet* bound_params_ = nullptr;              // the set it is bound to
+  std::size_t bound_entries_ = 0;                       // its entries then
 };
 /// Whether each node has a requested series or table output (whose rows are written).
 std::vector<char> writing_nodes(const Graph& graph);

@@ -135,7 +135,26 @@ class BridgeSets {
   ParamSet params;
   InputSet inputs;
   OutputSet outputs;
+  InputSizes sizes;   // a forecast's (load_forecast)
   bool busy = false;  // an evaluation is using them (a nested one on this thread makes its own)
+
+  /// Parameters and input sizes of one forecast (node_forecast.h): `input_sizes` holds one
+  /// figure per declared input, 0 for one not connected (left out of `sizes`, as the host's
+  /// InputSizes leaves it out). Refreshed in place as the parameters are; an input that came or
+  /// went makes `sizes` again.
+  void load_forecast(const mg_param_value* c_params, const double* input_sizes) {
+    load_params(params, param_slots_, info_.params, c_params);
+    bool same = size_slots_.size() == info_.inputs.size();
+    for (std::size_t i = 0; same && i < info_.inputs.size(); ++i) same = (input_sizes[i] > 0) == (size_slots_[i] != nullptr);
+    if (!same) {
+      sizes = InputSizes();
+      size_slots_.assign(info_.inputs.size(), nullptr);
+      for (std::size_t i = 0; i < info_.inputs.size(); ++i)
+        if (input_sizes[i] > 0) size_slots_[i] = &sizes[info_.inputs[i].name];
+    }
+    for (std::size_t i = 0; i < info_.inputs.size(); ++i)
+      if (size_slots_[i]) *size_slots_[i] = input_sizes[i];
+  }
 
   /// Parameters and inputs of one evaluation; `interfaces` names each input port's interface.
   void load(const mg_eval_args& args, const std::deque<std::string>& interfaces) {
@@ -195,6 +214,7 @@ class BridgeSets {
 
   const NodeInfo& info_;
   std::vector<ParamValue*> param_slots_;
+  std::vector<double*> size_slots_;  // into `sizes`, one per declared input, nullptr when absent
   std::vector<std::vector<Value>*> input_slots_;
   std::vector<std::pair<Value*, std::uint32_t>> output_slots_;  // by output name
 };

@@ -28,6 +28,7 @@
 #include <deque>
 #include <memory>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -389,17 +390,27 @@ class NodeTypeExport {
     if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return &forecast_table;
     return BlockExport<NodeTypeExport>::query(*static_cast<const NodeTypeExport*>(self->impl)->type_, name, version);
   }
+  // A sweep's budget asks this once per case and node: the parameters and sizes are refreshed in
+  // this thread's sets (as evaluate's), so that a forecast allocates nothing but what the type's
+  // own forecast does. Sets in use by an evaluation of this type further up this thread's stack
+  // (a forecast made inside it) are left alone: this call makes its own.
   static mg_status forecast(const mg_node_type* self, const mg_param_value* params, const double* input_sizes,
                             mg_work_forecast* out, mg_text_sink driver) noexcept {
     try {
-      const NodeInfo& info = static_cast<const NodeTypeExport*>(self->impl)->type_->info();
-      ParamSet cxx_params;
-      std::vector<ParamValue*> slots;
-      load_params(cxx_params, slots, info.params, params);
-      InputSizes sizes;
-      for (std::size_t i = 0; i < info.inputs.size(); ++i)
-        if (input_sizes[i] > 0) sizes[info.inputs[i].name] = input_sizes[i];
-      const std::optional<WorkForecast> f = static_cast<const NodeTypeExport*>(self->impl)->type_->forecast(cxx_params, sizes);
+      const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
+      BridgeSets* sets = &exported.thread_sets();
+      std::unique_ptr<BridgeSets> nested;
+      if (sets->busy) {
+        nested = std::make_unique<BridgeSets>(exported.type_->info());
+        sets = nested.get();
+      }
+      struct InUse {  // the parameters and sizes hold no object: nothing to release afterwards
+        BridgeSets& sets;
+        explicit InUse(BridgeSets& s) : sets(s) { sets.busy = true; }
+        ~InUse() { sets.busy = false; }
+      } const in_use(*sets);
+      sets->load_forecast(params, input_sizes);
+      const std::optional<WorkForecast> f = exported.type_->forecast(sets->params, sets->sizes);
       if (!f) return MG_ERR_UNSUPPORTED;
       *out = mg_work_forecast{f->items, f->memory, f->output_size};
       tell(driver, f->driver);
