@@ -60,7 +60,9 @@ function(_mechgraph_sdk_cxx_library)
   target_link_libraries(mechgraph_sdk_cxx PUBLIC mechgraph::sdk PRIVATE Boost::headers Eigen3::Eigen)
   target_compile_definitions(mechgraph_sdk_cxx PUBLIC MECHGRAPH_SDK_CXX_IN_PLUGIN)
   # A section per function: a plugin's link keeps only the helpers it reaches (--gc-sections).
-  target_compile_options(mechgraph_sdk_cxx PRIVATE -ffunction-sections -fdata-sections)
+  # The SDK's finiteness checks (no NaN or infinity leaves a node) must hold whatever math flags
+  # the plugin project uses for its own code: fast math would let the compiler drop them.
+  target_compile_options(mechgraph_sdk_cxx PRIVATE -ffunction-sections -fdata-sections -fno-fast-math -fno-finite-math-only)
   set_target_properties(mechgraph_sdk_cxx PROPERTIES
     CXX_STANDARD 20
     CXX_STANDARD_REQUIRED ON

@@ -94,6 +94,17 @@ std::string DisplayUnits::unit_for(Dimension d, const std::string& fallback) con
   return u.empty() ? fallback : u;
 }
 
+std::string unit_with_reference(const std::string& unit, const std::string& reference) {
+  if (reference.empty() || unit.find("deg") == std::string::npos) return unit;
+  return unit + " (" + reference + ")";
+}
+
+std::string unit_without_reference(const std::string& unit) {
+  const std::size_t open = unit.rfind(" (");
+  if (open == std::string::npos || unit.empty() || unit.back() != ')' || unit.find("deg") >= open) return unit;
+  return unit.substr(0, open);
+}
+
 const std::optional<UnitScale>& parse_unit_cached(std::string_view unit) {
   thread_local std::map<std::string, std::optional<UnitScale>, std::less<>> parsed;
   auto at = parsed.find(unit);

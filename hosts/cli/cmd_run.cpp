@@ -65,8 +65,8 @@ void print_short_table(std::ostream& os, const Table& t, const DeclaredPort& dec
   for (std::size_t k = 0; k < columns.size(); ++k) {
     const Table::Column& c = *columns[k];
     const std::string unit = unit_of(c);
-    const std::string shown = unit_with_reference(unit, declared.column_tag(c));
-    head.push_back(terminal_text(c.name, TerminalLines::one) + (shown.empty() ? "" : " [" + terminal_text(shown, TerminalLines::one) + "]"));
+    const std::string tagged = unit_with_reference(unit, declared.column_tag(c));
+    head.push_back(terminal_text(c.name, TerminalLines::one) + (tagged.empty() ? "" : " [" + terminal_text(tagged, TerminalLines::one) + "]"));
     width.push_back(std::max<std::size_t>(head.back().size(), 12));
     const ChannelDecl* decl = declared.channel(c.name);
     const double floor = noise_floor(c.dimension, table_largest(t, c.dimension));

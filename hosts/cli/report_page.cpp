@@ -77,12 +77,6 @@ std::string display_unit(const Dimension& d, const std::string& own_unit, const 
   return unit;
 }
 
-// Which angle a unit of degrees counts: "mm/deg" -> "mm/deg (tag)", the tag of the angle frame
-// declared for it. Units without degrees are unchanged.
-std::string with_angle(const std::string& unit, const std::string& reference) { return unit_with_reference(unit, reference); }
-
-// A unit without the angle it counts: "deg (shaft)" -> "deg".
-std::string bare_unit(const std::string& unit) { return unit.substr(0, unit.find(" (")); }
 
 // A column to plot: values converted to the unit shown.
 struct Column {
@@ -102,7 +96,7 @@ Column shown(const std::string& title, const Dimension& d, const std::vector<dou
   if (c.unit.empty()) c.unit = d.si_unit() == "1" ? std::string() : d.si_unit();
   c.values.reserve(si.size());
   for (double v : si) c.values.push_back(convert ? to_unit(v, d, c.unit) : v);
-  c.unit = with_angle(c.unit, frame_tag);
+  c.unit = unit_with_reference(c.unit, frame_tag);
   c.name = spoken(title) + (c.unit.empty() ? std::string() : " [" + c.unit + "]");
   return c;
 }
@@ -336,7 +330,7 @@ std::string run_gnuplot(const std::filesystem::path& dir, const Figure& f) {
         const double pad = 0.08 * (hi - lo);  // room for a mark's label right of its line
         s << "set xrange [" << lo - pad << ":" << hi + pad << "]\n";
         write_marks(s, f.marks);
-        const std::string unit = f.curves.empty() ? std::string() : bare_unit(f.curves.front().first.unit);
+        const std::string unit = f.curves.empty() ? std::string() : unit_without_reference(f.curves.front().first.unit);
         std::size_t left = 0, right = 0;
         for (const auto& [label, at] : f.edge_marks) {
           char value[48];
@@ -599,13 +593,13 @@ Figure derivative_panel(const Graph& graph, const RunResult& result, const std::
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const auto& [x, y] : f.curves)
       for (double v : x.values) lo = std::min(lo, v), hi = std::max(hi, v);
-    const double spacing = to_unit(derived->mark_spacing, dim::angle, bare_unit(f.curves.front().first.unit));
+    const double spacing = to_unit(derived->mark_spacing, dim::angle, unit_without_reference(f.curves.front().first.unit));
     const long n = static_cast<long>(derived->mark_labels.size());
     for (double mark = spacing * std::ceil(lo / spacing); mark <= hi; mark += spacing)
       f.marks.emplace_back(derived->mark_labels[static_cast<std::size_t>(((std::lround(mark / spacing) % n) + n) % n)], mark);
   }
   // The points other outputs of each node put on the panel (those in the derived frame), on the top plot.
-  const std::string y_unit = bare_unit(f.curves.front().second.unit), angle_unit = bare_unit(f.curves.front().first.unit);
+  const std::string y_unit = unit_without_reference(f.curves.front().second.unit), angle_unit = unit_without_reference(f.curves.front().first.unit);
   for (const PointMarks& pm : p.points) {
     for (std::size_t k = 0; k < outs.size(); ++k) {
       const OutputValue* source = find_output(result, node_of(*outs[k]) + "." + pm.port);
@@ -663,7 +657,7 @@ Figure curve_over_channel(const Graph& graph, const OutputValue& o, const Legend
             (legend(node) == node ? "" : " (" + node + ")");
   const Column x = shown(d.label(xc->name), xc->dimension, xc->values, xc->display_unit, units, column_tag(d, xc->name, xc->dimension));
   f.xlabel = x.name;
-  const std::string x_unit = x.unit.empty() ? xc->dimension.si_unit() : bare_unit(x.unit);
+  const std::string x_unit = x.unit.empty() ? xc->dimension.si_unit() : unit_without_reference(x.unit);
   auto mark_at = [&](const std::string& label) -> std::optional<double> {
     for (const Table::Mark& m : t.axis_marks)
       if (m.label == label) return to_unit(m.value, xc->dimension, x_unit);
@@ -1274,7 +1268,7 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
       unit.push_back(display_unit(c->dimension, c->display_unit, graph.display_units));
       const ChannelDecl* decl = declared.channel(c->name);
       const std::string tag = frames_seen.size() > 1 && decl ? declared.tag(decl->angle_frame) : std::string();
-      page_table.header_unit.push_back(with_angle(unit.back().empty() ? c->dimension.si_unit() : unit.back(), tag));
+      page_table.header_unit.push_back(unit_with_reference(unit.back().empty() ? c->dimension.si_unit() : unit.back(), tag));
       page_table.header_text.push_back(declared.label(c->name));
       page_table.header_html.push_back(html_text(page_table.header_text.back()) + "<br><span class=\"u\">[" +
                                        html_text(page_table.header_unit.back()) + "]</span>");

@@ -6,19 +6,22 @@ from typing import Any, List, Tuple
 
 import numpy as np
 
+from . import _core
 from ._units import column_entry
 
 _HEADER = re.compile(r"^\s*(?P<name>[^\[\]]*?)\s*(\[\s*(?P<unit>[^\[\]]*?)\s*\])?\s*$")
 
 
 def split_header(column: str) -> Tuple[str, str]:
-    """'cam.max_lift [mm]' -> ('cam.max_lift', 'mm'); 'rpm' -> ('rpm', '')."""
+    """'cam.max_lift [mm]' -> ('cam.max_lift', 'mm'); 'rpm' -> ('rpm', ''). A unit of degrees with
+    the angle it counts, as mechgraph's labels write it ('deg (crank)'), is read without it: the
+    reference names the angle, not a scale (as a cases file's header)."""
     m = _HEADER.match(str(column))
     if not m or not m["name"]:
         from ._errors import SceneError
 
         raise SceneError(f"cases: column {column!r}: expected 'name' or 'name [unit]'")
-    return m["name"], m["unit"] or ""
+    return m["name"], _core.unit_without_reference(m["unit"] or "")
 
 
 def case_columns(cases: Any, si: bool = False) -> Tuple[List[str], List[str], List[bool], list]:

@@ -413,6 +413,7 @@ PYBIND11_MODULE(_core, m) {
     return shown_number(shown, si, noise_floor(u.dimension, largest_si));
   }, py::arg("shown"), py::arg("si"), py::arg("si_unit"), py::arg("largest_si") = 0.0);
   m.def("unit_with_reference", &host::unit_with_reference);  // "deg" + "crank" -> "deg (crank)"
+  m.def("unit_without_reference", &host::unit_without_reference);  // and back: "deg (crank)" -> "deg"
   m.def("to_unit", [](double si, const std::string& unit) {
     // the SI value of a quantity expressed in `unit` (its dimension taken from the unit)
     const UnitScale u = parse_unit(unit);

@@ -161,6 +161,15 @@ def test_csv_columns_follow_their_headers(cams):
         cams.sweep(pd.read_csv(io.StringIO("kurz.max_lift,rocker\n8,1.5\n9,1.5\n")), outputs=OUTPUTS)
     rows = cams.sweep(pd.read_csv(io.StringIO("kurz.max_lift [mm],rocker\n8,1.5\n9,1.5\n")), outputs=OUTPUTS)
     assert list(rows["exit"]) == [0, 0]
+    # A unit with the angle it counts, as mechgraph's own labels write it, reads as the plain unit.
+    from mechgraph._cases import split_header
+    assert split_header("kurz.accel_angle [deg (cam)]") == ("kurz.accel_angle", "deg")
+    assert split_header("v.speed [mm (cam)]") == ("v.speed", "mm (cam)")  # no degrees: not a tag
+    tagged = cams.sweep(pd.read_csv(io.StringIO("kurz.accel_angle [deg (cam)]\n18\n19\n")), outputs=OUTPUTS)
+    plain = cams.sweep(pd.read_csv(io.StringIO("kurz.accel_angle [deg]\n18\n19\n")), outputs=OUTPUTS)
+    assert list(tagged["exit"]) == [0, 0]
+    assert tagged.drop(columns=[c for c in tagged.columns if c.startswith("kurz.accel_angle")]).equals(
+        plain.drop(columns=[c for c in plain.columns if c.startswith("kurz.accel_angle")]))
 
 
 @pytest.mark.parametrize("column, words", [

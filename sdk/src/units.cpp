@@ -36,12 +36,15 @@ std::from_chars_result read_double(const char* first, const char* last, double& 
   if (!decimal_start || hex) return {first, std::errc::invalid_argument};
   const std::string text(first, last);  // strtod needs the terminating NUL
   static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t{});
+  if (c_locale == locale_t{}) return {first, std::errc::not_enough_memory};  // strtod_l needs one
   char* end = nullptr;
   errno = 0;
   const double parsed = strtod_l(text.c_str(), &end, c_locale);
   if (end == text.c_str()) return {first, std::errc::invalid_argument};
   const char* ptr = first + (end - text.c_str());
-  if (errno == ERANGE && std::isinf(parsed)) return {ptr, std::errc::result_out_of_range};
+  // As from_chars: out of range when it overflows, or when a nonzero number rounds to zero
+  // ("1e-400"); a subnormal result is a number.
+  if (errno == ERANGE && (std::isinf(parsed) || parsed == 0.0)) return {ptr, std::errc::result_out_of_range};
   value = parsed;
   return {ptr, std::errc()};
 #endif

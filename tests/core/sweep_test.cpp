@@ -131,6 +131,13 @@ TEST_CASE("sweep --cases: header units, units in cells, words, and located error
   CHECK(u.cases[0][0].text == "8 mm");
   CHECK(u.cases[1][0].text == "9.5 mm");
   CHECK_THAT(*u.cases[1][1].si, WithinRel(6000.0 * std::numbers::pi / 30.0, 1e-15));
+  // A header as mechgraph's own CSVs write it, the angle reference after degrees: read as degrees.
+  std::ofstream(file) << "timing [deg (crank)],rate [mm/deg (cam)]\n90,2\n";
+  const CaseTable tagged = read_cases_csv(file);
+  CHECK(tagged.variables[0].unit == "deg");
+  CHECK(tagged.variables[1].unit == "mm/deg");
+  CHECK_THAT(*tagged.cases[0][0].si, WithinRel(std::numbers::pi / 2, 1e-15));
+  CHECK_THAT(*tagged.cases[0][1].si, WithinRel(2e-3 / (std::numbers::pi / 180.0), 1e-15));
   std::ofstream(file) << "lift [mm],rpm\r\n8,5000 rpm\r\n\"9\",x y,\r\n";
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 3 cells, the header has 2"));
   std::filesystem::remove_all(dir);

@@ -36,6 +36,15 @@ class DisplayUnits {
   std::vector<std::pair<Dimension, std::string>> named_;  // dimension -> unit, as written
 };
 
+/// `unit` followed by the angle reference, "deg (shaft)", when the unit counts degrees and there is
+/// a reference; `unit` as it is otherwise (SI radians carry no tag). The one rule of every label a
+/// host writes (host/angle_reference.hpp says where the reference comes from).
+std::string unit_with_reference(const std::string& unit, const std::string& reference);
+/// The unit of a label's "deg (shaft)" without its reference ("deg"); `unit` as it is when it
+/// carries none. The reference says which angle is counted, never a scale: a label's unit reads
+/// back through this (a cases file's header, Python's unit_scale).
+std::string unit_without_reference(const std::string& unit);
+
 /// parse_unit(unit), parsed once per thread and kept (a sweep shows the same few units in every
 /// case); nullopt for a unit that does not parse. The reference lives as long as the thread.
 const std::optional<UnitScale>& parse_unit_cached(std::string_view unit);

@@ -75,12 +75,19 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
 /// a forecast is counted by the conventions again only when its inputs' sizes change or some case
 /// changes an integer parameter of it (`integers_vary`): the conventions read integer parameters,
 /// list lengths and input sizes, never a real number (tests/core/work_estimate_test.cpp).
-/// It is given the graph it was made with each time, whose parameters only change in place
-/// (CaseBinder::apply): an SDK 1.x type's forecast is bound to the node's parameters once
-/// (detail::bind_forecast); given another graph, it asks the type as estimate_node does.
+/// The contract: it is given the graph it was made with each time, whose parameters change only in
+/// place (CaseBinder::apply with the graph's slots), never by assigning or rebuilding the graph or
+/// a node's ParamSet: an SDK 1.x type's forecast is bound to the entries of the node's ParamSet
+/// once (detail::bind_forecast), and pointers into a set that was assigned or rebuilt would read
+/// other or freed entries, which the check it does (the set's address and entry count) cannot
+/// always see. A graph built anew needs estimators made anew. Move-only: each worker its own.
 class RepeatedNodeEstimate {
  public:
   RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary);
+  RepeatedNodeEstimate(RepeatedNodeEstimate&&) = default;
+  RepeatedNodeEstimate& operator=(RepeatedNodeEstimate&&) = default;
+  RepeatedNodeEstimate(const RepeatedNodeEstimate&) = delete;
+  RepeatedNodeEstimate& operator=(const RepeatedNodeEstimate&) = delete;
   NodeEstimate operator()(const Graph& graph, const std::vector<double>& output_sizes);
 
  private:

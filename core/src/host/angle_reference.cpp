@@ -13,15 +13,4 @@ std::string column_angle_reference(const NodeInfo& info, const PortSpec& port, c
   return decl ? angle_reference(info, decl->angle_frame, d) : std::string();
 }
 
-std::string unit_with_reference(const std::string& unit, const std::string& reference) {
-  if (reference.empty() || unit.find("deg") == std::string::npos) return unit;
-  return unit + " (" + reference + ")";
-}
-
-std::string unit_without_reference(const std::string& unit) {
-  const std::size_t open = unit.rfind(" (");
-  if (open == std::string::npos || unit.empty() || unit.back() != ')' || unit.find("deg") >= open) return unit;
-  return unit.substr(0, open);
-}
-
 }  // namespace mechgraph::host

@@ -26,11 +26,13 @@
 namespace mechgraph {
 namespace {
 
-std::string trim(std::string_view s) {
+// `s` without the white space at its ends (a view into it).
+std::string_view trimmed_view(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return std::string(s);
+  return s;
 }
+std::string trim(std::string_view s) { return std::string(trimmed_view(s)); }
 
 // "5600 rpm" -> "rpm"; "3.5" -> ""; the unit a value was written in, to show the column in it.
 std::string unit_of(const std::string& text) {
@@ -296,13 +298,6 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
   return table;
 }
 
-// `s` without the white space at its ends (a view into it).
-std::string_view trimmed_view(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
 CaseTable read_cases_csv(const std::filesystem::path& file) {
   const std::string content = read_user_file(file, max_cases_file_bytes, "--cases");
   const std::string where = excerpt(file.string());
@@ -340,7 +335,10 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       std::unordered_set<std::string> names;
       names.reserve(fields.size());
       for (const std::string_view f : fields) {
-        auto [name, unit] = split_header(f);
+        auto [name, tagged] = split_header(f);
+        // A label's angle reference ("deg (shaft)", as mechgraph's own CSVs write) names the
+        // angle, not a scale: the unit is read without it.
+        const std::string unit = unit_without_reference(tagged);
         if (name.empty()) throw SceneError(where + ":" + std::to_string(number) + ":1: a column without a name");
         if (!names.insert(name).second)
           throw SceneError(where + ":" + std::to_string(number) + ":1: column '" + excerpt(name) + "' appears twice");

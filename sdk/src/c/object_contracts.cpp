@@ -7,17 +7,18 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <charconv>
 #include <sstream>
 #include <vector>
 
 namespace mechgraph::c_checks {
 namespace {
 
+// Six significant digits, whatever locale the host has set (to_chars knows none).
 std::string number(double value) {
-  std::ostringstream out;
-  out.precision(6);
-  out << value;
-  return out.str();
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 6);
+  return std::string(buffer, ec == std::errc() ? end : buffer);
 }
 
 std::string degrees(double rad) { return number(rad * 180.0 / std::numbers::pi) + " deg"; }

@@ -2,6 +2,7 @@
 // Which angle a value counts, as its port declares it (presentation.hpp: a port's or a channel's
 // angle frame, whose unit_tag is shown after degrees: "deg (shaft)", "mm/deg (drum)"). One rule for
 // the terminal, the report, the sweep's CSV header and Python (docs/design/sdk-1.0.md, 1.6).
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/node.hpp>
 
 #include <string>
@@ -21,12 +22,8 @@ inline std::string angle_reference(const NodeInfo& info, const PortSpec& port) {
 /// declaration names; "" when it declares none.
 std::string column_angle_reference(const NodeInfo& info, const PortSpec& port, const std::string& name, const Dimension& d);
 
-/// `unit` followed by the reference, "deg (shaft)", when the unit counts degrees and there is a
-/// reference; `unit` as it is otherwise (SI radians carry no tag).
-std::string unit_with_reference(const std::string& unit, const std::string& reference);
-
-/// The unit of a label's "deg (shaft)" without its reference ("deg"); `unit` as it is when it
-/// carries none. The reference says which angle is counted, never a scale.
-std::string unit_without_reference(const std::string& unit);
+/// A unit with its reference and back (mechgraph/display_units.hpp): the labels' rule.
+using mechgraph::unit_with_reference;
+using mechgraph::unit_without_reference;
 
 }  // namespace mechgraph::host
