@@ -13,6 +13,8 @@
 #include <map>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <sys/wait.h>
 #include <chrono>
@@ -57,6 +59,26 @@ inline const PluginRegistry& project_registry() {
     return r;
   }();
   return registry;
+}
+
+// The built-in cams and valvetrain built on the SDK 1.x entry (test_plugins/builtin_sdk1), in place
+// of the pre-1.0 ones: the same node types through the C boundary.
+inline const PluginRegistry& builtin_sdk1_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_sdk1");
+    return r;
+  }();
+  return registry;
+}
+
+// A file of this source tree as text ("bench/peers/stages123_study.yaml"); throws when it is
+// missing or empty.
+inline std::string source_file_text(const std::string& relative) {
+  std::ifstream in(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / relative);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.empty()) throw std::runtime_error("no text in " + relative + " of the source tree");
+  return text;
 }
 
 inline Graph graph_from(const std::string& yaml, const PluginRegistry& registry = arith_registry(),

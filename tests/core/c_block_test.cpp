@@ -26,16 +26,6 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// cams and valvetrain on the SDK 1.x entry, in place of the built-in (pre-1.0) ones.
-const PluginRegistry& sdk1_registry() {
-  static const PluginRegistry registry = [] {
-    PluginRegistry r;
-    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_sdk1");
-    return r;
-  }();
-  return registry;
-}
-
 const PluginRegistry& objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
@@ -58,13 +48,7 @@ long live_objects(const std::string& name) {
   return n;
 }
 
-std::string stages123() {
-  std::ifstream in(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "bench/peers/stages123_study.yaml");
-  std::ostringstream text;
-  text << in.rdbuf();
-  REQUIRE(!text.str().empty());
-  return text.str();
-}
+std::string stages123() { return source_file_text("bench/peers/stages123_study.yaml"); }
 
 struct Swept {
   std::vector<CaseResult> rows;
@@ -109,7 +93,7 @@ CaseTable hypercube(std::size_t n) {
 }  // namespace
 
 TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows, in blocks and alone", "[sweep][blocks][sdk1]") {
-  const Prepared c = prepare(stages123(), hypercube(200), sdk1_registry());
+  const Prepared c = prepare(stages123(), hypercube(200), builtin_sdk1_registry());
   const Prepared pre = prepare(stages123(), hypercube(200), project_registry());
   const BlockPlan plan(c.graph, *c.binder);
   INFO(plan.why_not());
@@ -124,7 +108,7 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   require_same_rows(c_blocks, sweep(c, 16, 2));  // two threads, smaller blocks
   // Only the speed varies: each cam's law block is one law for every case (object_count 1).
   const auto speeds = [] { return make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}); };
-  const Swept constant_cams = sweep(prepare(stages123(), speeds(), sdk1_registry()), 4);
+  const Swept constant_cams = sweep(prepare(stages123(), speeds(), builtin_sdk1_registry()), 4);
   CHECK(constant_cams.summary.in_blocks == 11);
   require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), project_registry()), 0));
 }
@@ -135,7 +119,7 @@ TEST_CASE("blocks through C: a case a node refuses is redone alone and carries t
   const auto table = [] {
     return make_grid({parse_vary("lash=0.1mm,20mm,0.3mm"), parse_vary("lift=8mm,-1mm,9mm"), parse_vary("accel=18deg,1deg")});
   };
-  const Prepared c = prepare(stages123(), table(), sdk1_registry());
+  const Prepared c = prepare(stages123(), table(), builtin_sdk1_registry());
   const Swept blocks = sweep(c, 5);
   const Swept alone = sweep(c, 0);
   require_same_rows(blocks, alone);
@@ -151,7 +135,7 @@ TEST_CASE("blocks through C: a case a node refuses is redone alone and carries t
 TEST_CASE("blocks through C: the conformance kit's block check runs through the C boundary", "[sdk1][blocks][conformance]") {
   for (const char* type : {"cam.kurz", "cam.three_arc", "cam.polydyne"}) {
     INFO(type);
-    const RegisteredType* registered = sdk1_registry().find(type);
+    const RegisteredType* registered = builtin_sdk1_registry().find(type);
     REQUIRE(registered);
     REQUIRE(dynamic_cast<const BlockEvaluation*>(registered->type.get()));
     const Report report = check_node_type(*registered->type);

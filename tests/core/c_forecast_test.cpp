@@ -25,22 +25,7 @@ using namespace mechgraph::testing;
 
 namespace {
 
-const PluginRegistry& sdk1_registry() {
-  static const PluginRegistry registry = [] {
-    PluginRegistry r;
-    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_sdk1");
-    return r;
-  }();
-  return registry;
-}
-
-std::string stages123() {
-  std::ifstream in(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "bench/peers/stages123_study.yaml");
-  std::ostringstream text;
-  text << in.rdbuf();
-  REQUIRE(!text.str().empty());
-  return text.str();
-}
+std::string stages123() { return source_file_text("bench/peers/stages123_study.yaml"); }
 
 // Cams of several laws with ramps and a nose timing, the valve motion and time-area behind one, and
 // a contour, whose forecast reads the size of its input.
@@ -121,7 +106,7 @@ bool same_forecasts(const Graph& c, const Graph& cxx, std::size_t seed, std::str
 }  // namespace
 
 TEST_CASE("forecasts through C equal the C++ types' as parameters and inputs come and go", "[sdk1][forecast]") {
-  const Graph c = graph_from(cams, sdk1_registry());
+  const Graph c = graph_from(cams, builtin_sdk1_registry());
   const Graph cxx = graph_from(cams, project_registry());
   REQUIRE(c.nodes.size() == cxx.nodes.size());
   for (std::size_t i = 0; i < c.nodes.size(); ++i) REQUIRE(c.nodes[i].name == cxx.nodes[i].name);
@@ -138,7 +123,7 @@ TEST_CASE("forecasts through C equal the C++ types' as parameters and inputs com
 }
 
 TEST_CASE("forecasts through C on several threads at once, each its own sets", "[sdk1][forecast][threads]") {
-  const Graph c = graph_from(cams, sdk1_registry());
+  const Graph c = graph_from(cams, builtin_sdk1_registry());
   const Graph cxx = graph_from(cams, project_registry());
   std::atomic<int> failures{0};
   std::vector<std::thread> threads;
@@ -157,7 +142,7 @@ TEST_CASE("a sweep's budget through C types equals the pre-1.0 build's and each 
   for (const char* s : {"lift=7mm:9mm", "action=120deg:140deg", "accel=15deg:21deg", "r0=24mm:28mm", "rpm=4000rpm:7000rpm"})
     specs.push_back(parse_sample(s));
   const CaseTable table = make_latin_hypercube(specs, 300, 5);
-  Prepared c = prepare(stages123(), table, sdk1_registry());
+  Prepared c = prepare(stages123(), table, builtin_sdk1_registry());
   const Prepared cxx = prepare(stages123(), table, project_registry());
   std::vector<std::size_t> all(table.cases.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
@@ -178,8 +163,8 @@ TEST_CASE("a sweep's budget through C types equals the pre-1.0 build's and each 
 }
 
 TEST_CASE("a repeated estimate given another graph than its own asks the type afresh", "[sdk1][forecast][bounds]") {
-  Graph bound = graph_from(cams, sdk1_registry());
-  const Graph other = graph_from(cams, sdk1_registry(), {{"kurz.curve_points", "5000", "kurz.curve_points=5000"}});
+  Graph bound = graph_from(cams, builtin_sdk1_registry());
+  const Graph other = graph_from(cams, builtin_sdk1_registry(), {{"kurz.curve_points", "5000", "kurz.curve_points=5000"}});
   const std::size_t kurz = 0;
   REQUIRE(bound.nodes[kurz].name == "kurz");
   RepeatedNodeEstimate repeated(bound, kurz, false, true);
@@ -194,7 +179,7 @@ TEST_CASE("a repeated estimate given another graph than its own asks the type af
 }
 
 TEST_CASE("a repeated estimate reads texts and lists written in place into its own graph", "[sdk1][forecast][bounds]") {
-  Graph g = graph_from(cams, sdk1_registry());
+  Graph g = graph_from(cams, builtin_sdk1_registry());
   const std::vector<double> sizes(g.nodes.size(), 1.0);
   std::vector<RepeatedNodeEstimate> repeated;
   for (std::size_t i = 0; i < g.nodes.size(); ++i) repeated.emplace_back(g, i, false, true);
