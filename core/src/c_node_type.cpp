@@ -432,46 +432,19 @@ class CNodeType final : public NodeType {
     match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) { out[k] = value; });
     return out;
   }
-  // forecast() with the parameters' entries matched already.
-  std::optional<WorkForecast> forecast_matched(const std::vector<const ParamValue*>& values, const InputSizes& sizes) const {
-    CallViews views;
-    CallArray<mg_param_value, 16> c_params(info_.params.size());
+  // c_params[k] for the matched entries (one per declared parameter), as param_views makes them.
+  void matched_views(const std::vector<const ParamValue*>& values, CallViews& views, mg_param_value* c_params) const {
     for (std::size_t k = 0; k < values.size(); ++k)
       c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
-    return forecast_with(c_params.data(), sizes);
   }
-  // The C views of matched entries, made once (no record list among them: its views need storage
-  // made per call); refresh_views points them at the entries' current values again.
-  std::vector<mg_param_value> views_of(const std::vector<const ParamValue*>& values) const {
-    std::vector<mg_param_value> out;
-    CallViews views;
-    for (std::size_t k = 0; k < values.size(); ++k)
-      out.push_back(values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]));
-    return out;
-  }
-  void refresh_views(const std::vector<const ParamValue*>& values, std::vector<mg_param_value>& c_params) const {
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      if (!values[k]) continue;
-      const ParamValue& v = *values[k];
-      mg_param_value& c = c_params[k];
-      switch (info_.params[k].kind) {  // the fields CallViews::param sets for the kind
-        case ParamKind::number:
-        case ParamKind::integer: c.number = v.number; break;
-        case ParamKind::choice:
-        case ParamKind::text: c.text = {v.text.data(), v.text.size()}; break;
-        case ParamKind::number_list:
-          c.numbers = v.numbers.data();
-          c.number_count = v.numbers.size();
-          break;
-        case ParamKind::record_list: break;  // not made in place (has_record_list)
-      }
-    }
-  }
-  std::optional<WorkForecast> forecast_views(const mg_param_value* c_params, const InputSizes& sizes) const {
-    return forecast_with(c_params, sizes);
-  }
-  bool has_record_list() const {
-    return std::any_of(info_.params.begin(), info_.params.end(), [](const ParamSpec& p) { return p.kind == ParamKind::record_list; });
+  // The forecast of parameters already in C (views that live through the call).
+  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
+    CallArray<double, 8> c_sizes(info_.inputs.size());
+    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
+    mg_work_forecast out{};
+    std::string driver;
+    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
   }
 
   // The C arguments are views over the host's sets, on the stack for the usual node; the sets are
@@ -516,16 +489,6 @@ class CNodeType final : public NodeType {
   }
 
  private:
-  // The forecast of parameters already in C (views that live through the call).
-  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
-    CallArray<double, 8> c_sizes(info_.inputs.size());
-    match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
-    mg_work_forecast out{};
-    std::string driver;
-    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
-    return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
-  }
-
   // c_params[i] for each declared parameter i.
   void param_views(const ParamSet& params, CallViews& views, mg_param_value* c_params) const {
     match_by_name(info_.params, params_by_name_, params.all(), [&](std::size_t k, const ParamValue* value) {
@@ -559,26 +522,23 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
 }
 
 namespace {
-// The C views are made once and refreshed in place before each call (a number is one store; a
-// text or list is pointed at again, its storage may have moved); a type with a record list
-// parameter has them made per call.
+// The entries are matched with the declaration once; each call makes their C views again into the
+// same array (a number is one store, a text or list a pointer: nothing is allocated but a record
+// list's views, which live through the call as in evaluate).
 class CBoundForecast final : public BoundForecast {
  public:
   CBoundForecast(const CNodeType& type, const ParamSet& params)
-      : type_(type), values_(type.matched_params(params)), in_place_(!type.has_record_list()) {
-    if (in_place_) c_params_ = type.views_of(values_);
-  }
+      : type_(type), values_(type.matched_params(params)), c_params_(values_.size()) {}
   std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
-    if (!in_place_) return type_.forecast_matched(values_, sizes);
-    type_.refresh_views(values_, c_params_);
-    return type_.forecast_views(c_params_.data(), sizes);
+    CallViews views;
+    type_.matched_views(values_, views, c_params_.data());
+    return type_.forecast_with(c_params_.data(), sizes);
   }
 
  private:
   const CNodeType& type_;
   std::vector<const ParamValue*> values_;  // into the bound set, by declared index
-  bool in_place_;
-  std::vector<mg_param_value> c_params_;  // when in_place_
+  std::vector<mg_param_value> c_params_;
 };
 }  // namespace
 
