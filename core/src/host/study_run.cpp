@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <algorithm>
@@ -219,14 +220,25 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
                                               unsigned threads, const std::atomic<bool>* stop) {
   threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
+  // Each phase's wall time in the debug log (-v), so a slow study shows where its time went.
+  auto phase_start = std::chrono::steady_clock::now();
+  auto phase_done = [&phase_start](const char* what) {
+    const auto now = std::chrono::steady_clock::now();
+    spdlog::debug("study: {} in {:.3f} s", what, std::chrono::duration<double>(now - phase_start).count());
+    phase_start = now;
+  };
   auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads);
+  phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables);
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   outcome->threads = threads;
   check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
+  phase_done("work budget checked");
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
+  phase_done("cases evaluated");
   if (!outcome->summary.stopped) finish_study(*outcome);
+  phase_done("answers computed");
   return outcome;
 }
 
