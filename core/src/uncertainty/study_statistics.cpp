@@ -177,7 +177,7 @@ SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pi
 }
 
 // The same estimators over resamples given as the number of times each base sample was drawn
-// (`times`, `count` resamples side by side: times[i * count + k] for resample k, each summing to
+// (`times`, `count` resamples side by side: times[i * resamples_at_once + k] for resample k, each summing to
 // N): one pass in the order of the rows, each row weighted by each resample's count, with the
 // variance from the weighted sums of squares, sum w (a^2 + b^2) - 2N mean^2 (the rows are centred
 // on the mean of all outputs, so the two terms do not cancel). It streams the rows once for
@@ -190,11 +190,15 @@ void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size
   double n[resamples_at_once] = {}, sum[resamples_at_once] = {}, squares[resamples_at_once] = {};
   std::vector<double> first(d * resamples_at_once, 0.0), total(d * resamples_at_once, 0.0);
   double w[resamples_at_once] = {};
+  // Every lane is summed, the unused ones of a last short group with weight 0 (their sums are
+  // never read): a loop of a fixed length the compiler unrolls and vectorises, each lane's sums
+  // still the same terms in the same order.
+  constexpr std::size_t lanes = resamples_at_once;
   for (std::size_t i = 0; i < samples; ++i) {  // no branch on w = 0: its terms add +0, exactly nothing
-    for (std::size_t k = 0; k < count; ++k) w[k] = static_cast<double>(times[i * count + k]);
+    for (std::size_t k = 0; k < lanes; ++k) w[k] = static_cast<double>(times[i * lanes + k]);
     const double* r = rows.row(i);
     const double a = r[0], b = r[1], ab_sum = a + b, ab_squares = a * a + b * b;
-    for (std::size_t k = 0; k < count; ++k) {
+    for (std::size_t k = 0; k < lanes; ++k) {
       n[k] += w[k];
       sum[k] += w[k] * ab_sum;
       squares[k] += w[k] * ab_squares;
@@ -203,7 +207,7 @@ void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size
       const double ab = r[2 + j], first_term = b * (ab - a), total_term = (a - ab) * (a - ab);
       double* f = first.data() + j * resamples_at_once;
       double* t = total.data() + j * resamples_at_once;
-      for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t k = 0; k < lanes; ++k) {
         f[k] += w[k] * first_term;
         t[k] += w[k] * total_term;
       }
@@ -293,12 +297,12 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
   run_chunks(groups, threads, [&] { return Worker{std::vector<std::uint32_t>(n * resamples_at_once), {}}; },
              [&](Worker& w, std::size_t group) {
                const std::size_t first_r = group * resamples_at_once, count = std::min(resamples_at_once, bootstrap - first_r);
-               std::fill(w.times.begin(), w.times.begin() + static_cast<std::ptrdiff_t>(n * count), 0u);
+               std::fill(w.times.begin(), w.times.end(), 0u);  // lanes past `count` stay 0
                for (std::size_t k = 0; k < count; ++k) {
                  // Draw i of resample r picks base sample floor(u(seed, r, i) N): counted, not listed.
                  const CounterRow draw(seed, stream_bootstrap, first_r + k);
                  for (std::size_t i = 0; i < n; ++i)
-                   ++w.times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1) * count + k];
+                   ++w.times[std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1) * resamples_at_once + k];
                }
                for (std::size_t o = 0; o < outputs; ++o) {
                  estimate_drawn(prepared[o].rows, w.times.data(), count, w.estimates);
