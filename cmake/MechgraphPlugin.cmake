@@ -29,12 +29,13 @@ include(GNUInstallDirs)
 
 # The sources of the SDK's C++ layer, one list for libmechgraph_sdk.so.1 (sdk/CMakeLists.txt) and
 # for mechgraph::sdk_cxx; MECHGRAPH_SDK_CXX_SOURCE_DIR is sdk/src in mechgraph's tree and the
-# installed copy in a package (mechgraphConfig.cmake). piece_points.hpp is their private header.
+# installed copy in a package (mechgraphConfig.cmake). piece_points.hpp and decimal_number.hpp are
+# their private headers.
 set(MECHGRAPH_SDK_CXX_SOURCES
   dimension.cpp units.cpp node.cpp value.cpp bounded_read.cpp numerics_piecewise.cpp
   numerics_chebyshev.cpp tolerance.cpp cam_law.cpp cam_geometry.cpp cam_law_runs.cpp cam_curves.cpp
   interfaces.cpp block.cpp)
-set(MECHGRAPH_SDK_CXX_PRIVATE_HEADERS piece_points.hpp)
+set(MECHGRAPH_SDK_CXX_PRIVATE_HEADERS piece_points.hpp decimal_number.hpp)
 
 # mechgraph_sdk_cxx: the C++ layer as an OBJECT library of this project (once, whatever number of
 # plugins), compiled by this project's compiler: position-independent, hidden, and with

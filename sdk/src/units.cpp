@@ -1,11 +1,10 @@
 #include <mechgraph/units.hpp>
 
+#include "decimal_number.hpp"
+
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
-#include <locale.h>
 #include <cmath>
-#include <stdlib.h>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -21,32 +20,12 @@ struct UnitSymbol {
 
 constexpr double pi = std::numbers::pi;
 
-// std::from_chars for a double, also where the C++ library lacks it (libc++ before LLVM 20, a
-// plugin built with clang++ -stdlib=libc++ compiles this file): there the C library's strtod_l in
-// the "C" locale reads the same decimal numbers, correctly rounded as from_chars reads them; what
-// from_chars refuses and strtod would take (leading spaces, '+', hexadecimal) is refused first.
+// std::from_chars for a double, also where the C++ library lacks it (decimal_number.hpp).
 std::from_chars_result read_double(const char* first, const char* last, double& value) {
 #if defined(__cpp_lib_to_chars)
   return std::from_chars(first, last, value);
 #else
-  const char* digits = first != last && *first == '-' ? first + 1 : first;
-  const bool decimal_start = digits != last && ((*digits >= '0' && *digits <= '9') || *digits == '.' ||
-                                                *digits == 'i' || *digits == 'I' || *digits == 'n' || *digits == 'N');
-  const bool hex = last - digits >= 2 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X');
-  if (!decimal_start || hex) return {first, std::errc::invalid_argument};
-  const std::string text(first, last);  // strtod needs the terminating NUL
-  static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", locale_t{});
-  if (c_locale == locale_t{}) return {first, std::errc::not_enough_memory};  // strtod_l needs one
-  char* end = nullptr;
-  errno = 0;
-  const double parsed = strtod_l(text.c_str(), &end, c_locale);
-  if (end == text.c_str()) return {first, std::errc::invalid_argument};
-  const char* ptr = first + (end - text.c_str());
-  // As from_chars: out of range when it overflows, or when a nonzero number rounds to zero
-  // ("1e-400"); a subnormal result is a number.
-  if (errno == ERANGE && (std::isinf(parsed) || parsed == 0.0)) return {ptr, std::errc::result_out_of_range};
-  value = parsed;
-  return {ptr, std::errc()};
+  return detail::read_double_with_strtod(first, last, value);
 #endif
 }
 
