@@ -3,8 +3,11 @@
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
 
+#include <mechgraph/chunked_work.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 namespace mechgraph {
 namespace {
@@ -21,6 +24,59 @@ std::size_t output_index(const StudyData& data, const std::string& label, const 
 
 double shown(double si, const StudyColumn& c) { return si / c.scale - c.offset; }
 double to_si(double v, const StudyColumn& c) { return (v + c.offset) * c.scale; }
+
+// The answer of output o alone (moments, quantiles, limits, histogram) and, for a sensitivity
+// study, its Saltelli samples: the base samples whose d + 2 cases all have a value.
+void answer_output(const StudySpec& spec, const StudyData& data, const std::vector<std::size_t>& statistical, std::size_t o,
+                   OutputAnswer& a, SobolSamples* sobol, std::vector<std::size_t>* kept) {
+  const std::size_t d = spec.parameters.size();
+  const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
+  const std::size_t cases = data.failures.size();
+
+  a.column = data.outputs[o];
+  const std::vector<double>& column = data.values[o];
+  std::vector<double> values;
+  values.reserve(statistical.size());
+  for (std::size_t k : statistical)
+    if (std::isfinite(column[k])) values.push_back(column[k]);
+  a.failed = statistical.size() - values.size();
+  a.moments = moments(values, spec.confidence);
+  std::vector<double> sorted = values;
+  std::sort(sorted.begin(), sorted.end());
+  if (!sorted.empty())
+    for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
+  for (const SpecLimits& l : spec.limits)
+    if (l.output == a.column.label) a.limits = &l;
+  double low = sorted.empty() ? 0.0 : sorted.front(), high = sorted.empty() ? 0.0 : sorted.back();
+  if (a.limits) {
+    if (a.limits->lower) a.lower = shown(*a.limits->lower, a.column);
+    if (a.limits->upper) a.upper = shown(*a.limits->upper, a.column);
+    // The histogram shows the limits beside the values.
+    if (a.lower) low = std::min(low, *a.lower), high = std::max(high, *a.lower);
+    if (a.upper) low = std::min(low, *a.upper), high = std::max(high, *a.upper);
+    if (!values.empty()) a.capability = capability(values, a.moments, a.lower, a.upper, spec.confidence);
+  }
+  a.histogram = histogram(values, spec.bins, low, high);
+  if (spec.sensitivity) {
+    SobolSamples& f = *sobol;
+    const std::size_t base_samples = cases / per_sample;
+    kept->reserve(base_samples);
+    f.f_a.reserve(base_samples);
+    f.f_b.reserve(base_samples);
+    f.f_ab.resize(d);
+    for (std::vector<double>& f_j : f.f_ab) f_j.reserve(base_samples);
+    for (std::size_t i = 0; i * per_sample < cases; ++i) {
+      const std::size_t k = i * per_sample;
+      bool whole = k + per_sample <= cases;
+      for (std::size_t r = 0; whole && r < per_sample; ++r) whole = std::isfinite(column[k + r]);
+      if (!whole) continue;
+      kept->push_back(i);
+      f.f_a.push_back(column[k]);
+      f.f_b.push_back(column[k + 1]);
+      for (std::size_t j = 0; j < d; ++j) f.f_ab[j].push_back(column[k + 2 + j]);
+    }
+  }
+}
 
 }  // namespace
 
@@ -39,49 +95,20 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
 
   std::vector<SobolSamples> sobol_samples(spec.sensitivity ? data.outputs.size() : 0);
   std::vector<std::vector<std::size_t>> sobol_kept(sobol_samples.size());  // the base samples each output kept
-  for (std::size_t o = 0; o < data.outputs.size(); ++o) {
-    OutputAnswer a;
-    a.column = data.outputs[o];
-    const std::vector<double>& column = data.values[o];
-    std::vector<double> values;
-    values.reserve(statistical.size());
-    for (std::size_t k : statistical)
-      if (std::isfinite(column[k])) values.push_back(column[k]);
-    a.failed = statistical.size() - values.size();
-    a.moments = moments(values, spec.confidence);
-    std::vector<double> sorted = values;
-    std::sort(sorted.begin(), sorted.end());
-    if (!sorted.empty())
-      for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
-    for (const SpecLimits& l : spec.limits)
-      if (l.output == a.column.label) a.limits = &l;
-    double low = sorted.empty() ? 0.0 : sorted.front(), high = sorted.empty() ? 0.0 : sorted.back();
-    if (a.limits) {
-      if (a.limits->lower) a.lower = shown(*a.limits->lower, a.column);
-      if (a.limits->upper) a.upper = shown(*a.limits->upper, a.column);
-      // The histogram shows the limits beside the values.
-      if (a.lower) low = std::min(low, *a.lower), high = std::max(high, *a.lower);
-      if (a.upper) low = std::min(low, *a.upper), high = std::max(high, *a.upper);
-      if (!values.empty()) a.capability = capability(values, a.moments, a.lower, a.upper, spec.confidence);
+  // The outputs are independent: one a chunk, on the study's threads, each answer in its own slot;
+  // an error is rethrown for the first output that had one, whatever the threads.
+  answers.outputs.resize(data.outputs.size());
+  std::vector<std::exception_ptr> errors(data.outputs.size());
+  run_chunks(data.outputs.size(), threads, [] { return 0; }, [&](int, std::size_t o) {
+    try {
+      answer_output(spec, data, statistical, o, answers.outputs[o], spec.sensitivity ? &sobol_samples[o] : nullptr,
+                    spec.sensitivity ? &sobol_kept[o] : nullptr);
+    } catch (...) {
+      errors[o] = std::current_exception();
     }
-    a.histogram = histogram(values, spec.bins, low, high);
-    if (spec.sensitivity) {
-      // Base samples whose d + 2 cases all have a value.
-      SobolSamples& f = sobol_samples[o];
-      f.f_ab.resize(d);
-      for (std::size_t i = 0; i * per_sample < answers.cases; ++i) {
-        const std::size_t k = i * per_sample;
-        bool whole = k + per_sample <= answers.cases;
-        for (std::size_t r = 0; whole && r < per_sample; ++r) whole = std::isfinite(column[k + r]);
-        if (!whole) continue;
-        sobol_kept[o].push_back(i);
-        f.f_a.push_back(column[k]);
-        f.f_b.push_back(column[k + 1]);
-        for (std::size_t j = 0; j < d; ++j) f.f_ab[j].push_back(column[k + 2 + j]);
-      }
-    }
-    answers.outputs.push_back(std::move(a));
-  }
+  });
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   if (spec.sensitivity) {
     // The outputs that kept the same base samples share their resamples (the usual case: all).
     std::vector<char> done(data.outputs.size(), 0);
