@@ -185,13 +185,8 @@ SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pi
 // resample's sums are the same, term by term and in the same order, as it alone would give.
 constexpr std::size_t resamples_at_once = 8;
 
-// On x86-64 a second version for processors with AVX (four doubles an operation, where SSE2 has
-// two) is chosen at load time; AVX has no fused multiply-add, so both round every operation
-// alike and give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("avx", "default")))
-#endif
-void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size_t count, SobolEstimate* out) {
+[[gnu::always_inline]] inline void estimate_drawn_body(const SobolRows& rows, const std::uint32_t* times, std::size_t count,
+                                                      SobolEstimate* out) {
   const std::size_t d = rows.width - 2, samples = rows.values.size() / rows.width;
   double n[resamples_at_once] = {}, sum[resamples_at_once] = {}, squares[resamples_at_once] = {};
   std::vector<double> first(d * resamples_at_once, 0.0), total(d * resamples_at_once, 0.0);
@@ -230,6 +225,25 @@ void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size
       e.total[j] = e.variance > 0 ? total[j * resamples_at_once + k] / (2 * n[k]) / e.variance : 0.0;
     }
   }
+}
+
+// On x86-64 a second version for processors with AVX (four doubles an operation, where SSE2 has
+// two), chosen on the first call; AVX has no fused multiply-add, so both round every operation
+// alike and give the same bits. Chosen by a test at run time, not by an ifunc (target_clones):
+// an ifunc resolver runs while the library is relocated, before a sanitizer's runtime is ready.
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx"))) void estimate_drawn_avx(const SobolRows& rows, const std::uint32_t* times, std::size_t count,
+                                                       SobolEstimate* out) {
+  estimate_drawn_body(rows, times, count, out);
+}
+#endif
+
+void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size_t count, SobolEstimate* out) {
+#if defined(__x86_64__) && defined(__GNUC__)
+  static const bool avx = __builtin_cpu_supports("avx");
+  if (avx) return estimate_drawn_avx(rows, times, count, out);
+#endif
+  estimate_drawn_body(rows, times, count, out);
 }
 
 // The percentile interval of `draws` at `confidence` (type 7 quantiles of the sorted draws).
