@@ -27,18 +27,31 @@ LiftDerivatives at_edge_bounded(const CamLaw& law, const std::vector<double>& ed
 }  // namespace
 
 std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
-  if (order < 0 || order > 2) return std::nullopt;
-  std::vector<double> breaks;
-  if (!law.monotone_breaks(order, breaks)) return std::nullopt;
-  const double end = law.event_end();
-  std::vector<double> edges;
-  edges.reserve(breaks.size() + 2);
-  edges.push_back(law.event_begin());
-  for (double b : breaks)  // a cut outside the event or out of order would void the certificate: refuse it
-    if (!(b > edges.back()) || !(b < end)) return std::nullopt;
-    else edges.push_back(b);
-  edges.push_back(end);
-  return CamLawRuns(law, order, std::move(edges));
+  CamLawRuns runs;
+  if (!runs.assign(law, order)) return std::nullopt;
+  return runs;
+}
+
+bool CamLawRuns::assign(const CamLaw& law, int order) {
+  law_ = &law;
+  order_ = order;
+  edges_.clear();  // the cuts are read into the edges' own storage, then framed by the event's ends
+  if (order < 0 || order > 2 || !law.monotone_breaks(order, edges_)) {
+    edges_.clear();
+    return false;
+  }
+  const double begin = law.event_begin(), end = law.event_end();
+  double previous = begin;
+  for (double b : edges_) {  // a cut outside the event or out of order would void the certificate: refuse it
+    if (!(b > previous) || !(b < end)) {
+      edges_.clear();
+      return false;
+    }
+    previous = b;
+  }
+  edges_.insert(edges_.begin(), begin);
+  edges_.push_back(end);
+  return true;
 }
 
 double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
@@ -107,6 +120,12 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
                                                  long& evaluations) {
+  std::vector<Peaks> out(runs.size());
+  peaks(runs, a, b, evaluations, out.data());
+  return out;
+}
+
+void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations, Peaks* out) {
   // The points each run set reads (as extreme() does), evaluated once each across the sets. They
   // are kept sorted by angle, so a point read before is found by bisection (the sets share most
   // of their cuts): the first few on the stack (a law has a handful of runs), any more in a vector.
@@ -140,8 +159,6 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
     ++count;
     return r.d;
   };
-  std::vector<Peaks> out;
-  out.reserve(runs.size());
   for (const CamLawRuns* r : runs) {
     const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
     Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
@@ -158,13 +175,18 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
         if (f > p.max.value) p.max = {x, f};
       }
     }
-    out.push_back(p);
+    *out++ = p;
   }
-  return out;
 }
 
 std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level, long& evaluations) const {
   std::vector<std::pair<double, bool>> found;
+  directed_crossings(level, evaluations, found);
+  return found;
+}
+
+void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector<std::pair<double, bool>>& found) const {
+  found.clear();
   auto g = [&](double x) {
     ++evaluations;
     return value(x) - level;
@@ -207,7 +229,6 @@ std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level
       zero_since_last = false;
     }
   }
-  return found;
 }
 
 }  // namespace mechgraph
