@@ -85,11 +85,15 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   }
   // The waves as the law cuts them (knots: start, sine | cosine, cosine | parabola, ...): each
   // needs a double strictly inside, else it has no angle of its own.
-  const std::vector<double> k = law->knots();
+  const std::vector<double>& breaks = law->breakpoint_list();
+  const std::size_t knots = breaks.size() + 2;  // the event's start, the breakpoints, its end (CamLaw::knots)
+  const auto knot = [&](std::size_t i) {
+    return i == 0 ? law->event_begin() : i <= breaks.size() ? breaks[i - 1] : law->event_end();
+  };
   const char* wave[3] = {"quarter sine", "quarter cosine", "parabola"};
   const double width[3] = {phi_1, phi_2, phi_3};
   for (std::size_t i = 0; i < 3; ++i) {
-    if (i + 1 < k.size() && std::nextafter(k[i], k[i + 1]) < k[i + 1]) continue;
+    if (i + 1 < knots && std::nextafter(knot(i), knot(i + 1)) < knot(i + 1)) continue;
     std::ostringstream msg;
     msg << std::setprecision(6) << "accel_angle = " << deg(phi_y) << " with rise_split = " << sigma << " leaves the "
         << wave[i] << " " << width[i] * 180.0 / pi << " deg wide, below one ulp of the cam angle ("

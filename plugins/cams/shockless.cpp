@@ -35,6 +35,11 @@ double x_minus_sin(double x, double sin_x) {
 
 }  // namespace
 
+const ShapeEnds& AccelShape::ends() const {
+  std::call_once(ends_once_, [this] { ends_ = {value(0.0), value(1.0), slope(1.0), integral(1.0), integral2(1.0)}; });
+  return ends_;
+}
+
 // Quarter sine, theta = pi tau / 2: a = sin theta, I1 = (2/pi)(1 - cos theta),
 // I2 = (2/pi)^2 (theta - sin theta).
 double QuarterSineRise::value(double tau) const { return std::sin(0.5 * pi * tau); }
@@ -174,18 +179,19 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   }
   // Continuity of the acceleration: zero at the start, at the phase change (different
   // amplitudes) and at the nose-side end is free; inside a phase the shapes must meet.
+  // The shapes' values at their ends are the same for every law: each shape keeps them (ends()).
   auto meets = [&](double a, double b) { return std::abs(a - b) <= tol; };
-  if (!meets(positive.front().shape->value(0.0), 0.0)) {
+  if (!meets(positive.front().shape->ends().value0, 0.0)) {
     throw std::invalid_argument("shockless law: the acceleration must start at zero");
   }
   for (const auto* phase : {&positive, &negative}) {
     for (std::size_t i = 0; i + 1 < phase->size(); ++i) {
-      if (!meets((*phase)[i].shape->value(1.0), (*phase)[i + 1].shape->value(0.0))) {
+      if (!meets((*phase)[i].shape->ends().value1, (*phase)[i + 1].shape->ends().value0)) {
         throw std::invalid_argument("shockless law: shapes of one phase must join continuously");
       }
     }
   }
-  if (!meets(positive.back().shape->value(1.0), 0.0) || !meets(negative.front().shape->value(0.0), 0.0)) {
+  if (!meets(positive.back().shape->ends().value1, 0.0) || !meets(negative.front().shape->ends().value0, 0.0)) {
     throw std::invalid_argument("shockless law: the acceleration must cross zero between the phases");
   }
 
@@ -195,8 +201,8 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   auto propagate = [&](const ShapeSegment& s, int phase) {
     const double L = s.length;
     for (int k = 0; k < 2; ++k) h[k] += v[k] * L;
-    h[phase] += L * L * s.shape->integral2(1.0);
-    v[phase] += L * s.shape->integral(1.0);
+    h[phase] += L * L * s.shape->ends().integral2;
+    v[phase] += L * s.shape->ends().integral1;
   };
   for (const ShapeSegment& s : positive) propagate(s, 0);
   for (const ShapeSegment& s : negative) propagate(s, 1);
@@ -212,24 +218,28 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
 
   // The pieces with their starting lift and velocity for the actual amplitudes.
   double x = 0.0, lift = 0.0, vel = 0.0;
-  auto add = [&](const ShapeSegment& s, double A) {
-    pieces_.push_back({s.shape, x, s.length, A, lift, vel});
+  pieces_.reserve(positive.size() + negative.size());
+  auto add = [&](ShapeSegment& s, double A) {
     const double L = s.length;
-    lift += vel * L + A * L * L * s.shape->integral2(1.0);
-    vel += A * L * s.shape->integral(1.0);
+    const ShapeEnds& e = s.shape->ends();
+    pieces_.push_back({std::move(s.shape), x, L, A, lift, vel});
+    lift += vel * L + A * L * L * e.integral2;
+    vel += A * L * e.integral1;
     x += L;
   };
-  for (const ShapeSegment& s : positive) add(s, amplitude_pos_);
-  for (const ShapeSegment& s : negative) add(s, amplitude_neg_);
+  for (ShapeSegment& s : positive) add(s, amplitude_pos_);
+  for (ShapeSegment& s : negative) add(s, amplitude_neg_);
   pieces_.back().length = half_action_ - pieces_.back().start;  // the last piece ends at the nose exactly
 
-  for (const double xj : junctions_from_start()) {
+  breakpoints_.reserve(2 * pieces_.size() - 1);
+  for (std::size_t i = 1; i < pieces_.size(); ++i) {  // the junctions, x_1 ... x_{n-1} from the start of lift
+    const double xj = pieces_[i].start;
     breakpoints_.push_back(-(half_action_ - xj));
     breakpoints_.push_back(half_action_ - xj);
   }
   const Piece& last = pieces_.back();
   // h''' is odd about the nose: it jumps there unless the last shape ends with zero slope.
-  if (std::abs(last.shape->slope(1.0)) > 1e-12) breakpoints_.push_back(0.0);
+  if (std::abs(last.shape->ends().slope1) > 1e-12) breakpoints_.push_back(0.0);
   std::sort(breakpoints_.begin(), breakpoints_.end());
 }
 

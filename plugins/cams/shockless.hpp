@@ -16,12 +16,22 @@
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <memory>
+#include <mutex>
 #include <vector>
 
 namespace mechgraph::cams {
 
 struct ShapeValues {
   double value, slope, integral, integral2;
+};
+
+/// What a law reads of a shape at the ends of its unit interval.
+struct ShapeEnds {
+  double value0 = 0.0;     // a(0)
+  double value1 = 0.0;     // a(1)
+  double slope1 = 0.0;     // a'(1)
+  double integral1 = 0.0;  // I1(1)
+  double integral2 = 0.0;  // I2(1)
 };
 
 /// One piece of an acceleration diagram on tau in [0, 1], with exact derivative and integrals.
@@ -39,6 +49,13 @@ class AccelShape {
   /// I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt in closed form (a law
   /// of such shapes gives the integrals of h and h^2); false if the shape has none.
   virtual bool moments(double /*tau*/, double& /*i3*/, double& /*j1*/, double& /*j2*/) const { return false; }
+  /// a(0), a(1), a'(1), I1(1), I2(1) by the functions above, computed once per shape and kept (a
+  /// sweep builds a law per case from the same few shapes); thread-safe.
+  const ShapeEnds& ends() const;
+
+ private:
+  mutable std::once_flag ends_once_;
+  mutable ShapeEnds ends_;
 };
 
 /// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
@@ -111,6 +128,8 @@ class ShocklessLaw final : public CamLaw {
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)
   /// Junctions measured from the start of lift, x_1 ... x_{n-1}.
   std::vector<double> junctions_from_start() const;
+  /// breakpoints() without the copy.
+  const std::vector<double>& breakpoint_list() const { return breakpoints_; }
 
  private:
   struct Piece {
