@@ -55,6 +55,7 @@ std::vector<int> validate_polydyne_exponents(const std::vector<double>& e) {
                                          "x = x' = x'' = x''' = x'''' = 0 fix five coefficients)");
   }
   std::vector<int> n;
+  n.reserve(e.size());
   for (double v : e) {
     if (!(std::abs(v - std::round(v)) == 0.0) || !std::isfinite(v)) {
       throw NodeError("exponents", given() + ": every exponent must be an integer");
