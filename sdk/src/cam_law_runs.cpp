@@ -127,24 +127,26 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
 
 void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations, Peaks* out) {
   // The points each run set reads (as extreme() does), evaluated once each across the sets. They
-  // are kept sorted by angle, so a point read before is found by bisection (the sets share most
-  // of their cuts): the first few on the stack (a law has a handful of runs), any more in a vector.
+  // are kept sorted by angle; each set reads its points in ascending order, so a point read before
+  // is found by a cursor that only moves forward (the sets share most of their cuts): the first
+  // few on the stack (a law has a handful of runs), any more in a vector.
   struct Read {
     double x;
-    LiftDerivatives d;
+    double v[3];  // lift, velocity, acceleration: h^(order) for order 0..2 (no initialiser: filled when read)
   };
   constexpr std::size_t kept_on_stack = 32;
   Read on_stack[kept_on_stack];
   std::vector<Read> on_heap;
   Read* read = on_stack;
   std::size_t count = 0;
-  auto at = [&](const CamLawRuns& runs, double x) -> LiftDerivatives {
-    Read* const end = read + count;
-    Read* const place = std::lower_bound(read, end, x, [](const Read& r, double y) { return r.x < y; });
-    if (place != end && place->x == x) return place->d;
+  std::size_t cursor = 0;  // the first read at or after the set's last point
+  auto at = [&](const CamLawRuns& runs, double x) -> const Read& {
+    while (cursor < count && read[cursor].x < x) ++cursor;
+    if (cursor < count && read[cursor].x == x) return read[cursor];
     ++evaluations;
-    const Read r{x, at_edge_bounded(*runs.law_, runs.edges_, x)};
-    const std::size_t where = static_cast<std::size_t>(place - read);
+    const LiftDerivatives d = at_edge_bounded(*runs.law_, runs.edges_, x);
+    const Read r{x, {d.lift, d.velocity, d.acceleration}};
+    const std::size_t where = cursor;
     if (count == kept_on_stack && read == on_stack) {  // more than the stack holds: to the heap
       on_heap.assign(on_stack, on_stack + count);
       read = nullptr;
@@ -157,20 +159,21 @@ void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, 
       read = on_heap.data();
     }
     ++count;
-    return r.d;
+    return read[where];
   };
   for (const CamLawRuns* r : runs) {
     const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
     Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
     const auto first = std::upper_bound(r->edges_.begin(), r->edges_.end(), lo_end) - r->edges_.begin() - 1;
+    const auto order = static_cast<std::size_t>(r->order_);
+    cursor = 0;
     for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r->edges_.size()); ++k) {
       const double lo = r->edges_[static_cast<std::size_t>(k)], hi = r->edges_[static_cast<std::size_t>(k) + 1];
       if (lo >= hi_end) break;
       if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
       const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives v = at(*r, std::clamp(x, inner_lo, inner_hi));
-        const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
+        const double f = at(*r, std::clamp(x, inner_lo, inner_hi)).v[order];
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};
       }
