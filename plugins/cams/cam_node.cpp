@@ -92,7 +92,8 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
 class CamNodeType final : public NodeType, public BlockEvaluation {
  public:
   explicit CamNodeType(CamLawDefinition d)
-      : make_(std::move(d.make)), cost_(std::move(d.cost)), derived_(d.derives_lift_and_action) {
+      : make_(std::move(d.make)), cost_(std::move(d.cost)), prepare_block_(std::move(d.prepare_block)),
+        derived_(d.derives_lift_and_action) {
     const std::string derived_from = d.derived_from;
     info_.type = std::move(d.type);
     info_.version = d.version;
@@ -257,15 +258,17 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
                     has_action ? params.number("action_angle") : 0.0, has_action, params.number("base_radius"), inputs, out,
                     ctx, basics, ramp);
   }
-  // The same from the common numbers read (a block reads them from its columns).
+  // The same from the common numbers read (a block reads them from its columns, and gives its
+  // prepared factory and the case's index when it has one).
   std::shared_ptr<const CamLaw> make_law(const ParamSet& params, double max_lift, bool has_lift, double action_angle,
                                          bool has_action, double base_radius, const InputSet& inputs, OutputSet& out,
-                                         EvalContext& ctx, CamBasics& basics, const RampSpec& ramp) const {
+                                         EvalContext& ctx, CamBasics& basics, const RampSpec& ramp,
+                                         const CamLawCaseFactory* prepared = nullptr, std::size_t k = 0) const {
     if (ramp.type != RampType::none && !(has_lift && has_action))
       throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
     basics = CamBasics{has_lift ? main_lift(ramp, max_lift, action_angle) : 0.0, action_angle, base_radius, has_lift,
                        has_action, &inputs, &ctx};
-    std::shared_ptr<const CamLaw> law = make_(basics, params, out);
+    std::shared_ptr<const CamLaw> law = prepared ? (*prepared)(basics, params, k, out) : make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     return law;
   }
@@ -347,6 +350,15 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     const BlockColumn lift_column = has_lift ? p.number("max_lift") : BlockColumn{};
     const BlockColumn action_column = has_action ? p.number("action_angle") : BlockColumn{};
     const BlockColumn radius_column = p.number("base_radius");
+    // The law's own preparation for the block, where it has one (else its factory per case).
+    CamLawCaseFactory prepared;
+    if (prepare_block_) {
+      try {
+        prepared = prepare_block_(p);
+      } catch (const NodeError&) {
+        prepared = nullptr;  // each case alone says why
+      }
+    }
     for_each_live_case(cases, [&](std::size_t k) {
       const ParamSet& params = p.of_case(k);
       CamBasics basics;
@@ -355,7 +367,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
       ramp = ramp_varies ? read_ramp(params) : *block_ramp;
       for (const auto& [slot, column] : extras) *slot = Value::handle(nullptr);
       laws[k] = make_law(params, has_lift ? lift_column[k] : 0.0, has_lift, has_action ? action_column[k] : 0.0, has_action,
-                         radius_column[k], no_inputs, extra, ctx, basics, ramp);
+                         radius_column[k], no_inputs, extra, ctx, basics, ramp, prepared ? &prepared : nullptr, k);
       const CamLaw& law = *laws[k];
       if (max_lift) max_lift[k] = law.max_lift();
       for (const auto& [slot, column] : extras) {
@@ -397,6 +409,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   std::vector<std::string> extra_scalars_;  // the law's own scalar outputs (CamLawDefinition::extra_outputs)
   CamLawFactory make_;
   CamLawCostFunction cost_;
+  CamLawBlockFactory prepare_block_;
   bool derived_ = false;
 };
 
