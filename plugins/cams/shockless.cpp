@@ -36,7 +36,10 @@ double x_minus_sin(double x, double sin_x) {
 }  // namespace
 
 const ShapeEnds& AccelShape::ends() const {
-  std::call_once(ends_once_, [this] { ends_ = {value(0.0), value(1.0), slope(1.0), integral(1.0), integral2(1.0)}; });
+  std::call_once(ends_once_, [this] {
+    ends_ = {value(0.0), value(1.0), slope(1.0), integral(1.0), integral2(1.0)};
+    ends_.has_moments = moments(1.0, ends_.i3, ends_.j1, ends_.j2);
+  });
   return ends_;
 }
 
@@ -76,6 +79,10 @@ double ParabolaToVertex::value(double tau) const { return tau * (2.0 - tau); }
 double ParabolaToVertex::slope(double tau) const { return 2.0 * (1.0 - tau); }
 double ParabolaToVertex::integral(double tau) const { return tau * tau * (1.0 - tau / 3.0); }
 double ParabolaToVertex::integral2(double tau) const { return tau * tau * tau * (4.0 - tau) / 12.0; }
+ShapeValues ParabolaToVertex::all(double tau) const {
+  return {ParabolaToVertex::value(tau), ParabolaToVertex::slope(tau), ParabolaToVertex::integral(tau),
+          ParabolaToVertex::integral2(tau)};
+}
 
 // Moments for the closed-form integrals of h and h^2 (ShocklessLaw::lift_integrals):
 // I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt. With k = pi/2, theta = k tau:
@@ -123,9 +130,16 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
   //   F2 = L [h_k^2 tau + h_k v_k L tau^2 + v_k^2 L^2 tau^3/3 + 2 h_k A L^2 I3 + 2 v_k A L^3 J1 + A^2 L^4 J2];
   // G(x) sums them from the start of lift to x; P(phi) = G(phi_p + phi) before the nose and
   // 2 G(phi_p) - G(phi_p - phi) after it (the law is symmetric); the answer is P(b) - P(a).
+  // A piece wholly inside [0, x] (tau = 1: every piece before x's) takes its shape's kept moments.
   auto piece_integrals = [](const Piece& p, double tau, double& f1, double& f2) {
     double i3, j1, j2;
-    if (!p.shape->moments(tau, i3, j1, j2)) return false;
+    if (tau == 1.0) {
+      const ShapeEnds& e = p.shape->ends();
+      if (!e.has_moments) return false;
+      i3 = e.i3, j1 = e.j1, j2 = e.j2;
+    } else if (!p.shape->moments(tau, i3, j1, j2)) {
+      return false;
+    }
     const double L = p.length, A = p.amplitude, h = p.lift0, v = p.velocity0;
     f1 = L * (h * tau + 0.5 * v * L * tau * tau + A * L * L * i3);
     f2 = L * (h * h * tau + h * v * L * tau * tau + v * v * L * L * tau * tau * tau / 3.0 + 2.0 * h * A * L * L * i3 +

@@ -32,6 +32,8 @@ struct ShapeEnds {
   double slope1 = 0.0;     // a'(1)
   double integral1 = 0.0;  // I1(1)
   double integral2 = 0.0;  // I2(1)
+  bool has_moments = false;  // moments(1) gave these:
+  double i3 = 0.0, j1 = 0.0, j2 = 0.0;
 };
 
 /// One piece of an acceleration diagram on tau in [0, 1], with exact derivative and integrals.
@@ -49,8 +51,8 @@ class AccelShape {
   /// I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt in closed form (a law
   /// of such shapes gives the integrals of h and h^2); false if the shape has none.
   virtual bool moments(double /*tau*/, double& /*i3*/, double& /*j1*/, double& /*j2*/) const { return false; }
-  /// a(0), a(1), a'(1), I1(1), I2(1) by the functions above, computed once per shape and kept (a
-  /// sweep builds a law per case from the same few shapes); thread-safe.
+  /// a(0), a(1), a'(1), I1(1), I2(1) and the moments at 1 by the functions above, computed once
+  /// per shape and kept (a sweep builds a law per case from the same few shapes); thread-safe.
   const ShapeEnds& ends() const;
 
  private:
@@ -86,6 +88,7 @@ class QuarterCosineFall final : public AccelShape {
 /// law that ends with it at the nose has a continuous jerk across the nose).
 class ParabolaToVertex final : public AccelShape {
  public:
+  ShapeValues all(double tau) const override;  // the four below, without four virtual calls
   double value(double tau) const override;
   double slope(double tau) const override;
   double integral(double tau) const override;
