@@ -35,10 +35,11 @@ double x_minus_sin(double x, double sin_x) {
 
 }  // namespace
 
-const ShapeEnds& AccelShape::ends() const {
+const ShapeEnds& AccelShape::make_ends() const {
   std::call_once(ends_once_, [this] {
     ends_ = {value(0.0), value(1.0), slope(1.0), integral(1.0), integral2(1.0)};
     ends_.has_moments = moments(1.0, ends_.i3, ends_.j1, ends_.j2);
+    ends_ready_.store(true, std::memory_order_release);
   });
   return ends_;
 }

@@ -15,6 +15,7 @@
 // Every shape gives these in closed form, so the lift and its derivatives are exact.
 #include <mechgraph/domain/cam_law.hpp>
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -53,10 +54,12 @@ class AccelShape {
   virtual bool moments(double /*tau*/, double& /*i3*/, double& /*j1*/, double& /*j2*/) const { return false; }
   /// a(0), a(1), a'(1), I1(1), I2(1) and the moments at 1 by the functions above, computed once
   /// per shape and kept (a sweep builds a law per case from the same few shapes); thread-safe.
-  const ShapeEnds& ends() const;
+  const ShapeEnds& ends() const { return ends_ready_.load(std::memory_order_acquire) ? ends_ : make_ends(); }
 
  private:
+  const ShapeEnds& make_ends() const;
   mutable std::once_flag ends_once_;
+  mutable std::atomic<bool> ends_ready_{false};  // set once ends_ is made: then read without a call
   mutable ShapeEnds ends_;
 };
 
