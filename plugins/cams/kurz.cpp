@@ -72,12 +72,12 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   static const auto quarter_sine = std::make_shared<const QuarterSineRise>();
   static const auto quarter_cosine = std::make_shared<const QuarterCosineFall>();
   static const auto parabola = std::make_shared<const ParabolaToVertex>();
-  std::vector<ShapeSegment> positive{{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
-  std::vector<ShapeSegment> negative{{parabola, phi_3}};
+  const ShapeSegment positive[] = {{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
+  const ShapeSegment negative[] = {{parabola, phi_3}};
   std::shared_ptr<const ShocklessLaw> law;
   try {
     law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
-                                               std::move(positive), std::move(negative));
+                                               std::span<const ShapeSegment>(positive), std::span<const ShapeSegment>(negative));
   } catch (const std::invalid_argument& e) {
     throw NodeError(phi_1 < phi_3 || phi_2 < phi_3 ? split_parameter : "accel_angle",
                     std::string("accel_angle = ") + deg(phi_y) + " and rise_split = " + std::to_string(sigma) +

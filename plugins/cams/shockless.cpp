@@ -178,7 +178,7 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
 }
 
 ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_radius,
-                           std::vector<ShapeSegment> positive, std::vector<ShapeSegment> negative)
+                           std::span<const ShapeSegment> positive, std::span<const ShapeSegment> negative)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {
   if (positive.empty() || negative.empty()) throw std::invalid_argument("shockless law: each phase needs a shape");
   constexpr double tol = 1e-12;
@@ -234,16 +234,16 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   // The pieces with their starting lift and velocity for the actual amplitudes.
   double x = 0.0, lift = 0.0, vel = 0.0;
   pieces_.reserve(positive.size() + negative.size());
-  auto add = [&](ShapeSegment& s, double A) {
+  auto add = [&](const ShapeSegment& s, double A) {
     const double L = s.length;
     const ShapeEnds& e = s.shape->ends();
-    pieces_.push_back({std::move(s.shape), x, L, A, lift, vel});
+    pieces_.push_back({s.shape, x, L, A, lift, vel});
     lift += vel * L + A * L * L * e.integral2;
     vel += A * L * e.integral1;
     x += L;
   };
-  for (ShapeSegment& s : positive) add(s, amplitude_pos_);
-  for (ShapeSegment& s : negative) add(s, amplitude_neg_);
+  for (const ShapeSegment& s : positive) add(s, amplitude_pos_);
+  for (const ShapeSegment& s : negative) add(s, amplitude_neg_);
   pieces_.back().length = half_action_ - pieces_.back().start;  // the last piece ends at the nose exactly
 
   breakpoints_.reserve(2 * pieces_.size() - 1);

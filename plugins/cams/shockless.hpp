@@ -18,6 +18,7 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <vector>
 
 namespace mechgraph::cams {
@@ -110,8 +111,12 @@ class ShocklessLaw final : public CamLaw {
  public:
   /// The segment lengths of both phases must add up to half the action angle. Throws
   /// std::invalid_argument if the shapes do not join continuously (a programming error).
-  ShocklessLaw(double max_lift, double action_angle, double base_radius, std::vector<ShapeSegment> positive,
-               std::vector<ShapeSegment> negative);
+  ShocklessLaw(double max_lift, double action_angle, double base_radius, std::span<const ShapeSegment> positive,
+               std::span<const ShapeSegment> negative);
+  ShocklessLaw(double max_lift, double action_angle, double base_radius, const std::vector<ShapeSegment>& positive,
+               const std::vector<ShapeSegment>& negative)
+      : ShocklessLaw(max_lift, action_angle, base_radius, std::span<const ShapeSegment>(positive),
+                     std::span<const ShapeSegment>(negative)) {}
 
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
