@@ -48,9 +48,9 @@ double closed_form_angle_area(double k1, double k2, double i, double lash, doubl
 }
 
 // The exact angle-area in closed form, where the seat is conical and the law gives its integrals
-// over the open period [ob, oe] (closed_form_angle_area): false otherwise (then it is integrated, angle_area_of).
+// over the open period [ob, oe] (closed_form_angle_area); false otherwise (angle_area_of integrates).
 bool closed_form_area_of(const CamLaw& cam, const FlowArea& area, double rocker_ratio, double lash, double ob, double oe,
-                            double& angle_area, long& evaluations) {
+                         double& angle_area, long& evaluations) {
   double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
   if (!area.quadratic(k1, k2) || !cam.lift_integrals(ob, oe, I1, I2)) return false;
   evaluations += 2;  // the law's two primitives, at both ends
