@@ -92,7 +92,8 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
 class CamNodeType final : public NodeType, public BlockEvaluation {
  public:
   explicit CamNodeType(CamLawDefinition d)
-      : make_(std::move(d.make)), cost_(std::move(d.cost)), derived_(d.derives_lift_and_action) {
+      : make_(std::move(d.make)), cost_(std::move(d.cost)), prepare_block_(std::move(d.prepare_block)),
+        derived_(d.derives_lift_and_action) {
     const std::string derived_from = d.derived_from;
     info_.type = std::move(d.type);
     info_.version = d.version;
@@ -250,15 +251,24 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
 
   // The law of the parameters, ramps included; `basics` and `ramp` as it was made from them.
   std::shared_ptr<const CamLaw> make_law(const ParamSet& params, const InputSet& inputs, OutputSet& out, EvalContext& ctx,
-                                         CamBasics& basics, RampSpec& ramp, const RampSpec* known_ramp = nullptr) const {
-    ramp = known_ramp ? *known_ramp : read_ramp(params);
+                                         CamBasics& basics, RampSpec& ramp) const {
+    ramp = read_ramp(params);
     const bool has_lift = params.has("max_lift"), has_action = params.has("action_angle");
+    return make_law(params, has_lift ? params.number("max_lift") : 0.0, has_lift,
+                    has_action ? params.number("action_angle") : 0.0, has_action, params.number("base_radius"), inputs, out,
+                    ctx, basics, ramp);
+  }
+  // The same from the common numbers read (a block reads them from its columns, and gives its
+  // prepared factory and the case's index when it has one).
+  std::shared_ptr<const CamLaw> make_law(const ParamSet& params, double max_lift, bool has_lift, double action_angle,
+                                         bool has_action, double base_radius, const InputSet& inputs, OutputSet& out,
+                                         EvalContext& ctx, CamBasics& basics, const RampSpec& ramp,
+                                         const CamLawCaseFactory* prepared = nullptr, std::size_t k = 0) const {
     if (ramp.type != RampType::none && !(has_lift && has_action))
       throw NodeError(has_lift ? "action_angle" : "max_lift", "a ramp on this law needs max_lift and action_angle given");
-    const double action_angle = has_action ? params.number("action_angle") : 0.0;
-    basics = CamBasics{has_lift ? main_lift(ramp, params.number("max_lift"), action_angle) : 0.0, action_angle,
-                       params.number("base_radius"), has_lift, has_action, &inputs, &ctx};
-    std::shared_ptr<const CamLaw> law = make_(basics, params, out);
+    basics = CamBasics{has_lift ? main_lift(ramp, max_lift, action_angle) : 0.0, action_angle, base_radius, has_lift,
+                       has_action, &inputs, &ctx};
+    std::shared_ptr<const CamLaw> law = prepared ? (*prepared)(basics, params, k, out) : make_(basics, params, out);
     if (ramp.type != RampType::none) law = std::make_shared<const RampedLaw>(law, ramp);
     return law;
   }
@@ -320,10 +330,13 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     const CamSummaryParts parts{out.scalar("max_velocity") || out.scalar("max_acceleration") || out.scalar("min_acceleration"),
                                 out.scalar("accel_angle") != nullptr, out.scalar("min_curvature_radius") != nullptr};
     const bool summary_wanted = parts.peaks || parts.phase || parts.curvature;
-    // The law-specific scalar outputs read downstream (three-arc radii, ...).
-    std::vector<std::pair<std::string, double*>> extras;
+    // The law-specific scalar outputs read downstream (three-arc radii, ...), into one set for the
+    // block: each case finds its slots made (no allocation) and marked unset (a handle's kind) until
+    // the factory sets them.
+    OutputSet extra;
+    std::vector<std::pair<Value*, double*>> extras;
     for (const std::string& port : extra_scalars_)
-      if (double* column = out.scalar(port)) extras.emplace_back(port, column);
+      if (double* column = out.scalar(port)) extras.emplace_back(&extra.slot(port), column);
     // The columns, found once for the block (null: not read downstream).
     double* const max_lift = out.scalar("max_lift");
     double* const peak_columns[] = {out.scalar("max_velocity"), out.scalar("max_acceleration"), out.scalar("min_acceleration"),
@@ -332,22 +345,37 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
     // The ramp is read once for the block when no case changes it (a refusal stays per case).
     const bool ramp_varies = p.varies("ramp_height") || p.varies("ramp_length");
     std::optional<RampSpec> block_ramp;
+    // The common numbers by column, and which are given, read once for the block (as make_law reads them).
+    const bool has_lift = p.fixed().has("max_lift"), has_action = p.fixed().has("action_angle");
+    const BlockColumn lift_column = has_lift ? p.number("max_lift") : BlockColumn{};
+    const BlockColumn action_column = has_action ? p.number("action_angle") : BlockColumn{};
+    const BlockColumn radius_column = p.number("base_radius");
+    // The law's own preparation for the block, where it has one (else its factory per case).
+    CamLawCaseFactory prepared;
+    if (prepare_block_) {
+      try {
+        prepared = prepare_block_(p);
+      } catch (const NodeError&) {
+        prepared = nullptr;  // each case alone says why
+      }
+    }
     for_each_live_case(cases, [&](std::size_t k) {
       const ParamSet& params = p.of_case(k);
       CamBasics basics;
       RampSpec ramp;
-      OutputSet extra;
       if (!ramp_varies && !block_ramp) block_ramp = read_ramp(params);
-      laws[k] = make_law(params, no_inputs, extra, ctx, basics, ramp, ramp_varies ? nullptr : &*block_ramp);
+      ramp = ramp_varies ? read_ramp(params) : *block_ramp;
+      for (const auto& [slot, column] : extras) *slot = Value::handle(nullptr);
+      laws[k] = make_law(params, has_lift ? lift_column[k] : 0.0, has_lift, has_action ? action_column[k] : 0.0, has_action,
+                         radius_column[k], no_inputs, extra, ctx, basics, ramp, prepared ? &prepared : nullptr, k);
       const CamLaw& law = *laws[k];
       if (max_lift) max_lift[k] = law.max_lift();
-      for (const auto& [port, column] : extras) {
-        auto it = extra.all().find(port);
-        if (it == extra.all().end() || it->second.kind() != ValueKind::scalar) {
+      for (const auto& [slot, column] : extras) {
+        if (slot->kind() != ValueKind::scalar) {
           cases.fail(k);  // not made for this case: the single evaluation says why
           return;
         }
-        column[k] = it->second.as_scalar();
+        column[k] = slot->as_scalar();
       }
       if (!summary_wanted) return;
       const CamSummary s = summarize(law, static_cast<int>(params.integer("samples")), parts);
@@ -381,6 +409,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   std::vector<std::string> extra_scalars_;  // the law's own scalar outputs (CamLawDefinition::extra_outputs)
   CamLawFactory make_;
   CamLawCostFunction cost_;
+  CamLawBlockFactory prepare_block_;
   bool derived_ = false;
 };
 

@@ -4,9 +4,11 @@
 // action_angle, base_radius, ramp, ramp_height, ramp_length, samples) and the common outputs (law, max_velocity,
 // max_acceleration, min_acceleration, accel_angle, min_curvature_radius) are added here, so a new
 // law is a law class plus a few lines of registration.
+#include <mechgraph/block.hpp>
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/node.hpp>
 
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <map>
@@ -56,6 +58,16 @@ struct CamLawCost {
 };
 using CamLawCostFunction = std::function<CamLawCost(const ParamSet&)>;
 
+/// Case k's law of a block (CamLawDefinition::prepare_block): from its basics, its parameters
+/// (the varied ones as case k has them) and k, the index into the block's columns.
+using CamLawCaseFactory =
+    std::function<std::shared_ptr<const CamLaw>(const CamBasics&, const ParamSet&, std::size_t k, OutputSet& extra)>;
+/// Reads, checks and computes once for a block of cases what no case of it changes (choices,
+/// lists, which optional parameters are given: only numbers vary in a block) and returns the
+/// factory of its cases, which must give each case the very law and extras `make` gives it. An
+/// empty function, or a NodeError, where it cannot: then `make` runs per case and says why.
+using CamLawBlockFactory = std::function<CamLawCaseFactory(const BlockParams&)>;
+
 struct CamLawDefinition {
   std::string type;     // "cam.kurz"
   int version = 1;
@@ -69,6 +81,8 @@ struct CamLawDefinition {
   CamLawFactory make;
   /// The law's cost (absent: a closed form of at most CamLawCost{}.pieces pieces, cheap to make).
   CamLawCostFunction cost;
+  /// Optional: the law's factory for a block of cases (absent: `make` for each case).
+  CamLawBlockFactory prepare_block;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.
   bool derives_lift_and_action = false;
   /// Where such a law's lift and event come from, for the parameters' descriptions ("the data",

@@ -72,12 +72,12 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   static const auto quarter_sine = std::make_shared<const QuarterSineRise>();
   static const auto quarter_cosine = std::make_shared<const QuarterCosineFall>();
   static const auto parabola = std::make_shared<const ParabolaToVertex>();
-  std::vector<ShapeSegment> positive{{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
-  std::vector<ShapeSegment> negative{{parabola, phi_3}};
+  const ShapeSegment positive[] = {{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
+  const ShapeSegment negative[] = {{parabola, phi_3}};
   std::shared_ptr<const ShocklessLaw> law;
   try {
     law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
-                                               std::move(positive), std::move(negative));
+                                               std::span<const ShapeSegment>(positive), std::span<const ShapeSegment>(negative));
   } catch (const std::invalid_argument& e) {
     throw NodeError(phi_1 < phi_3 || phi_2 < phi_3 ? split_parameter : "accel_angle",
                     std::string("accel_angle = ") + deg(phi_y) + " and rise_split = " + std::to_string(sigma) +
@@ -85,11 +85,15 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   }
   // The waves as the law cuts them (knots: start, sine | cosine, cosine | parabola, ...): each
   // needs a double strictly inside, else it has no angle of its own.
-  const std::vector<double> k = law->knots();
+  const std::vector<double>& breaks = law->breakpoint_list();
+  const std::size_t knots = breaks.size() + 2;  // the event's start, the breakpoints, its end (CamLaw::knots)
+  const auto knot = [&](std::size_t i) {
+    return i == 0 ? law->event_begin() : i <= breaks.size() ? breaks[i - 1] : law->event_end();
+  };
   const char* wave[3] = {"quarter sine", "quarter cosine", "parabola"};
   const double width[3] = {phi_1, phi_2, phi_3};
   for (std::size_t i = 0; i < 3; ++i) {
-    if (i + 1 < k.size() && std::nextafter(k[i], k[i + 1]) < k[i + 1]) continue;
+    if (i + 1 < knots && std::nextafter(knot(i), knot(i + 1)) < knot(i + 1)) continue;
     std::ostringstream msg;
     msg << std::setprecision(6) << "accel_angle = " << deg(phi_y) << " with rise_split = " << sigma << " leaves the "
         << wave[i] << " " << width[i] * 180.0 / pi << " deg wide, below one ulp of the cam angle ("

@@ -55,6 +55,7 @@ std::vector<int> validate_polydyne_exponents(const std::vector<double>& e) {
                                          "x = x' = x'' = x''' = x'''' = 0 fix five coefficients)");
   }
   std::vector<int> n;
+  n.reserve(e.size());
   for (double v : e) {
     if (!(std::abs(v - std::round(v)) == 0.0) || !std::isfinite(v)) {
       throw NodeError("exponents", given() + ": every exponent must be an integer");
@@ -102,6 +103,7 @@ namespace {
 // kept per exponent set (a small, bounded, thread-safe table; 0.2 ms saved per design).
 std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& exponents) {
   auto series = std::make_shared<PolydyneSeries>();
+  series->exponents = exponents;
   const auto exact = polydyne_coefficients_exact(exponents);
   const int degree = exponents.back();
   std::vector<cpp_rational> p(static_cast<std::size_t>(degree) + 1, cpp_rational(0));
@@ -194,9 +196,13 @@ std::shared_ptr<const PolydyneSeries> series_for(const std::vector<int>& exponen
 
 }  // namespace
 
+std::shared_ptr<const PolydyneSeries> polydyne_series(const std::vector<int>& exponents) { return series_for(exponents); }
+
 PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents)
-    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), exponents_(std::move(exponents)),
-      series_(series_for(exponents_)) {}
+    : PolydyneLaw(max_lift, action_angle, base_radius, series_for(exponents)) {}
+
+PolydyneLaw::PolydyneLaw(double max_lift, double action_angle, double base_radius, std::shared_ptr<const PolydyneSeries> series)
+    : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius), series_(std::move(series)) {}
 
 SparsePolynomial::SparsePolynomial(const std::vector<long double>& dense) {
   int previous = -1;
@@ -489,6 +495,18 @@ CamLawDefinition polydyne_definition() {
     extra.set_scalar("exponent_q", exponents[1]);
     return std::make_shared<const PolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
                                                std::move(exponents));
+  };
+  // A block: the exponents (a list, never varied in a block) checked and their series found once;
+  // each case is then its lift, action angle and base radius. With accel_angle q is found per case.
+  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
+    if (p.fixed().has("accel_angle")) return {};
+    const std::vector<int> exponents = validate_polydyne_exponents(p.fixed().numbers("exponents"));
+    const double q = exponents[1];
+    return [series = polydyne_series(exponents), q](const CamBasics& basics, const ParamSet&, std::size_t,
+                                                     OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+      extra.set_scalar("exponent_q", q);
+      return std::make_shared<const PolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius, series);
+    };
   };
   return d;
 }

@@ -35,6 +35,11 @@ namespace mechgraph::cams {
 /// increasing, none above 1000. Throws NodeError naming "exponents".
 std::vector<int> validate_polydyne_exponents(const std::vector<double>& exponents);
 
+struct PolydyneSeries;
+/// The series of one exponent set (as validate_polydyne_exponents returns it), made once and
+/// shared by every law of it through a small, bounded, thread-safe table.
+std::shared_ptr<const PolydyneSeries> polydyne_series(const std::vector<int>& exponents);
+
 /// C2, Cp, Cq, Cr, Cs as exact fractions (numerator, denominator > 0, reduced).
 std::vector<std::pair<std::int64_t, std::int64_t>> polydyne_coefficients_exact(const std::vector<int>& exponents);
 
@@ -61,6 +66,7 @@ class SparsePolynomial {
 };
 
 struct PolydyneSeries {
+  std::vector<int> exponents;                        // 2, p, q, r, s: what the rest is of
   std::array<std::vector<long double>, 6> q;        // monomial coefficients, exact to long double
   std::vector<std::array<double, 4>> interleaved;   // q_0..q_3 in double, power by power
   std::vector<double> coefficients;                 // C2, Cp, Cq, Cr, Cs
@@ -77,6 +83,8 @@ class PolydyneLaw final : public CamLaw {
  public:
   /// `exponents` as returned by validate_polydyne_exponents.
   PolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<int> exponents);
+  /// With the series of its exponents found already (polydyne_series; a block finds it once).
+  PolydyneLaw(double max_lift, double action_angle, double base_radius, std::shared_ptr<const PolydyneSeries> series);
 
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
@@ -90,7 +98,7 @@ class PolydyneLaw final : public CamLaw {
   /// The integrals of h and h^2 from the exact polynomial primitives.
   bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
-  const std::vector<int>& exponents() const { return exponents_; }
+  const std::vector<int>& exponents() const { return series_->exponents; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
   const std::vector<double>& coefficients() const { return series_->coefficients; }
   /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
@@ -100,7 +108,6 @@ class PolydyneLaw final : public CamLaw {
   double max_lift_ = 0.0;
   double half_action_ = 0.0;
   double base_radius_ = 0.0;
-  std::vector<int> exponents_;
   std::shared_ptr<const PolydyneSeries> series_;  // shared by every law of these exponents
 };
 

@@ -35,6 +35,15 @@ double x_minus_sin(double x, double sin_x) {
 
 }  // namespace
 
+const ShapeEnds& AccelShape::make_ends() const {
+  std::call_once(ends_once_, [this] {
+    ends_ = {value(0.0), value(1.0), slope(1.0), integral(1.0), integral2(1.0)};
+    ends_.has_moments = moments(1.0, ends_.i3, ends_.j1, ends_.j2);
+    ends_ready_.store(true, std::memory_order_release);
+  });
+  return ends_;
+}
+
 // Quarter sine, theta = pi tau / 2: a = sin theta, I1 = (2/pi)(1 - cos theta),
 // I2 = (2/pi)^2 (theta - sin theta).
 double QuarterSineRise::value(double tau) const { return std::sin(0.5 * pi * tau); }
@@ -71,6 +80,10 @@ double ParabolaToVertex::value(double tau) const { return tau * (2.0 - tau); }
 double ParabolaToVertex::slope(double tau) const { return 2.0 * (1.0 - tau); }
 double ParabolaToVertex::integral(double tau) const { return tau * tau * (1.0 - tau / 3.0); }
 double ParabolaToVertex::integral2(double tau) const { return tau * tau * tau * (4.0 - tau) / 12.0; }
+ShapeValues ParabolaToVertex::all(double tau) const {
+  return {ParabolaToVertex::value(tau), ParabolaToVertex::slope(tau), ParabolaToVertex::integral(tau),
+          ParabolaToVertex::integral2(tau)};
+}
 
 // Moments for the closed-form integrals of h and h^2 (ShocklessLaw::lift_integrals):
 // I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt. With k = pi/2, theta = k tau:
@@ -118,9 +131,16 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
   //   F2 = L [h_k^2 tau + h_k v_k L tau^2 + v_k^2 L^2 tau^3/3 + 2 h_k A L^2 I3 + 2 v_k A L^3 J1 + A^2 L^4 J2];
   // G(x) sums them from the start of lift to x; P(phi) = G(phi_p + phi) before the nose and
   // 2 G(phi_p) - G(phi_p - phi) after it (the law is symmetric); the answer is P(b) - P(a).
+  // A piece wholly inside [0, x] (tau = 1: every piece before x's) takes its shape's kept moments.
   auto piece_integrals = [](const Piece& p, double tau, double& f1, double& f2) {
     double i3, j1, j2;
-    if (!p.shape->moments(tau, i3, j1, j2)) return false;
+    if (tau == 1.0) {
+      const ShapeEnds& e = p.shape->ends();
+      if (!e.has_moments) return false;
+      i3 = e.i3, j1 = e.j1, j2 = e.j2;
+    } else if (!p.shape->moments(tau, i3, j1, j2)) {
+      return false;
+    }
     const double L = p.length, A = p.amplitude, h = p.lift0, v = p.velocity0;
     f1 = L * (h * tau + 0.5 * v * L * tau * tau + A * L * L * i3);
     f2 = L * (h * h * tau + h * v * L * tau * tau + v * v * L * L * tau * tau * tau / 3.0 + 2.0 * h * A * L * L * i3 +
@@ -158,7 +178,7 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
 }
 
 ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_radius,
-                           std::vector<ShapeSegment> positive, std::vector<ShapeSegment> negative)
+                           std::span<const ShapeSegment> positive, std::span<const ShapeSegment> negative)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {
   if (positive.empty() || negative.empty()) throw std::invalid_argument("shockless law: each phase needs a shape");
   constexpr double tol = 1e-12;
@@ -174,18 +194,19 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   }
   // Continuity of the acceleration: zero at the start, at the phase change (different
   // amplitudes) and at the nose-side end is free; inside a phase the shapes must meet.
+  // The shapes' values at their ends are the same for every law: each shape keeps them (ends()).
   auto meets = [&](double a, double b) { return std::abs(a - b) <= tol; };
-  if (!meets(positive.front().shape->value(0.0), 0.0)) {
+  if (!meets(positive.front().shape->ends().value0, 0.0)) {
     throw std::invalid_argument("shockless law: the acceleration must start at zero");
   }
   for (const auto* phase : {&positive, &negative}) {
     for (std::size_t i = 0; i + 1 < phase->size(); ++i) {
-      if (!meets((*phase)[i].shape->value(1.0), (*phase)[i + 1].shape->value(0.0))) {
+      if (!meets((*phase)[i].shape->ends().value1, (*phase)[i + 1].shape->ends().value0)) {
         throw std::invalid_argument("shockless law: shapes of one phase must join continuously");
       }
     }
   }
-  if (!meets(positive.back().shape->value(1.0), 0.0) || !meets(negative.front().shape->value(0.0), 0.0)) {
+  if (!meets(positive.back().shape->ends().value1, 0.0) || !meets(negative.front().shape->ends().value0, 0.0)) {
     throw std::invalid_argument("shockless law: the acceleration must cross zero between the phases");
   }
 
@@ -195,8 +216,8 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   auto propagate = [&](const ShapeSegment& s, int phase) {
     const double L = s.length;
     for (int k = 0; k < 2; ++k) h[k] += v[k] * L;
-    h[phase] += L * L * s.shape->integral2(1.0);
-    v[phase] += L * s.shape->integral(1.0);
+    h[phase] += L * L * s.shape->ends().integral2;
+    v[phase] += L * s.shape->ends().integral1;
   };
   for (const ShapeSegment& s : positive) propagate(s, 0);
   for (const ShapeSegment& s : negative) propagate(s, 1);
@@ -212,24 +233,28 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
 
   // The pieces with their starting lift and velocity for the actual amplitudes.
   double x = 0.0, lift = 0.0, vel = 0.0;
+  pieces_.reserve(positive.size() + negative.size());
   auto add = [&](const ShapeSegment& s, double A) {
-    pieces_.push_back({s.shape, x, s.length, A, lift, vel});
     const double L = s.length;
-    lift += vel * L + A * L * L * s.shape->integral2(1.0);
-    vel += A * L * s.shape->integral(1.0);
+    const ShapeEnds& e = s.shape->ends();
+    pieces_.push_back({s.shape, x, L, A, lift, vel});
+    lift += vel * L + A * L * L * e.integral2;
+    vel += A * L * e.integral1;
     x += L;
   };
   for (const ShapeSegment& s : positive) add(s, amplitude_pos_);
   for (const ShapeSegment& s : negative) add(s, amplitude_neg_);
   pieces_.back().length = half_action_ - pieces_.back().start;  // the last piece ends at the nose exactly
 
-  for (const double xj : junctions_from_start()) {
+  breakpoints_.reserve(2 * pieces_.size() - 1);
+  for (std::size_t i = 1; i < pieces_.size(); ++i) {  // the junctions, x_1 ... x_{n-1} from the start of lift
+    const double xj = pieces_[i].start;
     breakpoints_.push_back(-(half_action_ - xj));
     breakpoints_.push_back(half_action_ - xj);
   }
   const Piece& last = pieces_.back();
   // h''' is odd about the nose: it jumps there unless the last shape ends with zero slope.
-  if (std::abs(last.shape->slope(1.0)) > 1e-12) breakpoints_.push_back(0.0);
+  if (std::abs(last.shape->ends().slope1) > 1e-12) breakpoints_.push_back(0.0);
   std::sort(breakpoints_.begin(), breakpoints_.end());
 }
 

@@ -15,13 +15,27 @@
 // Every shape gives these in closed form, so the lift and its derivatives are exact.
 #include <mechgraph/domain/cam_law.hpp>
 
+#include <atomic>
 #include <memory>
+#include <mutex>
+#include <span>
 #include <vector>
 
 namespace mechgraph::cams {
 
 struct ShapeValues {
   double value, slope, integral, integral2;
+};
+
+/// What a law reads of a shape at the ends of its unit interval.
+struct ShapeEnds {
+  double value0 = 0.0;     // a(0)
+  double value1 = 0.0;     // a(1)
+  double slope1 = 0.0;     // a'(1)
+  double integral1 = 0.0;  // I1(1)
+  double integral2 = 0.0;  // I2(1)
+  bool has_moments = false;  // moments(1) gave these:
+  double i3 = 0.0, j1 = 0.0, j2 = 0.0;
 };
 
 /// One piece of an acceleration diagram on tau in [0, 1], with exact derivative and integrals.
@@ -39,6 +53,15 @@ class AccelShape {
   /// I3 = int_0^tau I2, J1 = int_0^tau t I2(t) dt, J2 = int_0^tau I2(t)^2 dt in closed form (a law
   /// of such shapes gives the integrals of h and h^2); false if the shape has none.
   virtual bool moments(double /*tau*/, double& /*i3*/, double& /*j1*/, double& /*j2*/) const { return false; }
+  /// a(0), a(1), a'(1), I1(1), I2(1) and the moments at 1 by the functions above, computed once
+  /// per shape and kept (a sweep builds a law per case from the same few shapes); thread-safe.
+  const ShapeEnds& ends() const { return ends_ready_.load(std::memory_order_acquire) ? ends_ : make_ends(); }
+
+ private:
+  const ShapeEnds& make_ends() const;
+  mutable std::once_flag ends_once_;
+  mutable std::atomic<bool> ends_ready_{false};  // set once ends_ is made: then read without a call
+  mutable ShapeEnds ends_;
 };
 
 /// a = sin(pi tau / 2): a quarter sine rising from 0 to 1 (zero acceleration, finite jerk at 0).
@@ -69,6 +92,7 @@ class QuarterCosineFall final : public AccelShape {
 /// law that ends with it at the nose has a continuous jerk across the nose).
 class ParabolaToVertex final : public AccelShape {
  public:
+  ShapeValues all(double tau) const override;  // the four below, without four virtual calls
   double value(double tau) const override;
   double slope(double tau) const override;
   double integral(double tau) const override;
@@ -87,8 +111,12 @@ class ShocklessLaw final : public CamLaw {
  public:
   /// The segment lengths of both phases must add up to half the action angle. Throws
   /// std::invalid_argument if the shapes do not join continuously (a programming error).
-  ShocklessLaw(double max_lift, double action_angle, double base_radius, std::vector<ShapeSegment> positive,
-               std::vector<ShapeSegment> negative);
+  ShocklessLaw(double max_lift, double action_angle, double base_radius, std::span<const ShapeSegment> positive,
+               std::span<const ShapeSegment> negative);
+  ShocklessLaw(double max_lift, double action_angle, double base_radius, const std::vector<ShapeSegment>& positive,
+               const std::vector<ShapeSegment>& negative)
+      : ShocklessLaw(max_lift, action_angle, base_radius, std::span<const ShapeSegment>(positive),
+                     std::span<const ShapeSegment>(negative)) {}
 
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
@@ -111,6 +139,8 @@ class ShocklessLaw final : public CamLaw {
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)
   /// Junctions measured from the start of lift, x_1 ... x_{n-1}.
   std::vector<double> junctions_from_start() const;
+  /// breakpoints() without the copy.
+  const std::vector<double>& breakpoint_list() const { return breakpoints_; }
 
  private:
   struct Piece {

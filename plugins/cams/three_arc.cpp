@@ -341,6 +341,41 @@ LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
   return {H, sign * H1, H2, sign * H3};
 }
 
+namespace {
+
+// What the parameters choose, the same for every case of a block: the design by accel_angle or by
+// nose_radius (exactly one given), and a flat or roller follower (roller_radius given with it alone).
+struct ThreeArcChoice {
+  bool by_accel_angle = false;
+  bool roller = false;
+};
+
+ThreeArcChoice three_arc_choice(const ParamSet& params) {
+  const bool has_accel = params.has("accel_angle");
+  const bool has_nose = params.has("nose_radius");
+  if (has_accel == has_nose) {
+    throw NodeError("accel_angle", std::string("give exactly one of accel_angle and nose_radius (") +
+                                       (has_accel ? "both are set" : "neither is set") + ")");
+  }
+  const bool is_roller = params.has("follower") && params.text("follower") == "roller";
+  if (is_roller && !params.has("roller_radius")) throw NodeError("roller_radius", "follower = roller needs roller_radius");
+  if (!is_roller && params.has("roller_radius"))
+    throw NodeError("roller_radius", "roller_radius is set but follower is flat: set follower: roller or remove it");
+  return {has_accel, is_roller};
+}
+
+// The law of the choice, its accel_angle or nose_radius `shape` and its roller radius (0: flat).
+std::shared_ptr<const CamLaw> make_three_arc(const CamBasics& basics, const ThreeArcChoice& c, double shape, double roller,
+                                             OutputSet& extra) {
+  if (c.roller && !(roller > 0.0)) throw NodeError("roller_radius", "roller_radius = " + mm(roller) + " must be > 0");
+  const ThreeArcGeometry g = c.by_accel_angle ? three_arc_from_accel_angle(basics, shape) : three_arc_from_nose_radius(basics, shape);
+  extra.set_scalar("flank_radius", g.flank_radius);
+  extra.set_scalar("nose_radius", g.nose_radius);
+  return std::make_shared<const ThreeArcLaw>(g, roller);
+}
+
+}  // namespace
+
 CamLawDefinition three_arc_definition() {
   CamLawDefinition d;
   d.type = "cam.three_arc";
@@ -379,26 +414,20 @@ CamLawDefinition three_arc_definition() {
       PortSpec::scalar("nose_radius", dim::length, "nose-arc radius r2 of the contour", "mm"),
   };
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
-    const bool has_accel = params.has("accel_angle");
-    const bool has_nose = params.has("nose_radius");
-    if (has_accel == has_nose) {
-      throw NodeError("accel_angle", std::string("give exactly one of accel_angle and nose_radius (") +
-                                         (has_accel ? "both are set" : "neither is set") + ")");
-    }
-    double roller = 0.0;
-    const bool is_roller = params.has("follower") && params.text("follower") == "roller";
-    if (is_roller) {
-      if (!params.has("roller_radius")) throw NodeError("roller_radius", "follower = roller needs roller_radius");
-      roller = params.number("roller_radius");
-      if (!(roller > 0.0)) throw NodeError("roller_radius", "roller_radius = " + mm(roller) + " must be > 0");
-    } else if (params.has("roller_radius")) {
-      throw NodeError("roller_radius", "roller_radius is set but follower is flat: set follower: roller or remove it");
-    }
-    const ThreeArcGeometry g = has_accel ? three_arc_from_accel_angle(basics, params.number("accel_angle"))
-                                         : three_arc_from_nose_radius(basics, params.number("nose_radius"));
-    extra.set_scalar("flank_radius", g.flank_radius);
-    extra.set_scalar("nose_radius", g.nose_radius);
-    return std::make_shared<const ThreeArcLaw>(g, roller);
+    const ThreeArcChoice c = three_arc_choice(params);
+    return make_three_arc(basics, c, params.number(c.by_accel_angle ? "accel_angle" : "nose_radius"),
+                          c.roller ? params.number("roller_radius") : 0.0, extra);
+  };
+  // A block: which parameters are given and the follower (the same for every case) read once; each
+  // case reads its accel_angle or nose_radius and roller radius from the columns.
+  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
+    const ThreeArcChoice c = three_arc_choice(p.fixed());
+    const BlockColumn shape = p.number(c.by_accel_angle ? "accel_angle" : "nose_radius");
+    const BlockColumn roller = c.roller ? p.number("roller_radius") : BlockColumn{};
+    return [c, shape, roller](const CamBasics& basics, const ParamSet&, std::size_t k,
+                              OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+      return make_three_arc(basics, c, shape[k], c.roller ? roller[k] : 0.0, extra);
+    };
   };
   return d;
 }

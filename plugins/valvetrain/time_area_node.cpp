@@ -47,16 +47,30 @@ double closed_form_angle_area(double k1, double k2, double i, double lash, doubl
   return k1 * (i * I1 - lash * L) + k2 * (i * i * I2 - 2.0 * i * lash * I1 + lash * lash * L);
 }
 
-// The angle-area of `motion` through `area` by the method of the parameters.
-double angle_area_of(const ValveMotion& motion, const FlowArea& area, const ParamSet& p, long& evaluations) {
-  auto f = [&](double phi) { return area(motion.at(phi).lift); };
+// The exact angle-area in closed form, where the seat is conical and the law gives its integrals
+// over the open period [ob, oe] (closed_form_angle_area); false otherwise (angle_area_of integrates).
+bool closed_form_area_of(const CamLaw& cam, const FlowArea& area, double rocker_ratio, double lash, double ob, double oe,
+                         double& angle_area, long& evaluations) {
   double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
+  if (!area.quadratic(k1, k2) || !cam.lift_integrals(ob, oe, I1, I2)) return false;
+  evaluations += 2;  // the law's two primitives, at both ends
+  angle_area = closed_form_angle_area(k1, k2, rocker_ratio, lash, oe - ob, I1, I2);
+  return true;
+}
+
+bool exact_method(const ParamSet& p) { return p.text("method") == "exact"; }
+
+// The angle-area of `motion` through `area` by the method of the parameters (`exact`: the
+// method is exact); `closed_form_tried`: closed_form_area_of said no already.
+double angle_area_of(const ValveMotion& motion, const FlowArea& area, const ParamSet& p, bool exact, long& evaluations,
+                     bool closed_form_tried = false) {
+  auto f = [&](double phi) { return area(motion.at(phi).lift); };
   const double ob = motion.open_begin(), oe = motion.open_end();
-  if (p.text("method") == "exact" && area.quadratic(k1, k2) && motion.cam().lift_integrals(ob, oe, I1, I2)) {
-    evaluations += 2;  // the law's two primitives, at both ends
-    return closed_form_angle_area(k1, k2, motion.rocker_ratio(), motion.lash(), oe - ob, I1, I2);
-  }
-  if (p.text("method") == "exact") {
+  double angle_area = 0.0;
+  if (exact && !closed_form_tried &&
+      closed_form_area_of(motion.cam(), area, motion.rocker_ratio(), motion.lash(), ob, oe, angle_area, evaluations))
+    return angle_area;
+  if (exact) {
     // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
     // the lift joins the search knots: a stage lift just below it is crossed twice close together,
     // and the top keeps those two crossings in different pieces.
@@ -156,7 +170,7 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     const auto motion = in.handle<ValveMotion>("valve");
     const FlowArea area(seat_of(p));
     long evaluations = 0;
-    const double angle_area = angle_area_of(*motion, area, p, evaluations);
+    const double angle_area = angle_area_of(*motion, area, p, exact_method(p), evaluations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     const double open_angle = motion->open_end() - motion->open_begin();
     require_finite_area(angle_area, motion->camshaft_speed(), motion->cam(), motion->rocker_ratio());
@@ -166,8 +180,9 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     out.set_scalar("open_duration", open_angle / motion->camshaft_speed());
   }
 
-  // Blocks: every method and seat (only numbers vary from case to case), each case through
-  // angle_area_of as evaluate() takes it, on the case's ValveMotion read from the block's columns.
+  // Blocks: every method and seat (only numbers vary from case to case), each case as evaluate()
+  // takes it: the closed form from the block's columns and the case's law, else angle_area_of on
+  // the case's ValveMotion made from them. The method (a choice, the same for every case) is read once.
   bool block_supported(const BlockRequest&) const override { return true; }
 
   void evaluate_block(const BlockParams& p, const BlockInputs& in, BlockOutputs& out, BlockCases& cases,
@@ -183,17 +198,23 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     for (const char* name : {"seat_diameter", "seat_angle", "seat_width", "port_diameter", "stem_diameter"})
       seat_varies = seat_varies || p.varies(name);
     std::optional<FlowArea> block_area;
+    const bool exact = exact_method(p.fixed());
     for_each_live_case(cases, [&](std::size_t k) {
       const std::size_t r = motions.row(k);
-      const double w = motions.camshaft_speed[r], i = motions.rocker_ratio[r];
-      const CamValveMotion motion(motions.shared_cam(k), w, i, motions.lash[r], OpenPeriod{motions.open_begin[r], motions.open_end[r]});
+      const double w = motions.camshaft_speed[r], i = motions.rocker_ratio[r], lash = motions.lash[r];
+      const double ob = motions.open_begin[r], oe = motions.open_end[r];
       const ParamSet& params = p.of_case(k);
       std::optional<FlowArea> own_area;
       if (!seat_varies && !block_area) block_area.emplace(seat_of(params));
       const FlowArea& area = seat_varies ? own_area.emplace(seat_of(params)) : *block_area;
-      const double angle_area = angle_area_of(motion, area, params, evaluations);
-      require_finite_area(angle_area, w, motion.cam(), i);
-      const double open_angle = motion.open_end() - motion.open_begin();
+      const CamLaw& cam = motions.cam(k);
+      double angle_area = 0.0;
+      if (!exact || !closed_form_area_of(cam, area, i, lash, ob, oe, angle_area, evaluations)) {
+        const CamValveMotion motion(motions.shared_cam(k), w, i, lash, OpenPeriod{ob, oe});
+        angle_area = angle_area_of(motion, area, params, exact, evaluations, exact);
+      }
+      require_finite_area(angle_area, w, cam, i);
+      const double open_angle = oe - ob;
       if (angle_area_out) angle_area_out[k] = angle_area;
       if (time_area) time_area[k] = angle_area / w;
       if (mean_flow_area) mean_flow_area[k] = angle_area / open_angle;

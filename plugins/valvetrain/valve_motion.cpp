@@ -13,6 +13,12 @@
 namespace mechgraph::valvetrain {
 
 OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash, int samples, long& evaluations) {
+  ValveSearchScratch scratch;
+  return find_open_period(cam, rocker_ratio, lash, samples, evaluations, scratch);
+}
+
+OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash, int samples, long& evaluations,
+                            ValveSearchScratch& scratch) {
   if (lash <= 0.0) return {cam.event_begin(), cam.event_end()};
   // The valve moves while g = i h(phi) - lash > 0: the opening is the first crossing of the lash
   // (rising) and the closing the last (falling), found by the certified search over the cam's
@@ -20,10 +26,10 @@ OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash,
   // A law that declares its lift's monotone runs (CamLaw::monotone_breaks) has each crossing
   // bracketed in its run: Newton with bisection on the law, no interpolation (mechgraph/domain/cam_law_runs.hpp).
   std::optional<numerics::SmoothPieces> pieces;
-  std::vector<std::pair<double, bool>> crossings;
-  const auto runs = CamLawRuns::of(cam, 0);
+  std::vector<std::pair<double, bool>>& crossings = scratch.crossings;
+  const bool runs = scratch.lift.assign(cam, 0);
   if (runs) {
-    crossings = runs->directed_crossings(lash / rocker_ratio, evaluations);
+    scratch.lift.directed_crossings(lash / rocker_ratio, evaluations, crossings);
   } else {
     pieces.emplace([&](double phi, double* v, double*) { v[0] = rocker_ratio * cam.at(phi).lift; }, 1, cam.knots(), samples);
     crossings = pieces->directed_crossings(0, lash);
@@ -41,7 +47,7 @@ OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash,
       break;
     }
   if (!opening || !closing || !(*closing > *opening)) {
-    numerics::Extremum peak = runs ? runs->maximum(evaluations) : pieces->maximum(0);
+    numerics::Extremum peak = runs ? scratch.lift.maximum(evaluations) : pieces->maximum(0);
     if (runs) peak.value *= rocker_ratio;
     std::ostringstream msg;
     if (peak.value > lash)  // the lift passes the lash, yet no rising and later falling crossing was found
@@ -57,16 +63,21 @@ OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash,
 
 ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
                             long& evaluations) {
+  ValveSearchScratch scratch;
+  return find_valve_peaks(cam, open, rocker_ratio, lash, samples, evaluations, scratch);
+}
+
+ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
+                            long& evaluations, ValveSearchScratch& scratch) {
   // |velocity| and both acceleration extremes over the open period (each function smooth on each
   // piece; |velocity| is the larger of its two signed extremes).
   numerics::Extremum acc_max, acc_min, v_max, v_min;
-  const auto velocity_runs = CamLawRuns::of(cam, 1);
-  const auto acceleration_runs = CamLawRuns::of(cam, 2);
-  if (velocity_runs && acceleration_runs) {
+  if (scratch.velocity.assign(cam, 1) && scratch.acceleration.assign(cam, 2)) {
     // The cam's monotone runs (closed form): the valve's peaks over the open period are at the
     // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp).
     auto scaled = [rocker_ratio](numerics::Extremum e) { return numerics::Extremum{e.x, rocker_ratio * e.value}; };
-    const auto peaks = CamLawRuns::peaks({&*velocity_runs, &*acceleration_runs}, open.begin, open.end, evaluations);
+    CamLawRuns::Peaks peaks[2];
+    CamLawRuns::peaks({&scratch.velocity, &scratch.acceleration}, open.begin, open.end, evaluations, peaks);
     v_min = scaled(peaks[0].min);
     v_max = scaled(peaks[0].max);
     acc_min = scaled(peaks[1].min);

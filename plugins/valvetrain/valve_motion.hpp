@@ -3,10 +3,12 @@
 // valve lift h_v = i h(phi) - lash while that is positive (rocker ratio i = l_v/l_p), zero
 // otherwise; derivatives i h', i h'', i h''' over cam angle; in time multiply by w_k, w_k^2, w_k^3
 // with the camshaft speed w_k = w_crank / 2 (four-stroke).
+#include <mechgraph/domain/cam_law_runs.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace mechgraph::valvetrain {
@@ -16,10 +18,20 @@ struct OpenPeriod {
   double begin = 0.0, end = 0.0;  // rad
 };
 
+/// What the searches below keep from case to case: the cam's monotone runs (lift, velocity,
+/// acceleration) and the crossings found, so that a block of cases reuses their storage instead of
+/// allocating them per case. One per thread (a block runs on one).
+struct ValveSearchScratch {
+  CamLawRuns lift, velocity, acceleration;
+  std::vector<std::pair<double, bool>> crossings;
+};
+
 /// The open period of the valve on `cam` through rocker ratio i with a lash: the first rising and
 /// the last falling crossing of i h = lash (the whole event without lash). Throws NodeError("lash")
 /// when the valve never opens. Shared by the single and the block evaluation.
 OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash, int samples, long& evaluations);
+OpenPeriod find_open_period(const CamLaw& cam, double rocker_ratio, double lash, int samples, long& evaluations,
+                            ValveSearchScratch& scratch);
 
 /// Valve lift and its derivatives over cam angle at phi: i h - lash (clipped at 0 against
 /// rounding at the crossings) and i h', i h'', i h''' inside the open period, zero outside.
@@ -39,6 +51,8 @@ struct ValvePeaks {
 };
 ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
                             long& evaluations);
+ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
+                            long& evaluations, ValveSearchScratch& scratch);
 
 /// The valve motion a cam law, a rocker ratio and a lash give (the ValveMotion contract).
 class CamValveMotion final : public ValveMotion {

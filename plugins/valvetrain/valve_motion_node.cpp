@@ -153,10 +153,11 @@ class ValveMotionType final : public NodeType, public BlockEvaluation {
     double* open_angle = out.scalar("open_angle");
     const bool peaks_wanted = max_velocity || max_acceleration || min_acceleration;
     long evaluations = 0;
+    ValveSearchScratch scratch;  // the runs and crossings, their storage reused from case to case
     for_each_live_case(cases, [&](std::size_t k) {
       const CamLaw& cam = cams.law(k);
       const double w = rpm[k] / 2.0, i = rocker[k], e = lash[k];  // w_k = w / 2
-      const OpenPeriod open = find_open_period(cam, i, e, samples, evaluations);
+      const OpenPeriod open = find_open_period(cam, i, e, samples, evaluations, scratch);
       motions->open_begin[k] = open.begin;
       motions->open_end[k] = open.end;
       motions->rocker_ratio[k] = i;
@@ -165,7 +166,7 @@ class ValveMotionType final : public NodeType, public BlockEvaluation {
       if (max_lift) max_lift[k] = i * cam.max_lift() - e;
       if (open_angle) open_angle[k] = open.end - open.begin;
       if (peaks_wanted) {
-        const ValvePeaks peaks = find_valve_peaks(cam, open, i, e, samples, evaluations);
+        const ValvePeaks peaks = find_valve_peaks(cam, open, i, e, samples, evaluations, scratch);
         if (max_velocity) max_velocity[k] = w * peaks.velocity.value;
         if (max_acceleration) max_acceleration[k] = w * w * peaks.max_acceleration.value;
         if (min_acceleration) min_acceleration[k] = w * w * peaks.min_acceleration.value;

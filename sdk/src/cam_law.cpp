@@ -1,5 +1,7 @@
 #include <mechgraph/domain/cam_law.hpp>
 
+#include "piece_points.hpp"
+
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -14,23 +16,25 @@ std::string degrees(double rad) {
   return out.str();
 }
 
-std::string sample_problem(const CamLaw& law, double phi, double lift_floor) {
-  const LiftDerivatives d = law.evaluate_in_event(phi);
+// Whether the law's values at one angle keep the contract: every value finite, the lift not below
+// the floor. The numbers only: the message is made by sample_message, for a refusal alone.
+bool sample_ok(const LiftDerivatives& d, double lift_floor) {
+  return std::isfinite(d.lift) && std::isfinite(d.velocity) && std::isfinite(d.acceleration) && std::isfinite(d.jerk) &&
+         d.lift >= lift_floor;
+}
+
+std::string sample_message(const LiftDerivatives& d, double phi) {
   if (!std::isfinite(d.lift) || !std::isfinite(d.velocity) || !std::isfinite(d.acceleration) || !std::isfinite(d.jerk))
     return "a NaN or infinite lift or derivative at " + degrees(phi);
-  if (d.lift < lift_floor) {
-    std::ostringstream out;
-    out << "a negative lift (" << d.lift << " m) at " << degrees(phi);
-    return out.str();
-  }
-  return {};
+  std::ostringstream out;
+  out << "a negative lift (" << d.lift << " m) at " << degrees(phi);
+  return out.str();
 }
 
 // A piece needs an angle of its own: some double strictly between its ends, where it can be
 // evaluated apart from its neighbours (the searches read one-sided values there,
 // numerics::one_sided_point). Narrower than that it is below the resolution of a double angle.
-std::string piece_problem(double from, double to) {
-  if (std::nextafter(from, to) < to) return {};
+std::string piece_message(double from, double to) {
   std::ostringstream out;
   out.precision(17);
   out << "its piece from " << from * 180.0 / std::numbers::pi << " to " << to * 180.0 / std::numbers::pi
@@ -42,7 +46,9 @@ std::string piece_problem(double from, double to) {
 }  // namespace
 
 // The contract of docs/writing-plugins.md ("The cam_law interface"), the part cheap enough to run
-// on every law a node outputs: about 16 + (breakpoints + 1) evaluations.
+// on every law a node outputs: 16 + (breakpoints + 1) evaluations. It runs on every case of a
+// sweep, so the checks compare numbers only (no allocation beyond the law's breakpoints(), no
+// library call): a message is written only for the check that fails.
 std::string CamLaw::contract_problem() const {
   constexpr double pi = std::numbers::pi;
   const double begin = event_begin();
@@ -59,28 +65,29 @@ std::string CamLaw::contract_problem() const {
   if (!(begin < end)) return "its event is empty (begins at " + degrees(begin) + ", ends at " + degrees(end) + ")";
   const double lift = max_lift();
   if (!std::isfinite(lift) || lift <= 0.0) return "max_lift() is not a positive finite length";
-  if (!std::isfinite(base_radius()) || base_radius() <= 0.0) return "base_radius() is not a positive finite length";
-  if (!std::isfinite(roller_radius()) || roller_radius() < 0.0) return "roller_radius() is negative or not finite";
+  if (const double r = base_radius(); !std::isfinite(r) || r <= 0.0) return "base_radius() is not a positive finite length";
+  if (const double r = roller_radius(); !std::isfinite(r) || r < 0.0) return "roller_radius() is negative or not finite";
   const std::vector<double> breaks = breakpoints();
   double previous = begin;
   for (double b : breaks) {
     if (!(b > begin && b < end))
       return "breakpoint " + degrees(b) + " is not strictly inside the event (" + degrees(begin) + ", " + degrees(end) + ")";
     if (!(b > previous)) return "breakpoints are not sorted ascending without repeats (" + degrees(b) + " after " + degrees(previous) + ")";
-    if (std::string p = piece_problem(previous, b); !p.empty()) return p;
+    if (!numerics::detail::has_interior(previous, b)) return piece_message(previous, b);
     previous = b;
   }
-  if (std::string p = piece_problem(previous, end); !p.empty()) return p;
+  if (!numerics::detail::has_interior(previous, end)) return piece_message(previous, end);
   const double lift_floor = -1e-9 * lift;
   constexpr int uniform = 16;
   for (int i = 0; i < uniform; ++i) {
     const double phi = begin + (end - begin) * (i + 0.5) / uniform;
-    if (std::string p = sample_problem(*this, phi, lift_floor); !p.empty()) return p;
+    if (const LiftDerivatives d = evaluate_in_event(phi); !sample_ok(d, lift_floor)) return sample_message(d, phi);
   }
   double left = begin;
   for (std::size_t i = 0; i <= breaks.size(); ++i) {
     const double right = i < breaks.size() ? breaks[i] : end;
-    if (std::string p = sample_problem(*this, 0.5 * (left + right), lift_floor); !p.empty()) return p;
+    const double phi = 0.5 * (left + right);
+    if (const LiftDerivatives d = evaluate_in_event(phi); !sample_ok(d, lift_floor)) return sample_message(d, phi);
     left = right;
   }
   return {};

@@ -27,18 +27,31 @@ LiftDerivatives at_edge_bounded(const CamLaw& law, const std::vector<double>& ed
 }  // namespace
 
 std::optional<CamLawRuns> CamLawRuns::of(const CamLaw& law, int order) {
-  if (order < 0 || order > 2) return std::nullopt;
-  std::vector<double> breaks;
-  if (!law.monotone_breaks(order, breaks)) return std::nullopt;
-  const double end = law.event_end();
-  std::vector<double> edges;
-  edges.reserve(breaks.size() + 2);
-  edges.push_back(law.event_begin());
-  for (double b : breaks)  // a cut outside the event or out of order would void the certificate: refuse it
-    if (!(b > edges.back()) || !(b < end)) return std::nullopt;
-    else edges.push_back(b);
-  edges.push_back(end);
-  return CamLawRuns(law, order, std::move(edges));
+  CamLawRuns runs;
+  if (!runs.assign(law, order)) return std::nullopt;
+  return runs;
+}
+
+bool CamLawRuns::assign(const CamLaw& law, int order) {
+  law_ = &law;
+  order_ = order;
+  edges_.clear();  // the cuts are read into the edges' own storage, then framed by the event's ends
+  if (order < 0 || order > 2 || !law.monotone_breaks(order, edges_)) {
+    edges_.clear();
+    return false;
+  }
+  const double begin = law.event_begin(), end = law.event_end();
+  double previous = begin;
+  for (double b : edges_) {  // a cut outside the event or out of order would void the certificate: refuse it
+    if (!(b > previous) || !(b < end)) {
+      edges_.clear();
+      return false;
+    }
+    previous = b;
+  }
+  edges_.insert(edges_.begin(), begin);
+  edges_.push_back(end);
+  return true;
 }
 
 double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
@@ -107,25 +120,33 @@ numerics::Extremum CamLawRuns::extreme(double a, double b, double sign, long& ev
 
 std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b,
                                                  long& evaluations) {
+  std::vector<Peaks> out(runs.size());
+  peaks(runs, a, b, evaluations, out.data());
+  return out;
+}
+
+void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations, Peaks* out) {
   // The points each run set reads (as extreme() does), evaluated once each across the sets. They
-  // are kept sorted by angle, so a point read before is found by bisection (the sets share most
-  // of their cuts): the first few on the stack (a law has a handful of runs), any more in a vector.
+  // are kept sorted by angle; each set reads its points in ascending order, so a point read before
+  // is found by a cursor that only moves forward (the sets share most of their cuts): the first
+  // few on the stack (a law has a handful of runs), any more in a vector.
   struct Read {
     double x;
-    LiftDerivatives d;
+    double v[3];  // lift, velocity, acceleration: h^(order) for order 0..2 (no initialiser: filled when read)
   };
   constexpr std::size_t kept_on_stack = 32;
   Read on_stack[kept_on_stack];
   std::vector<Read> on_heap;
   Read* read = on_stack;
   std::size_t count = 0;
-  auto at = [&](const CamLawRuns& runs, double x) -> LiftDerivatives {
-    Read* const end = read + count;
-    Read* const place = std::lower_bound(read, end, x, [](const Read& r, double y) { return r.x < y; });
-    if (place != end && place->x == x) return place->d;
+  std::size_t cursor = 0;  // the first read at or after the set's last point
+  auto at = [&](const CamLawRuns& runs, double x) -> const Read& {
+    while (cursor < count && read[cursor].x < x) ++cursor;
+    if (cursor < count && read[cursor].x == x) return read[cursor];
     ++evaluations;
-    const Read r{x, at_edge_bounded(*runs.law_, runs.edges_, x)};
-    const std::size_t where = static_cast<std::size_t>(place - read);
+    const LiftDerivatives d = at_edge_bounded(*runs.law_, runs.edges_, x);
+    const Read r{x, {d.lift, d.velocity, d.acceleration}};
+    const std::size_t where = cursor;
     if (count == kept_on_stack && read == on_stack) {  // more than the stack holds: to the heap
       on_heap.assign(on_stack, on_stack + count);
       read = nullptr;
@@ -138,33 +159,37 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
       read = on_heap.data();
     }
     ++count;
-    return r.d;
+    return read[where];
   };
-  std::vector<Peaks> out;
-  out.reserve(runs.size());
   for (const CamLawRuns* r : runs) {
     const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
     Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
     const auto first = std::upper_bound(r->edges_.begin(), r->edges_.end(), lo_end) - r->edges_.begin() - 1;
+    const auto order = static_cast<std::size_t>(r->order_);
+    cursor = 0;
     for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r->edges_.size()); ++k) {
       const double lo = r->edges_[static_cast<std::size_t>(k)], hi = r->edges_[static_cast<std::size_t>(k) + 1];
       if (lo >= hi_end) break;
       if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
       const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
       for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const LiftDerivatives v = at(*r, std::clamp(x, inner_lo, inner_hi));
-        const double f = r->order_ == 0 ? v.lift : r->order_ == 1 ? v.velocity : v.acceleration;
+        const double f = at(*r, std::clamp(x, inner_lo, inner_hi)).v[order];
         if (f < p.min.value) p.min = {x, f};
         if (f > p.max.value) p.max = {x, f};
       }
     }
-    out.push_back(p);
+    *out++ = p;
   }
-  return out;
 }
 
 std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level, long& evaluations) const {
   std::vector<std::pair<double, bool>> found;
+  directed_crossings(level, evaluations, found);
+  return found;
+}
+
+void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector<std::pair<double, bool>>& found) const {
+  found.clear();
   auto g = [&](double x) {
     ++evaluations;
     return value(x) - level;
@@ -207,7 +232,6 @@ std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level
       zero_since_last = false;
     }
   }
-  return found;
 }
 
 }  // namespace mechgraph

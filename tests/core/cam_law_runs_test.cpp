@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 using namespace mechgraph;
 using Catch::Matchers::WithinAbs;
@@ -170,4 +172,33 @@ TEST_CASE("cam summary parts: only what is asked for is computed; the undercut f
   CHECK(generic.peaks_known);
   CHECK(generic.phase_known);
   CHECK(generic.curvature_exact);
+}
+
+TEST_CASE("monotone runs: storage reused from law to law gives what of() gives, bit for bit", "[sdk][cam_runs]") {
+  // A block path keeps one CamLawRuns per order and assigns each case's law into it; a law that
+  // declares no runs between two that do leaves nothing behind (assign says false).
+  CamLawRuns reused;
+  std::vector<std::pair<double, bool>> crossings;
+  const std::vector<Bump> laws{Bump(3 * deg, 70 * deg, 1), Bump(-5 * deg, 40 * deg, 0), Bump(9 * deg, 55 * deg, 1),
+                               Bump(0.0, 80 * deg, 2)};
+  for (const Bump& law : laws) {
+    for (int order = 0; order <= 2; ++order) {
+      const auto fresh = CamLawRuns::of(law, order);
+      REQUIRE(reused.assign(law, order) == fresh.has_value());
+      if (!fresh) continue;
+      long a = 0, b = 0;
+      CHECK(reused.maximum(a).value == fresh->maximum(b).value);
+      CHECK(reused.minimum(a).x == fresh->minimum(b).x);
+      const double level = 0.3 * Bump::H * (order == 0 ? 1.0 : 0.0);
+      reused.directed_crossings(level, a, crossings);
+      CHECK(crossings == fresh->directed_crossings(level, b));
+      CamLawRuns::Peaks into[1];
+      CamLawRuns::peaks({&reused}, law.event_begin(), law.event_end(), a, into);
+      const auto returned = CamLawRuns::peaks({&*fresh}, law.event_begin(), law.event_end(), b);
+      CHECK(into[0].max.value == returned[0].max.value);
+      CHECK(into[0].min.x == returned[0].min.x);
+      CHECK(a == b);  // the same evaluations
+    }
+  }
+  CHECK_FALSE(reused.assign(laws[0], 3));  // no such order
 }

@@ -16,6 +16,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace {
@@ -227,5 +228,35 @@ TEST_CASE("kurz node: accel_angle reproduced, outputs, errors", "[cams][kurz]") 
     FAIL("expected a NodeError");
   } catch (const NodeError& e) {
     CHECK(e.parameter() == "rise_split");
+  }
+}
+
+TEST_CASE("shockless shapes: the kept end values and moments equal the shape's functions, made once across threads", "[cams][kurz]") {
+  // AccelShape::ends() is computed on first use and shared by every law of the shape (a sweep
+  // builds one per case on many threads): the same numbers as the functions give, bit for bit.
+  const std::vector<std::shared_ptr<const AccelShape>> shapes{std::make_shared<const QuarterSineRise>(),
+                                                              std::make_shared<const QuarterCosineFall>(),
+                                                              std::make_shared<const ParabolaToVertex>()};
+  for (const auto& shape : shapes) {
+    std::vector<const ShapeEnds*> seen(8, nullptr);
+    std::vector<std::thread> threads;
+    for (std::size_t t = 0; t < seen.size(); ++t) threads.emplace_back([&, t] { seen[t] = &shape->ends(); });
+    for (std::thread& t : threads) t.join();
+    for (const ShapeEnds* e : seen) {
+      REQUIRE(e == seen.front());
+      CHECK(e->value0 == shape->value(0.0));
+      CHECK(e->value1 == shape->value(1.0));
+      CHECK(e->slope1 == shape->slope(1.0));
+      CHECK(e->integral1 == shape->integral(1.0));
+      CHECK(e->integral2 == shape->integral2(1.0));
+      double i3 = 0.0, j1 = 0.0, j2 = 0.0;
+      REQUIRE(e->has_moments == shape->moments(1.0, i3, j1, j2));
+      CHECK(e->i3 == i3);
+      CHECK(e->j1 == j1);
+      CHECK(e->j2 == j2);
+      const ShapeValues all = shape->all(0.3), one_by_one{shape->value(0.3), shape->slope(0.3), shape->integral(0.3), shape->integral2(0.3)};
+      CHECK(all.value == one_by_one.value);
+      CHECK(all.slope == one_by_one.slope);
+    }
   }
 }

@@ -27,6 +27,12 @@ class CamLawRuns {
   /// The runs of h^(order) (0: lift, 1: velocity, 2: acceleration) over the whole event, or
   /// nullopt when the law does not declare them (then use numerics::SmoothPieces).
   static std::optional<CamLawRuns> of(const CamLaw& law, int order);
+  /// Runs to be filled by assign(): storage a block path reuses from case to case (of() makes a
+  /// vector per law). Not to be searched before assign() has returned true.
+  CamLawRuns() = default;
+  /// The runs of h^(order) of `law`, as of() makes them, into this object's storage (no
+  /// allocation once it has held as many cuts); false, and nothing to search, where of() gives nullopt.
+  bool assign(const CamLaw& law, int order);
 
   /// Greatest / least h^(order) over [a, b] inside the event (a < b).
   numerics::Extremum maximum(double a, double b, long& evaluations) const { return extreme(a, b, 1.0, evaluations); }
@@ -41,10 +47,14 @@ class CamLawRuns {
     numerics::Extremum min, max;
   };
   static std::vector<Peaks> peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations);
+  /// The same into out[0 .. runs.size()) (no allocation).
+  static void peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations, Peaks* out);
   /// Every angle of the event where h^(order) crosses `level` (its sign of f - level changes,
   /// zeros skipped), ascending, with true where it rises through it; as
   /// numerics::SmoothPieces::directed_crossings.
   std::vector<std::pair<double, bool>> directed_crossings(double level, long& evaluations) const;
+  /// The same into `found` (emptied first; its storage reused from call to call).
+  void directed_crossings(double level, long& evaluations, std::vector<std::pair<double, bool>>& found) const;
 
  private:
   CamLawRuns(const CamLaw& law, int order, std::vector<double> edges) : law_(&law), order_(order), edges_(std::move(edges)) {}
@@ -57,8 +67,8 @@ class CamLawRuns {
   double root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const;
   numerics::Extremum extreme(double a, double b, double sign, long& evaluations) const;
 
-  const CamLaw* law_;
-  int order_;
+  const CamLaw* law_ = nullptr;
+  int order_ = 0;
   std::vector<double> edges_;  // event_begin, the cuts, event_end
 };
 

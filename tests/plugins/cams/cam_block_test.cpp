@@ -1,0 +1,131 @@
+// The cam node types' block path (mechgraph/block.hpp) case by case against their single
+// evaluation, bit for bit: the common numbers read from the block's columns, the law's own
+// preparation for a block (CamLawDefinition::prepare_block: the polydyne's exponent series, the
+// three-arc's choices, found once per block), the law's own scalars kept in one set per block, and
+// the cases a node refuses (alone, or every case when the preparation itself refuses).
+#include "cam_test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <mechgraph/block.hpp>
+#include <mechgraph/domain/cam_law_block.hpp>
+
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+using namespace mechgraph;
+using namespace mechgraph::cams::testing;
+
+namespace {
+
+constexpr double deg = std::numbers::pi / 180.0;
+constexpr double mm = 1e-3;
+
+// Evaluates `type` as one block of the cases given by `varied` (a column of values per name) on top
+// of `given`, and checks each case against the single evaluation of its parameters: refused by
+// both or by neither; the law's numbers at 33 angles, its event and lift, and the scalar outputs
+// `scalars` equal bit for bit.
+void check_block_equals_single(const std::string& type, const std::map<std::string, ParamValue>& given,
+                               const std::map<std::string, std::vector<double>>& varied,
+                               const std::vector<std::string>& scalars) {
+  const NodeType& node = cam_type(type);
+  const auto* blocks = dynamic_cast<const BlockEvaluation*>(&node);
+  REQUIRE(blocks);
+  const std::size_t n = varied.begin()->second.size();
+  ParamSet fixed = mechgraph::testing::defaults_of(node.info(), given);
+  std::map<std::string, BlockColumn, std::less<>> columns;
+  for (const auto& [name, values] : varied) columns[name] = BlockColumn{values.data(), 1};
+  BlockParams params(fixed, columns);
+  BlockOutputs out(n);
+  for (const std::string& port : scalars) out.want_scalar(port);
+  BlockCases cases(n);
+  mechgraph::testing::RecordingContext ctx;
+  blocks->evaluate_block(params, BlockInputs{}, out, cases, ctx);
+  const auto& laws = dynamic_cast<const CamLawBlock&>(*out.handles().at("law"));
+  for (std::size_t k = 0; k < n; ++k) {
+    INFO(type << ", case " << k);
+    std::map<std::string, ParamValue> one = given;
+    for (const auto& [name, values] : varied) one[name] = ParamValue::of_number(values[k]);
+    OutputSet single;
+    bool refused = false;
+    try {
+      single = run_cam(type, one);
+    } catch (const NodeError&) {
+      refused = true;
+    }
+    REQUIRE(cases.failed(k) == refused);
+    if (refused) continue;
+    const CamLaw& law = laws.law(k);
+    const auto& alone = dynamic_cast<const CamLaw&>(*single.all().at("law").as_handle());
+    REQUIRE(law.event_begin() == alone.event_begin());
+    REQUIRE(law.event_end() == alone.event_end());
+    CHECK(law.max_lift() == alone.max_lift());
+    CHECK(law.breakpoints() == alone.breakpoints());
+    for (int j = 1; j < 34; ++j) {
+      const double phi = law.event_begin() + (law.event_end() - law.event_begin()) * j / 34.0;
+      const LiftDerivatives a = law.evaluate_in_event(phi), b = alone.evaluate_in_event(phi);
+      CHECK(a.lift == b.lift);
+      CHECK(a.velocity == b.velocity);
+      CHECK(a.acceleration == b.acceleration);
+      CHECK(a.jerk == b.jerk);
+    }
+    for (const std::string& port : scalars) CHECK(out.scalars().at(port)[k] == single.all().at(port).as_scalar());
+  }
+}
+
+ParamValue number(double v) { return ParamValue::of_number(v); }
+
+}  // namespace
+
+TEST_CASE("cam blocks: three-arc cases equal their single evaluations, by accel_angle and by nose_radius", "[cams][blocks]") {
+  const std::map<std::string, ParamValue> common{{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)},
+                                                 {"base_radius", number(26 * mm)}};
+  auto with = [&](std::map<std::string, ParamValue> more) {
+    more.insert(common.begin(), common.end());
+    return more;
+  };
+  // A flat tappet by accel_angle; 80 deg is past half the action angle: that case alone is refused.
+  check_block_equals_single("cam.three_arc", with({{"accel_angle", number(18 * deg)}}),
+                            {{"accel_angle", {16 * deg, 18 * deg, 80 * deg, 20 * deg}}, {"max_lift", {7 * mm, 8 * mm, 8 * mm, 9 * mm}}},
+                            {"max_lift", "flank_radius", "nose_radius"});
+  // A roller by nose_radius, its radius varied (0 is refused by the law: that case alone).
+  check_block_equals_single("cam.three_arc",
+                            with({{"nose_radius", number(6 * mm)}, {"follower", ParamValue::of_choice("roller")},
+                                  {"roller_radius", number(10 * mm)}}),
+                            {{"roller_radius", {8 * mm, 0.0, 12 * mm}}, {"nose_radius", {5 * mm, 6 * mm, 7 * mm}}},
+                            {"max_lift", "flank_radius"});
+  // Both accel_angle and nose_radius: the block's preparation refuses, so each case is refused alone.
+  check_block_equals_single("cam.three_arc", with({{"accel_angle", number(18 * deg)}, {"nose_radius", number(6 * mm)}}),
+                            {{"accel_angle", {16 * deg, 18 * deg}}}, {"max_lift"});
+}
+
+TEST_CASE("cam blocks: polydyne cases share one exponent series and equal their single evaluations", "[cams][blocks]") {
+  const std::map<std::string, ParamValue> common{{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)},
+                                                 {"base_radius", number(26 * mm)}};
+  auto with = [&](std::map<std::string, ParamValue> more) {
+    more.insert(common.begin(), common.end());
+    return more;
+  };
+  const std::map<std::string, std::vector<double>> varied{{"max_lift", {7 * mm, 8 * mm, 9 * mm}},
+                                                          {"action_angle", {120 * deg, 130 * deg, 140 * deg}},
+                                                          {"base_radius", {24 * mm, 26 * mm, 28 * mm}}};
+  check_block_equals_single("cam.polydyne", with({{"exponents", ParamValue::of_list({2, 14, 26, 38, 50})}}), varied,
+                            {"max_lift", "exponent_q"});
+  check_block_equals_single("cam.polydyne", common, varied, {"max_lift", "exponent_q"});  // the default exponents
+  // accel_angle: q found per case (no block preparation).
+  check_block_equals_single("cam.polydyne", with({{"accel_angle", number(30 * deg)}}),
+                            {{"accel_angle", {28 * deg, 30 * deg}}, {"max_lift", {8 * mm, 9 * mm}}}, {"max_lift", "exponent_q"});
+  // Exponents the law refuses: the preparation refuses, and so does every case alone.
+  check_block_equals_single("cam.polydyne", with({{"exponents", ParamValue::of_list({2, 6, 9, 14, 18})}}),
+                            {{"max_lift", {7 * mm, 8 * mm}}}, {"max_lift"});
+}
+
+TEST_CASE("cam blocks: Kurz cases equal their single evaluations, rise_split kept per case", "[cams][blocks]") {
+  check_block_equals_single("cam.kurz",
+                            {{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)}, {"base_radius", number(26 * mm)},
+                             {"accel_angle", number(18 * deg)}},
+                            {{"accel_angle", {16 * deg, 18 * deg, 70 * deg, 20 * deg}}, {"action_angle", {120 * deg, 130 * deg, 130 * deg, 140 * deg}}},
+                            {"max_lift", "rise_split"});
+}
