@@ -522,16 +522,41 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
 }
 
 namespace {
-// The entries are matched with the declaration once; each call makes their C views again into the
-// same array (a number is one store, a text or list a pointer: nothing is allocated but a record
-// list's views, which live through the call as in evaluate).
+// The entries are matched with the declaration once, and their C views made once; each call
+// refreshes in place what a set written in place can change (a number; a text's or a list's
+// address and length), with no allocation. A record list's views are made again on each call (they
+// live through it, as in evaluate).
 class CBoundForecast final : public BoundForecast {
  public:
   CBoundForecast(const CNodeType& type, const ParamSet& params)
-      : type_(type), values_(type.matched_params(params)), c_params_(values_.size()) {}
-  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+      : type_(type), values_(type.matched_params(params)), c_params_(values_.size()) {
     CallViews views;
     type_.matched_views(values_, views, c_params_.data());
+    for (std::size_t k = 0; k < values_.size(); ++k)
+      if (values_[k] && type_.info().params[k].kind == ParamKind::record_list) records_ = true;
+  }
+  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+    if (records_) {
+      CallViews views;
+      type_.matched_views(values_, views, c_params_.data());
+      return type_.forecast_with(c_params_.data(), sizes);
+    }
+    for (std::size_t k = 0; k < values_.size(); ++k) {
+      const ParamValue* v = values_[k];
+      if (!v) continue;  // absent: its view says so, and a set cannot gain an entry in place
+      mg_param_value& c = c_params_[k];  // the fields CallViews::param fills for its kind
+      switch (c.kind) {
+        case MG_PARAM_NUMBER:
+        case MG_PARAM_INTEGER: c.number = v->number; break;
+        case MG_PARAM_CHOICE:
+        case MG_PARAM_TEXT: c.text = {v->text.data(), v->text.size()}; break;
+        case MG_PARAM_NUMBER_LIST:
+          c.numbers = v->numbers.data();
+          c.number_count = v->numbers.size();
+          break;
+        default: break;
+      }
+    }
     return type_.forecast_with(c_params_.data(), sizes);
   }
 
@@ -539,6 +564,7 @@ class CBoundForecast final : public BoundForecast {
   const CNodeType& type_;
   std::vector<const ParamValue*> values_;  // into the bound set, by declared index
   std::vector<mg_param_value> c_params_;
+  bool records_ = false;  // a record list is present: views made on each call
 };
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/detail/bridge_sets.hpp>
 #include <mechgraph/detail/export_block.hpp>
+#include <mechgraph/detail/forecast_override.hpp>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/version.hpp>
@@ -102,7 +103,7 @@ MECHGRAPH_DETAIL_HIDDEN inline std::size_t next_bridge_sets_index() {
 class NodeTypeExport {
  public:
   NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id)
-      : type_(std::move(type)), sets_index_(next_bridge_sets_index()) {
+      : type_(std::move(type)), sets_index_(next_bridge_sets_index()), has_forecast_(has_own_forecast(*type_)) {
     const NodeInfo& info = type_->info();
     // Presentation (c/present.h): frames and channels name a frame by its index in `frames`.
     for (const AngleFrame& f : info.frames) {
@@ -383,12 +384,15 @@ class NodeTypeExport {
   }
 
   // The node type's own interfaces (node.h, query): mechgraph.node.forecast/1 over
-  // NodeType::forecast (SDK 1.1, node_forecast.h); mechgraph.node.block/1 over BlockEvaluation
-  // (SDK 1.2, node_block.h) when the type implements it.
+  // NodeType::forecast (SDK 1.1, node_forecast.h) when the type has a forecast of its own (NULL
+  // for one that keeps the default: the host counts it by the conventions without asking each
+  // time; forecast_override.hpp); mechgraph.node.block/1 over BlockEvaluation (SDK 1.2,
+  // node_block.h) when the type implements it.
   static const void* query(const mg_node_type* self, const char* name, std::uint32_t version) noexcept {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
-    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return &forecast_table;
-    return BlockExport<NodeTypeExport>::query(*static_cast<const NodeTypeExport*>(self->impl)->type_, name, version);
+    const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
+    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return exported.has_forecast_ ? &forecast_table : nullptr;
+    return BlockExport<NodeTypeExport>::query(*exported.type_, name, version);
   }
   // A sweep's budget asks this once per case and node: the parameters and sizes are refreshed in
   // this thread's sets (as evaluate's), so that a forecast allocates nothing but what the type's
@@ -424,6 +428,7 @@ class NodeTypeExport {
 
   std::shared_ptr<const NodeType> type_;
   std::size_t sets_index_;  // in thread_bridge_sets()
+  bool has_forecast_;       // overrides NodeType::forecast (or cannot be told): answers mechgraph.node.forecast
   std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
   std::deque<std::vector<mg_param_decl>> fields_;
