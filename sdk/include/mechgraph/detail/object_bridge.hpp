@@ -160,7 +160,21 @@ double cam_number(const mg_object* o) {
 }
 inline mg_status cam_monotone_breaks(const mg_object* o, int32_t order, double* out, size_t capacity, size_t* count) {
   try {
-    std::vector<double> breaks;
+    // This thread's list, kept between calls (a search over a foreign law asks for every case):
+    // no allocation once it has grown. Emptied first, as a new vector would be; a call made while
+    // it is in use further up this thread's stack (a law wrapping a law that comes back here
+    // through another library) takes a list of its own.
+    thread_local std::vector<double> kept;
+    thread_local bool kept_busy = false;
+    std::vector<double> own;
+    std::vector<double>& breaks = kept_busy ? own : kept;
+    struct Busy {
+      bool& flag;
+      bool was;
+      ~Busy() { flag = was; }
+    } const busy{kept_busy, kept_busy};
+    kept_busy = true;
+    breaks.clear();
     if (!law_of(o).monotone_breaks(order, breaks)) return MG_ERR_UNSUPPORTED;
     *count = copy_out(breaks, out, capacity);
     return MG_OK;
@@ -502,6 +516,10 @@ inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law,
 inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
                                       std::string_view private_interface) {
   if (!object) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
+  // A cam law, the object that crosses most, without the search of the class hierarchy that the
+  // cast to ForeignObject below costs when it fails (export_cam_law tells a foreign one by type).
+  if (object->kind() == sdk_interfaces[0].kind)
+    if (const auto* law = dynamic_cast<const CamLaw*>(object.get())) return export_cam_law(std::shared_ptr<const CamLaw>(object, law), maker);
   if (const auto* foreign = dynamic_cast<const ForeignObject*>(object.get())) {  // pass the original on
     const mg_object* original = foreign->c_object();
     original->vtbl->retain(original);
