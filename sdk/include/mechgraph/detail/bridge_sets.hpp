@@ -37,6 +37,16 @@ inline Dimension cxx_dim(const mg_dim& d) { return {d.length, d.mass, d.time, d.
 inline void assign_param(ParamValue& out, const mg_param_value& v, const ParamSpec& spec) {
   out.kind = spec.kind;
   out.number = v.number;
+  if (spec.kind == ParamKind::number || spec.kind == ParamKind::integer) {
+    // A number's view carries no text, list or records (CallViews, ParamViews): what `out` held of
+    // them is emptied only when it holds any, so a sweep's numbers are one store each.
+    if (!v.text.data && !v.numbers && !v.records) {
+      if (!out.text.empty()) out.text.clear();
+      if (!out.numbers.empty()) out.numbers.clear();
+      if (!out.records.empty()) out.records.clear();
+      return;
+    }
+  }
   if (v.text.data)
     out.text.assign(v.text.data, v.text.size);
   else

@@ -49,10 +49,14 @@ inline HostSuites& host_suites() {
 inline mg_str c_text(std::string_view s) { return {s.data(), s.size()}; }
 inline mg_dim c_dim(const Dimension& d) { return {d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
 
+// A node asks by name for each output it may skip (wanted) and each effect: the length and the
+// first character rule out most declared names before their characters are compared.
 template <class Container>
 std::uint32_t index_of(const Container& items, std::string_view name) {
-  for (std::size_t i = 0; i < items.size(); ++i)
-    if (items[i].name == name) return static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string& item = items[i].name;
+    if (item.size() == name.size() && (name.empty() || item[0] == name[0]) && item == name) return static_cast<std::uint32_t>(i);
+  }
   return UINT32_MAX;
 }
 
@@ -61,9 +65,8 @@ class SuiteContext final : public EvalContext {
  public:
   SuiteContext(const NodeInfo& info, mg_eval_ctx* ctx) : info_(info), ctx_(ctx) {}
   bool effect(std::string_view name) const override {
-    for (std::size_t i = 0; i < info_.effects.size(); ++i)
-      if (info_.effects[i].name == name) return host_suites().eval->effect(ctx_, static_cast<std::uint32_t>(i)) != 0;
-    return false;
+    const std::uint32_t i = index_of(info_.effects, name);
+    return i != UINT32_MAX && host_suites().eval->effect(ctx_, i) != 0;
   }
   void log(LogLevel level, std::string_view message) override {
     host_suites().eval->log(ctx_, level == LogLevel::debug ? MG_LOG_DEBUG : level == LogLevel::info ? MG_LOG_INFO : MG_LOG_WARN,
