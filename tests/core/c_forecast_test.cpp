@@ -202,6 +202,8 @@ TEST_CASE("a repeated estimate reads texts and lists written in place into its o
 }
 
 // --- a type without a forecast of its own declares none (detail/forecast_override.hpp) ----------
+#include "../../core/src/c_node_type.hpp"  // bind_forecast: what a sweep's budget asks for each case
+
 #include <mechgraph/block.hpp>
 #include <mechgraph/detail/forecast_override.hpp>
 
@@ -258,5 +260,18 @@ TEST_CASE("the C layer tells a node type with a forecast of its own from one tha
   for (const char* type : {"valvetrain.valve_motion", "valvetrain.time_area"}) {
     INFO(type);
     CHECK_FALSE(detail::has_own_forecast(*cxx.find(type)->type));
+  }
+}
+
+TEST_CASE("a sweep's budget asks through C only the types with a forecast of their own", "[sdk1][forecast]") {
+  // On MECHGRAPH_PLUGIN_1 the valve motion and the time-area (default forecast) answer NULL for
+  // mechgraph.node.forecast/1: the host binds no forecast for them, and counts them by the
+  // conventions without a call through C per case; the cams bind theirs.
+  const Graph c = graph_from(cams, builtin_sdk1_registry());
+  for (const GraphNode& n : c.nodes) {
+    INFO(n.name << " (" << n.info().type << ")");
+    const bool keeps_default = n.info().type == "valvetrain.valve_motion" || n.info().type == "valvetrain.time_area";
+    CHECK((detail::bind_forecast(*n.type->type, n.params) == nullptr) == keeps_default);
+    CHECK_FALSE((keeps_default && n.type->type->forecast(n.params, {})));
   }
 }
