@@ -437,13 +437,16 @@ class CNodeType final : public NodeType {
     for (std::size_t k = 0; k < values.size(); ++k)
       c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
   }
-  // The forecast of parameters already in C (views that live through the call).
-  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
+  // The forecast of parameters already in C (views that live through the call); without its
+  // driver's text when `with_driver` is false (a sink that drops it: nothing allocated).
+  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes, bool with_driver = true) const {
     CallArray<double, 8> c_sizes(info_.inputs.size());
     match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
     mg_work_forecast out{};
     std::string driver;
-    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    const mg_text_sink dropped{nullptr, [](void*, const char*, size_t) {}};
+    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, with_driver ? string_sink(&driver) : dropped) != MG_OK)
+      return std::nullopt;
     return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
   }
 
@@ -539,7 +542,7 @@ class CBoundForecast final : public BoundForecast {
     if (records_) {
       CallViews views;
       type_.matched_views(values_, views, c_params_.data());
-      return type_.forecast_with(c_params_.data(), sizes);
+      return type_.forecast_with(c_params_.data(), sizes, false);
     }
     for (std::size_t k = 0; k < values_.size(); ++k) {
       const ParamValue* v = values_[k];
@@ -557,7 +560,7 @@ class CBoundForecast final : public BoundForecast {
         default: break;
       }
     }
-    return type_.forecast_with(c_params_.data(), sizes);
+    return type_.forecast_with(c_params_.data(), sizes, false);
   }
 
  private:
