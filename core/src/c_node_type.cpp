@@ -437,13 +437,16 @@ class CNodeType final : public NodeType {
     for (std::size_t k = 0; k < values.size(); ++k)
       c_params[k] = values[k] ? views.param(*values[k], info_.params[k]) : CallViews::absent(info_.params[k]);
   }
-  // The forecast of parameters already in C (views that live through the call).
-  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes) const {
+  // The forecast of parameters already in C (views that live through the call); without its
+  // driver's text when `with_driver` is false (a sink that drops it: nothing allocated).
+  std::optional<WorkForecast> forecast_with(const mg_param_value* c_params, const InputSizes& sizes, bool with_driver = true) const {
     CallArray<double, 8> c_sizes(info_.inputs.size());
     match_by_name(info_.inputs, inputs_by_name_, sizes, [&](std::size_t k, const double* size) { c_sizes[k] = size ? *size : 0.0; });
     mg_work_forecast out{};
     std::string driver;
-    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, string_sink(&driver)) != MG_OK) return std::nullopt;
+    const mg_text_sink dropped{nullptr, [](void*, const char*, size_t) {}};
+    if (forecast_->forecast(&type_, c_params, c_sizes.data(), &out, with_driver ? string_sink(&driver) : dropped) != MG_OK)
+      return std::nullopt;
     return WorkForecast{out.items, out.memory, out.output_size, std::move(driver)};
   }
 
@@ -522,23 +525,49 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
 }
 
 namespace {
-// The entries are matched with the declaration once; each call makes their C views again into the
-// same array (a number is one store, a text or list a pointer: nothing is allocated but a record
-// list's views, which live through the call as in evaluate).
+// The entries are matched with the declaration once, and their C views made once; each call
+// refreshes in place what a set written in place can change (a number; a text's or a list's
+// address and length), with no allocation. A record list's views are made again on each call (they
+// live through it, as in evaluate).
 class CBoundForecast final : public BoundForecast {
  public:
   CBoundForecast(const CNodeType& type, const ParamSet& params)
-      : type_(type), values_(type.matched_params(params)), c_params_(values_.size()) {}
-  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+      : type_(type), values_(type.matched_params(params)), c_params_(values_.size()) {
     CallViews views;
     type_.matched_views(values_, views, c_params_.data());
-    return type_.forecast_with(c_params_.data(), sizes);
+    for (std::size_t k = 0; k < values_.size(); ++k)
+      if (values_[k] && type_.info().params[k].kind == ParamKind::record_list) records_ = true;
+  }
+  std::optional<WorkForecast> operator()(const InputSizes& sizes) override {
+    if (records_) {
+      CallViews views;
+      type_.matched_views(values_, views, c_params_.data());
+      return type_.forecast_with(c_params_.data(), sizes, false);
+    }
+    for (std::size_t k = 0; k < values_.size(); ++k) {
+      const ParamValue* v = values_[k];
+      if (!v) continue;  // absent: its view says so, and a set cannot gain an entry in place
+      mg_param_value& c = c_params_[k];  // the fields CallViews::param fills for its kind
+      switch (c.kind) {
+        case MG_PARAM_NUMBER:
+        case MG_PARAM_INTEGER: c.number = v->number; break;
+        case MG_PARAM_CHOICE:
+        case MG_PARAM_TEXT: c.text = {v->text.data(), v->text.size()}; break;
+        case MG_PARAM_NUMBER_LIST:
+          c.numbers = v->numbers.data();
+          c.number_count = v->numbers.size();
+          break;
+        default: break;
+      }
+    }
+    return type_.forecast_with(c_params_.data(), sizes, false);
   }
 
  private:
   const CNodeType& type_;
   std::vector<const ParamValue*> values_;  // into the bound set, by declared index
   std::vector<mg_param_value> c_params_;
+  bool records_ = false;  // a record list is present: views made on each call
 };
 }  // namespace
 

@@ -43,8 +43,9 @@ PortInterfaceVersions port_interface_versions(const NodeType& type);
 class BoundForecast {
  public:
   virtual ~BoundForecast() = default;
-  /// What NodeType::forecast(params, sizes) gives for the bound set as it is now. Not for
-  /// concurrent calls (each worker binds its own).
+  /// What NodeType::forecast(params, sizes) gives for the bound set as it is now, less the
+  /// driver's text (left empty: the figures of case after case never name it; estimate_node asks
+  /// NodeType::forecast when they must). Not for concurrent calls (each worker binds its own).
   virtual std::optional<WorkForecast> operator()(const InputSizes& sizes) = 0;
 };
 /// nullptr when `type` is not an SDK 1.x type that offers a forecast of its own (the caller then

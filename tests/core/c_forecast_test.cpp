@@ -200,3 +200,78 @@ TEST_CASE("a repeated estimate reads texts and lists written in place into its o
   poly.params.slot("exponents").numbers = {2, 6, 10, 14, 18, 22, 26, 30, 34, 38, 42, 46, 50};
   same();
 }
+
+// --- a type without a forecast of its own declares none (detail/forecast_override.hpp) ----------
+#include "../../core/src/c_node_type.hpp"  // bind_forecast: what a sweep's budget asks for each case
+
+#include <mechgraph/block.hpp>
+#include <mechgraph/detail/forecast_override.hpp>
+
+namespace {
+const NodeInfo& no_info() {
+  static const NodeInfo info;
+  return info;
+}
+class KeepsDefault final : public NodeType {
+ public:
+  const NodeInfo& info() const override { return no_info(); }
+  void evaluate(const ParamSet&, const InputSet&, OutputSet&, EvalContext&) const override {}
+};
+class Forecasts : public NodeType {
+ public:
+  const NodeInfo& info() const override { return no_info(); }
+  void evaluate(const ParamSet&, const InputSet&, OutputSet&, EvalContext&) const override {}
+  std::optional<WorkForecast> forecast(const ParamSet&, const InputSizes&) const override { return WorkForecast{1, 2, 3, {}}; }
+};
+class InheritsForecast final : public Forecasts {};  // its base's own forecast
+// NodeType behind another polymorphic base (its vtable a secondary one), with and without.
+class BlocksFirst final : public BlockEvaluation, public NodeType {
+ public:
+  const NodeInfo& info() const override { return no_info(); }
+  void evaluate(const ParamSet&, const InputSet&, OutputSet&, EvalContext&) const override {}
+  bool block_supported(const BlockRequest&) const override { return false; }
+  void evaluate_block(const BlockParams&, const BlockInputs&, BlockOutputs&, BlockCases&, EvalContext&) const override {}
+};
+class BlocksFirstForecasts final : public BlockEvaluation, public NodeType {
+ public:
+  const NodeInfo& info() const override { return no_info(); }
+  void evaluate(const ParamSet&, const InputSet&, OutputSet&, EvalContext&) const override {}
+  bool block_supported(const BlockRequest&) const override { return false; }
+  void evaluate_block(const BlockParams&, const BlockInputs&, BlockOutputs&, BlockCases&, EvalContext&) const override {}
+  std::optional<WorkForecast> forecast(const ParamSet&, const InputSizes&) const override { return std::nullopt; }
+};
+}  // namespace
+
+TEST_CASE("the C layer tells a node type with a forecast of its own from one that keeps the default", "[sdk1][forecast]") {
+  CHECK_FALSE(detail::has_own_forecast(KeepsDefault{}));
+  CHECK(detail::has_own_forecast(Forecasts{}));
+  CHECK(detail::has_own_forecast(InheritsForecast{}));
+  CHECK_FALSE(detail::has_own_forecast(BlocksFirst{}));
+  CHECK(detail::has_own_forecast(BlocksFirstForecasts{}));  // an override that answers "cannot say" still asks
+  // The built-in types (their pre-1.0 C++ objects): the cams and float speed forecast, the valve
+  // motion and the time-area keep the default; on MECHGRAPH_PLUGIN_1 the latter answer NULL for
+  // mechgraph.node.forecast/1 and are counted by the conventions, with the same figures
+  // (the test above and the sweep budget's below).
+  const PluginRegistry& cxx = project_registry();
+  for (const char* type : {"cam.kurz", "cam.three_arc", "cam.polydyne", "cam.contour", "valvetrain.float_speed"}) {
+    INFO(type);
+    CHECK(detail::has_own_forecast(*cxx.find(type)->type));
+  }
+  for (const char* type : {"valvetrain.valve_motion", "valvetrain.time_area"}) {
+    INFO(type);
+    CHECK_FALSE(detail::has_own_forecast(*cxx.find(type)->type));
+  }
+}
+
+TEST_CASE("a sweep's budget asks through C only the types with a forecast of their own", "[sdk1][forecast]") {
+  // On MECHGRAPH_PLUGIN_1 the valve motion and the time-area (default forecast) answer NULL for
+  // mechgraph.node.forecast/1: the host binds no forecast for them, and counts them by the
+  // conventions without a call through C per case; the cams bind theirs.
+  const Graph c = graph_from(cams, builtin_sdk1_registry());
+  for (const GraphNode& n : c.nodes) {
+    INFO(n.name << " (" << n.info().type << ")");
+    const bool keeps_default = n.info().type == "valvetrain.valve_motion" || n.info().type == "valvetrain.time_area";
+    CHECK((detail::bind_forecast(*n.type->type, n.params) == nullptr) == keeps_default);
+    CHECK_FALSE((keeps_default && n.type->type->forecast(n.params, {})));
+  }
+}

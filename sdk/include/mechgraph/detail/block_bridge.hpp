@@ -51,7 +51,7 @@ void export_laws(ExportedBlock& e, std::size_t n, std::string_view maker, LawOfC
   e.objects.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
     const std::shared_ptr<const CamLaw>& law = law_of_case(i);
-    e.objects.push_back(law ? export_object(law, maker, {}) : nullptr);
+    e.objects.push_back(law ? export_cam_law(law, maker) : nullptr);
   }
 }
 
@@ -111,7 +111,7 @@ inline std::shared_ptr<const CamLawBlock> import_laws(const mg_object_block& in,
   for (std::size_t i = 0; i < in.object_count; ++i) {
     if (!in.objects[i]) continue;  // a failed case
     if ((laws[i] = known.find(i, in.objects[i]))) continue;
-    laws[i] = std::dynamic_pointer_cast<const CamLaw>(import_object(in.objects[i], MG_CAM_LAW, 1));
+    laws[i] = import_cam_law(in.objects[i]);
     if (!laws[i]) throw std::invalid_argument(what + ": object " + std::to_string(i) + " is no cam law");
   }
   return std::make_shared<const CamLawBlock>(std::move(laws));

@@ -37,6 +37,16 @@ inline Dimension cxx_dim(const mg_dim& d) { return {d.length, d.mass, d.time, d.
 inline void assign_param(ParamValue& out, const mg_param_value& v, const ParamSpec& spec) {
   out.kind = spec.kind;
   out.number = v.number;
+  if (spec.kind == ParamKind::number || spec.kind == ParamKind::integer) {
+    // A number's view carries no text, list or records (CallViews, ParamViews): what `out` held of
+    // them is emptied only when it holds any, so a sweep's numbers are one store each.
+    if (!v.text.data && !v.numbers && !v.records) {
+      if (!out.text.empty()) out.text.clear();
+      if (!out.numbers.empty()) out.numbers.clear();
+      if (!out.records.empty()) out.records.clear();
+      return;
+    }
+  }
   if (v.text.data)
     out.text.assign(v.text.data, v.text.size);
   else
@@ -67,16 +77,31 @@ inline void assign_param(ParamValue& out, const mg_param_value& v, const ParamSp
 /// that came or went since the last call makes the set again.
 inline void load_params(ParamSet& params, std::vector<ParamValue*>& slots, const std::vector<ParamSpec>& specs,
                         const mg_param_value* c) {
-  bool same_presence = slots.size() == specs.size();
-  for (std::size_t i = 0; same_presence && i < specs.size(); ++i) same_presence = (c[i].present != 0) == (slots[i] != nullptr);
-  if (!same_presence) {
+  const auto make = [&] {
     params = ParamSet();
     slots.assign(specs.size(), nullptr);
     for (std::size_t i = 0; i < specs.size(); ++i)
       if (c[i].present) slots[i] = &params.slot(specs[i].name);
+  };
+  if (slots.size() != specs.size()) make();
+  // One pass: a presence that differs makes the set again (then every presence agrees) and starts
+  // over; a number whose view and value hold nothing else is one store.
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    ParamValue* out = slots[i];
+    if ((c[i].present != 0) != (out != nullptr)) {
+      make();
+      i = static_cast<std::size_t>(-1);
+      continue;
+    }
+    if (!out) continue;
+    const mg_param_value& v = c[i];
+    const ParamKind kind = specs[i].kind;
+    if ((kind == ParamKind::number || kind == ParamKind::integer) && out->kind == kind && !v.text.data && !v.numbers && !v.records &&
+        out->text.empty() && out->numbers.empty() && out->records.empty())
+      out->number = v.number;
+    else
+      assign_param(*out, v, specs[i]);
   }
-  for (std::size_t i = 0; i < specs.size(); ++i)
-    if (slots[i]) assign_param(*slots[i], c[i], specs[i]);
 }
 
 inline Table::Column cxx_column(const mg_column& c, std::size_t rows) {

@@ -18,6 +18,7 @@
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/detail/bridge_sets.hpp>
 #include <mechgraph/detail/export_block.hpp>
+#include <mechgraph/detail/forecast_override.hpp>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/node.hpp>
 #include <mechgraph/version.hpp>
@@ -48,10 +49,14 @@ inline HostSuites& host_suites() {
 inline mg_str c_text(std::string_view s) { return {s.data(), s.size()}; }
 inline mg_dim c_dim(const Dimension& d) { return {d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
 
+// A node asks by name for each output it may skip (wanted) and each effect: the length and the
+// first character rule out most declared names before their characters are compared.
 template <class Container>
 std::uint32_t index_of(const Container& items, std::string_view name) {
-  for (std::size_t i = 0; i < items.size(); ++i)
-    if (items[i].name == name) return static_cast<std::uint32_t>(i);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::string& item = items[i].name;
+    if (item.size() == name.size() && (name.empty() || item[0] == name[0]) && item == name) return static_cast<std::uint32_t>(i);
+  }
   return UINT32_MAX;
 }
 
@@ -60,9 +65,8 @@ class SuiteContext final : public EvalContext {
  public:
   SuiteContext(const NodeInfo& info, mg_eval_ctx* ctx) : info_(info), ctx_(ctx) {}
   bool effect(std::string_view name) const override {
-    for (std::size_t i = 0; i < info_.effects.size(); ++i)
-      if (info_.effects[i].name == name) return host_suites().eval->effect(ctx_, static_cast<std::uint32_t>(i)) != 0;
-    return false;
+    const std::uint32_t i = index_of(info_.effects, name);
+    return i != UINT32_MAX && host_suites().eval->effect(ctx_, i) != 0;
   }
   void log(LogLevel level, std::string_view message) override {
     host_suites().eval->log(ctx_, level == LogLevel::debug ? MG_LOG_DEBUG : level == LogLevel::info ? MG_LOG_INFO : MG_LOG_WARN,
@@ -102,7 +106,7 @@ MECHGRAPH_DETAIL_HIDDEN inline std::size_t next_bridge_sets_index() {
 class NodeTypeExport {
  public:
   NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id)
-      : type_(std::move(type)), sets_index_(next_bridge_sets_index()) {
+      : type_(std::move(type)), sets_index_(next_bridge_sets_index()), has_forecast_(has_own_forecast(*type_)) {
     const NodeInfo& info = type_->info();
     // Presentation (c/present.h): frames and channels name a frame by its index in `frames`.
     for (const AngleFrame& f : info.frames) {
@@ -383,12 +387,15 @@ class NodeTypeExport {
   }
 
   // The node type's own interfaces (node.h, query): mechgraph.node.forecast/1 over
-  // NodeType::forecast (SDK 1.1, node_forecast.h); mechgraph.node.block/1 over BlockEvaluation
-  // (SDK 1.2, node_block.h) when the type implements it.
+  // NodeType::forecast (SDK 1.1, node_forecast.h) when the type has a forecast of its own (NULL
+  // for one that keeps the default: the host counts it by the conventions without asking each
+  // time; forecast_override.hpp); mechgraph.node.block/1 over BlockEvaluation (SDK 1.2,
+  // node_block.h) when the type implements it.
   static const void* query(const mg_node_type* self, const char* name, std::uint32_t version) noexcept {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
-    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return &forecast_table;
-    return BlockExport<NodeTypeExport>::query(*static_cast<const NodeTypeExport*>(self->impl)->type_, name, version);
+    const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
+    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return exported.has_forecast_ ? &forecast_table : nullptr;
+    return BlockExport<NodeTypeExport>::query(*exported.type_, name, version);
   }
   // A sweep's budget asks this once per case and node: the parameters and sizes are refreshed in
   // this thread's sets (as evaluate's), so that a forecast allocates nothing but what the type's
@@ -424,6 +431,7 @@ class NodeTypeExport {
 
   std::shared_ptr<const NodeType> type_;
   std::size_t sets_index_;  // in thread_bridge_sets()
+  bool has_forecast_;       // overrides NodeType::forecast (or cannot be told): answers mechgraph.node.forecast
   std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
   std::deque<std::vector<mg_param_decl>> fields_;

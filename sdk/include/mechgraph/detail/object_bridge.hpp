@@ -44,6 +44,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <typeinfo>
 #include <vector>
 
 #define MECHGRAPH_DETAIL_HIDDEN __attribute__((visibility("hidden")))
@@ -159,7 +160,21 @@ double cam_number(const mg_object* o) {
 }
 inline mg_status cam_monotone_breaks(const mg_object* o, int32_t order, double* out, size_t capacity, size_t* count) {
   try {
-    std::vector<double> breaks;
+    // This thread's list, kept between calls (a search over a foreign law asks for every case):
+    // no allocation once it has grown. Emptied first, as a new vector would be; a call made while
+    // it is in use further up this thread's stack (a law wrapping a law that comes back here
+    // through another library) takes a list of its own.
+    thread_local std::vector<double> kept;
+    thread_local bool kept_busy = false;
+    std::vector<double> own;
+    std::vector<double>& breaks = kept_busy ? own : kept;
+    struct Busy {
+      bool& flag;
+      bool was;
+      ~Busy() { flag = was; }
+    } const busy{kept_busy, kept_busy};
+    kept_busy = true;
+    breaks.clear();
     if (!law_of(o).monotone_breaks(order, breaks)) return MG_ERR_UNSUPPORTED;
     *count = copy_out(breaks, out, capacity);
     return MG_OK;
@@ -493,12 +508,18 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl spring_model_vtbl{
 MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl opaque_vtbl{sizeof(mg_object_vtbl), &exported_retain, &exported_release,
                                                                 &opaque_query, &exported_maker, &object_origin};
 
+inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law, std::string_view maker);
+
 /// `object` as an mg_object: a new reference, which the caller hands over or releases. `maker` is
 /// the node type that made it (for messages); `private_interface` names what an object of a kind
 /// without a C table answers.
 inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
                                       std::string_view private_interface) {
   if (!object) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
+  // A cam law, the object that crosses most, without the search of the class hierarchy that the
+  // cast to ForeignObject below costs when it fails (export_cam_law tells a foreign one by type).
+  if (object->kind() == sdk_interfaces[0].kind)
+    if (const auto* law = dynamic_cast<const CamLaw*>(object.get())) return export_cam_law(std::shared_ptr<const CamLaw>(object, law), maker);
   if (const auto* foreign = dynamic_cast<const ForeignObject*>(object.get())) {  // pass the original on
     const mg_object* original = foreign->c_object();
     original->vtbl->retain(original);
@@ -514,7 +535,7 @@ inline const mg_object* export_object(const std::shared_ptr<const DomainObject>&
     e->vtbl = &valve_motion_vtbl;
     e->primary = motion;
     // Its cam law, exported once: keeps the motion alive (aliasing) as long as someone holds the law.
-    e->cam = export_object(std::shared_ptr<const CamLaw>(object, &motion->cam()), maker, {});
+    e->cam = export_cam_law(std::shared_ptr<const CamLaw>(object, &motion->cam()), maker);
   } else if (const auto* follower = dynamic_cast<const Follower*>(object.get())) {
     e->vtbl = &follower_vtbl;
     e->primary = follower;
@@ -701,6 +722,7 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignOpaque final : public DomainObject, public 
 };
 
 std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version);
+std::shared_ptr<const CamLaw> import_cam_law(const mg_object* o);
 
 /// A valve motion made elsewhere, seen as a C++ ValveMotion; its cam law imported beside it.
 class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, public ForeignObject {
@@ -711,7 +733,7 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignValveMotion final : public ValveMotion, pub
       throw_foreign(o, MG_VALVE_MOTION, "answers mechgraph.valve_motion version 1 with a function missing from its table");
     const mg_object* cam = t_->cam(o);
     if (!cam) throw_foreign(o, MG_VALVE_MOTION, "gives no cam law");
-    cam_ = std::dynamic_pointer_cast<const CamLaw>(import_object(cam, MG_CAM_LAW, 1));
+    cam_ = import_cam_law(cam);
     if (!cam_) throw_foreign(o, MG_VALVE_MOTION, "gives a cam law that is not one");
     t_->open_period(o, &begin_, &end_);
     speed_ = t_->camshaft_speed(o);
@@ -819,6 +841,36 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignSpringModel final : public SpringModel, pub
   ForeignReference ref_;
   std::string type_name_;
 };
+
+/// A cam law as an mg_object (a new reference), as export_object makes it, for the blocks of
+/// laws that cross once per case (block_bridge.hpp): the law's class is known, so no cast searches
+/// the class hierarchy (a view of a foreign law, ForeignCamLaw being final, is told by its type).
+inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law, std::string_view maker) {
+  if (!law) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
+  if (typeid(*law) == typeid(ForeignCamLaw)) {  // pass the original on
+    const mg_object* original = static_cast<const ForeignCamLaw&>(*law).c_object();
+    original->vtbl->retain(original);
+    return original;
+  }
+  auto e = std::make_unique<Exported>();
+  e->self = law;
+  e->maker = maker;
+  e->vtbl = &cam_law_vtbl;
+  e->primary = law.get();
+  return e.release();
+}
+
+/// The C++ view of `o` (borrowed) as a cam law, as import_object(o, MG_CAM_LAW, 1) gives it but
+/// typed: this library's own law unwrapped, another's a ForeignCamLaw.
+inline std::shared_ptr<const CamLaw> import_cam_law(const mg_object* o) {
+  if (!o || !o->vtbl) throw std::invalid_argument("an input object is missing or has no vtable");
+  if (o->vtbl->origin == &object_origin) {  // made here: no C hop
+    const Exported& e = exported(o);
+    if (e.vtbl == &cam_law_vtbl) return std::shared_ptr<const CamLaw>(e.self, static_cast<const CamLaw*>(e.primary));
+    return std::dynamic_pointer_cast<const CamLaw>(e.self);
+  }
+  return std::make_shared<const ForeignCamLaw>(o);
+}
 
 /// The C++ view of `o` (borrowed) as a port declaring `interface`/`version` sees it. Throws
 /// std::runtime_error naming the interface when the object does not answer it.
