@@ -8,7 +8,10 @@
 // once, and in a sweep's budget.
 #include "sweep_support.hpp"
 #include "test_support.hpp"
+#include "../../core/src/c_node_type.hpp"  // bind_forecast: what a sweep's budget asks for each case
 
+#include <mechgraph/block.hpp>
+#include <mechgraph/detail/forecast_override.hpp>
 #include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/work_estimate.hpp>
 
@@ -202,10 +205,6 @@ TEST_CASE("a repeated estimate reads texts and lists written in place into its o
 }
 
 // --- a type without a forecast of its own declares none (detail/forecast_override.hpp) ----------
-#include "../../core/src/c_node_type.hpp"  // bind_forecast: what a sweep's budget asks for each case
-
-#include <mechgraph/block.hpp>
-#include <mechgraph/detail/forecast_override.hpp>
 
 namespace {
 const NodeInfo& no_info() {

@@ -45,8 +45,9 @@ std::map<std::string, int> check_scene_objects(const std::string& scene_file, co
     const mg_text_sink sink{&problem, [](void* self, const char* text, size_t size) {
                               static_cast<std::string*>(self)->append(text, size);
                             }};
+    const mg_status status = mg_check_object(c_object, interface->name, interface->version, sink);
     INFO(scene_file << ": " << o.label << " (" << interface->name << "): " << problem);
-    CHECK(mg_check_object(c_object, interface->name, interface->version, sink) == MG_OK);
+    CHECK(status == MG_OK);
     c_object->vtbl->release(c_object);
     ++checked[interface->name];
   }

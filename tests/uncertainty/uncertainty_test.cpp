@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numeric>
@@ -327,7 +328,11 @@ outputs: [f.y]
 
 TEST_CASE("Studies: the same bits on 1, 2 and 5 threads", "[uncertainty]") {
   for (const std::string method : {"monte_carlo", "latin_hypercube", "sobol"}) {
-    const std::string scene = ishigami_scene(method, 500, "  limits: { f.y: { upper: 10 } }\n  events: { high: { output: f.y, above: 9 } }\n");
+    // Two outputs (answered side by side on the threads) and 13 resamples (a last group of 5).
+    std::string scene = ishigami_scene(method, 500, "  limits: { f.y: { upper: 10 } }\n  events: { high: { output: f.y, above: 9 } }\n");
+    scene.replace(scene.find("bootstrap: 50"), 13, "bootstrap: 13");
+    scene.replace(scene.find("outputs: [f.y]"), 14,
+                  "  g: { type: test.ishigami, params: { x1: $x2, x2: $x3, x3: $x1 } }\noutputs: [f.y, g.y]");
     const InProcess one = run_study(scene, 1), two = run_study(scene, 2), five = run_study(scene, 5);
     CHECK(one->json == two->json);
     CHECK(one->json == five->json);
@@ -476,4 +481,75 @@ TEST_CASE("Counter rows: the same numbers as counter_uniform, bit for bit", "[un
       const CounterRow row(seed, 11, i);
       for (std::uint64_t j : {0ull, 1ull, 999ull, 1ull << 50}) CHECK(row(j) == counter_uniform(seed, 11, i, j));
     }
+}
+
+TEST_CASE("Sobol' bootstrap intervals equal those of resamples drawn one by one, a short last group included",
+          "[uncertainty]") {
+  // The resamples are counted side by side in groups of eight (13: a group of 8 and one of 5).
+  // Here each resample is drawn as written in docs/methods/uncertainty.md: draw i of resample r is
+  // base sample floor(u(seed, 11, r, i) N), the estimators over the drawn rows (centred on the
+  // mean of all values), then the percentile interval of the 13 estimates. A mistake in how the
+  // groups are laid out would show here, whichever version of the sums the processor runs.
+  const std::size_t n = 500, d = 2, bootstrap = 13;
+  const double confidence = 0.8;
+  const std::uint64_t seed = 7;
+  SobolSamples f;
+  f.f_ab.assign(d, {});
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto model = [](double x1, double x2) { return std::sin(3 * x1) + 2 * x2 * x2 + x1 * x2; };
+    const double a[2] = {counter_uniform(9, 1, i, 0), counter_uniform(9, 1, i, 1)};
+    const double b[2] = {counter_uniform(9, 2, i, 0), counter_uniform(9, 2, i, 1)};
+    f.f_a.push_back(model(a[0], a[1]));
+    f.f_b.push_back(model(b[0], b[1]));
+    f.f_ab[0].push_back(model(b[0], a[1]));
+    f.f_ab[1].push_back(model(a[0], b[1]));
+  }
+  const SobolIndices got = sobol_indices(f.f_a, f.f_b, f.f_ab, bootstrap, confidence, seed, 2);
+
+  double centre = 0;
+  for (std::size_t i = 0; i < n; ++i) centre += f.f_a[i] + f.f_b[i] + f.f_ab[0][i] + f.f_ab[1][i];
+  centre /= static_cast<double>(n * (2 + d));
+  std::vector<std::vector<double>> first(d), total(d);
+  for (std::size_t r = 0; r < bootstrap; ++r) {
+    const CounterRow draw(seed, 11, r);
+    std::vector<std::size_t> pick(n);
+    for (std::size_t i = 0; i < n; ++i) pick[i] = std::min(static_cast<std::size_t>(draw(i) * static_cast<double>(n)), n - 1);
+    double sum = 0, squares = 0;
+    for (std::size_t i : pick) sum += (f.f_a[i] - centre) + (f.f_b[i] - centre);
+    const double mean = sum / (2.0 * n);
+    for (std::size_t i : pick) squares += std::pow(f.f_a[i] - centre - mean, 2) + std::pow(f.f_b[i] - centre - mean, 2);
+    const double variance = squares / (2.0 * n - 1);
+    for (std::size_t j = 0; j < d; ++j) {
+      double s1 = 0, s2 = 0;
+      for (std::size_t i : pick) {
+        const double a = f.f_a[i] - centre, b = f.f_b[i] - centre, ab = f.f_ab[j][i] - centre;
+        s1 += b * (ab - a);
+        s2 += (a - ab) * (a - ab);
+      }
+      first[j].push_back(s1 / n / variance);
+      total[j].push_back(s2 / (2.0 * n) / variance);
+    }
+  }
+  // Type 7 quantiles of the sorted estimates at (1 -+ confidence) / 2.
+  const auto percentile = [&](std::vector<double> x, double p) {
+    std::sort(x.begin(), x.end());
+    const double h = (static_cast<double>(x.size()) - 1) * p;
+    const auto lo = static_cast<std::size_t>(std::floor(h));
+    return lo + 1 < x.size() ? x[lo] + (h - static_cast<double>(lo)) * (x[lo + 1] - x[lo]) : x[lo];
+  };
+  const double alpha = 1 - confidence;
+  REQUIRE(got.indices.size() == d);
+  for (std::size_t j = 0; j < d; ++j) {
+    INFO("x" << j + 1);
+    REQUIRE(got.indices[j].first_interval.lower);
+    REQUIRE(got.indices[j].total_interval.upper);
+    CHECK_THAT(*got.indices[j].first_interval.lower, Catch::Matchers::WithinRel(percentile(first[j], alpha / 2), 1e-9) ||
+                                                         Catch::Matchers::WithinAbs(percentile(first[j], alpha / 2), 1e-12));
+    CHECK_THAT(*got.indices[j].first_interval.upper, Catch::Matchers::WithinRel(percentile(first[j], 1 - alpha / 2), 1e-9) ||
+                                                         Catch::Matchers::WithinAbs(percentile(first[j], 1 - alpha / 2), 1e-12));
+    CHECK_THAT(*got.indices[j].total_interval.lower, Catch::Matchers::WithinRel(percentile(total[j], alpha / 2), 1e-9) ||
+                                                         Catch::Matchers::WithinAbs(percentile(total[j], alpha / 2), 1e-12));
+    CHECK_THAT(*got.indices[j].total_interval.upper, Catch::Matchers::WithinRel(percentile(total[j], 1 - alpha / 2), 1e-9) ||
+                                                         Catch::Matchers::WithinAbs(percentile(total[j], 1 - alpha / 2), 1e-12));
+  }
 }

@@ -237,8 +237,10 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   phase_done("work budget checked");
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
   phase_done("cases evaluated");
-  if (!outcome->summary.stopped) finish_study(*outcome);
-  phase_done("answers computed");
+  if (!outcome->summary.stopped) {
+    finish_study(*outcome);
+    phase_done("answers computed");
+  }
   return outcome;
 }
 

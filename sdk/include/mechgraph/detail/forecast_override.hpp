@@ -54,7 +54,7 @@ class __attribute__((visibility("hidden"))) Own final : public NodeType {
 // member is {1 + the slot's offset in bytes, this-adjustment}; the ARM variant, aarch64's, keeps
 // the offset as it is and marks "virtual" in the adjustment's lowest bit). Empty when the pointer
 // does not say virtual.
-inline std::optional<std::size_t> slot() {
+__attribute__((visibility("hidden"))) inline std::optional<std::size_t> slot() {
   using Forecast = std::optional<WorkForecast> (NodeType::*)(const ParamSet&, const InputSizes&) const;
   struct Representation {
     std::uintptr_t ptr;
@@ -74,9 +74,9 @@ inline std::optional<std::size_t> slot() {
 }
 
 // What `type`'s vtable holds in slot `i`.
-inline const void* entry(const NodeType& type, std::size_t i) {
+__attribute__((visibility("hidden"))) inline const void* entry(const NodeType& type, std::size_t i) {
   const void* const* vtable;
-  std::memcpy(&vtable, &type, sizeof vtable);  // the vtable pointer leads a polymorphic object
+  std::memcpy(&vtable, static_cast<const void*>(&type), sizeof vtable);  // the vtable pointer leads a polymorphic object
   return vtable[i];
 }
 
@@ -86,7 +86,7 @@ struct Reading {
   const void* inherited = nullptr;
   bool valid = false;
 };
-inline const Reading& reading() {
+__attribute__((visibility("hidden"))) inline const Reading& reading() {
   static const Reading r = [] {
     Reading out;
     const std::optional<std::size_t> i = slot();
@@ -104,7 +104,7 @@ inline const Reading& reading() {
 }  // namespace forecast_probe
 
 /// Whether `type` overrides NodeType::forecast; true when that cannot be read (see above).
-inline bool has_own_forecast(const NodeType& type) {
+__attribute__((visibility("hidden"))) inline bool has_own_forecast(const NodeType& type) {
   const forecast_probe::Reading& r = forecast_probe::reading();
   return !r.valid || forecast_probe::entry(type, r.slot) != r.inherited;
 }

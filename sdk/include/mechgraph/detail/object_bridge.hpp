@@ -847,8 +847,11 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignSpringModel final : public SpringModel, pub
 /// the class hierarchy (a view of a foreign law, ForeignCamLaw being final, is told by its type).
 inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law, std::string_view maker) {
   if (!law) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
-  if (typeid(*law) == typeid(ForeignCamLaw)) {  // pass the original on
-    const mg_object* original = static_cast<const ForeignCamLaw&>(*law).c_object();
+  // The address of the type's typeinfo, not its name: a ForeignCamLaw of another library (another
+  // SDK's layout) must not be taken for this one's; such a law takes the general wrapper below.
+  const CamLaw& object = *law;
+  if (&typeid(object) == &typeid(ForeignCamLaw)) {  // pass the original on
+    const mg_object* original = static_cast<const ForeignCamLaw&>(object).c_object();
     original->vtbl->retain(original);
     return original;
   }
