@@ -48,7 +48,7 @@ double closed_form_angle_area(double k1, double k2, double i, double lash, doubl
 }
 
 // The exact angle-area in closed form, where the seat is conical and the law gives its integrals
-// over the open period [ob, oe] (closed_form_angle_area); false otherwise (angle_area_of integrates).
+// over the open period [ob, oe] (closed_form_angle_area); false otherwise (integrated_angle_area).
 bool closed_form_area_of(const CamLaw& cam, const FlowArea& area, double rocker_ratio, double lash, double ob, double oe,
                          double& angle_area, long& evaluations) {
   double k1 = 0.0, k2 = 0.0, I1 = 0.0, I2 = 0.0;
@@ -60,16 +60,12 @@ bool closed_form_area_of(const CamLaw& cam, const FlowArea& area, double rocker_
 
 bool exact_method(const ParamSet& p) { return p.text("method") == "exact"; }
 
-// The angle-area of `motion` through `area` by the method of the parameters (`exact`: the
-// method is exact); `closed_form_tried`: closed_form_area_of said no already.
-double angle_area_of(const ValveMotion& motion, const FlowArea& area, const ParamSet& p, bool exact, long& evaluations,
-                     bool closed_form_tried = false) {
+// The angle-area of `motion` through `area` by quadrature: `exact`, adaptive Gauss-Kronrod between
+// the breakpoints, else the source's rectangle sum. Where the closed form applies
+// (closed_form_area_of) the callers take it first.
+double integrated_angle_area(const ValveMotion& motion, const FlowArea& area, const ParamSet& p, bool exact, long& evaluations) {
   auto f = [&](double phi) { return area(motion.at(phi).lift); };
   const double ob = motion.open_begin(), oe = motion.open_end();
-  double angle_area = 0.0;
-  if (exact && !closed_form_tried &&
-      closed_form_area_of(motion.cam(), area, motion.rocker_ratio(), motion.lash(), ob, oe, angle_area, evaluations))
-    return angle_area;
   if (exact) {
     // Split also where the flow-area formula changes stage, so every piece is smooth. The top of
     // the lift joins the search knots: a stage lift just below it is crossed twice close together,
@@ -170,7 +166,11 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
     const auto motion = in.handle<ValveMotion>("valve");
     const FlowArea area(seat_of(p));
     long evaluations = 0;
-    const double angle_area = angle_area_of(*motion, area, p, exact_method(p), evaluations);
+    const bool exact = exact_method(p);
+    double angle_area = 0.0;
+    if (!exact || !closed_form_area_of(motion->cam(), area, motion->rocker_ratio(), motion->lash(), motion->open_begin(),
+                                       motion->open_end(), angle_area, evaluations))
+      angle_area = integrated_angle_area(*motion, area, p, exact, evaluations);
     ctx.report_work("evaluations", static_cast<double>(evaluations));
     const double open_angle = motion->open_end() - motion->open_begin();
     require_finite_area(angle_area, motion->camshaft_speed(), motion->cam(), motion->rocker_ratio());
@@ -181,8 +181,9 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
   }
 
   // Blocks: every method and seat (only numbers vary from case to case), each case as evaluate()
-  // takes it: the closed form from the block's columns and the case's law, else angle_area_of on
-  // the case's ValveMotion made from them. The method (a choice, the same for every case) is read once.
+  // takes it: the closed form from the block's columns and the case's law, else
+  // integrated_angle_area on the case's ValveMotion made from them. The method (a choice, the same
+  // for every case) is read once.
   bool block_supported(const BlockRequest&) const override { return true; }
 
   void evaluate_block(const BlockParams& p, const BlockInputs& in, BlockOutputs& out, BlockCases& cases,
@@ -211,7 +212,7 @@ class TimeAreaType final : public NodeType, public BlockEvaluation {
       double angle_area = 0.0;
       if (!exact || !closed_form_area_of(cam, area, i, lash, ob, oe, angle_area, evaluations)) {
         const CamValveMotion motion(motions.shared_cam(k), w, i, lash, OpenPeriod{ob, oe});
-        angle_area = angle_area_of(motion, area, params, exact, evaluations, exact);
+        angle_area = integrated_angle_area(motion, area, params, exact, evaluations);
       }
       require_finite_area(angle_area, w, cam, i);
       const double open_angle = oe - ob;
