@@ -85,7 +85,7 @@ inline void load_params(ParamSet& params, std::vector<ParamValue*>& slots, const
   };
   if (slots.size() != specs.size()) make();
   // One pass: a presence that differs makes the set again (then every presence agrees) and starts
-  // over; a number whose view and value hold nothing else is one store.
+  // over; a number is a store or two (assign_param).
   for (std::size_t i = 0; i < specs.size(); ++i) {
     ParamValue* out = slots[i];
     if ((c[i].present != 0) != (out != nullptr)) {
@@ -93,14 +93,7 @@ inline void load_params(ParamSet& params, std::vector<ParamValue*>& slots, const
       i = static_cast<std::size_t>(-1);
       continue;
     }
-    if (!out) continue;
-    const mg_param_value& v = c[i];
-    const ParamKind kind = specs[i].kind;
-    if ((kind == ParamKind::number || kind == ParamKind::integer) && out->kind == kind && !v.text.data && !v.numbers && !v.records &&
-        out->text.empty() && out->numbers.empty() && out->records.empty())
-      out->number = v.number;
-    else
-      assign_param(*out, v, specs[i]);
+    if (out) assign_param(*out, c[i], specs[i]);
   }
 }
 
