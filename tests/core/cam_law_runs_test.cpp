@@ -1,12 +1,15 @@
 // CamLawRuns (mechgraph/domain/cam_law_runs.hpp): extrema and crossings from a law's declared
-// monotone runs, against closed forms; the cam summary through them equals the generic search's;
-// the conformance kit catches a law whose declared runs are wrong.
+// monotone runs, against closed forms (also past the 32 points peaks() keeps on the stack); the cam
+// summary through them equals the generic search's; the conformance kit catches a law whose
+// declared runs are wrong.
 #include <mechgraph/domain/cam_geometry.hpp>
 #include <mechgraph/domain/cam_law_runs.hpp>
+#include <mechgraph/numerics/piecewise.hpp>
 #include <mechgraph/testing/cam_law_conformance.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -201,4 +204,146 @@ TEST_CASE("monotone runs: storage reused from law to law gives what of() gives, 
     }
   }
   CHECK_FALSE(reused.assign(laws[0], 3));  // no such order
+}
+
+namespace {
+
+// m waves of h = A_j (1 - cos t) / 2, t = 2 pi (phi - e0) / P, on (e0, e0 + m P), each wave j with
+// its own amplitude A_j (a permutation of H/12 .. H, so each extremum lies in one wave):
+//   h'   =  A_j k sin t / 2,  h'' = A_j k^2 cos t / 2,  h''' = -A_j k^3 sin t / 2,  k = 2 pi / P.
+// h and h' are continuous where the waves meet (t = 2 pi j: h = h' = 0); h'' jumps there from
+// A_{j-1} k^2 / 2 to A_j k^2 / 2 (a breakpoint). Runs: h at t = pi j, h' at t = pi/2 + pi j (24
+// cuts for 12 waves), h'' at t = pi j (23 cuts, the jumps among them): more than 32 run ends.
+class Waves final : public CamLaw {
+ public:
+  static constexpr int m = 12;
+  static constexpr double H = 8e-3;
+  static constexpr double e0 = -150 * deg, P = 300 * deg / m, k = 2 * std::numbers::pi / P;
+  explicit Waves(bool declared) : declared_(declared) {}
+  static double amplitude(int j) { return H * (1 + (5 * j + 3) % m) / m; }  // 5 is prime to 12: a permutation
+  double event_begin() const override { return e0; }
+  double event_end() const override { return e0 + m * P; }
+  std::vector<double> breakpoints() const override {
+    std::vector<double> b;
+    for (int j = 1; j < m; ++j) b.push_back(e0 + j * P);
+    return b;
+  }
+  double max_lift() const override { return H; }
+  double base_radius() const override { return 0.03; }
+  LiftDerivatives evaluate_in_event(double phi) const override {
+    const double u = (phi - e0) / P, t = 2 * std::numbers::pi * u;
+    const double A = amplitude(std::clamp(static_cast<int>(std::floor(u)), 0, m - 1));
+    return {A * (1 - std::cos(t)) / 2, A * k * std::sin(t) / 2, A * k * k * std::cos(t) / 2, -A * k * k * k * std::sin(t) / 2};
+  }
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    if (!declared_) return false;
+    breaks.clear();
+    for (int j = order == 1 ? 0 : 1; j < 2 * m; ++j) breaks.push_back(e0 + (order == 1 ? 0.25 * P : 0.0) + 0.5 * j * P);
+    return true;
+  }
+
+ private:
+  bool declared_;
+};
+
+}  // namespace
+
+TEST_CASE("monotone runs: peaks over more run ends than the stack holds, against the closed form and the generic search",
+          "[sdk][cam_runs]") {
+  // CamLawRuns::peaks keeps the points it reads in 32 slots on the stack and moves them to the heap
+  // beyond: over these intervals the two orders together read 57 to 98 distinct points, each alone 28
+  // to 50 (the stack and the heap both).
+  const Waves law(true), generic(false);
+  const auto velocity = CamLawRuns::of(law, 1);
+  const auto acceleration = CamLawRuns::of(law, 2);
+  REQUIRE(velocity);
+  REQUIRE(acceleration);
+  // The declared runs are the law's true ones (the kit samples them densely).
+  const testing::Report kit = testing::check_cam_law(law, "waves");
+  int runs_checked = 0;
+  for (const testing::Check& ch : kit.checks())
+    if (ch.name.rfind("monotone runs", 0) == 0) {
+      INFO(ch.name << ": " << ch.detail);
+      CHECK(ch.status == testing::Check::Status::passed);
+      ++runs_checked;
+    }
+  CHECK(runs_checked == 3);  // lift, velocity, acceleration
+  using W = Waves;
+  const double v_scale = W::H * W::k / 2, a_scale = W::H * W::k * W::k / 2;
+  // The closed form over [a, b] (a and b where no extremum is): the extremes of each wave whose
+  // peak lies inside; h'' peaks at the meeting points t = 2 pi j from either side.
+  struct Expected {
+    double v_max, v_max_at, v_min, v_min_at, a_max, a_min, a_min_at;
+    std::vector<double> a_max_at;  // where it is reached (two one-sided values of one amplitude)
+  };
+  auto closed_form = [&](double a, double b) {
+    Expected e{-1e300, 0, 1e300, 0, -1e300, 1e300, 0, {}};
+    for (int j = 0; j < W::m; ++j) {
+      const double A = W::amplitude(j), at_v_max = W::e0 + (j + 0.25) * W::P, at_v_min = W::e0 + (j + 0.75) * W::P,
+                   at_a_min = W::e0 + (j + 0.5) * W::P;
+      if (at_v_max > a && at_v_max < b && A * W::k / 2 > e.v_max) e.v_max = A * W::k / 2, e.v_max_at = at_v_max;
+      if (at_v_min > a && at_v_min < b && -A * W::k / 2 < e.v_min) e.v_min = -A * W::k / 2, e.v_min_at = at_v_min;
+      if (at_a_min > a && at_a_min < b && -A * W::k * W::k / 2 < e.a_min) e.a_min = -A * W::k * W::k / 2, e.a_min_at = at_a_min;
+      for (double at : {W::e0 + j * W::P, W::e0 + (j + 1) * W::P}) {
+        if (at < a || at > b) continue;
+        const double value = A * W::k * W::k / 2;
+        if (value > e.a_max) e.a_max = value, e.a_max_at.clear();
+        if (value == e.a_max) e.a_max_at.push_back(at);
+      }
+    }
+    return e;
+  };
+  const double e1 = law.event_end();
+  struct Case {
+    double a, b;
+    long least_points;  // distinct points the two orders read together
+  };
+  for (const Case& c : {Case{W::e0 + 0.3 * W::P, e1 - 0.4 * W::P, 92}, Case{W::e0 + 5.1 * W::P, e1, 57}, Case{W::e0, e1, 98}}) {
+    INFO("over [" << c.a / deg << ", " << c.b / deg << "] deg");
+    const Expected e = closed_form(c.a, c.b);
+    long together = 0, each = 0;
+    const auto p = CamLawRuns::peaks({&*velocity, &*acceleration}, c.a, c.b, together);
+    REQUIRE(p.size() == 2);
+    CHECK(together >= c.least_points);  // past the 32 on the stack
+    // Against the closed form: values to rounding, the places exactly where the runs meet.
+    CHECK_THAT(p[0].max.value, WithinRel(e.v_max, 1e-13) || WithinAbs(e.v_max, 1e-15 * v_scale));
+    CHECK_THAT(p[0].min.value, WithinRel(e.v_min, 1e-13) || WithinAbs(e.v_min, 1e-15 * v_scale));
+    CHECK_THAT(p[1].max.value, WithinRel(e.a_max, 1e-13) || WithinAbs(e.a_max, 1e-15 * a_scale));
+    CHECK_THAT(p[1].min.value, WithinRel(e.a_min, 1e-13) || WithinAbs(e.a_min, 1e-15 * a_scale));
+    CHECK_THAT(p[0].max.x, WithinAbs(e.v_max_at, 1e-13));
+    CHECK_THAT(p[0].min.x, WithinAbs(e.v_min_at, 1e-13));
+    CHECK_THAT(p[1].min.x, WithinAbs(e.a_min_at, 1e-13));
+    bool a_max_at_a_peak = false;
+    for (double at : e.a_max_at) a_max_at_a_peak = a_max_at_a_peak || std::abs(p[1].max.x - at) <= 1e-13;
+    INFO("h'' greatest at " << p[1].max.x / deg << " deg");
+    CHECK(a_max_at_a_peak);
+    // Each order alone (its own points) gives the same, bit for bit.
+    CHECK(p[0].max.value == velocity->maximum(c.a, c.b, each).value);
+    CHECK(p[0].min.x == velocity->minimum(c.a, c.b, each).x);
+    CHECK(p[1].max.value == acceleration->maximum(c.a, c.b, each).value);
+    CHECK(p[1].min.x == acceleration->minimum(c.a, c.b, each).x);
+    // The generic certified search over the same interval, split at the law's breakpoints.
+    std::vector<double> knots{c.a};
+    for (double x : law.breakpoints())
+      if (x > c.a && x < c.b) knots.push_back(x);
+    knots.push_back(c.b);
+    numerics::SmoothPieces pieces(
+        [&](double x, double* v, double*) {
+          const LiftDerivatives d = law.evaluate_in_event(x);
+          v[0] = d.velocity;
+          v[1] = d.acceleration;
+        },
+        2, knots, 16);
+    CHECK_THAT(p[0].max.value, WithinRel(pieces.maximum(0).value, 1e-12) || WithinAbs(pieces.maximum(0).value, 1e-14 * v_scale));
+    CHECK_THAT(p[0].min.value, WithinRel(pieces.minimum(0).value, 1e-12) || WithinAbs(pieces.minimum(0).value, 1e-14 * v_scale));
+    CHECK_THAT(p[1].max.value, WithinRel(pieces.maximum(1).value, 1e-12) || WithinAbs(pieces.maximum(1).value, 1e-14 * a_scale));
+    CHECK_THAT(p[1].min.value, WithinRel(pieces.minimum(1).value, 1e-12) || WithinAbs(pieces.minimum(1).value, 1e-14 * a_scale));
+  }
+  // The cam summary (the production caller: both orders over the event) equals the generic path's.
+  const CamSummary with = summarize(law, 16), without = summarize(generic, 16);
+  CHECK_THAT(with.max_velocity, WithinRel(without.max_velocity, 1e-12));
+  CHECK_THAT(with.max_acceleration, WithinRel(without.max_acceleration, 1e-12));
+  CHECK_THAT(with.min_acceleration, WithinRel(without.min_acceleration, 1e-12));
+  CHECK_THAT(with.max_velocity, WithinRel(v_scale, 1e-13));
+  CHECK_THAT(with.min_acceleration, WithinRel(-a_scale, 1e-13));
 }
