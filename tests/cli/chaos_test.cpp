@@ -14,7 +14,7 @@
 using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
 
-TEST_CASE("chaos: misbehaving nodes under --threads 0 are reported by name; the host never crashes", "[cli][chaos]") {
+TEST_CASE("chaos: misbehaving nodes under --threads 0 are reported by name, the host never crashes", "[cli][chaos]") {
   const std::string plugins = "--only-plugin-dir '" + test_plugin("test_arith").parent_path().string() + "' ";
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_chaos_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

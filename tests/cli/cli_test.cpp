@@ -61,7 +61,7 @@ TEST_CASE("mechgraph --version and --help", "[cli]") {
   CHECK_THAT(bad.err, Contains("unknown command 'frobnicate'"));
 }
 
-TEST_CASE("run --json prints outputs, units, evaluated nodes and work; logs go to stderr", "[cli]") {
+TEST_CASE("run --json prints outputs, units, evaluated nodes and work, logs go to stderr", "[cli]") {
   const auto r = run_cli(arith_dir() + " run " + write_scene("mg_cull.yaml", culling_scene) + " --json --set len=5mm");
   REQUIRE(r.exit_code == 0);
   const YAML::Node json = YAML::Load(r.out);  // JSON is YAML

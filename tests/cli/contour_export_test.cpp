@@ -14,7 +14,7 @@
 using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
 
-TEST_CASE("contours go out as CSV and DXF; ezdxf reads the DXF back with the CSV's points", "[cli][contour]") {
+TEST_CASE("contours go out as CSV and DXF, ezdxf reads the DXF back with the CSV's points", "[cli][contour]") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("mg_contour_" + std::to_string(::getpid()));
   fs::remove_all(dir);

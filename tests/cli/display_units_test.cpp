@@ -44,7 +44,7 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file
 
 }  // namespace
 
-TEST_CASE("units: CSV headers and values in the scene's units, composed for derived dimensions; JSON stays SI", "[cli][units]") {
+TEST_CASE("units: CSV headers and values in the scene's units, composed for derived dimensions, JSON stays SI", "[cli][units]") {
   namespace fs = std::filesystem;
   const fs::path base = fs::temp_directory_path() / ("mg_units_" + std::to_string(::getpid()));
   fs::remove_all(base);
@@ -57,8 +57,9 @@ TEST_CASE("units: CSV headers and values in the scene's units, composed for deri
   const auto mm = read_csv(base / "mm" / "cam.svaj.csv");
   const auto raw = read_csv(base / "si" / "cam.svaj.csv");
   REQUIRE(mm.size() == 362);
-  CHECK(mm[0] == std::vector<std::string>{"cam_angle [deg]", "crank_angle [deg]", "lift [mm]", "velocity [mm/deg]",
-                                          "acceleration [mm/deg^2]", "jerk [mm/deg^3]"});
+  // Degrees carry their frame (the port's declared angle frame), radians and SI none.
+  CHECK(mm[0] == std::vector<std::string>{"cam_angle [deg (cam)]", "crank_angle [deg (crank)]", "lift [mm]",
+                                          "velocity [mm/deg (cam)]", "acceleration [mm/deg^2 (cam)]", "jerk [mm/deg^3 (cam)]"});
   CHECK(raw[0] == std::vector<std::string>{"cam_angle [rad]", "crank_angle [rad]", "lift [m]", "velocity [m/rad]",
                                            "acceleration [m/rad^2]", "jerk [m/rad^3]"});
   const double d = std::numbers::pi / 180.0;

@@ -70,7 +70,7 @@ TEST_CASE("plugin-test fails a law the host cannot catch cheaply, refuses a plug
   CHECK_THAT(unknown.err, Contains("cam.cycloidal"));
 }
 
-TEST_CASE("the host refuses a cam law that breaks its contract, naming the node type; nothing is wrapped", "[plugins][sdk][cli]") {
+TEST_CASE("the host refuses a cam law that breaks its contract, naming the node type, nothing is wrapped", "[plugins][sdk][cli]") {
   struct Case {
     const char* params;
     const char* expected;

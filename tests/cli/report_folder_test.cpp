@@ -9,7 +9,7 @@ using namespace mechgraph::hostile;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
-TEST_CASE("report regenerates its own folder without --force; other folders keep their rules", "[cli][report]") {
+TEST_CASE("report regenerates its own folder without --force, other folders keep their rules", "[cli][report]") {
   const Scratch scratch("report_again");
   const std::string scene = source_file("scenes/tolerance_stack.yaml");
   const fs::path out = scratch.dir / "r";

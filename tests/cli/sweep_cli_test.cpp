@@ -177,7 +177,7 @@ TEST_CASE("sweep killed with kill -9, then --resume: no case lost or written twi
   CHECK_THAT(other.err, Contains("another sweep"));
 }
 
-TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130; --resume completes it", "[cli][sweep][slow]") {
+TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130, --resume completes it", "[cli][sweep][slow]") {
   const std::string scene = scratch_file("slow.yaml", slow_scene);
   const fs::path out = work_dir() / "interrupted.csv";
   fs::remove(out);
@@ -195,7 +195,7 @@ TEST_CASE("sweep stopped by Ctrl-C keeps every finished row and exits 130; --res
   CHECK(lines_of(slurp(out)).size() == 61);
 }
 
-TEST_CASE("shards merged back equal the single-process sweep; gaps and overlaps are refused", "[cli][sweep]") {
+TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps are refused", "[cli][sweep]") {
   const std::string scene = scratch_file("scene.yaml", scene_text);
   const std::string base = arith_dir() + " sweep '" + scene + "' --vary len=1mm:9mm:9 --vary s.gain=1,2 -q";
   std::string parts;

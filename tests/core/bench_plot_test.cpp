@@ -64,7 +64,7 @@ TEST_CASE("bench plot: titles are literal: curve_points is no subscript, ^ { @ a
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("bench plot: a setting below the reference's floor sits at the floor; failed ones and unmeasured knobs are left out", "[bench]") {
+TEST_CASE("bench plot: a setting below the reference's floor sits at the floor, failed ones and unmeasured knobs are left out", "[bench]") {
   KnobBench bench = two_settings("n", "tolerance");
   bench.trials[1].reference_floor = 3e-4;
   bench.trials[1].below_floor = true;

@@ -184,7 +184,7 @@ outputs: [ b.lift_at_half, a.lift_at_half, a.native, b.native, a.integral ]
   CHECK(live_objects("test_sdk1_objects_b") == 0);
 }
 
-TEST_CASE("blocks through C: a plugin written in C offers blocks; one that breaks the contract runs case by case",
+TEST_CASE("blocks through C: a plugin written in C offers blocks, one that breaks the contract runs case by case",
           "[sweep][blocks][sdk1]") {
   // b reads a's y as a column; x of a varies, x of b is fixed. x = 20 is refused by a.
   const char* scene = R"(params: { x: 2 }

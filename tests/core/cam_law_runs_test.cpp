@@ -156,7 +156,7 @@ TEST_CASE("monotone runs: several orders' peaks from one evaluation per point eq
   }
 }
 
-TEST_CASE("cam summary parts: only what is asked for is computed; the undercut figure always is", "[sdk][cam_runs]") {
+TEST_CASE("cam summary parts: only what is asked for is computed, the undercut figure always is", "[sdk][cam_runs]") {
   const Bump law(0.0, 80 * deg, 1);
   const CamSummary all = summarize(law, 16);
   const CamSummary none = summarize(law, 16, CamSummaryParts{false, false, false});

@@ -88,7 +88,7 @@ outputs: [u.x, b.box]
   CHECK(output(r, "b.box").as_handle()->kind() == "test_box");
 }
 
-TEST_CASE("a node that emits NaN fails with its name; NodeErrors name node and parameter", "[evaluator]") {
+TEST_CASE("a node that emits NaN fails with its name, NodeErrors name node and parameter", "[evaluator]") {
   MemoCache cache;
   CHECK_THROWS_MATCHES(evaluate(graph_from("nodes: { bad: { type: test.nan } }\noutputs: [bad.out]\n"), cache), EvaluationError,
                        Catch::Matchers::Predicate<EvaluationError>([](const EvaluationError& e) {

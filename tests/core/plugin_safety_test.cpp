@@ -91,7 +91,7 @@ TEST_CASE("the command line: skipped files are shown, and named when the scene n
   fs::remove_all(dir);
 }
 
-TEST_CASE("a library that crashes in its static constructors is refused; the host and the rest survive", "[plugins][safety]") {
+TEST_CASE("a library that crashes in its static constructors is refused, the host and the rest survive", "[plugins][safety]") {
   // The probe loads each file in a child process first: the crash takes the child down only.
   const fs::path dir = folder_with_good_plugin("crash");
   fs::copy_file(test_plugin("test_crash_ctor"), dir / "mechgraph_test_crash_ctor.so");
@@ -222,7 +222,7 @@ struct ScopedVariable {
 // is loaded without one. It is read once per registry and looked up as whole lines, so a start
 // costs the same with a cache of thousands of lines (one per file any build tree on the machine
 // loaded) and a line that merely contains the file's key does not count.
-TEST_CASE("a plugin the probe cache names is loaded without a probe; only its whole line counts",
+TEST_CASE("a plugin the probe cache names is loaded without a probe, only its whole line counts",
           "[plugins][safety][probe]") {
   const MarkerFile marker("probe_cache");
   const fs::path dir = fresh_dir(fs::temp_directory_path(), "mg_probe_cache_" + std::to_string(::getpid()));

@@ -53,7 +53,7 @@ double cosine_lift(double lift, double w, double phi) {
 
 }  // namespace
 
-TEST_CASE("a C++ law goes A -> B -> A and comes back as A's own object; a valve motion carries it on",
+TEST_CASE("a C++ law goes A -> B -> A and comes back as A's own object, a valve motion carries it on",
           "[plugins][sdk1][objects]") {
   {
     const RunResult run = run_yaml(R"(nodes:

@@ -174,7 +174,7 @@ TEST_CASE("a case outside a parameter's range, of the wrong dimension or an unkn
   for (std::size_t i = 1; i < rows.size(); ++i) CHECK(rows[i].outputs.empty());  // a refused case has no values
 }
 
-TEST_CASE("an evaluation error in one case is its row's error; the sweep goes on", "[sweep]") {
+TEST_CASE("an evaluation error in one case is its row's error, the sweep goes on", "[sweep]") {
   const char* yaml = R"(title: failing
 nodes:
   f: { type: test.fail, params: { limit: 1 mm } }
@@ -334,7 +334,7 @@ TEST_CASE("memo cache: bounded, least recently used dropped first", "[sweep][mem
   CHECK(one.size() == 1);
 }
 
-TEST_CASE("sweep fast path: nodes a case changes skip the memo cache; the others are shared; rows as evaluated alone",
+TEST_CASE("sweep fast path: nodes a case changes skip the memo cache, the others are shared, rows as evaluated alone",
           "[sweep][memo]") {
   // masses and spring do not depend on the swept values: memoised and shared by every case; the
   // cam (lift), valve and time-area (rpm downstream) change with every case: never stored.

@@ -57,7 +57,7 @@ TEST_CASE("a table in a report cell is a load-time error", "[core][table]") {
   }
 }
 
-TEST_CASE("run --out writes a table as one CSV with name [unit] headers; --json as columns", "[core][table][cli]") {
+TEST_CASE("run --out writes a table as one CSV with name [unit] headers, --json as columns", "[core][table][cli]") {
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_table_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "t.yaml") << "nodes: { t: { type: test.table, params: { points: 3 } } }\noutputs: [t.curves]\n";

@@ -344,7 +344,7 @@ TEST_CASE("hostile disk: bench --out never keeps an empty or cut SVG", "[hostile
   CHECK(entries_with(dir, "staging").empty());
 }
 
-TEST_CASE("hostile disk: report --pdf keeps no cut PDF; chromium's files stay out of HOME", "[hostile][disk][report]") {
+TEST_CASE("hostile disk: report --pdf keeps no cut PDF, chromium's files stay out of HOME", "[hostile][disk][report]") {
   if (find_on_path("gnuplot").empty()) {
     WARN("gnuplot is not installed: the report is not drawn");
     return;

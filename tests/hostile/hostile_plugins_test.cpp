@@ -71,7 +71,7 @@ fs::path build_dir() { return fs::path(MECHGRAPH_CLI).parent_path().parent_path(
 
 // ---- 1. every load goes through the crash probe -------------------------------------------------
 
-TEST_CASE("plugin-test with a bare file name in the current folder probes that file; a crash is never cached as good",
+TEST_CASE("plugin-test with a bare file name in the current folder probes that file, a crash is never cached as good",
           "[hostile][plugins]") {
   const TempFolder dir("bare_name");
   const TempFolder cache("bare_name_cache");
@@ -372,7 +372,7 @@ TEST_CASE("a libdxflib.so.3 in the current folder is not loaded by mechgraph", "
 
 // ---- 7. exit 0 with nonsense --------------------------------------------------------------------
 
-TEST_CASE("a thermal fit keeps hole_upper above hole_lower; absurd expansion is a range error or names the coefficient",
+TEST_CASE("a thermal fit keeps hole_upper above hole_lower, absurd expansion is a range error or names the coefficient",
           "[hostile][nonsense][fits]") {
   const std::string base =
       "effects: [thermal]\nnodes:\n  f: { type: fit.explicit, params: { size: 20 mm, hole_upper: 21 um, hole_lower: 0 um, "

@@ -104,7 +104,7 @@ TEST_CASE("under a process limit no thread can start: every threaded command doe
   ::unsetenv("XDG_CACHE_HOME");
 }
 
-TEST_CASE("under an address-space limit threads that cannot map a stack are not started; no abort",
+TEST_CASE("under an address-space limit threads that cannot map a stack are not started, no abort",
           "[hostile][threads][cli]") {
   // A 1 GiB stack for every thread and 3 GiB of address space: a thread or two start, the rest fail.
   Scratch scratch("as");

@@ -75,7 +75,7 @@ TEST_CASE("hard case: the valve open for a sliver still reports its (negative) a
   CHECK(output(r, "v.min_acceleration").as_scalar() == Approx(nose).epsilon(1e-3).margin(0));
 }
 
-TEST_CASE("hard case: stacks of huge sizes keep finite RSS shares; compliance overflow is an error", "[hard][backlash]") {
+TEST_CASE("hard case: stacks of huge sizes keep finite RSS shares, compliance overflow is an error", "[hard][backlash]") {
   const RunResult r = run(R"(nodes:
   s: { type: stack.linear, params: { links: [ { nominal: 1000 m, upper: 100 m, lower: 0 mm },
                                               { nominal: 1 mm, upper: 1 um, lower: 0 mm } ] } }
@@ -99,7 +99,7 @@ outputs: [c.rod_total_under_load]
                     Contains("parameter 'stiffness'"));
 }
 
-TEST_CASE("stack.linear at the edges of its ranges stays finite; beyond them the scene names the field", "[hard][backlash]") {
+TEST_CASE("stack.linear at the edges of its ranges stays finite, beyond them the scene names the field", "[hard][backlash]") {
   // 50 links at the largest size, tolerance and lever ratio the ranges allow, with Monte Carlo.
   std::string links;
   for (int i = 0; i < 50; ++i)

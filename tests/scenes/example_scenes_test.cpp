@@ -244,7 +244,7 @@ TEST_CASE("the polydyne synthesis also takes a polydyne made for an accel_angle"
   CHECK(value(YAML::Load(j.out), "d_5600.target_deviation") < 1e-9);
 }
 
-TEST_CASE("Monte Carlo results say how they were made; contributions name their links", "[scenes]") {
+TEST_CASE("Monte Carlo results say how they were made, contributions name their links", "[scenes]") {
   const auto r = run_cli(plugins() + "run " + scene("tolerance_stack.yaml"));
   REQUIRE(r.exit_code == 0);
   CHECK_THAT(r.out, Contains("gap: Monte Carlo: 1000000 samples, seed 1, standard error of the mean"));

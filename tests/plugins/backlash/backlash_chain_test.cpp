@@ -160,7 +160,7 @@ TEST_CASE("backlash.chain: Monte Carlo of one truncated normal clearance against
   }
 }
 
-TEST_CASE("backlash.chain: an interference fit contributes no play; a transition fit only its upper part", "[backlash]") {
+TEST_CASE("backlash.chain: an interference fit contributes no play, a transition fit only its upper part", "[backlash]") {
   const Run base = run_chain(hand_chain(), hand_params());
   // 20 H7/s6 (hole 0/+21 um, shaft +35/+48 um): clearance -48 .. -14 um, interference throughout.
   auto chain = hand_chain();

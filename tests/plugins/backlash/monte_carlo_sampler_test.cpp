@@ -289,7 +289,7 @@ TEST_CASE("Monte Carlo of the steering chain: mean and sigma against the clipped
   CHECK(mean == Approx(771.0035257e-6).epsilon(1e-9).margin(0));  // as the numpy peer's closed form gives
 }
 
-TEST_CASE("stack.linear and backlash.chain: the threads parameter changes no output; a bad value names it", "[backlash][sampler]") {
+TEST_CASE("stack.linear and backlash.chain: the threads parameter changes no output, a bad value names it", "[backlash][sampler]") {
   auto type = make_stack_linear_type();
   ParamValue links;
   links.kind = ParamKind::record_list;

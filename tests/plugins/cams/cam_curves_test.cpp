@@ -102,7 +102,7 @@ TEST_CASE("the svaj table spans the event with a margin, and its velocity is the
   }
 }
 
-TEST_CASE("cam nodes output svaj and events; a checking lift above the lift names checking_lift") {
+TEST_CASE("cam nodes output svaj and events, a checking lift above the lift names checking_lift") {
   const OutputSet out = testing::run_cam("cam.harmonic", {{"max_lift", ParamValue::of_number(9e-3)},
                                                           {"action_angle", ParamValue::of_number(140 * deg)},
                                                           {"base_radius", ParamValue::of_number(40e-3)}});

@@ -148,7 +148,7 @@ TEST_CASE("pressure angle and radius of curvature agree with the contour's own g
              Catch::Matchers::WithinAbs(std::atan((d.velocity + 2.5e-3) / (s0 + d.lift)), 1e-15));
 }
 
-TEST_CASE("flat face: width from the velocity's extremes; Hertz stress at the cam node's smallest radius") {
+TEST_CASE("flat face: width from the velocity's extremes, Hertz stress at the cam node's smallest radius") {
   const OutputSet cam = testing::run_cam("cam.cycloidal", {{"max_lift", ParamValue::of_number(8e-3)},
                                                            {"action_angle", ParamValue::of_number(130 * deg)},
                                                            {"base_radius", ParamValue::of_number(40e-3)}});
@@ -219,7 +219,7 @@ TEST_CASE("a forces table over part of the turn loads the cam only there, its en
   }
 }
 
-TEST_CASE("cw mirrors the contour; refusals name the parameter") {
+TEST_CASE("cw mirrors the contour, refusals name the parameter") {
   const auto law = cycloidal();
   const OutputSet ccw = run_contour(law, {});
   const OutputSet cw = run_contour(law, {{"rotation", ParamValue::of_choice("cw")}});

@@ -32,7 +32,7 @@ OutputSet run_program(std::vector<Record> segments, double nose_timing) {
   return out;
 }
 
-TEST_CASE("nose_timing means the nose on an asymmetric program; the event centre is its own quantity", "[cams][nose]") {
+TEST_CASE("nose_timing means the nose on an asymmetric program, the event centre is its own quantity", "[cams][nose]") {
   const std::vector<Record> segments = {
       {{"type", ParamValue::of_choice("rise")}, {"angle", ParamValue::of_number(50 * deg)},
        {"lift", ParamValue::of_number(8e-3)}, {"law", ParamValue::of_choice("poly345")}},

@@ -130,7 +130,7 @@ TEST_CASE("every follower passes the conformance kit on a cycloidal cam", "[foll
     }
 }
 
-TEST_CASE("translating followers keep their closed forms; names and refusals say which follower", "[followers]") {
+TEST_CASE("translating followers keep their closed forms, names and refusals say which follower", "[followers]") {
   const auto law = cycloidal();
   const double phi = -25 * deg;
   const LiftDerivatives d = law->at(phi);
@@ -204,7 +204,7 @@ TEST_CASE("follower.valve_lift: the valve lift of a finger in closed form, its d
 namespace mechgraph::followers {
 namespace {
 
-TEST_CASE("a law a flat face undercuts is made, and reaches cam.contour with a roller; the flat face is refused by name",
+TEST_CASE("a law a flat face undercuts is made, and reaches cam.contour with a roller, the flat face is refused by name",
           "[followers][undercut]") {
   // Cycloidal 9 mm over 130 deg on 17 mm: a flat face's contour radius r0 + h + h'' goes to
   // -18.78 mm (the cam node says so), so a flat face needs r0 >= 17 + 18.78 = 35.78 mm with this

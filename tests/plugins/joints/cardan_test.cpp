@@ -168,7 +168,7 @@ TEST_CASE("cardan: near-singular bend angles 89.9 and 89.999 deg against a 50-di
   }
 }
 
-TEST_CASE("cardan: bend angle 90 deg and beyond is a NodeError naming bend_angle; every bend below computes", "[joints][cardan]") {
+TEST_CASE("cardan: bend angle 90 deg and beyond is a NodeError naming bend_angle, every bend below computes", "[joints][cardan]") {
   CHECK_THROWS_MATCHES(CardanKinematics(90 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
   CHECK_THROWS_MATCHES(CardanKinematics(95 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));
   CHECK_THROWS_MATCHES(CardanKinematics(-1 * deg), NodeError, Catch::Matchers::Predicate<NodeError>(names_bend_angle));

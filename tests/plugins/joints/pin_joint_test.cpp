@@ -69,7 +69,7 @@ TEST_CASE("joint.pin: two fits (clevis) add in series", "[joints][pin]") {
   CHECK(play_of(out)->joint() == "pin in 2 bores (20 H11/d11, 20 H11/h11)");
 }
 
-TEST_CASE("joint.pin: an interference fit gives no play; a transition fit only its positive part", "[joints][pin]") {
+TEST_CASE("joint.pin: an interference fit gives no play, a transition fit only its positive part", "[joints][pin]") {
   const OutputSet press = run_pin({H7_s6});
   CHECK(scalar(press, "play_min") == 0.0);
   CHECK(scalar(press, "play_max") == 0.0);
@@ -94,7 +94,7 @@ TEST_CASE("joint.pin: an interference fit gives no play; a transition fit only i
   CHECK_THAT(play_of(n6)->terms()[0].mean(), WithinAbs(-11 * um, 1e-15));  // the term itself stays untruncated
 }
 
-TEST_CASE("joint.pin: play_factor projects the clearance; label names the joint", "[joints][pin]") {
+TEST_CASE("joint.pin: play_factor projects the clearance, label names the joint", "[joints][pin]") {
   const OutputSet out = run_pin({H11_d11, H11_h11}, {{"play_factor", ParamValue::of_number(0.5)}, {"label", ParamValue::of_text("hinge 1")}});
   CHECK_THAT(scalar(out, "play_min"), WithinRel(0.5 * 65 * um, 1e-12));
   CHECK_THAT(scalar(out, "play_max"), WithinRel(0.5 * 585 * um, 1e-12));

@@ -104,7 +104,7 @@ TEST_CASE("ISO 12240-1 radial internal clearance: groups ordered C2 < normal < C
   }
 }
 
-TEST_CASE("joint.spherical: the group's clearance is the play; labelled by group and bore", "[joints][spherical]") {
+TEST_CASE("joint.spherical: the group's clearance is the play, labelled by group and bore", "[joints][spherical]") {
   const OutputSet out = run_spherical({{"bore", number(20 * mm)}, {"clearance_group", group("C3")}});
   CHECK_THAT(scalar(out, "play_min"), WithinRel(82 * um, 1e-12));
   CHECK_THAT(scalar(out, "play_max"), WithinRel(124 * um, 1e-12));
@@ -125,7 +125,7 @@ TEST_CASE("joint.spherical: the group's clearance is the play; labelled by group
   CHECK(play_of(normal)->terms()[0].links[0].distribution == Distribution::uniform);
 }
 
-TEST_CASE("joint.spherical: explicit radial clearance overrides the group; both or neither", "[joints][spherical]") {
+TEST_CASE("joint.spherical: explicit radial clearance overrides the group, both or neither", "[joints][spherical]") {
   const OutputSet out = run_spherical({{"bore", number(20 * mm)},
                                        {"clearance_group", group("C3")},
                                        {"radial_clearance_min", number(30 * um)},

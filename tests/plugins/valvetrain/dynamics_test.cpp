@@ -321,7 +321,7 @@ TEST_CASE("chain natural frequencies: one mass, two masses and a coil chain in c
   }
 }
 
-TEST_CASE("multi_mass with stiff inner links moves as the single mass; spring_surge shakes the spring force", "[valvetrain][dynamics][chain]") {
+TEST_CASE("multi_mass with stiff inner links moves as the single mass, spring_surge shakes the spring force", "[valvetrain][dynamics][chain]") {
   // Cam-tappet at the single mass's drive stiffness, the other three links 1e6 times stiffer:
   // the chain moves as one body of M_red, as the single-mass model does (the same damping of the
   // first mode; the stiff links' own modes are damped out at once).

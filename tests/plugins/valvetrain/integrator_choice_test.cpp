@@ -114,7 +114,7 @@ TEST_CASE("integrator auto: explicit for the single mass, the same lift as cvode
   CHECK_FALSE(noted(bdf, "integrator auto"));  // a choice the scene made needs no reason
 }
 
-TEST_CASE("integrator auto: implicit for very stiff damped links, explicit for many coil masses; each agrees with the other integrator",
+TEST_CASE("integrator auto: implicit for very stiff damped links, explicit for many coil masses, each agrees with the other integrator",
           "[valvetrain][dynamics][integrator]") {
   SECTION("multi_mass with inner links of 4e9 N/mm: their modes overdamped far beyond the step cap") {
     const std::string scene = dynamics_scene(

@@ -289,7 +289,7 @@ TEST_CASE("hard case: lash just below the valve's full lift leaves a tiny, finit
   CHECK_THAT(scalar(ta, "angle_area"), WithinRel(pi * s.d0 * std::cos(s.a) * 2.0 / 3.0 * (s.H - lash) * open, 1e-4));
 }
 
-TEST_CASE("hard case: the flow area reaches the port 1e-7 below the top; exact agrees with a fine sum", "[valvetrain]") {
+TEST_CASE("hard case: the flow area reaches the port 1e-7 below the top, exact agrees with a fine sum", "[valvetrain]") {
   const Study s;
   const OutputSet m = run_motion(s, 1.0, 0.0);
   // Choose the port so that stage 3 begins 1e-9 below the full lift: the flow area is flat only
