@@ -39,7 +39,7 @@ TEST_CASE("gnuplot strings: single-quoted, quote doubled, nothing that ends or s
   CHECK(gnuplot_string("`id` @m") == "'\xCA\xBBid\xCA\xBB \xEF\xBC\xA0m'");
 }
 
-TEST_CASE("DOT strings: double-quoted, quote and backslash escaped, line breaks as \\n", "[escape]") {
+TEST_CASE("DOT strings: double-quoted, quote and backslash escaped, line breaks as backslash-n", "[escape]") {
   CHECK(dot_string("k\" shape=box URL=\"javascript:alert(1)") == "\"k\\\" shape=box URL=\\\"javascript:alert(1)\"");
   CHECK(dot_string("a\\N\nb") == "\"a\\\\N\\nb\"");
 }
