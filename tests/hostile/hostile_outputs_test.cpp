@@ -139,10 +139,7 @@ TEST_CASE("hostile JSON: random control characters in scene text always give str
 }
 
 TEST_CASE("hostile gnuplot: labels with quotes and commas reach the plot whole", "[hostile][report]") {
-  if (find_on_path("gnuplot").empty()) {
-    WARN("gnuplot is not installed: the report is not drawn");
-    return;
-  }
+  if (find_on_path("gnuplot").empty()) FAIL("gnuplot is not installed (scripts/install-deps.sh installs gnuplot-nox): the report cannot be drawn");
   const fs::path dir = fresh_dir("gnuplot_labels");
   const std::vector<std::string> labels{"shaft 1\\\", ground", "a,b", "it''s", "\\\"", "'lead", "plain"};
   const std::string scene = write_file(dir / "scene.yaml", chain_scene("labels", labels));
@@ -273,10 +270,7 @@ TEST_CASE("hostile merge: memory does not grow with the rows", "[hostile][sweep]
   WARN("built with a sanitizer, whose shadow memory makes resident size meaningless: not measured");
   return;
 #endif
-  if (find_on_path("time").empty() && !fs::exists("/usr/bin/time")) {
-    WARN("no /usr/bin/time: the memory of merge is not measured");
-    return;
-  }
+  if (!fs::exists("/usr/bin/time")) FAIL("no /usr/bin/time (scripts/install-deps.sh installs time): the memory of merge cannot be measured");
   const fs::path dir = fresh_dir("merge_memory");
   const std::string scene = write_file(dir / "scene.yaml", arith_scene);
   // The largest resident set of merging two shards of `cases` cases, in KiB.
@@ -298,10 +292,7 @@ TEST_CASE("hostile merge: memory does not grow with the rows", "[hostile][sweep]
 }
 
 TEST_CASE("hostile disk: a file-size limit (a full disk) is exit 5 and publishes nothing", "[hostile][disk]") {
-  if (find_on_path("prlimit").empty()) {
-    WARN("no prlimit: the full-disk cases are skipped");
-    return;
-  }
+  if (find_on_path("prlimit").empty()) FAIL("no prlimit (util-linux): the full-disk cases cannot run");
   const fs::path dir = fresh_dir("fsize");
   const std::string limited = "prlimit --fsize=3000 '" + std::string(MECHGRAPH_CLI) + "' " + plugins() + "-q ";
   const std::string stack = "'" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/tolerance_stack.yaml' ";
@@ -345,10 +336,7 @@ TEST_CASE("hostile disk: bench --out never keeps an empty or cut SVG", "[hostile
 }
 
 TEST_CASE("hostile disk: report --pdf keeps no cut PDF, chromium's files stay out of HOME", "[hostile][disk][report]") {
-  if (find_on_path("gnuplot").empty()) {
-    WARN("gnuplot is not installed: the report is not drawn");
-    return;
-  }
+  if (find_on_path("gnuplot").empty()) FAIL("gnuplot is not installed (scripts/install-deps.sh installs gnuplot-nox): the report cannot be drawn");
   const fs::path dir = fresh_dir("report_pdf");
   const fs::path seen = dir / "chromium-env.txt";
   // A chromium that notes its environment and arguments, then writes a PDF cut short (a full disk)
