@@ -115,7 +115,15 @@ def main():
     update = "--update" in sys.argv[4:]
     differences = []
     os.makedirs(golden, exist_ok=True)
-    for scene in sorted(glob.glob(os.path.join(scenes, "*.yaml"))):
+    found = sorted(glob.glob(os.path.join(scenes, "*.yaml")))
+    if not found:
+        sys.exit("presentation golden: no scene in %s: nothing would be compared" % scenes)
+    # A golden whose scene is gone (renamed, removed) would no longer be compared with anything.
+    stale = sorted(set(glob.glob(os.path.join(golden, "*.txt"))) -
+                   {os.path.join(golden, os.path.basename(f)[:-5] + ".txt") for f in found})
+    if stale and not update:
+        sys.exit("presentation golden: goldens without a scene in %s: %s (remove them)" % (scenes, ", ".join(stale)))
+    for scene in found:
         work = tempfile.mkdtemp(prefix="mechgraph-golden-")
         try:
             record = scene_record(cli, scene, work)
@@ -133,7 +141,7 @@ def main():
         sys.stdout.writelines(differences)
         sys.exit("presentation golden: what the host presents changed (above); if intended, rerun with --update "
                  "and say why in the commit")
-    print("presentation golden: %s" % ("updated" if update else "unchanged"))
+    print("presentation golden: %d scenes %s" % (len(found), "updated" if update else "unchanged"))
 
 
 if __name__ == "__main__":
