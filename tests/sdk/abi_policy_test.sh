@@ -49,6 +49,13 @@ check() {  # check NAME EXPECT(pass|fail): as scripts/test-sdk-compat.sh compare
   set -e
   if [ "$2" = pass ] && [ "$code" != 0 ]; then cat "$work/$1.diff" >&2; fail "$1: refused what the rules allow (exit $code)"; fi
   if [ "$2" = fail ] && [ "$code" = 0 ]; then fail "$1: let through what the rules forbid"; fi
+  # A refusal is exit 1 with one of the comparison's two verdicts, not any failure (a crash, a
+  # missing tool, a malformed suppression file exits otherwise or says something else).
+  if [ "$2" = fail ] && { [ "$code" != 1 ] ||
+       ! grep -q -e "changed incompatibly" -e "does not hold for the current headers" "$work/$1.diff"; }; then
+    cat "$work/$1.diff" >&2
+    fail "$1: failed (exit $code) without the comparison's refusal"
+  fi
   echo "abi_policy_test: $1: $2 as expected ($(tail -n 1 "$work/$1.diff" | cut -c1-90))" >&2
 }
 
