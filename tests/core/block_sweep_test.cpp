@@ -39,41 +39,6 @@ outputs: [ ta_arc.time_area, ta_kurz.time_area, ta_poly.time_area,
            arc.max_lift, arc.nose_radius ]
 )";
 
-struct Swept {
-  std::vector<CaseResult> rows;
-  SweepSummary summary;
-};
-
-Swept sweep(const Prepared& p, unsigned threads, std::size_t block_size) {
-  SweepOptions options;
-  options.threads = threads;
-  options.block_size = block_size;
-  for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
-  MemoCache cache;
-  Swept s;
-  s.summary = run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) { s.rows.push_back(std::move(r)); });
-  return s;
-}
-
-// Case for case: the same failure, the same message, the same numbers (bit for bit: both paths
-// run the same functions of the node types).
-void require_same_rows(const Swept& blocks, const Swept& alone) {
-  REQUIRE(blocks.rows.size() == alone.rows.size());
-  for (std::size_t i = 0; i < alone.rows.size(); ++i) {
-    INFO("case " << i);
-    const CaseResult& b = blocks.rows[i];
-    const CaseResult& a = alone.rows[i];
-    REQUIRE(b.index == a.index);
-    REQUIRE(b.failure == a.failure);
-    REQUIRE(b.error == a.error);
-    REQUIRE(b.outputs.size() == a.outputs.size());
-    for (std::size_t j = 0; j < a.outputs.size(); ++j) {
-      INFO("output " << j);
-      CHECK(b.outputs[j].as_scalar() == a.outputs[j].as_scalar());
-    }
-  }
-}
-
 CaseTable peers_hypercube(std::size_t n) {
   std::vector<SampleSpec> specs;
   for (const char* s : {"lift=7mm:9mm", "action=120deg:140deg", "accel=15deg:21deg", "r0=24mm:28mm", "rpm=4000rpm:7000rpm",

@@ -50,38 +50,6 @@ long live_objects(const std::string& name) {
 
 std::string stages123() { return source_file_text("bench/peers/stages123_study.yaml"); }
 
-struct Swept {
-  std::vector<CaseResult> rows;
-  SweepSummary summary;
-};
-
-Swept sweep(const Prepared& p, std::size_t block_size, unsigned threads = 1) {
-  SweepOptions options;
-  options.threads = threads;
-  options.block_size = block_size;
-  for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
-  MemoCache cache;
-  Swept s;
-  s.summary = run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) { s.rows.push_back(std::move(r)); });
-  return s;
-}
-
-// Case for case: the same failure, the same message, the same numbers, bit for bit.
-void require_same_rows(const Swept& a, const Swept& b) {
-  REQUIRE(a.rows.size() == b.rows.size());
-  for (std::size_t i = 0; i < a.rows.size(); ++i) {
-    INFO("case " << i);
-    REQUIRE(a.rows[i].index == b.rows[i].index);
-    REQUIRE(a.rows[i].failure == b.rows[i].failure);
-    REQUIRE(a.rows[i].error == b.rows[i].error);
-    REQUIRE(a.rows[i].outputs.size() == b.rows[i].outputs.size());
-    for (std::size_t j = 0; j < a.rows[i].outputs.size(); ++j) {
-      INFO("output " << j);
-      CHECK(a.rows[i].outputs[j].as_scalar() == b.rows[i].outputs[j].as_scalar());
-    }
-  }
-}
-
 CaseTable hypercube(std::size_t n) {
   std::vector<SampleSpec> specs;
   for (const char* s : {"lift=7mm:9mm", "action=120deg:140deg", "accel=15deg:21deg", "r0=24mm:28mm", "rpm=4000rpm:7000rpm",
@@ -98,19 +66,19 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   const BlockPlan plan(c.graph, *c.binder);
   INFO(plan.why_not());
   REQUIRE(plan.usable());
-  const Swept c_blocks = sweep(c, 64);
+  const Swept c_blocks = sweep(c, 1, 64);
   CHECK(c_blocks.summary.in_blocks == 200);
   CHECK(c_blocks.summary.failed == 0);
-  const Swept c_alone = sweep(c, 0);
+  const Swept c_alone = sweep(c, 1, 0);
   CHECK(c_alone.summary.in_blocks == 0);
   require_same_rows(c_blocks, c_alone);
-  require_same_rows(c_blocks, sweep(pre, 64));
-  require_same_rows(c_blocks, sweep(c, 16, 2));  // two threads, smaller blocks
+  require_same_rows(c_blocks, sweep(pre, 1, 64));
+  require_same_rows(c_blocks, sweep(c, 2, 16));  // two threads, smaller blocks
   // Only the speed varies: each cam's law block is one law for every case (object_count 1).
   const auto speeds = [] { return make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}); };
-  const Swept constant_cams = sweep(prepare(stages123(), speeds(), builtin_sdk1_registry()), 4);
+  const Swept constant_cams = sweep(prepare(stages123(), speeds(), builtin_sdk1_registry()), 1, 4);
   CHECK(constant_cams.summary.in_blocks == 11);
-  require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), project_registry()), 0));
+  require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), project_registry()), 1, 0));
 }
 
 TEST_CASE("blocks through C: a case a node refuses is redone alone and carries the per-case message", "[sweep][blocks][sdk1]") {
@@ -120,8 +88,8 @@ TEST_CASE("blocks through C: a case a node refuses is redone alone and carries t
     return make_grid({parse_vary("lash=0.1mm,20mm,0.3mm"), parse_vary("lift=8mm,-1mm,9mm"), parse_vary("accel=18deg,1deg")});
   };
   const Prepared c = prepare(stages123(), table(), builtin_sdk1_registry());
-  const Swept blocks = sweep(c, 5);
-  const Swept alone = sweep(c, 0);
+  const Swept blocks = sweep(c, 1, 5);
+  const Swept alone = sweep(c, 1, 0);
   require_same_rows(blocks, alone);
   REQUIRE(alone.summary.failed > 0);
   CHECK(blocks.summary.in_blocks == blocks.rows.size() - alone.summary.failed);
@@ -129,7 +97,7 @@ TEST_CASE("blocks through C: a case a node refuses is redone alone and carries t
   for (const CaseResult& r : blocks.rows) valve_message = valve_message || r.error.find("lash") != std::string::npos;
   CHECK(valve_message);
   // The same messages as the pre-1.0 build gives.
-  require_same_rows(blocks, sweep(prepare(stages123(), table(), project_registry()), 5));
+  require_same_rows(blocks, sweep(prepare(stages123(), table(), project_registry()), 1, 5));
 }
 
 TEST_CASE("blocks through C: the conformance kit's block check runs through the C boundary", "[sdk1][blocks][conformance]") {
@@ -169,8 +137,8 @@ outputs: [ b.lift_at_half, a.lift_at_half, a.native, b.native, a.integral ]
   {
     const Prepared p = prepare(scene, make_grid({parse_vary("lift=5mm,60mm,7mm,8mm,70mm,9mm")}), objects_registry());
     REQUIRE(BlockPlan(p.graph, *p.binder).usable());
-    const Swept blocks = sweep(p, 4);
-    const Swept alone = sweep(p, 0);
+    const Swept blocks = sweep(p, 1, 4);
+    const Swept alone = sweep(p, 1, 0);
     require_same_rows(blocks, alone);
     CHECK(blocks.summary.in_blocks == 4);
     CHECK(blocks.summary.failed == 2);
@@ -199,8 +167,8 @@ outputs: [ a.y, b.y ]
     registry.load_file(test_plugin(plugin));
     const Prepared p = prepare(scene, make_grid({parse_vary("x=1,2,20,-4,5")}), registry);
     REQUIRE(BlockPlan(p.graph, *p.binder).usable());
-    const Swept blocks = sweep(p, 4);
-    const Swept alone = sweep(p, 0);
+    const Swept blocks = sweep(p, 1, 4);
+    const Swept alone = sweep(p, 1, 0);
     require_same_rows(blocks, alone);
     CHECK(blocks.summary.failed == 1);
     REQUIRE(blocks.rows.size() == 5);

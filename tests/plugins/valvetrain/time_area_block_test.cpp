@@ -65,42 +65,13 @@ outputs: [ staged.angle_area, staged.time_area, staged.mean_flow_area, staged.op
 )";
 constexpr std::size_t outputs = 16;
 
-struct Swept {
-  std::vector<CaseResult> rows;
-  SweepSummary summary;
-};
-
-Swept sweep(const Prepared& p, unsigned threads, std::size_t block_size) {
-  SweepOptions options;
-  options.threads = threads;
-  options.block_size = block_size;
-  for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
-  MemoCache cache;
-  Swept s;
-  s.summary = run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) { s.rows.push_back(std::move(r)); });
-  return s;
-}
-
-// Case for case, output for output: the same refusal and message, the same number bit for bit
-// (the node runs the same functions on the same motion either way); the relative difference is
-// shown where they differ.
-void require_same_rows(const Swept& blocks, const Swept& alone) {
-  REQUIRE(blocks.rows.size() == alone.rows.size());
-  for (std::size_t i = 0; i < alone.rows.size(); ++i) {
-    INFO("case " << i);
-    const CaseResult& b = blocks.rows[i];
-    const CaseResult& a = alone.rows[i];
-    REQUIRE(b.index == a.index);
-    REQUIRE(b.failure == a.failure);
-    REQUIRE(b.error == a.error);
-    REQUIRE(b.outputs.size() == a.outputs.size());
-    for (std::size_t j = 0; j < a.outputs.size(); ++j) {
-      const double x = b.outputs[j].as_scalar(), y = a.outputs[j].as_scalar();
-      INFO("output " << j << ": block " << x << ", alone " << y << ", relative difference " << std::abs(x - y) / std::abs(y));
-      CHECK(std::isfinite(x));
-      CHECK(x == y);
+// Every output of every case finite (no case of this sweep is refused).
+void require_finite(const Swept& swept) {
+  for (const CaseResult& r : swept.rows)
+    for (std::size_t j = 0; j < r.outputs.size(); ++j) {
+      INFO("case " << r.index << ", output " << j);
+      CHECK(std::isfinite(r.outputs[j].as_scalar()));
     }
-  }
 }
 
 CaseTable hypercube(std::size_t n) {
@@ -160,5 +131,6 @@ TEST_CASE("time-area blocks: three-stage seat, rectangle sum and a law without i
     CHECK(blocks.summary.in_blocks == n - alone.summary.failed);
     CHECK(blocks.summary.failed == alone.summary.failed);
     require_same_rows(blocks, alone);
+    require_finite(blocks);
   }
 }
