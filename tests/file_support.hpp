@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -37,6 +39,20 @@ inline std::filesystem::path absent_dir(const std::string& prefix, const std::st
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir.parent_path());
   return dir;
+}
+
+/// The cells of a plain CSV file, row by row, split at every ',' (no quoting: the CSVs of our own
+/// writers whose cells hold no comma).
+inline std::vector<std::vector<std::string>> csv_cells(const std::filesystem::path& file) {
+  std::istringstream in(slurp(file));
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
 }
 
 }  // namespace mechgraph::testing

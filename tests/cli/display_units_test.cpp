@@ -1,5 +1,6 @@
 // The scene's `units:` end to end: CSV columns and printed outputs in the units asked for (composed
 // for derived dimensions), JSON in SI, and located errors for wrong quantities and units.
+#include "file_support.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -30,18 +31,6 @@ nodes:
 outputs: [cam.svaj, cam.duration, cam.max_acceleration]
 )";
 
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 }  // namespace
 
 TEST_CASE("units: CSV headers and values in the scene's units, composed for derived dimensions, JSON stays SI", "[cli][units]") {
@@ -54,8 +43,8 @@ TEST_CASE("units: CSV headers and values in the scene's units, composed for deri
   const auto b = run_cli("-q run '" + si + "' --out '" + (base / "si").string() + "'");
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
-  const auto mm = read_csv(base / "mm" / "cam.svaj.csv");
-  const auto raw = read_csv(base / "si" / "cam.svaj.csv");
+  const auto mm = csv_cells(base / "mm" / "cam.svaj.csv");
+  const auto raw = csv_cells(base / "si" / "cam.svaj.csv");
   REQUIRE(mm.size() == 362);
   // Degrees carry their frame (the port's declared angle frame), radians and SI none.
   CHECK(mm[0] == std::vector<std::string>{"cam_angle [deg (cam)]", "crank_angle [deg (crank)]", "lift [mm]",

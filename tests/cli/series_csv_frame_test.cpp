@@ -27,18 +27,6 @@ nodes:
 outputs: [v.lift_curve, v.svaj, v.open_angle]
 )";
 
-std::vector<std::vector<std::string>> csv_rows(const fs::path& file) {
-  std::istringstream in(slurp(file));
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    std::stringstream s(line);
-    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
-
 // "name [unit]" -> "unit".
 std::string unit_of(const std::string& header) {
   const auto open = header.find(" [");
@@ -58,8 +46,8 @@ TEST_CASE("run --out: a series' CSV header tags its degrees with the port's fram
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
 
-  const auto curve = csv_rows(deg_out / "v.lift_curve.csv");
-  const auto curve_si = csv_rows(si_out / "v.lift_curve.csv");
+  const auto curve = csv_cells(deg_out / "v.lift_curve.csv");
+  const auto curve_si = csv_cells(si_out / "v.lift_curve.csv");
   REQUIRE(curve.size() == 42);
   REQUIRE(curve_si.size() == 42);
   CHECK(curve[0] == std::vector<std::string>{"axis [deg (cam)]", "v.lift_curve [mm]"});
@@ -67,7 +55,7 @@ TEST_CASE("run --out: a series' CSV header tags its degrees with the port's fram
   CHECK(curve_si[0] == std::vector<std::string>{"axis [rad]", "v.lift_curve [m]"});
 
   // The same frame tag as the table of the same node (its cam_angle column) ...
-  const auto svaj = csv_rows(deg_out / "v.svaj.csv");
+  const auto svaj = csv_cells(deg_out / "v.svaj.csv");
   REQUIRE_FALSE(svaj.empty());
   REQUIRE_FALSE(svaj[0].empty());
   CHECK(svaj[0][0] == "cam_angle [deg (cam)]");
@@ -79,7 +67,7 @@ TEST_CASE("run --out: a series' CSV header tags its degrees with the port's fram
   const auto s = run_cli("-q sweep '" + in_degrees + "' --vary v.rpm=5000rpm:6000rpm:2 --outputs v.open_angle --out '" + rows.string() + "'");
   INFO(s.err);
   REQUIRE(s.exit_code == 0);
-  const auto swept = csv_rows(rows);
+  const auto swept = csv_cells(rows);
   REQUIRE(swept.size() == 3);
   REQUIRE(swept[0].size() >= 3);
   CHECK(swept[0][2] == "v.open_angle [deg (cam)]");
