@@ -134,7 +134,7 @@ std::size_t index_of(const Container& items, std::string_view name) {
 
 // A C node type with blocks: the host's wrapper of the type for everything else, its
 // mechgraph.node.block/1 table for blocks.
-class CBlockNodeType final : public NodeType, public BlockEvaluation {
+class CBlockNodeType final : public NodeType, public BlockEvaluation, public ForecastReads {
  public:
   CBlockNodeType(std::shared_ptr<const NodeType> type, const mg_node_type& c_type, const mg_node_block_v1& blocks)
       : type_(std::move(type)), c_type_(c_type), blocks_(blocks) {}
@@ -146,6 +146,10 @@ class CBlockNodeType final : public NodeType, public BlockEvaluation {
   }
   std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const override {
     return type_->forecast(params, sizes);
+  }
+  std::optional<std::vector<std::string>> forecast_reads() const override {
+    const auto* reads = dynamic_cast<const ForecastReads*>(type_.get());
+    return reads ? reads->forecast_reads() : std::nullopt;
   }
 
   bool block_supported(const BlockRequest& request) const override {

@@ -4,6 +4,7 @@
 #include "c_node_description.hpp"
 
 #include <mechgraph/c/node_forecast.h>
+#include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/sdk_lib.h>
 #include <mechgraph/detail/object_bridge.hpp>
 #include <mechgraph/cancellation.hpp>
@@ -15,6 +16,7 @@
 #include <cstring>
 #include <new>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -403,7 +405,22 @@ const mg_node_forecast_v1* node_forecast(const mg_node_type& type) {
   return table && MG_HAS_FIELD(table, mg_node_forecast_v1, forecast) && table->forecast ? table : nullptr;
 }
 
-class CNodeType final : public NodeType {
+// The names of the parameters its forecast reads (mechgraph.node.forecast_reads/1, SDK 1.3), or
+// none when it does not say, says it with an index out of range, or has no forecast to describe.
+std::optional<std::vector<std::string>> node_forecast_reads(const mg_node_type& type, const NodeInfo& info, bool has_forecast) {
+  if (!has_forecast || !MG_HAS_FIELD(&type, mg_node_type, query) || !type.query) return std::nullopt;
+  const auto* table = static_cast<const mg_node_forecast_reads_v1*>(type.query(&type, MG_NODE_FORECAST_READS, 1));
+  if (!table || !MG_HAS_FIELD(table, mg_node_forecast_reads_v1, param_count) || (table->param_count && !table->params))
+    return std::nullopt;
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < table->param_count; ++k) {
+    if (table->params[k] >= info.params.size()) return std::nullopt;
+    names.push_back(info.params[table->params[k]].name);
+  }
+  return names;
+}
+
+class CNodeType final : public NodeType, public ForecastReads {
  public:
   CNodeType(const mg_node_type& type, CNodeDeclaration declaration)
       : type_(type),
@@ -412,8 +429,10 @@ class CNodeType final : public NodeType {
         params_by_name_(by_name(info_.params)),
         inputs_by_name_(by_name(info_.inputs)),
         input_versions_(std::move(declaration.input_interface_versions)),
-        output_versions_(std::move(declaration.output_interface_versions)) {}
+        output_versions_(std::move(declaration.output_interface_versions)),
+        forecast_reads_(node_forecast_reads(type, info_, forecast_ != nullptr)) {}
   const NodeInfo& info() const override { return info_; }
+  std::optional<std::vector<std::string>> forecast_reads() const override { return forecast_reads_; }
   PortInterfaceVersions interface_versions() const { return {input_versions_, output_versions_}; }
 
   // Its own forecast when it offers mechgraph.node.forecast/1 (SDK 1.1), else none: the host then
@@ -504,6 +523,7 @@ class CNodeType final : public NodeType {
   NodeInfo info_;
   std::vector<std::size_t> params_by_name_, inputs_by_name_;
   std::vector<std::uint32_t> input_versions_, output_versions_;
+  std::optional<std::vector<std::string>> forecast_reads_;
 };
 
 }  // namespace
@@ -576,6 +596,23 @@ std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSe
   const auto* c = dynamic_cast<const CNodeType*>(&type);
   if (!c || !c->has_forecast()) return nullptr;
   return std::make_unique<CBoundForecast>(*c, params);
+}
+
+std::optional<std::vector<std::string>> forecast_reads(const NodeType& type) {
+  // An SDK 1.x type's host view answers from mechgraph.node.forecast_reads/1 (CNodeType, and the
+  // block view in front of it); a C++ type from the plugin's own class.
+  const auto* reads = dynamic_cast<const ForecastReads*>(&type);
+  if (!reads) return std::nullopt;
+  try {
+    std::optional<std::vector<std::string>> names = reads->forecast_reads();
+    if (!names) return std::nullopt;
+    const std::vector<ParamSpec>& params = type.info().params;
+    for (const std::string& name : *names)
+      if (std::none_of(params.begin(), params.end(), [&](const ParamSpec& p) { return p.name == name; })) return std::nullopt;
+    return names;
+  } catch (...) {
+    return std::nullopt;  // as a forecast that throws: asked case by case
+  }
 }
 
 PortInterfaceVersions port_interface_versions(const NodeType& type) {

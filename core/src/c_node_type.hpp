@@ -52,4 +52,9 @@ class BoundForecast {
 /// asks NodeType::forecast).
 std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params);
 
+/// The parameters `type`'s forecast reads, when it says (mechgraph.node.forecast_reads/1 for an
+/// SDK 1.x type, ForecastReads for a C++ one) and every name is one of its parameters; none
+/// otherwise (the forecast may read any parameter).
+std::optional<std::vector<std::string>> forecast_reads(const NodeType& type);
+
 }  // namespace mechgraph::detail

@@ -179,7 +179,8 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
   return e;
 }
 
-RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary)
+RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary,
+                                           const std::vector<std::string>* varied)
     : index_(index), writes_(writes), integers_vary_(integers_vary) {
   const GraphNode& n = graph.nodes[index];
   input_sizes(n, std::vector<double>(graph.nodes.size(), 1.0), sizes_);  // the keys, once
@@ -187,6 +188,12 @@ RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index
   bound_ = detail::bind_forecast(*n.type->type, n.params);
   bound_params_ = &n.params;
   bound_entries_ = n.params.all().size();
+  if (varied) {
+    if (const std::optional<std::vector<std::string>> reads = detail::forecast_reads(*n.type->type))
+      forecast_fixed_ = std::none_of(varied->begin(), varied->end(), [&](const std::string& name) {
+        return std::find(reads->begin(), reads->end(), name) != reads->end();
+      });
+  }
 }
 
 NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vector<double>& output_sizes) {
@@ -198,9 +205,17 @@ NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vec
   // The bound forecast while this is the set it was bound to, with the entries it had (a set is
   // written in place, and has no way to remove an entry).
   const bool bound = bound_ && &n.params == bound_params_ && n.params.all().size() == bound_entries_;
-  if (const std::optional<WorkForecast> forecast = bound ? bound_forecast_of(*bound_, sizes_) : forecast_of(n, sizes_)) {
+  if (forecast_fixed_ && forecast_ && forecast_sizes_ == sizes_) {
+    // It reads none of the parameters the cases change, and its inputs are as large as before.
+    e = *forecast_;
+    rows = integers_vary_ ? forecast_rows(n) : rows_;
+  } else if (const std::optional<WorkForecast> forecast = bound ? bound_forecast_of(*bound_, sizes_) : forecast_of(n, sizes_)) {
     take_forecast(n, *forecast, e, false);
     rows = integers_vary_ ? forecast_rows(n) : rows_;
+    if (forecast_fixed_) {
+      forecast_ = e;
+      forecast_sizes_ = sizes_;
+    }
   } else if (!integers_vary_ && conventions_ && conventions_sizes_ == sizes_) {
     // The conventions read integer parameters, list lengths and input sizes only: none changed.
     e = *conventions_;

@@ -89,11 +89,17 @@ double main_lift(const RampSpec& ramp, double max_lift, double action_angle) {
   return max_lift - share;
 }
 
-class CamNodeType final : public NodeType, public BlockEvaluation {
+class CamNodeType final : public NodeType, public BlockEvaluation, public ForecastReads {
  public:
   explicit CamNodeType(CamLawDefinition d)
       : make_(std::move(d.make)), cost_(std::move(d.cost)), prepare_block_(std::move(d.prepare_block)),
         derived_(d.derives_lift_and_action) {
+    // What forecast() reads: the ramp, samples and curve_points, and what the law's cost reads. A
+    // cost that does not say may read any parameter: then the type says nothing.
+    if (!cost_ || d.cost_reads) {
+      reads_ = std::vector<std::string>{"ramp", "samples", "curve_points"};
+      if (d.cost_reads) reads_->insert(reads_->end(), d.cost_reads->begin(), d.cost_reads->end());
+    }
     const std::string derived_from = d.derived_from;
     info_.type = std::move(d.type);
     info_.version = d.version;
@@ -185,6 +191,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   }
 
   const NodeInfo& info() const override { return info_; }
+  std::optional<std::vector<std::string>> forecast_reads() const override { return reads_; }
 
   // The law's cost, then the searches over its pieces (the summary and the events: each piece
   // interpolated at summary_items_per_piece points or so, samples raising the start), then the
@@ -411,6 +418,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation {
   CamLawCostFunction cost_;
   CamLawBlockFactory prepare_block_;
   bool derived_ = false;
+  std::optional<std::vector<std::string>> reads_;  // forecast_reads()
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <functional>
 #include <memory>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,8 @@ struct CamLawDefinition {
   CamLawFactory make;
   /// The law's cost (absent: a closed form of at most CamLawCost{}.pieces pieces, cheap to make).
   CamLawCostFunction cost;
+  /// The law-specific parameters `cost` reads (ForecastReads); absent with a cost: it may read any.
+  std::optional<std::vector<std::string>> cost_reads;
   /// Optional: the law's factory for a block of cases (absent: `make` for each case).
   CamLawBlockFactory prepare_block;
   /// The law's data fix its lift and event (a table): max_lift and action_angle become optional.

@@ -536,6 +536,7 @@ CamLawDefinition table_law_definition() {
   d.output_dependencies = {{"master_deviation_rms", {"master"}}, {"master_deviation_max", {"master"}}, {"master_deviation", {"master"}}};
   d.extra_work_counters = {"solves", "iterations"};
   d.cost = table_cost;
+  d.cost_reads = std::vector<std::string>{"angles", "file", "smoothing"};  // table_rows and table_cost
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& out) -> std::shared_ptr<const CamLaw> {
     auto scale_of = [&](const char* name, const char* fallback, Dimension expected, const char* what) {
       const std::string text = params.has(name) ? params.text(name) : std::string(fallback);

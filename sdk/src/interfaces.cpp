@@ -18,6 +18,7 @@ DomainObject::~DomainObject() = default;
 EvalContext::~EvalContext() = default;
 NodeType::~NodeType() = default;
 std::optional<WorkForecast> NodeType::forecast(const ParamSet&, const InputSizes&) const { return std::nullopt; }
+ForecastReads::~ForecastReads() = default;
 CamLaw::~CamLaw() = default;
 Fit::~Fit() = default;
 Follower::~Follower() = default;

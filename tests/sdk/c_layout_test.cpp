@@ -458,6 +458,13 @@ static_assert(std::is_trivially_copyable_v<mg_block_args> && std::is_standard_la
 static_assert(MG_VALVE_MOTION_BLOCK_OPEN_BEGIN == 0 && MG_VALVE_MOTION_BLOCK_OPEN_END == 1 && MG_VALVE_MOTION_BLOCK_ROCKER_RATIO == 2 &&
               MG_VALVE_MOTION_BLOCK_LASH == 3 && MG_VALVE_MOTION_BLOCK_CAMSHAFT_SPEED == 4 && MG_VALVE_MOTION_BLOCK_FIGURES == 5);
 
+// SDK 1.3: mechgraph.node.forecast_reads version 1 (node_forecast_reads.h).
+static_assert(sizeof(mg_node_forecast_reads_v1) == 24);
+static_assert(offsetof(mg_node_forecast_reads_v1, struct_size) == 0);
+static_assert(offsetof(mg_node_forecast_reads_v1, params) == 8);
+static_assert(offsetof(mg_node_forecast_reads_v1, param_count) == 16);
+static_assert(std::is_trivially_copyable_v<mg_node_forecast_reads_v1> && std::is_standard_layout_v<mg_node_forecast_reads_v1>);
+
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.
   CHECK(MG_SDK_MAJOR == 1);

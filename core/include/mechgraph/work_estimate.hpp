@@ -83,7 +83,11 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
 /// always see. A graph built anew needs estimators made anew. Move-only: each worker its own.
 class RepeatedNodeEstimate {
  public:
-  RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary);
+  /// `varied`: the names of the node's parameters some case changes (nullptr: any may change). A
+  /// type whose forecast says which parameters it reads (ForecastReads; SDK 1.3) and reads none of
+  /// these is asked again only when its inputs' sizes change.
+  RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary,
+                       const std::vector<std::string>* varied = nullptr);
   RepeatedNodeEstimate(RepeatedNodeEstimate&&) = default;
   RepeatedNodeEstimate& operator=(RepeatedNodeEstimate&&) = default;
   RepeatedNodeEstimate(const RepeatedNodeEstimate&) = delete;
@@ -101,6 +105,9 @@ class RepeatedNodeEstimate {
   std::shared_ptr<detail::BoundForecast> bound_;            // null for a type other than an SDK 1.x one with a forecast
   const ParamSet* bound_params_ = nullptr;              // the set it is bound to
   std::size_t bound_entries_ = 0;                       // its entries then
+  bool forecast_fixed_ = false;                         // its forecast reads no varied parameter
+  std::optional<NodeEstimate> forecast_;                // the last one, while forecast_fixed_
+  InputSizes forecast_sizes_;                           // the sizes it was made for
 };
 /// Whether each node has a requested series or table output (whose rows are written).
 std::vector<char> writing_nodes(const Graph& graph);

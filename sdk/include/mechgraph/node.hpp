@@ -260,6 +260,19 @@ class MECHGRAPH_INTERFACE NodeType {
   virtual std::optional<WorkForecast> forecast(const ParamSet& params, const InputSizes& sizes) const;
 };
 
+/// SDK 1.3: a NodeType whose forecast() reads only some of its parameters says which by also
+/// implementing this (c/node_forecast_reads.h, mechgraph.node.forecast_reads/1). A sweep that
+/// varies none of them then asks the forecast once for all its cases instead of case by case. The
+/// contract, checked by the conformance kit: forecast() gives the same figures whatever the value of
+/// a parameter not named (it may read the input sizes). A name too many costs only speed.
+class MECHGRAPH_INTERFACE ForecastReads {
+ public:
+  virtual ~ForecastReads();  // out of line (key function)
+  /// The names of the parameters forecast() reads: declared parameters of info(), fixed for the
+  /// type; std::nullopt when it cannot say (it may read any: asked case by case).
+  virtual std::optional<std::vector<std::string>> forecast_reads() const = 0;
+};
+
 using NodeTypeList = std::vector<std::shared_ptr<const NodeType>>;
 
 }  // namespace mechgraph

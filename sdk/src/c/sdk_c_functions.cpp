@@ -129,3 +129,5 @@ MG_API void mg_abi_anchor_1_1(const mg_node_forecast_v1*, const mg_work_forecast
 
 MG_API void mg_abi_anchor_1_2(const mg_node_block_v1*, const mg_block_args*, const mg_block_request*, const mg_block_host_v1*,
                               const mg_object_block*, const mg_block_input*, const mg_block_column*) {}
+
+MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1*) {}

@@ -17,6 +17,7 @@
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_block.h>
 #include <mechgraph/c/node_forecast.h>
+#include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/present.h>
@@ -71,6 +72,10 @@ MG_API void mg_abi_anchor_1_2(const mg_node_block_v1* node_block, const mg_block
                               const mg_block_request* block_request, const mg_block_host_v1* block_host,
                               const mg_object_block* object_block, const mg_block_input* block_input,
                               const mg_block_column* block_column);
+
+/* SDK 1.3: does nothing; names the struct 1.3 added (node_forecast_reads.h), as mg_abi_anchor does
+   for 1.0's. */
+MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1* node_forecast_reads);
 
 MG_EXTERN_C_END
 

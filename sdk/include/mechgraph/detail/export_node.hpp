@@ -15,6 +15,7 @@
 // must share the host's C++ standard library ABI (libstdc++; any compiler).
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_forecast.h>
+#include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/detail/bridge_sets.hpp>
 #include <mechgraph/detail/export_block.hpp>
@@ -135,6 +136,18 @@ class NodeTypeExport {
                          effects_.data(), effects_.size(), counters_.data(), counters_.size(), deps_.data(), deps_.size(),
                          frames_.data(), frames_.size(), notes_.data(), notes_.size()};
     c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, &NodeTypeExport::query};
+    // mechgraph.node.forecast_reads/1: the declared parameters' indices; a name that is no declared
+    // parameter (a defect the conformance kit names) withholds the table: asked case by case.
+    const auto* reads = dynamic_cast<const ForecastReads*>(type_.get());
+    if (const auto names = reads && has_forecast_ ? reads->forecast_reads() : std::nullopt) {
+      has_reads_ = true;
+      for (const std::string& name : *names) {
+        const auto it = std::find_if(info.params.begin(), info.params.end(), [&](const ParamSpec& p) { return p.name == name; });
+        if (it == info.params.end()) has_reads_ = false;
+        else forecast_reads_.push_back(static_cast<std::uint32_t>(it - info.params.begin()));
+      }
+      reads_table_ = mg_node_forecast_reads_v1{sizeof(mg_node_forecast_reads_v1), forecast_reads_.data(), forecast_reads_.size()};
+    }
   }
   NodeTypeExport(const NodeTypeExport&) = delete;
   NodeTypeExport& operator=(const NodeTypeExport&) = delete;
@@ -395,6 +408,7 @@ class NodeTypeExport {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
     const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
     if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return exported.has_forecast_ ? &forecast_table : nullptr;
+    if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST_READS) == 0) return exported.has_reads_ ? &exported.reads_table_ : nullptr;
     return BlockExport<NodeTypeExport>::query(*exported.type_, name, version);
   }
   // A sweep's budget asks this once per case and node: the parameters and sizes are refreshed in
@@ -432,6 +446,9 @@ class NodeTypeExport {
   std::shared_ptr<const NodeType> type_;
   std::size_t sets_index_;  // in thread_bridge_sets()
   bool has_forecast_;       // overrides NodeType::forecast (or cannot be told): answers mechgraph.node.forecast
+  bool has_reads_ = false;  // implements ForecastReads with declared names: answers mechgraph.node.forecast_reads
+  std::vector<std::uint32_t> forecast_reads_;
+  mg_node_forecast_reads_v1 reads_table_{};
   std::deque<std::string> input_interfaces_, output_interfaces_;
   std::deque<std::vector<const char*>> lists_;
   std::deque<std::vector<mg_param_decl>> fields_;

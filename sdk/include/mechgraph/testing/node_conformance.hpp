@@ -20,6 +20,7 @@
 #include <mechgraph/testing/cam_law_conformance.hpp>
 #include <mechgraph/testing/domain_conformance.hpp>
 #include <mechgraph/testing/follower_conformance.hpp>
+#include <mechgraph/testing/forecast_conformance.hpp>
 #include <mechgraph/testing/node_harness.hpp>
 #include <mechgraph/testing/report.hpp>
 #include <mechgraph/units.hpp>
@@ -329,6 +330,11 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     r.add(suite, "deterministic: the same inputs give the same bits", false, std::string("the second evaluation threw: ") + e.what());
   }
   check_block_evaluation(type, params, inputs, first.outputs, r, suite);
+  {
+    InputSizes sizes;  // each connected input as the host sizes a small value
+    for (const auto& [port, values] : inputs.all()) sizes[port] = 1.0;
+    check_forecast_reads(type, params, sizes, r, suite);
+  }
   if (options.threads > 1) {
     // All threads start together (a gate opened once every thread that could start has started)
     // and evaluate several times each, so the evaluations overlap. Threads that cannot start (a
