@@ -1,6 +1,7 @@
 // The second loader path: plugins of the SDK 1.x C boundary (mechgraph_plugin_entry_1), written
 // in C (tests/test_plugins/c_minimal.c and its variants), beside the pre-1.0 C++ plugins.
 #include "test_support.hpp"
+#include "../../core/src/c_node_type.hpp"  // forecast_reads
 
 #include <mechgraph/c/base.h>
 #include <mechgraph/cancellation.hpp>
@@ -91,6 +92,7 @@ TEST_CASE("a C plugin passes mechgraph plugin-test", "[plugins][sdk1][cli]") {
   INFO(r.out << r.err);
   CHECK(r.exit_code == 0);
   CHECK_THAT(r.out, Contains("cmin.parabola"));
+  CHECK_THAT(r.out, Contains("PASS  node cmin.parabola: its forecast reads only the parameters it names"));
 }
 
 TEST_CASE("an SDK 1.x plugin whose structs are shorter (an older 1.x) loads, absent fields taken as defaults",
@@ -110,6 +112,7 @@ TEST_CASE("an SDK 1.x plugin whose structs are shorter (an older 1.x) loads, abs
   // A 1.0 plugin answers no node type interface: its work is counted by the conventions
   // (an integer parameter named points: one item a point).
   CHECK(estimate_work(graph_from(parabola_scene, r)).work == 3.0);
+  CHECK_FALSE(mechgraph::detail::forecast_reads(*r.find("cmin.parabola")->type));  // nor what a forecast reads
 }
 
 TEST_CASE("the host asks a C node type for its own work forecast (mechgraph.node.forecast/1) by name and version",
@@ -119,6 +122,9 @@ TEST_CASE("the host asks a C node type for its own work forecast (mechgraph.node
   CHECK(estimate.memory == 48.0);
   REQUIRE_FALSE(estimate.terms.empty());
   CHECK(estimate.terms[0].what == "p.points (1000 items a point) (cmin.parabola)");
+  // And what it reads (mechgraph.node.forecast_reads/1, SDK 1.3): the index of points, as its name.
+  CHECK(mechgraph::detail::forecast_reads(*c_registry().find("cmin.parabola")->type) ==
+        std::optional<std::vector<std::string>>(std::vector<std::string>{"points"}));
 }
 
 TEST_CASE("SDK 1.x plugins that cannot load are refused with a precise reason", "[plugins][sdk1]") {

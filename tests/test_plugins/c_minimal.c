@@ -2,7 +2,8 @@
    link to any mechgraph library. One node type, cmin.parabola: a table y = height * x^2 over
    x in [0, 1] and its peak, refusing a height above `limit` through the eval suite's error sink.
    It offers its own work forecast (mechgraph.node.forecast/1, SDK 1.1) through mg_node_type::query:
-   1000 items a point, driven by "points".
+   1000 items a point, driven by "points", and says that the forecast reads "points" only
+   (mechgraph.node.forecast_reads/1, SDK 1.3).
    Built as it is and, with C_MINIMAL_VARIANT, as the loader tests' variants:
      C_MINIMAL_OLDER      structs as an older 1.x wrote them (shorter struct_size; strided arrays),
                           a 1.0 plugin: no query, so the host counts its work by the conventions
@@ -13,6 +14,7 @@
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_forecast.h>
+#include <mechgraph/c/node_forecast_reads.h>
 
 #include <math.h>
 #include <stdlib.h>
@@ -125,9 +127,13 @@ static mg_status parabola_forecast(const mg_node_type* self, const mg_param_valu
   return MG_OK;
 }
 static const mg_node_forecast_v1 forecast_table = {sizeof(mg_node_forecast_v1), parabola_forecast};
+static const uint32_t forecast_params[] = {P_POINTS};
+static const mg_node_forecast_reads_v1 forecast_reads_table = {sizeof(mg_node_forecast_reads_v1), forecast_params, 1};
 static const void* parabola_query(const mg_node_type* self, const char* name, uint32_t version) {
   (void)self;
-  return strcmp(name, MG_NODE_FORECAST) == 0 && version == 1 ? &forecast_table : NULL;
+  if (version != 1) return NULL;
+  if (strcmp(name, MG_NODE_FORECAST) == 0) return &forecast_table;
+  return strcmp(name, MG_NODE_FORECAST_READS) == 0 ? &forecast_reads_table : NULL;
 }
 #endif
 
