@@ -402,8 +402,9 @@ class NodeTypeExport {
   // The node type's own interfaces (node.h, query): mechgraph.node.forecast/1 over
   // NodeType::forecast (SDK 1.1, node_forecast.h) when the type has a forecast of its own (NULL
   // for one that keeps the default: the host counts it by the conventions without asking each
-  // time; forecast_override.hpp); mechgraph.node.block/1 over BlockEvaluation (SDK 1.2,
-  // node_block.h) when the type implements it.
+  // time; forecast_override.hpp); mechgraph.node.forecast_reads/1 (SDK 1.3,
+  // node_forecast_reads.h) when it also implements ForecastReads; mechgraph.node.block/1 over
+  // BlockEvaluation (SDK 1.2, node_block.h) when the type implements it.
   static const void* query(const mg_node_type* self, const char* name, std::uint32_t version) noexcept {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
     const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
