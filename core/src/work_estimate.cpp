@@ -179,21 +179,22 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
   return e;
 }
 
+bool forecast_reads_none_of(const NodeType& type, const std::vector<std::string>& varied) {
+  const std::optional<std::vector<std::string>> reads = detail::forecast_reads(type);
+  return reads && std::none_of(varied.begin(), varied.end(), [&](const std::string& name) {
+           return std::find(reads->begin(), reads->end(), name) != reads->end();
+         });
+}
+
 RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary,
-                                           const std::vector<std::string>* varied)
-    : index_(index), writes_(writes), integers_vary_(integers_vary) {
+                                           bool forecast_fixed)
+    : index_(index), writes_(writes), integers_vary_(integers_vary), forecast_fixed_(forecast_fixed) {
   const GraphNode& n = graph.nodes[index];
   input_sizes(n, std::vector<double>(graph.nodes.size(), 1.0), sizes_);  // the keys, once
   if (!integers_vary_) rows_ = forecast_rows(n);
   bound_ = detail::bind_forecast(*n.type->type, n.params);
   bound_params_ = &n.params;
   bound_entries_ = n.params.all().size();
-  if (varied) {
-    if (const std::optional<std::vector<std::string>> reads = detail::forecast_reads(*n.type->type))
-      forecast_fixed_ = std::none_of(varied->begin(), varied->end(), [&](const std::string& name) {
-        return std::find(reads->begin(), reads->end(), name) != reads->end();
-      });
-  }
 }
 
 NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vector<double>& output_sizes) {

@@ -110,7 +110,7 @@ double hertz_line_stress(double load, double inv_radius, double length, double e
 constexpr double kRollingStressLimitDefault = 1648e6;
 constexpr double kSlidingStressLimitDefault = 1200e6;
 
-class ContourNodeType final : public NodeType {
+class ContourNodeType final : public NodeType, public ForecastReads {
  public:
   ContourNodeType() {
     info_.type = "cam.contour";
@@ -261,6 +261,9 @@ class ContourNodeType final : public NodeType {
   // chords within chord_error are about sqrt(8 R chord_error) long, so their number grows as
   // chord_error^(-1/2); measured, some 17000 evaluations of 2.5 us around a cam of 40 mm base
   // radius at 1e-6 m, counted here at twice that.
+  std::optional<std::vector<std::string>> forecast_reads() const override {
+    return std::vector<std::string>{"samples", "curve_points", "chord_error"};  // and the cam's size
+  }
   std::optional<WorkForecast> forecast(const ParamSet& p, const InputSizes& sizes) const override {
     const auto cam = sizes.find("cam");
     const double pieces = cam == sizes.end() ? 16.0 : cam->second;

@@ -32,7 +32,7 @@ constexpr double items_per_revolution = 1000.0;
 constexpr double items_per_law_piece = 20.0;
 constexpr double bytes_per_item = 64.0;  // the dense output of one simulation, kept until it is read
 
-class FloatSpeedType final : public NodeType {
+class FloatSpeedType final : public NodeType, public ForecastReads {
  public:
   FloatSpeedType() {
     info_.type = "valvetrain.float_speed";
@@ -96,6 +96,9 @@ class FloatSpeedType final : public NodeType {
   // margin could reach zero). A revolution costs some 1000 work items at tolerance 1e-8 (measured:
   // 340 steps of 7 right-hand sides, and the contact monitor), the steps growing as tolerance^(-1/5)
   // (dopri5's order), and a step at least per piece of the valve's law.
+  std::optional<std::vector<std::string>> forecast_reads() const override {
+    return std::vector<std::string>{"scan_points", "revolutions", "rpm_min", "rpm_max", "speed_tolerance", "tolerance"};
+  }
   std::optional<WorkForecast> forecast(const ParamSet& p, const InputSizes& sizes) const override {
     const double scan = static_cast<double>(p.integer("scan_points"));
     const double revolutions = static_cast<double>(p.integer("revolutions"));

@@ -1,16 +1,20 @@
 // The second loader path: plugins of the SDK 1.x C boundary (mechgraph_plugin_entry_1), written
 // in C (tests/test_plugins/c_minimal.c and its variants), beside the pre-1.0 C++ plugins.
+#include "sweep_support.hpp"
 #include "test_support.hpp"
 #include "../../core/src/c_node_type.hpp"  // forecast_reads
 
 #include <mechgraph/c/base.h>
 #include <mechgraph/cancellation.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/work_estimate.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <dlfcn.h>
 #include <fstream>
+#include <numeric>
 
 using namespace mechgraph;
 using namespace mechgraph::testing;
@@ -125,6 +129,42 @@ TEST_CASE("the host asks a C node type for its own work forecast (mechgraph.node
   // And what it reads (mechgraph.node.forecast_reads/1, SDK 1.3): the index of points, as its name.
   CHECK(mechgraph::detail::forecast_reads(*c_registry().find("cmin.parabola")->type) ==
         std::optional<std::vector<std::string>>(std::vector<std::string>{"points"}));
+}
+
+TEST_CASE("a sweep's budget asks a C forecast once while the cases change nothing it reads", "[plugins][sdk1][forecast]") {
+  const PluginRegistry& r = c_registry();
+  void* handle = dlopen(test_plugin("test_c_minimal").c_str(), RTLD_NOW | RTLD_NOLOAD);  // the registry's own
+  REQUIRE(handle);
+  const auto asked = reinterpret_cast<long (*)()>(dlsym(handle, "cmin_forecasts_asked"));
+  REQUIRE(asked);
+  const std::string scene = R"(params:
+  height: 20 mm
+  points: 3
+nodes:
+  p: { type: cmin.parabola, params: { height: $height, points: $points } }
+outputs: [ p.peak ]
+)";
+  for (const char* variable : {"height", "points"}) {
+    INFO("varying " << variable);
+    CaseTable table;
+    table.variables = {{variable, ""}};
+    const bool height = std::string(variable) == "height";
+    for (int k = 0; k < 100; ++k)
+      table.cases.push_back({read_case_value(height ? std::to_string(10 + k % 7) + " mm" : std::to_string(3 + k % 5), variable)});
+    const Prepared p = prepare(scene, table, r);
+    std::vector<std::size_t> all(table.cases.size());
+    std::iota(all.begin(), all.end(), std::size_t{0});
+    const long before = asked();
+    const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all, 1);
+    const long calls = asked() - before;
+    // One worker: the first case, then the largest case once more for the message's terms.
+    if (height) CHECK(calls <= 2);
+    else CHECK(calls >= 100);
+    double work = 0;
+    for (const auto& values : table.cases) work += 1000.0 * (height ? 3.0 : *values[0].si);
+    CHECK(e.total.work == work);
+  }
+  dlclose(handle);
 }
 
 TEST_CASE("SDK 1.x plugins that cannot load are refused with a precise reason", "[plugins][sdk1]") {

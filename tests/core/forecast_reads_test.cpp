@@ -38,7 +38,8 @@ std::vector<std::string> sorted(std::vector<std::string> v) {
 // A type with a forecast of `points` and a `gain` it reads or not; it says it reads `named`.
 class Counted final : public NodeType, public ForecastReads {
  public:
-  Counted(bool reads_gain, std::optional<std::vector<std::string>> named) : reads_gain_(reads_gain), named_(std::move(named)) {
+  Counted(bool reads_gain, std::optional<std::vector<std::string>> named, bool reads_mode = false)
+      : reads_gain_(reads_gain), reads_mode_(reads_mode), named_(std::move(named)) {
     info_.type = "test.counted";
     info_.summary = "a forecast of points (and of gain when it reads it)";
     info_.params = {ParamSpec::integer("points", "rows").with_default(100).at_least(1).at_most(1e6),
@@ -53,13 +54,14 @@ class Counted final : public NodeType, public ForecastReads {
   std::optional<WorkForecast> forecast(const ParamSet& p, const InputSizes&) const override {
     WorkForecast f;
     f.items = static_cast<double>(p.integer("points")) * (reads_gain_ ? p.number("gain") : 1.0);
+    if (reads_mode_ && p.text("mode") == "slow") f.items *= 2;
     return f;
   }
   std::optional<std::vector<std::string>> forecast_reads() const override { return named_; }
 
  private:
   NodeInfo info_;
-  bool reads_gain_;
+  bool reads_gain_, reads_mode_;
   std::optional<std::vector<std::string>> named_;
 };
 
@@ -89,6 +91,12 @@ TEST_CASE("the cam types name what their forecast reads, through C as on the pre
     }
   }
   CHECK(cams == 3);
+  // cam.contour and valvetrain.float_speed say what theirs read too.
+  for (const char* type : {"cam.contour", "valvetrain.float_speed"}) {
+    INFO(type);
+    REQUIRE(project_registry().find(type));
+    CHECK(mechgraph::detail::forecast_reads(*project_registry().find(type)->type));
+  }
   // The table law's cost reads its data.
   const NodeType* table = project_registry().find("cam.table") ? project_registry().find("cam.table")->type.get() : nullptr;
   REQUIRE(table);
@@ -102,9 +110,11 @@ TEST_CASE("a repeated estimate asks a forecast once while no case changes what i
   for (const PluginRegistry* registry : {&project_registry(), &builtin_sdk1_registry()}) {
     Graph g = graph_from(one_cam, *registry);
     const std::vector<double> sizes(g.nodes.size(), 1.0);
-    const std::vector<std::string> lift{"max_lift"}, points{"curve_points"};
-    RepeatedNodeEstimate fixed(g, 0, false, false, &lift);
-    RepeatedNodeEstimate varied(g, 0, false, false, &points);
+    const NodeType& type = *g.nodes[0].type->type;
+    CHECK(forecast_reads_none_of(type, {"max_lift", "action_angle"}));
+    CHECK_FALSE(forecast_reads_none_of(type, {"max_lift", "curve_points"}));
+    RepeatedNodeEstimate fixed(g, 0, false, false, forecast_reads_none_of(type, {"max_lift"}));
+    RepeatedNodeEstimate varied(g, 0, false, false, forecast_reads_none_of(type, {"curve_points"}));
     const double first = fixed(g, sizes).work;
     CHECK(varied(g, sizes).work == first);
     // Written in place as a binder writes: a parameter the forecast reads. The estimate told only
@@ -114,6 +124,30 @@ TEST_CASE("a repeated estimate asks a forecast once while no case changes what i
     REQUIRE(more > first);
     CHECK(fixed(g, sizes).work == first);
     CHECK(varied(g, sizes).work == more);
+  }
+}
+
+TEST_CASE("a repeated estimate asks again when its inputs' sizes change", "[sdk1][forecast][bounds]") {
+  // cam.contour's forecast reads its samples, curve_points and chord_error, and the size of its cam.
+  const char* contour = R"(nodes:
+  kurz: { type: cam.kurz, params: { max_lift: 8 mm, action_angle: 130 deg, base_radius: 26 mm, accel_angle: 18 deg } }
+  ct:   { type: cam.contour, inputs: { cam: kurz.law }, params: { roller_radius: 10 mm } }
+outputs: [ ct.points ]
+)";
+  for (const PluginRegistry* registry : {&project_registry(), &builtin_sdk1_registry()}) {
+    const Graph g = graph_from(contour, *registry);
+    const std::size_t ct = 1;
+    REQUIRE(g.nodes[ct].name == "ct");
+    REQUIRE(forecast_reads_none_of(*g.nodes[ct].type->type, {"roller_radius"}));
+    RepeatedNodeEstimate fixed(g, ct, false, false, true);
+    std::vector<double> sizes(g.nodes.size(), 1.0);
+    for (double pieces : {16.0, 16.0, 40.0, 40.0, 16.0}) {
+      sizes[0] = pieces;  // the law's pieces, as the cam's forecast gives them
+      INFO("cam of " << pieces << " pieces");
+      CHECK(fixed(g, sizes).work == estimate_node(g, ct, sizes, false, false).work);
+    }
+    CHECK(estimate_node(g, ct, std::vector<double>{40.0, 1.0}, false, false).work !=
+          estimate_node(g, ct, std::vector<double>{16.0, 1.0}, false, false).work);
   }
 }
 
@@ -185,6 +219,20 @@ TEST_CASE("the conformance kit fails a forecast that reads a parameter it does n
     REQUIRE(c);
     CHECK(c->status == Check::Status::failed);
     CHECK_THAT(c->detail, Catch::Matchers::Contains("'gain' is not named") && Catch::Matchers::Contains("changes the forecast"));
+  }
+  SECTION("an integer or a choice read but not named") {
+    const Counted points(false, std::vector<std::string>{"gain"});
+    const Report r = check_node_type(points, options);
+    const Check* c = find_check(r, "node test.counted", reads_check);
+    REQUIRE(c);
+    CHECK(c->status == Check::Status::failed);
+    CHECK_THAT(c->detail, Catch::Matchers::Contains("'points' is not named"));
+    const Counted mode(false, std::vector<std::string>{"points"}, true);
+    const Report m = check_node_type(mode, options);
+    const Check* mc = find_check(m, "node test.counted", reads_check);
+    REQUIRE(mc);
+    CHECK(mc->status == Check::Status::failed);
+    CHECK_THAT(mc->detail, Catch::Matchers::Contains("'mode' is not named, but setting it to 'slow'"));
   }
   SECTION("a name that is no parameter") {
     const Counted typo(false, std::vector<std::string>{"point"});

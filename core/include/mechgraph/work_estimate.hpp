@@ -83,11 +83,9 @@ NodeEstimate estimate_node(const Graph& graph, std::size_t index, const std::vec
 /// always see. A graph built anew needs estimators made anew. Move-only: each worker its own.
 class RepeatedNodeEstimate {
  public:
-  /// `varied`: the names of the node's parameters some case changes (nullptr: any may change). A
-  /// type whose forecast says which parameters it reads (ForecastReads; SDK 1.3) and reads none of
-  /// these is asked again only when its inputs' sizes change.
-  RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary,
-                       const std::vector<std::string>* varied = nullptr);
+  /// `forecast_fixed`: the node's forecast reads none of the parameters the cases change
+  /// (forecast_reads_none_of): it is asked again only when its inputs' sizes change.
+  RepeatedNodeEstimate(const Graph& graph, std::size_t index, bool writes, bool integers_vary, bool forecast_fixed = false);
   RepeatedNodeEstimate(RepeatedNodeEstimate&&) = default;
   RepeatedNodeEstimate& operator=(RepeatedNodeEstimate&&) = default;
   RepeatedNodeEstimate(const RepeatedNodeEstimate&) = delete;
@@ -109,6 +107,10 @@ class RepeatedNodeEstimate {
   std::optional<NodeEstimate> forecast_;                // the last one, while forecast_fixed_
   InputSizes forecast_sizes_;                           // the sizes it was made for
 };
+/// Whether `type`'s forecast says which parameters it reads (ForecastReads, SDK 1.3) and none of
+/// them is in `varied`: then the cases that change only `varied` all have the same forecast.
+bool forecast_reads_none_of(const NodeType& type, const std::vector<std::string>& varied);
+
 /// Whether each node has a requested series or table output (whose rows are written).
 std::vector<char> writing_nodes(const Graph& graph);
 

@@ -45,17 +45,17 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
   // Whether some case changes a parameter of node i other than a real number (the conventions
   // read integers; anything else counts as changing them).
   std::vector<char> integers_vary(graph.nodes.size(), 0);
-  // The names of the parameters some case changes, per node; a target without a declaration could
-  // be any parameter (its node's forecast is then asked case by case).
-  std::vector<std::vector<std::string>> varied_names(graph.nodes.size());
-  std::vector<char> unknown_target(graph.nodes.size(), 0);
+  std::vector<std::vector<std::string>> varied_names(graph.nodes.size());  // the parameters some case changes
   for (const std::vector<CaseBinder::Target>& targets : binder.targets())
     for (const CaseBinder::Target& t : targets) {
       if (t.node >= integers_vary.size()) continue;
-      if (!t.spec || t.spec->kind != ParamKind::number) integers_vary[t.node] = 1;
-      if (t.spec) varied_names[t.node].push_back(t.spec->name);
-      else unknown_target[t.node] = 1;
+      if (t.spec->kind != ParamKind::number) integers_vary[t.node] = 1;
+      varied_names[t.node].push_back(t.spec->name);
     }
+  // Whether a node's forecast reads none of them (SDK 1.3): asked once a worker, not once a case.
+  // Decided here, once, not by each worker.
+  std::vector<char> forecast_fixed(graph.nodes.size(), 0);
+  for (std::size_t i : varied) forecast_fixed[i] = forecast_reads_none_of(*graph.nodes[i].type->type, varied_names[i]) ? 1 : 0;
 
   // A binder that rebuilds each case's graph (a value inside a list or record) still binds the
   // plain parameters in place; the values inside lists do not change how long the lists are, so
@@ -73,7 +73,7 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
     w.slots = binder.bind(w.copy);
     w.repeated.reserve(varied.size());
     for (std::size_t i : varied)
-      w.repeated.emplace_back(w.copy, i, writing[i] != 0, integers_vary[i] != 0, unknown_target[i] ? nullptr : &varied_names[i]);
+      w.repeated.emplace_back(w.copy, i, writing[i] != 0, integers_vary[i] != 0, forecast_fixed[i] != 0);
     return w;
   };
   run_chunks(chunks, threads, make_worker, [&](Worker& w, std::size_t chunk) {

@@ -269,7 +269,8 @@ class MECHGRAPH_INTERFACE ForecastReads {
  public:
   virtual ~ForecastReads();  // out of line (key function)
   /// The names of the parameters forecast() reads: declared parameters of info(), fixed for the
-  /// type; std::nullopt when it cannot say (it may read any: asked case by case).
+  /// type; std::nullopt when it cannot say (it may read any: asked case by case). Asked once per
+  /// type, from any thread, like info().
   virtual std::optional<std::vector<std::string>> forecast_reads() const = 0;
 };
 

@@ -4,9 +4,11 @@
  *
  * A sweep checks its budget case by case before anything runs: it asks each node's forecast once
  * per case. A type that answers this interface says that its forecast reads the listed parameters
- * and the input sizes, and never looks at any other parameter; the host then asks once for all the
- * cases of a sweep that vary none of the listed parameters and give the same input sizes. The C++
- * layer answers it for a NodeType that also implements mechgraph::ForecastReads (node.hpp).
+ * and the input sizes, and never looks at any other parameter; the host then asks once (per worker
+ * thread) for all the cases of a sweep that vary none of the listed parameters and give the same
+ * input sizes. The host reads the table once, when it loads the type, and only from a type that
+ * answers mechgraph.node.forecast/1. The C++ layer answers it for a NodeType that also implements
+ * mechgraph::ForecastReads (node.hpp).
  *
  * The contract (the conformance kit checks it: each parameter not listed, changed, must leave the
  * forecast as it was):

@@ -246,6 +246,12 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     r.skip(suite, "evaluation with its defaults", e.what());
     return r;
   }
+  {
+    // Before any evaluation (it needs none): every input connected, as the host sizes a small value.
+    InputSizes sizes;
+    for (const PortSpec& in : info.inputs) sizes[in.name] = 1.0;
+    check_forecast_reads(type, params, sizes, r, suite);
+  }
   InputSet inputs;
   for (const PortSpec& in : info.inputs) {
     std::optional<Value> v = options.input_for ? options.input_for(in) : std::nullopt;
@@ -330,11 +336,6 @@ inline Report check_node_type(const NodeType& type, const NodeCheckOptions& opti
     r.add(suite, "deterministic: the same inputs give the same bits", false, std::string("the second evaluation threw: ") + e.what());
   }
   check_block_evaluation(type, params, inputs, first.outputs, r, suite);
-  {
-    InputSizes sizes;  // each connected input as the host sizes a small value
-    for (const auto& [port, values] : inputs.all()) sizes[port] = 1.0;
-    check_forecast_reads(type, params, sizes, r, suite);
-  }
   if (options.threads > 1) {
     // All threads start together (a gate opened once every thread that could start has started)
     // and evaluate several times each, so the evaluations overlap. Threads that cannot start (a
