@@ -196,56 +196,37 @@ TEST_CASE("a sweep's budget with forecasts asked once gives each case's figures"
 }
 
 TEST_CASE("the conformance kit fails a forecast that reads a parameter it does not name", "[sdk][forecast][conformance]") {
-  NodeCheckOptions options;
-  options.threads = 0;
-  SECTION("named truly") {
-    const Counted honest(true, std::vector<std::string>{"points", "gain"});
-    const Report r = check_node_type(honest, options);
+  // The kit's verdict on `type` (none: the check did not run), with its detail.
+  const auto verdict = [](const NodeType& type) -> std::optional<Check> {
+    NodeCheckOptions options;
+    options.threads = 0;
+    const Report r = check_node_type(type, options);
     const Check* c = find_check(r, "node test.counted", reads_check);
+    return c ? std::optional<Check>(*c) : std::nullopt;
+  };
+  const auto fails = [&](const NodeType& type, const std::string& saying) {
+    const std::optional<Check> c = verdict(type);
+    REQUIRE(c);
+    CHECK(c->status == Check::Status::failed);
+    CHECK_THAT(c->detail, Catch::Matchers::Contains(saying));
+  };
+  SECTION("named truly") {
+    const std::optional<Check> c = verdict(Counted(true, std::vector<std::string>{"points", "gain"}));
     REQUIRE(c);
     CHECK(c->status == Check::Status::passed);
-    CHECK_THAT(c->detail, Catch::Matchers::Contains("1 parameters not named"));  // mode: its choices
+    CHECK_THAT(c->detail, Catch::Matchers::Contains("1 parameters not named probed"));  // mode: its other choice
     // A name too many costs only speed: still true.
-    const Counted more(false, std::vector<std::string>{"points", "gain"});
-    const Report more_report = check_node_type(more, options);
-    const Check* more_check = find_check(more_report, "node test.counted", reads_check);
-    REQUIRE(more_check);
-    CHECK(more_check->status == Check::Status::passed);
+    const std::optional<Check> more = verdict(Counted(false, std::vector<std::string>{"points", "gain"}));
+    REQUIRE(more);
+    CHECK(more->status == Check::Status::passed);
   }
-  SECTION("gain read but not named") {
-    const Counted liar(true, std::vector<std::string>{"points"});
-    const Report r = check_node_type(liar, options);
-    const Check* c = find_check(r, "node test.counted", reads_check);
-    REQUIRE(c);
-    CHECK(c->status == Check::Status::failed);
-    CHECK_THAT(c->detail, Catch::Matchers::Contains("'gain' is not named") && Catch::Matchers::Contains("changes the forecast"));
+  SECTION("a number, an integer or a choice read but not named") {
+    fails(Counted(true, std::vector<std::string>{"points"}), "'gain' is not named, but setting it to");
+    fails(Counted(false, std::vector<std::string>{"gain"}), "'points' is not named");
+    fails(Counted(false, std::vector<std::string>{"points"}, true), "'mode' is not named, but setting it to 'slow'");
   }
-  SECTION("an integer or a choice read but not named") {
-    const Counted points(false, std::vector<std::string>{"gain"});
-    const Report r = check_node_type(points, options);
-    const Check* c = find_check(r, "node test.counted", reads_check);
-    REQUIRE(c);
-    CHECK(c->status == Check::Status::failed);
-    CHECK_THAT(c->detail, Catch::Matchers::Contains("'points' is not named"));
-    const Counted mode(false, std::vector<std::string>{"points"}, true);
-    const Report m = check_node_type(mode, options);
-    const Check* mc = find_check(m, "node test.counted", reads_check);
-    REQUIRE(mc);
-    CHECK(mc->status == Check::Status::failed);
-    CHECK_THAT(mc->detail, Catch::Matchers::Contains("'mode' is not named, but setting it to 'slow'"));
-  }
-  SECTION("a name that is no parameter") {
-    const Counted typo(false, std::vector<std::string>{"point"});
-    const Report r = check_node_type(typo, options);
-    const Check* c = find_check(r, "node test.counted", reads_check);
-    REQUIRE(c);
-    CHECK(c->status == Check::Status::failed);
-    CHECK_THAT(c->detail, Catch::Matchers::Contains("'point'"));
-  }
-  SECTION("a type that does not say is not checked") {
-    const Counted silent(true, std::nullopt);
-    CHECK_FALSE(find_check(check_node_type(silent, options), "node test.counted", reads_check));
-  }
+  SECTION("a name that is no parameter") { fails(Counted(false, std::vector<std::string>{"point"}), "'point'"); }
+  SECTION("a type that does not say is not checked") { CHECK_FALSE(verdict(Counted(true, std::nullopt))); }
 }
 
 TEST_CASE("what a forecast reads crosses the C boundary by parameter index", "[sdk1][forecast]") {
