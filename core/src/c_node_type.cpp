@@ -606,9 +606,8 @@ std::optional<std::vector<std::string>> forecast_reads(const NodeType& type) {
   try {
     std::optional<std::vector<std::string>> names = reads->forecast_reads();
     if (!names) return std::nullopt;
-    const std::vector<ParamSpec>& params = type.info().params;
     for (const std::string& name : *names)
-      if (std::none_of(params.begin(), params.end(), [&](const ParamSpec& p) { return p.name == name; })) return std::nullopt;
+      if (!type.info().find_param(name)) return std::nullopt;
     return names;
   } catch (...) {
     return std::nullopt;  // as a forecast that throws: asked case by case

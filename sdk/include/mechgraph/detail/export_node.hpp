@@ -136,24 +136,22 @@ class NodeTypeExport {
                          effects_.data(), effects_.size(), counters_.data(), counters_.size(), deps_.data(), deps_.size(),
                          frames_.data(), frames_.size(), notes_.data(), notes_.size()};
     c_type_ = mg_node_type{sizeof(mg_node_type), &desc_, this, &NodeTypeExport::evaluate, &NodeTypeExport::query};
-    // mechgraph.node.forecast_reads/1: the declared parameters' indices; a name that is no declared
-    // parameter withholds the table (asked case by case; the conformance kit, run on the C++ type
-    // in the plugin's own tests, names it).
-    // A forecast_reads() that throws withholds it too (the type loads; its forecast is asked case
-    // by case), as the host treats a C++ type's.
+    // mechgraph.node.forecast_reads/1: the declared parameters' indices. A forecast_reads() that
+    // throws, or names no declared parameter, withholds the table: the type loads and its forecast
+    // is asked case by case, as the host treats a C++ type's (the conformance kit, run on the C++
+    // type in the plugin's own tests, names the fault).
     std::optional<std::vector<std::string>> names;
     try {
       const auto* reads = dynamic_cast<const ForecastReads*>(type_.get());
       if (reads && has_forecast_) names = reads->forecast_reads();
     } catch (...) {
-      names.reset();
     }
     if (names) {
       has_reads_ = true;
       for (const std::string& name : *names) {
-        const auto it = std::find_if(info.params.begin(), info.params.end(), [&](const ParamSpec& p) { return p.name == name; });
-        if (it == info.params.end()) has_reads_ = false;
-        else forecast_reads_.push_back(static_cast<std::uint32_t>(it - info.params.begin()));
+        const ParamSpec* spec = info.find_param(name);
+        if (!spec) has_reads_ = false;
+        else forecast_reads_.push_back(static_cast<std::uint32_t>(spec - info.params.data()));
       }
       reads_table_ = mg_node_forecast_reads_v1{sizeof(mg_node_forecast_reads_v1), forecast_reads_.data(), forecast_reads_.size()};
     }

@@ -21,7 +21,25 @@
 namespace mechgraph::testing {
 namespace detail {
 
-// The values the check tries for a parameter (`given`: its value in the checked set).
+// A list one element shorter (when it has one) and one longer (its last element again, or `first`
+// for an empty list when there is one to add).
+template <class Element>
+void length_probes(const ParamValue& given, std::vector<Element> ParamValue::*list, const std::optional<Element>& first,
+                   std::vector<ParamValue>& out) {
+  const std::vector<Element>& elements = given.*list;
+  if (!elements.empty()) {
+    ParamValue shorter = given;
+    (shorter.*list).pop_back();
+    out.push_back(std::move(shorter));
+  }
+  if (!elements.empty() || first) {
+    ParamValue longer = given;
+    (longer.*list).push_back(elements.empty() ? *first : elements.back());
+    out.push_back(std::move(longer));
+  }
+}
+
+// The values the check tries for a parameter (`given`: its value in the checked set, of its kind).
 inline std::vector<ParamValue> forecast_probe_values(const ParamSpec& spec, const ParamValue& given) {
   std::vector<ParamValue> out;
   switch (spec.kind) {
@@ -33,30 +51,8 @@ inline std::vector<ParamValue> forecast_probe_values(const ParamSpec& spec, cons
       for (const auto& v : {spec.example_value, spec.default_value, std::optional<ParamValue>(ParamValue::of_text(""))})
         if (v && v->kind == ParamKind::text && v->text != given.text) out.push_back(ParamValue::of_text(v->text));
       return out;
-    case ParamKind::number_list: {
-      ParamValue shorter = given, longer = given;
-      shorter.kind = longer.kind = ParamKind::number_list;
-      if (!shorter.numbers.empty()) {
-        shorter.numbers.pop_back();
-        out.push_back(shorter);
-      }
-      longer.numbers.push_back(longer.numbers.empty() ? 1.0 : longer.numbers.back());
-      out.push_back(longer);
-      return out;
-    }
-    case ParamKind::record_list: {
-      ParamValue shorter = given, longer = given;
-      shorter.kind = longer.kind = ParamKind::record_list;
-      if (!shorter.records.empty()) {
-        shorter.records.pop_back();
-        out.push_back(shorter);
-      }
-      if (!longer.records.empty()) {
-        longer.records.push_back(longer.records.back());
-        out.push_back(longer);
-      }
-      return out;
-    }
+    case ParamKind::number_list: length_probes(given, &ParamValue::numbers, std::optional<double>(1.0), out); return out;
+    case ParamKind::record_list: length_probes(given, &ParamValue::records, std::optional<Record>(), out); return out;
     case ParamKind::number:
     case ParamKind::integer: break;
   }
