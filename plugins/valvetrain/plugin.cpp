@@ -1,7 +1,9 @@
-// The valvetrain plugin: valve kinematics and gas exchange of the valve-train study.
+// The valvetrain plugin: valve kinematics and gas exchange of the valve-train study. Through the
+// SDK 1.x C boundary (MECHGRAPH_PLUGIN_1): cam laws, followers and springs come in as the SDK's
+// interfaces from whatever plugin made them; its valve motions go out as mechgraph.valve_motion/1.
 #include "node_types.hpp"
 
-#include <mechgraph/plugin_abi.hpp>
+#include <mechgraph/plugin_sdk1.hpp>
 
 namespace {
 mechgraph::NodeTypeList make_node_types() {
@@ -12,4 +14,4 @@ mechgraph::NodeTypeList make_node_types() {
 }
 }  // namespace
 
-MECHGRAPH_PLUGIN("valvetrain", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("valvetrain", MECHGRAPH_SDK_VERSION, &make_node_types)

@@ -1,7 +1,9 @@
 // Blocks of cases through the SDK 1.x C boundary (sdk/include/mechgraph/c/node_block.h,
 // mechgraph.node.block/1; detail/export_block.hpp in the plugin, core/src/c_block_node_type.cpp in
-// the host). The built-in cams and valvetrain built on MECHGRAPH_PLUGIN_1 (test_plugins/builtin_sdk1)
-// give the stage 1-3 sweep the very rows the pre-1.0 build gives, in blocks and case by case; a
+// the host). The built-in cams and valvetrain built on MECHGRAPH_PLUGIN_1 to keep to the C tables
+// (test_plugins/builtin_sdk1) give the stage 1-3 sweep the very rows the shipped build gives (whose
+// plugins share their C++ objects, c/object_cxx.h) and the pre-1.0 build (test_plugins/builtin_pre10)
+// gives, in blocks and case by case; a
 // case a node refuses is redone alone and carries its message; the conformance kit's block check
 // runs through C; the objects of blocks (test_sdk1_objects_a/b) are released exactly once; a plugin
 // written in C (test_plugins/c_blocks.c) offers blocks, and one that breaks the contract has every
@@ -23,6 +25,7 @@
 using namespace mechgraph;
 using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
+using Catch::Matchers::WithinRel;
 
 namespace {
 
@@ -31,6 +34,7 @@ const PluginRegistry& objects_registry() {
     PluginRegistry r;
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));
+    r.load_file(test_plugin("test_sdk1_objects_c"));
     return r;
   }();
   return registry;
@@ -62,7 +66,8 @@ CaseTable hypercube(std::size_t n) {
 
 TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows, in blocks and alone", "[sweep][blocks][sdk1]") {
   const Prepared c = prepare(stages123(), hypercube(200), builtin_sdk1_registry());
-  const Prepared pre = prepare(stages123(), hypercube(200), project_registry());
+  const Prepared pre = prepare(stages123(), hypercube(200), builtin_pre10_registry());
+  const Prepared shipped = prepare(stages123(), hypercube(200), project_registry());
   const BlockPlan plan(c.graph, *c.binder);
   INFO(plan.why_not());
   REQUIRE(plan.usable());
@@ -73,12 +78,15 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   CHECK(c_alone.summary.in_blocks == 0);
   require_same_rows(c_blocks, c_alone);
   require_same_rows(c_blocks, sweep(pre, 1, 64));
+  require_same_rows(c_blocks, sweep(shipped, 1, 64));
+  require_same_rows(c_blocks, sweep(shipped, 1, 0));
   require_same_rows(c_blocks, sweep(c, 2, 16));  // two threads, smaller blocks
   // Only the speed varies: each cam's law block is one law for every case (object_count 1).
   const auto speeds = [] { return make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}); };
   const Swept constant_cams = sweep(prepare(stages123(), speeds(), builtin_sdk1_registry()), 1, 4);
   CHECK(constant_cams.summary.in_blocks == 11);
-  require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), project_registry()), 1, 0));
+  require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), builtin_pre10_registry()), 1, 0));
+  require_same_rows(constant_cams, sweep(prepare(stages123(), speeds(), project_registry()), 1, 4));
 }
 
 TEST_CASE("blocks through C: a case a node refuses is redone alone and carries the per-case message", "[sweep][blocks][sdk1]") {
@@ -96,7 +104,8 @@ TEST_CASE("blocks through C: a case a node refuses is redone alone and carries t
   bool valve_message = false;
   for (const CaseResult& r : blocks.rows) valve_message = valve_message || r.error.find("lash") != std::string::npos;
   CHECK(valve_message);
-  // The same messages as the pre-1.0 build gives.
+  // The same messages as the pre-1.0 build and the shipped one give.
+  require_same_rows(blocks, sweep(prepare(stages123(), table(), builtin_pre10_registry()), 1, 5));
   require_same_rows(blocks, sweep(prepare(stages123(), table(), project_registry()), 1, 5));
 }
 
@@ -150,6 +159,44 @@ outputs: [ b.lift_at_half, a.lift_at_half, a.native, b.native, a.integral ]
   }
   CHECK(live_objects("test_sdk1_objects_a") == 0);
   CHECK(live_objects("test_sdk1_objects_b") == 0);
+}
+
+TEST_CASE("blocks through C: a block crosses as its C++ block between libraries of one C++ layer, through C otherwise",
+          "[sweep][blocks][sdk1][objects][cxx]") {
+  // objsa and objsb share this project's C++ layer (one key, c/object_cxx.h); objsc keeps to the
+  // C tables (MECHGRAPH_SDK_CXX_SHORTCUT 0).
+  const char* scene = R"(params: { lift: 8 mm }
+nodes:
+  law: { type: objsa.law, params: { lift: $lift, half_width: 1 rad } }
+  b: { type: objsb.relay, inputs: { law: law.law } }
+  c: { type: objsc.relay, inputs: { law: b.law } }
+  a: { type: objsa.relay, inputs: { law: c.law } }
+outputs: [ b.view, c.view, a.view, a.native, b.lift_at_half, c.lift_at_half, c.integral ]
+)";
+  {
+    const Prepared p = prepare(scene, make_grid({parse_vary("lift=5mm,7mm,8mm,9mm")}), objects_registry());
+    REQUIRE(BlockPlan(p.graph, *p.binder).usable());
+    const Swept blocks = sweep(p, 1, 4);
+    const Swept alone = sweep(p, 1, 0);
+    require_same_rows(blocks, alone);
+    CHECK(blocks.summary.in_blocks == 4);
+    REQUIRE(blocks.rows.size() == 4);
+    const double lifts[] = {0.005, 0.007, 0.008, 0.009};
+    for (const Swept* swept : {&blocks, &alone})
+      for (std::size_t i = 0; i < 4; ++i) {
+        const auto& row = swept->rows[i];
+        CHECK(row.outputs[0].as_scalar() == 0.0);  // b.view: a's C++ laws themselves
+        CHECK(row.outputs[1].as_scalar() == 1.0);  // c.view: views of the C tables
+        CHECK(row.outputs[2].as_scalar() == 0.0);  // a.view: back home
+        CHECK(row.outputs[3].as_scalar() == 1.0);  // a.native
+        CHECK(row.outputs[4].as_scalar() == row.outputs[5].as_scalar());
+        // the integral of H cos^2 over the event (-w, w) is H w, through objsc's C view
+        CHECK_THAT(row.outputs[6].as_scalar(), WithinRel(lifts[i], 1e-12));
+      }
+  }
+  CHECK(live_objects("test_sdk1_objects_a") == 0);
+  CHECK(live_objects("test_sdk1_objects_b") == 0);
+  CHECK(live_objects("test_sdk1_objects_c") == 0);
 }
 
 TEST_CASE("blocks through C: a plugin written in C offers blocks, one that breaks the contract runs case by case",

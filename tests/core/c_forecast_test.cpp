@@ -110,7 +110,7 @@ bool same_forecasts(const Graph& c, const Graph& cxx, std::size_t seed, std::str
 
 TEST_CASE("forecasts through C equal the C++ types' as parameters and inputs come and go", "[sdk1][forecast]") {
   const Graph c = graph_from(cams, builtin_sdk1_registry());
-  const Graph cxx = graph_from(cams, project_registry());
+  const Graph cxx = graph_from(cams, builtin_pre10_registry());
   REQUIRE(c.nodes.size() == cxx.nodes.size());
   for (std::size_t i = 0; i < c.nodes.size(); ++i) REQUIRE(c.nodes[i].name == cxx.nodes[i].name);
   REQUIRE(c.nodes.front().type->type->forecast(c.nodes.front().params, {}));  // the cams forecast
@@ -127,7 +127,7 @@ TEST_CASE("forecasts through C equal the C++ types' as parameters and inputs com
 
 TEST_CASE("forecasts through C on several threads at once, each its own sets", "[sdk1][forecast][threads]") {
   const Graph c = graph_from(cams, builtin_sdk1_registry());
-  const Graph cxx = graph_from(cams, project_registry());
+  const Graph cxx = graph_from(cams, builtin_pre10_registry());
   std::atomic<int> failures{0};
   std::vector<std::thread> threads;
   for (std::size_t t = 0; t < 4; ++t)
@@ -146,7 +146,7 @@ TEST_CASE("a sweep's budget through C types equals the pre-1.0 build's and each 
     specs.push_back(parse_sample(s));
   const CaseTable table = make_latin_hypercube(specs, 300, 5);
   Prepared c = prepare(stages123(), table, builtin_sdk1_registry());
-  const Prepared cxx = prepare(stages123(), table, project_registry());
+  const Prepared cxx = prepare(stages123(), table, builtin_pre10_registry());
   std::vector<std::size_t> all(table.cases.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   const SweepEstimate e = estimate_cases(c.graph, *c.binder, c.table, all);
@@ -247,11 +247,11 @@ TEST_CASE("the C layer tells a node type with a forecast of its own from one tha
   CHECK(detail::has_own_forecast(InheritsForecast{}));
   CHECK_FALSE(detail::has_own_forecast(BlocksFirst{}));
   CHECK(detail::has_own_forecast(BlocksFirstForecasts{}));  // an override that answers "cannot say" still asks
-  // The built-in types (their pre-1.0 C++ objects): the cams and float speed forecast, the valve
-  // motion and the time-area keep the default; on MECHGRAPH_PLUGIN_1 the latter answer NULL for
-  // mechgraph.node.forecast/1 and are counted by the conventions, with the same figures
-  // (the test above and the sweep budget's below).
-  const PluginRegistry& cxx = project_registry();
+  // The built-in types (their C++ objects, as the pre-1.0 entry hands them over): the cams and
+  // float speed forecast, the valve motion and the time-area keep the default; on
+  // MECHGRAPH_PLUGIN_1 the latter answer NULL for mechgraph.node.forecast/1 and are counted by the
+  // conventions, with the same figures (the test above and the sweep budget's below).
+  const PluginRegistry& cxx = builtin_pre10_registry();
   for (const char* type : {"cam.kurz", "cam.three_arc", "cam.polydyne", "cam.contour", "valvetrain.float_speed"}) {
     INFO(type);
     CHECK(detail::has_own_forecast(*cxx.find(type)->type));

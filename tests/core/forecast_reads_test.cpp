@@ -76,7 +76,7 @@ const std::string reads_check = "its forecast reads only the parameters it names
 
 TEST_CASE("the cam types name what their forecast reads, through C as on the pre-1.0 entry", "[sdk1][forecast]") {
   const Graph c = graph_from(stages123(), builtin_sdk1_registry());
-  const Graph cxx = graph_from(stages123(), project_registry());
+  const Graph cxx = graph_from(stages123(), builtin_pre10_registry());
   std::size_t cams = 0;
   for (std::size_t i = 0; i < c.nodes.size(); ++i) {
     INFO("node " << c.nodes[i].name);

@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <cstring>
+
 #include <memory>
 #include <string>
 
@@ -33,6 +35,11 @@ void make_foreign(const mg_object* o) {
   original_vtbl = o->vtbl;
   foreign_vtbl = *o->vtbl;
   foreign_vtbl.origin = &other_origin;
+  // Another library of another C++ layer (c/object_cxx.h): its C tables only.
+  foreign_vtbl.query = [](const mg_object* self, const char* name, uint32_t version) -> const void* {
+    if (name && std::strcmp(name, MG_OBJECT_CXX) == 0) return nullptr;
+    return original_vtbl->query(self, name, version);
+  };
   foreign_vtbl.retain = [](const mg_object* self) {
     ++counts.retains;
     original_vtbl->retain(self);

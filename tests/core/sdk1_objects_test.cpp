@@ -1,6 +1,7 @@
 // Domain objects crossing the SDK 1.x C boundary from C++ (docs/design/sdk-1.0.md, 3.3-3.4;
 // mechgraph/detail/object_bridge.hpp): two plugins built from tests/test_plugins/sdk1_objects_plugin.cpp
-// (objsa, objsb), the C plugin c_objects.c and the built-in pre-1.0 plugins pass cam laws and
+// (objsa, objsb, and objsc that keeps to the C tables), the C plugin c_objects.c, the built-in
+// plugins and their pre-1.0 builds (test_plugins/builtin_pre10) pass cam laws and
 // valve motions to each other. A law that comes back to its maker is its own C++ object again
 // (no wrapper of a wrapper), every reference is returned when the results go, and an exception
 // thrown in a C++ node becomes an error naming the node.
@@ -25,6 +26,24 @@ const PluginRegistry& objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
     r.load_directory(MECHGRAPH_PLUGIN_DIR);
+    r.load_file(test_plugin("test_sdk1_objects_a"));
+    r.load_file(test_plugin("test_sdk1_objects_b"));
+    r.load_file(test_plugin("test_sdk1_objects_c"));
+    r.load_file(test_plugin("test_c_objects"));
+    return r;
+  }();
+  return registry;
+}
+
+// The same with cams and valvetrain on the pre-1.0 entry (test_plugins/builtin_pre10).
+const PluginRegistry& pre10_objects_registry() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    for (const auto& entry : std::filesystem::directory_iterator(MECHGRAPH_PLUGIN_DIR)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.path().extension() == ".so" && name != "mechgraph_cams.so" && name != "mechgraph_valvetrain.so") r.load_file(entry.path());
+    }
+    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_pre10");
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));
     r.load_file(test_plugin("test_c_objects"));
@@ -86,6 +105,40 @@ outputs: [ a.law, b.native, a.native, b.lift_at_half, a.lift_at_half, b.integral
   CHECK(live_objects("test_sdk1_objects_b") == 0);
 }
 
+TEST_CASE("a law crosses as its C++ object between libraries of one C++ layer, as a view of its C tables otherwise",
+          "[plugins][sdk1][objects][cxx]") {
+  // objsa and objsb are built by this project's compiler from these headers (one key); objsc keeps
+  // to the C tables (MECHGRAPH_SDK_CXX_SHORTCUT 0), and so does the C plugin.
+  const char* scene = R"(nodes:
+  law: { type: objsa.law, params: { lift: 8 mm, half_width: 1 rad } }
+  b: { type: objsb.relay, inputs: { law: law.law } }
+  c: { type: objsc.relay, inputs: { law: b.law } }
+  a: { type: objsa.relay, inputs: { law: c.law } }
+  claw: { type: cobj.law, params: { lift: 9 mm, half_width: 1.2 rad } }
+  cb: { type: objsb.relay, inputs: { law: claw.law } }
+outputs: [ b.view, b.native, c.view, a.view, a.native, cb.view, b.lift_at_half, c.lift_at_half, b.integral, c.integral ]
+)";
+  {
+    {
+      const RunResult run = run_yaml(scene, objects_registry());
+      CHECK(scalar_output(run, "b.view") == 0.0);    // a's C++ law itself
+      CHECK(scalar_output(run, "b.native") == 0.0);  // (not b's own class)
+      CHECK(scalar_output(run, "c.view") == 1.0);    // no key: through the C tables
+      CHECK(scalar_output(run, "a.view") == 0.0);    // back home as its own object
+      CHECK(scalar_output(run, "a.native") == 1.0);
+      CHECK(scalar_output(run, "cb.view") == 1.0);   // a law written in C has no C++ object
+      const double half = cosine_lift(0.008, 1.0, 0.5);
+      CHECK(scalar_output(run, "b.lift_at_half") == Approx(half).epsilon(1e-14).margin(1e-18));
+      CHECK(scalar_output(run, "c.lift_at_half") == scalar_output(run, "b.lift_at_half"));
+      CHECK(scalar_output(run, "b.integral") == Approx(0.008).epsilon(1e-12).margin(1e-18));
+      CHECK(scalar_output(run, "c.integral") == scalar_output(run, "b.integral"));
+    }
+    CHECK(live_objects("test_sdk1_objects_a") == 0);
+    CHECK(live_objects("test_sdk1_objects_b") == 0);
+    CHECK(live_objects("test_sdk1_objects_c") == 0);
+  }
+}
+
 TEST_CASE("laws cross between a C plugin, C++ SDK 1.x plugins and pre-1.0 plugins both ways", "[plugins][sdk1][objects]") {
   {
     const RunResult run = run_yaml(R"(nodes:
@@ -101,7 +154,7 @@ TEST_CASE("laws cross between a C plugin, C++ SDK 1.x plugins and pre-1.0 plugin
   r: { type: objsb.read_motion, inputs: { motion: valve2.motion } }
 outputs: [ a.native, a.lift_at_half, a.integral, peak.lift, cpeak.lift, b.native, b.lift_at_half, cyc.max_lift, valve.max_lift, r.cam_lift, r.ratio ]
 )",
-                                   objects_registry());
+                                   pre10_objects_registry());
     // C law -> C++ plugin (a view over the C table, no closed form) -> C consumer (the original).
     CHECK(scalar_output(run, "a.native") == 0.0);
     CHECK(scalar_output(run, "a.lift_at_half") == Approx(cosine_lift(0.009, 1.2, 0.6)).epsilon(1e-14).margin(1e-18));
@@ -177,7 +230,7 @@ TEST_CASE("an exception thrown in a C++ node crosses the C boundary as an error 
   CHECK_THAT(message(2), Contains("node 't' (objsa.throws)") && Contains("a runtime_error from the plugin"));
 }
 
-TEST_CASE("followers cross: an SDK 1.x follower rides a pre-1.0 contour, a pre-1.0 follower is read by an SDK 1.x node",
+TEST_CASE("followers cross: a test plugin's follower rides the built-in contour, a built-in follower is read by a test plugin",
           "[plugins][sdk1][objects][follower]") {
   const RunResult run = run_yaml(R"(nodes:
   kurz: { type: cam.kurz, params: { max_lift: 9 mm, action_angle: 130 deg, accel_angle: 18 deg, base_radius: 20 mm } }
@@ -189,11 +242,13 @@ TEST_CASE("followers cross: an SDK 1.x follower rides a pre-1.0 contour, a pre-1
   read_arm: { type: objsb.read_follower, inputs: { follower: arm.follower } }
   read_home: { type: objsa.read_follower, inputs: { follower: theirs.follower } }
   read_away: { type: objsb.read_follower, inputs: { follower: theirs.follower } }
+  read_c: { type: objsc.read_follower, inputs: { follower: theirs.follower } }
   read_ours: { type: objsb.read_follower, inputs: { follower: ours.follower } }
 outputs: [ c_theirs.max_pressure_angle, c_ours.max_pressure_angle, c_theirs.undercut_margin, c_ours.undercut_margin,
            read_arm.x, read_arm.y, read_arm.pressure_angle, read_arm.curvature_radius, read_arm.follower_angle,
            read_arm.cam_lever, read_arm.roller_radius, read_arm.pivoted, read_arm.type_name_length, read_arm.native,
-           read_home.native, read_away.native, read_away.x, read_away.curvature_radius, read_ours.x, read_ours.curvature_radius ]
+           read_home.native, read_away.native, read_away.x, read_away.curvature_radius, read_ours.x, read_ours.curvature_radius,
+           read_c.native, read_c.x, read_c.curvature_radius ]
 )",
                                  objects_registry());
   // The contour through the C table computes what it computes with the built-in follower: the same
@@ -202,8 +257,8 @@ outputs: [ c_theirs.max_pressure_angle, c_ours.max_pressure_angle, c_theirs.unde
         Approx(scalar_output(run, "c_ours.max_pressure_angle")).epsilon(1e-13).margin(1e-16));
   CHECK(scalar_output(run, "c_theirs.undercut_margin") ==
         Approx(scalar_output(run, "c_ours.undercut_margin")).epsilon(1e-13).margin(1e-16));
-  // A pre-1.0 pivoted roller read through mechgraph.follower/1 by an SDK 1.x plugin: every field of
-  // the contact and the fixed figures, against the follower's own C++ answer.
+  // The followers plugin's pivoted roller read by a test plugin: every field of the contact and the
+  // fixed figures, against the follower's own C++ answer.
   const auto arm = followers::make_pivoted_roller(-0.035, 0.030, 0.035, 0.010);
   const FollowerContact c = arm->contact(0.3, {0.002, 0.005, -0.010, 0.0}, 0.02, false);
   CHECK(scalar_output(run, "read_arm.x") == Approx(c.x).epsilon(1e-14).margin(1e-18));
@@ -217,9 +272,15 @@ outputs: [ c_theirs.max_pressure_angle, c_ours.max_pressure_angle, c_theirs.unde
   CHECK(scalar_output(run, "read_arm.pivoted") == 1.0);
   CHECK(scalar_output(run, "read_arm.type_name_length") == static_cast<double>(std::string("follower.pivoted_roller").size()));
   CHECK(scalar_output(run, "read_arm.native") == 0.0);
-  // Home again it is its maker's own object; in the other plugin a view that computes the same.
+  // Home again it is its maker's own object. objsb shares objsa's C++ layer (c/object_cxx.h), so it
+  // gets the very object, of the SDK's reference class; objsc (no key) a view of the C table that
+  // computes the same.
   CHECK(scalar_output(run, "read_home.native") == 1.0);
-  CHECK(scalar_output(run, "read_away.native") == 0.0);
+  CHECK(scalar_output(run, "read_away.native") == 1.0);
+  CHECK(scalar_output(run, "read_c.native") == 0.0);
+  CHECK(scalar_output(run, "read_c.x") == Approx(scalar_output(run, "read_ours.x")).epsilon(1e-14).margin(1e-18));
+  CHECK(scalar_output(run, "read_c.curvature_radius") ==
+        Approx(scalar_output(run, "read_ours.curvature_radius")).epsilon(1e-14).margin(1e-18));
   CHECK(scalar_output(run, "read_away.x") == Approx(scalar_output(run, "read_ours.x")).epsilon(1e-14).margin(1e-18));
   CHECK(scalar_output(run, "read_away.curvature_radius") ==
         Approx(scalar_output(run, "read_ours.curvature_radius")).epsilon(1e-14).margin(1e-18));

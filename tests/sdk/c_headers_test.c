@@ -14,6 +14,7 @@
 #include <mechgraph/c/node_block.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
+#include <mechgraph/c/object_cxx.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/present.h>
 #include <mechgraph/c/sdk_lib.h>

@@ -465,6 +465,14 @@ static_assert(offsetof(mg_node_forecast_reads_v1, params) == 8);
 static_assert(offsetof(mg_node_forecast_reads_v1, param_count) == 16);
 static_assert(std::is_trivially_copyable_v<mg_node_forecast_reads_v1> && std::is_standard_layout_v<mg_node_forecast_reads_v1>);
 
+// SDK 1.4: mechgraph.object.cxx version 1 (object_cxx.h).
+static_assert(sizeof(mg_object_cxx_v1) == 32);
+static_assert(offsetof(mg_object_cxx_v1, struct_size) == 0);
+static_assert(offsetof(mg_object_cxx_v1, abi_key) == 8);
+static_assert(offsetof(mg_object_cxx_v1, shared_object) == 16);
+static_assert(offsetof(mg_object_cxx_v1, shared_block) == 24);
+static_assert(std::is_trivially_copyable_v<mg_object_cxx_v1> && std::is_standard_layout_v<mg_object_cxx_v1>);
+
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.
   CHECK(MG_SDK_MAJOR == 1);

@@ -3,15 +3,18 @@
 // are foreign to the other:
 //   <id>.law          a CamLaw made here: h = lift cos^2(pi phi / (2 w)) on (-w, w); refuses a lift
 //                     above 50 mm; also in blocks of cases (BlockEvaluation, c/node_block.h)
-//   <id>.relay        passes a cam law on; `native` 1 when it arrived as this plugin's own C++ law;
-//                     also in blocks (the law block passed on, the scalars per case)
+//   <id>.relay        passes a cam law on; `native` 1 when it arrived as this plugin's own C++ law,
+//                     `view` 1 when it arrived as a view over another library's C tables (not when
+//                     that library's C++ layer has this one's key, c/object_cxx.h); also in blocks
+//                     (the law block passed on, the scalars per case)
 //   <id>.motion       a ValveMotion over a cam law (valve lift = ratio * cam lift)
 //   <id>.read_motion  reads a valve motion and its cam at 0.3 rad; `native`, `cam_native` as above
 //   <id>.play         a JointPlay (plain data): one term of two links
 //   <id>.follower     a Follower made here: the SDK's reference translating roller (roller_radius, offset)
 //   <id>.read_follower reads a follower's contact at 0.3 rad over a given lift; `native` as above
 //   <id>.throws       throws what `what` says (0: an int, 1: std::bad_alloc, 2: std::runtime_error)
-// objects_live() (exported, for the test) counts this plugin's laws and motions alive.
+// objects_live() (exported, for the test) counts this plugin's laws and motions alive. Built a third
+// time as `objsc` with MECHGRAPH_SDK_CXX_SHORTCUT 0: a library that keeps to the C tables.
 #include <mechgraph/block.hpp>
 #include <mechgraph/domain/cam_law_block.hpp>
 #include <mechgraph/domain/tolerance.hpp>
@@ -134,6 +137,7 @@ class Relay final : public Node, public BlockEvaluation {
     info_.inputs = {PortSpec::handle("law", std::string(CamLaw::kind_name), "a law")};
     info_.outputs = {PortSpec::handle("law", std::string(CamLaw::kind_name), "the same law"),
                      PortSpec::scalar("native", dim::none, "1: this plugin's own C++ law"),
+                     PortSpec::scalar("view", dim::none, "1: a view over another library's C tables"),
                      PortSpec::scalar("lift_at_half", dim::length, "lift at half the event's end"),
                      PortSpec::scalar("integral", dim::length * dim::angle, "integral of the lift over the event, -1 if unsaid")};
   }
@@ -141,6 +145,7 @@ class Relay final : public Node, public BlockEvaluation {
     const auto law = in.handle<CamLaw>("law");
     out.set("law", in.value("law"));
     out.set_scalar("native", dynamic_cast<const CosineLaw*>(law.get()) ? 1.0 : 0.0);
+    out.set_scalar("view", is_view(*law) ? 1.0 : 0.0);
     out.set_scalar("lift_at_half", law->at(0.5 * law->event_end()).lift);
     out.set_scalar("integral", integral_of(*law));
   }
@@ -148,11 +153,13 @@ class Relay final : public Node, public BlockEvaluation {
   void evaluate_block(const BlockParams&, const BlockInputs& in, BlockOutputs& out, BlockCases& cases, EvalContext&) const override {
     const auto& laws = in.handle<CamLawBlock>("law");
     double* native = out.scalar("native");
+    double* view = out.scalar("view");
     double* lift_at_half = out.scalar("lift_at_half");
     double* integral = out.scalar("integral");
     for_each_live_case(cases, [&](std::size_t i) {
       const CamLaw& law = laws.law(i);
       if (native) native[i] = dynamic_cast<const CosineLaw*>(&law) ? 1.0 : 0.0;
+      if (view) view[i] = is_view(law) ? 1.0 : 0.0;
       if (lift_at_half) lift_at_half[i] = law.at(0.5 * law.event_end()).lift;
       if (integral) integral[i] = integral_of(law);
     });
@@ -160,6 +167,7 @@ class Relay final : public Node, public BlockEvaluation {
   }
 
  private:
+  static bool is_view(const CamLaw& law) { return dynamic_cast<const detail::ForeignObject*>(&law) != nullptr; }
   static double integral_of(const CamLaw& law) {
     double integral = -1.0, of_square = 0.0;
     if (!law.lift_integrals(law.event_begin(), law.event_end(), integral, of_square)) integral = -1.0;

@@ -131,3 +131,5 @@ MG_API void mg_abi_anchor_1_2(const mg_node_block_v1*, const mg_block_args*, con
                               const mg_object_block*, const mg_block_input*, const mg_block_column*) {}
 
 MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1*) {}
+
+MG_API void mg_abi_anchor_1_4(const mg_object_cxx_v1*) {}

@@ -19,6 +19,7 @@
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/object.h>
+#include <mechgraph/c/object_cxx.h>
 #include <mechgraph/c/plugin.h>
 #include <mechgraph/c/present.h>
 #include <mechgraph/c/value.h>
@@ -76,6 +77,10 @@ MG_API void mg_abi_anchor_1_2(const mg_node_block_v1* node_block, const mg_block
 /* SDK 1.3: does nothing; names the struct 1.3 added (node_forecast_reads.h), as mg_abi_anchor does
    for 1.0's. */
 MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1* node_forecast_reads);
+
+/* SDK 1.4: does nothing; names the struct 1.4 added (object_cxx.h), as mg_abi_anchor does for
+   1.0's. */
+MG_API void mg_abi_anchor_1_4(const mg_object_cxx_v1* object_cxx);
 
 MG_EXTERN_C_END
 

@@ -3,13 +3,17 @@
 // header-only and hidden like object_bridge.hpp: the plugin's side (export_block.hpp) and the
 // host's (core/src/c_block_node_type.cpp) both convert with it.
 //
-//  - export_block: a C++ DomainBlock as an mg_object_block that owns what it points to (one
-//    reference to each object, the C++ block kept alive for the figures' arrays), released once by
-//    its owner. A CamLawBlock crosses as its laws; a ValveMotionBlock as its cases' cam laws and
-//    the five figures of c/domain/valve_motion_block.h, which point into the C++ block (no copy).
-//  - import_block: the C++ block of an mg_object_block (borrowed), for a port of an SDK kind: each
-//    object imported as import_object does (this library's own unwrapped, another's a Foreign
-//    view holding its own reference), the figures copied.
+//  - export_block: a C++ DomainBlock as an mg_object_block that owns what it points to (the C++
+//    block kept alive for the laws and the figures' arrays), released once by its owner. A
+//    CamLawBlock crosses as its laws; a ValveMotionBlock as its cases' cam laws and the five
+//    figures of c/domain/valve_motion_block.h, which point into the C++ block (no copy). The laws
+//    live in one array of the block (BlockLaw, object_bridge.hpp): one allocation per block, not
+//    one per case, and a reference to a law is a reference to the block.
+//  - import_block: the C++ block of an mg_object_block (borrowed), for a port of an SDK kind: the
+//    very C++ block when this library made it, or a library of this one's C++ layer did
+//    (mechgraph.object.cxx/1, c/object_cxx.h); else each object imported as import_object does
+//    (this library's own unwrapped, another's a Foreign view holding its own reference), the
+//    figures copied.
 // Other kinds have no block form: export_block and import_block refuse them (std::invalid_argument),
 // so the node's block fails and every case runs alone.
 #include <mechgraph/block.hpp>
@@ -29,29 +33,37 @@
 
 namespace mechgraph::detail {
 
-/// What an exported block's owner keeps alive: the C++ block and one reference per object.
-struct MECHGRAPH_DETAIL_HIDDEN ExportedBlock {
-  std::shared_ptr<const DomainBlock> keep;
-  std::vector<const mg_object*> objects;
-  std::vector<mg_block_column> figures;
-  ~ExportedBlock() {
-    for (const mg_object* o : objects)
-      if (o) o->vtbl->release(o);
-  }
-  static void release(void* self) { delete static_cast<ExportedBlock*>(self); }
-};
-
-/// The objects of a block of laws as exported objects (new references): one per case, or one
-/// when every case holds the same law.
+/// The objects of a block of laws: one per case, or one when every case holds the same law. A law
+/// made here becomes a BlockLaw in the block's one array (object_bridge.hpp); the view of a
+/// foreign law is passed on as its original object (one reference held by the block).
 template <class LawOfCase>
-void export_laws(ExportedBlock& e, std::size_t n, std::string_view maker, LawOfCase law_of_case) {
+void export_laws(ExportedBlock& e, std::size_t n, LawOfCase law_of_case) {
   bool shared = true;
   for (std::size_t i = 1; i < n && shared; ++i) shared = law_of_case(i).get() == law_of_case(0).get();
   const std::size_t count = shared ? std::min<std::size_t>(n, 1) : n;
   e.objects.reserve(count);
+  e.laws.reserve(count);  // the laws' addresses cross: never reallocated after this
   for (std::size_t i = 0; i < count; ++i) {
     const std::shared_ptr<const CamLaw>& law = law_of_case(i);
-    e.objects.push_back(law ? export_cam_law(law, maker) : nullptr);
+    if (!law) {
+      e.objects.push_back(nullptr);  // a failed case
+      continue;
+    }
+    // The address of the type's typeinfo, as export_cam_law tells a view of a foreign law.
+    const CamLaw& object = *law;
+    if (&typeid(object) == &typeid(ForeignCamLaw)) {
+      const mg_object* original = static_cast<const ForeignCamLaw&>(object).c_object();
+      e.passed_on.push_back(original);
+      original->vtbl->retain(original);
+      e.objects.push_back(original);
+      continue;
+    }
+    BlockLaw& made = e.laws.emplace_back();
+    made.vtbl = &block_law_vtbl;
+    made.primary = law.get();
+    made.block = &e;
+    made.self = law;
+    e.objects.push_back(&made);
   }
 }
 
@@ -61,11 +73,12 @@ inline mg_object_block export_block(const std::shared_ptr<const DomainBlock>& bl
   if (!block) throw std::invalid_argument("an empty block of domain objects cannot cross the C boundary");
   auto e = std::make_unique<ExportedBlock>();
   e->keep = block;
+  e->maker = maker;
   const std::size_t n = block->size();
   if (const auto* laws = dynamic_cast<const CamLawBlock*>(block.get())) {
-    export_laws(*e, n, maker, [laws](std::size_t i) -> const std::shared_ptr<const CamLaw>& { return laws->shared(i); });
+    export_laws(*e, n, [laws](std::size_t i) -> const std::shared_ptr<const CamLaw>& { return laws->shared(i); });
   } else if (const auto* motions = dynamic_cast<const ValveMotionBlock*>(block.get())) {
-    export_laws(*e, n, maker, [motions](std::size_t i) -> const std::shared_ptr<const CamLaw>& { return motions->shared_cam(i); });
+    export_laws(*e, n, [motions](std::size_t i) -> const std::shared_ptr<const CamLaw>& { return motions->shared_cam(i); });
     const std::size_t stride = n == 1 ? 0 : 1;
     e->figures.resize(MG_VALVE_MOTION_BLOCK_FIGURES);
     e->figures[MG_VALVE_MOTION_BLOCK_OPEN_BEGIN] = {motions->open_begin.data(), stride};
@@ -117,6 +130,20 @@ inline std::shared_ptr<const CamLawBlock> import_laws(const mg_object_block& in,
   return std::make_shared<const CamLawBlock>(std::move(laws));
 }
 
+/// The C++ block behind `in` (borrowed) when a library of this one's C++ layer made it (its first
+/// object answers mechgraph.object.cxx/1 with this library's key, and that library owns the block),
+/// else nullptr.
+inline std::shared_ptr<const DomainBlock> same_cxx_block(const mg_object_block& in) {
+  if (!in.objects) return nullptr;
+  for (std::size_t i = 0; i < in.object_count; ++i)
+    if (const mg_object* o = in.objects[i]) {
+      const mg_object_cxx_v1* t = same_cxx(o);
+      const void* shared = t ? t->shared_block(&in) : nullptr;
+      return shared ? *static_cast<const std::shared_ptr<const DomainBlock>*>(shared) : nullptr;
+    }
+  return nullptr;
+}
+
 /// The C++ block of `in` (borrowed) for a port of kind `kind` in a block of `cases` cases: the very
 /// C++ block when this library exported it, else a view of its objects and a copy of its figures.
 inline std::shared_ptr<const DomainBlock> import_block(const mg_object_block& in, std::string_view kind, std::size_t cases,
@@ -124,6 +151,8 @@ inline std::shared_ptr<const DomainBlock> import_block(const mg_object_block& in
   if (in.struct_size < sizeof(mg_object_block)) throw std::invalid_argument(what + " is a malformed mg_object_block (struct_size)");
   if (in.origin == &object_origin && in.owner.ctx && in.owner.release == &ExportedBlock::release)
     return static_cast<const ExportedBlock*>(in.owner.ctx)->keep;  // made here: no C hop
+  if (auto same = same_cxx_block(in); same && same->kind() == kind && (same->size() == cases || same->size() == 1))
+    return same;  // made by a library of this one's C++ layer: no C hop
   const SdkInterface* sdk = sdk_interface_of_kind(kind);
   const std::size_t position = sdk ? static_cast<std::size_t>(sdk - sdk_interfaces) : SIZE_MAX;
   if (position == 0) return import_laws(in, cases, what, known);  // mechgraph.cam_law

@@ -1,7 +1,8 @@
 #pragma once
 // Domain objects across the SDK 1.x C boundary (docs/design/sdk-1.0.md, sections 3.3 and 3.4),
 // header-only and hidden: every shared library that includes it (a plugin, the host) has its own
-// copy, so two of them never unwrap each other's C++ objects.
+// copy, so two of them never unwrap each other's C++ objects through it; only the C++ object an
+// object offers under mechgraph.object.cxx/1 crosses, and only between equal keys.
 //
 //  - export_object: a C++ DomainObject as an mg_object (one allocation, an atomic reference count,
 //    the C++ object kept alive by a shared_ptr). A CamLaw answers mechgraph.cam_law/1 and the
@@ -16,7 +17,9 @@
 //    view of a foreign mg_object is passed on as that original object (retained): no chain of
 //    wrappers ever forms.
 //  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
-//    its C++ object (no C hop); another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
+//    its C++ object (no C hop), and so is one of an SDK interface made by a library of the same
+//    C++ layer (mechgraph.object.cxx/1, c/object_cxx.h: equal keys, detail/cxx_abi_key.hpp);
+//    another becomes a Foreign view (ForeignCamLaw, ForeignValveMotion,
 //    ForeignFollower, ForeignSpringModel, ForeignSpring, ForeignOpaque) that holds one reference and
 //    releases it when the last C++ holder lets go. A table with a required function missing (NULL)
 //    is refused there, naming the interface and the maker; an incomplete optional one is absent.
@@ -26,7 +29,10 @@
 #include <mechgraph/c/domain/joint_play.h>
 #include <mechgraph/c/domain/spring.h>
 #include <mechgraph/c/domain/valve_motion.h>
+#include <mechgraph/c/object_cxx.h>
 #include <mechgraph/c/sdk_lib.h>
+#include <mechgraph/block.hpp>
+#include <mechgraph/detail/cxx_abi_key.hpp>
 #include <mechgraph/domain/cam_law.hpp>
 #include <mechgraph/domain/fit.hpp>
 #include <mechgraph/domain/follower.hpp>
@@ -84,12 +90,21 @@ class MECHGRAPH_DETAIL_HIDDEN ForeignObject {
   ~ForeignObject() = default;
 };
 
+struct ExportedBlock;
+
+/// What every object this library exports begins with: the C++ interface its tables serve, and the
+/// block it lives in (a BlockLaw) or nullptr (an Exported).
+struct MECHGRAPH_DETAIL_HIDDEN ExportedHead : mg_object {
+  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*, const Follower*, const Spring*, const SpringModel*
+  ExportedBlock* block = nullptr;
+};
+inline const ExportedHead& head(const mg_object* o) { return *static_cast<const ExportedHead*>(o); }
+
 /// A C++ object as an mg_object (3.3). `mg_object` is its base, so the vtable's functions get back
 /// to it with a static_cast.
-struct MECHGRAPH_DETAIL_HIDDEN Exported : mg_object {
+struct MECHGRAPH_DETAIL_HIDDEN Exported : ExportedHead {
   mutable std::atomic<std::uint32_t> refs{1};
   std::shared_ptr<const DomainObject> self;
-  const void* primary = nullptr;  // const CamLaw*, const ValveMotion*, const Follower*, const Spring*, const SpringModel*
   std::string maker;              // the node type that made it
   std::string interface;          // an opaque object's private interface name
   const mg_object* cam = nullptr; // a valve motion's cam law, exported (one reference held)
@@ -103,6 +118,76 @@ struct MECHGRAPH_DETAIL_HIDDEN Exported : mg_object {
 };
 inline const Exported& exported(const mg_object* o) { return *static_cast<const Exported*>(o); }
 
+/// A cam law of a block exported by this library (block_bridge.hpp): the block's laws live in one
+/// array of it, and a reference to one of them is a reference to the block, which keeps the C++
+/// block and so the law alive. No allocation and no reference count of its own per case.
+struct MECHGRAPH_DETAIL_HIDDEN BlockLaw : ExportedHead {
+  std::shared_ptr<const DomainObject> self;
+};
+
+/// An exported block (block_bridge.hpp): what its owner and its laws keep alive, the C++ block.
+/// Destroyed when the owner has released it and no reference to one of its laws is left.
+struct MECHGRAPH_DETAIL_HIDDEN ExportedBlock {
+  mutable std::atomic<std::uint32_t> refs{1};  // the owner's, plus one per reference to a law in `laws`
+  std::shared_ptr<const DomainBlock> keep;
+  std::string maker;                           // the node type that made it
+  std::vector<BlockLaw> laws;                  // the laws made here (never reallocated once filled)
+  std::vector<const mg_object*> objects;       // what crosses: laws of `laws`, originals passed on, NULL
+  std::vector<const mg_object*> passed_on;     // the originals, one reference each
+  std::vector<mg_block_column> figures;
+  ~ExportedBlock() {
+    for (const mg_object* o : passed_on) o->vtbl->release(o);
+  }
+  static void unref(const ExportedBlock* b) {
+    if (b->refs.fetch_sub(1, std::memory_order_acq_rel) == 1) delete b;
+  }
+  static void release(void* self) { unref(static_cast<const ExportedBlock*>(self)); }
+};
+inline void block_law_retain(const mg_object* o) { head(o).block->refs.fetch_add(1, std::memory_order_relaxed); }
+inline void block_law_release(const mg_object* o) { ExportedBlock::unref(head(o).block); }
+inline const char* block_law_maker(const mg_object* o) { return head(o).block->maker.c_str(); }
+
+/// The C++ object behind an object this library exported.
+inline const std::shared_ptr<const DomainObject>& own_self(const mg_object* o) {
+  return head(o).block ? static_cast<const BlockLaw*>(o)->self : exported(o).self;
+}
+
+// --- mechgraph.object.cxx/1: the C++ object behind an exported object (SDK 1.4) -------------------
+inline const void* cxx_shared_object(const mg_object* o) { return &own_self(o); }
+inline const void* cxx_shared_block(const mg_object_block* b) {
+  return b && b->owner.release == &ExportedBlock::release && b->owner.ctx ? &static_cast<const ExportedBlock*>(b->owner.ctx)->keep
+                                                                          : nullptr;
+}
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_cxx_v1 object_cxx_table{sizeof(mg_object_cxx_v1), cxx_abi_key, &cxx_shared_object,
+                                                                       &cxx_shared_block};
+/// The answer of an object of an SDK interface to a query that its own tables did not take.
+inline const void* object_cxx_query(const char* name, uint32_t version) {
+#if MECHGRAPH_SDK_CXX_SHORTCUT
+  return version == 1 && name && std::strcmp(name, MG_OBJECT_CXX) == 0 ? &object_cxx_table : nullptr;
+#else
+  (void)name, (void)version;
+  return nullptr;
+#endif
+}
+/// The table of `o` when its C++ layer is this library's (equal keys), else nullptr.
+inline const mg_object_cxx_v1* same_cxx(const mg_object* o) {
+#if MECHGRAPH_SDK_CXX_SHORTCUT
+  const auto* t = static_cast<const mg_object_cxx_v1*>(o->vtbl->query(o, MG_OBJECT_CXX, 1));
+  if (!t || t->struct_size < sizeof(mg_object_cxx_v1) || !t->abi_key || !t->shared_object || !t->shared_block) return nullptr;
+  return t->abi_key == cxx_abi_key || std::strcmp(t->abi_key, cxx_abi_key) == 0 ? t : nullptr;
+#else
+  (void)o;
+  return nullptr;
+#endif
+}
+/// The C++ object behind `o` when its C++ layer is this library's, else nullptr.
+inline std::shared_ptr<const DomainObject> same_cxx_object(const mg_object* o) {
+  const mg_object_cxx_v1* t = same_cxx(o);
+  if (!t) return nullptr;
+  const void* shared = t->shared_object(o);
+  return shared ? *static_cast<const std::shared_ptr<const DomainObject>*>(shared) : nullptr;
+}
+
 inline void exported_retain(const mg_object* o) { exported(o).refs.fetch_add(1, std::memory_order_relaxed); }
 inline void exported_release(const mg_object* o) {
   if (exported(o).refs.fetch_sub(1, std::memory_order_acq_rel) == 1) delete &exported(o);
@@ -110,7 +195,7 @@ inline void exported_release(const mg_object* o) {
 inline const char* exported_maker(const mg_object* o) { return exported(o).maker.c_str(); }
 
 // --- mechgraph.cam_law/1 and its optional tables over a C++ CamLaw ---------------------------
-inline const CamLaw& law_of(const mg_object* o) { return *static_cast<const CamLaw*>(exported(o).primary); }
+inline const CamLaw& law_of(const mg_object* o) { return *static_cast<const CamLaw*>(head(o).primary); }
 inline constexpr double nan_result = std::numeric_limits<double>::quiet_NaN();
 
 inline void cam_event(const mg_object* o, double* begin, double* end) {
@@ -212,11 +297,13 @@ inline const void* cam_query(const mg_object*, const char* name, uint32_t versio
   if (std::strcmp(name, MG_CAM_LAW) == 0) return &cam_law_table;
   if (std::strcmp(name, MG_CAM_LAW_CLOSED_FORM) == 0) return &cam_closed_form_table;
   if (std::strcmp(name, MG_CAM_LAW_HIGHER) == 0) return &cam_higher_table;
-  return nullptr;
+  return object_cxx_query(name, version);
 }
+MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl block_law_vtbl{sizeof(mg_object_vtbl), &block_law_retain, &block_law_release,
+                                                                   &cam_query, &block_law_maker, &object_origin};
 
 // --- mechgraph.valve_motion/1 over a C++ ValveMotion -------------------------------------------
-inline const ValveMotion& motion_of(const mg_object* o) { return *static_cast<const ValveMotion*>(exported(o).primary); }
+inline const ValveMotion& motion_of(const mg_object* o) { return *static_cast<const ValveMotion*>(head(o).primary); }
 inline mg_status valve_at(const mg_object* o, double phi, mg_lift4* out) {
   try {
     *out = c_lift(motion_of(o).at(phi));
@@ -268,11 +355,11 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_valve_motion_v1 valve_motion_table{sizeo
                                                                            &valve_number<&ValveMotion::lash>,
                                                                            &valve_cam};
 inline const void* valve_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_VALVE_MOTION) == 0 ? &valve_motion_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_VALVE_MOTION) == 0 ? &valve_motion_table : object_cxx_query(name, version);
 }
 
 // --- mechgraph.follower/1 over a C++ Follower ------------------------------------------------
-inline const Follower& follower_of(const mg_object* o) { return *static_cast<const Follower*>(exported(o).primary); }
+inline const Follower& follower_of(const mg_object* o) { return *static_cast<const Follower*>(head(o).primary); }
 inline void send_text(const mg_text_sink& sink, std::string_view text) {
   if (sink.append) sink.append(sink.self, text.data(), text.size());
 }
@@ -333,14 +420,14 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_follower_v1 follower_table{sizeof(mg_fol
                                                                    &follower_roller_radius, &follower_pivoted,
                                                                    &follower_cam_lever, &follower_contact};
 inline const void* follower_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_FOLLOWER) == 0 ? &follower_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_FOLLOWER) == 0 ? &follower_table : object_cxx_query(name, version);
 }
 
 // --- mechgraph.joint_play/1 over a C++ JointPlay: its data, built once at export ---------------
 inline void joint_play_data(const mg_object* o, mg_joint_play_data_v1* out) { *out = exported(o).play; }
 MECHGRAPH_DETAIL_HIDDEN inline const mg_joint_play_v1 joint_play_table{sizeof(mg_joint_play_v1), &joint_play_data};
 inline const void* joint_play_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_JOINT_PLAY) == 0 ? &joint_play_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_JOINT_PLAY) == 0 ? &joint_play_table : object_cxx_query(name, version);
 }
 inline void export_play_data(Exported& e, const JointPlay& play) {
   std::size_t count = 0;
@@ -380,7 +467,7 @@ inline std::shared_ptr<const JointPlay> import_play_data(const mg_object* o) {
 inline void fit_data(const mg_object* o, mg_fit_data_v1* out) { *out = exported(o).fit; }
 MECHGRAPH_DETAIL_HIDDEN inline const mg_fit_v1 fit_table{sizeof(mg_fit_v1), &fit_data};
 inline const void* fit_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_FIT) == 0 ? &fit_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_FIT) == 0 ? &fit_table : object_cxx_query(name, version);
 }
 inline void export_fit_data(Exported& e, const Fit& fit) {
   e.fit = {fit.designation().c_str(), fit.nominal(), {fit.hole().upper, fit.hole().lower}, {fit.shaft().upper, fit.shaft().lower},
@@ -405,7 +492,7 @@ inline std::shared_ptr<const Fit> import_fit_data(const mg_object* o) {
 }
 
 // --- mechgraph.spring/1 over a C++ Spring (SDK 1.1) ----------------------------------------------
-inline const Spring& spring_of(const mg_object* o) { return *static_cast<const Spring*>(exported(o).primary); }
+inline const Spring& spring_of(const mg_object* o) { return *static_cast<const Spring*>(head(o).primary); }
 template <double (Spring::*get)(double) const>
 double spring_at(const mg_object* o, double x) {
   try {
@@ -446,13 +533,13 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_spring_v1 spring_table{sizeof(mg_spring_
                                                                &spring_number<&Spring::allowable_stress>,
                                                                &spring_coils};
 inline const void* spring_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_SPRING) == 0 ? &spring_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_SPRING) == 0 ? &spring_table : object_cxx_query(name, version);
 }
 
 // --- mechgraph.spring_model/1 over a C++ SpringModel (SDK 1.1) -----------------------------------
 inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
                                       std::string_view private_interface);
-inline const SpringModel& spring_model_of(const mg_object* o) { return *static_cast<const SpringModel*>(exported(o).primary); }
+inline const SpringModel& spring_model_of(const mg_object* o) { return *static_cast<const SpringModel*>(head(o).primary); }
 inline void spring_model_type_name(const mg_object* o, mg_text_sink out) {
   try {
     send_text(out, spring_model_of(o).type_name());
@@ -482,7 +569,7 @@ inline mg_status spring_model_size(const mg_object* o, const mg_spring_line* lin
 MECHGRAPH_DETAIL_HIDDEN inline const mg_spring_model_v1 spring_model_table{sizeof(mg_spring_model_v1), &spring_model_type_name,
                                                                            &spring_model_size};
 inline const void* spring_model_query(const mg_object*, const char* name, uint32_t version) {
-  return version == 1 && name && std::strcmp(name, MG_SPRING_MODEL) == 0 ? &spring_model_table : nullptr;
+  return version == 1 && name && std::strcmp(name, MG_SPRING_MODEL) == 0 ? &spring_model_table : object_cxx_query(name, version);
 }
 
 // --- an object without a C table: answers only its private interface ------------------------
@@ -868,21 +955,38 @@ inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law,
 inline std::shared_ptr<const CamLaw> import_cam_law(const mg_object* o) {
   if (!o || !o->vtbl) throw std::invalid_argument("an input object is missing or has no vtable");
   if (o->vtbl->origin == &object_origin) {  // made here: no C hop
-    const Exported& e = exported(o);
-    if (e.vtbl == &cam_law_vtbl) return std::shared_ptr<const CamLaw>(e.self, static_cast<const CamLaw*>(e.primary));
-    return std::dynamic_pointer_cast<const CamLaw>(e.self);
+    if (o->vtbl == &cam_law_vtbl || o->vtbl == &block_law_vtbl)
+      return std::shared_ptr<const CamLaw>(own_self(o), static_cast<const CamLaw*>(head(o).primary));
+    return std::dynamic_pointer_cast<const CamLaw>(own_self(o));
   }
+  if (auto same = std::dynamic_pointer_cast<const CamLaw>(same_cxx_object(o))) return same;  // one C++ layer: no C hop
   return std::make_shared<const ForeignCamLaw>(o);
+}
+
+/// Whether `object` implements the SDK interface at `position` in sdk_interfaces.
+inline bool implements_sdk_interface(const DomainObject& object, std::ptrdiff_t position) {
+  switch (position) {
+    case 0: return dynamic_cast<const CamLaw*>(&object) != nullptr;
+    case 1: return dynamic_cast<const ValveMotion*>(&object) != nullptr;
+    case 2: return dynamic_cast<const JointPlay*>(&object) != nullptr;
+    case 3: return dynamic_cast<const Follower*>(&object) != nullptr;
+    case 4: return dynamic_cast<const Fit*>(&object) != nullptr;
+    case 5: return dynamic_cast<const SpringModel*>(&object) != nullptr;
+    case 6: return dynamic_cast<const Spring*>(&object) != nullptr;
+    default: return false;
+  }
 }
 
 /// The C++ view of `o` (borrowed) as a port declaring `interface`/`version` sees it. Throws
 /// std::runtime_error naming the interface when the object does not answer it.
 inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std::string_view interface, std::uint32_t version) {
   if (!o || !o->vtbl) throw std::invalid_argument("an input object is missing or has no vtable");
-  if (o->vtbl->origin == &object_origin) return exported(o).self;  // made here: no C hop
+  if (o->vtbl->origin == &object_origin) return own_self(o);  // made here: no C hop
   // (By position in sdk_interfaces, not by kind_name: reading those static members here would
   // make the plugin export them.)
-  if (const SdkInterface* known = sdk_interface_named(interface)) switch (known - sdk_interfaces) {
+  if (const SdkInterface* known = sdk_interface_named(interface)) {
+    if (auto same = same_cxx_object(o); same && implements_sdk_interface(*same, known - sdk_interfaces)) return same;  // no C hop
+    switch (known - sdk_interfaces) {
       case 0: return std::make_shared<const ForeignCamLaw>(o);
       case 1: return std::make_shared<const ForeignValveMotion>(o);
       case 2: return import_play_data(o);
@@ -892,6 +996,7 @@ inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std
       case 6: return std::make_shared<const ForeignSpring>(o);
       default: break;
     }
+  }
   return std::make_shared<const ForeignOpaque>(o, std::string(interface), version);
 }
 

@@ -1,0 +1,64 @@
+#pragma once
+// The key of this library's C++ layer (c/object_cxx.h, mechgraph.object.cxx/1): two libraries
+// whose keys are equal byte for byte lay out every class of the SDK's headers, and every
+// standard-library type those classes hold, the same way, so one may use the other's C++ domain
+// objects directly. What goes in (pybind11 keys its shared internals the same way):
+//  - the SDK's version and a digest of its headers (mechgraph/version.hpp, written by CMake from
+//    the headers' contents: the conformance kits and the bridges themselves are left out);
+//  - the compiler and its major version (two compilers are assumed to differ, whatever their
+//    promises; a plugin built by clang for a gcc-built host then keeps to the C tables);
+//  - the standard library, its release and its ABI switches (the dual string ABI, debug mode's
+//    other containers), and the C++ ABI version.
+// A library built with MECHGRAPH_SDK_CXX_SHORTCUT defined to 0 has no key: it neither offers nor
+// uses the shortcut (the tests that must see the C tables at work build so).
+#include <mechgraph/version.hpp>
+
+#include <version>
+
+#ifndef MECHGRAPH_SDK_CXX_SHORTCUT
+#define MECHGRAPH_SDK_CXX_SHORTCUT 1
+#endif
+
+#define MECHGRAPH_DETAIL_TEXT2(x) #x
+#define MECHGRAPH_DETAIL_TEXT(x) MECHGRAPH_DETAIL_TEXT2(x)
+
+#if defined(__clang__)
+#define MECHGRAPH_DETAIL_KEY_COMPILER "clang-" MECHGRAPH_DETAIL_TEXT(__clang_major__)
+#elif defined(__GNUC__)
+#define MECHGRAPH_DETAIL_KEY_COMPILER "gcc-" MECHGRAPH_DETAIL_TEXT(__GNUC__)
+#else
+#define MECHGRAPH_DETAIL_KEY_COMPILER "unknown"
+#endif
+
+#if defined(_LIBCPP_VERSION)
+#define MECHGRAPH_DETAIL_KEY_STDLIB "libc++-" MECHGRAPH_DETAIL_TEXT(_LIBCPP_VERSION) "-abi" MECHGRAPH_DETAIL_TEXT(_LIBCPP_ABI_VERSION)
+#elif defined(__GLIBCXX__)
+#if defined(_GLIBCXX_DEBUG)
+#define MECHGRAPH_DETAIL_KEY_DEBUG "-debug"
+#else
+#define MECHGRAPH_DETAIL_KEY_DEBUG ""
+#endif
+#define MECHGRAPH_DETAIL_KEY_STDLIB \
+  "libstdc++-" MECHGRAPH_DETAIL_TEXT(__GLIBCXX__) "-cxx11abi" MECHGRAPH_DETAIL_TEXT(_GLIBCXX_USE_CXX11_ABI) MECHGRAPH_DETAIL_KEY_DEBUG
+#else
+#define MECHGRAPH_DETAIL_KEY_STDLIB "unknown"
+#endif
+
+#if defined(__GXX_ABI_VERSION)
+#define MECHGRAPH_DETAIL_KEY_CXXABI "cxxabi" MECHGRAPH_DETAIL_TEXT(__GXX_ABI_VERSION)
+#else
+#define MECHGRAPH_DETAIL_KEY_CXXABI "cxxabi-unknown"
+#endif
+
+namespace mechgraph::detail {
+
+/// This library's key, or nullptr when it keeps to the C tables.
+#if MECHGRAPH_SDK_CXX_SHORTCUT
+__attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key =
+    "mechgraph-sdk-" MECHGRAPH_SDK_VERSION "/headers-" MECHGRAPH_SDK_HEADERS_DIGEST "/" MECHGRAPH_DETAIL_KEY_COMPILER
+    "/" MECHGRAPH_DETAIL_KEY_STDLIB "/" MECHGRAPH_DETAIL_KEY_CXXABI;
+#else
+__attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key = nullptr;
+#endif
+
+}  // namespace mechgraph::detail
