@@ -2,6 +2,7 @@
 
 #include "c_block_node_type.hpp"
 #include "c_node_description.hpp"
+#include "node_context.hpp"
 
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/node_forecast_reads.h>
@@ -489,7 +490,15 @@ class CNodeType final : public NodeType, public ForecastReads {
       if (connected[i])
         for (const Value& v : *connected[i]) values[next++] = views.value(v);
     }
-    const mg_eval_args args{sizeof(mg_eval_args), c_params.data(), c_inputs.data()};
+    // What is read downstream, by declared index (SDK 1.4): the graph node's mask when the host's
+    // own context evaluates it, else asked output by output.
+    const std::int32_t* wanted = typeid(context) == typeid(NodeContext) ? static_cast<const NodeContext&>(context).wanted_mask() : nullptr;
+    CallArray<std::int32_t, 32> asked(wanted ? 0 : info_.outputs.size());
+    if (!wanted) {
+      for (std::size_t i = 0; i < info_.outputs.size(); ++i) asked[i] = context.wanted(info_.outputs[i].name) ? 1 : 0;
+      wanted = asked.data();
+    }
+    const mg_eval_args args{sizeof(mg_eval_args), c_params.data(), c_inputs.data(), wanted};
     mg_eval_ctx call{info_, output_versions_, outputs, context, false, {}, {}, {}, {}};
     const mg_status status = type_.evaluate(&type_, &args, &call);
     if (!call.defect.empty())

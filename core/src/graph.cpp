@@ -43,7 +43,17 @@ void mark_wanted_outputs(Graph& graph) {
       for (const GraphNode::Source& src : in.sources) want(src.node, src.port);
   }
   for (const RequestedOutput& o : graph.outputs) want(o.node, o.port);
-  for (GraphNode& n : graph.nodes) std::sort(n.wanted.begin(), n.wanted.end());
+  for (GraphNode& n : graph.nodes) {
+    std::sort(n.wanted.begin(), n.wanted.end());
+    refresh_wanted_mask(n);
+  }
+}
+
+void refresh_wanted_mask(GraphNode& node) {
+  const std::vector<PortSpec>& outputs = node.info().outputs;
+  node.wanted_mask.assign(outputs.size(), 0);
+  for (std::size_t i = 0; i < outputs.size(); ++i)
+    node.wanted_mask[i] = std::binary_search(node.wanted.begin(), node.wanted.end(), outputs[i].name) ? 1 : 0;
 }
 
 std::optional<std::size_t> Graph::find(std::string_view name) const {

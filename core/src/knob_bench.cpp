@@ -49,6 +49,7 @@ Graph focus_on(const Graph& graph, std::size_t node) {
   n.wanted.clear();
   for (const PortSpec& p : n.info().outputs) n.wanted.push_back(p.name);
   std::sort(n.wanted.begin(), n.wanted.end());
+  refresh_wanted_mask(n);
   return g;
 }
 

@@ -45,6 +45,15 @@ class NodeContext final : public EvalContext {
     return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
   }
   const std::optional<std::pair<std::string, double>>& bad_counter() const { return bad_counter_; }
+  /// wanted() for each declared output, in declaration order (GraphNode::wanted_mask), or nullptr
+  /// when the node's mask does not match its list (code that edited `wanted` and did not refresh).
+  const std::int32_t* wanted_mask() const {
+    const std::vector<std::int32_t>& mask = node_.wanted_mask;
+    if (mask.size() != node_.info().outputs.size()) return nullptr;
+    std::size_t ones = 0;
+    for (std::int32_t m : mask) ones += static_cast<std::size_t>(m);
+    return ones == node_.wanted.size() ? mask.data() : nullptr;
+  }
 
  private:
   const GraphNode& node_;

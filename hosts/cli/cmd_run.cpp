@@ -36,6 +36,7 @@ void want_declared_notes(Graph& graph) {
       if (!n.params.has(note.when_param) || !n.info().find_output(note.output)) continue;
       if (std::find(n.wanted.begin(), n.wanted.end(), note.output) != n.wanted.end()) continue;
       n.wanted.insert(std::upper_bound(n.wanted.begin(), n.wanted.end(), note.output), note.output);
+      refresh_wanted_mask(n);
     }
   }
 }

@@ -219,10 +219,11 @@ static_assert(offsetof(mg_node_desc, frames) == 128);
 static_assert(offsetof(mg_node_desc, frame_count) == 136);
 static_assert(offsetof(mg_node_desc, notes) == 144);
 static_assert(offsetof(mg_node_desc, note_count) == 152);
-static_assert(sizeof(mg_eval_args) == 24);
+static_assert(sizeof(mg_eval_args) == 32);
 static_assert(offsetof(mg_eval_args, struct_size) == 0);
 static_assert(offsetof(mg_eval_args, params) == 8);
 static_assert(offsetof(mg_eval_args, inputs) == 16);
+static_assert(offsetof(mg_eval_args, wanted) == 24);  // SDK 1.4
 static_assert(sizeof(mg_node_type) == 40);
 static_assert(offsetof(mg_node_type, struct_size) == 0);
 static_assert(offsetof(mg_node_type, desc) == 8);

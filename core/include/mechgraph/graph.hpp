@@ -40,6 +40,7 @@ struct GraphNode {
   std::vector<std::size_t> upstream;       // distinct producer nodes
   std::vector<std::string> effects_read;   // scene effects this node implements
   std::vector<std::string> wanted;         // its outputs read downstream (mark_wanted_outputs)
+  std::vector<std::int32_t> wanted_mask;   // the same by declared output: 1 read, 0 not (mark_wanted_outputs)
   bool needed = false;
   bool memoised = true;                    // looked up in and stored to the memo cache (a sweep clears it)
   const NodeInfo& info() const { return type->type->info(); }
@@ -94,6 +95,8 @@ struct Graph {
 /// Fills each node's `wanted` from the connections of needed nodes and from `outputs`; build_graph
 /// calls it, and so must code that changes which outputs a built graph requests.
 void mark_wanted_outputs(Graph& graph);
+/// Makes `node.wanted_mask` say what `node.wanted` says: code that edits `wanted` calls it after.
+void refresh_wanted_mask(GraphNode& node);
 
 
 /// Throws SceneError naming file:line:column for every problem it finds (the first one).

@@ -150,6 +150,9 @@ typedef struct mg_eval_args {
   uint32_t struct_size;
   const mg_param_value* params; /* desc->param_count entries, declaration order, SI, checked */
   const mg_input* inputs;       /* desc->input_count entries, declaration order */
+  /* SDK 1.4 (read it when MG_HAS_FIELD says so): desc->output_count entries, 1 for an output read
+     downstream, else 0, what mg_eval_suite_v1::wanted answers for each; NULL: ask the suite. */
+  const int32_t* wanted;
 } mg_eval_args;
 
 typedef struct mg_node_type {

@@ -25,6 +25,7 @@
 #include <mechgraph/version.hpp>
 
 #include <algorithm>
+#include <utility>
 #include <atomic>
 #include <cstring>
 #include <deque>
@@ -61,10 +62,41 @@ std::uint32_t index_of(const Container& items, std::string_view name) {
   return UINT32_MAX;
 }
 
+/// A type's declared outputs, for the questions a node asks by name during an evaluation: each
+/// name's length and first and last characters packed in one word, in declaration order, so a
+/// look-up compares words and only the one name whose word matches.
+struct OutputIndex {
+  std::vector<std::string_view> names;
+  std::vector<std::uint32_t> keys;
+  static std::uint32_t key(std::string_view name) {
+    if (name.empty()) return 0;
+    return static_cast<std::uint32_t>(name.size() & 0xffffu) << 16 | static_cast<std::uint32_t>(static_cast<unsigned char>(name.front())) << 8 |
+           static_cast<unsigned char>(name.back());
+  }
+};
+inline OutputIndex output_index(const NodeInfo& info) {
+  OutputIndex index;
+  for (const PortSpec& p : info.outputs) {
+    index.names.push_back(p.name);
+    index.keys.push_back(OutputIndex::key(p.name));
+  }
+  return index;
+}
+/// The declared index of output `name`, or UINT32_MAX.
+inline std::uint32_t find_output(const OutputIndex& index, std::string_view name) {
+  const std::uint32_t k = OutputIndex::key(name);
+  for (std::size_t i = 0; i < index.keys.size(); ++i)
+    if (index.keys[i] == k && index.names[i] == name) return static_cast<std::uint32_t>(i);
+  return UINT32_MAX;
+}
+
 /// What a node sees of the host during one evaluation, over the eval suite.
 class SuiteContext final : public EvalContext {
  public:
-  SuiteContext(const NodeInfo& info, mg_eval_ctx* ctx) : info_(info), ctx_(ctx) {}
+  // `wanted`: the host's flags by declared output (mg_eval_args::wanted, SDK 1.4), or nullptr for
+  // a host that gives none (then each question goes through the suite).
+  SuiteContext(const NodeInfo& info, const OutputIndex& outputs, mg_eval_ctx* ctx, const std::int32_t* wanted)
+      : info_(info), outputs_(outputs), ctx_(ctx), wanted_(wanted) {}
   bool effect(std::string_view name) const override {
     const std::uint32_t i = index_of(info_.effects, name);
     return i != UINT32_MAX && host_suites().eval->effect(ctx_, i) != 0;
@@ -79,13 +111,16 @@ class SuiteContext final : public EvalContext {
     throw std::logic_error("report_work on undeclared counter '" + std::string(counter) + "'");
   }
   bool wanted(std::string_view output) const override {
-    const std::uint32_t i = index_of(info_.outputs, output);
-    return i == UINT32_MAX || host_suites().eval->wanted(ctx_, i) != 0;
+    const std::uint32_t i = find_output(outputs_, output);
+    if (i == UINT32_MAX) return true;
+    return wanted_ ? wanted_[i] != 0 : host_suites().eval->wanted(ctx_, i) != 0;
   }
 
  private:
   const NodeInfo& info_;
+  const OutputIndex& outputs_;
   mg_eval_ctx* ctx_;
+  const std::int32_t* wanted_;
 };
 
 inline void tell(mg_text_sink why, std::string_view text) {
@@ -107,7 +142,10 @@ MECHGRAPH_DETAIL_HIDDEN inline std::size_t next_bridge_sets_index() {
 class NodeTypeExport {
  public:
   NodeTypeExport(std::shared_ptr<const NodeType> type, std::string_view plugin_id)
-      : type_(std::move(type)), sets_index_(next_bridge_sets_index()), has_forecast_(has_own_forecast(*type_)) {
+      : type_(std::move(type)),
+        sets_index_(next_bridge_sets_index()),
+        has_forecast_(has_own_forecast(*type_)),
+        output_index_(output_index(type_->info())) {
     const NodeInfo& info = type_->info();
     // Presentation (c/present.h): frames and channels name a frame by its index in `frames`.
     for (const AngleFrame& f : info.frames) {
@@ -388,7 +426,8 @@ class NodeTypeExport {
         }
       } const in_use(*sets);
       sets->load(*args, exported.input_interfaces_);
-      SuiteContext context(exported.type_->info(), ctx);
+      SuiteContext context(exported.type_->info(), exported.output_index_, ctx,
+                           MG_HAS_FIELD(args, mg_eval_args, wanted) ? args->wanted : nullptr);
       exported.type_->evaluate(sets->params, sets->inputs, sets->outputs, context);
       for (const std::string& note : sets->outputs.notes()) suite.note(ctx, c_text(note));
       return sets->put_outputs([&](std::uint32_t index, Value& v) { return exported.put_output(suite, ctx, index, v); });
@@ -454,6 +493,7 @@ class NodeTypeExport {
   std::shared_ptr<const NodeType> type_;
   std::size_t sets_index_;  // in thread_bridge_sets()
   bool has_forecast_;       // overrides NodeType::forecast (or cannot be told): answers mechgraph.node.forecast
+  OutputIndex output_index_;  // the outputs by name, for SuiteContext::wanted
   bool has_reads_ = false;  // implements ForecastReads with declared names: answers mechgraph.node.forecast_reads
   std::vector<std::uint32_t> forecast_reads_;
   mg_node_forecast_reads_v1 reads_table_{};

@@ -596,6 +596,8 @@ MECHGRAPH_DETAIL_HIDDEN inline const mg_object_vtbl opaque_vtbl{sizeof(mg_object
                                                                 &opaque_query, &exported_maker, &object_origin};
 
 inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law, std::string_view maker);
+inline const mg_object* export_valve_motion(const std::shared_ptr<const DomainObject>& object, const ValveMotion& motion,
+                                            std::string_view maker);
 
 /// `object` as an mg_object: a new reference, which the caller hands over or releases. `maker` is
 /// the node type that made it (for messages); `private_interface` names what an object of a kind
@@ -603,10 +605,13 @@ inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law,
 inline const mg_object* export_object(const std::shared_ptr<const DomainObject>& object, std::string_view maker,
                                       std::string_view private_interface) {
   if (!object) throw std::invalid_argument("an empty domain object cannot cross the C boundary");
-  // A cam law, the object that crosses most, without the search of the class hierarchy that the
-  // cast to ForeignObject below costs when it fails (export_cam_law tells a foreign one by type).
+  // A cam law and a valve motion, the objects that cross most, without the search of the class
+  // hierarchy that the cast to ForeignObject below costs when it fails (a view made here is told
+  // by its type, the Foreign classes being final).
   if (object->kind() == sdk_interfaces[0].kind)
     if (const auto* law = dynamic_cast<const CamLaw*>(object.get())) return export_cam_law(std::shared_ptr<const CamLaw>(object, law), maker);
+  if (object->kind() == sdk_interfaces[1].kind)
+    if (const auto* motion = dynamic_cast<const ValveMotion*>(object.get())) return export_valve_motion(object, *motion, maker);
   if (const auto* foreign = dynamic_cast<const ForeignObject*>(object.get())) {  // pass the original on
     const mg_object* original = foreign->c_object();
     original->vtbl->retain(original);
@@ -950,6 +955,26 @@ inline const mg_object* export_cam_law(const std::shared_ptr<const CamLaw>& law,
   return e.release();
 }
 
+/// A valve motion as an mg_object (a new reference), as export_object makes it, without its search
+/// of the class hierarchy: a view of a foreign motion (ForeignValveMotion being final) passes the
+/// original on.
+inline const mg_object* export_valve_motion(const std::shared_ptr<const DomainObject>& object, const ValveMotion& motion,
+                                            std::string_view maker) {
+  if (&typeid(motion) == &typeid(ForeignValveMotion)) {
+    const mg_object* original = static_cast<const ForeignValveMotion&>(motion).c_object();
+    original->vtbl->retain(original);
+    return original;
+  }
+  auto e = std::make_unique<Exported>();
+  e->self = object;
+  e->maker = maker;
+  e->vtbl = &valve_motion_vtbl;
+  e->primary = &motion;
+  // Its cam law, exported once: keeps the motion alive (aliasing) as long as someone holds the law.
+  e->cam = export_cam_law(std::shared_ptr<const CamLaw>(object, &motion.cam()), maker);
+  return e.release();
+}
+
 /// The C++ view of `o` (borrowed) as a cam law, as import_object(o, MG_CAM_LAW, 1) gives it but
 /// typed: this library's own law unwrapped, another's a ForeignCamLaw.
 inline std::shared_ptr<const CamLaw> import_cam_law(const mg_object* o) {
@@ -985,7 +1010,10 @@ inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std
   // (By position in sdk_interfaces, not by kind_name: reading those static members here would
   // make the plugin export them.)
   if (const SdkInterface* known = sdk_interface_named(interface)) {
-    if (auto same = same_cxx_object(o); same && implements_sdk_interface(*same, known - sdk_interfaces)) return same;  // no C hop
+    // One C++ layer: the object itself, no C hop (its kind() names the interface, or it implements
+    // it beside another).
+    if (auto same = same_cxx_object(o); same && (same->kind() == known->kind || implements_sdk_interface(*same, known - sdk_interfaces)))
+      return same;
     switch (known - sdk_interfaces) {
       case 0: return std::make_shared<const ForeignCamLaw>(o);
       case 1: return std::make_shared<const ForeignValveMotion>(o);
