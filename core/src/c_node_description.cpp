@@ -14,10 +14,28 @@ namespace {
 
 std::string text(const char* s) { return s ? s : ""; }
 
+// What a refusal names ("lib.so: node type 'cam.kurz' parameter 'lift' default"), put together only
+// when there is a refusal: a declaration is read for every type at every start, and it is sound.
+// Each part is up to four pieces of text after its parent's; the pieces must outlive the part.
+struct Subject {
+  Subject(const Subject* up, std::string_view p1, std::string_view p2 = {}, std::string_view p3 = {}, std::string_view p4 = {})
+      : parent(up), a(p1), b(p2), c(p3), d(p4) {}
+  const Subject* parent;
+  std::string_view a, b, c, d;
+  std::string str() const {
+    std::string s = parent ? parent->str() : std::string();
+    s.append(a).append(b).append(c).append(d);
+    return s;
+  }
+};
+std::string operator+(const Subject& what, std::string_view more) { return what.str().append(more); }
+
+Dimension c_dim(const mg_dim& d, const Subject& what);
+
 // The part of each struct an SDK 1.x writer must fill (node.h, "Required prefixes"): shorter is
 // refused; the fields after it may be absent and are then taken as their defaults.
 template <class T>
-void require_prefix(const T* p, std::size_t required, const std::string& what) {
+void require_prefix(const T* p, std::size_t required, const Subject& what) {
   if (p->struct_size < required)
     throw PluginError(what + " is " + std::to_string(p->struct_size) + " bytes (struct_size), shorter than the " +
                       std::to_string(required) + " bytes every SDK 1.x writer fills; a defect of the plugin");
@@ -25,7 +43,7 @@ void require_prefix(const T* p, std::size_t required, const std::string& what) {
 
 // Element i of a plugin's array of growable structs: all elements have the size of the first.
 template <class T>
-const T* element(const T* array, std::size_t i, std::size_t required, const std::string& what) {
+const T* element(const T* array, std::size_t i, std::size_t required, const Subject& what) {
   if (!array) throw PluginError(what + ": the array is missing (a null pointer with a non-zero count)");
   require_prefix(array, required, what);
   const T* e = MG_ELEMENT(T, array, i);
@@ -35,7 +53,7 @@ const T* element(const T* array, std::size_t i, std::size_t required, const std:
   return e;
 }
 
-std::vector<std::string> names(const char* const* list, std::size_t count, const std::string& what) {
+std::vector<std::string> names(const char* const* list, std::size_t count, const Subject& what) {
   std::vector<std::string> out;
   if (count > 0 && !list) throw PluginError(what + ": the list is missing (a null pointer with a non-zero count)");
   for (std::size_t i = 0; i < count; ++i) {
@@ -45,7 +63,7 @@ std::vector<std::string> names(const char* const* list, std::size_t count, const
   return out;
 }
 
-ParamKind param_kind(std::int32_t kind, const std::string& what) {
+ParamKind param_kind(std::int32_t kind, const Subject& what) {
   switch (kind) {
     case MG_PARAM_NUMBER: return ParamKind::number;
     case MG_PARAM_INTEGER: return ParamKind::integer;
@@ -57,7 +75,7 @@ ParamKind param_kind(std::int32_t kind, const std::string& what) {
   }
 }
 
-ParamValue param_value(const mg_param_value& v, const ParamSpec& spec, const std::string& what) {
+ParamValue param_value(const mg_param_value& v, const ParamSpec& spec, const Subject& what) {
   ParamValue out;
   out.kind = spec.kind;
   switch (spec.kind) {
@@ -82,7 +100,7 @@ ParamValue param_value(const mg_param_value& v, const ParamSpec& spec, const std
         Record record;
         for (std::size_t f = 0; f < rec.field_count; ++f)
           if (rec.fields[f].present)
-            record[spec.fields[f].name] = param_value(rec.fields[f], spec.fields[f], what + " field '" + spec.fields[f].name + "'");
+            record[spec.fields[f].name] = param_value(rec.fields[f], spec.fields[f], Subject{&what, " field '", spec.fields[f].name, "'"});
         out.records.push_back(std::move(record));
       }
       break;
@@ -90,13 +108,13 @@ ParamValue param_value(const mg_param_value& v, const ParamSpec& spec, const std
   return out;
 }
 
-ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
-  const std::string what = what_type + " parameter '" + text(d.name) + "'";
+ParamSpec param_spec(const mg_param_decl& d, const Subject& what_type) {
   if (!d.name) throw PluginError(what_type + ": a parameter has no name");
+  const Subject what{&what_type, " parameter '", d.name, "'"};
   ParamSpec s;
   s.name = d.name;
   s.kind = param_kind(d.kind, what);
-  s.dimension = from_c_dim(d.dim, what);
+  s.dimension = c_dim(d.dim, what);
   s.doc = text(d.doc);
   s.min = d.min;
   s.max = d.max;
@@ -104,13 +122,14 @@ ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
   s.max_exclusive = (d.flags & MG_PF_MAX_EXCLUSIVE) != 0;
   s.knob = (d.flags & MG_PF_KNOB) != 0;
   s.is_path = (d.flags & MG_PF_PATH) != 0;
-  s.choices = names(d.choices, d.choice_count, what + " choices");
+  s.choices = names(d.choices, d.choice_count, Subject{&what, " choices"});
+  const Subject field{&what, " record field"};
   for (std::size_t f = 0; f < d.field_count; ++f)
-    s.fields.push_back(param_spec(*element(d.fields, f, offsetof(mg_param_decl, display_unit), what + " record field"), what + " record field"));
+    s.fields.push_back(param_spec(*element(d.fields, f, offsetof(mg_param_decl, display_unit), field), field));
   const bool has_default = (d.flags & MG_PF_HAS_DEFAULT) != 0;
   s.required = (d.flags & MG_PF_REQUIRED) != 0 && !has_default;
-  if (has_default) s.default_value = param_value(d.default_value, s, what + " default");
-  if (d.flags & MG_PF_HAS_EXAMPLE) s.example_value = param_value(d.example_value, s, what + " example");
+  if (has_default) s.default_value = param_value(d.default_value, s, Subject{&what, " default"});
+  if (d.flags & MG_PF_HAS_EXAMPLE) s.example_value = param_value(d.example_value, s, Subject{&what, " example"});
   s.display_unit = text(MG_FIELD_OR(&d, mg_param_decl, display_unit, nullptr));
   s.range_reason = text(MG_FIELD_OR(&d, mg_param_decl, range_reason, nullptr));
   return s;
@@ -118,7 +137,7 @@ ParamSpec param_spec(const mg_param_decl& d, const std::string& what_type) {
 
 // The id of the frame `ref` names (MG_FRAME(i) of the type's `frames`, already read), "" for
 // MG_NO_FRAME.
-std::string frame_id(std::int32_t ref, const std::vector<AngleFrame>& frames, const std::string& what) {
+std::string frame_id(std::int32_t ref, const std::vector<AngleFrame>& frames, const Subject& what) {
   if (ref == MG_NO_FRAME) return {};
   if (ref < 0 || static_cast<std::size_t>(ref) > frames.size())
     throw PluginError(what + " names angle frame " + std::to_string(ref) + ", but the type declares " +
@@ -126,12 +145,12 @@ std::string frame_id(std::int32_t ref, const std::vector<AngleFrame>& frames, co
   return frames[static_cast<std::size_t>(ref) - 1].id;
 }
 
-ChannelDecl channel_decl(const mg_channel_decl& d, const std::vector<AngleFrame>& frames, const std::string& what_port) {
+ChannelDecl channel_decl(const mg_channel_decl& d, const std::vector<AngleFrame>& frames, const Subject& what_port) {
   if (!d.name) throw PluginError(what_port + ": a declared channel has no name");
-  const std::string what = what_port + " channel '" + std::string(d.name) + "'";
+  const Subject what{&what_port, " channel '", d.name, "'"};
   ChannelDecl c;
   c.name = d.name;
-  c.dimension = from_c_dim(d.dim, what);
+  c.dimension = c_dim(d.dim, what);
   c.label = text(d.label);
   c.display_unit = text(d.display_unit);
   c.angle_frame = frame_id(d.angle_frame, frames, what);
@@ -148,16 +167,16 @@ ChannelDecl channel_decl(const mg_channel_decl& d, const std::vector<AngleFrame>
 
 // mg_presentation, mg_channel_decl, mg_angle_frame and mg_note_decl came with SDK 1.0 whole: a
 // writer fills them whole (node.h, "Required prefixes").
-Presentation presentation(const mg_presentation& d, const std::vector<AngleFrame>& frames, const std::string& what) {
-  require_prefix(&d, sizeof(mg_presentation), what + ": its mg_presentation");
+Presentation presentation(const mg_presentation& d, const std::vector<AngleFrame>& frames, const Subject& what) {
+  require_prefix(&d, sizeof(mg_presentation), Subject{&what, ": its mg_presentation"});
   Presentation p;
   p.role = static_cast<Role>(d.role);  // an unknown role is drawn plain (present.h)
   if (d.axis) {
-    require_prefix(d.axis, sizeof(mg_channel_decl), what + ": its axis declaration");
-    p.with_axis(channel_decl(*d.axis, frames, what + " axis"));
+    require_prefix(d.axis, sizeof(mg_channel_decl), Subject{&what, ": its axis declaration"});
+    p.with_axis(channel_decl(*d.axis, frames, Subject{&what, " axis"}));
   }
   for (std::size_t i = 0; i < d.channel_count; ++i)
-    p.with(channel_decl(*element(d.channels, i, sizeof(mg_channel_decl), what + " channel"), frames, what));
+    p.with(channel_decl(*element(d.channels, i, sizeof(mg_channel_decl), Subject{&what, " channel"}), frames, what));
   p.x_channel = text(d.x_channel);
   if (d.pair_count > 0 && !d.pairs) throw PluginError(what + ": its x/y pairs are a null pointer");
   for (std::size_t i = 0; i < d.pair_count; ++i) {
@@ -172,8 +191,8 @@ Presentation presentation(const mg_presentation& d, const std::vector<AngleFrame
     PointMarks marks;
     marks.port = m.port;
     marks.row = m.row;
-    marks.x_channels = names(m.x_channels, m.count, what + " points x channels");
-    marks.labels = names(m.labels, m.count, what + " points labels");
+    marks.x_channels = names(m.x_channels, m.count, Subject{&what, " points x channels"});
+    marks.labels = names(m.labels, m.count, Subject{&what, " points labels"});
     marks.y_from_axis = m.y_from_axis != 0;
     marks.caption = text(m.caption);
     p.points.push_back(std::move(marks));
@@ -183,10 +202,11 @@ Presentation presentation(const mg_presentation& d, const std::vector<AngleFrame
   return p;
 }
 
-PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames, const std::string& what_type, const char* side,
+PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames, const Subject& what_type, const char* side,
                    std::uint32_t* version) {
   if (!d.name) throw PluginError(what_type + ": an " + side + " port has no name");
-  const std::string what = what_type + " " + side + " '" + d.name + "'";
+  const Subject port{&what_type, " ", side, " '"};
+  const Subject what{&port, d.name, "'"};
   PortSpec p;
   p.name = d.name;
   p.doc = text(d.doc);
@@ -205,7 +225,7 @@ PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames,
       break;
     default: throw PluginError(what + " has kind " + std::to_string(d.kind) + ", not one of MG_VALUE_*");
   }
-  if (p.kind != ValueKind::table) p.dimension = from_c_dim(d.dim, what);
+  if (p.kind != ValueKind::table) p.dimension = c_dim(d.dim, what);
   p.multiple = (d.flags & MG_PORT_MULTIPLE) != 0;
   p.optional = (d.flags & MG_PORT_OPTIONAL) != 0;
   p.display_unit = text(MG_FIELD_OR(&d, mg_port_decl, display_unit, nullptr));
@@ -219,19 +239,23 @@ PortSpec port_spec(const mg_port_decl& d, const std::vector<AngleFrame>& frames,
 
 mg_dim to_c_dim(const Dimension& d) { return mg_dim{d.length, d.mass, d.time, d.angle, d.temperature, 0, 0, 0}; }
 
-Dimension from_c_dim(const mg_dim& d, const std::string& what) {
+namespace {
+Dimension c_dim(const mg_dim& d, const Subject& what) {
   if (d.current != 0 || d.amount != 0 || d.luminous != 0)
     throw PluginError(what + " has a dimension with electric current, amount of substance or luminous intensity, "
                       "which this mechgraph does not know");
   return Dimension{d.length, d.mass, d.time, d.angle, d.temperature};
 }
+}  // namespace
+
+Dimension from_c_dim(const mg_dim& d, const std::string& what) { return c_dim(d, Subject{nullptr, what}); }
 
 CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string& where) {
   const mg_node_desc* d = type.desc;
   if (!d) throw PluginError(where + ": a node type has no description (desc is a null pointer)");
-  require_prefix(d, offsetof(mg_node_desc, effects), where + ": a node type's mg_node_desc");
+  require_prefix(d, offsetof(mg_node_desc, effects), Subject{nullptr, where, ": a node type's mg_node_desc"});
   if (!d->type || !*d->type) throw PluginError(where + ": a node type has an empty name");
-  const std::string what = where + ": node type '" + std::string(d->type) + "'";
+  const Subject what{nullptr, where, ": node type '", d->type, "'"};
   CNodeDeclaration out;
   NodeInfo& info = out.info;
   info.type = d->type;
@@ -241,7 +265,7 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
   // absent in an older writer's description.
   const std::size_t frame_count = MG_FIELD_OR(d, mg_node_desc, frame_count, 0);
   for (std::size_t i = 0; i < frame_count; ++i) {
-    const mg_angle_frame* f = element(d->frames, i, sizeof(mg_angle_frame), what + " angle frame");
+    const mg_angle_frame* f = element(d->frames, i, sizeof(mg_angle_frame), Subject{&what, " angle frame"});
     if (!f->id || !*f->id) throw PluginError(what + ": angle frame " + std::to_string(i) + " has no id");
     AngleFrame frame;
     frame.id = f->id;
@@ -251,35 +275,35 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
     frame.scale = f->scale;
     frame.offset_param = text(f->offset_param);
     frame.mark_spacing = f->mark_spacing;
-    frame.mark_labels = names(f->mark_labels, f->mark_label_count, what + " angle frame '" + frame.id + "' mark labels");
+    frame.mark_labels = names(f->mark_labels, f->mark_label_count, Subject{&what, " angle frame '", frame.id, "' mark labels"});
     frame.before = text(f->before);
     frame.after = text(f->after);
     info.frames.push_back(std::move(frame));
   }
   for (std::size_t i = 0; i < frame_count; ++i)  // base frames once every id is known
     info.frames[i].base_frame =
-        frame_id(MG_ELEMENT(mg_angle_frame, d->frames, i)->base_frame, info.frames, what + " angle frame '" + info.frames[i].id + "'");
+        frame_id(MG_ELEMENT(mg_angle_frame, d->frames, i)->base_frame, info.frames, Subject{&what, " angle frame '", info.frames[i].id, "'"});
   for (std::size_t i = 0; i < d->param_count; ++i)
-    info.params.push_back(param_spec(*element(d->params, i, offsetof(mg_param_decl, display_unit), what + " parameter"), what));
+    info.params.push_back(param_spec(*element(d->params, i, offsetof(mg_param_decl, display_unit), Subject{&what, " parameter"}), what));
   out.input_interface_versions.assign(d->input_count, 0);
   for (std::size_t i = 0; i < d->input_count; ++i)
-    info.inputs.push_back(port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), what + " input"), info.frames,
+    info.inputs.push_back(port_spec(*element(d->inputs, i, offsetof(mg_port_decl, display_unit), Subject{&what, " input"}), info.frames,
                                     what, "input", &out.input_interface_versions[i]));
   out.output_interface_versions.assign(d->output_count, 0);
   for (std::size_t i = 0; i < d->output_count; ++i)
-    info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), what + " output"), info.frames,
+    info.outputs.push_back(port_spec(*element(d->outputs, i, offsetof(mg_port_decl, display_unit), Subject{&what, " output"}), info.frames,
                                      what, "output", &out.output_interface_versions[i]));
   // Everything after the outputs may be absent in an older writer's description.
   const std::size_t effect_count = MG_FIELD_OR(d, mg_node_desc, effect_count, 0);
   for (std::size_t i = 0; i < effect_count; ++i) {
-    const mg_effect_decl* e = element(d->effects, i, sizeof(mg_effect_decl), what + " effect");
+    const mg_effect_decl* e = element(d->effects, i, sizeof(mg_effect_decl), Subject{&what, " effect"});
     if (!e->name) throw PluginError(what + ": an effect has no name");
-    info.effects.push_back({e->name, text(e->doc), names(e->outputs, e->output_count, what + " effect outputs"),
-                            names(e->params, e->param_count, what + " effect parameters")});
+    info.effects.push_back({e->name, text(e->doc), names(e->outputs, e->output_count, Subject{&what, " effect outputs"}),
+                            names(e->params, e->param_count, Subject{&what, " effect parameters"})});
   }
   const std::size_t counter_count = MG_FIELD_OR(d, mg_node_desc, counter_count, 0);
   for (std::size_t i = 0; i < counter_count; ++i) {
-    const mg_counter_decl* c = element(d->counters, i, offsetof(mg_counter_decl, doc), what + " work counter");
+    const mg_counter_decl* c = element(d->counters, i, offsetof(mg_counter_decl, doc), Subject{&what, " work counter"});
     if (!c->name) throw PluginError(what + ": a work counter has no name");
     info.work_counters.emplace_back(c->name);
   }
@@ -287,11 +311,11 @@ CNodeDeclaration c_node_declaration(const mg_node_type& type, const std::string&
   if (dep_count > 0 && !d->deps) throw PluginError(what + ": its output dependencies are a null pointer");
   for (std::size_t i = 0; i < dep_count; ++i) {
     if (!d->deps[i].output) throw PluginError(what + ": an output dependency names no output");
-    info.output_dependencies[d->deps[i].output] = names(d->deps[i].inputs, d->deps[i].input_count, what + " output dependencies");
+    info.output_dependencies[d->deps[i].output] = names(d->deps[i].inputs, d->deps[i].input_count, Subject{&what, " output dependencies"});
   }
   const std::size_t note_count = MG_FIELD_OR(d, mg_node_desc, note_count, 0);
   for (std::size_t i = 0; i < note_count; ++i) {
-    const mg_note_decl* n = element(d->notes, i, sizeof(mg_note_decl), what + " note");
+    const mg_note_decl* n = element(d->notes, i, sizeof(mg_note_decl), Subject{&what, " note"});
     if (!n->output) throw PluginError(what + ": a note names no output");
     info.notes.push_back({n->output, text(n->when_param), text(n->doc)});
   }
