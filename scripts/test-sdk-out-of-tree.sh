@@ -33,6 +33,11 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 plugin_dir=$work/loom/build/mechgraph-plugins
 plugin=$plugin_dir/mechgraph_loom.so
 nm -D --defined-only "$plugin" | grep -q ' mechgraph_plugin_entry_1$' || fail "the plugin does not export the SDK 1.x entry"
+# Built by this compiler from the installed headers, its C++ layer has the host's key (c/object_cxx.h):
+# its laws reach the host and the built-in plugins as their C++ objects.
+host_key=$(grep -m1 '^mechgraph-sdk-.*/headers-' <<< "$(strings "$prefix/lib/libmechgraph.so")" || true)
+[[ -n $host_key ]] || fail "no C++ layer key in the installed libmechgraph"
+grep -qxF -- "$host_key" <<< "$(strings "$plugin")" || fail "the plugin's C++ layer key is not the host's ($host_key)"
 mg() { "$prefix/bin/mechgraph" -q --plugin-dir "$plugin_dir" "$@"; }
 scene=$work/loom/loom.yaml
 
