@@ -75,14 +75,17 @@ inline const PluginRegistry& builtin_sdk1_registry() {
 // The built-in plugins with cams and valvetrain on the pre-1.0 entry (test_plugins/builtin_pre10)
 // in place of the shipped ones: C++ objects cross as they are, so a test can read valvetrain's
 // private objects (a spring design) out of a run.
+inline void load_builtin_pre10(PluginRegistry& r) {
+  for (const auto& entry : std::filesystem::directory_iterator(MECHGRAPH_PLUGIN_DIR)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() == ".so" && name != "mechgraph_cams.so" && name != "mechgraph_valvetrain.so") r.load_file(entry.path());
+  }
+  r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_pre10");
+}
 inline const PluginRegistry& builtin_pre10_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
-    for (const auto& entry : std::filesystem::directory_iterator(MECHGRAPH_PLUGIN_DIR)) {
-      const std::string name = entry.path().filename().string();
-      if (entry.path().extension() == ".so" && name != "mechgraph_cams.so" && name != "mechgraph_valvetrain.so") r.load_file(entry.path());
-    }
-    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_pre10");
+    load_builtin_pre10(r);
     return r;
   }();
   return registry;

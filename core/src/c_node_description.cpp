@@ -14,7 +14,7 @@ namespace {
 
 std::string text(const char* s) { return s ? s : ""; }
 
-// What a refusal names ("lib.so: node type 'cam.kurz' parameter 'lift' default"), put together only
+// What a refusal names ("lib.so: node type 'acme.gauge' parameter 'span' default"), put together only
 // when there is a refusal: a declaration is read for every type at every start, and it is sound.
 // Each part is up to four pieces of text after its parent's; the pieces must outlive the part.
 struct Subject {

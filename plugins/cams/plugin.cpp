@@ -5,15 +5,4 @@
 
 #include <mechgraph/plugin_sdk1.hpp>
 
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  mechgraph::NodeTypeList types;
-  mechgraph::cams::add_source_profile_types(types);
-  mechgraph::cams::add_standard_law_types(types);
-  mechgraph::cams::add_contour_type(types);
-  mechgraph::cams::add_program_type(types);
-  return types;
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN_1("cams", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("cams", MECHGRAPH_SDK_VERSION, &mechgraph::cams::node_types)

@@ -14,4 +14,14 @@ void add_contour_type(NodeTypeList& out);
 /// cam.program: a cam from rise, dwell and return segments (tests/plugins/cams/program_law_test.cpp).
 void add_program_type(NodeTypeList& out);
 
+/// Every node type of the plugin, in the order it lists them.
+inline NodeTypeList node_types() {
+  NodeTypeList types;
+  add_source_profile_types(types);
+  add_standard_law_types(types);
+  add_contour_type(types);
+  add_program_type(types);
+  return types;
+}
+
 }  // namespace mechgraph::cams

@@ -5,13 +5,4 @@
 
 #include <mechgraph/plugin_sdk1.hpp>
 
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  using namespace mechgraph::valvetrain;
-  return {make_valve_motion_type(), make_time_area_type(), make_masses_type(), make_spring_design_type(),
-          make_resonance_type(), make_dynamics_type(), make_float_speed_type(),
-          make_polydyne_cam_type()};
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN_1("valvetrain", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("valvetrain", MECHGRAPH_SDK_VERSION, &mechgraph::valvetrain::node_types)

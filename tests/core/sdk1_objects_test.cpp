@@ -39,11 +39,7 @@ const PluginRegistry& objects_registry() {
 const PluginRegistry& pre10_objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
-    for (const auto& entry : std::filesystem::directory_iterator(MECHGRAPH_PLUGIN_DIR)) {
-      const std::string name = entry.path().filename().string();
-      if (entry.path().extension() == ".so" && name != "mechgraph_cams.so" && name != "mechgraph_valvetrain.so") r.load_file(entry.path());
-    }
-    r.load_directory(std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / "builtin_pre10");
+    load_builtin_pre10(r);
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));
     r.load_file(test_plugin("test_c_objects"));

@@ -7,29 +7,8 @@
 
 #if defined(BUILTIN_PRE10_CAMS)
 #include "registration.hpp"
-
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  mechgraph::NodeTypeList types;
-  mechgraph::cams::add_source_profile_types(types);
-  mechgraph::cams::add_standard_law_types(types);
-  mechgraph::cams::add_contour_type(types);
-  mechgraph::cams::add_program_type(types);
-  return types;
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN("cams", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN("cams", MECHGRAPH_SDK_VERSION, &mechgraph::cams::node_types)
 #elif defined(BUILTIN_PRE10_VALVETRAIN)
 #include "node_types.hpp"
-
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  using namespace mechgraph::valvetrain;
-  return {make_valve_motion_type(), make_time_area_type(), make_masses_type(), make_spring_design_type(),
-          make_resonance_type(),    make_dynamics_type(),  make_float_speed_type(), make_polydyne_cam_type()};
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN("valvetrain", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN("valvetrain", MECHGRAPH_SDK_VERSION, &mechgraph::valvetrain::node_types)
 #endif

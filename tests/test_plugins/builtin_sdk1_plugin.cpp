@@ -1,34 +1,13 @@
-// The built-in plugins that evaluate blocks of cases, `cams` (BUILTIN_SDK1_CAMS) and `valvetrain`
-// (BUILTIN_SDK1_VALVETRAIN), built from their own node types on the SDK 1.x entry
-// (MECHGRAPH_PLUGIN_1), so that a test can run the same sweep through the C boundary
-// (c/node_block.h) and through the pre-1.0 C++ entry of the built-in plugins, and compare.
+// The built-in plugins `cams` (BUILTIN_SDK1_CAMS) and `valvetrain` (BUILTIN_SDK1_VALVETRAIN), built
+// from their own node types on the SDK 1.x entry (MECHGRAPH_PLUGIN_1) with the shortcut of one C++
+// layer off (MECHGRAPH_SDK_CXX_SHORTCUT 0, tests/CMakeLists.txt): every object crosses through its
+// C tables, so a test can run the same sweep through C and through the shipped plugins, and compare.
 #include <mechgraph/plugin_sdk1.hpp>
 
 #if defined(BUILTIN_SDK1_CAMS)
 #include "registration.hpp"
-
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  mechgraph::NodeTypeList types;
-  mechgraph::cams::add_source_profile_types(types);
-  mechgraph::cams::add_standard_law_types(types);
-  mechgraph::cams::add_contour_type(types);
-  mechgraph::cams::add_program_type(types);
-  return types;
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN_1("cams", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("cams", MECHGRAPH_SDK_VERSION, &mechgraph::cams::node_types)
 #elif defined(BUILTIN_SDK1_VALVETRAIN)
 #include "node_types.hpp"
-
-namespace {
-mechgraph::NodeTypeList make_node_types() {
-  using namespace mechgraph::valvetrain;
-  return {make_valve_motion_type(), make_time_area_type(), make_masses_type(), make_spring_design_type(),
-          make_resonance_type(),    make_dynamics_type(),  make_float_speed_type(), make_polydyne_cam_type()};
-}
-}  // namespace
-
-MECHGRAPH_PLUGIN_1("valvetrain", MECHGRAPH_SDK_VERSION, &make_node_types)
+MECHGRAPH_PLUGIN_1("valvetrain", MECHGRAPH_SDK_VERSION, &mechgraph::valvetrain::node_types)
 #endif

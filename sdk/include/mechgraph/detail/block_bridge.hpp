@@ -151,7 +151,7 @@ inline std::shared_ptr<const DomainBlock> import_block(const mg_object_block& in
   if (in.struct_size < sizeof(mg_object_block)) throw std::invalid_argument(what + " is a malformed mg_object_block (struct_size)");
   if (in.origin == &object_origin && in.owner.ctx && in.owner.release == &ExportedBlock::release)
     return static_cast<const ExportedBlock*>(in.owner.ctx)->keep;  // made here: no C hop
-  if (auto same = same_cxx_block(in); same && same->kind() == kind && (same->size() == cases || same->size() == 1))
+  if (auto same = same_cxx_block(in); same && same->kind() == kind && (same->size() == cases || (same->size() == 1 && in.object_count == 1)))
     return same;  // made by a library of this one's C++ layer: no C hop
   const SdkInterface* sdk = sdk_interface_of_kind(kind);
   const std::size_t position = sdk ? static_cast<std::size_t>(sdk - sdk_interfaces) : SIZE_MAX;

@@ -8,15 +8,22 @@
 //  - the compiler and its major version (two compilers are assumed to differ, whatever their
 //    promises; a plugin built by clang for a gcc-built host then keeps to the C tables);
 //  - the standard library, its release and its ABI switches (the dual string ABI, debug mode's
-//    other containers), and the C++ ABI version.
+//    other containers), the C++ ABI version and the language standard.
 // A library built with MECHGRAPH_SDK_CXX_SHORTCUT defined to 0 has no key: it neither offers nor
-// uses the shortcut (the tests that must see the C tables at work build so).
+// uses the shortcut (the tests that must see the C tables at work build so). Neither has one built
+// with libc++: each library has its own RTTI for the SDK's classes (hidden), and libc++ compares
+// type_info by address on ELF, so a dynamic_cast or a catch of NodeError across two libraries
+// would fail where libstdc++, which compares the names, succeeds.
 #include <mechgraph/version.hpp>
 
 #include <version>
 
 #ifndef MECHGRAPH_SDK_CXX_SHORTCUT
+#if defined(_LIBCPP_VERSION)
+#define MECHGRAPH_SDK_CXX_SHORTCUT 0
+#else
 #define MECHGRAPH_SDK_CXX_SHORTCUT 1
+#endif
 #endif
 
 #define MECHGRAPH_DETAIL_TEXT2(x) #x
@@ -56,7 +63,7 @@ namespace mechgraph::detail {
 #if MECHGRAPH_SDK_CXX_SHORTCUT
 __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key =
     "mechgraph-sdk-" MECHGRAPH_SDK_VERSION "/headers-" MECHGRAPH_SDK_HEADERS_DIGEST "/" MECHGRAPH_DETAIL_KEY_COMPILER
-    "/" MECHGRAPH_DETAIL_KEY_STDLIB "/" MECHGRAPH_DETAIL_KEY_CXXABI;
+    "/" MECHGRAPH_DETAIL_KEY_STDLIB "/" MECHGRAPH_DETAIL_KEY_CXXABI "/std" MECHGRAPH_DETAIL_TEXT(__cplusplus);
 #else
 __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key = nullptr;
 #endif

@@ -15,7 +15,8 @@
 //    NodeError crossing as MG_ERR_NODE as for a follower) and a Spring mechgraph.spring/1. Any other kind crosses as
 //    an opaque object that answers only its private interface name. An object that is itself the
 //    view of a foreign mg_object is passed on as that original object (retained): no chain of
-//    wrappers ever forms.
+//    wrappers forms of this library's views. (Another library's C++ object taken through
+//    mechgraph.object.cxx/1 is wrapped once more when passed on, naming this library's node.)
 //  - import_object: the C++ view of an mg_object. One made by this very library is unwrapped to
 //    its C++ object (no C hop), and so is one of an SDK interface made by a library of the same
 //    C++ layer (mechgraph.object.cxx/1, c/object_cxx.h: equal keys, detail/cxx_abi_key.hpp);
@@ -1010,9 +1011,12 @@ inline std::shared_ptr<const DomainObject> import_object(const mg_object* o, std
   // (By position in sdk_interfaces, not by kind_name: reading those static members here would
   // make the plugin export them.)
   if (const SdkInterface* known = sdk_interface_named(interface)) {
-    // One C++ layer: the object itself, no C hop (its kind() names the interface, or it implements
-    // it beside another).
-    if (auto same = same_cxx_object(o); same && (same->kind() == known->kind || implements_sdk_interface(*same, known - sdk_interfaces)))
+    // One C++ layer: the object itself, no C hop, when it offers the interface through C as well
+    // (what another consumer would see) and its class is the interface's (its kind() names it, or a
+    // cast finds it beside another).
+    if (auto same = same_cxx_object(o);
+        same && o->vtbl->query(o, known->name, version) &&
+        (same->kind() == known->kind || implements_sdk_interface(*same, known - sdk_interfaces)))
       return same;
     switch (known - sdk_interfaces) {
       case 0: return std::make_shared<const ForeignCamLaw>(o);
