@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <functional>
 #include <string_view>
@@ -27,6 +28,9 @@ std::filesystem::path probe_cache_file() {
 // huge or garbled file) costs a probe, never a hang or a crash. Read with a bound, like any file
 // this process does not control.
 constexpr std::size_t probe_cache_limit = std::size_t{1} << 20;
+
+// Between a key and the manifest written after it: a tab, which no key ends with.
+constexpr const char* manifest_mark = "\tprovides ";
 
 // The cache file's text; empty when it is missing or cannot be read.
 std::string read_probe_cache() {
@@ -72,7 +76,65 @@ bool ProbeCache::accepted_before(const std::string& key) {
 void ProbeCache::remember(const std::string& key) {
   if (key.empty() || key.find('\n') != std::string::npos) return;
   const std::lock_guard lock(mutex_);
-  if (lines_) lines_->append("\n" + key + "\n");
+  append_line(key);
+}
+
+std::optional<PluginManifest> ProbeCache::manifest(const std::string& key) {
+  if (key.empty() || key.find('\n') != std::string::npos) return std::nullopt;
+  const std::lock_guard lock(mutex_);
+  if (!manifests_) index_manifests();
+  const auto it = manifests_->find(key);
+  if (it == manifests_->end()) return std::nullopt;
+  PluginManifest m;
+  const std::string_view words = it->second;
+  for (std::size_t w = 0; w < words.size();) {
+    const std::size_t space = std::min(words.find(' ', w), words.size());
+    if (space != w) (m.plugin_id.empty() ? m.plugin_id : m.node_types.emplace_back()) = words.substr(w, space - w);
+    w = space + 1;
+  }
+  if (m.plugin_id.empty()) return std::nullopt;
+  return m;
+}
+
+void ProbeCache::index_manifests() {
+  if (!lines_) lines_ = read_probe_cache();
+  manifests_.emplace();
+  const std::string_view text = *lines_, mark = manifest_mark;
+  const std::boyer_moore_horspool_searcher search(mark.begin(), mark.end());
+  // One pass over the file for every lookup of this registry. The last line for a key counts.
+  for (auto at = text.begin(); at != text.end();) {
+    const auto [from, to] = search(at, text.end());
+    if (from == text.end()) break;
+    const std::size_t line_start = text.rfind('\n', static_cast<std::size_t>(from - text.begin()));
+    const std::size_t key_start = line_start == std::string_view::npos ? 0 : line_start + 1;
+    const auto end = std::find(to, text.end(), '\n');
+    (*manifests_)[std::string(text.substr(key_start, static_cast<std::size_t>(from - text.begin()) - key_start))] =
+        std::string(to, end);
+    at = end;
+  }
+}
+
+void ProbeCache::remember_manifest(const std::string& key, const PluginManifest& provided) {
+  const auto plain = [](const std::string& name) {
+    return !name.empty() && std::none_of(name.begin(), name.end(), [](char c) {
+      return static_cast<unsigned char>(c) <= ' ' || c == '\x7f';
+    });
+  };
+  if (key.empty() || key.find('\n') != std::string::npos || !plain(provided.plugin_id) ||
+      !std::all_of(provided.node_types.begin(), provided.node_types.end(), plain))
+    return;
+  if (const auto known = manifest(key);
+      known && known->plugin_id == provided.plugin_id && known->node_types == provided.node_types)
+    return;
+  std::string words = provided.plugin_id;
+  for (const std::string& t : provided.node_types) words += " " + t;
+  const std::lock_guard lock(mutex_);
+  (*manifests_)[key] = words;
+  append_line(key + manifest_mark + words);
+}
+
+void ProbeCache::append_line(const std::string& line) {
+  if (lines_) lines_->append("\n" + line + "\n");
   const std::filesystem::path cache = probe_cache_file();
   if (cache.empty()) return;
   std::error_code ec;
@@ -87,9 +149,9 @@ void ProbeCache::remember(const std::string& key) {
   const int fd = ::open(cache.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC | O_NOCTTY, 0644);
   if (fd < 0) return;
   struct stat opened {};
-  const std::string line = key + "\n";
+  const std::string whole = line + "\n";
   // One short append: whole lines even with several writers.
-  if (::fstat(fd, &opened) == 0 && S_ISREG(opened.st_mode)) (void)!::write(fd, line.data(), line.size());
+  if (::fstat(fd, &opened) == 0 && S_ISREG(opened.st_mode)) (void)!::write(fd, whole.data(), whole.size());
   ::close(fd);
 }
 

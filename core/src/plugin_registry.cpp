@@ -128,11 +128,12 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs)});
   }
   for (auto& a : added) types_.push_back(std::move(a));
+  probes_->remember_manifest(detail::probe_key(file), detail::PluginManifest{id, info.node_types});
   spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
   plugins_.push_back(std::move(info));
 }
 
-void PluginRegistry::load_directory(const std::filesystem::path& folder) {
+std::vector<std::filesystem::path> PluginRegistry::plugin_files(const std::filesystem::path& folder) {
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec)) throw PluginError("plugin folder '" + folder.string() + "' does not exist");
   detail::check_plugin_ownership(folder, "plugin folder '" + folder.string() + "'", true);
@@ -157,14 +158,85 @@ void PluginRegistry::load_directory(const std::filesystem::path& folder) {
     files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
-  for (const auto& f : files) {
-    try {
-      load_file(f);
-    } catch (const PluginError& e) {
-      spdlog::warn("skipped: {}", e.what());
-      skipped_.push_back({f, e.what()});
-    }
+  return files;
+}
+
+void PluginRegistry::load_or_skip(const std::filesystem::path& file) {
+  try {
+    load_file(file);
+  } catch (const PluginError& e) {
+    spdlog::warn("skipped: {}", e.what());
+    skipped_.push_back({file, e.what()});
   }
+}
+
+void PluginRegistry::load_directory(const std::filesystem::path& folder) {
+  for (const auto& f : plugin_files(folder)) load_or_skip(f);
+}
+
+bool PluginRegistry::provides_all(const PluginNeeds& needs) const {
+  for (const std::string& t : needs.node_types)
+    if (!find(t)) return false;
+  for (const std::string& id : needs.plugin_ids)
+    if (std::none_of(plugins_.begin(), plugins_.end(), [&](const PluginInfo& p) { return p.id == id; })) return false;
+  return true;
+}
+
+std::optional<std::vector<std::filesystem::path>> PluginRegistry::needed_files(const std::vector<std::filesystem::path>& files,
+                                                                               const PluginNeeds& needs) {
+  if (!probes_) probes_ = std::make_shared<detail::ProbeCache>();
+  // Who provides what: the plugins loaded already (files given first), then each file's manifest.
+  std::set<std::string> ids, types;
+  for (const PluginInfo& p : plugins_) ids.insert(p.id);
+  for (const auto& [name, t] : types_) types.insert(name);
+  std::set<std::string> found_types, found_ids;
+  std::vector<std::filesystem::path> picked;
+  for (const auto& f : files) {
+    std::error_code ec;
+    const std::filesystem::path file = std::filesystem::canonical(f, ec);
+    if (ec) return std::nullopt;
+    const std::optional<detail::PluginManifest> m = probes_->manifest(detail::probe_key(file));
+    // Unknown to the cache, or a second claim to an id or a type: load_file decides, as always.
+    if (!m || !ids.insert(m->plugin_id).second) return std::nullopt;
+    bool wanted = std::find(needs.plugin_ids.begin(), needs.plugin_ids.end(), m->plugin_id) != needs.plugin_ids.end();
+    if (wanted) found_ids.insert(m->plugin_id);
+    for (const std::string& t : m->node_types) {
+      if (!types.insert(t).second) return std::nullopt;
+      if (std::find(needs.node_types.begin(), needs.node_types.end(), t) != needs.node_types.end()) {
+        wanted = true;
+        found_types.insert(t);
+      }
+    }
+    if (wanted) picked.push_back(f);
+  }
+  // Each need is loaded already or claimed by a picked file.
+  for (const std::string& t : needs.node_types)
+    if (!found_types.count(t) && !find(t)) return std::nullopt;
+  for (const std::string& id : needs.plugin_ids)
+    if (!found_ids.count(id) && std::none_of(plugins_.begin(), plugins_.end(), [&](const PluginInfo& p) { return p.id == id; }))
+      return std::nullopt;
+  return picked;
+}
+
+void PluginRegistry::load_directories(const std::vector<std::filesystem::path>& folders, const PluginNeeds* needs) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& folder : folders)
+    for (auto& f : plugin_files(folder)) files.push_back(std::move(f));
+  const std::optional<std::vector<std::filesystem::path>> picked = needs ? needed_files(files, *needs) : std::nullopt;
+  if (!picked) {
+    for (const auto& f : files) load_or_skip(f);
+    return;
+  }
+  for (const auto& f : *picked) load_or_skip(f);
+  if (!provides_all(*needs)) {
+    // The cache promised more than the files gave (a refusal this time, say): load the rest too.
+    spdlog::debug("the plugins picked by the probe cache did not provide every need; loading the others");
+    for (const auto& f : files)
+      if (std::find(picked->begin(), picked->end(), f) == picked->end()) load_or_skip(f);
+    return;
+  }
+  deferred_ += files.size() - picked->size();
+  spdlog::debug("loaded {} plugin files of {}: the others provide nothing this command uses", picked->size(), files.size());
 }
 
 std::filesystem::path PluginRegistry::builtin_plugin_dir() {

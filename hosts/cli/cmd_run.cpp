@@ -105,9 +105,10 @@ int run_command(const GlobalOptions& g, const std::vector<std::string>& args) {
     return ok;
 
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
-  const PluginRegistry registry = load_plugins(g);
+  const SceneSpec scene = load_scene(vm["scene"].as<std::string>());
+  const PluginRegistry registry = plugins_for_scene(g, scene);
   // --json prints every requested curve on standard output: the same bound as --out's files.
-  Graph graph = load_scene_graph(vm, registry, vm.count("json") > 0);
+  Graph graph = load_scene_graph(vm, scene, registry, vm.count("json") > 0);
   want_declared_notes(graph);
   MemoCache cache;
   unsigned threads = vm["threads"].as<unsigned>();

@@ -266,9 +266,9 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       ec != std::errc() || p != threads_text.data() + threads_text.size() || threads > max_threads)
     throw UsageError("--threads '" + excerpt(threads_text, 40) + "' is not a whole number from 0 to " + std::to_string(max_threads));
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
-  const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
   SceneSpec scene = load_scene(scene_file);
+  const PluginRegistry registry = plugins_for_scene(g, scene);
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));

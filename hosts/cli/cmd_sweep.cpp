@@ -236,9 +236,9 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const std::size_t cache_size = parse_count(vm["cache-size"].as<std::string>(), "--cache-size", 1000000000);
   const std::size_t block_size = parse_count(vm["block-size"].as<std::string>(), "--block-size", 1000000);
 
-  const PluginRegistry registry = load_plugins(g);
   const std::string scene_file = vm["scene"].as<std::string>();
   SceneSpec scene = load_scene(scene_file);
+  const PluginRegistry registry = plugins_for_scene(g, scene);
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));

@@ -66,14 +66,28 @@ inline bool parse_scene_command(const std::vector<std::string>& args, const po::
   return parse_options(args, visible, all, positional, vm, synopsis);
 }
 
+/// A scene read already (see plugins_for_scene), checked with its --set overrides; its curves count
+/// against --max-output as load_scene_graph below says.
+inline Graph load_scene_graph(const po::variables_map& vm, const SceneSpec& scene, const PluginRegistry& registry,
+                              bool prints_curves = false) {
+  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
+  Graph graph = load_graph(scene, sets, registry);
+  check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, vm.count("out") > 0 || prints_curves);
+  return graph;
+}
+
 /// The scene named on the command line, loaded and checked with its --set overrides. Its curves
 /// count against --max-output when they are written: to files (--out) or, `prints_curves`, to
 /// standard output (run --json).
 inline Graph load_scene_graph(const po::variables_map& vm, const PluginRegistry& registry, bool prints_curves = false) {
-  const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
-  Graph graph = load_graph(vm["scene"].as<std::string>(), sets, registry);
-  check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, vm.count("out") > 0 || prints_curves);
-  return graph;
+  return load_scene_graph(vm, load_scene(vm["scene"].as<std::string>()), registry, prints_curves);
+}
+
+/// The plugins a command that runs `scene` loads: those the probe cache knows provide the scene's
+/// node types and required plugins, or all of them when it cannot tell (host::scene_plugin_needs).
+inline PluginRegistry plugins_for_scene(const GlobalOptions& g, const SceneSpec& scene) {
+  const std::optional<PluginNeeds> needs = host::scene_plugin_needs(scene);
+  return load_plugins(g, {}, needs ? &*needs : nullptr);
 }
 
 }  // namespace mechgraph::cli

@@ -52,6 +52,13 @@ struct SkippedPlugin {
   std::string reason;
 };
 
+/// What a command will use, known before it loads plugins: the node types of a scene and the
+/// plugins its `requires:` names.
+struct PluginNeeds {
+  std::vector<std::string> node_types;
+  std::vector<std::string> plugin_ids;
+};
+
 class PluginRegistry {
  public:
   /// How long a library stays loaded. `process` (the host's choice): until the process ends, so
@@ -72,6 +79,16 @@ class PluginRegistry {
   /// is skipped (see skipped()) and the rest load; a folder writable by group or others is refused
   /// whole (PluginError).
   void load_directory(const std::filesystem::path& folder);
+  /// Loads the folders one after another as load_directory does; with `needs`, a file is left
+  /// unloaded when the probe cache tells what it provided the last time it was loaded (unchanged
+  /// since), and that is none of the needed types and plugins. Every file is loaded, as without
+  /// `needs`, when the cache does not know one of them, when two files provided one type or one
+  /// plugin id, or when a need is provided by no file; and the rest are loaded after the first
+  /// pick when that pick did not provide every need. So a scene finds the same types either way,
+  /// and a start loads only what the scene uses. deferred() counts the files left unloaded.
+  void load_directories(const std::vector<std::filesystem::path>& folders, const PluginNeeds* needs = nullptr);
+  /// How many plugin files load_directories left unloaded because nothing needed them.
+  std::size_t deferred() const { return deferred_; }
   /// The files load_directory skipped, with their reasons.
   const std::vector<SkippedPlugin>& skipped() const { return skipped_; }
 
@@ -94,8 +111,17 @@ class PluginRegistry {
   std::vector<PluginInfo> plugins_;
   std::vector<SkippedPlugin> skipped_;
   std::vector<std::pair<std::string, RegisteredType>> types_;
+  std::size_t deferred_ = 0;
   Lifetime lifetime_ = Lifetime::process;
   std::shared_ptr<detail::ProbeCache> probes_;  // the probe cache, read once for all the files loaded
+  /// The *.so files of a folder, sorted, as load_directory takes them (a link leading out of the
+  /// folder is skipped here).
+  std::vector<std::filesystem::path> plugin_files(const std::filesystem::path& folder);
+  void load_or_skip(const std::filesystem::path& file);
+  /// The files of `files` that provide a need, or nullopt when the cache cannot say (see load_directories).
+  std::optional<std::vector<std::filesystem::path>> needed_files(const std::vector<std::filesystem::path>& files,
+                                                                 const PluginNeeds& needs);
+  bool provides_all(const PluginNeeds& needs) const;
 };
 
 }  // namespace mechgraph

@@ -4,12 +4,16 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 namespace mechgraph::host {
 
-PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first) {
+PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first,
+                            const PluginNeeds* needs) {
   PluginRegistry registry;
   for (const auto& file : first) registry.load_file(file);
   const std::vector<std::filesystem::path> given(options.plugin_dirs.begin(), options.plugin_dirs.end());
+  std::vector<std::filesystem::path> folders;
   for (const auto& folder : PluginRegistry::search_path(given, options.only_plugin_dirs)) {
     std::error_code ec;
     // Only the built-in folder may be missing (a program copied without its plugins); a folder the
@@ -19,8 +23,9 @@ PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::
       continue;
     }
     spdlog::debug("loading plugins from {}", folder.string());
-    registry.load_directory(folder);
+    folders.push_back(folder);
   }
+  registry.load_directories(folders, needs);
   if (registry.plugins().empty()) {
     std::string why;
     for (const SkippedPlugin& s : registry.skipped()) why += "\n  " + s.reason;
@@ -28,6 +33,16 @@ PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::
                       (why.empty() ? std::string() : "; skipped:" + why));
   }
   return registry;
+}
+
+std::optional<PluginNeeds> scene_plugin_needs(const SceneSpec& scene) {
+  if (!scene.effects.empty() || scene.nodes.empty()) return std::nullopt;
+  PluginNeeds needs;
+  for (const NodeSpec& n : scene.nodes)
+    if (std::find(needs.node_types.begin(), needs.node_types.end(), n.type) == needs.node_types.end())
+      needs.node_types.push_back(n.type);
+  for (const PluginRequirement& r : scene.requirements) needs.plugin_ids.push_back(r.plugin);
+  return needs;
 }
 
 }  // namespace mechgraph::host

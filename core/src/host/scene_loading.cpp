@@ -8,9 +8,13 @@
 namespace mechgraph::host {
 
 Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry) {
+  return load_graph(load_scene(scene_file), sets, registry);
+}
+
+Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, const PluginRegistry& registry) {
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
-  return build_graph(load_scene(scene_file), registry, overrides);
+  return build_graph(scene, registry, overrides);
 }
 
 // Builds the graph to sweep: --outputs replace the scene's outputs and report; tables and

@@ -2,8 +2,10 @@
 // Where a host finds its plugins: the folders given (--plugin-dir), MECHGRAPH_PLUGIN_PATH and the
 // built-in folder, in that order (PluginRegistry::search_path), the same for every host.
 #include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,14 @@ struct PluginSearch {
 /// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, the built-in folder).
 /// `first` are plugin files loaded before the search path (plugin-test LIB.so): a copy of the same
 /// plugin found later (an installed one) is then the one skipped. A refused `first` file throws.
-PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first = {});
+/// With `needs`, files the probe cache knows to provide none of them stay unloaded
+/// (PluginRegistry::load_directories): a command that runs one scene loads what the scene uses.
+PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first = {},
+                            const PluginNeeds* needs = nullptr);
+
+/// What a scene uses: its node types and the plugins its `requires:` names. Nothing (load every
+/// plugin) for a scene with an `effects:` block, whose effects are known by the types that
+/// implement them, and for a scene without nodes.
+std::optional<PluginNeeds> scene_plugin_needs(const SceneSpec& scene);
 
 }  // namespace mechgraph::host

@@ -12,6 +12,8 @@ namespace mechgraph::host {
 
 /// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
 Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);
+/// The same for a scene read already.
+Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, const PluginRegistry& registry);
 
 /// The graph a sweep runs: `outputs` ("a.b,c.d", --outputs) replace the scene's outputs and report;
 /// without them, tables and handles (not one number per case) are left out of the scene's own

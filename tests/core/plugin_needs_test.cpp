@@ -1,0 +1,167 @@
+// A start loads only the plugins its scene uses (PluginRegistry::load_directories with needs): the
+// probe cache writes down what each file provided when it was last loaded, and a file that
+// provides none of the scene's node types and required plugins stays unloaded. Whenever the cache
+// cannot tell (a new or changed file, two files claiming one type, a need nobody claims) every file
+// is loaded, so a scene finds the same types and the same errors either way.
+#include "file_support.hpp"
+#include "test_support.hpp"
+
+#include <mechgraph/host/plugin_search.hpp>
+#include <mechgraph/plugin_registry.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+using namespace mechgraph;
+using namespace mechgraph::testing;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ScopedEnvironment {
+  std::string name;
+  ScopedEnvironment(std::string n, const std::string& value) : name(std::move(n)) { ::setenv(name.c_str(), value.c_str(), 1); }
+  ~ScopedEnvironment() { ::unsetenv(name.c_str()); }
+};
+
+// A scratch folder with plugins/ (mode 755) holding test_arith and the marker plugin (no node
+// types; each process that loads it appends its pid to MECHGRAPH_TEST_MARKER), and cache/ for the
+// probe cache.
+struct Folder {
+  fs::path dir = fresh_dir(fs::temp_directory_path(), "mg_plugin_needs_" + std::to_string(::getpid()));
+  fs::path plugins = dir / "plugins";
+  fs::path marker = dir / "marks";
+  Folder() {
+    fs::create_directories(plugins);
+    fs::permissions(plugins, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                 fs::perms::others_read | fs::perms::others_exec);
+    fs::copy_file(test_plugin("test_arith"), plugins / "mechgraph_test_arith.so");
+    fs::copy_file(test_plugin("test_marker_good"), plugins / "mechgraph_marker_good.so");
+  }
+  ~Folder() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::size_t marks() const {
+    std::ifstream in(marker);
+    std::size_t n = 0;
+    for (long pid = 0; in >> pid;) ++n;
+    return n;
+  }
+};
+
+std::vector<std::string> ids(const PluginRegistry& r) {
+  std::vector<std::string> out;
+  for (const PluginInfo& p : r.plugins()) out.push_back(p.id);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("a registry given needs loads only the files the probe cache knows provide them", "[plugins][probe][needs]") {
+  const Folder f;
+  const ScopedEnvironment cache_home("XDG_CACHE_HOME", (f.dir / "cache").string());
+  const auto load = [&](const PluginNeeds* needs) {
+    PluginRegistry r;
+    r.load_directories({f.plugins}, needs);
+    return r;
+  };
+  const PluginNeeds add{{"test.add"}, {}};
+  // Nothing written down yet: every file loads, and what each provides is written down.
+  const PluginRegistry first = load(&add);
+  CHECK(ids(first) == std::vector<std::string>{"marker_good", "test_arith"});
+  CHECK(first.deferred() == 0);
+  const std::string cache = slurp(f.dir / "cache" / "mechgraph" / "plugin-probes");
+  CHECK_THAT(cache, Contains("\tprovides test_arith test.constant test.add test.box"));
+  CHECK_THAT(cache, Contains("mechgraph_marker_good.so") && Contains("\tprovides marker_good\n"));
+
+  SECTION("known now: the file that provides none of the needs stays unloaded") {
+    const PluginRegistry r = load(&add);
+    CHECK(ids(r) == std::vector<std::string>{"test_arith"});
+    CHECK(r.deferred() == 1);
+    CHECK(r.find("test.add"));
+    // What is written down is not written again.
+    CHECK(slurp(f.dir / "cache" / "mechgraph" / "plugin-probes") == cache);
+  }
+  SECTION("a plugin the scene requires by id is loaded") {
+    const PluginNeeds with_marker{{"test.add"}, {"marker_good"}};
+    CHECK(ids(load(&with_marker)) == std::vector<std::string>{"marker_good", "test_arith"});
+  }
+  SECTION("a need no file claims loads every file, so the error can list every type") {
+    const PluginNeeds unknown{{"test.nothing"}, {}};
+    const PluginRegistry r = load(&unknown);
+    CHECK(r.plugins().size() == 2);
+    CHECK(r.deferred() == 0);
+  }
+  SECTION("a file changed since (another key) loads every file") {
+    fs::remove(f.plugins / "mechgraph_marker_good.so");
+    fs::copy_file(test_plugin("test_marker_good"), f.plugins / "mechgraph_marker_good.so");
+    CHECK(load(&add).plugins().size() == 2);
+    CHECK(load(&add).plugins().size() == 1);  // and is known again after that
+  }
+  SECTION("two files claiming one type load every file: the second is refused as always") {
+    fs::copy_file(test_plugin("test_arith"), f.plugins / "mechgraph_z_arith_again.so");
+    (void)load(&add);  // writes the new file down (refused: its id is loaded already)
+    const PluginRegistry r = load(&add);
+    CHECK(r.plugins().size() == 2);
+    REQUIRE(r.skipped().size() == 1);
+    CHECK_THAT(r.skipped()[0].reason, Contains("already loaded"));
+  }
+  SECTION("without needs every file loads") {
+    CHECK(load(nullptr).plugins().size() == 2);
+  }
+}
+
+TEST_CASE("mechgraph run and sweep load only the plugins their scene uses", "[plugins][probe][needs][cli]") {
+  const Folder f;
+  const ScopedEnvironment cache_home("XDG_CACHE_HOME", (f.dir / "cache").string());
+  const ScopedEnvironment marker("MECHGRAPH_TEST_MARKER", f.marker.string());
+  const fs::path scene = f.dir / "add.yaml";
+  std::ofstream(scene) << "title: needs\nparams: { len: 2 mm }\nnodes:\n  a: { type: test.constant, params: { value: $len } }\n"
+                          "  s: { type: test.add, inputs: { a: a.out, b: a.out } }\noutputs: [ s.sum ]\n";
+  const std::string folder = "-q --only-plugin-dir '" + f.plugins.string() + "' ";
+  const auto run = [&](const std::string& command) {
+    const CommandResult r = run_cli(folder + command);
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return r.out;
+  };
+  // The first start loads both (probe child and host for the marker plugin), the next only what
+  // the scene uses: the same numbers, and the marker plugin's code never runs.
+  const std::string first = run("run '" + scene.string() + "'");
+  CHECK(f.marks() == 2);
+  CHECK(run("run '" + scene.string() + "'") == first);
+  CHECK(f.marks() == 2);
+  CHECK_THAT(run("sweep '" + scene.string() + "' --vary len=1mm,3mm"), Contains("s.sum"));
+  CHECK(f.marks() == 2);
+  // A scene that requires the marker plugin loads it (in the host only: the probe cache has it).
+  std::ofstream(scene, std::ios::app) << "requires: { marker_good: \">=1\" }\n";
+  CHECK(run("run '" + scene.string() + "'") == first);
+  CHECK(f.marks() == 3);
+  // A type nobody provides is told with every loaded type to choose from, as before.
+  std::ofstream(f.dir / "typo.yaml") << "nodes:\n  s: { type: test.ad }\noutputs: [ s.sum ]\n";
+  const CommandResult typo = run_cli(folder + "run '" + (f.dir / "typo.yaml").string() + "'");
+  CHECK(typo.exit_code != 0);
+  CHECK_THAT(typo.err, Contains("did you mean 'test.add'"));
+  CHECK(f.marks() == 4);
+}
+
+TEST_CASE("a scene's needs are its node types and required plugins; effects or no nodes need every plugin",
+          "[plugins][needs]") {
+  const SceneSpec scene = parse_scene(
+      "nodes:\n  a: { type: test.constant }\n  b: { type: test.constant }\n  s: { type: test.add }\n"
+      "requires: { test_arith: \">=1\" }\n",
+      "needs.yaml");
+  const std::optional<PluginNeeds> needs = host::scene_plugin_needs(scene);
+  REQUIRE(needs);
+  CHECK(needs->node_types == std::vector<std::string>{"test.constant", "test.add"});
+  CHECK(needs->plugin_ids == std::vector<std::string>{"test_arith"});
+  CHECK_FALSE(host::scene_plugin_needs(parse_scene("nodes:\n  a: { type: test.effectful }\neffects: [ heat ]\n", "e.yaml")));
+  CHECK_FALSE(host::scene_plugin_needs(SceneSpec{}));
+}
