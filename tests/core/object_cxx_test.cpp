@@ -4,6 +4,7 @@
 // side another, so which one the import took shows in the numbers.
 #include <mechgraph/detail/block_bridge.hpp>
 #include <mechgraph/detail/object_bridge.hpp>
+#include <mechgraph/domain/valve_motion.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -72,6 +73,12 @@ void release(const mg_object* o) { --const_cast<HandMade&>(hand_made(o)).retaine
 const char* maker(const mg_object*) { return "test.hand_made"; }
 const mg_object_vtbl vtbl{sizeof(mg_object_vtbl), &retain, &release, &query, &maker, &other_origin};
 
+// The same object's C tables answering no cam law: only mechgraph.object.cxx.
+const void* query_cxx_only(const mg_object* o, const char* name, uint32_t version) {
+  return version == 1 && std::strcmp(name, MG_OBJECT_CXX) == 0 ? &hand_made(o).cxx_table : nullptr;
+}
+const mg_object_vtbl cxx_only_vtbl{sizeof(mg_object_vtbl), &retain, &release, &query_cxx_only, &maker, &other_origin};
+
 const void* shared_object(const mg_object* o) { return &hand_made(o).cxx; }
 const void* no_block(const mg_object_block*) { return nullptr; }
 
@@ -96,6 +103,53 @@ TEST_CASE("object cxx: an object whose C++ layer has this library's key is used 
   CHECK(detail::import_object(&h->base, MG_CAM_LAW, 1).get() == h->cxx.get());
   // A port of another SDK interface than the object's C++ class implements is not handed it.
   CHECK_THROWS(detail::import_object(&h->base, MG_FOLLOWER, 1));
+}
+
+TEST_CASE("object cxx: a C++ cam law whose C tables answer no cam law is not taken as one", "[sdk1][objects][cxx]") {
+  const auto h = make(detail::cxx_abi_key);
+  h->base.vtbl = &cxx_only_vtbl;
+  // Another consumer would find no cam law here: neither does this one, by either import.
+  CHECK_THROWS(detail::import_cam_law(&h->base));
+  CHECK_THROWS(detail::import_object(&h->base, MG_CAM_LAW, 1));
+  CHECK(h->retained == 0);
+}
+
+namespace {
+// A valve motion of someone's own kind (kind() is not "valve_motion"): exported by the search of
+// the class hierarchy, it crosses as a valve motion with its cam law all the same.
+class OwnKindMotion final : public ValveMotion {
+ public:
+  std::string_view kind() const override { return "test.own_motion"; }
+  LiftDerivatives at(double phi) const override { return drive(phi); }
+  double camshaft_speed() const override { return 300.0; }
+  double open_begin() const override { return -1.0; }
+  double open_end() const override { return 1.0; }
+  const std::vector<double>& knots() const override { return knots_; }
+  double rocker_ratio() const override { return 1.5; }
+  double lash() const override { return 0.0; }
+  const CamLaw& cam() const override { return law_; }
+
+ private:
+  Parabola law_{c_lift};
+  std::vector<double> knots_{-1.0, 1.0};
+};
+}  // namespace
+
+TEST_CASE("object cxx: a valve motion of its own kind crosses as a valve motion with its cam law", "[sdk1][objects][cxx]") {
+  const auto motion = std::make_shared<const OwnKindMotion>();
+  const mg_object* o = detail::export_object(motion, "test.motion", {});
+  REQUIRE(o);
+  const auto* table = static_cast<const mg_valve_motion_v1*>(o->vtbl->query(o, MG_VALVE_MOTION, 1));
+  REQUIRE(table);
+  const mg_object* cam = table->cam(o);
+  REQUIRE(cam);
+  const auto* law = static_cast<const mg_cam_law_v1*>(cam->vtbl->query(cam, MG_CAM_LAW, 1));
+  REQUIRE(law);
+  mg_lift4 at_zero{};
+  REQUIRE(law->evaluate(cam, 0.0, &at_zero) == MG_OK);
+  CHECK_THAT(at_zero.h, Catch::Matchers::WithinRel(c_lift, 1e-15));
+  CHECK_THAT(table->rocker_ratio(o), Catch::Matchers::WithinRel(1.5, 1e-15));
+  o->vtbl->release(o);
 }
 
 TEST_CASE("object cxx: a key that differs in one byte, or none, keeps the import to the C tables", "[sdk1][objects][cxx]") {

@@ -152,7 +152,7 @@ TEST_CASE("mechgraph run and sweep load only the plugins their scene uses", "[pl
   CHECK(f.marks() == 4);
 }
 
-TEST_CASE("a scene's needs are its node types and required plugins; effects or no nodes need every plugin",
+TEST_CASE("a scene needs its node types and required plugins and with effects or no nodes every plugin",
           "[plugins][needs]") {
   const SceneSpec scene = parse_scene(
       "nodes:\n  a: { type: test.constant }\n  b: { type: test.constant }\n  s: { type: test.add }\n"

@@ -80,3 +80,42 @@ TEST_CASE("a plugin built with clang++ passes plugin-test in the gcc-built host"
   CHECK_THAT(r.out, Contains("cxx1.curve: ") && Contains(" passed, 0 failed"));
   CHECK_THAT(r.out, !Contains("FAIL "));
 }
+
+// What is read downstream (mg_eval_args::wanted, SDK 1.4) reaches a C++ node behind the C boundary:
+// from the graph node's mask when the evaluator calls it, and from any other context output by
+// output. A node that leaves out what nobody reads (cxx1.curve's table) must then be run again
+// for a graph that reads it, even through a memo cache the first graph filled.
+TEST_CASE("the outputs read downstream reach a C++ node behind the C boundary by mask or asked one by one",
+          "[plugins][sdk1]") {
+  struct SeriesOnly final : EvalContext {
+    bool effect(std::string_view) const override { return false; }
+    void log(LogLevel, std::string_view) override {}
+    void report_work(std::string_view, double) override {}
+    bool wanted(std::string_view output) const override { return output == "series"; }
+  };
+  for (const std::string& build : builds()) {
+    INFO(build);
+    PluginRegistry r;
+    r.load_file(test_plugin(build));
+    const RegisteredType* curve = r.find("cxx1.curve");
+    REQUIRE(curve);
+    const ParamSet p = defaults_of(curve->type->info(), {{"a", ParamValue::of_number(0.002)}, {"points", ParamValue::of_integer(3)}});
+    OutputSet some;
+    SeriesOnly series_only;
+    curve->type->evaluate(p, InputSet{}, some, series_only);
+    CHECK(some.all().count("table") == 0);
+    CHECK(some.all().count("series") == 1);
+    OutputSet every;
+    RecordingContext everything;
+    curve->type->evaluate(p, InputSet{}, every, everything);
+    CHECK(every.all().count("table") == 1);
+
+    MemoCache cache;
+    const std::string node = "nodes:\n  c: { type: cxx1.curve, params: { a: 2 mm, points: 3 } }\n";
+    (void)evaluate(graph_from(node + "outputs: [ c.series ]\n", r), cache);
+    const RunResult both = evaluate(graph_from(node + "outputs: [ c.series, c.table ]\n", r), cache);
+    const Table& t = output(both, "c.table").as_table();
+    REQUIRE(t.channels.size() == 1);
+    CHECK(t.channels[0].values[1] == Approx(0.0005).epsilon(1e-12).margin(1e-15));
+  }
+}

@@ -625,10 +625,7 @@ inline const mg_object* export_object(const std::shared_ptr<const DomainObject>&
     e->vtbl = &cam_law_vtbl;
     e->primary = law;
   } else if (const auto* motion = dynamic_cast<const ValveMotion*>(object.get())) {
-    e->vtbl = &valve_motion_vtbl;
-    e->primary = motion;
-    // Its cam law, exported once: keeps the motion alive (aliasing) as long as someone holds the law.
-    e->cam = export_cam_law(std::shared_ptr<const CamLaw>(object, &motion->cam()), maker);
+    return export_valve_motion(object, *motion, maker);  // a motion whose kind() is its own
   } else if (const auto* follower = dynamic_cast<const Follower*>(object.get())) {
     e->vtbl = &follower_vtbl;
     e->primary = follower;
@@ -985,7 +982,10 @@ inline std::shared_ptr<const CamLaw> import_cam_law(const mg_object* o) {
       return std::shared_ptr<const CamLaw>(own_self(o), static_cast<const CamLaw*>(head(o).primary));
     return std::dynamic_pointer_cast<const CamLaw>(own_self(o));
   }
-  if (auto same = std::dynamic_pointer_cast<const CamLaw>(same_cxx_object(o))) return same;  // one C++ layer: no C hop
+  // One C++ layer: no C hop, when the object answers mechgraph.cam_law through C as well (what
+  // another consumer would see), as import_object asks.
+  if (auto same = same_cxx_object(o); same && o->vtbl->query(o, MG_CAM_LAW, 1))
+    if (auto law = std::dynamic_pointer_cast<const CamLaw>(std::move(same))) return law;
   return std::make_shared<const ForeignCamLaw>(o);
 }
 
