@@ -123,13 +123,13 @@ void ProbeCache::remember_manifest(const std::string& key, const PluginManifest&
   if (key.empty() || key.find('\n') != std::string::npos || !plain(provided.plugin_id) ||
       !std::all_of(provided.node_types.begin(), provided.node_types.end(), plain))
     return;
-  if (const auto known = manifest(key);
-      known && known->plugin_id == provided.plugin_id && known->node_types == provided.node_types)
-    return;
   std::string words = provided.plugin_id;
   for (const std::string& t : provided.node_types) words += " " + t;
   const std::lock_guard lock(mutex_);
-  (*manifests_)[key] = words;
+  if (!manifests_) index_manifests();
+  std::string& known = (*manifests_)[key];
+  if (known == words) return;  // written down already: not once per start
+  known = words;
   append_line(key + manifest_mark + words);
 }
 

@@ -128,9 +128,13 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs)});
   }
   for (auto& a : added) types_.push_back(std::move(a));
-  probes_->remember_manifest(detail::probe_key(file), detail::PluginManifest{id, info.node_types});
   spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
   plugins_.push_back(std::move(info));
+  try {  // a shortcut for later starts: failing to write it down changes nothing here
+    probes_->remember_manifest(detail::probe_key(file), detail::PluginManifest{id, plugins_.back().node_types});
+  } catch (const std::exception& e) {
+    spdlog::debug("plugin probe cache: {} not noted: {}", file.string(), e.what());
+  }
 }
 
 std::vector<std::filesystem::path> PluginRegistry::plugin_files(const std::filesystem::path& folder) {
@@ -197,7 +201,11 @@ std::optional<std::vector<std::filesystem::path>> PluginRegistry::needed_files(c
     if (ec) return std::nullopt;
     const std::optional<detail::PluginManifest> m = probes_->manifest(detail::probe_key(file));
     // Unknown to the cache, or a second claim to an id or a type: load_file decides, as always.
-    if (!m || !ids.insert(m->plugin_id).second) return std::nullopt;
+    if (!m) {
+      spdlog::debug("loading every plugin: the probe cache does not know what {} provides", file.string());
+      return std::nullopt;
+    }
+    if (!ids.insert(m->plugin_id).second) return std::nullopt;
     bool wanted = std::find(needs.plugin_ids.begin(), needs.plugin_ids.end(), m->plugin_id) != needs.plugin_ids.end();
     if (wanted) found_ids.insert(m->plugin_id);
     for (const std::string& t : m->node_types) {

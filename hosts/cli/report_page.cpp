@@ -25,6 +25,7 @@
 #include <map>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -1225,7 +1226,11 @@ void write_report_page(const std::filesystem::path& dir, const Graph& graph, con
     for (const std::string& o : inputs.overrides) html << " <code>--set " << html_text(o) << "</code>";
   }
   html << ". Plugins:";
-  for (const PluginInfo& p : registry.plugins()) html << " " << html_text(p.id) << " " << html_text(p.version) << ";";
+  // Those the evaluated nodes come from, as results.json lists them (not whatever else was loaded).
+  std::set<std::string> used;
+  for (std::size_t index : graph.order) used.insert(graph.nodes[index].type->plugin_id);
+  for (const PluginInfo& p : registry.plugins())
+    if (used.count(p.id)) html << " " << html_text(p.id) << " " << html_text(p.version) << ";";
   html << " everything in <code>results.json</code>.</p>\n";
 
   // The scene's report tables.

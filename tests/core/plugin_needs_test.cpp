@@ -7,6 +7,7 @@
 #include "test_support.hpp"
 
 #include <mechgraph/host/plugin_search.hpp>
+#include <mechgraph/host/study_run.hpp>
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace mechgraph;
@@ -55,6 +57,16 @@ struct Folder {
     return n;
   }
 };
+
+// Appends a note to the probe cache for `file` as a process writes it: KEY<tab>provides WORDS.
+void append_note(const fs::path& dir, const fs::path& file, const std::string& words) {
+  struct stat st {};
+  REQUIRE(::stat(file.c_str(), &st) == 0);
+  const std::string key = fs::canonical(file).string() + " " + std::to_string(st.st_size) + " " +
+                          std::to_string(st.st_ctim.tv_sec) + "." + std::to_string(st.st_ctim.tv_nsec) + " " +
+                          std::to_string(st.st_ino);
+  std::ofstream(dir / "cache" / "mechgraph" / "plugin-probes", std::ios::app) << key << "\tprovides " << words << "\n";
+}
 
 std::vector<std::string> ids(const PluginRegistry& r) {
   std::vector<std::string> out;
@@ -105,13 +117,39 @@ TEST_CASE("a registry given needs loads only the files the probe cache knows pro
     CHECK(load(&add).plugins().size() == 2);
     CHECK(load(&add).plugins().size() == 1);  // and is known again after that
   }
-  SECTION("two files claiming one type load every file: the second is refused as always") {
+  SECTION("a file the cache says nothing of (refused: no note is written) loads every file") {
     fs::copy_file(test_plugin("test_arith"), f.plugins / "mechgraph_z_arith_again.so");
-    (void)load(&add);  // writes the new file down (refused: its id is loaded already)
+    for (int start = 0; start < 2; ++start) {
+      const PluginRegistry r = load(&add);
+      CHECK(r.plugins().size() == 2);
+      REQUIRE(r.skipped().size() == 1);
+      CHECK_THAT(r.skipped()[0].reason, Contains("already loaded"));
+    }
+  }
+  SECTION("two files claiming one type load every file") {
+    // A note for a third file (as another process could have written it) that claims test.add
+    // too: the cache cannot say which one loads first wins, so every file loads.
+    fs::copy_file(test_plugin("test_arith"), f.plugins / "mechgraph_z_arith_again.so");
+    append_note(f.dir, f.plugins / "mechgraph_z_arith_again.so", "other_arith test.add");
     const PluginRegistry r = load(&add);
+    CHECK(ids(r) == std::vector<std::string>{"marker_good", "test_arith"});
+    CHECK(r.deferred() == 0);
+  }
+  SECTION("a note that promised more than its file gave: the rest are loaded too") {
+    append_note(f.dir, f.plugins / "mechgraph_marker_good.so", "marker_good test.ghost");
+    const PluginNeeds ghost{{"test.ghost"}, {}};
+    const PluginRegistry r = load(&ghost);
     CHECK(r.plugins().size() == 2);
-    REQUIRE(r.skipped().size() == 1);
-    CHECK_THAT(r.skipped()[0].reason, Contains("already loaded"));
+    CHECK(r.deferred() == 0);
+    CHECK_FALSE(r.find("test.ghost"));
+  }
+  SECTION("a newer note without an id is no note: every file loads") {
+    append_note(f.dir, f.plugins / "mechgraph_marker_good.so", "");
+    CHECK(load(&add).plugins().size() == 2);
+  }
+  SECTION("lines that name no file change nothing") {
+    std::ofstream(f.dir / "cache" / "mechgraph" / "plugin-probes", std::ios::app) << "\tprovides test_arith\n\t\n\tprovides\nx";
+    CHECK(ids(load(&add)) == std::vector<std::string>{"test_arith"});
   }
   SECTION("without needs every file loads") {
     CHECK(load(nullptr).plugins().size() == 2);
@@ -152,6 +190,24 @@ TEST_CASE("mechgraph run and sweep load only the plugins their scene uses", "[pl
   CHECK(f.marks() == 4);
 }
 
+TEST_CASE("mechgraph study finds the ISO 286 limits of a plugin no node of its scene names", "[plugins][probe][needs][cli]") {
+  const Folder f;
+  fs::copy_file(fs::path(MECHGRAPH_PLUGIN_DIR) / "mechgraph_fits.so", f.plugins / "mechgraph_fits.so");
+  const ScopedEnvironment cache_home("XDG_CACHE_HOME", (f.dir / "cache").string());
+  const fs::path scene = f.dir / "bore.yaml";
+  std::ofstream(scene) << "params: { bore: 20 mm }\nnodes:\n  a: { type: test.constant, params: { value: $bore } }\n"
+                          "outputs: [ a.out ]\nuncertainty:\n  samples: 16\n  parameters:\n"
+                          "    bore: { iso286: { size: 20 mm, class: H7, distribution: uniform } }\n";
+  // The first start loads every plugin and notes what each provides; the second loads by the
+  // notes, and fits must be among them.
+  for (int start = 0; start < 2; ++start) {
+    const CommandResult r = run_cli("-q --only-plugin-dir '" + f.plugins.string() + "' study '" + scene.string() + "' --json");
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK_THAT(r.out, Contains("a.out"));
+  }
+}
+
 TEST_CASE("a scene needs its node types and required plugins and with effects or no nodes every plugin",
           "[plugins][needs]") {
   const SceneSpec scene = parse_scene(
@@ -162,6 +218,11 @@ TEST_CASE("a scene needs its node types and required plugins and with effects or
   REQUIRE(needs);
   CHECK(needs->node_types == std::vector<std::string>{"test.constant", "test.add"});
   CHECK(needs->plugin_ids == std::vector<std::string>{"test_arith"});
+  // A study's iso286: parameters need the type that answers ISO 286 limits, which no node names.
+  const SceneSpec study = parse_scene("nodes:\n  s: { type: test.add }\nuncertainty: { parameters: {} }\n", "study.yaml");
+  const std::optional<PluginNeeds> study_needs = host::scene_plugin_needs(study);
+  REQUIRE(study_needs);
+  CHECK(study_needs->node_types == std::vector<std::string>{"test.add", host::iso286_node_type});
   CHECK_FALSE(host::scene_plugin_needs(parse_scene("nodes:\n  a: { type: test.effectful }\neffects: [ heat ]\n", "e.yaml")));
   CHECK_FALSE(host::scene_plugin_needs(SceneSpec{}));
 }

@@ -1,6 +1,7 @@
 #include <mechgraph/host/plugin_search.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/host/study_run.hpp>
 
 #include <spdlog/spdlog.h>
 
@@ -42,6 +43,8 @@ std::optional<PluginNeeds> scene_plugin_needs(const SceneSpec& scene) {
     if (std::find(needs.node_types.begin(), needs.node_types.end(), n.type) == needs.node_types.end())
       needs.node_types.push_back(n.type);
   for (const PluginRequirement& r : scene.requirements) needs.plugin_ids.push_back(r.plugin);
+  // A study's iso286: parameters are answered by a node type no node of the scene names.
+  if (scene.uncertainty) needs.node_types.push_back(iso286_node_type);
   return needs;
 }
 

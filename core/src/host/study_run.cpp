@@ -26,7 +26,7 @@
 namespace mechgraph::host {
 
 Iso286Limits iso286_limits(const PluginRegistry& registry) {
-  if (!registry.find("fit.iso286")) return {};
+  if (!registry.find(iso286_node_type)) return {};
   return [&registry](double size, const std::string& tolerance_class) {
     // One fit.iso286 node, its parameters given as values (never as YAML text): the class on its
     // side, a common class on the other.
@@ -35,7 +35,7 @@ Iso286Limits iso286_limits(const PluginRegistry& registry) {
     scene.file = "ISO 286";
     NodeSpec node;
     node.name = "fit";
-    node.type = "fit.iso286";
+    node.type = iso286_node_type;
     char buffer[40];
     const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, size, std::chars_format::general, 17);
     const auto text = [](std::string t) {

@@ -24,7 +24,8 @@ struct PluginSearch {
 PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first = {},
                             const PluginNeeds* needs = nullptr);
 
-/// What a scene uses: its node types and the plugins its `requires:` names. Nothing (load every
+/// What a scene uses: its node types, the plugins its `requires:` names, and with an
+/// `uncertainty:` block the node type of ISO 286 limits (iso286_node_type). Nothing (load every
 /// plugin) for a scene with an `effects:` block, whose effects are known by the types that
 /// implement them, and for a scene without nodes.
 std::optional<PluginNeeds> scene_plugin_needs(const SceneSpec& scene);

@@ -16,6 +16,9 @@
 
 namespace mechgraph::host {
 
+/// The node type that answers ISO 286 limits for a study's `iso286:` parameters.
+inline constexpr const char* iso286_node_type = "fit.iso286";
+
 /// ISO 286 deviations by the loaded fit.iso286 node type (an empty function when none is loaded).
 Iso286Limits iso286_limits(const PluginRegistry& registry);
 
