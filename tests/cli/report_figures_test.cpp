@@ -266,6 +266,9 @@ TEST_CASE("report: the spring figure spans the working range, the free length na
   const std::string page = slurp(dir / "report.html");
   const std::string spring = figure_svg(page, "Spring force over valve lift of Kurz (sd_kurz)");
   REQUIRE(!spring.empty());
+  // The page names the plugins its nodes come from, as results.json does, not every one loaded.
+  CHECK_THAT(page, Contains("Plugins: cams ") && Contains(" valvetrain "));
+  CHECK_THAT(page, !Contains(" backlash ") && !Contains(" joints "));
   // f0 = 2 h_max = 23.5 mm below the installed height: named, not on the axis.
   CHECK_THAT(spring, Contains("&lt;- free length at -23.5 mm"));
   for (const char* mark : {">installed<", ">full lift<", ">solid<"}) CHECK_THAT(spring, Contains(mark));
