@@ -257,8 +257,9 @@ int bench_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     throw UsageError("--reference-time must be a number of seconds >= 0");
   if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance)) throw UsageError("--tol must be > 0");
   if (vm.count("out")) check_results_folder(vm["out"].as<std::string>(), vm.count("force") > 0);
-  const PluginRegistry registry = load_plugins(g);
-  const Graph graph = load_scene_graph(vm, registry);
+  const SceneSpec scene = load_scene(vm["scene"].as<std::string>());
+  const PluginRegistry registry = plugins_for_scene(g, scene);
+  const Graph graph = load_scene_graph(vm, scene, registry);
   // The ladders' work is checked before anything runs; each reference is checked step by step.
   const WorkBudget budget = work_budget(vm);
   options.max_work = budget.max_work;

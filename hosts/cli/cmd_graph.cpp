@@ -66,8 +66,9 @@ int graph_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm, "mechgraph graph SCENE [--set NAME=VALUE ...] | dot -Tsvg"))
     return ok;
-  const PluginRegistry registry = load_plugins(g);
-  write_dot(std::cout, load_scene_graph(vm, registry));
+  const SceneSpec scene = load_scene(vm["scene"].as<std::string>());
+  const PluginRegistry registry = plugins_for_scene(g, scene);
+  write_dot(std::cout, load_scene_graph(vm, scene, registry));
   return ok;
 }
 

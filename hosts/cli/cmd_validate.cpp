@@ -14,8 +14,9 @@ int validate_command(const GlobalOptions& g, const std::vector<std::string>& arg
   add_scene_options(visible);
   po::variables_map vm;
   if (!parse_scene_command(args, visible, vm, "mechgraph validate SCENE [--set NAME=VALUE ...]")) return ok;
-  const PluginRegistry registry = load_plugins(g);
-  const Graph graph = load_scene_graph(vm, registry);
+  const SceneSpec scene = load_scene(vm["scene"].as<std::string>());
+  const PluginRegistry registry = plugins_for_scene(g, scene);
+  const Graph graph = load_scene_graph(vm, scene, registry);
   std::ostringstream text;  // the scene's path is the user's text: shown through terminal_text
   text << terminal_text(vm["scene"].as<std::string>(), TerminalLines::one) << ": valid; " << graph.nodes.size() << " nodes, "
        << graph.order.size() << " needed for " << graph.outputs.size() << " outputs\n";

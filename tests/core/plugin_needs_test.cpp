@@ -156,7 +156,7 @@ TEST_CASE("a registry given needs loads only the files the probe cache knows pro
   }
 }
 
-TEST_CASE("mechgraph run and sweep load only the plugins their scene uses", "[plugins][probe][needs][cli]") {
+TEST_CASE("mechgraph run, sweep, validate and graph load only the plugins their scene uses", "[plugins][probe][needs][cli]") {
   const Folder f;
   const ScopedEnvironment cache_home("XDG_CACHE_HOME", (f.dir / "cache").string());
   const ScopedEnvironment marker("MECHGRAPH_TEST_MARKER", f.marker.string());
@@ -177,6 +177,8 @@ TEST_CASE("mechgraph run and sweep load only the plugins their scene uses", "[pl
   CHECK(run("run '" + scene.string() + "'") == first);
   CHECK(f.marks() == 2);
   CHECK_THAT(run("sweep '" + scene.string() + "' --vary len=1mm,3mm"), Contains("s.sum"));
+  CHECK_THAT(run("validate '" + scene.string() + "'"), Contains("valid"));
+  CHECK_THAT(run("graph '" + scene.string() + "'"), Contains("digraph"));
   CHECK(f.marks() == 2);
   // A scene that requires the marker plugin loads it (in the host only: the probe cache has it).
   std::ofstream(scene, std::ios::app) << "requires: { marker_good: \">=1\" }\n";
