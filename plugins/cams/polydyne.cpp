@@ -19,7 +19,6 @@ namespace mechgraph::cams {
 namespace {
 
 using boost::multiprecision::cpp_int;
-using boost::multiprecision::cpp_rational;
 
 constexpr int kMaxExponent = 1000;  // keeps every product of four exponents (< 1e12) exact in int64
 
@@ -33,9 +32,9 @@ std::string list_text(const std::vector<double>& v) {
 
 // Divides the polynomial p (monomial coefficients, ascending) by (1 - u): with p = (1 - u) s,
 // p_j = s_j - s_{j-1}, so s_j = p_0 + ... + p_j; the remainder p(1) must vanish.
-std::vector<cpp_rational> divide_by_one_minus_u(const std::vector<cpp_rational>& p) {
-  std::vector<cpp_rational> s(p.size() - 1);
-  cpp_rational sum = 0;
+std::vector<cpp_int> divide_by_one_minus_u(const std::vector<cpp_int>& p) {
+  std::vector<cpp_int> s(p.size() - 1);
+  cpp_int sum = 0;
   for (std::size_t j = 0; j + 1 < p.size(); ++j) {
     sum += p[j];
     s[j] = sum;
@@ -43,6 +42,14 @@ std::vector<cpp_rational> divide_by_one_minus_u(const std::vector<cpp_rational>&
   sum += p.back();
   if (sum != 0) throw std::logic_error("polydyne: the polynomial does not vanish at u = 1");
   return s;
+}
+
+// value / scale in long double, as the fraction in lowest terms converts (numerator and
+// denominator each rounded, then divided): the same bits as an exact rational would give.
+long double reduced_ratio(const cpp_int& value, const cpp_int& scale) {
+  if (value == 0) return 0.0L;
+  const cpp_int g = gcd(value, scale);
+  return static_cast<long double>(cpp_int(value / g)) / static_cast<long double>(cpp_int(scale / g));
 }
 
 }  // namespace
@@ -106,22 +113,28 @@ std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& expone
   series->exponents = exponents;
   const auto exact = polydyne_coefficients_exact(exponents);
   const int degree = exponents.back();
-  std::vector<cpp_rational> p(static_cast<std::size_t>(degree) + 1, cpp_rational(0));
-  p[0] = 1;
+  // Exact arithmetic over integers: the polynomial times the least common multiple L of its
+  // coefficients' denominators. Derivatives and divisions by (1 - u) keep integers (prefix sums),
+  // and every sign is the rational's (L > 0); one gcd per coefficient at the end, instead of one
+  // per rational operation.
+  cpp_int scale = 1;
+  for (const auto& [num, den] : exact) scale = lcm(scale, cpp_int(den));
+  std::vector<cpp_int> p(static_cast<std::size_t>(degree) + 1, cpp_int(0));
+  p[0] = scale;
   for (std::size_t i = 0; i < exponents.size(); ++i) {
     const auto [num, den] = exact[i];
-    p[static_cast<std::size_t>(exponents[i])] = cpp_rational(cpp_int(num), cpp_int(den));
+    p[static_cast<std::size_t>(exponents[i])] = cpp_int(num) * (scale / den);
     // num and den are exact in double (< 2^53), so one division rounds correctly.
     series->coefficients.push_back(static_cast<double>(num) / static_cast<double>(den));
   }
-  std::vector<cpp_rational> derivative = p;
+  std::vector<cpp_int> derivative = p;
   for (int m = 0; m < 6; ++m) {
     if (m > 0) {  // d/du of sum c_k u^k
-      std::vector<cpp_rational> d(derivative.size() - 1);
+      std::vector<cpp_int> d(derivative.size() - 1);
       for (std::size_t k = 1; k < derivative.size(); ++k) d[k - 1] = derivative[k] * static_cast<long long>(k);
       derivative = std::move(d);
     }
-    std::vector<cpp_rational> q = derivative;
+    std::vector<cpp_int> q = derivative;
     for (int k = 0; k < 5 - m; ++k) q = divide_by_one_minus_u(q);
     // Sign structure that makes lift and velocity cancellation-free (and the lift monotonic).
     for (std::size_t k = 0; k < q.size(); ++k) {
@@ -132,10 +145,7 @@ std::shared_ptr<const PolydyneSeries> make_series(const std::vector<int>& expone
     }
     auto& target = series->q[static_cast<std::size_t>(m)];
     target.reserve(q.size());
-    for (const cpp_rational& r : q) {
-      const long double value = static_cast<long double>(numerator(r)) / static_cast<long double>(denominator(r));
-      target.push_back(value);
-    }
+    for (const cpp_int& v : q) target.push_back(reduced_ratio(v, scale));
   }
   // Where the first three derivatives of x change sign on (0, 1): the sign changes of q_1, q_2,
   // q_3 (the factor (1 - u)^(5-m) keeps its sign there), by the certified search

@@ -13,6 +13,7 @@
 #include <boost/multiprecision/cpp_int.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -175,6 +176,46 @@ TEST_CASE("polydyne: closed-form coefficients", "[cams][polydyne]") {
   }
   // The conditioning the method note warns about.
   CHECK(condition_number({2, 14, 26, 38, 50}) > 1e6);
+}
+
+TEST_CASE("polydyne: the factored derivatives q_m are the exact rationals' to the last bit", "[cams][polydyne]") {
+  // The series is computed over integers scaled by a common denominator; the reference here is
+  // the plain rational computation: x = 1 + sum C_i u^n_i, its m-th derivative divided by
+  // (1 - u)^(5-m) coefficient by coefficient (prefix sums), each reduced fraction converted to
+  // long double as numerator / denominator.
+  for (const std::vector<int>& n : std::vector<std::vector<int>>{{2, 6, 10, 14, 18}, {2, 14, 26, 38, 50},
+                                                                 {2, 4, 6, 8, 10}, {2, 40, 400, 600, 1000}}) {
+    INFO("exponents " << n[0] << "-" << n[1] << "-" << n[2] << "-" << n[3] << "-" << n[4]);
+    const auto c = polydyne_coefficients_exact(n);
+    std::vector<cpp_rational> x(static_cast<std::size_t>(n.back()) + 1, cpp_rational(0));
+    x[0] = 1;
+    for (int i = 0; i < 5; ++i) x[static_cast<std::size_t>(n[i])] = cpp_rational(cpp_int(c[i].first), cpp_int(c[i].second));
+    const auto series = polydyne_series(n);
+    std::vector<cpp_rational> derivative = x;
+    for (int m = 0; m < 6; ++m) {
+      if (m > 0) {
+        std::vector<cpp_rational> d(derivative.size() - 1);
+        for (std::size_t k = 1; k < derivative.size(); ++k) d[k - 1] = derivative[k] * static_cast<long long>(k);
+        derivative = std::move(d);
+      }
+      std::vector<cpp_rational> q = derivative;
+      for (int k = 0; k < 5 - m; ++k) {
+        std::vector<cpp_rational> divided(q.size() - 1);
+        cpp_rational sum = 0;
+        for (std::size_t j = 0; j + 1 < q.size(); ++j) divided[j] = sum += q[j];
+        REQUIRE(sum + q.back() == 0);
+        q = std::move(divided);
+      }
+      const std::vector<long double>& got = series->q[static_cast<std::size_t>(m)];
+      REQUIRE(got.size() == q.size());
+      std::size_t differing = 0;
+      for (std::size_t k = 0; k < q.size(); ++k) {
+        const long double want = static_cast<long double>(numerator(q[k])) / static_cast<long double>(denominator(q[k]));
+        if (std::memcmp(&want, &got[k], 10) != 0) ++differing;
+      }
+      CHECK(differing == 0);
+    }
+  }
 }
 
 TEST_CASE("polydyne: lift keeps its digits near the seat", "[cams][polydyne]") {
