@@ -178,12 +178,13 @@ void PluginRegistry::load_directory(const std::filesystem::path& folder) {
   for (const auto& f : plugin_files(folder)) load_or_skip(f);
 }
 
+bool PluginRegistry::has_plugin(std::string_view id) const {
+  return std::any_of(plugins_.begin(), plugins_.end(), [&](const PluginInfo& p) { return p.id == id; });
+}
+
 bool PluginRegistry::provides_all(const PluginNeeds& needs) const {
-  for (const std::string& t : needs.node_types)
-    if (!find(t)) return false;
-  for (const std::string& id : needs.plugin_ids)
-    if (std::none_of(plugins_.begin(), plugins_.end(), [&](const PluginInfo& p) { return p.id == id; })) return false;
-  return true;
+  return std::all_of(needs.node_types.begin(), needs.node_types.end(), [&](const std::string& t) { return find(t) != nullptr; }) &&
+         std::all_of(needs.plugin_ids.begin(), needs.plugin_ids.end(), [&](const std::string& id) { return has_plugin(id); });
 }
 
 std::optional<std::vector<std::filesystem::path>> PluginRegistry::needed_files(const std::vector<std::filesystem::path>& files,
@@ -221,8 +222,7 @@ std::optional<std::vector<std::filesystem::path>> PluginRegistry::needed_files(c
   for (const std::string& t : needs.node_types)
     if (!found_types.count(t) && !find(t)) return std::nullopt;
   for (const std::string& id : needs.plugin_ids)
-    if (!found_ids.count(id) && std::none_of(plugins_.begin(), plugins_.end(), [&](const PluginInfo& p) { return p.id == id; }))
-      return std::nullopt;
+    if (!found_ids.count(id) && !has_plugin(id)) return std::nullopt;
   return picked;
 }
 

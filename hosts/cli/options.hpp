@@ -66,21 +66,15 @@ inline bool parse_scene_command(const std::vector<std::string>& args, const po::
   return parse_options(args, visible, all, positional, vm, synopsis);
 }
 
-/// A scene read already (see plugins_for_scene), checked with its --set overrides; its curves count
-/// against --max-output as load_scene_graph below says.
+/// The scene read from the command line (before its plugins: plugins_for_scene), made into a graph
+/// with its --set overrides. Its curves count against --max-output when they are written: to files
+/// (--out) or, `prints_curves`, to standard output (run --json).
 inline Graph load_scene_graph(const po::variables_map& vm, const SceneSpec& scene, const PluginRegistry& registry,
                               bool prints_curves = false) {
   const auto sets = vm.count("set") ? vm["set"].as<std::vector<std::string>>() : std::vector<std::string>{};
   Graph graph = load_graph(scene, sets, registry);
   check_work_budget(graph, estimate_work(graph), work_budget(vm), 1, vm.count("out") > 0 || prints_curves);
   return graph;
-}
-
-/// The scene named on the command line, loaded and checked with its --set overrides. Its curves
-/// count against --max-output when they are written: to files (--out) or, `prints_curves`, to
-/// standard output (run --json).
-inline Graph load_scene_graph(const po::variables_map& vm, const PluginRegistry& registry, bool prints_curves = false) {
-  return load_scene_graph(vm, load_scene(vm["scene"].as<std::string>()), registry, prints_curves);
 }
 
 /// The plugins a command that runs `scene` loads: those the probe cache knows provide the scene's

@@ -122,6 +122,7 @@ class PluginRegistry {
   std::optional<std::vector<std::filesystem::path>> needed_files(const std::vector<std::filesystem::path>& files,
                                                                  const PluginNeeds& needs);
   bool provides_all(const PluginNeeds& needs) const;
+  bool has_plugin(std::string_view id) const;
 };
 
 }  // namespace mechgraph

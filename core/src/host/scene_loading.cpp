@@ -7,10 +7,6 @@
 
 namespace mechgraph::host {
 
-Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry) {
-  return load_graph(load_scene(scene_file), sets, registry);
-}
-
 Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, const PluginRegistry& registry) {
   std::vector<Override> overrides;
   for (const std::string& s : sets) overrides.push_back(parse_override(s));

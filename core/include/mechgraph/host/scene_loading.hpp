@@ -10,9 +10,7 @@
 
 namespace mechgraph::host {
 
-/// Loads the scene, applies --set overrides and builds the graph against the loaded plugins.
-Graph load_graph(const std::string& scene_file, const std::vector<std::string>& sets, const PluginRegistry& registry);
-/// The same for a scene read already.
+/// Applies --set overrides to a scene read already and builds the graph against the loaded plugins.
 Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, const PluginRegistry& registry);
 
 /// The graph a sweep runs: `outputs` ("a.b,c.d", --outputs) replace the scene's outputs and report;
