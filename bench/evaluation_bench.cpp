@@ -196,10 +196,11 @@ BENCHMARK(BM_NodeCallOverhead)->Unit(benchmark::kNanosecond);
 #endif
 
 #if defined(MECHGRAPH_TEST_ARITH_PLUGIN) && defined(MECHGRAPH_TEST_ARITH_SDK1_PLUGIN)
-// One C++ node type through both entries, side by side (issue 30: "no loss of speed"): the test
-// plugin's test.constant feeding a chain of `adds` test.add nodes, built with the pre-1.0 entry
-// (entry 0) and with MECHGRAPH_PLUGIN_1 (entry 1, through the C boundary and the SDK's bridge,
-// mechgraph/detail/export_node.hpp). What one test.add costs through an entry is
+// One C++ node type through both entries, side by side ("no loss of speed"): the test plugin's
+// test.constant feeding a chain of `adds` test.add nodes, built with the pre-1.0 entry (entry 0)
+// and with MECHGRAPH_PLUGIN_1, called as itself (entry 1: one C++ layer, c/node_cxx.h) or through
+// the C boundary and the SDK's bridge (entry 2, mechgraph/detail/export_node.hpp, as a host of
+// another compiler calls it). What one test.add costs through an entry is
 // (time at adds:8 - time at adds:0) / 8; compare the entries with the fastest of several
 // interleaved runs (--benchmark_repetitions, --benchmark_enable_random_interleaving).
 void BM_NodeCallEntries(benchmark::State& state) {
@@ -213,6 +214,13 @@ void BM_NodeCallEntries(benchmark::State& state) {
     r.load_file(MECHGRAPH_TEST_ARITH_SDK1_PLUGIN);
     return r;
   }();
+  static const PluginRegistry sdk1_c = [] {
+    PluginRegistry r;
+    r.set_node_types_through_c(true);
+    r.load_file(MECHGRAPH_TEST_ARITH_SDK1_PLUGIN);
+    return r;
+  }();
+  const PluginRegistry* registries[] = {&pre_1_0, &sdk1, &sdk1_c};
   const long adds = state.range(1);
   std::string yaml = "title: a chain of adds\nnodes:\n  k: { type: test.constant, params: { value: 1 mm } }\n";
   std::string last = "k.out";
@@ -222,19 +230,21 @@ void BM_NodeCallEntries(benchmark::State& state) {
     last = name + ".sum";
   }
   yaml += "outputs: [ " + last + " ]\n";
-  const Graph g = build_graph(parse_scene(yaml, "node_calls.yaml"), state.range(0) == 0 ? pre_1_0 : sdk1);
+  const Graph g = build_graph(parse_scene(yaml, "node_calls.yaml"), *registries[state.range(0)]);
   for (auto _ : state) {
     MemoCache cache;
     benchmark::DoNotOptimize(evaluate(g, cache));
   }
-  state.SetLabel(state.range(0) == 0 ? "pre-1.0 entry" : "MECHGRAPH_PLUGIN_1");
+  const char* labels[] = {"pre-1.0 entry", "MECHGRAPH_PLUGIN_1, as itself", "MECHGRAPH_PLUGIN_1, through C"};
+  state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_NodeCallEntries)->ArgNames({"entry", "adds"})->ArgsProduct({{0, 1}, {0, 8}})->Unit(benchmark::kNanosecond);
+BENCHMARK(BM_NodeCallEntries)->ArgNames({"entry", "adds"})->ArgsProduct({{0, 1, 2}, {0, 8}})->Unit(benchmark::kNanosecond);
 #endif
 
 #if defined(MECHGRAPH_TEST_STROKE_PLUGIN) && defined(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN)
 // A node that makes tables (pump.stroke: a 181-row motion table, port events, seal gaps and a scalar), through
-// the pre-1.0 entry (0) and MECHGRAPH_PLUGIN_1 (1): what the boundary costs a node with real output.
+// the pre-1.0 entry (0) and MECHGRAPH_PLUGIN_1, as itself (1) and through C (2): what the boundary costs a
+// node with real output.
 void BM_StrokeEntries(benchmark::State& state) {
   static const PluginRegistry pre_1_0 = [] {
     PluginRegistry r;
@@ -246,17 +256,25 @@ void BM_StrokeEntries(benchmark::State& state) {
     r.load_file(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN);
     return r;
   }();
+  static const PluginRegistry sdk1_c = [] {
+    PluginRegistry r;
+    r.set_node_types_through_c(true);
+    r.load_file(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN);
+    return r;
+  }();
+  const PluginRegistry* registries[] = {&pre_1_0, &sdk1, &sdk1_c};
   const Graph g = build_graph(parse_scene("title: a pump\nnodes:\n  p: { type: pump.stroke, params: { phase: 30 deg } }\n"
                                           "outputs: [ p.motion, p.gaps, p.port_events, p.peak_angle ]\n",
                                           "stroke.yaml"),
-                             state.range(0) == 0 ? pre_1_0 : sdk1);
+                             *registries[state.range(0)]);
   for (auto _ : state) {
     MemoCache cache;
     benchmark::DoNotOptimize(evaluate(g, cache));
   }
-  state.SetLabel(state.range(0) == 0 ? "pre-1.0 entry" : "MECHGRAPH_PLUGIN_1");
+  const char* labels[] = {"pre-1.0 entry", "MECHGRAPH_PLUGIN_1, as itself", "MECHGRAPH_PLUGIN_1, through C"};
+  state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_StrokeEntries)->ArgName("entry")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StrokeEntries)->ArgName("entry")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 #endif
 
 BENCHMARK_MAIN();

@@ -61,6 +61,19 @@ inline const PluginRegistry& project_registry() {
   return registry;
 }
 
+// The built-in plugins with every node type called through the C boundary, as a host of another
+// compiler calls them (project_registry() calls them as themselves: one C++ layer, c/node_cxx.h);
+// their objects still cross as C++ objects (c/object_cxx.h).
+inline const PluginRegistry& project_registry_through_c() {
+  static const PluginRegistry registry = [] {
+    PluginRegistry r;
+    r.set_node_types_through_c(true);
+    r.load_directory(MECHGRAPH_PLUGIN_DIR);
+    return r;
+  }();
+  return registry;
+}
+
 // The built-in cams and valvetrain built on the SDK 1.x entry (test_plugins/builtin_sdk1), in place
 // of the pre-1.0 ones: the same node types through the C boundary.
 inline const PluginRegistry& builtin_sdk1_registry() {

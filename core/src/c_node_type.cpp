@@ -4,6 +4,7 @@
 #include "c_node_description.hpp"
 #include "node_context.hpp"
 
+#include <mechgraph/c/node_cxx.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/sdk_lib.h>
@@ -544,12 +545,34 @@ std::string interface_of_port(const PortSpec& port) {
   return port.handle_kind;
 }
 
-std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where) {
+bool runs_through_c(const NodeType& type) {
+  return c_type_behind_blocks(type) != nullptr || dynamic_cast<const CNodeType*>(&type) != nullptr;
+}
+
+std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type) {
+  if (type.struct_size < offsetof(mg_node_type, query) + sizeof type.query || !type.query) return nullptr;
+  const auto* table = static_cast<const mg_node_cxx_v1*>(type.query(&type, MG_NODE_CXX, 1));
+  if (!table || table->struct_size < sizeof(mg_node_cxx_v1) || !table->shared_type || !is_own_cxx_abi_key(table->abi_key))
+    return nullptr;
+  const void* shared = table->shared_type(&type);
+  if (!shared) return nullptr;
+  std::shared_ptr<const NodeType> cxx = *static_cast<const std::shared_ptr<const NodeType>*>(shared);
+  if (!cxx) return nullptr;
+  const NodeInfo& info = cxx->info();
+  for (const std::vector<PortSpec>* ports : {&info.inputs, &info.outputs})
+    for (const PortSpec& port : *ports)
+      if (port.kind == ValueKind::handle && !sdk_interface_of_kind(port.handle_kind)) return nullptr;
+  return cxx;
+}
+
+std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where, bool through_c) {
   if (type.struct_size < offsetof(mg_node_type, query))
     throw PluginError(where + ": a node type's mg_node_type is " + std::to_string(type.struct_size) +
                       " bytes (struct_size), shorter than the " + std::to_string(offsetof(mg_node_type, query)) +
                       " bytes every SDK 1.x writer fills; a defect of the plugin");
   if (!type.evaluate) throw PluginError(where + ": a node type has no evaluate function");
+  if (!through_c)
+    if (std::shared_ptr<const NodeType> itself = same_cxx_node_type(type)) return itself;
   return with_c_blocks(std::make_shared<const CNodeType>(type, c_node_declaration(type, where)), type);
 }
 

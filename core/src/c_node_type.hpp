@@ -25,7 +25,18 @@ const mg_eval_suite_v1& c_eval_suite();
 std::string interface_of_port(const PortSpec& port);
 
 /// Wraps `type` (checked: PluginError naming `where` and the field on a malformed description).
-std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where);
+/// Unless `through_c`, a type whose C++ layer is the host's (mechgraph.node.cxx/1, equal keys)
+/// is taken as itself: the plugin's C++ NodeType, called as the host's own types are.
+std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const std::string& where, bool through_c);
+
+/// Whether `type` is the host's view of an SDK 1.x type's C description and evaluate function
+/// (make_c_node_type's wrapper), as opposed to a C++ type called as itself.
+bool runs_through_c(const NodeType& type);
+
+/// The C++ type behind `type` when its library's C++ layer is the host's (mechgraph.node.cxx/1,
+/// equal keys) and its ports carry only the SDK's interfaces (a private one is named after its
+/// plugin, which only the C description does); else nullptr.
+std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type);
 
 /// The interface versions of a node type's object ports, by port index (RegisteredType): an SDK
 /// 1.x type's declared ones; for any other type the version of the SDK interface its port's C++

@@ -178,13 +178,13 @@ std::string c_plugin_fingerprint(const mg_plugin& p) {
          (p.built_with && *p.built_with ? std::string("; ") + p.built_with : std::string());
 }
 
-NodeTypeList checked_c_plugin_node_types(const mg_plugin& p, const std::string& where) {
+NodeTypeList checked_c_plugin_node_types(const mg_plugin& p, const std::string& where, bool through_c) {
   const std::string named = plugin_where(where, p);
   NodeTypeList types;
   std::set<std::string> own;
   for (std::size_t i = 0; i < p.node_type_count; ++i) {
     if (!p.node_types[i]) throw PluginError(named + ": node type " + std::to_string(i) + " is a null pointer");
-    types.push_back(make_c_node_type(*p.node_types[i], named));
+    types.push_back(make_c_node_type(*p.node_types[i], named, through_c));
     check_node_type(types.back()->info(), named, where, own);
   }
   return types;

@@ -53,7 +53,8 @@ std::string plugin_where(const std::string& where, const mg_plugin& p);
 /// "sdk1.0; gcc 12.2.0": what `mechgraph plugins` shows in place of a pre-1.0 build fingerprint.
 std::string c_plugin_fingerprint(const mg_plugin& p);
 
-/// Wraps every node type of the plugin (c_node_type.hpp) and checks them as the pre-1.0 types are.
-NodeTypeList checked_c_plugin_node_types(const mg_plugin& p, const std::string& where);
+/// Wraps every node type of the plugin (c_node_type.hpp) and checks them as the pre-1.0 types are;
+/// `through_c` as make_c_node_type's.
+NodeTypeList checked_c_plugin_node_types(const mg_plugin& p, const std::string& where, bool through_c);
 
 }  // namespace mechgraph::detail

@@ -36,7 +36,8 @@ constexpr std::size_t probe_report_limit = 4000;  // below PIPE_BUF: one write, 
     // An SDK 1.x plugin (the C boundary) first, then the pre-1.0 C++ one.
     if (void* c_entry = ::dlsym(handle, MG_PLUGIN_ENTRY)) {
       const mg_plugin& p = checked_c_plugin(reinterpret_cast<mg_plugin_entry_fn*>(c_entry), where);
-      (void)checked_c_plugin_node_types(p, where);
+      // Its C descriptions read whole, as a host that calls every type through C reads them.
+      (void)checked_c_plugin_node_types(p, where, true);
     } else {
       void* entry = ::dlsym(handle, plugin_entry_name);
       if (!entry)

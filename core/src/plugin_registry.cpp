@@ -101,7 +101,7 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   if (sdk1) {
     const mg_plugin& p = detail::checked_c_plugin(library->get<mg_plugin_entry_fn>(MG_PLUGIN_ENTRY), where);
     refuse_loaded_id(p.plugin_id);
-    types = detail::checked_c_plugin_node_types(p, where);
+    types = detail::checked_c_plugin_node_types(p, where, through_c_);
     named = detail::plugin_where(where, p);
     info = PluginInfo{p.plugin_id, p.plugin_version, detail::c_plugin_fingerprint(p), file, {}, p.sdk_version ? p.sdk_version : ""};
   } else {
@@ -127,8 +127,11 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
     detail::PortInterfaceVersions versions = detail::port_interface_versions(*t);
     added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs)});
   }
+  const auto as_cxx = static_cast<std::size_t>(
+      std::count_if(added.begin(), added.end(), [](const auto& a) { return !detail::runs_through_c(*a.second.type); }));
   for (auto& a : added) types_.push_back(std::move(a));
-  spdlog::debug("loaded plugin '{}' {} from {} ({} node types)", id, info.version, file.string(), info.node_types.size());
+  spdlog::debug("loaded plugin '{}' {} from {} ({} node types, {} through C, {} called as C++)", id, info.version, file.string(),
+                info.node_types.size(), info.node_types.size() - as_cxx, as_cxx);
   plugins_.push_back(std::move(info));
   try {  // a shortcut for later starts: failing to write it down changes nothing here
     probes_->remember_manifest(detail::probe_key(file), detail::PluginManifest{id, plugins_.back().node_types});

@@ -2,8 +2,8 @@
 // mechgraph.node.block/1; detail/export_block.hpp in the plugin, core/src/c_block_node_type.cpp in
 // the host). The built-in cams and valvetrain built on MECHGRAPH_PLUGIN_1 to keep to the C tables
 // (test_plugins/builtin_sdk1) give the stage 1-3 sweep the very rows the shipped build gives (whose
-// plugins share their C++ objects, c/object_cxx.h) and the pre-1.0 build (test_plugins/builtin_pre10)
-// gives, in blocks and case by case; a
+// plugins share their C++ objects, c/object_cxx.h, and are called as themselves, c/node_cxx.h, or
+// through C) and the pre-1.0 build (test_plugins/builtin_pre10) gives, in blocks and case by case; a
 // case a node refuses is redone alone and carries its message; the conformance kit's block check
 // runs through C; the objects of blocks (test_sdk1_objects_a/b) are released exactly once; a plugin
 // written in C (test_plugins/c_blocks.c) offers blocks, and one that breaks the contract has every
@@ -29,9 +29,12 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
+// Every node type through C, so that the blocks and their objects cross the boundary
+// (c/node_cxx.h: objsa's and objsb's types would otherwise be called as themselves).
 const PluginRegistry& objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
+    r.set_node_types_through_c(true);
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));
     r.load_file(test_plugin("test_sdk1_objects_c"));
@@ -68,6 +71,7 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   const Prepared c = prepare(stages123(), hypercube(200), builtin_sdk1_registry());
   const Prepared pre = prepare(stages123(), hypercube(200), builtin_pre10_registry());
   const Prepared shipped = prepare(stages123(), hypercube(200), project_registry());
+  const Prepared shipped_c = prepare(stages123(), hypercube(200), project_registry_through_c());
   const BlockPlan plan(c.graph, *c.binder);
   INFO(plan.why_not());
   REQUIRE(plan.usable());
@@ -80,6 +84,8 @@ TEST_CASE("blocks through C: the stage 1-3 sweep gives the pre-1.0 build's rows,
   require_same_rows(c_blocks, sweep(pre, 1, 64));
   require_same_rows(c_blocks, sweep(shipped, 1, 64));
   require_same_rows(c_blocks, sweep(shipped, 1, 0));
+  require_same_rows(c_blocks, sweep(shipped_c, 1, 64));
+  require_same_rows(c_blocks, sweep(shipped_c, 1, 0));
   require_same_rows(c_blocks, sweep(c, 2, 16));  // two threads, smaller blocks
   // Only the speed varies: each cam's law block is one law for every case (object_count 1).
   const auto speeds = [] { return make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}); };

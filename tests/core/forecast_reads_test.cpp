@@ -233,7 +233,7 @@ TEST_CASE("what a forecast reads crosses the C boundary by parameter index", "[s
   const auto through_c = [](std::shared_ptr<const NodeType> type) {
     static std::vector<std::unique_ptr<mechgraph::detail::NodeTypeExport>> kept;  // the C side lives on, as in a plugin
     kept.push_back(std::make_unique<mechgraph::detail::NodeTypeExport>(std::move(type), "test"));
-    return mechgraph::detail::make_c_node_type(*kept.back()->c_type(), "test");
+    return mechgraph::detail::make_c_node_type(*kept.back()->c_type(), "test", true);
   };
   const auto named = through_c(std::make_shared<const Counted>(true, std::vector<std::string>{"gain", "points"}));
   CHECK(mechgraph::detail::forecast_reads(*named) == std::optional<std::vector<std::string>>(std::vector<std::string>{"gain", "points"}));

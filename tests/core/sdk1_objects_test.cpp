@@ -22,9 +22,13 @@ using Catch::Matchers::Contains;
 
 namespace {
 
+// Every node type through C, so that the objects cross the boundary between the nodes (called as
+// themselves, objsa's and objsb's nodes would pass C++ objects with no boundary between them:
+// c/node_cxx.h, tests/core/node_cxx_test.cpp).
 const PluginRegistry& objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
+    r.set_node_types_through_c(true);
     r.load_directory(MECHGRAPH_PLUGIN_DIR);
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));
@@ -39,6 +43,7 @@ const PluginRegistry& objects_registry() {
 const PluginRegistry& pre10_objects_registry() {
   static const PluginRegistry registry = [] {
     PluginRegistry r;
+    r.set_node_types_through_c(true);
     load_builtin_pre10(r);
     r.load_file(test_plugin("test_sdk1_objects_a"));
     r.load_file(test_plugin("test_sdk1_objects_b"));

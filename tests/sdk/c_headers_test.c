@@ -12,6 +12,7 @@
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_block.h>
+#include <mechgraph/c/node_cxx.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/object.h>
 #include <mechgraph/c/object_cxx.h>

@@ -474,6 +474,13 @@ static_assert(offsetof(mg_object_cxx_v1, shared_object) == 16);
 static_assert(offsetof(mg_object_cxx_v1, shared_block) == 24);
 static_assert(std::is_trivially_copyable_v<mg_object_cxx_v1> && std::is_standard_layout_v<mg_object_cxx_v1>);
 
+// SDK 1.5: mechgraph.node.cxx version 1 (node_cxx.h).
+static_assert(sizeof(mg_node_cxx_v1) == 24);
+static_assert(offsetof(mg_node_cxx_v1, struct_size) == 0);
+static_assert(offsetof(mg_node_cxx_v1, abi_key) == 8);
+static_assert(offsetof(mg_node_cxx_v1, shared_type) == 16);
+static_assert(std::is_trivially_copyable_v<mg_node_cxx_v1> && std::is_standard_layout_v<mg_node_cxx_v1>);
+
 TEST_CASE("the C boundary's v1 structs keep their frozen layout", "[sdk][abi]") {
   // The checks are the static_asserts above; this case makes them visible in the test list.
   CHECK(MG_SDK_MAJOR == 1);

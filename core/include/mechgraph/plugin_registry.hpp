@@ -87,6 +87,12 @@ class PluginRegistry {
   /// pick when that pick did not provide every need. So a scene finds the same types either way,
   /// and a start loads only what the scene uses. deferred() counts the files left unloaded.
   void load_directories(const std::vector<std::filesystem::path>& folders, const PluginNeeds* needs = nullptr);
+  /// Whether the node types of SDK 1.x plugins loaded from now on are all called through the C
+  /// boundary. By default (false) a type whose plugin's C++ layer is this host's, byte for byte
+  /// (mechgraph.node.cxx/1, sdk/include/mechgraph/c/node_cxx.h), runs as itself, as a type of the
+  /// host's own would; every other type runs through C. `mechgraph plugin-test` sets it, so that a
+  /// plugin's conformance kit checks the boundary that a host of another compiler or release uses.
+  void set_node_types_through_c(bool through_c) { through_c_ = through_c; }
   /// How many plugin files load_directories left unloaded because nothing needed them.
   std::size_t deferred() const { return deferred_; }
   /// The files load_directory skipped, with their reasons.
@@ -113,6 +119,7 @@ class PluginRegistry {
   std::vector<std::pair<std::string, RegisteredType>> types_;
   std::size_t deferred_ = 0;
   Lifetime lifetime_ = Lifetime::process;
+  bool through_c_ = false;
   std::shared_ptr<detail::ProbeCache> probes_;  // the probe cache, read once for all the files loaded
   /// The *.so files of a folder, sorted, as load_directory takes them (a link leading out of the
   /// folder is skipped here).

@@ -12,6 +12,7 @@ namespace mechgraph::host {
 PluginRegistry load_plugins(const PluginSearch& options, const std::vector<std::filesystem::path>& first,
                             const PluginNeeds* needs) {
   PluginRegistry registry;
+  registry.set_node_types_through_c(options.node_types_through_c);
   for (const auto& file : first) registry.load_file(file);
   const std::vector<std::filesystem::path> given(options.plugin_dirs.begin(), options.plugin_dirs.end());
   std::vector<std::filesystem::path> folders;

@@ -133,3 +133,5 @@ MG_API void mg_abi_anchor_1_2(const mg_node_block_v1*, const mg_block_args*, con
 MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1*) {}
 
 MG_API void mg_abi_anchor_1_4(const mg_object_cxx_v1*) {}
+
+MG_API void mg_abi_anchor_1_5(const mg_node_cxx_v1*) {}

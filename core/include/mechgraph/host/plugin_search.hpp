@@ -14,6 +14,8 @@ namespace mechgraph::host {
 struct PluginSearch {
   std::vector<std::string> plugin_dirs;  // --plugin-dir / --only-plugin-dir, in the order given
   bool only_plugin_dirs = false;          // --only-plugin-dir: no MECHGRAPH_PLUGIN_PATH, no built-ins
+  /// Every SDK 1.x node type called through C (PluginRegistry::set_node_types_through_c): plugin-test.
+  bool node_types_through_c = false;
 };
 
 /// Loads the plugins from the search path (--plugin-dir, MECHGRAPH_PLUGIN_PATH, the built-in folder).

@@ -16,6 +16,7 @@
 #include <mechgraph/c/host.h>
 #include <mechgraph/c/node.h>
 #include <mechgraph/c/node_block.h>
+#include <mechgraph/c/node_cxx.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/object.h>
@@ -81,6 +82,10 @@ MG_API void mg_abi_anchor_1_3(const mg_node_forecast_reads_v1* node_forecast_rea
 /* SDK 1.4: does nothing; names the struct 1.4 added (object_cxx.h), as mg_abi_anchor does for
    1.0's. */
 MG_API void mg_abi_anchor_1_4(const mg_object_cxx_v1* object_cxx);
+
+/* SDK 1.5: does nothing; names the struct 1.5 added (node_cxx.h), as mg_abi_anchor does for
+   1.0's. */
+MG_API void mg_abi_anchor_1_5(const mg_node_cxx_v1* node_cxx);
 
 MG_EXTERN_C_END
 

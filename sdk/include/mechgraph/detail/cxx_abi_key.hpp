@@ -1,8 +1,8 @@
 #pragma once
-// The key of this library's C++ layer (c/object_cxx.h, mechgraph.object.cxx/1): two libraries
-// whose keys are equal byte for byte lay out every class of the SDK's headers, and every
-// standard-library type those classes hold, the same way, so one may use the other's C++ domain
-// objects directly. What goes in (pybind11 keys its shared internals the same way):
+// The key of this library's C++ layer (c/object_cxx.h, mechgraph.object.cxx/1; c/node_cxx.h,
+// mechgraph.node.cxx/1): two libraries whose keys are equal byte for byte lay out every class of
+// the SDK's headers, and every standard-library type those classes hold, the same way, so one may
+// use the other's C++ domain objects and node types directly. What goes in (pybind11 keys its shared internals the same way):
 //  - the SDK's version and a digest of its headers (mechgraph/version.hpp, written by CMake from
 //    the headers' contents: the conformance kits and the bridges themselves are left out);
 //  - the compiler and its major version (two compilers are assumed to differ, whatever their
@@ -16,6 +16,7 @@
 // would fail where libstdc++, which compares the names, succeeds.
 #include <mechgraph/version.hpp>
 
+#include <cstring>
 #include <version>
 
 #ifndef MECHGRAPH_SDK_CXX_SHORTCUT
@@ -67,5 +68,16 @@ __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key =
 #else
 __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key = nullptr;
 #endif
+
+/// Whether `key`, another library's, is this library's key byte for byte (never for a library
+/// without one).
+inline bool is_own_cxx_abi_key(const char* key) {
+#if MECHGRAPH_SDK_CXX_SHORTCUT
+  return key && (key == cxx_abi_key || std::strcmp(key, cxx_abi_key) == 0);
+#else
+  (void)key;
+  return false;
+#endif
+}
 
 }  // namespace mechgraph::detail

@@ -14,6 +14,7 @@
 // plugin's own nodes can read. Until the C++ helpers leave libmechgraph_sdk (migration step 6) the plugin still calls them, so it
 // must share the host's C++ standard library ABI (libstdc++; any compiler).
 #include <mechgraph/c/node.h>
+#include <mechgraph/c/node_cxx.h>
 #include <mechgraph/c/node_forecast.h>
 #include <mechgraph/c/node_forecast_reads.h>
 #include <mechgraph/c/plugin.h>
@@ -450,13 +451,22 @@ class NodeTypeExport {
   // for one that keeps the default: the host counts it by the conventions without asking each
   // time; forecast_override.hpp); mechgraph.node.forecast_reads/1 (SDK 1.3,
   // node_forecast_reads.h) when it also implements ForecastReads; mechgraph.node.block/1 over
-  // BlockEvaluation (SDK 1.2, node_block.h) when the type implements it.
+  // BlockEvaluation (SDK 1.2, node_block.h) when the type implements it; mechgraph.node.cxx/1
+  // (SDK 1.5, node_cxx.h), the C++ type itself for a host of this C++ layer, unless this library
+  // is built without the shortcut.
   static const void* query(const mg_node_type* self, const char* name, std::uint32_t version) noexcept {
     static const mg_node_forecast_v1 forecast_table{sizeof(mg_node_forecast_v1), &NodeTypeExport::forecast};
     const auto& exported = *static_cast<const NodeTypeExport*>(self->impl);
     if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST) == 0) return exported.has_forecast_ ? &forecast_table : nullptr;
     if (name && version == 1 && std::strcmp(name, MG_NODE_FORECAST_READS) == 0) return exported.has_reads_ ? &exported.reads_table_ : nullptr;
+#if MECHGRAPH_SDK_CXX_SHORTCUT
+    static const mg_node_cxx_v1 cxx_table{sizeof(mg_node_cxx_v1), cxx_abi_key, &NodeTypeExport::shared_type};
+    if (name && version == 1 && std::strcmp(name, MG_NODE_CXX) == 0) return &cxx_table;
+#endif
     return BlockExport<NodeTypeExport>::query(*exported.type_, name, version);
+  }
+  static const void* shared_type(const mg_node_type* self) noexcept {
+    return &static_cast<const NodeTypeExport*>(self->impl)->type_;
   }
   // A sweep's budget asks this once per case and node: the parameters and sizes are refreshed in
   // this thread's sets (as evaluate's), so that a forecast allocates nothing but what the type's

@@ -175,7 +175,7 @@ inline const mg_object_cxx_v1* same_cxx(const mg_object* o) {
 #if MECHGRAPH_SDK_CXX_SHORTCUT
   const auto* t = static_cast<const mg_object_cxx_v1*>(o->vtbl->query(o, MG_OBJECT_CXX, 1));
   if (!t || t->struct_size < sizeof(mg_object_cxx_v1) || !t->abi_key || !t->shared_object || !t->shared_block) return nullptr;
-  return t->abi_key == cxx_abi_key || std::strcmp(t->abi_key, cxx_abi_key) == 0 ? t : nullptr;
+  return is_own_cxx_abi_key(t->abi_key) ? t : nullptr;
 #else
   (void)o;
   return nullptr;
