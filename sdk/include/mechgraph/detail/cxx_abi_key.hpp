@@ -8,7 +8,7 @@
 //  - the compiler and its major version (two compilers are assumed to differ, whatever their
 //    promises; a plugin built by clang for a gcc-built host then keeps to the C tables);
 //  - the standard library, its release and its ABI switches (the dual string ABI, debug mode's
-//    other containers), the C++ ABI version and the language standard.
+//    other containers), the C++ ABI version, whether RTTI is on, and the language standard.
 // A library built with MECHGRAPH_SDK_CXX_SHORTCUT defined to 0 has no key: it neither offers nor
 // uses the shortcut (the tests that must see the C tables at work build so). Neither has one built
 // with libc++: each library has its own RTTI for the SDK's classes (hidden), and libc++ compares
@@ -58,13 +58,21 @@
 #define MECHGRAPH_DETAIL_KEY_CXXABI "cxxabi-unknown"
 #endif
 
+// Without RTTI a library's classes carry no type information: the other library's dynamic_cast
+// (a BlockEvaluation, a ForecastReads, its own law class) would find none.
+#if defined(__GXX_RTTI)
+#define MECHGRAPH_DETAIL_KEY_RTTI "rtti"
+#else
+#define MECHGRAPH_DETAIL_KEY_RTTI "no-rtti"
+#endif
+
 namespace mechgraph::detail {
 
 /// This library's key, or nullptr when it keeps to the C tables.
 #if MECHGRAPH_SDK_CXX_SHORTCUT
 __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key =
     "mechgraph-sdk-" MECHGRAPH_SDK_VERSION "/headers-" MECHGRAPH_SDK_HEADERS_DIGEST "/" MECHGRAPH_DETAIL_KEY_COMPILER
-    "/" MECHGRAPH_DETAIL_KEY_STDLIB "/" MECHGRAPH_DETAIL_KEY_CXXABI "/std" MECHGRAPH_DETAIL_TEXT(__cplusplus);
+    "/" MECHGRAPH_DETAIL_KEY_STDLIB "/" MECHGRAPH_DETAIL_KEY_CXXABI "/" MECHGRAPH_DETAIL_KEY_RTTI "/std" MECHGRAPH_DETAIL_TEXT(__cplusplus);
 #else
 __attribute__((visibility("hidden"))) inline constexpr const char* cxx_abi_key = nullptr;
 #endif
