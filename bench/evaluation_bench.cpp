@@ -243,8 +243,8 @@ BENCHMARK(BM_NodeCallEntries)->ArgNames({"entry", "adds"})->ArgsProduct({{0, 1, 
 
 #if defined(MECHGRAPH_TEST_STROKE_PLUGIN) && defined(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN)
 // A node that makes tables (pump.stroke: a 181-row motion table, port events, seal gaps and a scalar), through
-// the pre-1.0 entry (0) and MECHGRAPH_PLUGIN_1, as itself (1) and through C (2): what the boundary costs a
-// node with real output.
+// the pre-1.0 entry (0) and MECHGRAPH_PLUGIN_1 through C (1; test_stroke_sdk1 is built without the shortcut
+// of c/node_cxx.h): what the boundary costs a node with real output.
 void BM_StrokeEntries(benchmark::State& state) {
   static const PluginRegistry pre_1_0 = [] {
     PluginRegistry r;
@@ -256,13 +256,7 @@ void BM_StrokeEntries(benchmark::State& state) {
     r.load_file(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN);
     return r;
   }();
-  static const PluginRegistry sdk1_c = [] {
-    PluginRegistry r;
-    r.set_node_types_through_c(true);
-    r.load_file(MECHGRAPH_TEST_STROKE_SDK1_PLUGIN);
-    return r;
-  }();
-  const PluginRegistry* registries[] = {&pre_1_0, &sdk1, &sdk1_c};
+  const PluginRegistry* registries[] = {&pre_1_0, &sdk1};
   const Graph g = build_graph(parse_scene("title: a pump\nnodes:\n  p: { type: pump.stroke, params: { phase: 30 deg } }\n"
                                           "outputs: [ p.motion, p.gaps, p.port_events, p.peak_angle ]\n",
                                           "stroke.yaml"),
@@ -271,10 +265,10 @@ void BM_StrokeEntries(benchmark::State& state) {
     MemoCache cache;
     benchmark::DoNotOptimize(evaluate(g, cache));
   }
-  const char* labels[] = {"pre-1.0 entry", "MECHGRAPH_PLUGIN_1, as itself", "MECHGRAPH_PLUGIN_1, through C"};
+  const char* labels[] = {"pre-1.0 entry", "MECHGRAPH_PLUGIN_1, through C"};
   state.SetLabel(labels[state.range(0)]);
 }
-BENCHMARK(BM_StrokeEntries)->ArgName("entry")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StrokeEntries)->ArgName("entry")->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 #endif
 
 BENCHMARK_MAIN();

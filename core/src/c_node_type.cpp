@@ -549,6 +549,22 @@ bool runs_through_c(const NodeType& type) {
   return c_type_behind_blocks(type) != nullptr || dynamic_cast<const CNodeType*>(&type) != nullptr;
 }
 
+namespace {
+// Whether reading the C description of `p` (c_node_description.cpp) gives `p` back: not for a
+// required parameter with a default (read as not required), nor for a record field that is one.
+bool survives_c(const ParamSpec& p) {
+  if (p.required && p.default_value) return false;
+  return std::all_of(p.fields.begin(), p.fields.end(), [](const ParamSpec& f) { return survives_c(f); });
+}
+// The same for a port: a private interface is read as "PLUGIN.kind", a table's dimension and a
+// value's interface are not read at all.
+bool survives_c(const PortSpec& p) {
+  if (p.kind == ValueKind::handle) return sdk_interface_of_kind(p.handle_kind) != nullptr;
+  if (!p.handle_kind.empty()) return false;
+  return p.kind != ValueKind::table || p.dimension.dimensionless();
+}
+}  // namespace
+
 std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type) {
   if (type.struct_size < offsetof(mg_node_type, query) + sizeof type.query || !type.query) return nullptr;
   const auto* table = static_cast<const mg_node_cxx_v1*>(type.query(&type, MG_NODE_CXX, 1));
@@ -558,10 +574,19 @@ std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type) {
   if (!shared) return nullptr;
   std::shared_ptr<const NodeType> cxx = *static_cast<const std::shared_ptr<const NodeType>*>(shared);
   if (!cxx) return nullptr;
-  const NodeInfo& info = cxx->info();
-  for (const std::vector<PortSpec>* ports : {&info.inputs, &info.outputs})
-    for (const PortSpec& port : *ports)
-      if (port.kind == ValueKind::handle && !sdk_interface_of_kind(port.handle_kind)) return nullptr;
+  // Taken only when the host would read the same declaration from C: the type is then described
+  // and presented alike either way. A type that throws from info() is left to the C path, whose
+  // reading says what is wrong.
+  try {
+    const NodeInfo& info = cxx->info();
+    for (const std::vector<PortSpec>* ports : {&info.inputs, &info.outputs})
+      for (const PortSpec& port : *ports)
+        if (!survives_c(port)) return nullptr;
+    for (const ParamSpec& param : info.params)
+      if (!survives_c(param)) return nullptr;
+  } catch (...) {
+    return nullptr;
+  }
   return cxx;
 }
 

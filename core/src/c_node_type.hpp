@@ -34,8 +34,9 @@ std::shared_ptr<const NodeType> make_c_node_type(const mg_node_type& type, const
 bool runs_through_c(const NodeType& type);
 
 /// The C++ type behind `type` when its library's C++ layer is the host's (mechgraph.node.cxx/1,
-/// equal keys) and its ports carry only the SDK's interfaces (a private one is named after its
-/// plugin, which only the C description does); else nullptr.
+/// equal keys) and its declaration reads from C as it is: its ports carry only the SDK's
+/// interfaces (a private one is named after its plugin, which only the C description does), no
+/// required parameter has a default, no table port a dimension. Else nullptr.
 std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type);
 
 /// The interface versions of a node type's object ports, by port index (RegisteredType): an SDK

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -34,15 +35,22 @@ class NodeContext final : public EvalContext {
       case LogLevel::warn: spdlog::warn("[{}] {}", node_.name, message); break;
     }
   }
+  // A counter the type does not declare is refused, as through the C boundary (a defect of the
+  // plugin the conformance kit names).
   void report_work(std::string_view counter, double amount) override {
+    const std::vector<std::string>& declared = node_.info().work_counters;
+    if (std::find(declared.begin(), declared.end(), counter) == declared.end())
+      throw std::logic_error("report_work on undeclared counter '" + std::string(counter) + "'");
     if (run_) {
       run_->work[std::string(counter)] += amount;
     } else if (!std::isfinite(amount) && !bad_counter_) {
       bad_counter_ = std::pair<std::string, double>(counter, amount);
     }
   }
+  // An output the type does not declare is "wanted", as through the C boundary: the node then
+  // sets it, and the evaluator names it as undeclared.
   bool wanted(std::string_view output) const override {
-    return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>());
+    return std::binary_search(node_.wanted.begin(), node_.wanted.end(), output, std::less<>()) || !node_.info().find_output(output);
   }
   const std::optional<std::pair<std::string, double>>& bad_counter() const { return bad_counter_; }
   /// wanted() for each declared output, in declaration order (GraphNode::wanted_mask), or nullptr

@@ -1,5 +1,6 @@
 #include "plugin_probe.hpp"
 
+#include "c_node_type.hpp"
 #include "plugin_handshake.hpp"
 
 #include <mechgraph/errors.hpp>
@@ -36,8 +37,10 @@ constexpr std::size_t probe_report_limit = 4000;  // below PIPE_BUF: one write, 
     // An SDK 1.x plugin (the C boundary) first, then the pre-1.0 C++ one.
     if (void* c_entry = ::dlsym(handle, MG_PLUGIN_ENTRY)) {
       const mg_plugin& p = checked_c_plugin(reinterpret_cast<mg_plugin_entry_fn*>(c_entry), where);
-      // Its C descriptions read whole, as a host that calls every type through C reads them.
+      // Its C descriptions read whole, as a host that calls every type through C reads them; and
+      // what a host of its C++ layer asks of each type to call it as itself (c/node_cxx.h).
       (void)checked_c_plugin_node_types(p, where, true);
+      for (std::size_t i = 0; i < p.node_type_count; ++i) (void)same_cxx_node_type(*p.node_types[i]);
     } else {
       void* entry = ::dlsym(handle, plugin_entry_name);
       if (!entry)

@@ -101,7 +101,9 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   if (sdk1) {
     const mg_plugin& p = detail::checked_c_plugin(library->get<mg_plugin_entry_fn>(MG_PLUGIN_ENTRY), where);
     refuse_loaded_id(p.plugin_id);
-    types = detail::checked_c_plugin_node_types(p, where, through_c_);
+    // Lifetime::objects: through C, whose series and tables the host copies into its own storage
+    // (a C++ type's own would hold code of a library that may be unmapped before them).
+    types = detail::checked_c_plugin_node_types(p, where, through_c_ || lifetime_ == Lifetime::objects);
     named = detail::plugin_where(where, p);
     info = PluginInfo{p.plugin_id, p.plugin_version, detail::c_plugin_fingerprint(p), file, {}, p.sdk_version ? p.sdk_version : ""};
   } else {

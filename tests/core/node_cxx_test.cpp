@@ -11,6 +11,7 @@
 #include <mechgraph/detail/export_node.hpp>
 #include <mechgraph/host/node_info_format.hpp>
 #include <mechgraph/json_writer.hpp>
+#include <mechgraph/memo_cache.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -23,14 +24,25 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-// y = value; with `private_port`, also an object port of a kind that is no SDK interface.
+// What reading the C description would change in a declaration.
+enum class Quirk { none, private_port, required_with_default, table_with_dimension };
+
+// y = value, declared with `quirk`.
 class Constant final : public NodeType {
  public:
-  explicit Constant(double value, bool private_port = false) : value_(value) {
+  explicit Constant(double value, Quirk quirk = Quirk::none) : value_(value) {
     info_.type = "test.constant";
     info_.summary = "a constant";
     info_.outputs = {PortSpec::scalar("y", Dimension{}, "the constant")};
-    if (private_port) info_.outputs.push_back(PortSpec::handle("thing", "private_thing", "an object of this plugin's own"));
+    if (quirk == Quirk::private_port) info_.outputs.push_back(PortSpec::handle("thing", "private_thing", "an object of this plugin's own"));
+    if (quirk == Quirk::required_with_default) {
+      info_.params = {ParamSpec::number("gain", Dimension{}, "unused").with_default(2.0)};
+      info_.params.back().required = true;
+    }
+    if (quirk == Quirk::table_with_dimension) {
+      info_.outputs.push_back(PortSpec::table("rows", "unused"));
+      info_.outputs.back().dimension = Dimension{1, 0, 0, 0, 0};
+    }
   }
   const NodeInfo& info() const override { return info_; }
   void evaluate(const ParamSet&, const InputSet&, OutputSet& out, EvalContext&) const override { out.set_scalar("y", value_); }
@@ -62,11 +74,11 @@ struct TwoFaced {
   mg_node_cxx_v1 table;
   std::shared_ptr<const NodeType> cxx;
 
-  explicit TwoFaced(bool private_port = false)
-      : exported(std::make_shared<const Constant>(1.0, private_port), "test"),
+  explicit TwoFaced(Quirk quirk = Quirk::none)
+      : exported(std::make_shared<const Constant>(1.0, quirk), "test"),
         c_type(*exported.c_type()),
         table{sizeof(mg_node_cxx_v1), detail::cxx_abi_key, &shared_type},
-        cxx(std::make_shared<const Constant>(2.0, private_port)) {
+        cxx(std::make_shared<const Constant>(2.0, quirk)) {
     detail::host_suites().eval = &detail::c_eval_suite();  // what a plugin's entry fetches from its host
     original_query() = c_type.query;
     c_type.query = &query;
@@ -134,14 +146,51 @@ TEST_CASE("an SDK 1.x node type is called as itself only when its C++ layer is t
   }
 }
 
-TEST_CASE("a node type with a port of a plugin's private interface is read through C", "[sdk1][cxx]") {
-  // Only the C description names a private interface after its plugin ("test.private_thing"),
-  // which keeps two plugins' private kinds apart; the C++ type's own kind would not.
-  TwoFaced two(true);
-  const auto t = detail::make_c_node_type(two.c_type, "test", false);
-  CHECK(evaluated(*t) == 1.0);
-  CHECK(detail::runs_through_c(*t));
-  CHECK(t->info().outputs.at(1).handle_kind == "test.private_thing");
+TEST_CASE("a node type whose declaration C would read otherwise is read through C", "[sdk1][cxx]") {
+  SECTION("a port of a plugin's private interface") {
+    // Only the C description names a private interface after its plugin ("test.private_thing"),
+    // which keeps two plugins' private kinds apart; the C++ type's own kind would not.
+    TwoFaced two(Quirk::private_port);
+    const auto t = detail::make_c_node_type(two.c_type, "test", false);
+    CHECK(evaluated(*t) == 1.0);
+    CHECK(detail::runs_through_c(*t));
+    CHECK(t->info().outputs.at(1).handle_kind == "test.private_thing");
+  }
+  SECTION("a required parameter with a default") {
+    TwoFaced two(Quirk::required_with_default);
+    const auto t = detail::make_c_node_type(two.c_type, "test", false);
+    CHECK(detail::runs_through_c(*t));
+    CHECK_FALSE(t->info().params.at(0).required);
+  }
+  SECTION("a table port with a dimension") {
+    TwoFaced two(Quirk::table_with_dimension);
+    const auto t = detail::make_c_node_type(two.c_type, "test", false);
+    CHECK(detail::runs_through_c(*t));
+    CHECK(t->info().outputs.at(1).dimension.dimensionless());
+  }
+  SECTION("none of these: as itself") {
+    TwoFaced two(Quirk::none);
+    CHECK_FALSE(detail::runs_through_c(*detail::make_c_node_type(two.c_type, "test", false)));
+  }
+}
+
+TEST_CASE("a node sees one host either way: a stray counter is refused, a stray output is wanted", "[sdk1][cxx]") {
+  // test.chaos of the arith test plugin on the pre-1.0 entry, on MECHGRAPH_PLUGIN_1 called as
+  // itself, and through C.
+  PluginRegistry pre, itself, through_c;
+  pre.load_file(test_plugin("test_arith"));
+  itself.load_file(test_plugin("test_arith_sdk1"));
+  through_c.set_node_types_through_c(true);
+  through_c.load_file(test_plugin("test_arith_sdk1"));
+  REQUIRE_FALSE(detail::runs_through_c(*itself.find("test.chaos")->type));
+  REQUIRE(detail::runs_through_c(*through_c.find("test.chaos")->type));
+  for (const PluginRegistry* r : {&pre, &itself, &through_c}) {
+    MemoCache cache;
+    const Graph asked = graph_from("nodes:\n  c: { type: test.chaos, params: { mode: ask_stray } }\noutputs: [ c.out ]\n", *r);
+    CHECK(scalar_output(evaluate(asked, cache), "c.out") == 1.0);
+    const Graph counted = graph_from("nodes:\n  c: { type: test.chaos, params: { mode: stray_counter } }\noutputs: [ c.out ]\n", *r);
+    CHECK_THROWS_WITH(evaluate(counted, cache), Contains("node 'c'") && Contains("undeclared counter 'stray'"));
+  }
 }
 
 TEST_CASE("the built-in plugins' node types run as themselves, described as through C, with the same rows",
@@ -167,6 +216,9 @@ TEST_CASE("the built-in plugins' node types run as themselves, described as thro
     REQUIRE(itself.find(name));
     CHECK_FALSE(detail::runs_through_c(*itself.find(name)->type));
   }
+  // A type with a port of valvetrain's private interfaces keeps to C.
+  REQUIRE(itself.find("valvetrain.spring_design"));
+  CHECK(detail::runs_through_c(*itself.find("valvetrain.spring_design")->type));
   CHECK(as_cxx * 2 > itself.type_names().size());
   // The stage 1-3 sweep, case by case and in blocks, gives the same rows either way.
   const std::string scene = source_file_text("bench/peers/stages123_study.yaml");
@@ -176,8 +228,11 @@ TEST_CASE("the built-in plugins' node types run as themselves, described as thro
   const Swept alone = sweep(p_itself, 1, 0);
   CHECK(alone.summary.failed == 0);
   require_same_rows(alone, sweep(p_c, 1, 0));
-  require_same_rows(alone, sweep(p_itself, 1, 4));
-  require_same_rows(alone, sweep(p_c, 1, 4));
+  for (const Prepared* p : {&p_itself, &p_c}) {
+    const Swept blocks = sweep(*p, 1, 4);
+    CHECK(blocks.summary.in_blocks == 10);
+    require_same_rows(alone, blocks);
+  }
 }
 
 TEST_CASE("plugin-test checks a plugin's node types through the C boundary", "[sdk1][cxx][cli]") {

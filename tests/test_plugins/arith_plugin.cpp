@@ -80,7 +80,7 @@ class Arith final : public NodeType {
         info_.effects = {{"test_extra", "brings the output extra", {"extra"}, {"extra_gain"}}};
         break;
       case Op::chaos:
-        info_.params = {ParamSpec::choice("mode", {"ok", "throw", "nan", "sleep", "allocate", "throw_other"},
+        info_.params = {ParamSpec::choice("mode", {"ok", "throw", "nan", "sleep", "allocate", "throw_other", "stray_counter", "ask_stray"},
                                           "how this node misbehaves").with_default("ok")};
         info_.inputs = {PortSpec::scalar("in", dim::length, "summed").many().optional_port()};
         info_.outputs = {PortSpec::scalar("out", dim::length, "the sum of the inputs, or mischief")};
@@ -155,6 +155,8 @@ class Arith final : public NodeType {
           std::free(block);
         }
         if (mode == "throw_other") throw 42;  // not even a std::exception
+        if (mode == "stray_counter") ctx.report_work("stray", 1);  // a counter it does not declare
+        if (mode == "ask_stray") sum = ctx.wanted("stray") ? 1.0 : -1.0;  // an output it does not declare
         out.set_scalar("out", sum);
         break;
       }
