@@ -174,6 +174,18 @@ TEST_CASE("a node type whose declaration C would read otherwise is read through 
   }
 }
 
+TEST_CASE("a plugin built by another compiler is called through C, one built by the host's as itself", "[sdk1][cxx]") {
+  // test_sdk1_clang is tests/test_plugins/sdk1_cxx_plugin.cpp built by clang++ (its key names
+  // clang); test_sdk1_objects_a is built by this project's compiler with the shortcut on.
+  PluginRegistry registry;
+  REQUIRE(std::filesystem::exists(test_plugin("test_sdk1_clang")));  // clang++ is a dependency (install-deps.sh)
+  registry.load_file(test_plugin("test_sdk1_clang"));
+  registry.load_file(test_plugin("test_sdk1_objects_a"));
+  CHECK(detail::runs_through_c(*registry.find("cxx1.scale")->type));
+  CHECK(detail::runs_through_c(*registry.find("cxx1.curve")->type));
+  CHECK_FALSE(detail::runs_through_c(*registry.find("objsa.law")->type));
+}
+
 TEST_CASE("a stray work counter is refused either way, a stray output is wanted only through C", "[sdk1][cxx]") {
   // test.chaos of the arith test plugin on the pre-1.0 entry, on MECHGRAPH_PLUGIN_1 called as
   // itself, and through C.
