@@ -54,35 +54,39 @@ bool CamLawRuns::assign(const CamLaw& law, int order) {
   return true;
 }
 
-double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
-  // g = h^(order) - level changes sign once on [a, b], and h^(order) is monotone there. Halley's
-  // steps, x -= t / (1 - t g'' / (2 g')) with t = g / g' (g' = h^(order+1) and g'' = h^(order+2),
-  // which the same evaluation of the law gives; Newton's step t where g'' is not given, for the
-  // acceleration's runs, or where the correction is large), kept inside the bracket: where a step
-  // would leave it or does not halve the one before, the bracket is bisected instead (Press et al.,
-  // Numerical Recipes, rtsafe). So it converges whatever g' does, and cubically near a simple root:
-  // 3 or 4 evaluations where Newton took 5 to 9 and TOMS 748 on g alone 10 to 15. It stops when a
-  // step is below 2 ulps of the root or the bracket has no double inside. (Boost's
-  // newton_raphson_iterate moves its bracket by the steps' signs, not g's, and raises an error
-  // where it judges there is no root; here the run guarantees the bracket, and it is kept by g.)
-  auto slope_of = [this](const LiftDerivatives& d) {
-    return order_ == 0 ? d.velocity : order_ == 1 ? d.acceleration : d.jerk;
+namespace {
+
+double slope_of(int order, const LiftDerivatives& d) { return order == 0 ? d.velocity : order == 1 ? d.acceleration : d.jerk; }
+double curvature_of(int order, const LiftDerivatives& d) { return order == 0 ? d.acceleration : d.jerk; }
+
+// The crossing of `level` by h^(order) in a run [a, b] where g = h^(order) - level has the signs of
+// ga and gb (opposite), from the start x strictly inside. Halley's steps, x -= t / (1 - t g'' / (2 g'))
+// with t = g / g' (g' = h^(order+1) and g'' = h^(order+2), which the same evaluation of the law gives;
+// Newton's step t where g'' is not given, for the acceleration's runs, or where the correction is
+// large), kept inside the bracket: where a step would leave it or does not halve the one before,
+// the bracket is bisected instead (Press et al., Numerical Recipes, rtsafe). So it converges whatever
+// g' does, and cubically near a simple root. It stops when a step is below 2 ulps of the root or the
+// bracket has no double inside. (Boost's newton_raphson_iterate moves its bracket by the steps'
+// signs, not g's, and raises an error where it judges there is no root; here the run guarantees the
+// bracket, and it is kept by g.)
+double refine_root(const CamLaw& law, const std::vector<double>& edges, int order, double level, double a, double b,
+                   double ga, double x, long& evaluations) {
+  auto value_of = [order](const LiftDerivatives& d) {
+    return order == 0 ? d.lift : order == 1 ? d.velocity : d.acceleration;
   };
-  auto curvature_of = [this](const LiftDerivatives& d) { return order_ == 0 ? d.acceleration : d.jerk; };
   double lo = ga < 0.0 ? a : b, hi = ga < 0.0 ? b : a;  // g(lo) < 0 < g(hi)
-  // Start where the chord crosses zero (inside the bracket, away from its ends).
-  double x = a - ga * (b - a) / (gb - ga);
-  if (!(x > std::min(a, b) && x < std::max(a, b))) x = 0.5 * (a + b);
   double step_before = std::abs(b - a), step = step_before;
-  LiftDerivatives d = at_edge_bounded(*law_, edges_, x);
+  LiftDerivatives d = at_edge_bounded(law, edges, x);
   ++evaluations;
-  double g = value_of(d) - level, slope = slope_of(d);
+  double g = value_of(d) - level, slope = slope_of(order, d);
+  if (g < 0.0) lo = x;
+  else if (g > 0.0) hi = x;
   for (int iteration = 0; iteration < 200 && g != 0.0; ++iteration) {
     // One division for both steps (a loop of dependent divisions is what a root costs).
     const double inverse_slope = 1.0 / slope;
     double proposal = g * inverse_slope;  // Newton's
-    if (order_ < 2) {
-      const double correction = 0.5 * proposal * curvature_of(d) * inverse_slope;
+    if (order < 2) {
+      const double correction = 0.5 * proposal * curvature_of(order, d) * inverse_slope;
       if (std::abs(correction) < 0.5) proposal /= 1.0 - correction;  // Halley's
     }
     const double candidate = x - proposal;
@@ -101,14 +105,79 @@ double CamLawRuns::root_in_run(double level, double a, double b, double ga, doub
       x = candidate;
     }
     if (std::abs(step) <= 2.0 * std::numeric_limits<double>::epsilon() * std::abs(x)) break;
-    d = at_edge_bounded(*law_, edges_, x);
+    d = at_edge_bounded(law, edges, x);
     ++evaluations;
     g = value_of(d) - level;
-    slope = slope_of(d);
+    slope = slope_of(order, d);
     if (g < 0.0) lo = x;
     else hi = x;
   }
   return x;
+}
+
+// Where the chord of g over [a, b] crosses zero, or the middle if that is not strictly inside.
+double chord_start(double a, double b, double ga, double gb) {
+  const double x = a - ga * (b - a) / (gb - ga);
+  return x > std::min(a, b) && x < std::max(a, b) ? x : 0.5 * (a + b);
+}
+
+// Where the Taylor polynomial of g at `from` (value g0, derivatives g1, g2, g3 along the angle; the
+// terms the law gives) reaches zero on the way to `to`, a distance t in (0, |to - from|): Newton's
+// steps on the polynomial kept in a bracket (no evaluation of the law). NaN when the polynomial does
+// not change sign over the way, or the result is not strictly inside.
+double taylor_start(double from, double to, double g0, double g1, double g2, double g3) {
+  const double sigma = to > from ? 1.0 : -1.0, width = std::abs(to - from);
+  // p(t) = g0 + s1 t + s2 t^2 + s3 t^3 with the signs of the way folded in.
+  const double s1 = sigma * g1, s2 = 0.5 * g2, s3 = sigma * g3 / 6.0;
+  auto p = [&](double t) { return g0 + t * (s1 + t * (s2 + t * s3)); };
+  const double p_end = p(width);
+  if (!std::isfinite(p_end) || !std::isfinite(g0) || g0 == 0.0 || (p_end > 0.0) == (g0 > 0.0) || p_end == 0.0)
+    return std::numeric_limits<double>::quiet_NaN();
+  double lo = 0.0, hi = width;  // p(lo) has g0's sign, p(hi) the other
+  double t = width * g0 / (g0 - p_end);
+  for (int i = 0; i < 16; ++i) {
+    const double v = p(t);
+    if (v == 0.0) break;
+    if ((v > 0.0) == (g0 > 0.0)) lo = t;
+    else hi = t;
+    const double dv = s1 + t * (2.0 * s2 + 3.0 * t * s3);
+    double next = t - v / dv;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::abs(next - t) <= 1e-6 * t) {  // a start: the law's own steps finish it
+      t = next;
+      break;
+    }
+    t = next;
+  }
+  const double x = from + sigma * t;
+  return x > std::min(from, to) && x < std::max(from, to) ? x : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+double CamLawRuns::root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const {
+  // Started where the chord crosses zero (inside the bracket, away from its ends).
+  return refine_root(*law_, edges_, order_, level, a, b, ga, chord_start(a, b, ga, gb), evaluations);
+}
+
+double CamLawRuns::root_in_run(double level, double a, double b, const LiftDerivatives& da, const LiftDerivatives& db,
+                               long& evaluations) const {
+  // The end nearer the level (the smaller |g|) carries the better polynomial: for a lash just above
+  // the foot of a lift, g there is -lash and its slope nearly 0, so the crossing is where the
+  // curvature (or the jerk) lifts it, which the polynomial finds closely; Halley's steps finish.
+  const double ga = value_of(da) - level, gb = value_of(db) - level;
+  const bool from_a = std::abs(ga) <= std::abs(gb);
+  auto start_from = [&](bool at_a) {
+    const LiftDerivatives& e = at_a ? da : db;
+    return taylor_start(at_a ? a : b, at_a ? b : a, at_a ? ga : gb, slope_of(order_, e),
+                        order_ < 2 ? curvature_of(order_, e) : 0.0, order_ == 0 ? e.jerk : 0.0);  // h^(order+3): the lift's only
+  };
+  // Where the nearer end's polynomial stays on its side (a lift that leaves its foot with its first
+  // three derivatives zero, as a polydyne's), the farther end's; else the chord.
+  double x = start_from(from_a);
+  if (!(x == x)) x = start_from(!from_a);
+  if (!(x == x)) x = chord_start(a, b, ga, gb);
+  return refine_root(*law_, edges_, order_, level, a, b, ga, x, evaluations);
 }
 
 double CamLawRuns::value(double x) const { return value_of(at_edge_bounded(*law_, edges_, x)); }
@@ -190,16 +259,13 @@ std::vector<std::pair<double, bool>> CamLawRuns::directed_crossings(double level
 
 void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector<std::pair<double, bool>>& found) const {
   found.clear();
-  auto g = [&](double x) {
-    ++evaluations;
-    return value(x) - level;
-  };
   // A left-to-right walk over the runs' one-sided ends; exact zeros are skipped (a touch is no
   // crossing), and the first of them marks where a crossing through them lies.
   int last_sign = 0;
   std::ptrdiff_t last_run = -1;
   bool last_was_left = false;
-  double last_x = 0.0, last_g = 0.0;
+  double last_x = 0.0;
+  LiftDerivatives last_d;  // the law at last_x: the Taylor start of a root in the run
   double zero_at = 0.0;  // the first exact zero since the last signed point
   bool zero_since_last = false;
   for (std::size_t k = 0; k + 1 < edges_.size(); ++k) {
@@ -207,8 +273,9 @@ void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector
     if (!has_interior(lo, hi)) continue;  // no angle of its own
     for (const bool left : {true, false}) {
       const double x = left ? one_sided_point(lo, hi) : one_sided_point(hi, lo);
-      const double gx = g(x);
-      const int s = sign_of(gx);
+      ++evaluations;
+      const LiftDerivatives d = at_edge_bounded(*law_, edges_, x);
+      const int s = sign_of(value_of(d) - level);
       if (s == 0) {
         if (!zero_since_last) zero_at = x, zero_since_last = true;
         continue;
@@ -219,7 +286,7 @@ void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector
           found.push_back({zero_at, rising});  // the function is at the level exactly there
         } else if (last_run == static_cast<std::ptrdiff_t>(k) && last_was_left && !left) {
           // Inside one run: one sign change, bracketed; on the law itself.
-          found.push_back({root_in_run(level, last_x, x, last_g, gx, evaluations), rising});
+          found.push_back({root_in_run(level, last_x, x, last_d, d, evaluations), rising});
         } else {
           found.push_back({lo, rising});  // a jump across the level at the cut that begins this run
         }
@@ -228,7 +295,7 @@ void CamLawRuns::directed_crossings(double level, long& evaluations, std::vector
       last_run = static_cast<std::ptrdiff_t>(k);
       last_was_left = left;
       last_x = x;
-      last_g = gx;
+      last_d = d;
       zero_since_last = false;
     }
   }

@@ -65,6 +65,11 @@ class CamLawRuns {
   /// The crossing of `level` inside one run between a and b, where g = h^(order) - level is ga and gb
   /// of opposite signs.
   double root_in_run(double level, double a, double b, double ga, double gb, long& evaluations) const;
+  /// The same, started where the Taylor polynomial of h^(order) at the end nearer the level (its
+  /// derivatives da, db, read by the walk) crosses it: a root near a run's end (the valve's opening
+  /// and closing, a lash above the foot of the lift) then takes one or two of the law's evaluations.
+  double root_in_run(double level, double a, double b, const LiftDerivatives& da, const LiftDerivatives& db,
+                     long& evaluations) const;
   numerics::Extremum extreme(double a, double b, double sign, long& evaluations) const;
 
   const CamLaw* law_ = nullptr;
