@@ -4,6 +4,7 @@
 #include <mechgraph/display_units.hpp>
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/printf_g15.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
@@ -79,13 +80,9 @@ void require_finite(double x, const std::string& context) {
   if (!std::isfinite(x)) throw SceneError(context + ": a generated value is not a finite number");
 }
 
-// printf's %.15g, by std::to_chars (the same text by the standard's definition, without the
-// locale and format parsing: a sweep writes millions of these).
-void append_shown_number(std::string& out, double x) {
-  char buffer[40];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 15);
-  out.append(buffer, end);
-}
+// printf's %.15g (printf_g15.hpp: exact, without the locale and format parsing, and by integer
+// arithmetic where it can: a sweep writes millions of these).
+void append_shown_number(std::string& out, double x) { append_printf_g15(out, x); }
 
 }  // namespace
 
