@@ -199,14 +199,29 @@ RepeatedNodeEstimate::RepeatedNodeEstimate(const Graph& graph, std::size_t index
 
 NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vector<double>& output_sizes) {
   const GraphNode& n = graph.nodes[index_];
-  // The same map as estimate_node's: every key is written again (its entries stay allocated).
-  const double largest_input = input_sizes(n, output_sizes, sizes_);
+  // The sizes of the connected inputs as input_sizes() makes them, in port order: compared with the
+  // ones the cached figures were made for, and written into the map a forecast reads only when they
+  // differ from what it holds (a sweep's cases mostly change no size).
+  now_.clear();
+  double largest_input = 1;
+  for (const GraphNode::Input& in : n.inputs) {
+    if (in.sources.empty()) continue;
+    double size = 0;
+    for (const GraphNode::Source& s : in.sources) size = std::max(size, s.node < output_sizes.size() ? output_sizes[s.node] : 1.0);
+    size = std::max(figure(size), 1.0);
+    now_.push_back(size);
+    largest_input = std::max(largest_input, size);
+  }
+  if (now_ != in_map_) {
+    input_sizes(n, output_sizes, sizes_);
+    in_map_ = now_;
+  }
   NodeEstimate e;
   double rows = 0;
   // The bound forecast while this is the set it was bound to, with the entries it had (a set is
   // written in place, and has no way to remove an entry).
   const bool bound = bound_ && &n.params == bound_params_ && n.params.all().size() == bound_entries_;
-  if (forecast_fixed_ && forecast_ && forecast_sizes_ == sizes_) {
+  if (forecast_fixed_ && forecast_ && forecast_sizes_ == now_) {
     // It reads none of the parameters the cases change, and its inputs are as large as before.
     e = *forecast_;
     rows = integers_vary_ ? forecast_rows(n) : rows_;
@@ -215,16 +230,16 @@ NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vec
     rows = integers_vary_ ? forecast_rows(n) : rows_;
     if (forecast_fixed_) {
       forecast_ = e;
-      forecast_sizes_ = sizes_;
+      forecast_sizes_ = now_;
     }
-  } else if (!integers_vary_ && conventions_ && conventions_sizes_ == sizes_) {
+  } else if (!integers_vary_ && conventions_ && conventions_sizes_ == now_) {
     // The conventions read integer parameters, list lengths and input sizes only: none changed.
     e = *conventions_;
     rows = conventions_rows_;
   } else {
     rows = take_conventions(n, sizes_, largest_input, e, false);
     conventions_ = e;
-    conventions_sizes_ = sizes_;
+    conventions_sizes_ = now_;
     conventions_rows_ = rows;
   }
   if (writes_) take_rows(n, rows, e, false);

@@ -95,17 +95,18 @@ class RepeatedNodeEstimate {
  private:
   std::size_t index_;
   bool writes_, integers_vary_;
-  InputSizes sizes_;
+  InputSizes sizes_;                // what a forecast reads: the sizes in_map_ holds
+  std::vector<double> now_, in_map_;  // this case's input sizes in port order; those sizes_ holds
   double rows_ = 0;
   std::optional<NodeEstimate> conventions_;
-  InputSizes conventions_sizes_;
+  std::vector<double> conventions_sizes_;
   double conventions_rows_ = 0;
   std::shared_ptr<detail::BoundForecast> bound_;            // null for a type other than an SDK 1.x one with a forecast
   const ParamSet* bound_params_ = nullptr;              // the set it is bound to
   std::size_t bound_entries_ = 0;                       // its entries then
   bool forecast_fixed_ = false;                         // its forecast reads no varied parameter
   std::optional<NodeEstimate> forecast_;                // the last one, while forecast_fixed_
-  InputSizes forecast_sizes_;                           // the sizes it was made for
+  std::vector<double> forecast_sizes_;                  // the sizes it was made for (as now_)
 };
 /// Whether `type`'s forecast says which parameters it reads (ForecastReads, SDK 1.3) and none of
 /// them is in `varied`: then the cases that change only `varied` all have the same forecast.
