@@ -68,18 +68,25 @@ ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double ro
 }
 
 ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
-                            long& evaluations, ValveSearchScratch& scratch) {
+                            long& evaluations, ValveSearchScratch& scratch, bool with_velocity) {
   // |velocity| and both acceleration extremes over the open period (each function smooth on each
   // piece; |velocity| is the larger of its two signed extremes).
   numerics::Extremum acc_max, acc_min, v_max, v_min;
   if (scratch.velocity.assign(cam, 1) && scratch.acceleration.assign(cam, 2)) {
     // The cam's monotone runs (closed form): the valve's peaks over the open period are at the
-    // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp).
+    // run ends inside it, times the rocker ratio (mechgraph/domain/cam_law_runs.hpp). The same
+    // method whether the velocity is wanted or not (both runs are asked for), and each point read
+    // is the law at that angle whichever run sets read it: the acceleration's peaks are the same
+    // with the velocity's points read or not.
     auto scaled = [rocker_ratio](numerics::Extremum e) { return numerics::Extremum{e.x, rocker_ratio * e.value}; };
     CamLawRuns::Peaks peaks[2];
-    CamLawRuns::peaks({&scratch.velocity, &scratch.acceleration}, open.begin, open.end, evaluations, peaks);
-    v_min = scaled(peaks[0].min);
-    v_max = scaled(peaks[0].max);
+    if (with_velocity) {
+      CamLawRuns::peaks({&scratch.velocity, &scratch.acceleration}, open.begin, open.end, evaluations, peaks);
+      v_min = scaled(peaks[0].min);
+      v_max = scaled(peaks[0].max);
+    } else {
+      CamLawRuns::peaks({&scratch.acceleration}, open.begin, open.end, evaluations, peaks + 1);
+    }
     acc_min = scaled(peaks[1].min);
     acc_max = scaled(peaks[1].max);
   } else {

@@ -51,8 +51,10 @@ struct ValvePeaks {
 };
 ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
                             long& evaluations);
+/// `with_velocity` false: the acceleration's peaks only (velocity left zero; the velocity's run
+/// ends are not read), when nothing reads max_velocity (the block path's outputs).
 ValvePeaks find_valve_peaks(const CamLaw& cam, const OpenPeriod& open, double rocker_ratio, double lash, int samples,
-                            long& evaluations, ValveSearchScratch& scratch);
+                            long& evaluations, ValveSearchScratch& scratch, bool with_velocity = true);
 
 /// The valve motion a cam law, a rocker ratio and a lash give (the ValveMotion contract).
 class CamValveMotion final : public ValveMotion {

@@ -166,7 +166,7 @@ class ValveMotionType final : public NodeType, public BlockEvaluation {
       if (max_lift) max_lift[k] = i * cam.max_lift() - e;
       if (open_angle) open_angle[k] = open.end - open.begin;
       if (peaks_wanted) {
-        const ValvePeaks peaks = find_valve_peaks(cam, open, i, e, samples, evaluations, scratch);
+        const ValvePeaks peaks = find_valve_peaks(cam, open, i, e, samples, evaluations, scratch, max_velocity != nullptr);
         if (max_velocity) max_velocity[k] = w * peaks.velocity.value;
         if (max_acceleration) max_acceleration[k] = w * w * peaks.max_acceleration.value;
         if (min_acceleration) min_acceleration[k] = w * w * peaks.min_acceleration.value;
