@@ -134,7 +134,15 @@ double taylor_start(double from, double to, double g0, double g1, double g2, dou
   if (!std::isfinite(p_end) || !std::isfinite(g0) || g0 == 0.0 || (p_end > 0.0) == (g0 > 0.0) || p_end == 0.0)
     return std::numeric_limits<double>::quiet_NaN();
   double lo = 0.0, hi = width;  // p(lo) has g0's sign, p(hi) the other
-  double t = width * g0 / (g0 - p_end);
+  // The first guess: where the fastest single term alone closes the gap |g0| (those of the sign
+  // that closes it): each term with the others left out reaches the level no sooner than they all
+  // do when all close it, the usual case at a foot or a nose. Else the chord of the polynomial.
+  const double toward = g0 < 0.0 ? 1.0 : -1.0, gap = std::abs(g0);
+  double t = width;
+  if (toward * s1 > 0.0) t = std::min(t, gap / (toward * s1));
+  if (toward * s2 > 0.0) t = std::min(t, std::sqrt(gap / (toward * s2)));
+  if (toward * s3 > 0.0) t = std::min(t, std::cbrt(gap / (toward * s3)));
+  if (!(t > 0.0 && t < width)) t = width * g0 / (g0 - p_end);
   for (int i = 0; i < 8; ++i) {
     const double v = p(t);
     if (v == 0.0) break;
