@@ -237,7 +237,7 @@ std::string sweep_column_name(const Graph& graph, std::size_t output) {
 }
 
 SweepRows::SweepRows(const Graph& graph, const CaseTable& table, RowFormat format)
-    : graph_(graph), table_(table), format_(format) {}
+    : graph_(graph), table_(table), input_units_(table.shown_units()), format_(format) {}
 
 SweepRows::Column SweepRows::column(std::size_t output, std::optional<std::size_t> element) const {
   Column c{output, element};
@@ -408,7 +408,7 @@ void SweepRows::append_line(std::string& out, const CaseResult& result, int exit
     // A number's digits go straight into the row (append_csv_field leaves them as they are);
     // text as written goes through it.
     const std::size_t mark = out.size();
-    if (table_.append_shown(out, result.index, v)) continue;
+    if (table_.append_shown(out, result.index, v, input_units_[v])) continue;
     input.assign(out, mark);
     out.resize(mark);
     append_csv_field(out, input);

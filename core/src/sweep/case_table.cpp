@@ -156,16 +156,21 @@ std::string read_user_file(const std::filesystem::path& file, std::size_t limit,
 }
 
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) const {
+  const std::string& unit = variables[v].unit;
+  return append_shown(out, i, v, ShownUnit{!unit.empty(), unit.empty() ? std::nullopt : parse_unit_cached(unit)});
+}
+
+bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const {
   const CaseValue& value = cases[i][v];
   if (!value.si) {
     out += value.text;
     return false;
   }
   double x = *value.si;
-  if (const std::string& unit = variables[v].unit; !unit.empty()) {
+  if (unit.given) {
     // As to_unit: the value in the column's unit, else as written (a cell in another unit than
     // its column, or 1e308 m in mm, which overflows).
-    const std::optional<UnitScale>& u = parse_unit_cached(unit);
+    const std::optional<UnitScale>& u = unit.scale;
     if (!u || !(u->dimension == value.dimension)) {
       out += value.written();
       return false;
@@ -178,6 +183,13 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
   }
   append_shown_number(out, x);
   return std::isfinite(x);  // always, as values are read and made; else a CSV writer escapes it
+}
+
+std::vector<ShownUnit> CaseTable::shown_units() const {
+  std::vector<ShownUnit> units;
+  for (const SweepVariable& variable : variables)
+    units.push_back({!variable.unit.empty(), variable.unit.empty() ? std::nullopt : parse_unit_cached(variable.unit)});
+  return units;
 }
 
 std::string CaseTable::shown(std::size_t i, std::size_t v) const {

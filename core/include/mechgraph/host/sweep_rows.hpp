@@ -16,6 +16,7 @@
 // is not a whole number below the sweep's count, not this shard's or not after the previous row's,
 // an exit other than 0, 2 or 3, an output cell that is neither empty nor a finite number.
 #include <mechgraph/graph.hpp>
+#include <mechgraph/sweep/case_table.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <functional>
@@ -81,6 +82,7 @@ class SweepRows {
 
   const Graph& graph_;
   const CaseTable& table_;
+  std::vector<ShownUnit> input_units_;  // table_.shown_units(), parsed once for every row
   RowFormat format_;
   bool settled_ = false;
   std::vector<std::string> header_;

@@ -4,6 +4,7 @@
 // make them: a full grid (`--vary`), a table read from CSV (`--cases`) and a Latin hypercube
 // sample (`--sample`, reproducible from its seed).
 #include <mechgraph/dimension.hpp>
+#include <mechgraph/units.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -57,6 +58,12 @@ struct SweepVariable {
   std::string unit;  // the unit its values are shown in ("" = SI, or a word)
 };
 
+/// A variable's unit as CaseTable::append_shown reads it, parsed once for a writer of many rows.
+struct ShownUnit {
+  bool given = false;              // the variable has a unit ("" = SI)
+  std::optional<UnitScale> scale;  // that unit parsed; nullopt when it is not one (values shown as written)
+};
+
 struct CaseTable {
   std::vector<SweepVariable> variables;
   std::vector<std::vector<CaseValue>> cases;  // cases[i][v]: variable v in case i
@@ -68,6 +75,10 @@ struct CaseTable {
   /// true when what it appended is a finite number's digits as std::to_chars writes them (a CSV
   /// cell as it is), false for text as written.
   bool append_shown(std::string& out, std::size_t i, std::size_t v) const;
+  /// The same with variable v's unit parsed beforehand (shown_units()[v]).
+  bool append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const;
+  /// Each variable's unit, parsed (append_shown parses it at each call).
+  std::vector<ShownUnit> shown_units() const;
 };
 
 /// Every number a sweep generates or reads is finite: an infinite or NaN end, list value or
