@@ -20,7 +20,11 @@ std::string owner_of(const GraphNode& node) { return "node '" + node.name + "' (
 // The rule a number of a case meets to be written into a number or integer parameter: a finite
 // number of the parameter's dimension inside its range. apply() says which part a value breaks.
 bool admits_number(const ParamSpec& spec, const CaseValue& value) {
-  return value.si && std::isfinite(*value.si) && value.dimension == spec.dimension && spec.value_problem(*value.si).empty();
+  // value_problem() is empty exactly when admits() holds, and for an integer when the value is
+  // also whole: a real number's range is all there is to ask, without the words (a sweep asks
+  // this of every target of every variable of every case, twice).
+  return value.si && std::isfinite(*value.si) && value.dimension == spec.dimension && spec.admits(*value.si) &&
+         (spec.kind != ParamKind::integer || spec.value_problem(*value.si).empty());
 }
 
 // The start of a message about variable `name`: "sweep: 'rpm'" or, for a run's set=, "set rpm".
