@@ -89,18 +89,34 @@ std::vector<char> writing_nodes(const Graph& graph) {
 
 namespace {
 
-// The size of each connected input (the largest of its sources' outputs, at least 1), written
-// into `sizes` (one entry per connected port); returns the largest.
-double input_sizes(const GraphNode& n, const std::vector<double>& output_sizes, InputSizes& sizes) {
+// The size of each connected input (the largest of its sources' outputs, at least 1), in port
+// order into `sizes` (emptied first); returns the largest.
+double connected_input_sizes(const GraphNode& n, const std::vector<double>& output_sizes, std::vector<double>& sizes) {
+  sizes.clear();
   double largest_input = 1;
   for (const GraphNode::Input& in : n.inputs) {
+    if (in.sources.empty()) continue;
     double size = 0;
     for (const GraphNode::Source& s : in.sources) size = std::max(size, s.node < output_sizes.size() ? output_sizes[s.node] : 1.0);
-    if (in.sources.empty()) continue;
     size = std::max(figure(size), 1.0);
-    sizes[in.port] = size;
+    sizes.push_back(size);
     largest_input = std::max(largest_input, size);
   }
+  return largest_input;
+}
+
+// `sizes` (connected_input_sizes' order) as the map a forecast reads: one entry per connected port.
+void write_input_sizes(const GraphNode& n, const std::vector<double>& sizes, InputSizes& map) {
+  std::size_t k = 0;
+  for (const GraphNode::Input& in : n.inputs)
+    if (!in.sources.empty()) map[in.port] = sizes[k++];
+}
+
+// Both: the map of each connected input's size; returns the largest.
+double input_sizes(const GraphNode& n, const std::vector<double>& output_sizes, InputSizes& sizes) {
+  std::vector<double> in_order;
+  const double largest_input = connected_input_sizes(n, output_sizes, in_order);
+  write_input_sizes(n, in_order, sizes);
   return largest_input;
 }
 
@@ -202,18 +218,9 @@ NodeEstimate RepeatedNodeEstimate::operator()(const Graph& graph, const std::vec
   // The sizes of the connected inputs as input_sizes() makes them, in port order: compared with the
   // ones the cached figures were made for, and written into the map a forecast reads only when they
   // differ from what it holds (a sweep's cases mostly change no size).
-  now_.clear();
-  double largest_input = 1;
-  for (const GraphNode::Input& in : n.inputs) {
-    if (in.sources.empty()) continue;
-    double size = 0;
-    for (const GraphNode::Source& s : in.sources) size = std::max(size, s.node < output_sizes.size() ? output_sizes[s.node] : 1.0);
-    size = std::max(figure(size), 1.0);
-    now_.push_back(size);
-    largest_input = std::max(largest_input, size);
-  }
+  const double largest_input = connected_input_sizes(n, output_sizes, now_);
   if (now_ != in_map_) {
-    input_sizes(n, output_sizes, sizes_);
+    write_input_sizes(n, now_, sizes_);
     in_map_ = now_;
   }
   NodeEstimate e;

@@ -155,9 +155,17 @@ std::string read_user_file(const std::filesystem::path& file, std::size_t limit,
   }
 }
 
+namespace {
+
+// A variable's unit as append_shown reads it: none, or parsed (nullopt when it is not a unit).
+ShownUnit shown_unit(const std::string& unit) {
+  return {!unit.empty(), unit.empty() ? std::nullopt : parse_unit_cached(unit)};
+}
+
+}  // namespace
+
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) const {
-  const std::string& unit = variables[v].unit;
-  return append_shown(out, i, v, ShownUnit{!unit.empty(), unit.empty() ? std::nullopt : parse_unit_cached(unit)});
+  return append_shown(out, i, v, shown_unit(variables[v].unit));
 }
 
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const {
@@ -187,8 +195,7 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
 
 std::vector<ShownUnit> CaseTable::shown_units() const {
   std::vector<ShownUnit> units;
-  for (const SweepVariable& variable : variables)
-    units.push_back({!variable.unit.empty(), variable.unit.empty() ? std::nullopt : parse_unit_cached(variable.unit)});
+  for (const SweepVariable& variable : variables) units.push_back(shown_unit(variable.unit));
   return units;
 }
 
