@@ -7,6 +7,7 @@ shows in place as well). Without tqdm there is no bar and no error.
 from __future__ import annotations
 
 import sys
+import time
 from typing import Any, Callable, Optional, Union
 
 #: Seconds a sweep runs before its bar appears.
@@ -34,6 +35,7 @@ class _Bar:
     """progress(done, total) for the C++ sweep: makes the bar on first call, updates it after."""
 
     def __init__(self, total: int, description: str, make: Any):
+        self._started = time.monotonic()  # the delay counts from the sweep's start, not the first call
         self._bar = None
         self._total = total
         self._description = description
@@ -41,7 +43,8 @@ class _Bar:
 
     def __call__(self, done: int, total: int) -> None:
         if self._bar is None:
-            self._bar = self._make(total=total, desc=self._description, unit="case", delay=DELAY_S,
+            delay = max(0.0, DELAY_S - (time.monotonic() - self._started))
+            self._bar = self._make(total=total, desc=self._description, unit="case", delay=delay,
                                    file=sys.stderr, leave=True, dynamic_ncols=True)
         if done > self._bar.n:
             self._bar.update(done - self._bar.n)  # update() keeps to tqdm's delay and refresh interval

@@ -34,6 +34,7 @@ void run_interruptibly(std::function<void()> work, const std::function<void()>& 
       body();
     }
     finished.get();
+    if (on_tick) on_tick();
     return;
   }
   for (;;) {
@@ -67,6 +68,7 @@ void run_interruptibly(std::function<void()> work, const std::function<void()>& 
   }
   worker.join();
   finished.get();
+  if (on_tick) on_tick();  // the final count: a sweep shorter than one slice reports too
 }
 
 }  // namespace mechgraph::python

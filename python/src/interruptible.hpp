@@ -13,7 +13,8 @@ enum class OnInterrupt { wait, detach };
 
 /// Runs `work`; rethrows its exception; throws pybind11::error_already_set on a signal whose
 /// Python handler raised. Call with the GIL held. `on_tick` (if any) runs with the GIL after each
-/// slice while the work goes on (a progress bar); what it throws is handled as Ctrl-C is.
+/// slice while the work goes on (a progress bar), and once more when the work has ended without an
+/// error; what it throws while the work goes on is handled as Ctrl-C is.
 void run_interruptibly(std::function<void()> work, const std::function<void()>& on_interrupt, OnInterrupt mode,
                        const std::function<void()>& on_tick = {});
 

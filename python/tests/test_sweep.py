@@ -115,6 +115,10 @@ def test_progress_is_reported_while_cases_run_and_a_bar_shows_only_for_long_swee
     assert len(rows) == 20000
     assert seen and all(total == 20000 for _, total in seen)
     assert [d for d, _ in seen] == sorted(d for d, _ in seen)
+    assert seen[-1] == (20000, 20000)  # the final count comes however fast the cases ran
+    short = []
+    scene.sweep({"rpm [rpm]": [5000.0]}, outputs=["ta_kurz.time_area"], progress=lambda d, t: short.append((d, t)))
+    assert short and short[-1] == (1, 1)
     capfd.readouterr()
     scene.sweep({"rpm [rpm]": [5000.0, 6000.0]}, outputs=["ta_kurz.time_area"])  # short: no bar
     assert capfd.readouterr().err == ""
