@@ -136,7 +136,7 @@ class Scene:
         si: every number without a unit (in `cases` and `set`) is in SI.
         progress: a tqdm bar on stderr (or a Jupyter widget) once the sweep has run for a second
             (True, the default); False for none; or a callable ``progress(done, total)`` called
-            about every 20 ms while cases run.
+            about every 20 ms while cases run, and once more with the final count when they end.
         """
         import pandas as pd
 
