@@ -99,16 +99,29 @@ def slice_table(P, start, stop):
 # --- mechgraph's side -----------------------------------------------------------------------------
 
 def run_sweep(exe, scene, cases_csv, rows_csv):
-    """One `mechgraph sweep SCENE --cases CASES --threads 1`: (whole process wall-clock seconds,
-    the seconds of its own log line 'sweep: N cases in S s', N). Any exit but 0 is an error."""
-    cmd = [exe, "sweep", scene, "--cases", cases_csv, "--threads", "1", "--out", rows_csv, "--force"]
+    """One `mechgraph sweep SCENE --cases CASES --threads 1 --out ROWS`: (whole process wall-clock
+    seconds, the seconds of its own log line 'sweep: N cases in S s', N). --out writes the rows and
+    the manifest beside them each through a temporary, fsync'd and renamed. Any exit but 0 is an error."""
+    wall, seconds, count, _ = _sweep([exe, "sweep", scene, "--cases", cases_csv, "--threads", "1", "--out", rows_csv,
+                                      "--force"])
+    return wall, seconds, count
+
+
+def run_sweep_to_pipe(exe, scene, cases_csv):
+    """The same sweep with its rows on standard output, read through a pipe (no file, no fsync):
+    (whole process wall-clock seconds, the log line's seconds, N, the rows' bytes)."""
+    return _sweep([exe, "sweep", scene, "--cases", cases_csv, "--threads", "1"])
+
+
+def _sweep(cmd):
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True)
+    proc = subprocess.run(cmd, capture_output=True)
     wall = time.perf_counter() - t0
+    stderr = proc.stderr.decode(errors="replace")
     if proc.returncode != 0:
-        raise RuntimeError(f"mechgraph sweep exited with {proc.returncode}: {proc.stderr.strip()}")
-    m = re.search(r"sweep: (\d+) cases in ([0-9.eE+-]+) s", proc.stderr)
-    return wall, (float(m.group(2)) if m else math.nan), (int(m.group(1)) if m else -1)
+        raise RuntimeError(f"mechgraph sweep exited with {proc.returncode}: {stderr.strip()}")
+    m = re.search(r"sweep: (\d+) cases in ([0-9.eE+-]+) s", stderr)
+    return wall, (float(m.group(2)) if m else math.nan), (int(m.group(1)) if m else -1), proc.stdout
 
 
 def read_rows(path):

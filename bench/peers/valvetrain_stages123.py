@@ -27,7 +27,11 @@ on the machine spoils no single side; each side's fastest run counts, the grid p
 batch size.
 
 Timing. mechgraph: the whole process's wall clock (start, plugin loading, scene, cases file, the
-evaluation and the rows written), and the sweep's own log line for reference. The peers:
+evaluation and the rows written to standard output, read through a pipe), and the sweep's own log
+line for reference; the peers keep their results in memory. Beside it, the same sweep with --out
+FILE, which puts the rows and the manifest beside them on the disk (each fsync-ed before its rename:
+a cost of the disk, several milliseconds on a virtual machine's, not of the computation). Step (1)
+checks that both ways write the same bytes. The peers:
 time.perf_counter around the computation of the eight outputs from the SI case arrays (Python's
 start, numpy's import and reading the cases are not counted: in the peers' favour). One core each.
 The script raises glibc's malloc thresholds for its own process (--default-malloc leaves them):
@@ -104,6 +108,11 @@ def main():
 
         # (1) Agreement first: a peer that does not compute what mechgraph computes is not timed.
         cases_mod.run_sweep(args.mechgraph, args.scene, cases_csv, rows_csv)
+        with open(rows_csv, "rb") as fh:
+            if cases_mod.run_sweep_to_pipe(args.mechgraph, args.scene, cases_csv)[3] != fh.read():
+                print("\nstages123: the sweep's rows on standard output differ from its --out file; nothing timed",
+                      file=sys.stderr)
+                sys.exit(1)
         print()
         ok_grid, worst_grid = cases_mod.verify("grid peer (0.045 deg)", grid.study(P, batches[0]), cases, rows_csv,
                                                GRID_BOUND)
@@ -117,14 +126,16 @@ def main():
             sys.exit(1)
 
         # (2) Timing in rounds.
-        best = {"mechgraph": math.inf, "mechgraph log": math.inf, "closed": math.inf}
+        best = {"mechgraph": math.inf, "mechgraph log": math.inf, "mechgraph file": math.inf, "closed": math.inf}
         best.update({("grid", b): math.inf for b in batches})
         for _ in range(args.repeats):
-            wall, log_seconds, count = cases_mod.run_sweep(args.mechgraph, args.scene, cases_csv, rows_csv)
+            wall, log_seconds, count, _ = cases_mod.run_sweep_to_pipe(args.mechgraph, args.scene, cases_csv)
             if count not in (n, -1):
                 raise RuntimeError(f"the sweep ran {count} cases, not {n}")
             best["mechgraph"] = min(best["mechgraph"], wall)
             best["mechgraph log"] = min(best["mechgraph log"], log_seconds)
+            best["mechgraph file"] = min(best["mechgraph file"], cases_mod.run_sweep(args.mechgraph, args.scene, cases_csv,
+                                                                                     rows_csv)[0])
             for b in batches:
                 best[("grid", b)] = min(best[("grid", b)], timed(grid.study, P, b)[0])
             best["closed"] = min(best["closed"], timed(closed_form.study, P, 4096, tables)[0])
@@ -136,7 +147,8 @@ def main():
     grid_batch = max(batches, key=lambda b: rate[("grid", b)])
     print(f"\nstages 1-3, designs per second on one core ({designs} designs, fastest of {args.repeats} rounds):")
     print(f"{'side':58s} {'designs/s':>10s} {'worst rel. diff.':>17s}")
-    print(f"{'mechgraph sweep --threads 1 (whole process)':58s} {rate['mechgraph']:10.4g} {'reference':>17s}")
+    print(f"{'mechgraph sweep --threads 1 (whole process, rows to a pipe)':58s} {rate['mechgraph']:10.4g} {'reference':>17s}")
+    print(f"{'the same with --out FILE (rows and manifest fsync-ed)':58s} {rate['mechgraph file']:10.4g} {'reference':>17s}")
     if math.isfinite(best["mechgraph log"]):
         print(f"{'mechgraph sweep (its log line: evaluation and rows)':58s} {rate['mechgraph log']:10.4g} {'reference':>17s}")
     for b in batches:
