@@ -565,6 +565,8 @@ bool survives_c(const PortSpec& p) {
 }
 }  // namespace
 
+bool c_type_offers_forecast(const mg_node_type& type) { return node_forecast(type) != nullptr; }
+
 std::shared_ptr<const NodeType> same_cxx_node_type(const mg_node_type& type) {
   if (type.struct_size < offsetof(mg_node_type, query) + sizeof type.query || !type.query) return nullptr;
   const auto* table = static_cast<const mg_node_cxx_v1*>(type.query(&type, MG_NODE_CXX, 1));

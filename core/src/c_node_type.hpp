@@ -64,6 +64,9 @@ class BoundForecast {
 /// asks NodeType::forecast).
 std::unique_ptr<BoundForecast> bind_forecast(const NodeType& type, const ParamSet& params);
 
+/// Whether an SDK 1.x type's table offers a forecast (mechgraph.node.forecast/1 with its function).
+bool c_type_offers_forecast(const mg_node_type& type);
+
 /// The parameters `type`'s forecast reads, when it says (mechgraph.node.forecast_reads/1 for an
 /// SDK 1.x type, ForecastReads for a C++ one) and every name is one of its parameters; none
 /// otherwise (the forecast may read any parameter).

@@ -93,6 +93,7 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   // Both paths end in the same PluginInfo and node types behind the one NodeType interface.
   PluginInfo info;
   NodeTypeList types;
+  std::vector<char> offers_forecast;  // by type, for an SDK 1.x plugin: its table's answer
   std::string named;
   const auto refuse_loaded_id = [&](const std::string& id) {
     for (const PluginInfo& p : plugins_)
@@ -104,6 +105,7 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
     // Lifetime::objects: through C, whose series and tables the host copies into its own storage
     // (a C++ type's own would hold code of a library that may be unmapped before them).
     types = detail::checked_c_plugin_node_types(p, where, through_c_ || lifetime_ == Lifetime::objects);
+    for (std::size_t i = 0; i < p.node_type_count; ++i) offers_forecast.push_back(detail::c_type_offers_forecast(*p.node_types[i]) ? 1 : 0);
     named = detail::plugin_where(where, p);
     info = PluginInfo{p.plugin_id, p.plugin_version, detail::c_plugin_fingerprint(p), file, {}, p.sdk_version ? p.sdk_version : ""};
   } else {
@@ -116,7 +118,8 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
   const std::string id = info.id;
   std::shared_ptr<const void> keep = library;
   std::vector<std::pair<std::string, RegisteredType>> added;
-  for (auto& t : types) {
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    const auto& t = types[k];
     const std::string name = t->info().type;
     if (const RegisteredType* other = find(name)) {
       std::string other_path;
@@ -127,7 +130,8 @@ void PluginRegistry::load_file(const std::filesystem::path& given) {
     }
     info.node_types.push_back(name);
     detail::PortInterfaceVersions versions = detail::port_interface_versions(*t);
-    added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs)});
+    added.emplace_back(name, RegisteredType{tie_to_library(t, keep), keep, id, std::move(versions.inputs), std::move(versions.outputs),
+                                            k >= offers_forecast.size() || offers_forecast[k] != 0});
   }
   const auto as_cxx = static_cast<std::size_t>(
       std::count_if(added.begin(), added.end(), [](const auto& a) { return !detail::runs_through_c(*a.second.type); }));

@@ -195,6 +195,54 @@ TEST_CASE("a sweep's budget with forecasts asked once gives each case's figures"
   }
 }
 
+TEST_CASE("a sweep whose cases change no figure estimates one case and counts the cases that bind", "[sdk1][forecast][sweep][bounds]") {
+  // stages123 over lift and rpm: the cams' forecasts read neither, the valve motion and time-area
+  // types have no forecast (their tables answer no mechgraph.node.forecast/1) and no integer
+  // varies, so every case has the first one's figures. Two cases are refused (a negative lift):
+  // they have no work, and the largest case is one that binds.
+  const PluginRegistry& registry = project_registry();
+  for (const char* type : {"valvetrain.valve_motion", "valvetrain.time_area"}) {
+    REQUIRE(registry.find(type));
+    CHECK_FALSE(registry.find(type)->offers_forecast);
+  }
+  REQUIRE(registry.find("cam.kurz"));
+  CHECK(registry.find("cam.kurz")->offers_forecast);
+  std::vector<SampleSpec> specs{parse_sample("lift=7mm:9mm"), parse_sample("rpm=4000rpm:7000rpm")};
+  CaseTable table = make_latin_hypercube(specs, 50, 3);
+  for (std::size_t k : {std::size_t{0}, std::size_t{17}}) {
+    table.cases[k][0].si = -1e-3;  // refused by max_lift's range: the case never runs
+    table.cases[k][0].text.clear();
+  }
+  Prepared p = prepare(stages123(), table, registry);
+  std::vector<std::size_t> all(table.cases.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  for (unsigned threads : {1u, 2u}) {
+    INFO(threads << " threads");
+    const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all, threads);
+    double work = 0, largest = -1;
+    std::size_t largest_case = 0, bound = 0;
+    for (std::size_t k : all) {
+      Graph copy = p.graph;
+      try {
+        p.binder->apply(p.binder->bind(copy), copy, p.table.cases[k]);
+      } catch (const SceneError&) {
+        continue;
+      }
+      ++bound;
+      const double w = estimate_work(copy).work;
+      work += w;
+      if (w > largest) {
+        largest = w;
+        largest_case = k;
+      }
+    }
+    CHECK(bound == 48);
+    CHECK_THAT(e.total.work, Catch::Matchers::WithinRel(work, 1e-12) || Catch::Matchers::WithinAbs(work, 1e-9));
+    CHECK(e.largest_case == largest_case);
+    CHECK(e.largest_case == 1);
+  }
+}
+
 TEST_CASE("the conformance kit fails a forecast that reads a parameter it does not name", "[sdk][forecast][conformance]") {
   // The kit's verdict on `type` (none: the check did not run), with its detail.
   const auto verdict = [](const NodeType& type) -> std::optional<Check> {

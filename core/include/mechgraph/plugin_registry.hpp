@@ -35,6 +35,11 @@ struct RegisteredType {
   /// (mg_port_decl::interface_version); for a pre-1.0 C++ type, the version of the SDK interface its
   /// C++ class is bridged as. 0: not an object port, or a private interface without a version.
   std::vector<std::uint32_t> input_interface_versions{}, output_interface_versions{};
+  /// False when the type is known to offer no forecast of its own (an SDK 1.x type whose table
+  /// answers no mechgraph.node.forecast/1, whichever way the host calls it): the conventions count
+  /// it, reading integer parameters, list lengths and input sizes only (work_estimate.hpp). True
+  /// for every other type (it may have one).
+  bool offers_forecast = true;
 
   /// The interface version of input (`output` false) or output port `index`, 0 when unknown.
   std::uint32_t interface_version(bool output, std::size_t index) const {

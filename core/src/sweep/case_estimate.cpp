@@ -4,7 +4,10 @@
 #include <mechgraph/chunked_work.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
 
 namespace mechgraph {
 namespace {
@@ -56,6 +59,14 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
   // Decided here, once, not by each worker.
   std::vector<char> forecast_fixed(graph.nodes.size(), 0);
   for (std::size_t i : varied) forecast_fixed[i] = forecast_reads_none_of(*graph.nodes[i].type->type, varied_names[i]) ? 1 : 0;
+  // Whether every case that binds has the figures of the first: no varied node's figures read what
+  // the cases change (a forecast that reads none of it, or none at all and the conventions, which
+  // read integers, list lengths and input sizes), and no case changes an integer. The sizes between
+  // the nodes then stay too. Each case is still bound (a refused one has no work), and estimated
+  // once a worker.
+  const bool cases_alike = std::all_of(varied.begin(), varied.end(), [&](std::size_t i) {
+    return !integers_vary[i] && (forecast_fixed[i] || !graph.nodes[i].type->offers_forecast);
+  });
 
   // A binder that rebuilds each case's graph (a value inside a list or record) still binds the
   // plain parameters in place; the values inside lists do not change how long the lists are, so
@@ -67,9 +78,10 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
     CaseBinder::Slots slots;
     std::vector<RepeatedNodeEstimate> repeated;
     std::vector<double> sizes;
+    std::optional<std::pair<double, double>> alike;  // a case's work and memory, when cases_alike
   };
   const auto make_worker = [&] {
-    Worker w{marked, {}, {}, fixed_sizes};
+    Worker w{marked, {}, {}, fixed_sizes, std::nullopt};
     w.slots = binder.bind(w.copy);
     w.repeated.reserve(varied.size());
     for (std::size_t i : varied)
@@ -88,11 +100,16 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
         continue;  // this case is refused before it runs: no work
       }
       double work = fixed_work, memory = fixed_memory;
-      for (std::size_t v = 0; v < varied.size(); ++v) {
-        const NodeEstimate e = w.repeated[v](w.copy, w.sizes);
-        w.sizes[varied[v]] = e.output_size;
-        work += e.work;
-        memory += e.memory;
+      if (w.alike) {
+        std::tie(work, memory) = *w.alike;
+      } else {
+        for (std::size_t v = 0; v < varied.size(); ++v) {
+          const NodeEstimate e = w.repeated[v](w.copy, w.sizes);
+          w.sizes[varied[v]] = e.output_size;
+          work += e.work;
+          memory += e.memory;
+        }
+        if (cases_alike) w.alike.emplace(work, memory);
       }
       out.work += work;
       out.largest_memory = std::max(out.largest_memory, memory);
