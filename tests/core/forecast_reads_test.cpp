@@ -219,7 +219,7 @@ TEST_CASE("a sweep whose cases change no figure estimates one case and counts th
   for (unsigned threads : {1u, 2u}) {
     INFO(threads << " threads");
     const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all, threads);
-    double work = 0, largest = -1;
+    double work = 0, largest = -1, memory = 0;
     std::size_t largest_case = 0, bound = 0;
     for (std::size_t k : all) {
       Graph copy = p.graph;
@@ -229,15 +229,18 @@ TEST_CASE("a sweep whose cases change no figure estimates one case and counts th
         continue;
       }
       ++bound;
-      const double w = estimate_work(copy).work;
-      work += w;
-      if (w > largest) {
-        largest = w;
+      const WorkEstimate one = estimate_work(copy);
+      work += one.work;
+      memory = std::max(memory, one.memory);
+      if (one.work > largest) {
+        largest = one.work;
         largest_case = k;
       }
     }
     CHECK(bound == 48);
     CHECK_THAT(e.total.work, Catch::Matchers::WithinRel(work, 1e-12) || Catch::Matchers::WithinAbs(work, 1e-9));
+    CHECK_THAT(e.largest_memory, Catch::Matchers::WithinRel(memory, 1e-12) || Catch::Matchers::WithinAbs(memory, 1e-9));
+    CHECK(memory > 0);
     CHECK(e.largest_case == largest_case);
     CHECK(e.largest_case == 1);
   }
