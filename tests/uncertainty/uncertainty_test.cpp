@@ -135,6 +135,36 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   }
 }
 
+TEST_CASE("Studies: limits and thresholds in their output's dimension, refused before any case runs", "[uncertainty]") {
+  // f.y = x1 + x2 + x3 is a length (shown in mm). A bare number would be read in SI (1 m), a
+  // time or a mass is no length: each is refused at its line, naming the output's dimension.
+  const std::string scene = "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\nuncertainty:\n  samples: 8\n  parameters:\n"
+                            "    x1: { normal: { mean: 1 mm, sigma: 1 um } }\nEXTRA"
+                            "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";
+  const auto error_of = [&](const std::string& extra, const std::vector<Override>& overrides = {}) {
+    std::string yaml = scene;
+    yaml.replace(yaml.find("EXTRA"), 5, extra);
+    try {
+      host::run_scene_study(parse_scene(yaml, "study.yaml"), uq_registry(), overrides, std::nullopt, "", "", "", std::nullopt,
+                            WorkBudget{}, 1, nullptr);
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(error_of("  limits: { f.y: { upper: 2 } }\n"),
+             Contains("study.yaml:6:13") && Contains("bare number") && Contains("length") && Contains("mm"));
+  CHECK_THAT(error_of("  limits: { f.y: { lower: 1 s, upper: 2 s } }\n"), Contains("study.yaml:6:13") && Contains("time") && Contains("length"));
+  CHECK_THAT(error_of("  events: { high: { output: f.y, above: 2 kg } }\n"),
+             Contains("study.yaml:6:13") && Contains("event 'high'") && Contains("mass") && Contains("length"));
+  CHECK_THAT(error_of("  events: { high: { output: f.y, above: 2 } }\n"), Contains("bare number"));
+  // In the output's dimension, in any unit of it: taken (the threshold in SI, whatever unit it was written in).
+  CHECK(error_of("  limits: { f.y: { upper: 0.002 m } }\n  events: { high: { output: f.y, above: 1.5 mm } }\n") == "no error");
+  // A value set on an uncertain parameter would be ignored by every sample: refused, at the parameter.
+  CHECK_THAT(error_of("", {parse_override("x1=2 mm")}), Contains("study.yaml:5:5") && Contains("x1=2 mm") && Contains("uncertain"));
+  CHECK(error_of("", {parse_override("x2=2 mm")}) == "no error");
+}
+
 TEST_CASE("Designs: strata of Latin hypercube and Sobol', counter streams", "[uncertainty]") {
   const std::size_t n = 256, d = 4;
   for (SamplingMethod m : {SamplingMethod::latin_hypercube, SamplingMethod::sobol}) {

@@ -66,6 +66,12 @@ StudySpec study_spec_of(const SceneSpec& scene, const PluginRegistry& registry) 
 void check_study_parameters(const StudySpec& spec, const Graph& graph, const SceneSpec& scene, const PluginRegistry& registry,
                             const std::vector<Override>& overrides) {
   for (const UncertainParameter& p : spec.parameters) {
+    // A value set on an uncertain parameter would be overwritten by every sample (and the record
+    // of the run would name a value no case used): one or the other.
+    for (const Override& o : overrides)
+      if (o.target == p.name)
+        throw SceneError(p.where.str() + "'" + p.name + "' is set (" + o.text + ") and uncertain in this study: every sample " +
+                         "draws its own value, so the set one would be ignored; drop the one or the other");
     try {
       const CaseBinder single(graph, scene, registry, overrides, {{p.name, p.unit}});
       (void)single;
@@ -203,6 +209,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
   check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
   outcome->columns = study_columns(outcome->graph);
+  check_study_outputs(outcome->spec, outcome->columns);
   outcome->table = make_study_cases(outcome->spec, threads);
   return outcome;
 }

@@ -12,14 +12,30 @@
 namespace mechgraph {
 namespace {
 
-std::size_t output_index(const StudyData& data, const std::string& label, const SourceLocation& where) {
+std::size_t output_index(const std::vector<StudyColumn>& outputs, const std::string& label, const SourceLocation& where) {
   std::vector<std::string> names;
-  for (std::size_t k = 0; k < data.outputs.size(); ++k) {
-    if (data.outputs[k].label == label) return k;
-    names.push_back(data.outputs[k].label);
+  for (std::size_t k = 0; k < outputs.size(); ++k) {
+    if (outputs[k].label == label) return k;
+    names.push_back(outputs[k].label);
   }
   throw SceneError(where.str() + unknown_name_message("study output", label, names) +
                    " (a study reads the scene's scalar outputs; add it to outputs:)");
+}
+
+std::size_t output_index(const StudyData& data, const std::string& label, const SourceLocation& where) {
+  return output_index(data.outputs, label, where);
+}
+
+// A limit or threshold written in another dimension than its output's, or bare on a dimensional
+// output: the message says what the output is and the unit its values are shown in.
+void check_dimension(const Dimension& written, const StudyColumn& output, const SourceLocation& where, const std::string& what) {
+  if (written == output.dimension) return;
+  const std::string shown_in = output.unit.empty() ? output.dimension.si_unit() : output.unit;
+  if (written.dimensionless())
+    throw SceneError(where.str() + what + " is a bare number, but '" + output.label + "' is " + output.dimension.describe() +
+                     ": write the unit (its values are shown in " + shown_in + ")");
+  throw SceneError(where.str() + what + " is " + written.describe() + ", but '" + output.label + "' is " +
+                   output.dimension.describe() + " (shown in " + shown_in + ")");
 }
 
 double shown(double si, const StudyColumn& c) { return si / c.scale - c.offset; }
@@ -79,6 +95,15 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
 }
 
 }  // namespace
+
+void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& outputs) {
+  for (const SpecLimits& l : spec.limits)
+    check_dimension(l.dimension, outputs[output_index(outputs, l.output, l.where)], l.where, "the limits of '" + l.output + "'");
+  for (const StudyEvent& e : spec.events)
+    if (e.kind != StudyEvent::Kind::failure)
+      check_dimension(e.dimension, outputs[output_index(outputs, e.output, e.where)], e.where,
+                      "the threshold of event '" + e.name + "'");
+}
 
 StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads) {
   StudyAnswers answers;

@@ -319,12 +319,13 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
     for (const auto& [output, body] : l->fields) {
       expect_map(body, "the limits of '" + output + "'");
       check_keys(body, {"lower", "upper"}, "limits key");
-      SpecLimits s{output, {}, {}, body.key_where};
+      SpecLimits s{output, {}, {}, {}, body.key_where};
       parse_port_ref(output, body.key_where);
       DimensionCheck dims;
       if (const RawValue* lo = field(body, "lower")) s.lower = dims.take(*lo, "lower");
       if (const RawValue* hi = field(body, "upper")) s.upper = dims.take(*hi, "upper");
       if (!s.lower && !s.upper) fail(body.where, "limits need lower, upper or both");
+      s.dimension = dims.dimension.value_or(Dimension{});
       if (s.lower && s.upper && !(*s.upper > *s.lower)) fail(body.where, "upper must be greater than lower");
       spec.limits.push_back(std::move(s));
     }
@@ -351,7 +352,9 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
         ev.output = scalar(*output, "node.port");
         parse_port_ref(ev.output, output->where);
         ev.kind = above ? StudyEvent::Kind::above : StudyEvent::Kind::below;
-        ev.threshold = quantity(above ? *above : *below, above ? "above" : "below").value;
+        const Quantity threshold = quantity(above ? *above : *below, above ? "above" : "below");
+        ev.threshold = threshold.value;
+        ev.dimension = threshold.dimension;
       } else {
         fail(body.where, "an event is { output: node.port, above: VALUE } (or below), or { failure: any | scene | evaluation }");
       }

@@ -59,6 +59,12 @@ struct StudyAnswers {
 /// Throws SceneError when a limit or an event names an output the study does not have (at its
 /// file:line:column, with the valid names).
 /// `threads`: for the bootstrap; the answers do not depend on it.
+/// Checks, before any case runs, that every spec limit and every event threshold names one of the
+/// study's outputs and is written in that output's dimension: a limit in mm on a mass, or a bare
+/// number on a dimensional output, is refused (a bare number would be read in SI, silently).
+/// Throws SceneError at the limit's or event's file:line:column.
+void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& outputs);
+
 StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads = 1);
 
 /// The answers as one JSON object (SI), the study's settings and parameters with them; `more`,

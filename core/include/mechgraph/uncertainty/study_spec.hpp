@@ -51,6 +51,7 @@ struct ParameterCorrelation {
 struct SpecLimits {
   std::string output;                  // "node.port"
   std::optional<double> lower, upper;  // SI
+  Dimension dimension;                 // of the limits as written (dimensionless for bare numbers)
   SourceLocation where;
 };
 
@@ -59,6 +60,7 @@ struct StudyEvent {
   enum class Kind { above, below, failure } kind = Kind::above;
   std::string output;       // above/below: "node.port"
   double threshold = 0.0;   // SI
+  Dimension dimension;      // of the threshold as written (dimensionless for a bare number)
   enum class Failure { any, scene, evaluation } failure = Failure::any;
   SourceLocation where;
 };
