@@ -84,6 +84,36 @@ nodes: {}
   const auto phi = [](double x) { return std::exp(-0.5 * x * x) / std::sqrt(2 * M_PI); };
   const double exact = (phi(-1) - phi(2)) / (standard_normal_cdf(2) - standard_normal_cdf(-1));
   CHECK_THAT(f.mean(), Catch::Matchers::WithinAbs(exact, 1e-6));
+
+  // Far in the upper tail (lower at +7 and +9 sigma, where F(lower) is 1 - 1.3e-12 and 1 exactly):
+  // every quantile finite and inside, the mean against the closed form mu + sigma phi(z) / Q(z),
+  // the cdf back to u. A spread in degC is a width: 5 degC of sigma is 5 K, not 278.15 K.
+  const StudySpec tail = study_of(R"(uncertainty:
+  parameters:
+    g: { normal: { mean: 30 um, sigma: 3 um }, truncate: { lower: 51 um } }
+    h: { normal: { mean: 30 um, sigma: 3 um }, truncate: { lower: 57 um, upper: 60 um } }
+    t: { normal: { mean: 80 degC, sigma: 5 degC } }
+    k: { normal: { nominal: 80 degC, tolerance: 15 degC } }
+nodes: {}
+)");
+  for (const double z : {7.0, 9.0}) {
+    const Marginal& m = tail.parameters[z == 7.0 ? 0 : 1].marginal;
+    for (const double u : {1e-12, 0.25, 0.5, 1 - 1e-9, 1 - 1e-16}) {
+      const double x = m.quantile(u);
+      CHECK(std::isfinite(x));
+      CHECK(x >= *m.lower);
+      if (m.upper) CHECK(x <= *m.upper);
+    }
+    for (const double u : {0.1, 0.5, 0.9}) CHECK_THAT(m.cdf(m.quantile(u)), Catch::Matchers::WithinAbs(u, 1e-9));
+    // Lower at z sigma, upper (h) 1 sigma higher: mean = mu + sigma (phi(z) - phi(z + 1)) / (Q(z) - Q(z + 1)).
+    const double q_low = 0.5 * std::erfc(z / std::sqrt(2.0)), q_high = z == 7.0 ? 0.0 : 0.5 * std::erfc((z + 1) / std::sqrt(2.0));
+    const double phi_high = z == 7.0 ? 0.0 : phi(z + 1);
+    const double exact_tail = 30e-6 + 3e-6 * (phi(z) - phi_high) / (q_low - q_high);
+    CHECK_THAT(m.mean(), Catch::Matchers::WithinRel(exact_tail, 1e-6));
+  }
+  CHECK_THAT(tail.parameters[2].marginal.a, Catch::Matchers::WithinRel(353.15, 1e-14));
+  CHECK_THAT(tail.parameters[2].marginal.b, Catch::Matchers::WithinRel(5.0, 1e-14));
+  CHECK_THAT(tail.parameters[3].marginal.b, Catch::Matchers::WithinRel(5.0, 1e-14));  // 15 K / 3 Cp, Cp 1
 }
 
 TEST_CASE("Distributions: errors name file:line:column and the valid names", "[uncertainty]") {
@@ -107,6 +137,9 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   CHECK_THAT(error_of("uncertainty:\n  sensitivity: true\n  parameters:\n    a: { uniform: { lower: 0, upper: 1 } }\n    b: { uniform: { lower: 0, upper: 1 } }\n"
                       "  correlations: [[a, b, 0.5]]\nnodes: {}\n"),
              Contains("independent"));
+  // A truncation past what a double holds (1000 sigma out) keeps nothing: refused at its line.
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0 mm, sigma: 1 um }, truncate: { lower: 1 mm } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("keeps no probability"));
   // A name that reaches no parameter, and a distribution of the wrong dimension, at its line.
   const std::string scene = "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\nuncertainty:\n  parameters:\n    NAME: DIST\n"
                             "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";

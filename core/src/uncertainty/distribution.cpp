@@ -41,21 +41,45 @@ double Marginal::raw_cdf(double x) const {
   return 0.0;
 }
 
+namespace {
+// A normal truncated above its mean (lower > mean) lies in the upper tail, where F rounds to 1
+// (beyond about 8 sigma F(lower) is 1 exactly, and F^-1(1) is infinite): there it is read on the
+// survival probability S = 1 - F = Phi(-z), which keeps its digits, x = mean - sigma Phi^-1(S).
+bool in_upper_tail(const Marginal& m) { return m.kind == Marginal::Kind::normal && m.lower && *m.lower > m.a; }
+double survival(const Marginal& m, double x) { return standard_normal_cdf(-(x - m.a) / m.b); }
+}  // namespace
+
 double Marginal::quantile(double u) const {
   if (!lower && !upper) return raw_quantile(u);
-  // Truncated to [lower, upper]: u maps into [F(lower), F(upper)], then through F^-1; the result
-  // is kept inside the limits against rounding.
-  const double f_low = lower ? raw_cdf(*lower) : 0.0, f_high = upper ? raw_cdf(*upper) : 1.0;
-  double x = raw_quantile(f_low + u * (f_high - f_low));
+  // Truncated to [lower, upper]: u maps into [F(lower), F(upper)], then through F^-1 (in the upper
+  // tail: S(lower) down to S(upper)); the result is kept inside the limits against rounding.
+  double x;
+  if (in_upper_tail(*this)) {
+    const double s_low = survival(*this, *lower), s_high = upper ? survival(*this, *upper) : 0.0;
+    x = a - b * standard_normal_quantile(s_low - u * (s_low - s_high));
+  } else {
+    const double f_low = lower ? raw_cdf(*lower) : 0.0, f_high = upper ? raw_cdf(*upper) : 1.0;
+    x = raw_quantile(f_low + u * (f_high - f_low));
+  }
   if (lower) x = std::max(x, *lower);
   if (upper) x = std::min(x, *upper);
   return x;
+}
+
+double Marginal::kept_probability() const {
+  if (!lower && !upper) return 1.0;
+  if (in_upper_tail(*this)) return survival(*this, *lower) - (upper ? survival(*this, *upper) : 0.0);
+  return (upper ? raw_cdf(*upper) : 1.0) - (lower ? raw_cdf(*lower) : 0.0);
 }
 
 double Marginal::cdf(double x) const {
   if (!lower && !upper) return raw_cdf(x);
   if (lower && x < *lower) return 0.0;
   if (upper && x >= *upper) return 1.0;
+  if (in_upper_tail(*this)) {
+    const double s_low = survival(*this, *lower), s_high = upper ? survival(*this, *upper) : 0.0;
+    return (s_low - survival(*this, x)) / (s_low - s_high);
+  }
   const double f_low = lower ? raw_cdf(*lower) : 0.0, f_high = upper ? raw_cdf(*upper) : 1.0;
   return (raw_cdf(x) - f_low) / (f_high - f_low);
 }

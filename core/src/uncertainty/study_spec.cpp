@@ -103,8 +103,17 @@ struct DimensionCheck {
       fail(v.where, what + " is " + q.dimension.describe() + " where the distribution's other values are " + dimension->describe());
     if (!dimension) dimension = q.dimension;
     if (unit.empty()) unit = written_unit;
+    last_unit = written_unit;
     return q.value;
   }
+  // A width (a sigma, a tolerance) is a difference of two values, which a unit's offset does not
+  // shift: a spread of 5 degC is 5 K, not 278.15 K. The scale alone: the value less what zero of
+  // its unit is in SI.
+  double take_width(const RawValue& v, const std::string& what) {
+    const double value = take(v, what);
+    return last_unit.empty() ? value : value - parse_quantity("0 " + last_unit).value;
+  }
+  std::string last_unit;  // the unit of the value taken last, as written
 };
 
 void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
@@ -121,12 +130,12 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   m.kind = Marginal::Kind::normal;
   if (mean && sigma && !nominal && !tolerance && !lower && !upper && !cp) {
     m.a = dims.take(*mean, "mean");
-    m.b = dims.take(*sigma, "sigma");
+    m.b = dims.take_width(*sigma, "sigma");
     if (!(m.b > 0)) fail(sigma->where, "sigma must be greater than 0");
   } else if (nominal && tolerance && !mean && !sigma && !lower && !upper) {
     // nominal +- tolerance is the specification; Cp = (USL - LSL) / (6 sigma) = 2 t / (6 sigma).
     m.a = dims.take(*nominal, "nominal");
-    const double t = dims.take(*tolerance, "tolerance");
+    const double t = dims.take_width(*tolerance, "tolerance");
     if (!(t > 0)) fail(tolerance->where, "tolerance (the half width, nominal +- tolerance) must be greater than 0");
     m.b = t / (3.0 * process_capability);
   } else if (lower && upper && !mean && !sigma && !nominal && !tolerance) {
@@ -238,12 +247,11 @@ UncertainParameter parse_uncertain_parameter(const std::string& name, const RawV
     if (!p.marginal.lower && !p.marginal.upper) fail(t->where, "truncate needs lower, upper or both");
     if (p.marginal.lower && p.marginal.upper && !(*p.marginal.upper > *p.marginal.lower))
       fail(t->where, "truncate: upper must be greater than lower");
-    // The truncated distribution must keep some probability (no empty or vanishing interval).
-    Marginal plain = p.marginal;
-    plain.lower.reset();
-    plain.upper.reset();
-    const double kept = (p.marginal.upper ? plain.cdf(*p.marginal.upper) : 1.0) - (p.marginal.lower ? plain.cdf(*p.marginal.lower) : 0.0);
-    if (!(kept > 1e-12)) fail(t->where, "truncate keeps no probability of the distribution (less than 1e-12)");
+    // The truncated distribution must keep some probability (no empty or vanishing interval); far
+    // in a tail is allowed (sampled there on the tail's own probabilities, distribution.cpp).
+    if (!(p.marginal.kept_probability() > 0.0))
+      fail(t->where, "truncate keeps no probability of the distribution (none a double can hold: the interval lies too far in a "
+                     "tail or is too narrow)");
   }
   p.marginal.dimension = dims.dimension.value_or(Dimension{});
   p.unit = dims.unit;

@@ -21,6 +21,9 @@ struct Marginal {
   double quantile(double u) const;
   /// P(X <= x), truncation included.
   double cdf(double x) const;
+  /// The probability the truncation keeps of the distribution without it (1 when not truncated),
+  /// from the tail it lies in, so that a truncation far out keeps its digits (7 sigma: 1.3e-12).
+  double kept_probability() const;
   /// Mean and standard deviation of the distribution as sampled (truncation included: by
   /// quadrature of the quantile for a truncated one).
   double mean() const;
