@@ -5,12 +5,14 @@ import json
 import os
 from typing import Any, Dict, Iterable, Mapping, Optional, Sequence, Union
 
+import numpy as np
+
 from . import _core
 from ._cases import case_columns
 from ._errors import SceneError, SceneFileNotFoundError
 from ._result import Result
 from ._progress import _Bar, progress_bar
-from ._units import scene_value, set_entries
+from ._units import SI, _is_unit_pair, is_pint, scene_value, set_entries
 
 SetValue = Union[str, float, int, Sequence[float]]
 
@@ -160,7 +162,7 @@ class Scene:
               method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
               limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
               set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0, si: bool = False) -> "Study":
+              threads: int = 0, si: bool = False, settings: Optional[Mapping[str, Any]] = None) -> "Study":
         """An uncertainty study of the scene, as ``mechgraph study`` runs it (docs/python.md).
 
         parameters: distributions by parameter name, as the scene's ``uncertainty: parameters:``
@@ -169,11 +171,15 @@ class Scene:
             sensitivity replace the block's. Returns a Study (DataFrames: summary, quantiles,
             histograms, sobol, events, samples). The answers do not depend on `threads`.
         set: fixed values for every case, as :meth:`run` takes them (a bare number only for a
-            dimensionless parameter, or with `si` True).
+            dimensionless parameter, or with `si` True); not on a parameter given a distribution.
+        settings: any other key of the block (confidence, bootstrap, quantiles, bins,
+            correlations), replacing the block's.
+        A value with a unit is text ("0.25 mm"), a pint quantity or a (number, unit) pair; a bare
+        number only where the quantity is dimensionless (limits and thresholds included).
         """
         from ._study import Study
 
-        args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+        args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si, settings)
         json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads))
         return Study(json_text, cases)
 
@@ -190,17 +196,52 @@ class Scene:
         return f"Scene({self.title or self.file!r})"
 
 
-def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si=False) -> tuple:
+def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si=False,
+                     settings=None) -> tuple:
     """Scene.study's settings as the module takes them: the block as JSON text ("" for none), the
     fixed overrides (entries by the unit rule of ``set=``), samples, method and seed as text ("": the scene's), the outputs."""
     block: Dict[str, Any] = {}
+    if settings is not None:
+        if not hasattr(settings, "items"):
+            raise TypeError("settings: expected a mapping of the uncertainty block's keys, got " + type(settings).__name__)
+        for key, value in settings.items():
+            if key in ("parameters", "limits", "events", "sensitivity", "samples", "method", "seed"):
+                raise TypeError(f"settings: {key!r} has an argument of its own: study({key}=...)")
+            block[str(key)] = _study_value(value, f"settings: {key}")
     if parameters:
-        block["parameters"] = dict(parameters)
+        block["parameters"] = _study_value(dict(parameters), "parameters")
     for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
         if value is not None:
-            block[key] = value
-    return (json.dumps(block) if block else "", set_entries(set, si), "" if samples is None else str(int(samples)), method or "",
-            "" if seed is None else str(int(seed)), list(outputs or []))
+            block[key] = _study_value(value, key)
+    return (json.dumps(block) if block else "", set_entries(set, si), _whole_text(samples, "samples"), method or "",
+            _whole_text(seed, "seed"), list(outputs or []))
+
+
+def _study_value(value: Any, context: str) -> Any:
+    """A value of the study's block as its JSON takes it: a pint quantity or a (number, unit) pair
+    as text with its unit ("50 g"), numpy numbers as numbers, mappings and lists value by value."""
+    if isinstance(value, SI):
+        raise TypeError(f"{context}: a study's value carries its unit ('50 g', a pint quantity or (50, 'g')); "
+                        "mechgraph.si() is for set=")
+    if hasattr(value, "items"):
+        return {str(k): _study_value(v, f"{context}: {k}") for k, v in value.items()}
+    if is_pint(value) or _is_unit_pair(value):
+        return scene_value(value) if is_pint(value) else f"{value[0]!r} {value[1]}".strip()
+    if isinstance(value, (list, tuple)):
+        return [_study_value(v, context) for v in value]
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
+def _whole_text(value: Any, name: str) -> str:
+    """samples= or seed= as the module's text ("" for the scene's): a whole number, never rounded."""
+    if value is None:
+        return ""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer, float, np.floating)) or \
+            not float(value).is_integer():
+        raise TypeError(f"{name}: expected a whole number, got {value!r}")
+    return str(int(value))
 
 
 def _rebuild(kind: str, *args: str) -> Scene:

@@ -79,7 +79,7 @@ def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = N
           method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
           limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
           set: Optional[Mapping[str, Any]] = None, outputs: Optional[Iterable[str]] = None, chunk: int = 1000, threads: int = 1,
-          si: bool = False):
+          si: bool = False, settings: Optional[Mapping[str, Any]] = None):
     """An uncertainty study (as :meth:`Scene.study` takes its settings) whose cases run on the
     workers of `client` by :func:`sweep`: the design is made here, its cases (parameters in SI)
     go out in chunks, the rows come back exact, and the answers are made from them: the same
@@ -87,7 +87,7 @@ def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = N
     from ._scene import _study_arguments
     from ._study import Study
 
-    args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si)
+    args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si, settings)
     design = scene._session.study_design(*args)
     # The design's parameters are in SI: marked so, for the unit rule of sweep columns.
     rows = sweep(client, scene, {name: SI(values) for name, values in design.items()}, chunk=chunk, set=set,

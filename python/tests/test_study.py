@@ -52,3 +52,51 @@ def test_distributions_from_python_merge_over_the_scene():
         scene.study({"x1": {"normal": {"mean": "1 mm", "sigm": "0.1 mm"}}}, samples=10)
     with pytest.raises(mechgraph.SceneError, match="no 'uncertainty'|no 'parameters'"):
         scene.study(samples=10)
+
+
+LINEAR = ("params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\n"
+          "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n")
+
+
+def test_study_values_take_pint_quantities_and_unit_pairs_as_text_does():
+    import pint
+    ureg = pint.UnitRegistry()
+    scene = mechgraph.Scene.from_text(LINEAR)
+    as_text = scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=64, seed=3,
+                          limits={"f.y": {"upper": "1.2 mm"}}, events={"high": {"output": "f.y", "above": "1.1 mm"}})
+    as_pint = scene.study({"x1": {"normal": {"mean": ureg.Quantity(1, "mm"), "sigma": ureg.Quantity(100, "um")}}},
+                          samples=64, seed=3, limits={"f.y": {"upper": ureg.Quantity(1.2, "mm")}},
+                          events={"high": {"output": "f.y", "above": (1.1, "mm")}})
+    # The same numbers (pint writes SI text, "0.0001 m" for 100 um, which may round differently in the last bit).
+    for key in ("mean", "standard_deviation", "cpk", "ppm"):
+        assert as_pint.summary.loc["f.y", key] == pytest.approx(as_text.summary.loc["f.y", key], rel=1e-12, abs=1e-15)
+    assert as_pint.events.loc[0, "probability"] == as_text.events.loc[0, "probability"]
+    with pytest.raises(TypeError, match="carries its unit"):
+        scene.study({"x1": {"normal": {"mean": mechgraph.si(1e-3), "sigma": "0.1 mm"}}}, samples=8)
+    # samples and seed are whole numbers: 10.7 is refused, not rounded down.
+    with pytest.raises(TypeError, match="whole number"):
+        scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=10.7)
+    assert len(scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=8.0).samples) == 8
+
+
+def test_study_settings_reach_the_block_and_units_cannot_slip():
+    scene = mechgraph.Scene.from_text(LINEAR)
+    x1 = {"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}
+    study = scene.study(x1, samples=64, settings={"quantiles": [0.5], "confidence": 0.9, "bins": 4})
+    assert list(study.quantiles["level"]) == [0.5]
+    assert len(study.histograms) == 4
+    # The mean's interval at 90 % against 95 %, the same samples: t(0.95, 63) / t(0.975, 63) = 0.835.
+    wide = scene.study(x1, samples=64).summary.loc["f.y"]
+    narrow = study.summary.loc["f.y"]
+    ratio = (narrow["mean_upper"] - narrow["mean_lower"]) / (wide["mean_upper"] - wide["mean_lower"])
+    assert ratio == pytest.approx(1.6694 / 1.9983, rel=0.01)
+    with pytest.raises(TypeError, match="argument of its own"):
+        scene.study(x1, samples=8, settings={"samples": 8})
+    # A limit or a threshold in another dimension than its output, or bare on a length: refused.
+    with pytest.raises(mechgraph.SceneError, match="bare number"):
+        scene.study(x1, samples=8, limits={"f.y": {"upper": 0.0012}})
+    with pytest.raises(mechgraph.SceneError, match="mass"):
+        scene.study(x1, samples=8, events={"heavy": {"output": "f.y", "above": "2 g"}})
+    # A value set on a parameter that has a distribution would be ignored by every sample: refused.
+    with pytest.raises(mechgraph.SceneError, match="uncertain"):
+        scene.study(x1, samples=8, set={"x1": "2 mm"})
