@@ -196,6 +196,25 @@ TEST_CASE("Studies: limits and thresholds in their output's dimension, refused b
   // A value set on an uncertain parameter would be ignored by every sample: refused, at the parameter.
   CHECK_THAT(error_of("", {parse_override("x1=2 mm")}), Contains("study.yaml:5:5") && Contains("x1=2 mm") && Contains("uncertain"));
   CHECK(error_of("", {parse_override("x2=2 mm")}) == "no error");
+  // A choice of outputs leaves out the limits and events on the scene's other outputs (a name that
+  // is no output of the scene is still refused).
+  const std::string two = "params: { x1: 0 mm }\nuncertainty:\n  samples: 8\n  parameters:\n"
+                          "    x1: { normal: { mean: 1 mm, sigma: 1 um } }\n"
+                          "  limits: { g.y: { upper: 3 mm }, LIMITED: { upper: 3 mm } }\n  events: { high: { output: g.y, above: 2 mm } }\n"
+                          "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: 0 mm, x3: 0 mm } }\n"
+                          "  g: { type: test.linear, params: { x1: $x1, x2: 1 mm, x3: 0 mm } }\noutputs: [f.y, g.y]\n";
+  const auto chosen = [&](const std::string& limited) {
+    std::string yaml = two;
+    yaml.replace(yaml.find("LIMITED"), 7, limited);
+    return host::run_scene_study(parse_scene(yaml, "study.yaml"), uq_registry(), {}, std::nullopt, "", "", "", std::string("f.y"),
+                                 WorkBudget{}, 1, nullptr);
+  };
+  const InProcess kept = chosen("f.y");
+  REQUIRE(kept->answers.outputs.size() == 1);
+  CHECK(kept->spec.limits.size() == 1);
+  CHECK(kept->spec.events.empty());
+  CHECK(kept->answers.outputs[0].capability.has_value());
+  CHECK_THROWS_WITH(chosen("h.y"), Contains("study.yaml:6:") && Contains("f.y"));
 }
 
 TEST_CASE("Designs: strata of Latin hypercube and Sobol', counter streams", "[uncertainty]") {

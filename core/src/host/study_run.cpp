@@ -97,6 +97,23 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
   }
 }
 
+void leave_out_unstudied(StudySpec& spec, const std::vector<StudyColumn>& columns, const std::set<std::string>& scene_outputs) {
+  const auto left_out = [&](const std::string& output) {
+    if (std::any_of(columns.begin(), columns.end(), [&](const StudyColumn& c) { return c.label == output; })) return false;
+    return scene_outputs.count(output) > 0;  // a name that is no output of the scene stays, to be refused
+  };
+  std::erase_if(spec.limits, [&](const SpecLimits& l) {
+    if (!left_out(l.output)) return false;
+    spdlog::info("study: the limits of '{}' are left out: it is not among the outputs chosen", l.output);
+    return true;
+  });
+  std::erase_if(spec.events, [&](const StudyEvent& e) {
+    if (e.kind == StudyEvent::Kind::failure || !left_out(e.output)) return false;
+    spdlog::info("study: event '{}' is left out: '{}' is not among the outputs chosen", e.name, e.output);
+    return true;
+  });
+}
+
 std::vector<StudyColumn> study_columns(const Graph& graph) {
   std::vector<StudyColumn> columns;
   std::set<std::string> seen;
@@ -206,9 +223,12 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   outcome->spec = study_spec_of(scene, registry);
   apply_study_options(outcome->spec, samples, method, seed);
   outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
+  std::set<std::string> scene_outputs;  // before a choice of outputs replaces them
+  for (const PortRef& o : outcome->scene->outputs) scene_outputs.insert(o.str());
   outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
   check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
   outcome->columns = study_columns(outcome->graph);
+  if (outputs) leave_out_unstudied(outcome->spec, outcome->columns, scene_outputs);
   check_study_outputs(outcome->spec, outcome->columns);
   outcome->table = make_study_cases(outcome->spec, threads);
   return outcome;

@@ -13,6 +13,8 @@
 #include <atomic>
 #include <memory>
 #include <optional>
+#include <set>
+#include <string>
 
 namespace mechgraph::host {
 
@@ -32,6 +34,11 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
 
 /// The scalar outputs of the graph, in the units a sweep's rows show them.
 std::vector<StudyColumn> study_columns(const Graph& graph);
+
+/// With a choice of outputs (--outputs, Python's outputs=): the limits and events on outputs of
+/// the scene that the choice leaves out are dropped, each with a note (a name that is no output of
+/// the scene stays, for check_study_outputs to refuse).
+void leave_out_unstudied(StudySpec& spec, const std::vector<StudyColumn>& columns, const std::set<std::string>& scene_outputs);
 
 /// A value as the sweep's rows show it (si / scale - offset).
 inline double shown_value(double si, const StudyColumn& c) { return si / c.scale - c.offset; }
