@@ -73,7 +73,7 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
       if (header[k] == name) return k;
     return std::nullopt;
   };
-  const auto exit_column = column_of("exit");
+  const auto exit_column = column_of("exit"), error_column = column_of("error");
   if (header.empty() || header[0] != "case" || !exit_column)
     throw UsageError(file + ":1: not the rows of a sweep (a header 'case', inputs, outputs, 'exit', 'error')");
   std::vector<std::size_t> at(columns.size());
@@ -106,7 +106,13 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
                          " where this study's design has " + table.shown(i, v) + ": rows of another seed, method or sample count");
     const std::string& exit = cells[*exit_column];
     data.failures[i] = exit == "0" ? CaseFailure::none : exit == "2" ? CaseFailure::scene : CaseFailure::evaluation;
-    if (data.failures[i] != CaseFailure::none) continue;
+    if (data.failures[i] != CaseFailure::none) {
+      if (!data.first_failed || i < *data.first_failed) {
+        data.first_failed = i;
+        data.first_error = error_column ? cells[*error_column] : std::string();
+      }
+      continue;
+    }
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const std::string& cell = cells[at[c]];
       double x = 0;
@@ -307,6 +313,19 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   }
   const StudySpec& spec = outcome->spec;
   const StudyAnswers& answers = outcome->answers;
+  // Failed cases say why: the first one's message (the rest are in `mechgraph sweep SCENE --study`'s
+  // error column). A study whose every case failed answers nothing: an error, with the exit class
+  // of that first failure.
+  if (const StudyData& data = outcome->data; data.first_failed) {
+    const std::size_t first = *data.first_failed;
+    const std::string why = "case " + std::to_string(first) + ": " + (data.first_error.empty() ? "(no message)" : data.first_error);
+    if (answers.failed == answers.cases) {
+      spdlog::error("study: every one of the {} cases failed, so nothing is answered; the first, {}", answers.cases, why);
+      return exit_code_of(data.failures[first]);
+    }
+    spdlog::warn("study: {} of {} cases failed (counted in 'failed' and the events on failures); the first, {}", answers.failed,
+                 answers.cases, why);
+  }
   // The answers with how they were made: the program, the scene and its SHA-1, the --set values,
   // each node's parameters (provenance.hpp).
   std::ostringstream with_provenance;

@@ -471,6 +471,24 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   const auto e = testing::run_cli(plugin + "study '" + bad + "'");
   CHECK(e.exit_code == 2);
   CHECK_THAT(e.err, Contains("bad.yaml:4:37: sigma must be greater than 0"));
+  // Cases that fail say why (the first one's message); when every case fails nothing is answered:
+  // an error, with the exit class of the failure (an evaluation error: 3).
+  const std::string failing = (dir / "failing.yaml").string();
+  const auto failing_scene = [&](const char* limit) {
+    std::ofstream(failing) << "params: {x1: 0}\nuncertainty:\n  samples: 32\n  parameters:\n    x1: { uniform: { lower: -3, upper: 3 } }\n"
+                              "nodes:\n  f: { type: test.ishigami, params: { x1: $x1, x2: 1, x3: 1, fail_above: "
+                           << limit << " } }\noutputs: [f.y]\n";
+  };
+  failing_scene("-100");
+  const auto all_failed = testing::run_cli(plugin + "study '" + failing + "'");
+  CHECK(all_failed.exit_code == 3);
+  CHECK_THAT(all_failed.err, Contains("every one of the 32 cases failed") && Contains("case 0:") && Contains("deliberate failure"));
+  failing_scene("6.1");  // y = (1 + 0.1) sin x1 + 7 sin^2 1 = 4.957 + 1.1 sin x1 <= 6.057: none fails
+  CHECK(testing::run_cli(plugin + "study '" + failing + "'").err.find("cases failed") == std::string::npos);
+  failing_scene("4.99");  // those with sin x1 above 0.03 fail, about half
+  const auto some_failed = testing::run_cli(plugin + "study '" + failing + "'");
+  CHECK(some_failed.exit_code == 0);
+  CHECK_THAT(some_failed.err, Contains("of 32 cases failed") && Contains("deliberate failure"));
   const auto none = testing::run_cli("study '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml'");
   CHECK(none.exit_code == 2);
   CHECK_THAT(none.err, Contains("no 'uncertainty' block"));

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <ostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,10 @@ struct StudyData {
   std::vector<StudyColumn> outputs;
   std::vector<std::vector<double>> values;  // [output][case]
   std::vector<CaseFailure> failures;        // [case]
+  /// The failed case of the lowest number and its message (as the sweep's error column gives it),
+  /// for the log: a study whose cases fail says why.
+  std::optional<std::size_t> first_failed;
+  std::string first_error;
 };
 
 struct OutputAnswer {
