@@ -522,6 +522,33 @@ nodes: {}
   }
 }
 
+TEST_CASE("Studies: an uncertain parameter inside a record, as a tolerance stack writes its links", "[uncertainty]") {
+  // stack.linear's mean is the sum of s_i (nominal_i + (upper_i + lower_i) / 2): with a ~ U(9, 11) mm
+  // in the first link and 5 mm fixed in the second, mean = a + 5 mm: its study mean 15 mm, its
+  // standard deviation (2 mm) / sqrt(12).
+  const std::string scene = R"(params: { a: 10 mm }
+uncertainty:
+  method: sobol
+  samples: 256
+  parameters:
+    a: { uniform: { lower: 9 mm, upper: 11 mm } }
+nodes:
+  s: { type: stack.linear, params: { links: [ { nominal: $a, upper: 0.1 mm, lower: -0.1 mm }, { nominal: 5 mm, upper: 0.1 mm, lower: -0.1 mm } ] } }
+outputs: [s.mean]
+)";
+  const InProcess r = run_study(scene, 2, testing::project_registry());
+  REQUIRE(r->answers.outputs.size() == 1);
+  CHECK(r->answers.failed == 0);
+  const Moments& m = r->answers.outputs[0].moments;
+  CHECK_THAT(m.mean, Catch::Matchers::WithinRel(15.0, 1e-3));  // shown in mm
+  CHECK_THAT(m.standard_deviation, Catch::Matchers::WithinRel(2.0 / std::sqrt(12.0), 0.02));
+  // A distribution no field of the record can take (a time) is refused at its line.
+  std::string wrong = scene;
+  wrong.replace(wrong.find("lower: 9 mm, upper: 11 mm"), 25, "lower: 9 s, upper: 11 s");
+  CHECK_THROWS_WITH(run_study(wrong, 1, testing::project_registry()),
+                    Contains("study.yaml:6:5") && Contains("records of parameter 'links'") && Contains("time"));
+}
+
 TEST_CASE("Sobol' indices of several outputs at once: each as alone, bit for bit, on any threads", "[uncertainty]") {
   // Three outputs of the same base samples (one with a zero variance); the resamples are drawn
   // once for all of them and each output's indices and intervals equal its own computation.

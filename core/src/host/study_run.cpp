@@ -88,7 +88,20 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
         if (const ParamSpec* s = graph.nodes[use.node].info().find_param(use.param)) targets.push_back(s);
     }
     for (const ParamSpec* s : targets) {
-      if (s->kind != ParamKind::number && s->kind != ParamKind::integer)
+      if (s->kind == ParamKind::record_list) {
+        // A scene parameter inside a record (`links: [{ nominal: $a, ... }]`): the field it fills is
+        // checked when each case's graph is built from the scene; here, that some number field of
+        // the record has the distribution's dimension.
+        const auto fits = [&](const ParamSpec& f) {
+          return (f.kind == ParamKind::number || f.kind == ParamKind::integer || f.kind == ParamKind::number_list) &&
+                 f.dimension == p.marginal.dimension;
+        };
+        if (std::none_of(s->fields.begin(), s->fields.end(), fits))
+          throw SceneError(p.where.str() + "'" + p.name + "' is used inside the records of parameter '" + s->name +
+                           "', none of whose number fields is " + p.marginal.dimension.describe());
+        continue;
+      }
+      if (s->kind != ParamKind::number && s->kind != ParamKind::integer && s->kind != ParamKind::number_list)
         throw SceneError(p.where.str() + "'" + p.name + "' reaches parameter '" + s->name + "', which is not a number");
       if (!(s->dimension == p.marginal.dimension))
         throw SceneError(p.where.str() + "'" + p.name + "' is " + s->dimension.describe() + " (parameter '" + s->name +
