@@ -20,11 +20,23 @@ class Study:
     @property
     def samples(self):
         """One row per case of the design: the uncertain parameters in SI, the outputs in the units
-        of their column headers (``name [unit]``), NaN where the case failed, and ``exit`` (0, or
-        the failure class: 2 scene, 3 evaluation)."""
+        of their column headers (``name [unit]``), NaN where the case failed, ``exit`` (0, or
+        the failure class: 2 scene, 3 evaluation) and ``role``: ``"A"`` or ``"B"`` for the rows
+        the statistics are made of, ``"AB name"`` for Saltelli's rows that move one parameter
+        (with sensitivity; without, every row is ``"A"``). Statistics of a sensitivity study's
+        samples: ``samples[samples.role.isin(["A", "B"])]``, as ``summary`` takes them."""
         import pandas as pd
 
-        return pd.DataFrame(self._cases)
+        frame = pd.DataFrame(self._cases)
+        frame["role"] = self._roles(len(frame))
+        return frame
+
+    def _roles(self, cases: int):
+        if not self.json.get("sensitivity"):
+            return ["A"] * cases
+        names = [p["name"] for p in self.json["parameters"]]
+        pattern = ["A", "B"] + [f"AB {name}" for name in names]
+        return [pattern[k % len(pattern)] for k in range(cases)]
 
     @property
     def summary(self):
@@ -47,23 +59,25 @@ class Study:
     @property
     def quantiles(self):
         """One row per output and level: the quantile (type 7) and its distribution-free
-        confidence interval from exact binomial ranks (``lower``, ``upper``), in SI."""
+        confidence interval from exact binomial ranks (``lower``, ``upper``), in SI (``unit``)."""
         import pandas as pd
 
-        rows = [{"output": name, "level": q["level"], "value": q["value"], "lower": q["interval"][0], "upper": q["interval"][1]}
+        rows = [{"output": name, "unit": o["unit"], "level": q["level"], "value": q["value"], "lower": q["interval"][0],
+                 "upper": q["interval"][1]}
                 for name, o in self.json["outputs"].items() for q in o["quantiles"]]
         return pd.DataFrame(rows)
 
     @property
     def histograms(self):
-        """One row per output and bin: the bin's edges (``low``, ``high``, SI) and its count."""
+        """One row per output and bin: the bin's edges (``low``, ``high``, in SI: ``unit``) and its count."""
         import pandas as pd
 
         rows = []
         for name, o in self.json["outputs"].items():
             h = o["histogram"]
             for k, count in enumerate(h["counts"]):
-                rows.append({"output": name, "low": h["low"] + k * h["width"], "high": h["low"] + (k + 1) * h["width"], "count": count})
+                rows.append({"output": name, "unit": o["unit"], "low": h["low"] + k * h["width"], "high": h["low"] + (k + 1) * h["width"],
+                             "count": count})
         return pd.DataFrame(rows)
 
     @property

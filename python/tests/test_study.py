@@ -32,7 +32,19 @@ def test_study_gives_the_command_lines_answers(cli):
     assert list(sobol["parameter"]) == ["x1", "x2", "x3"]
     assert (sobol["first_lower"] <= sobol["first"]).all()
     assert len(study.samples) == 256 * 5
-    assert set(study.samples.columns) == {"x1", "x2", "x3", "f.y", "exit"}
+    assert set(study.samples.columns) == {"x1", "x2", "x3", "f.y", "exit", "role"}
+    # The rows the statistics are made of are A and B; each AB row takes one parameter from B.
+    samples = study.samples
+    assert list(samples["role"][:5]) == ["A", "B", "AB x1", "AB x2", "AB x3"]
+    statistical = samples[samples["role"].isin(["A", "B"])]
+    assert len(statistical) == summary.loc["f.y", "n"]
+    assert statistical["f.y"].mean() == pytest.approx(summary.loc["f.y", "mean"], rel=1e-12)
+    ab = samples[samples["role"] == "AB x2"].reset_index(drop=True)
+    a = samples[samples["role"] == "A"].reset_index(drop=True)
+    b = samples[samples["role"] == "B"].reset_index(drop=True)
+    assert (ab["x1"] == a["x1"]).all() and (ab["x2"] == b["x2"]).all() and (ab["x3"] == a["x3"]).all()
+    assert (study.quantiles["unit"] == summary.loc["f.y", "unit"]).all()
+    assert (study.histograms["unit"] == summary.loc["f.y", "unit"]).all()
     assert study.events.loc[0, "event"] == "high"
 
 
