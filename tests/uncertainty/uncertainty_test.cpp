@@ -549,6 +549,30 @@ outputs: [s.mean]
                     Contains("study.yaml:6:5") && Contains("records of parameter 'links'") && Contains("time"));
 }
 
+TEST_CASE("Sobol' indices of an output that does not vary: none, not zeros", "[uncertainty]") {
+  const InProcess r = run_study(R"(params: { x1: 0 mm }
+uncertainty:
+  samples: 64
+  sensitivity: true
+  bootstrap: 20
+  parameters:
+    x1: { normal: { mean: 1 mm, sigma: 0.1 mm } }
+nodes:
+  f: { type: test.linear, params: { x1: $x1, x2: 0 mm, x3: 0 mm } }
+  g: { type: test.linear, params: { x1: 1 mm, x2: 0 mm, x3: 0 mm } }
+outputs: [f.y, g.y]
+)",
+                                1);
+  REQUIRE(r->answers.outputs.size() == 2);
+  REQUIRE(r->answers.outputs[0].sobol.has_value());
+  CHECK(r->answers.outputs[0].sobol->indices.size() == 1);
+  CHECK_THAT(r->answers.outputs[0].sobol->indices[0].total, Catch::Matchers::WithinAbs(1.0, 0.3));  // 1 exactly, estimated from 64
+  REQUIRE(r->answers.outputs[1].sobol.has_value());
+  CHECK(r->answers.outputs[1].sobol->variance == 0.0);
+  CHECK(r->answers.outputs[1].sobol->indices.empty());
+  CHECK_THAT(r->json, Contains("\"g.y\"") && Contains("\"indices\":{}"));
+}
+
 TEST_CASE("Sobol' indices of several outputs at once: each as alone, bit for bit, on any threads", "[uncertainty]") {
   // Three outputs of the same base samples (one with a zero variance); the resamples are drawn
   // once for all of them and each output's indices and intervals equal its own computation.

@@ -145,7 +145,12 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
       std::vector<const SobolSamples*> samples;
       for (std::size_t p : group) samples.push_back(&sobol_samples[p]);
       std::vector<SobolIndices> indices = sobol_indices(samples, spec.bootstrap, spec.confidence, spec.seed, threads);
-      for (std::size_t g = 0; g < group.size(); ++g) answers.outputs[group[g]].sobol = std::move(indices[g]);
+      for (std::size_t g = 0; g < group.size(); ++g) {
+        // An output that does not vary over the samples has no indices: V_j / V is 0 / 0 there, and
+        // a 0 with an interval [0, 0] would read as "no parameter matters" (its variance says 0).
+        if (!(indices[g].variance > 0)) indices[g].indices.clear();
+        answers.outputs[group[g]].sobol = std::move(indices[g]);
+      }
       for (std::size_t p : group) sobol_samples[p] = {};  // freed as soon as used
     }
   }
