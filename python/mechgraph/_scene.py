@@ -213,8 +213,13 @@ def _study_arguments(parameters, samples, method, seed, sensitivity, limits, eve
     for key, value in (("limits", limits), ("events", events), ("sensitivity", sensitivity)):
         if value is not None:
             block[key] = _study_value(value, key)
-    return (json.dumps(block) if block else "", set_entries(set, si), _whole_text(samples, "samples"), method or "",
-            _whole_text(seed, "seed"), list(outputs or []))
+    if method is not None and method not in _STUDY_METHODS:
+        raise ValueError(f"method: {method!r} is not a sampling method; valid: {', '.join(_STUDY_METHODS)}")
+    return (json.dumps(block) if block else "", set_entries(set, si), _whole_text(samples, "samples", 2, 10_000_000),
+            method or "", _whole_text(seed, "seed", 0, 2 ** 62), list(outputs or []))
+
+
+_STUDY_METHODS = ("monte_carlo", "latin_hypercube", "sobol")
 
 
 def _study_value(value: Any, context: str) -> Any:
@@ -234,13 +239,16 @@ def _study_value(value: Any, context: str) -> Any:
     return value
 
 
-def _whole_text(value: Any, name: str) -> str:
-    """samples= or seed= as the module's text ("" for the scene's): a whole number, never rounded."""
+def _whole_text(value: Any, name: str, low: int, high: int) -> str:
+    """samples= or seed= as the module's text ("" for the scene's): a whole number in [low, high],
+    never rounded."""
     if value is None:
         return ""
     if isinstance(value, bool) or not isinstance(value, (int, np.integer, float, np.floating)) or \
             not float(value).is_integer():
         raise TypeError(f"{name}: expected a whole number, got {value!r}")
+    if not low <= int(value) <= high:
+        raise ValueError(f"{name}: {int(value)} is not from {low} to {high}")
     return str(int(value))
 
 

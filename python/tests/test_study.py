@@ -89,6 +89,11 @@ def test_study_values_take_pint_quantities_and_unit_pairs_as_text_does():
     with pytest.raises(TypeError, match="whole number"):
         scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=10.7)
     assert len(scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=8.0).samples) == 8
+    # Out of range or an unknown method: said in Python's words (the argument, the valid range or names).
+    with pytest.raises(ValueError, match="samples: 1 is not from 2"):
+        scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=1)
+    with pytest.raises(ValueError, match="latin_hypercube"):
+        scene.study({"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}}, samples=8, method="lhs")
 
 
 def test_study_settings_reach_the_block_and_units_cannot_slip():
