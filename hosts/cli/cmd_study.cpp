@@ -197,7 +197,8 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
     return std::string(buffer, end);
   };
   std::string summary = csv_row({"output", "unit", "n", "failed", "mean", "mean_lower", "mean_upper", "standard_deviation", "min", "max",
-                                 "lower_limit", "upper_limit", "cp", "cpk", "ppm", "ppm_lower", "ppm_upper", "ppm_normal"}) + "\n";
+                                 "lower_limit", "upper_limit", "below", "above", "cp", "cpk", "ppm", "ppm_lower", "ppm_upper",
+                                 "ppm_normal"}) + "\n";
   std::string quantiles = csv_row({"output", "unit", "level", "value", "lower", "upper"}) + "\n";
   std::string histograms = csv_row({"output", "unit", "bin_low", "bin_high", "count"}) + "\n";
   std::string sobol = csv_row({"output", "parameter", "first", "first_lower", "first_upper", "total", "total_lower", "total_upper"}) + "\n";
@@ -206,7 +207,10 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
     const Moments& m = o.moments;
     const bool any = m.n > 0;
     std::optional<double> cp, cpk, ppm, ppm_lo, ppm_hi, ppm_normal;
+    std::string below, above;  // cases below the lower limit and above the upper, with limits
     if (o.capability) {
+      below = std::to_string(o.capability->below);
+      above = std::to_string(o.capability->above);
       cp = o.capability->cp;
       cpk = o.capability->cpk;
       ppm = 1e6 * o.capability->out_of_spec.estimate;
@@ -217,7 +221,7 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
     const auto opt = [any](double x) { return any ? std::optional<double>(x) : std::nullopt; };
     summary += csv_row({o.column.label, u, std::to_string(m.n), std::to_string(o.failed), cell(opt(m.mean)), cell(m.mean_interval.lower),
                         cell(m.mean_interval.upper), cell(opt(m.standard_deviation)), cell(opt(m.min)), cell(opt(m.max)), cell(o.lower),
-                        cell(o.upper), cell(cp), cell(cpk), cell(ppm), cell(ppm_lo), cell(ppm_hi), cell(ppm_normal)}) + "\n";
+                        cell(o.upper), below, above, cell(cp), cell(cpk), cell(ppm), cell(ppm_lo), cell(ppm_hi), cell(ppm_normal)}) + "\n";
     for (const QuantileEstimate& q : o.quantiles)
       quantiles += csv_row({o.column.label, u, cell(q.level), cell(q.value), cell(q.interval.lower), cell(q.interval.upper)}) + "\n";
     for (std::size_t k = 0; k < o.histogram.counts.size(); ++k)
@@ -230,12 +234,12 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
                           cell(s.total), cell(s.total_interval.lower), cell(s.total_interval.upper)}) + "\n";
       }
   }
-  std::string events = csv_row({"event", "events", "trials", "probability", "wilson_lower", "wilson_upper", "clopper_pearson_lower",
-                                "clopper_pearson_upper"}) + "\n";
+  std::string events = csv_row({"event", "events", "trials", "undecided", "probability", "wilson_lower", "wilson_upper",
+                                "clopper_pearson_lower", "clopper_pearson_upper"}) + "\n";
   for (const EventAnswer& e : a.events) {
     const Proportion& p = e.probability;
-    events += csv_row({e.event->name, std::to_string(p.events), std::to_string(p.trials), cell(p.estimate), cell(p.wilson.lower),
-                       cell(p.wilson.upper), cell(p.clopper_pearson.lower), cell(p.clopper_pearson.upper)}) + "\n";
+    events += csv_row({e.event->name, std::to_string(p.events), std::to_string(p.trials), std::to_string(e.undecided), cell(p.estimate),
+                       cell(p.wilson.lower), cell(p.wilson.upper), cell(p.clopper_pearson.lower), cell(p.clopper_pearson.upper)}) + "\n";
   }
   put("summary.csv", summary);
   put("quantiles.csv", quantiles);

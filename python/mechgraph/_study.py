@@ -51,6 +51,7 @@ class Study:
                 row[key] = o.get(key)
             row["mean_lower"], row["mean_upper"] = o.get("mean_interval", [None, None])
             if "out_of_spec" in o:
+                row["below"], row["above"] = o["out_of_spec"].get("below"), o["out_of_spec"].get("above")
                 lo, hi = o["out_of_spec"]["wilson"]
                 row["ppm_lower"], row["ppm_upper"] = 1e6 * lo, 1e6 * hi
             rows.append(row)
@@ -96,11 +97,13 @@ class Study:
 
     @property
     def events(self):
-        """One row per declared event: how many cases had it of how many, the estimated
-        probability, and its Wilson and Clopper-Pearson intervals."""
+        """One row per declared event: how many cases had it of how many (``undecided``: the
+        cases without a value, left out of the trials), the estimated probability, and its Wilson
+        and Clopper-Pearson intervals."""
         import pandas as pd
 
-        rows = [{"event": name, "events": e["events"], "trials": e["trials"], "probability": e["estimate"],
+        rows = [{"event": name, "events": e["events"], "trials": e["trials"], "undecided": e.get("undecided", 0),
+                 "probability": e["estimate"],
                  "wilson_lower": e["wilson"][0], "wilson_upper": e["wilson"][1],
                  "clopper_pearson_lower": e["clopper_pearson"][0], "clopper_pearson_upper": e["clopper_pearson"][1]}
                 for name, e in self.json["events"].items()]

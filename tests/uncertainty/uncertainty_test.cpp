@@ -465,6 +465,20 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   std::ifstream page_file(dir / "out" / "report.html");
   const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
   CHECK_THAT(page, Contains("LSL -8") && Contains("USL 12") && Contains("Sobol' indices (64 base samples)") && Contains("<td>high</td>"));
+  // The counts the terminal prints, in the files too: the cases below and above the limits, an
+  // event's cases without a value.
+  const auto slurp_file = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  CHECK_THAT(slurp_file(dir / "out" / "summary.csv"), Contains("lower_limit,upper_limit,below,above,cp"));
+  CHECK_THAT(slurp_file(dir / "out" / "events.csv"), Contains("event,events,trials,undecided,probability") && Contains("high,"));
+  const std::string json = slurp_file(dir / "out" / "study.json");
+  CHECK_THAT(json, Contains("\"below\":") && Contains("\"above\":") && Contains("\"undecided\":0"));
+  const std::size_t at = r.out.find(" below, ");
+  REQUIRE(at != std::string::npos);
+  const std::string below_count = r.out.substr(r.out.rfind('(', at) + 1, at - r.out.rfind('(', at) - 1);
+  CHECK_THAT(json, Contains("\"below\":" + below_count + ","));
   const std::string bad = (dir / "bad.yaml").string();
   std::ofstream(bad) << "params: {x1: 0}\nuncertainty:\n  parameters:\n    x1: { normal: { mean: 1, sigma: -1 } }\n"
                         "nodes:\n  f: { type: test.ishigami, params: { x1: $x1 } }\noutputs: [f.y]\n";

@@ -196,9 +196,12 @@ void write_interval(JsonWriter& out, const Interval& i, const StudyColumn* c) {
   out.end_array();
 }
 
-void write_proportion(JsonWriter& out, const Proportion& p) {
+// A proportion, with the counts that go with it where given (a spec's cases below and above, an
+// event's cases without a value): what the terminal prints, the files carry.
+void write_proportion(JsonWriter& out, const Proportion& p, const std::function<void(JsonWriter&)>& counts = {}) {
   out.begin_object();
   out.key("events").value(static_cast<long>(p.events)).key("trials").value(static_cast<long>(p.trials));
+  if (counts) counts(out);
   out.key("estimate").value(p.estimate);
   out.key("wilson");
   write_interval(out, p.wilson, nullptr);
@@ -260,7 +263,9 @@ void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers
       k.cpk ? out.value(*k.cpk) : out.null();
       out.key("ppm_normal").value(k.ppm_normal).key("ppm").value(1e6 * k.out_of_spec.estimate);
       out.key("out_of_spec");
-      write_proportion(out, k.out_of_spec);
+      write_proportion(out, k.out_of_spec, [&k](JsonWriter& j) {
+        j.key("below").value(static_cast<long>(k.below)).key("above").value(static_cast<long>(k.above));
+      });
     }
     if (a.sobol) {
       out.key("sobol").begin_object().key("samples").value(static_cast<long>(a.sobol->samples));
@@ -281,7 +286,7 @@ void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers
   out.key("events").begin_object();
   for (const EventAnswer& e : answers.events) {
     out.key(e.event->name);
-    write_proportion(out, e.probability);
+    write_proportion(out, e.probability, [&e](JsonWriter& j) { j.key("undecided").value(static_cast<long>(e.undecided)); });
   }
   out.end_object();
   if (more) more(out);
