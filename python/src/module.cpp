@@ -48,6 +48,17 @@ using namespace mechgraph::python;
 
 namespace {
 
+// A study output's column in Study.samples: the column a sweep of the study's cases writes
+// (sweep_rows.hpp: the display unit and the angle's frame, "[deg (cam)]"), so that the in-process
+// study and mechgraph.dask.study, which reads a sweep's rows, name it alike.
+std::string study_sample_column(const Graph& graph, const StudyColumn& c) {
+  for (std::size_t j = 0; j < graph.outputs.size(); ++j)
+    if (graph.outputs[j].label == c.label) return host::sweep_column_name(graph, j);
+  const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+  return unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
+}
+
+
 // ---- plugins ------------------------------------------------------------------------------------
 
 std::mutex registry_mutex;
@@ -579,13 +590,7 @@ PYBIND11_MODULE(_core, m) {
           for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
           cases[py::str(o.table.variables[v].name)] = column;
         }
-        py::list units;
-        for (std::size_t c = 0; c < o.data.outputs.size(); ++c) {
-          const StudyColumn& col = o.data.outputs[c];
-          const std::string unit = col.unit.empty() ? col.dimension.si_unit() : col.unit;
-          const std::string name = unit.empty() || unit == "1" ? col.label : col.label + " [" + unit + "]";
-          cases[py::str(name)] = o.data.values[c];
-        }
+        for (std::size_t c = 0; c < o.data.outputs.size(); ++c) cases[py::str(study_sample_column(o.graph, o.data.outputs[c]))] = o.data.values[c];
         std::vector<int> exits;
         for (CaseFailure f : o.data.failures) exits.push_back(host::exit_code_of(f));
         cases["exit"] = exits;
@@ -623,13 +628,7 @@ PYBIND11_MODULE(_core, m) {
         for (std::size_t i = 0; i < n; ++i)
           o->data.failures[i] = exits[i] == 0 ? CaseFailure::none : exits[i] == 2 ? CaseFailure::scene : CaseFailure::evaluation;
         for (const StudyColumn& c : o->columns) {
-          std::string name;  // the column a sweep of these cases writes (sweep_rows.hpp)
-          for (std::size_t j = 0; j < o->graph.outputs.size() && name.empty(); ++j)
-            if (o->graph.outputs[j].label == c.label) name = host::sweep_column_name(o->graph, j);
-          if (name.empty()) {
-            const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
-            name = unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
-          }
+          const std::string name = study_sample_column(o->graph, c);
           if (!columns.contains(name)) throw SceneError("study rows: no column '" + name + "'");
           std::vector<double> values = columns[py::str(name)].cast<std::vector<double>>();
           if (values.size() != n) throw SceneError("study rows: column '" + name + "' has " + std::to_string(values.size()) + " values");

@@ -117,3 +117,14 @@ def test_study_settings_reach_the_block_and_units_cannot_slip():
     # A value set on a parameter that has a distribution would be ignored by every sample: refused.
     with pytest.raises(mechgraph.SceneError, match="uncertain"):
         scene.study(x1, samples=8, set={"x1": "2 mm"})
+
+
+def test_sample_columns_are_named_as_a_sweep_names_them():
+    # An angle's column carries its frame, "[deg (cam)]", as the sweep's rows (and so
+    # mechgraph.dask.study, which reads them) name it: cam and crank degrees differ by a factor 2.
+    scene = mechgraph.Scene.load(SOURCE / "scenes" / "valve_timing_tolerances.yaml")
+    study = scene.study(samples=2, threads=1, outputs=["v.opening_angle", "float.float_speed"])
+    swept = scene.sweep({"lash": ["0.25 mm"]}, outputs=["v.opening_angle", "float.float_speed"])
+    outputs = [c for c in swept.columns if c.startswith(("v.", "float."))]
+    assert outputs == ["v.opening_angle [deg (cam)]", "float.float_speed [rpm]"]
+    assert all(c in study.samples.columns for c in outputs)
