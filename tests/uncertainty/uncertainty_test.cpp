@@ -503,6 +503,17 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   const auto some_failed = testing::run_cli(plugin + "study '" + failing + "'");
   CHECK(some_failed.exit_code == 0);
   CHECK_THAT(some_failed.err, Contains("of 32 cases failed") && Contains("deliberate failure"));
+  // A parameter that reaches no node the outputs need: said once, at its line, in the study's words.
+  const std::string unused = (dir / "unused.yaml").string();
+  std::ofstream(unused) << "params: {x1: 0, x2: 0}\nuncertainty:\n  samples: 8\n  parameters:\n"
+                           "    x1: { uniform: { lower: -3, upper: 3 } }\n    x2: { uniform: { lower: -3, upper: 3 } }\n"
+                           "nodes:\n  f: { type: test.ishigami, params: { x1: $x1 } }\n  g: { type: test.ishigami, params: { x1: $x2 } }\n"
+                           "outputs: [f.y]\n";
+  const auto unused_run = testing::run_cli(plugin + "study '" + unused + "'");
+  CHECK(unused_run.exit_code == 0);
+  CHECK_THAT(unused_run.err, Contains("unused.yaml:6:5: 'x2' only reaches nodes the studied outputs do not need"));
+  CHECK(unused_run.err.find("only reaches") == unused_run.err.rfind("only reaches"));
+  CHECK(unused_run.err.find("sweep:") == std::string::npos);
   const auto none = testing::run_cli("study '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml'");
   CHECK(none.exit_code == 2);
   CHECK_THAT(none.err, Contains("no 'uncertainty' block"));

@@ -73,8 +73,9 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
         throw SceneError(p.where.str() + "'" + p.name + "' is set (" + o.text + ") and uncertain in this study: every sample " +
                          "draws its own value, so the set one would be ignored; drop the one or the other");
     try {
-      const CaseBinder single(graph, scene, registry, overrides, {{p.name, p.unit}});
-      (void)single;
+      const CaseBinder single(graph, scene, registry, overrides, {{p.name, p.unit}}, BinderUse::study);
+      if (!single.reaches_needed_node(0))
+        spdlog::warn("{}'{}' only reaches nodes the studied outputs do not need: its distribution changes nothing", p.where.str(), p.name);
     } catch (const SceneError& e) {
       throw SceneError(p.where.str() + e.what());
     }
@@ -275,7 +276,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   };
   auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads);
   phase_done("graph built and cases drawn");
-  const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables);
+  const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   outcome->threads = threads;

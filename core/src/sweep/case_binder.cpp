@@ -29,6 +29,7 @@ bool admits_number(const ParamSpec& spec, const CaseValue& value) {
 
 // The start of a message about variable `name`: "sweep: 'rpm'" or, for a run's set=, "set rpm".
 std::string about(BinderUse use, const std::string& name) {
+  if (use == BinderUse::study) return "study: '" + name + "'";
   return use == BinderUse::sweep ? "sweep: '" + name + "'" : "set " + name;
 }
 
@@ -69,6 +70,8 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
         const bool defined = std::any_of(scene.params.begin(), scene.params.end(), [&](const auto& p) { return p.first == name; });
         if (defined && use == BinderUse::sweep)
           throw SceneError("sweep: scene parameter '" + name + "' is not used by any node: varying it changes nothing");
+        if (defined && use == BinderUse::study)
+          throw SceneError("study: scene parameter '" + name + "' is not used by any node: its distribution changes nothing");
         if (defined) throw SceneError("set " + name + ": scene parameter '" + name + "' is not used by any node: setting it changes nothing");
         throw SceneError(unknown_variable(base, name, use));
       }
@@ -86,7 +89,9 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
     }
     for (const Target& t : targets)
       if (t.spec->kind == ParamKind::number_list || t.spec->kind == ParamKind::record_list) nested = true;
-    if (std::none_of(targets.begin(), targets.end(), [&](const Target& t) { return base.nodes[t.node].needed; })) {
+    const bool reaches = std::any_of(targets.begin(), targets.end(), [&](const Target& t) { return base.nodes[t.node].needed; });
+    reaches_needed_.push_back(reaches ? 1 : 0);
+    if (!reaches && use != BinderUse::study) {
       if (use == BinderUse::sweep)
         spdlog::warn("sweep: '{}' only reaches nodes the requested outputs do not need: varying it changes nothing", name);
       else
@@ -94,7 +99,7 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
     }
     rebuild_ = rebuild_ || nested;
     targets_.push_back(std::move(targets));
-    swept_labels_.push_back((use == BinderUse::sweep ? "(swept " : "(set ") + name + ")");
+    swept_labels_.push_back((use == BinderUse::sweep ? "(swept " : use == BinderUse::study ? "(sampled " : "(set ") + name + ")");
   }
   if (rebuild_ && use == BinderUse::sweep)
     spdlog::info("sweep: a varied parameter sits inside a list or record; each case's graph is built anew from the scene");

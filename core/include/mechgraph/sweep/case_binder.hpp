@@ -14,9 +14,12 @@
 namespace mechgraph {
 
 /// Who gives the values, for the messages: a sweep ("sweep: 'rmp': unknown ...", a value's origin
-/// "(swept rpm)"), or a program setting the parameters of one run (the Python module's `set=`:
-/// "set rmp: unknown ...", "(set rpm)"), whose messages must not speak of a sweep.
-enum class BinderUse { sweep, set };
+/// "(swept rpm)"), a program setting the parameters of one run (the Python module's `set=`:
+/// "set rmp: unknown ...", "(set rpm)"), whose messages must not speak of a sweep, or an
+/// uncertainty study ("study: 'rmp': unknown ...", "(sampled rpm)"), which says itself, once and
+/// at the parameter's line, what a variable that reaches no needed node means
+/// (reaches_needed_node).
+enum class BinderUse { sweep, set, study };
 
 class CaseBinder {
  public:
@@ -28,6 +31,9 @@ class CaseBinder {
   /// Writes one case into `graph`, which holds the base graph or an earlier case of it. Throws
   /// SceneError naming the variable, the node parameter and the limit it breaks.
   void apply(Graph& graph, const std::vector<CaseValue>& values) const;
+
+  /// Whether variable v reaches a node the requested outputs need (else giving it changes nothing).
+  bool reaches_needed_node(std::size_t v) const { return reaches_needed_[v] != 0; }
 
   /// Where one graph keeps each varied parameter's value, found once (a sweep's worker binds its
   /// copy of the graph, then writes every case without a lookup by name). Valid while that graph
@@ -68,6 +74,7 @@ class CaseBinder {
   std::vector<std::vector<Target>> targets_;  // per variable
   std::vector<std::string> swept_labels_;     // per variable: where its values come from, "(swept x)"
   BinderUse use_ = BinderUse::sweep;
+  std::vector<char> reaches_needed_;  // per variable
   bool rebuild_ = false;
 };
 
