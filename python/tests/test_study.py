@@ -128,3 +128,17 @@ def test_sample_columns_are_named_as_a_sweep_names_them():
     outputs = [c for c in swept.columns if c.startswith(("v.", "float."))]
     assert outputs == ["v.opening_angle [deg (cam)]", "float.float_speed [rpm]"]
     assert all(c in study.samples.columns for c in outputs)
+
+
+def test_study_errors_carry_where_and_which_parameter_as_data():
+    scene = mechgraph.Scene.from_text(
+        "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\n"
+        "uncertainty:\n  parameters:\n    x1: { normal: { mean: 1 mm, sigma: 0.1 mm } }\n"
+        "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n", name="uq.yaml")
+    with pytest.raises(mechgraph.SceneError) as refused:
+        scene.study(samples=8, set={"x1": "2 mm"})
+    assert refused.value.location == ("uq.yaml", 4, 5)
+    assert refused.value.parameter == "x1"
+    with pytest.raises(mechgraph.SceneError) as limit:
+        scene.study(samples=8, limits={"f.z": {"upper": "1 mm"}})
+    assert "f.y" in str(limit.value)  # the outputs it could name

@@ -5,6 +5,7 @@
 #include <mechgraph/host/usage_error.hpp>
 #include <mechgraph/shown_number.hpp>
 
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
 #include <mechgraph/memo_cache.hpp>
@@ -70,14 +71,14 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
     // of the run would name a value no case used): one or the other.
     for (const Override& o : overrides)
       if (o.target == p.name)
-        throw SceneError(p.where.str() + "'" + p.name + "' is set (" + o.text + ") and uncertain in this study: every sample " +
+        throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' is set (" + o.text + ") and uncertain in this study: every sample " +
                          "draws its own value, so the set one would be ignored; drop the one or the other");
     try {
       const CaseBinder single(graph, scene, registry, overrides, {{p.name, p.unit}}, BinderUse::study);
       if (!single.reaches_needed_node(0))
         spdlog::warn("{}'{}' only reaches nodes the studied outputs do not need: its distribution changes nothing", p.where.str(), p.name);
     } catch (const SceneError& e) {
-      throw SceneError(p.where.str() + e.what());
+      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + e.what());
     }
     // The dimension of what the name reaches: a node's parameter, or every use of a scene parameter.
     std::vector<const ParamSpec*> targets;
@@ -98,14 +99,14 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
                  f.dimension == p.marginal.dimension;
         };
         if (std::none_of(s->fields.begin(), s->fields.end(), fits))
-          throw SceneError(p.where.str() + "'" + p.name + "' is used inside the records of parameter '" + s->name +
+          throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' is used inside the records of parameter '" + s->name +
                            "', none of whose number fields is " + p.marginal.dimension.describe());
         continue;
       }
       if (s->kind != ParamKind::number && s->kind != ParamKind::integer && s->kind != ParamKind::number_list)
-        throw SceneError(p.where.str() + "'" + p.name + "' reaches parameter '" + s->name + "', which is not a number");
+        throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' reaches parameter '" + s->name + "', which is not a number");
       if (!(s->dimension == p.marginal.dimension))
-        throw SceneError(p.where.str() + "'" + p.name + "' is " + s->dimension.describe() + " (parameter '" + s->name +
+        throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' is " + s->dimension.describe() + " (parameter '" + s->name +
                          "'), its distribution is " + p.marginal.dimension.describe());
     }
   }

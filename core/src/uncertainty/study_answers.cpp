@@ -1,6 +1,7 @@
 #include <mechgraph/uncertainty/study_answers.hpp>
 
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 
 #include <mechgraph/chunked_work.hpp>
@@ -18,7 +19,7 @@ std::size_t output_index(const std::vector<StudyColumn>& outputs, const std::str
     if (outputs[k].label == label) return k;
     names.push_back(outputs[k].label);
   }
-  throw SceneError(where.str() + unknown_name_message("study output", label, names) +
+  throw_scene_error_at(where, unknown_name_message("study output", label, names) +
                    " (a study reads the scene's scalar outputs; add it to outputs:)");
 }
 
@@ -32,9 +33,9 @@ void check_dimension(const Dimension& written, const StudyColumn& output, const 
   if (written == output.dimension) return;
   const std::string shown_in = output.unit.empty() ? output.dimension.si_unit() : output.unit;
   if (written.dimensionless())
-    throw SceneError(where.str() + what + " is a bare number, but '" + output.label + "' is " + output.dimension.describe() +
+    throw_scene_error_at(where, what + " is a bare number, but '" + output.label + "' is " + output.dimension.describe() +
                      ": write the unit (its values are shown in " + shown_in + ")");
-  throw SceneError(where.str() + what + " is " + written.describe() + ", but '" + output.label + "' is " +
+  throw_scene_error_at(where, what + " is " + written.describe() + ", but '" + output.label + "' is " +
                    output.dimension.describe() + " (shown in " + shown_in + ")");
 }
 

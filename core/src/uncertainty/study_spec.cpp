@@ -2,6 +2,7 @@
 
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/did_you_mean.hpp>
+#include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
@@ -25,7 +26,7 @@ std::size_t StudySpec::evaluations() const { return sensitivity ? samples * (par
 
 namespace {
 
-[[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw SceneError(where.str() + message); }
+[[noreturn]] void fail(const SourceLocation& where, const std::string& message) { throw_scene_error_at(where, message); }
 
 const RawValue& expect_map(const RawValue& v, const std::string& what) {
   if (v.kind != RawValue::Kind::map) fail(v.where, "expected " + what + " as a map (key: value)");
