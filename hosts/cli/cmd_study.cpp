@@ -12,6 +12,7 @@
 #include "study_page.hpp"
 #include <mechgraph/host/study_run.hpp>
 #include "sweep_file.hpp"
+#include "sweep_fingerprint.hpp"
 #include <mechgraph/host/sweep_rows.hpp>
 #include <mechgraph/host/terminal_output.hpp>
 
@@ -105,6 +106,8 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
         throw UsageError(where + "case " + std::to_string(i) + " has " + table.variables[v].name + " = " + excerpt(cells[1 + v], 40) +
                          " where this study's design has " + table.shown(i, v) + ": rows of another seed, method or sample count");
     const std::string& exit = cells[*exit_column];
+    if (exit != "0" && exit != "2" && exit != "3")
+      throw UsageError(where + "case " + std::to_string(i) + ": the exit '" + excerpt(exit, 40) + "' is not 0, 2 or 3");
     data.failures[i] = exit == "0" ? CaseFailure::none : exit == "2" ? CaseFailure::scene : CaseFailure::evaluation;
     if (data.failures[i] != CaseFailure::none) {
       if (!data.first_failed || i < *data.first_failed) {
@@ -291,7 +294,21 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
     outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers);
     outcome->threads = workers;
-    outcome->data = read_study_rows(vm["rows"].as<std::string>(), outcome->graph, outcome->table, outcome->columns);
+    const std::string rows_file = vm["rows"].as<std::string>();
+    outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
+    // Rows of this study, not of another scene, another --set or other files the scene reads: the
+    // manifest beside them (sweep and merge write one) carries the sweep's fingerprint, which the
+    // study's own must equal; the design's inputs (checked row by row first, which
+    // names another seed, method or sample count) do not tell.
+    if (has_sweep_manifest(rows_file)) {
+      const SweepManifest manifest = read_manifest_checked(rows_file);
+      if (manifest.sweep != sweep_fingerprint(scene_file, sets, outcome->table, outcome->graph, RowFormat::csv))
+        throw UsageError(rows_file + ": the rows of another sweep: the scene, a file it reads, --set or --outputs differ from those " +
+                         "the rows were made with (mechgraph sweep " + excerpt(manifest.scene, 80) + " --study ...)");
+    } else {
+      spdlog::warn("study: {} has no manifest beside it ({}): whether its rows come from this scene and these --set values "
+                   "cannot be checked", rows_file, manifest_path(rows_file).filename().string());
+    }
     finish_study(*outcome);
   } else {
     WorkBudget budget = work_budget(vm);

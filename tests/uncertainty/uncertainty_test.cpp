@@ -447,6 +447,24 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
   CHECK(other.exit_code == 2);
   CHECK_THAT(other.err, Contains("all.csv:2:") && Contains("another seed"));
+  // Rows of another scene (here: another fixed value, --set, under the same design) are refused by
+  // the manifest's fingerprint, though every sampled input matches.
+  const auto other_set = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --set f.a=6 --rows '" + merged + "'");
+  CHECK(other_set.exit_code == 2);
+  CHECK_THAT(other_set.err, Contains("all.csv: the rows of another sweep"));
+  // An exit that is not 0, 2 or 3 is refused, naming the line.
+  {
+    std::ifstream in(merged);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    const std::size_t second_line = text.find('\n') + 1, end_of_it = text.find('\n', second_line);
+    const std::size_t last_comma = text.rfind(',', end_of_it), exit_comma = text.rfind(',', last_comma - 1);
+    text.replace(exit_comma + 1, last_comma - exit_comma - 1, "7");
+    std::ofstream(merged, std::ios::binary) << text;
+  }
+  const auto bad_exit = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --rows '" + merged + "'");
+  CHECK(bad_exit.exit_code == 2);
+  CHECK_THAT(bad_exit.err, Contains("all.csv:2:") && Contains("the exit '7' is not 0, 2 or 3"));
   std::filesystem::remove_all(dir);
 }
 

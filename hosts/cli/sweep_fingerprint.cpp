@@ -1,0 +1,73 @@
+#include "sweep_fingerprint.hpp"
+
+#include <mechgraph/bounded_read.hpp>
+#include <mechgraph/hash.hpp>
+#include <mechgraph/scene.hpp>
+
+#include <cstdio>
+#include <set>
+
+namespace mechgraph::cli {
+namespace {
+
+// Every file the sweep reads, by the path its nodes are given: the files the scene names (a
+// table) and, where a varied input is such a parameter, the file of each case's value.
+std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
+  std::set<std::string> files;
+  for (std::size_t i : graph.order) {
+    const GraphNode& node = graph.nodes[i];
+    for (const auto& [name, value] : node.params.all())
+      if (const ParamSpec* spec = node.info().find_param(name); spec && spec->is_path && !value.text.empty()) files.insert(value.text);
+  }
+  for (std::size_t v = 0; v < table.variables.size(); ++v) {
+    const std::string& name = table.variables[v].name;
+    bool names_file = false;
+    const auto is_path = [&](std::size_t node, const std::string& param) {
+      const ParamSpec* spec = graph.nodes[node].info().find_param(param);
+      return spec && spec->is_path;
+    };
+    if (const auto dot = name.find('.'); dot != std::string::npos) {
+      if (const auto node = graph.find(name.substr(0, dot))) names_file = is_path(*node, name.substr(dot + 1));
+    } else if (const auto uses = graph.scene_param_uses.find(name); uses != graph.scene_param_uses.end()) {
+      for (const SceneParamUse& use : uses->second) names_file = names_file || is_path(use.node, use.param);
+    }
+    if (names_file)
+      for (const auto& row : table.cases)
+        if (!row[v].text.empty()) files.insert(row[v].text);
+  }
+  return files;
+}
+
+// Which sweep a file of rows belongs to: the scene's text, the contents of every file it reads,
+// the --set values, every case, the columns. A table file edited between a stopped sweep and its
+// --resume is another sweep: its rows are not mixed with the old table's.
+}  // namespace
+
+std::string sweep_fingerprint(const std::string& scene_file, const std::vector<std::string>& sets, const CaseTable& table,
+                        const Graph& graph, host::RowFormat format) {
+  Hasher h;
+  h.add(read_user_file(scene_file, max_scene_bytes, "scene"));
+  for (const std::string& file : files_read(graph, table)) {
+    h.add(file);
+    // Bounded as the nodes read it; a file that cannot be read counts as such (the case fails).
+    try {
+      h.add(std::string_view("contents")).add(read_bounded_file(file));
+    } catch (const FileReadError&) {
+      h.add(std::string_view("unreadable"));
+    }
+  }
+  for (const std::string& s : sets) h.add(s);
+  for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
+  for (const auto& row : table.cases)
+    for (const CaseValue& v : row) {
+      if (!v.text.empty()) h.add(std::string_view(v.text));  // written() without its copy
+      else h.add(v.written());
+    }
+  for (const RequestedOutput& o : graph.outputs) h.add(o.label);
+  h.add(static_cast<std::uint64_t>(format));
+  char hex[20];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h.value()));
+  return hex;
+}
+
+}  // namespace mechgraph::cli
