@@ -101,23 +101,46 @@ fs::path results_folder_path(const fs::path& dir) {
   return p;
 }
 
+namespace {
+
+// Whether results can be written beside `dir` at all, asked before the work that makes them (a
+// study of hours would otherwise run to its end and lose its results to a read-only or missing
+// parent): a folder is made and removed in the nearest existing ancestor of `dir`'s parent, as the
+// staging folder will be, so permissions, a read-only file system and a file on the way all show.
+void check_writable_beside(const fs::path& dir) {
+  fs::path ancestor = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
+  struct stat st {};
+  while (::lstat(ancestor.c_str(), &st) != 0) {
+    if (errno != ENOENT || !ancestor.has_parent_path() || ancestor.parent_path() == ancestor)
+      io_failure("write results into", dir, errno);
+    ancestor = ancestor.parent_path().empty() ? fs::path(".") : ancestor.parent_path();
+  }
+  if (!S_ISDIR(st.st_mode)) io_failure("write results into", dir, ENOTDIR);
+  std::string probe = (ancestor / ".mechgraph-probe-XXXXXX").string();
+  if (!::mkdtemp(probe.data())) io_failure("write results into", dir, errno);
+  ::rmdir(probe.c_str());
+}
+
+}  // namespace
+
 void check_results_folder(const fs::path& given, bool replace) {
   const fs::path dir = results_folder_path(given);
   struct stat st {};
   if (::lstat(dir.c_str(), &st) != 0) {
-    if (errno == ENOENT) return;
+    if (errno == ENOENT) return check_writable_beside(dir);
     io_failure("write results into", dir, errno);  // e.g. a file on the way: ENOTDIR, exit 5
   }
   if (S_ISLNK(st.st_mode) || !S_ISDIR(st.st_mode))
     throw UsageError("--out " + dir.string() + " is " + kind_of(dir) + ", not a results folder mechgraph wrote: it is left alone " +
                      "(--force replaces only mechgraph's own results); choose another --out");
   std::error_code ec;
-  if (fs::is_empty(dir, ec) && !ec) return;
+  if (fs::is_empty(dir, ec) && !ec) return check_writable_beside(dir);
   if (!replace)
     throw UsageError("the results folder '" + dir.string() + "' exists already: give --force to replace it, or another --out");
   if (!has_marker(dir))
     throw UsageError("--out " + dir.string() + " is a folder mechgraph did not write (no " + results_marker +
                      " in it): it is left alone even with --force; choose another --out or empty it yourself");
+  check_writable_beside(dir);
 }
 
 void write_results_folder(const fs::path& given, bool replace, const std::function<void(const fs::path& staging)>& write) {

@@ -532,6 +532,13 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   CHECK_THAT(unused_run.err, Contains("unused.yaml:6:5: 'x2' only reaches nodes the studied outputs do not need"));
   CHECK(unused_run.err.find("only reaches") == unused_run.err.rfind("only reaches"));
   CHECK(unused_run.err.find("sweep:") == std::string::npos);
+  // An --out that cannot be written is refused before any case runs (exit 5), naming the folder
+  // given: /proc takes no folder, even from root (a read-only parent is the same for other users).
+  const auto unwritable = testing::run_cli(plugin + "study '" + scene + "' --samples 64 --out /proc/mechgraph-results");
+  CHECK(unwritable.exit_code == 5);
+  CHECK_THAT(unwritable.err, Contains("'/proc/mechgraph-results'"));
+  CHECK(unwritable.err.find("cases in") == std::string::npos);  // the study's log line after its run
+  CHECK(unwritable.out.empty());
   const auto none = testing::run_cli("study '" + std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml'");
   CHECK(none.exit_code == 2);
   CHECK_THAT(none.err, Contains("no 'uncertainty' block"));
