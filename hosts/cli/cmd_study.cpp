@@ -137,7 +137,7 @@ std::string terminal_tables(const StudySpec& spec, const StudyAnswers& a) {
       << a.cases << " evaluations (" << a.failed << " failed)\n\n";
   out << "parameter                      distribution\n";
   for (const UncertainParameter& p : spec.parameters) out << "  " << p.name << std::string(p.name.size() < 29 ? 29 - p.name.size() : 1, ' ') << p.written << "\n";
-  const int level = static_cast<int>(std::lround(spec.confidence * 100));
+  const std::string level = confidence_percent(spec.confidence);
   out << "\nOutputs (intervals at " << level << " %)\n";
   for (const OutputAnswer& o : a.outputs) {
     const std::string u = shown_unit(o.column);

@@ -88,7 +88,7 @@ std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
 
 std::string study_page(const std::string& title, const StudySpec& spec, const StudyAnswers& a) {
   std::ostringstream p;
-  const int level = static_cast<int>(std::lround(spec.confidence * 100));
+  const std::string level = confidence_percent(spec.confidence);
   p << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" << html_text(title.empty() ? "Uncertainty study" : title)
     << "</title>\n<style>body{font-family:sans-serif;max-width:60em;margin:1em auto}table{border-collapse:collapse}"
        "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}td:first-child,th:first-child,.text{text-align:left}</style></head><body>\n";

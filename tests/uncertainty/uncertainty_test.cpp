@@ -336,6 +336,36 @@ outputs: [f.y]
   CHECK(1e6 * *k.out_of_spec.clopper_pearson.upper >= ppm);
 }
 
+TEST_CASE("Moments at the edges: Student's interval, equal values, huge values", "[uncertainty]") {
+  // [1, 2, 3]: mean 2, s 1; Student's t with 2 degrees of freedom has the closed-form quantile
+  // t = (2p - 1) / sqrt(2 p (1 - p)), 4.3026527297494639 at p = 0.975.
+  const Moments three = moments({1.0, 2.0, 3.0}, 0.95);
+  const double t2 = 0.95 / std::sqrt(2 * 0.975 * 0.025);
+  CHECK_THAT(*three.mean_interval.lower, Catch::Matchers::WithinAbs(2.0 - t2 / std::sqrt(3.0), 1e-13));
+  CHECK_THAT(*three.mean_interval.upper, Catch::Matchers::WithinAbs(2.0 + t2 / std::sqrt(3.0), 1e-13));
+  // Equal values: that value, a spread of exactly 0, whatever the rounding of their sum.
+  const std::vector<double> same(7, -0.9498219918858127);
+  const Moments flat = moments(same, 0.95);
+  CHECK(flat.mean == same[0]);
+  CHECK(flat.standard_deviation == 0.0);
+  const Capability out = capability(same, flat, -0.9, std::nullopt, 0.95);  // every value below the lower limit
+  CHECK_FALSE(out.cpk.has_value());
+  CHECK(out.ppm_normal == 1e6);
+  CHECK(capability(same, flat, -1.0, -0.9, 0.95).ppm_normal == 0.0);
+  // Values whose squares overflow a double: still finite, the same numbers scaled.
+  const Moments huge = moments({1e200, 2e200, 3e200}, 0.95);
+  CHECK_THAT(huge.mean, Catch::Matchers::WithinRel(2e200, 1e-15));
+  CHECK_THAT(huge.standard_deviation, Catch::Matchers::WithinRel(1e200, 1e-15));
+  CHECK(std::isfinite(*huge.mean_interval.upper));
+  // The level in labels: 99.9 %, not 100 %.
+  CHECK(confidence_percent(0.95) == "95");
+  CHECK(confidence_percent(0.999) == "99.9");
+  CHECK(confidence_percent(0.9999) == "99.99");
+  // Wilson's ends are exactly 0 at no event and 1 at all (a rounding residue was 5.6e-17).
+  CHECK(*proportion(0, 3, 0.95).wilson.lower == 0.0);
+  CHECK(*proportion(7, 7, 0.9).wilson.upper == 1.0);
+}
+
 TEST_CASE("Event probabilities: Wilson and Clopper-Pearson intervals", "[uncertainty]") {
   const Proportion none = proportion(0, 10, 0.95);
   CHECK(*none.clopper_pearson.lower == 0.0);

@@ -7,6 +7,7 @@
 #include <mechgraph/chunked_work.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <exception>
 
@@ -96,6 +97,12 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
 }
 
 }  // namespace
+
+std::string confidence_percent(double confidence) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, 100.0 * confidence, std::chars_format::general, 10);
+  return std::string(buffer, end);
+}
 
 void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& outputs) {
   for (const SpecLimits& l : spec.limits)

@@ -64,6 +64,10 @@ struct StudyAnswers {
 /// Throws SceneError when a limit or an event names an output the study does not have (at its
 /// file:line:column, with the valid names).
 /// `threads`: for the bootstrap; the answers do not depend on it.
+/// The confidence level as a percentage for a label: "95", "99.9", "99.99" (ten significant
+/// digits at most, no trailing zeros; a whole percentage would print 0.999 as 100).
+std::string confidence_percent(double confidence);
+
 /// Checks, before any case runs, that every spec limit and every event threshold names one of the
 /// study's outputs and is written in that output's dimension: a limit in mm on a mass, or a bare
 /// number on a dimensional output, is refused (a bare number would be read in SI, silently).

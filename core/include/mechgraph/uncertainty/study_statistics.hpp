@@ -20,9 +20,9 @@ struct Interval {
 struct Moments {
   std::size_t n = 0;
   double mean = 0.0, standard_deviation = 0.0, min = 0.0, max = 0.0;
-  Interval mean_interval;  // mean -+ z sd / sqrt(n)
+  Interval mean_interval;  // mean -+ t(n - 1) sd / sqrt(n)
 };
-/// Two-pass mean and sample standard deviation (n - 1); n >= 1.
+/// Two-pass mean and sample standard deviation (n - 1), Student's interval of the mean; n >= 1.
 Moments moments(const std::vector<double>& values, double confidence);
 
 struct QuantileEstimate {
