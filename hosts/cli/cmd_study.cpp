@@ -164,7 +164,9 @@ std::string terminal_tables(const StudySpec& spec, const StudyAnswers& a) {
     for (const OutputAnswer& o : a.outputs) {
       if (!o.sobol) continue;
       out << "\n" << o.column.label << " (" << o.sobol->samples << " base samples)\n";
-      if (o.sobol->indices.empty()) out << "  (it does not vary over the samples: no parameter's share of its variance is defined)\n";
+      if (o.sobol->indices.empty())
+        out << (o.sobol->samples < 2 ? "  (fewer than 2 base samples have a value in every one of their cases: no indices)\n"
+                                     : "  (it does not vary over the samples: no parameter's share of its variance is defined)\n");
       for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
         const SobolIndex& s = o.sobol->indices[j];
         const std::string& name = spec.parameters[j].name;

@@ -545,7 +545,17 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   const auto all_failed = testing::run_cli(plugin + "study '" + failing + "'");
   CHECK(all_failed.exit_code == 3);
   CHECK_THAT(all_failed.err, Contains("every one of the 32 cases failed") && Contains("case 0:") && Contains("deliberate failure"));
-  failing_scene("6.1");  // y = (1 + 0.1) sin x1 + 7 sin^2 1 = 4.957 + 1.1 sin x1 <= 6.057: none fails
+  // With fewer than 2 complete base samples a sensitivity study says so, not that the output is flat.
+  {
+    std::ofstream(failing) << "params: {x1: 0}\nuncertainty:\n  samples: 8\n  sensitivity: true\n  parameters:\n"
+                              "    x1: { uniform: { lower: -3, upper: 3 } }\n"
+                              "nodes:\n  f: { type: test.ishigami, params: { x1: $x1, x2: 1, x3: 1, fail_above: 4.0 } }\noutputs: [f.y]\n";
+    // y = 4.957 + 1.1 sin x1 fails above 4.0 unless sin x1 < -0.87: no base sample has both its cases.
+    const auto few = testing::run_cli(plugin + "study '" + failing + "' --seed 2");
+    CHECK(few.exit_code == 0);
+    CHECK_THAT(few.out, Contains("f.y (0 base samples)\n  (fewer than 2 base samples have a value in every one of their cases"));
+  }
+    failing_scene("6.1");  // y = (1 + 0.1) sin x1 + 7 sin^2 1 = 4.957 + 1.1 sin x1 <= 6.057: none fails
   CHECK(testing::run_cli(plugin + "study '" + failing + "'").err.find("cases failed") == std::string::npos);
   failing_scene("4.99");  // those with sin x1 above 0.03 fail, about half
   const auto some_failed = testing::run_cli(plugin + "study '" + failing + "'");
@@ -651,6 +661,29 @@ outputs: [f.y, g.y]
   CHECK(r->answers.outputs[1].sobol->variance == 0.0);
   CHECK(r->answers.outputs[1].sobol->indices.empty());
   CHECK_THAT(r->json, Contains("\"g.y\"") && Contains("\"indices\":{}"));
+}
+
+TEST_CASE("Sobol' bootstrap: resamples without spread are left out, not counted as 0", "[uncertainty]") {
+  // Only base sample 0 varies (A 0, B 2, AB 1 for both parameters; every other value 0): about
+  // (19/20)^20 = 36 % of the resamples leave it out and have no spread. Their indices are 0 / 0:
+  // left out, the interval is that of the resamples that have it, never pinned at 0 by the rest.
+  const std::size_t n = 20;
+  std::vector<double> f_a(n, 0.0), f_b(n, 0.0);
+  std::vector<std::vector<double>> f_ab(2, std::vector<double>(n, 0.0));
+  f_b[0] = 2.0;
+  f_ab[0][0] = f_ab[1][0] = 1.0;
+  const SobolIndices s = sobol_indices(f_a, f_b, f_ab, 200, 0.95, 7, 1);
+  REQUIRE(s.indices.size() == 2);
+  for (const SobolIndex& i : s.indices) {
+    REQUIRE(i.first_interval.lower.has_value());
+    CHECK(*i.first_interval.lower > 0.0);
+    CHECK(*i.total_interval.lower > 0.0);
+    CHECK(std::isfinite(*i.first_interval.upper));
+  }
+  // Bit for bit on any threads still.
+  const SobolIndices two = sobol_indices(f_a, f_b, f_ab, 200, 0.95, 7, 2);
+  CHECK(*two.indices[0].first_interval.lower == *s.indices[0].first_interval.lower);
+  CHECK(*two.indices[1].total_interval.upper == *s.indices[1].total_interval.upper);
 }
 
 TEST_CASE("Sobol' indices of several outputs at once: each as alone, bit for bit, on any threads", "[uncertainty]") {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <cmath>
 
@@ -161,6 +162,15 @@ struct SobolEstimate {
   std::vector<double> first, total;
 };
 
+// A spread within rounding of none: the pooled f(A), f(B) all equal, their variance a residue of
+// the sums rather than 0. There the indices are 0 / 0: undefined. The values are centred on the
+// mean of all outputs, so a varying output's variance is of the order of its mean square; the
+// residue is about n eps of it in the resamples' one-pass sums (sum w (a^2 + b^2) - 2N mean^2), far
+// less in the point estimate's two passes: `tolerance` is the share of the mean square below which
+// a variance is such a residue.
+bool no_spread(double variance, double mean_square, double tolerance) { return !(variance > tolerance * mean_square); }
+constexpr double two_pass_residue = 1e-24, one_pass_residue = 1e-10;
+
 // The outputs of each base sample side by side, centred: f(A), f(B), f(AB^1) ... f(AB^d) in one
 // row, so that a resample reads one short contiguous row per draw instead of d + 2 scattered values.
 struct SobolRows {
@@ -181,13 +191,14 @@ SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pi
     sum += r[0] + r[1];
   }
   const double mean = sum / (2 * n);
-  double squares = 0.0;
+  double squares = 0.0, raw_squares = 0.0;
   std::fill(first.begin(), first.end(), 0.0);
   std::fill(total.begin(), total.end(), 0.0);
   for (std::size_t i : pick) {
     const double* r = rows.row(i);
     const double a = r[0], b = r[1];
     squares += (a - mean) * (a - mean) + (b - mean) * (b - mean);
+    raw_squares += a * a + b * b;
     for (std::size_t j = 0; j < d; ++j) {
       const double ab = r[2 + j];
       first[j] += b * (ab - a);
@@ -195,6 +206,7 @@ SobolEstimate estimate(const SobolRows& rows, const std::vector<std::size_t>& pi
     }
   }
   SobolEstimate e{squares / (2 * n - 1), std::vector<double>(d), std::vector<double>(d)};
+  if (no_spread(e.variance, raw_squares / (2 * n), two_pass_residue)) e.variance = 0.0;
   for (std::size_t j = 0; j < d; ++j) {
     e.first[j] = e.variance > 0 ? first[j] / n / e.variance : 0.0;
     e.total[j] = e.variance > 0 ? total[j] / (2 * n) / e.variance : 0.0;
@@ -244,11 +256,14 @@ constexpr std::size_t resamples_at_once = 8;
     const double mean = sum[k] / (2 * n[k]);
     SobolEstimate& e = out[k];
     e.variance = std::max(0.0, squares[k] - 2 * n[k] * mean * mean) / (2 * n[k] - 1);
+    // A resample whose drawn outputs do not vary has no indices (NaN, left out of the interval):
+    // counted as 0, they pinned an interval's end at 0 wherever a few base samples carry the spread.
+    const bool undefined = no_spread(e.variance, squares[k] / (2 * n[k]), one_pass_residue);
     e.first.assign(d, 0.0);
     e.total.assign(d, 0.0);
     for (std::size_t j = 0; j < d; ++j) {
-      e.first[j] = e.variance > 0 ? first[j * resamples_at_once + k] / n[k] / e.variance : 0.0;
-      e.total[j] = e.variance > 0 ? total[j * resamples_at_once + k] / (2 * n[k]) / e.variance : 0.0;
+      e.first[j] = undefined ? std::numeric_limits<double>::quiet_NaN() : first[j * resamples_at_once + k] / n[k] / e.variance;
+      e.total[j] = undefined ? std::numeric_limits<double>::quiet_NaN() : total[j * resamples_at_once + k] / (2 * n[k]) / e.variance;
     }
   }
 }
@@ -272,8 +287,10 @@ void estimate_drawn(const SobolRows& rows, const std::uint32_t* times, std::size
   estimate_drawn_body(rows, times, count, out);
 }
 
-// The percentile interval of `draws` at `confidence` (type 7 quantiles of the sorted draws).
+// The percentile interval of `draws` at `confidence` (type 7 quantiles of the sorted draws), the
+// undefined ones (NaN: a resample without spread) left out; none defined, no interval.
 Interval percentile(std::vector<double> draws, double confidence) {
+  draws.erase(std::remove_if(draws.begin(), draws.end(), [](double x) { return std::isnan(x); }), draws.end());
   if (draws.empty()) return {};
   std::sort(draws.begin(), draws.end());
   const double alpha = 1 - confidence;
