@@ -12,16 +12,20 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <numeric>
 #include <optional>
 #include <sstream>
+#include <string_view>
 #include <unordered_set>
 
 namespace mechgraph {
@@ -80,9 +84,106 @@ void require_finite(double x, const std::string& context) {
   if (!std::isfinite(x)) throw SceneError(context + ": a generated value is not a finite number");
 }
 
-// printf's %.15g (printf_g15.hpp: exact, without the locale and format parsing, and by integer
-// arithmetic where it can: a sweep writes millions of these).
-void append_shown_number(std::string& out, double x) { append_printf_g15(out, x); }
+// The shortest digits that read back to x, laid out as printf's %g lays out that many (at least
+// 15): where x has 15 significant digits or fewer this is exactly "%.15g" of x (rounded to 15
+// digits x is those digits, the nearest such decimal by far), what rows always held; else its 16
+// or 17 digits. From std::to_chars' shortest scientific text, rearranged.
+void append_shortest_g(std::string& out, double x) {
+  char buffer[40];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::scientific);
+  std::string_view text(buffer, static_cast<std::size_t>(end - buffer));
+  const std::size_t e = text.find('e');
+  int exponent = 0;
+  const char* exponent_begin = text.data() + e + 1 + (text[e + 1] == '+' ? 1 : 0);
+  std::from_chars(exponent_begin, text.data() + text.size(), exponent);
+  const bool negative = text.front() == '-';
+  const std::string_view mantissa = text.substr(negative ? 1 : 0, e - (negative ? 1 : 0));  // "d" or "d.ddd"
+  char digits[24];
+  std::size_t n = 0;
+  for (const char c : mantissa)
+    if (c != '.') digits[n++] = c;
+  const int precision = std::max(15, static_cast<int>(n));
+  if (exponent < -4 || exponent >= precision) {  // %g's scientific layout: to_chars' own
+    out.append(text);
+    return;
+  }
+  if (negative) out += '-';
+  if (exponent < 0) {
+    out += "0.";
+    out.append(static_cast<std::size_t>(-exponent - 1), '0');
+    out.append(digits, n);
+  } else if (static_cast<std::size_t>(exponent) + 1 >= n) {
+    out.append(digits, n);
+    out.append(static_cast<std::size_t>(exponent) + 1 - n, '0');
+  } else {
+    out.append(digits, static_cast<std::size_t>(exponent) + 1);
+    out += '.';
+    out.append(digits + exponent + 1, n - static_cast<std::size_t>(exponent) - 1);
+  }
+}
+
+// The double a short decimal text reads as, where that is one exact operation (Clinger's fast
+// path: at most 15 digits, an integer below 2^53, times or over a power of ten up to 10^22, both
+// exact, so the one rounding is the correct one, as from_chars gives), else from_chars. A few dozen
+// instructions for the texts "%.15g" makes, where from_chars takes about 400.
+double read_decimal(std::string_view text) {
+  static constexpr double powers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                      1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  std::size_t i = 0;
+  const bool negative = !text.empty() && text[0] == '-';
+  if (negative) ++i;
+  std::uint64_t mantissa = 0;
+  int digits = 0, scale = 0;
+  bool point = false;
+  for (; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '.') {
+      point = true;
+    } else if (c >= '0' && c <= '9') {
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(c - '0');
+      if (mantissa != 0) ++digits;
+      if (point) --scale;
+    } else {
+      break;
+    }
+  }
+  if (i == text.size() && digits <= 15 && scale >= -22) {
+    const double m = static_cast<double>(mantissa);  // exact: below 10^15 < 2^53
+    const double x = scale == 0 ? m : m / powers[-scale];
+    return negative ? -x : x;
+  }
+  double y = std::nan("");
+  std::from_chars(text.data(), text.data() + text.size(), y);
+  return y;
+}
+
+// A number of a row's inputs: text that reads back to the case's own double through the column's
+// unit (`reads_back`: (text + offset) * scale == si, as the cases reader takes a bare number under
+// a unit), so that a row reproduces its case exactly. printf's "%.15g" of x where it does (the
+// common case, and what rows always held: it also sheds the noise of si / scale - offset, 8.41 mm
+// shown as 8.41), else the shortest digits of x (append_shortest_g), else of the double nearest x
+// that reads back (x is rounded, and a neighbour may be the one that multiplies back to si);
+// within 8 ulps none: "%.15g" stays.
+template <class ReadsBack>
+void append_shown_number(std::string& out, double x, const ReadsBack& reads_back) {
+  const std::size_t at = out.size();
+  append_printf_g15(out, x);
+  if (reads_back(read_decimal(std::string_view(out).substr(at)))) return;
+  if (reads_back(x)) {
+    out.resize(at);
+    return append_shortest_g(out, x);
+  }
+  double below = x, above = x;
+  for (int step = 0; step < 8; ++step) {
+    above = std::nextafter(above, std::numeric_limits<double>::infinity());
+    below = std::nextafter(below, -std::numeric_limits<double>::infinity());
+    for (const double z : {above, below})
+      if (reads_back(z)) {
+        out.resize(at);
+        return append_shortest_g(out, z);
+      }
+  }
+}
 
 }  // namespace
 
@@ -183,13 +284,28 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
       out += value.written();
       return false;
     }
+    // A cell read as a bare number under its column's unit (kept as "CELL UNIT"): the cell reads
+    // back to this very double by construction, so it is shown as written (and costs a copy).
+    const std::string& column_unit = variables[v].unit;
+    const std::string& text = value.text;
+    if (text.size() > column_unit.size() + 1 && text.ends_with(column_unit) && text[text.size() - column_unit.size() - 1] == ' ') {
+      const std::string_view cell(text.data(), text.size() - column_unit.size() - 1);
+      const auto numeric = [](char c) { return (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'; };
+      if (std::all_of(cell.begin(), cell.end(), numeric)) {
+        out.append(cell);
+        return true;
+      }
+    }
     x = *value.si / u->scale - u->offset;
     if (!std::isfinite(x)) {
       out += value.written();
       return false;
     }
+    const double si = *value.si, scale = u->scale, offset = u->offset;
+    append_shown_number(out, x, [si, scale, offset](double y) { return (y + offset) * scale == si; });
+    return true;
   }
-  append_shown_number(out, x);
+  append_shown_number(out, x, [x](double y) { return y == x; });
   return std::isfinite(x);  // always, as values are read and made; else a CSV writer escapes it
 }
 
