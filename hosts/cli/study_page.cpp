@@ -1,6 +1,7 @@
 #include "study_page.hpp"
 
 #include <mechgraph/text_escape.hpp>
+#include <mechgraph/units.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -40,9 +41,13 @@ std::string histogram_svg(const OutputAnswer& o) {
   for (const auto& [limit, name] : {std::pair{o.lower, "LSL"}, std::pair{o.upper, "USL"}}) {
     if (!limit) continue;
     const double x = x_of(*limit);
+    // The label right of its line, or left of it where it would run past the picture's edge (an
+    // upper limit that bounds the histogram, the usual case): about 6.5 px a character at 11 px.
+    const std::string label = std::string(name) + " " + num(*limit);
+    const bool room_right = x + 3 + 6.5 * static_cast<double>(label.size()) <= width;
     s << "<line x1=\"" << num(x) << "\" y1=\"12\" x2=\"" << num(x) << "\" y2=\"" << bottom
-      << "\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\n<text x=\"" << num(x + 3) << "\" y=\"22\" font-size=\"11\" fill=\"#c0392b\">" << name
-      << " " << num(*limit) << "</text>\n";
+      << "\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\n<text x=\"" << num(room_right ? x + 3 : x - 3) << "\" y=\"22\" font-size=\"11\" fill=\"#c0392b\""
+      << (room_right ? "" : " text-anchor=\"end\"") << ">" << html_text(label) << "</text>\n";
   }
   s << "<text x=\"" << left << "\" y=\"188\" font-size=\"11\">" << num(low) << "</text>\n<text x=\"" << left + plot_w
     << "\" y=\"188\" font-size=\"11\" text-anchor=\"end\">" << num(high) << " " << html_text(unit_of(o.column)) << "</text>\n</svg>\n";
@@ -51,13 +56,25 @@ std::string histogram_svg(const OutputAnswer& o) {
 
 // First-order (dark) and total (light) indices per parameter with their intervals as whiskers.
 std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
+  // The axis spans [0, 1] and what the indices and intervals reach beyond it, up to a quarter each
+  // side: a wide interval of few samples ([-780, 2277]) would shrink every bar to a line. Whatever
+  // lies past the axis is drawn to its end, marked by an arrowhead.
+  constexpr double reach = 0.25;
   double lo = 0.0, hi = 1.0;
   for (const SobolIndex& i : si.indices)
-    for (const std::optional<double>& v : {i.first_interval.lower, i.total_interval.lower, i.first_interval.upper, i.total_interval.upper})
+    for (const std::optional<double>& v : {std::optional<double>(i.first), std::optional<double>(i.total), i.first_interval.lower,
+                                           i.total_interval.lower, i.first_interval.upper, i.total_interval.upper})
       if (v) lo = std::min(lo, *v), hi = std::max(hi, *v);
+  lo = std::max(lo, -reach);
+  hi = std::min(hi, 1.0 + reach);
   constexpr double name_w = 150, plot_w = 380, row_h = 34;
   const double height = 30 + row_h * static_cast<double>(si.indices.size());
-  const auto x_of = [&](double v) { return name_w + (v - lo) / (hi - lo) * plot_w; };
+  const auto x_of = [&](double v) { return name_w + (std::clamp(v, lo, hi) - lo) / (hi - lo) * plot_w; };
+  const auto arrowhead = [](std::ostringstream& out, double x, double y, bool right) {
+    const double tip = right ? x + 6 : x - 6;
+    out << "<polygon points=\"" << num(x) << "," << num(y - 4) << " " << num(tip) << "," << num(y) << " " << num(x) << "," << num(y + 4)
+        << "\" fill=\"black\"/>\n";
+  };
   std::ostringstream s;
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << name_w + plot_w + 20 << "\" height=\"" << num(height) << "\" role=\"img\">\n";
   for (std::size_t j = 0; j < si.indices.size(); ++j) {
@@ -69,9 +86,12 @@ std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
       const double a = x_of(std::min(0.0, value)), b = x_of(std::max(0.0, value));
       s << "<rect x=\"" << num(a) << "\" y=\"" << num(top) << "\" width=\"" << num(std::max(b - a, 0.5)) << "\" height=\"11\" fill=\"" << colour
         << "\"><title>" << what << " " << num(value) << " [" << maybe(in.lower) << ", " << maybe(in.upper) << "]</title></rect>\n";
-      if (in.lower && in.upper)
+      if (in.lower && in.upper) {
         s << "<line x1=\"" << num(x_of(*in.lower)) << "\" y1=\"" << num(top + 5.5) << "\" x2=\"" << num(x_of(*in.upper)) << "\" y2=\""
           << num(top + 5.5) << "\" stroke=\"black\"/>\n";
+        if (*in.lower < lo) arrowhead(s, x_of(lo), top + 5.5, false);
+        if (*in.upper > hi) arrowhead(s, x_of(hi), top + 5.5, true);
+      }
     };
     bar(i.first, i.first_interval, y + 2, "#2c5d8f", "first order");
     bar(i.total, i.total_interval, y + 15, "#9cc3e6", "total");
@@ -94,10 +114,26 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
        "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}td:first-child,th:first-child,.text{text-align:left}</style></head><body>\n";
   p << "<h1>" << html_text(title.empty() ? "Uncertainty study" : title) << "</h1>\n<p>" << html_text(to_string(spec.method)) << ", "
     << spec.samples << " samples, seed " << spec.seed << ", " << a.cases << " evaluations (" << a.failed << " failed); intervals at "
-    << level << " %.</p>\n<h2>Parameters</h2>\n<table><tr><th>parameter</th><th>distribution</th><th>mean (SI)</th><th>standard deviation (SI)</th></tr>\n";
-  for (const UncertainParameter& q : spec.parameters)
-    p << "<tr><td>" << html_text(q.name) << "</td><td class=\"text\">" << html_text(q.written) << "</td><td>" << num(q.marginal.mean()) << "</td><td>"
-      << num(q.marginal.standard_deviation()) << "</td></tr>\n";
+    << level << " %.</p>\n<h2>Parameters</h2>\n<table><tr><th>parameter</th><th>distribution</th><th>mean</th><th>standard deviation</th></tr>\n";
+  for (const UncertainParameter& q : spec.parameters) {
+    // In the unit the distribution was written in (a spread scaled, not shifted), else SI.
+    double scale = 1.0, offset = 0.0;
+    std::string unit = q.unit;
+    if (!unit.empty()) {
+      try {
+        const UnitScale u = parse_unit(" " + unit);
+        scale = u.scale;
+        offset = u.offset;
+      } catch (const UnitError&) {
+        unit.clear();
+      }
+    }
+    if (unit.empty()) unit = q.marginal.dimension.dimensionless() ? std::string() : q.marginal.dimension.si_unit();
+    const std::string with_unit = unit.empty() ? std::string() : " " + html_text(unit);
+    p << "<tr><td>" << html_text(q.name) << "</td><td class=\"text\">" << html_text(q.written) << "</td><td>"
+      << num(q.marginal.mean() / scale - offset) << with_unit << "</td><td>" << num(q.marginal.standard_deviation() / scale) << with_unit
+      << "</td></tr>\n";
+  }
   p << "</table>\n";
   for (const OutputAnswer& o : a.outputs) {
     const std::string u = unit_of(o.column);

@@ -43,6 +43,11 @@ std::unique_ptr<host::StudyOutcome> run_study(const std::string& yaml, unsigned 
 }
 using InProcess = std::unique_ptr<host::StudyOutcome>;
 
+std::string slurp_text(const std::string& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 const char* const uniform_pi = "{ uniform: { lower: -3.141592653589793, upper: 3.141592653589793 } }";
 
 std::string ishigami_scene(const std::string& method, std::size_t samples, const std::string& extra = "") {
@@ -513,6 +518,19 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   std::ifstream page_file(dir / "out" / "report.html");
   const std::string page((std::istreambuf_iterator<char>(page_file)), std::istreambuf_iterator<char>());
   CHECK_THAT(page, Contains("LSL -8") && Contains("USL 12") && Contains("Sobol' indices (64 base samples)") && Contains("<td>high</td>"));
+  // An interval past the chart's axis ([-0.25, 1.25] at most) is drawn to its end with an arrowhead
+  // (x3's first-order lower end, -0.34, with 64 samples); the parameters are in their units.
+  CHECK_THAT(page, Contains("<polygon points="));
+  CHECK_THAT(page, Contains("<tr><td>x1</td>") && Contains("<th>mean</th><th>standard deviation</th>"));
+  {
+    // An upper limit that bounds the histogram has its label left of its line, inside the picture.
+    std::string wider = slurp_text(scene);
+    wider.replace(wider.find("upper: 12"), 9, "upper: 20");
+    const std::string wider_scene = (dir / "wider.yaml").string();
+    std::ofstream(wider_scene) << wider;
+    REQUIRE(testing::run_cli(plugin + "study '" + wider_scene + "' --samples 64 --out '" + (dir / "wider").string() + "'").exit_code == 0);
+    CHECK_THAT(slurp_text((dir / "wider" / "report.html").string()), Contains("text-anchor=\"end\">USL 20</text>"));
+  }
   // The counts the terminal prints, in the files too: the cases below and above the limits, an
   // event's cases without a value.
   const auto slurp_file = [](const std::filesystem::path& f) {
