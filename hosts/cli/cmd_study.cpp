@@ -49,7 +49,7 @@ std::string number(double x) {
 std::string maybe(const std::optional<double>& x) { return x ? number(*x) : "-"; }
 std::string interval(const Interval& i) { return "[" + maybe(i.lower) + ", " + maybe(i.upper) + "]"; }
 std::string shown_unit(const StudyColumn& c) {
-  const std::string u = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+  const std::string u = !c.shown.empty() ? c.shown : c.unit.empty() ? c.dimension.si_unit() : c.unit;
   return u == "1" ? "" : u;
 }
 

@@ -18,7 +18,7 @@ std::string num(double x, int digits = 6) {
 }
 std::string maybe(const std::optional<double>& x) { return x ? num(*x) : "-"; }
 std::string unit_of(const StudyColumn& c) {
-  const std::string u = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+  const std::string u = !c.shown.empty() ? c.shown : c.unit.empty() ? c.dimension.si_unit() : c.unit;
   return u == "1" ? "" : u;
 }
 

@@ -120,7 +120,7 @@ TEST_CASE("docs: every output listing (a fenced block without a language) is com
       {"Three cams of equal tappet lift", "docs: README's valve-train study listing is what run-study.sh and run print"},
       {"Kurz cam, spring for 5600 rpm", "docs: README's valve dynamics listing is what run prints"},
       {"Free play of each hinge along the rod", "docs: README's backlash listing and provenance excerpt are what run prints"},
-      {"v.opening_angle [deg]: n 128", "docs: README's uncertainty study listing is what study prints"},
+      {"v.opening_angle [deg (cam)]: n 128", "docs: README's uncertainty study listing is what study prints"},
       {"One lift law, two followers", "docs: README's contour listing, its note and the events CSV are what run writes"},
       {"flat: contour: the cam turns", "docs: README's contour listing, its note and the events CSV are what run writes"},
       {"checking_lift [mm],opening [deg (cam)]", "docs: README's contour listing, its note and the events CSV are what run writes"},

@@ -127,5 +127,5 @@ TEST_CASE("docs: README's uncertainty study listing is what study prints", "[.do
   INFO(r.err);
   REQUIRE(r.exit_code == 0);
   CHECK(r.out.find(counts[0] + " evaluations") != std::string::npos);
-  check_block("README.md", "v.opening_angle [deg]: n 128", r.out);
+  check_block("README.md", "v.opening_angle [deg (cam)]: n 128", r.out);
 }

@@ -1,4 +1,5 @@
 #include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/angle_reference.hpp>
 #include <mechgraph/host/scene_loading.hpp>
 
 #include <mechgraph/host/exit_codes.hpp>
@@ -138,6 +139,8 @@ std::vector<StudyColumn> study_columns(const Graph& graph) {
     c.label = o.label;
     c.dimension = o.spec->dimension;
     c.unit = o.spec->display_unit;
+    const std::string unit = c.unit.empty() ? c.dimension.si_unit() : c.unit;
+    c.shown = o.node < graph.nodes.size() ? unit_with_reference(unit, angle_reference(graph.nodes[o.node].info(), *o.spec)) : unit;
     if (!c.unit.empty()) {
       const UnitScale u = parse_unit(c.unit);
       c.scale = u.scale;
