@@ -2,6 +2,7 @@
 // doubles exactly, through the column's unit, and are printf's "%.15g" wherever that already does
 // (what rows always held).
 #include <mechgraph/sweep/case_table.hpp>
+#include <mechgraph/dimension.hpp>
 #include <mechgraph/units.hpp>
 
 #include <catch2/catch.hpp>
@@ -9,6 +10,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -38,6 +40,19 @@ std::string by_printf(double x) {
 }  // namespace
 
 TEST_CASE("Case tables: a row's inputs read back to the case's doubles, %.15g where that does", "[core][sweep]") {
+  // A cases file's number as its cell was written, when it is a number as JSON writes one.
+  {
+    CaseTable table;
+    table.variables.push_back({"x", "mm"});
+    for (const char* cell : {"8.410630376935433", "+8.5", "08", ".5", "1e-3", "-0.25"})
+      table.cases.push_back({CaseValue{std::string(cell) + " mm", parse_quantity(std::string(cell) + " mm").value, dim::length}});
+    CHECK(table.shown(0, 0) == "8.410630376935433");
+    CHECK(table.shown(1, 0) == "8.5");  // not "+8.5": CSV would take it for a formula, JSON not for a number
+    CHECK(table.shown(2, 0) == "8");
+    CHECK(table.shown(3, 0) == "0.5");
+    CHECK(table.shown(4, 0) == "1e-3");
+    CHECK(table.shown(5, 0) == "-0.25");
+  }
   std::mt19937_64 bits(11);
   std::vector<double> values{0.0, -0.0, 1.0, -2.5, 8.41, 0.30293537157365913, 1e-5, 9.99999999999999e-5, 1e15, 1e-300, 5e-324,
                              123456789012345.6, 99999999999999.99, 6162.0407036911765};
@@ -65,6 +80,36 @@ TEST_CASE("Case tables: a row's inputs read back to the case's doubles, %.15g wh
       const std::string shown = table.shown(i, 0);
       INFO(unit << ": " << shown);
       CHECK((parsed(shown) + u.offset) * u.scale == si[i]);
+    }
+    // Values made in SI (a grid's points, a sample): the column's unit cannot express every one of
+    // them; such a value is shown with its own unit, exactly, so the row still reads back to it.
+    std::uniform_real_distribution<double> in_si(si.front() * 0.9, si.front() * 1.1);
+    std::vector<double> made;
+    for (int i = 0; i < 3000; ++i) made.push_back(in_si(bits));
+    const CaseTable generated = one_column(unit, u.dimension, made);
+    std::size_t own_unit = 0;
+    for (std::size_t i = 0; i < made.size(); ++i) {
+      const std::string shown = generated.shown(i, 0);
+      INFO(unit << ": " << shown);
+      if (std::isfinite(parsed(shown)) && shown.find(' ') == std::string::npos) {
+        CHECK((parsed(shown) + u.offset) * u.scale == made[i]);
+      } else {
+        ++own_unit;
+        CHECK(parse_quantity(shown).value == made[i]);
+      }
+    }
+    CHECK(own_unit < made.size());
+    // Put on the unit's numbers first (expressible_in, as grids, samples and studies make them):
+    // every one a number in the column's unit, reading back exactly, each within a few ulps of where it was.
+    std::vector<double> snapped;
+    for (const double m : made) snapped.push_back(expressible_in(m, std::string(unit)));
+    const CaseTable on_unit = one_column(unit, u.dimension, snapped);
+    for (std::size_t i = 0; i < snapped.size(); ++i) {
+      const std::string shown = on_unit.shown(i, 0);
+      INFO(unit << ": " << shown);
+      REQUIRE(shown.find(' ') == std::string::npos);
+      CHECK((parsed(shown) + u.offset) * u.scale == snapped[i]);
+      CHECK(std::abs(snapped[i] - made[i]) <= 4 * std::abs(made[i]) * std::numeric_limits<double>::epsilon());
     }
     // A value written with few digits in a unit that only scales is shown so again (an offset unit
     // keeps the noise of its subtraction at 15 digits, 8.41000000000003 degC, as rows always did).

@@ -162,16 +162,18 @@ double read_decimal(std::string_view text) {
 // a unit), so that a row reproduces its case exactly. printf's "%.15g" of x where it does (the
 // common case, and what rows always held: it also sheds the noise of si / scale - offset, 8.41 mm
 // shown as 8.41), else the shortest digits of x (append_shortest_g), else of the double nearest x
-// that reads back (x is rounded, and a neighbour may be the one that multiplies back to si);
-// within 8 ulps none: "%.15g" stays.
+// that reads back (x is rounded, and a neighbour may be the one that multiplies back to si).
+// False, with nothing appended, when no double within 8 ulps of x does: a value made in SI (a
+// grid's point, a sample) that the column's unit cannot express.
 template <class ReadsBack>
-void append_shown_number(std::string& out, double x, const ReadsBack& reads_back) {
+bool append_shown_number(std::string& out, double x, const ReadsBack& reads_back) {
   const std::size_t at = out.size();
   append_printf_g15(out, x);
-  if (reads_back(read_decimal(std::string_view(out).substr(at)))) return;
+  if (reads_back(read_decimal(std::string_view(out).substr(at)))) return true;
+  out.resize(at);
   if (reads_back(x)) {
-    out.resize(at);
-    return append_shortest_g(out, x);
+    append_shortest_g(out, x);
+    return true;
   }
   double below = x, above = x;
   for (int step = 0; step < 8; ++step) {
@@ -179,10 +181,33 @@ void append_shown_number(std::string& out, double x, const ReadsBack& reads_back
     below = std::nextafter(below, -std::numeric_limits<double>::infinity());
     for (const double z : {above, below})
       if (reads_back(z)) {
-        out.resize(at);
-        return append_shortest_g(out, z);
+        append_shortest_g(out, z);
+        return true;
       }
   }
+  return false;
+}
+
+// Whether a cell's text is a number as JSON writes one (-?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?): such a
+// cell is shown as written, a plain number in CSV and JSON Lines alike; "+8", ".5", "08" or "5."
+// are shown as mechgraph writes numbers instead.
+bool json_number(std::string_view t) {
+  std::size_t i = 0;
+  const auto digits = [&] {
+    const std::size_t from = i;
+    while (i < t.size() && t[i] >= '0' && t[i] <= '9') ++i;
+    return i > from;
+  };
+  if (i < t.size() && t[i] == '-') ++i;
+  if (i < t.size() && t[i] == '0') ++i;
+  else if (!(i < t.size() && t[i] >= '1' && t[i] <= '9') || !digits()) return false;
+  if (i < t.size() && t[i] == '.' && (++i, !digits())) return false;
+  if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+    ++i;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) ++i;
+    if (!digits()) return false;
+  }
+  return i == t.size();
 }
 
 }  // namespace
@@ -198,6 +223,26 @@ std::string exact_text(double x, const Dimension& d) {
   text.append(buffer, end);
   if (!unit.empty()) text.append(1, ' ').append(unit);
   return text;
+}
+
+double expressible_in(double si, const std::string& unit) {
+  return unit.empty() ? si : expressible_in(si, parse_unit_cached(unit));
+}
+
+double expressible_in(double si, const std::optional<UnitScale>& u) {
+  if (!u || !std::isfinite(si)) return si;
+  const double scale = u->scale, offset = u->offset;
+  const auto reads_back = [&](double y) { return (y + offset) * scale == si; };
+  const double x = si / scale - offset;
+  if (!std::isfinite(x) || reads_back(x)) return si;
+  double below = x, above = x;
+  for (int step = 0; step < 8; ++step) {
+    above = std::nextafter(above, std::numeric_limits<double>::infinity());
+    below = std::nextafter(below, -std::numeric_limits<double>::infinity());
+    if (reads_back(above) || reads_back(below)) return si;
+  }
+  const double on = (x + offset) * scale;
+  return std::isfinite(on) ? on : si;
 }
 
 std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
@@ -290,8 +335,7 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
     const std::string& text = value.text;
     if (text.size() > column_unit.size() + 1 && text.ends_with(column_unit) && text[text.size() - column_unit.size() - 1] == ' ') {
       const std::string_view cell(text.data(), text.size() - column_unit.size() - 1);
-      const auto numeric = [](char c) { return (c >= '0' && c <= '9') || c == '.' || c == 'e' || c == 'E' || c == '+' || c == '-'; };
-      if (std::all_of(cell.begin(), cell.end(), numeric)) {
+      if (json_number(cell)) {
         out.append(cell);
         return true;
       }
@@ -302,10 +346,13 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
       return false;
     }
     const double si = *value.si, scale = u->scale, offset = u->offset;
-    append_shown_number(out, x, [si, scale, offset](double y) { return (y + offset) * scale == si; });
-    return true;
+    if (append_shown_number(out, x, [si, scale, offset](double y) { return (y + offset) * scale == si; })) return true;
+    // No number in the column's unit is this double: the value with its own unit, exactly (a cell
+    // in another unit reads as such), so that the row still reproduces its case.
+    out += value.written();
+    return false;
   }
-  append_shown_number(out, x, [x](double y) { return y == x; });
+  append_shown_number(out, x, [x](double y) { return y == x; });  // x itself reads back always
   return std::isfinite(x);  // always, as values are read and made; else a CSV writer escapes it
 }
 
@@ -345,7 +392,8 @@ VarySpec parse_vary(std::string_view text) {
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
     for (long k = 0; k < n; ++k) {
       // Ends exactly as written; the points between evenly spaced in SI.
-      const double x = k == n - 1 ? to.value : between(from.value, to.value, static_cast<double>(k) / static_cast<double>(n - 1));
+      const double x = k == n - 1 ? to.value : expressible_in(between(from.value, to.value, static_cast<double>(k) / static_cast<double>(n - 1)),
+                                                               from_unit.empty() ? to_unit_text : from_unit);
       require_finite(x, context);
       spec.values.push_back({exact_text(x, from.dimension), x, from.dimension});
     }
@@ -422,7 +470,7 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
     for (std::size_t i = n; i-- > 1;) std::swap(stratum[i], stratum[random.below(i + 1)]);  // Fisher-Yates
     for (std::size_t i = 0; i < n; ++i) {
       const double u = (static_cast<double>(stratum[i]) + random.uniform()) / static_cast<double>(n);
-      const double x = between(s.low, s.high, u);
+      const double x = expressible_in(between(s.low, s.high, u), s.unit);
       require_finite(x, "--sample " + s.name);
       table.cases[i][v] = {exact_text(x, s.dimension), x, s.dimension};
     }

@@ -1,5 +1,7 @@
 #include <mechgraph/uncertainty/sample_design.hpp>
 
+#include <mechgraph/display_units.hpp>
+
 #include <mechgraph/errors.hpp>
 #include <mechgraph/chunked_work.hpp>
 
@@ -145,6 +147,9 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   };
   const auto make_worker = [&] { return Worker{std::vector<double>(design.dims()), std::vector<double>(d), std::vector<double>(d),
                                                std::vector<double>(d), std::vector<double>(d)}; };
+  // Each parameter's unit, parsed once: its values are put on the numbers of that unit (below).
+  std::vector<std::optional<UnitScale>> units;
+  for (const UncertainParameter& p : spec.parameters) units.push_back(p.unit.empty() ? std::nullopt : parse_unit_cached(p.unit));
   run_chunks(chunks, threads, make_worker, [&](Worker& w, std::size_t chunk) {
     const auto to_values = [&](const double* unit, std::vector<double>& x) {
       if (l.empty()) {
@@ -164,7 +169,8 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
       std::vector<CaseValue> values(d);
       for (std::size_t j = 0; j < d; ++j) {
         const Dimension& dim = spec.parameters[j].marginal.dimension;
-        values[j] = {std::string(), x[j], dim};  // the number only: written() makes its text when asked
+        // On the numbers of the unit the parameter was written in, so its rows show it there exactly.
+        values[j] = {std::string(), expressible_in(x[j], units[j]), dim};  // written() makes its text when asked
       }
       return values;
     };

@@ -49,6 +49,15 @@ struct CaseValue {
 /// ("0.0025 m"); the text of a generated case value.
 std::string exact_text(double x, const Dimension& d);
 
+/// The double nearest `si` that a number written in `unit` reads back to ((number + offset) *
+/// scale): `si` itself where some number does (a value written in that unit, most values), else
+/// (x + offset) * scale for x = si / scale - offset. A value made in SI (a grid's point, a sample)
+/// is put on it, so that a row shows it in its column's unit and reads back to it exactly. `si`
+/// unchanged for "" or a text that is no unit.
+double expressible_in(double si, const std::string& unit);
+/// The same for a unit parsed once (nullopt: `si` unchanged), for a design's millions of values.
+double expressible_in(double si, const std::optional<UnitScale>& unit);
+
 /// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
 /// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.
 CaseValue read_case_value(const std::string& text, const std::string& context);

@@ -23,7 +23,7 @@ struct StudyColumn {
   std::string unit;   // shown unit ("" = SI)
   double scale = 1.0, offset = 0.0;  // si = (shown + offset) * scale
   Dimension dimension;
-  std::string shown;  // the unit as the sweep's rows and the report show it, with an angle's frame: "deg (cam)"
+  std::string shown;  // the unit as the sweep's rows and the report show it, with an angle's frame tag: "deg (shaft)"
 };
 
 /// The evaluated design: per output, per case (in case order) its value in the shown unit (NaN
