@@ -17,6 +17,7 @@
 
 using namespace mechgraph::testing;
 using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
 using Catch::Matchers::StartsWith;
 namespace fs = std::filesystem;
 
@@ -227,4 +228,27 @@ TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps 
   ::unsetenv("SLURM_ARRAY_TASK_COUNT");
   REQUIRE(by_slurm.exit_code == 0);
   CHECK(slurp(auto_part) == slurp(work_dir() / "part-2.csv"));  // task 3 of 1..3 is shard 2/3
+}
+
+TEST_CASE("sweep: a list value in --vary stays whole; a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {
+  const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/bench/peers/stages123_study.yaml";
+  // The commas inside a value's brackets separate its elements, not the values varied.
+  const auto lists = run_cli("sweep '" + scene + "' --vary 'poly.exponents=[2,14,26,38,50],[2,12,22,32,42]' --outputs v_poly.max_acceleration");
+  REQUIRE(lists.exit_code == 0);
+  const auto rows = lines_of(lists.out);
+  REQUIRE(rows.size() == 3);
+  CHECK_THAT(rows[1], StartsWith("0,\"[2,14,26,38,50]\",") && EndsWith(",0,"));
+  CHECK_THAT(rows[2], StartsWith("1,\"[2,12,22,32,42]\",") && EndsWith(",0,"));
+  // v_arc.rpm and the scene's rpm, which reaches it too: the node's own value, whatever the order of
+  // the columns or the path (case by case, blocks), as run --set gives it.
+  const auto value_of = [](const std::string& out) { return lines_of(out).at(1).substr(0, lines_of(out).at(1).rfind(",0,")); };
+  const auto node_first = run_cli("sweep '" + scene + "' --vary v_arc.rpm=5000rpm --vary rpm=6000rpm --outputs v_arc.max_acceleration --block-size 0");
+  const auto scene_first = run_cli("sweep '" + scene + "' --vary rpm=6000rpm --vary v_arc.rpm=5000rpm --outputs v_arc.max_acceleration");
+  REQUIRE(node_first.exit_code == 0);
+  REQUIRE(scene_first.exit_code == 0);
+  const std::string a = value_of(node_first.out), b = value_of(scene_first.out);
+  CHECK(a.substr(a.rfind(',') + 1) == b.substr(b.rfind(',') + 1));
+  const auto one = run_cli("run '" + scene + "' --set v_arc.rpm=5000rpm --set rpm=6000rpm --json");
+  REQUIRE(one.exit_code == 0);
+  CHECK(YAML::Load(one.out)["outputs"]["v_arc.max_acceleration"]["value"].as<double>() == std::stod(a.substr(a.rfind(',') + 1)));
 }

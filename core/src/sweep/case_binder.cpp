@@ -101,6 +101,13 @@ CaseBinder::CaseBinder(const Graph& base, const SceneSpec& scene, const PluginRe
     targets_.push_back(std::move(targets));
     swept_labels_.push_back((use == BinderUse::sweep ? "(swept " : use == BinderUse::study ? "(sampled " : "(set ") + name + ")");
   }
+  // Scene parameters first, then node parameters: where a variable names a node's parameter that a
+  // scene parameter varied beside it also reaches, the node's own wins, as with `run --set` (and
+  // whatever the order of the columns).
+  for (std::size_t v = 0; v < variables_.size(); ++v)
+    if (variables_[v].name.find('.') == std::string::npos) apply_order_.push_back(v);
+  for (std::size_t v = 0; v < variables_.size(); ++v)
+    if (variables_[v].name.find('.') != std::string::npos) apply_order_.push_back(v);
   if (rebuild_ && use == BinderUse::sweep)
     spdlog::info("sweep: a varied parameter sits inside a list or record; each case's graph is built anew from the scene");
 }
@@ -143,7 +150,7 @@ void CaseBinder::apply(Graph& graph, const std::vector<CaseValue>& values) const
 }
 
 void CaseBinder::apply(const Slots& slots, const Graph& graph, const std::vector<CaseValue>& values) const {
-  for (std::size_t v = 0; v < variables_.size(); ++v) {
+  for (const std::size_t v : apply_order_) {
     const CaseValue& value = values[v];
     // The messages are built only when one is thrown (a sweep applies millions of values).
     const auto what = [&] { return variables_[v].name + " = '" + excerpt(value.written()) + "'"; };

@@ -399,9 +399,19 @@ VarySpec parse_vary(std::string_view text) {
     }
     return spec;
   }
+  // The commas between values, not those inside a value's brackets ([2, 14, 26] is one list value).
+  const auto next_comma = [&rhs](std::size_t from) {
+    int depth = 0;
+    for (std::size_t i = from; i < rhs.size(); ++i) {
+      if (rhs[i] == '[' || rhs[i] == '{') ++depth;
+      else if ((rhs[i] == ']' || rhs[i] == '}') && depth > 0) --depth;
+      else if (rhs[i] == ',' && depth == 0) return i;
+    }
+    return std::string::npos;
+  };
   std::size_t start = 0;
   for (std::size_t comma;; start = comma + 1) {
-    comma = rhs.find(',', start);
+    comma = next_comma(start);
     const std::string item = trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     if (item.empty()) throw SceneError(context + ": an empty value in the list");
     spec.values.push_back(read_case_value(item, context));

@@ -75,6 +75,7 @@ class CaseBinder {
   std::vector<std::string> swept_labels_;     // per variable: where its values come from, "(swept x)"
   BinderUse use_ = BinderUse::sweep;
   std::vector<char> reaches_needed_;  // per variable
+  std::vector<std::size_t> apply_order_;  // the variables' indices: scene parameters, then node parameters
   bool rebuild_ = false;
 };
 
