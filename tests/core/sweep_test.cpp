@@ -123,6 +123,14 @@ TEST_CASE("sweep --cases: header units, units in cells, words, and located error
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 1 cells, the header has 2"));
   std::ofstream(file) << "lift [mm],rpm\n8,\n";
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:2:3: 'rpm' has no value"));
+  // Columns counted in the line as written, quotes included; a header's unit at fault named on
+  // line 1; a number beyond a double's range said so.
+  std::ofstream(file) << "lift [mm],action [deg],rpm [rpm]\n\"8.0\",\"130.0\",fast\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:2:15: 'fast' is not a number in rpm"));
+  std::ofstream(file) << "rpm [rpm],lift [mmm]\n5000,8\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:1:11: column 'lift': [mmm] is not a unit") && Contains("mm"));
+  std::ofstream(file) << "lift [mm]\n1e400\n";
+  CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:2:1: '1e400' is beyond the range of a double"));
   // A byte order mark, CRLF line ends, padded cells, no line break at the end.
   std::ofstream(file) << "\xEF\xBB\xBFlift [mm],rpm\r\n 8 ,5000 rpm\r\n\r\n9.5\t,\"6000 rpm\"";
   const CaseTable u = read_cases_csv(file);

@@ -501,6 +501,9 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
   // fields split_csv_line unquoted. Nothing is allocated per line but the values kept.
   std::vector<std::string_view> fields;
   std::vector<std::string> unquoted;
+  std::vector<int> starts;  // each field's 1-based column in its line, for the messages
+  std::vector<std::string> header_unit_errors;  // per column: why its header's unit is no unit ("" when it is)
+  std::vector<int> header_columns;              // per column: where its header stands on line 1
   // Lines as std::getline gives them: split at '\n', a last line without one included.
   for (std::size_t at = 0; at < content.size();) {
     const std::size_t newline = content.find('\n', at);
@@ -510,13 +513,24 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
     if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);  // a UTF-8 byte order mark
     const std::string_view trimmed = trimmed_view(line);
     if (trimmed.empty() || trimmed[0] == '#') continue;
-    if (!split_plain_csv_line(line, fields)) {
+    starts.clear();
+    if (split_plain_csv_line(line, fields)) {
+      for (const std::string_view f : fields) starts.push_back(static_cast<int>(f.data() - line.data()) + 1);
+    } else {
       try {
         unquoted = split_csv_line(line);
       } catch (const std::invalid_argument& e) {
         throw SceneError(where + ":" + std::to_string(number) + ":1: " + e.what());
       }
       fields.assign(unquoted.begin(), unquoted.end());
+      // Where each field begins in the line as written, its quotes counted.
+      bool quoted = false;
+      starts.push_back(1);
+      for (std::size_t i = 0; i < line.size(); ++i) {
+        if (line[i] == '"') quoted = !quoted;  // a doubled quote inside toggles twice
+        else if (line[i] == ',' && !quoted) starts.push_back(static_cast<int>(i) + 2);
+      }
+      starts.resize(fields.size(), starts.empty() ? 1 : starts.back());
     }
     if (!header) {
       header = true;
@@ -535,11 +549,15 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         table.variables.push_back({name, unit});
         header_units.push_back(unit);
         std::optional<UnitScale> scale;
+        std::string unit_error;
         try {
           if (!unit.empty()) scale = parse_unit(" " + unit);  // as parse_quantity reads what follows the number
-        } catch (const UnitError&) {
+        } catch (const UnitError& e) {
+          unit_error = e.what();  // a word column may name no unit; a number under it is refused with this
         }
         column_units.push_back(scale);
+        header_unit_errors.push_back(unit_error);
+        header_columns.push_back(starts[table.variables.size() - 1]);
       }
       continue;
     }
@@ -553,9 +571,9 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
                        " cells, the header has " + std::to_string(table.variables.size()));
     std::vector<CaseValue> row;
     row.reserve(fields.size());
-    int column = 1;
     for (std::size_t v = 0; v < fields.size(); ++v) {
       const std::string_view cell = trimmed_view(fields[v]);
+      const int column = starts[v];
       if (cell.empty())
         throw SceneError(where + ":" + std::to_string(number) + ":" + std::to_string(column) + ": '" +
                          excerpt(table.variables[v].name) + "' has no value");
@@ -574,17 +592,28 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
           text.reserve(cell.size() + 1 + unit.size());
           text.append(cell).append(1, ' ').append(unit);
           row.push_back(CaseValue{std::move(text), si, u->dimension});
-          column += static_cast<int>(fields[v].size()) + 1;
           continue;
         }
       }
       const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
       const std::string cell_text(cell);
+      // A number beyond a double's range says so (1e400, 1e-400), not that it is no number.
+      {
+        double ignored = 0.0;
+        const char* first = cell_text.data() + (cell_text.starts_with('+') ? 1 : 0);
+        const auto [end, ec] = std::from_chars(first, cell_text.data() + cell_text.size(), ignored);
+        if (ec == std::errc::result_out_of_range && end == cell_text.data() + cell_text.size())
+          throw SceneError(at + ": '" + excerpt(cell_text) + "' is beyond the range of a double (a magnitude from about 5e-324 to 1.8e308, or 0)");
+      }
       CaseValue value = read_case_value(!unit.empty() && bare_number(cell_text) ? cell_text + " " + unit : cell_text, at);
-      if (!unit.empty() && !value.si) throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
+      if (!unit.empty() && !value.si) {
+        if (!header_unit_errors[v].empty())  // the header's unit is at fault, not the cell
+          throw SceneError(where + ":1:" + std::to_string(header_columns[v]) + ": column '" + excerpt(table.variables[v].name) + "': [" +
+                           excerpt(unit) + "] is not a unit: " + header_unit_errors[v]);
+        throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
+      }
       if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell_text);
       row.push_back(std::move(value));
-      column += static_cast<int>(fields[v].size()) + 1;
     }
     table.cases.push_back(std::move(row));
   }
