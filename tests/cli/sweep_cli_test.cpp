@@ -230,7 +230,7 @@ TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps 
   CHECK(slurp(auto_part) == slurp(work_dir() / "part-2.csv"));  // task 3 of 1..3 is shard 2/3
 }
 
-TEST_CASE("sweep: a list value in --vary stays whole; a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {
+TEST_CASE("sweep: a list value in --vary stays whole, and a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {
   const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/bench/peers/stages123_study.yaml";
   // The commas inside a value's brackets separate its elements, not the values varied.
   const auto lists = run_cli("sweep '" + scene + "' --vary 'poly.exponents=[2,14,26,38,50],[2,12,22,32,42]' --outputs v_poly.max_acceleration");
