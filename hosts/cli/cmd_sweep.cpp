@@ -93,6 +93,18 @@ Shard parse_shard(const std::string& text) {
     if (shard.count == 0 || shard.index >= shard.count)
       throw UsageError("SLURM_ARRAY_TASK_ID " + std::to_string(task) + " - SLURM_ARRAY_TASK_MIN " + std::to_string(first) +
                        " must be below SLURM_ARRAY_TASK_COUNT " + std::to_string(shard.count) + " (a job array of consecutive tasks)");
+    // The shards are the tasks min, min + 1, ...: an array with a step (--array=0-6:2) or with gaps
+    // (--array=0,2,5) would leave some out, found only by merge at the end. Refused in every task.
+    if (const char* step = std::getenv("SLURM_ARRAY_TASK_STEP"); step && parse_count(step, "SLURM_ARRAY_TASK_STEP", max_task_id) != 1)
+      throw UsageError(std::string("SLURM_ARRAY_TASK_STEP is ") + step + ": --shard auto takes a job array of consecutive tasks "
+                       "(--array=0-N-1, no step), or give --shard I/N");
+    if (const char* max = std::getenv("SLURM_ARRAY_TASK_MAX")) {
+      const std::size_t last = parse_count(max, "SLURM_ARRAY_TASK_MAX", max_task_id);
+      if (last < first || last - first + 1 != shard.count)
+        throw UsageError("SLURM_ARRAY_TASK_MIN " + std::to_string(first) + " to MAX " + std::to_string(last) + " are not " +
+                         std::to_string(shard.count) + " consecutive tasks (SLURM_ARRAY_TASK_COUNT): --shard auto takes a job array "
+                         "without gaps (--array=0-N-1), or give --shard I/N");
+    }
   } else {
     const auto slash = text.find('/');
     if (slash == std::string::npos) throw UsageError("--shard " + excerpt(text) + ": expected I/N (0 <= I < N) or auto");

@@ -228,6 +228,21 @@ TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps 
   ::unsetenv("SLURM_ARRAY_TASK_COUNT");
   REQUIRE(by_slurm.exit_code == 0);
   CHECK(slurp(auto_part) == slurp(work_dir() / "part-2.csv"));  // task 3 of 1..3 is shard 2/3
+  // An array with a step (--array=0-6:2: tasks 0, 2, 4, 6) or with gaps would leave shards out:
+  // refused in every task, not found by merge at the end.
+  ::setenv("SLURM_ARRAY_TASK_ID", "2", 1);
+  ::setenv("SLURM_ARRAY_TASK_MIN", "0", 1);
+  ::setenv("SLURM_ARRAY_TASK_MAX", "6", 1);
+  ::setenv("SLURM_ARRAY_TASK_COUNT", "4", 1);
+  ::setenv("SLURM_ARRAY_TASK_STEP", "2", 1);
+  const auto stepped = run_cli(base + " --shard auto");
+  ::unsetenv("SLURM_ARRAY_TASK_STEP");
+  const auto gaps = run_cli(base + " --shard auto");  // 0 to 6 are 7 tasks, not the 4 the array has
+  for (const char* v : {"SLURM_ARRAY_TASK_ID", "SLURM_ARRAY_TASK_MIN", "SLURM_ARRAY_TASK_MAX", "SLURM_ARRAY_TASK_COUNT"}) ::unsetenv(v);
+  CHECK(stepped.exit_code == 2);
+  CHECK_THAT(stepped.err, Contains("SLURM_ARRAY_TASK_STEP is 2"));
+  CHECK(gaps.exit_code == 2);
+  CHECK_THAT(gaps.err, Contains("not 4 consecutive tasks"));
 }
 
 TEST_CASE("sweep: a list value in --vary stays whole, and a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {
