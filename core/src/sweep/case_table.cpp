@@ -400,12 +400,14 @@ VarySpec parse_vary(std::string_view text) {
     return spec;
   }
   // The commas between values, not those inside a value's brackets ([2, 14, 26] is one list value).
-  const auto next_comma = [&rhs](std::size_t from) {
+  // (A named reference: a structured binding is not captured by a lambda before clang 16.)
+  const std::string& list = rhs;
+  const auto next_comma = [&list](std::size_t from) {
     int depth = 0;
-    for (std::size_t i = from; i < rhs.size(); ++i) {
-      if (rhs[i] == '[' || rhs[i] == '{') ++depth;
-      else if ((rhs[i] == ']' || rhs[i] == '}') && depth > 0) --depth;
-      else if (rhs[i] == ',' && depth == 0) return i;
+    for (std::size_t i = from; i < list.size(); ++i) {
+      if (list[i] == '[' || list[i] == '{') ++depth;
+      else if ((list[i] == ']' || list[i] == '}') && depth > 0) --depth;
+      else if (list[i] == ',' && depth == 0) return i;
     }
     return std::string::npos;
   };
