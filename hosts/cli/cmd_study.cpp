@@ -108,12 +108,8 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
     const std::string& exit = cells[*exit_column];
     if (exit != "0" && exit != "2" && exit != "3")
       throw UsageError(where + "case " + std::to_string(i) + ": the exit '" + excerpt(exit, 40) + "' is not 0, 2 or 3");
-    data.failures[i] = exit == "0" ? CaseFailure::none : exit == "2" ? CaseFailure::scene : CaseFailure::evaluation;
-    if (data.failures[i] != CaseFailure::none) {
-      if (!data.first_failed || i < *data.first_failed) {
-        data.first_failed = i;
-        data.first_error = error_column ? cells[*error_column] : std::string();
-      }
+    if (exit != "0") {
+      data.record_failure(i, exit == "2" ? CaseFailure::scene : CaseFailure::evaluation, error_column ? cells[*error_column] : std::string());
       continue;
     }
     for (std::size_t c = 0; c < columns.size(); ++c) {

@@ -116,7 +116,7 @@ void check_writable_beside(const fs::path& dir) {
     ancestor = ancestor.parent_path().empty() ? fs::path(".") : ancestor.parent_path();
   }
   if (!S_ISDIR(st.st_mode)) io_failure("write results into", dir, ENOTDIR);
-  std::string probe = (ancestor / ".mechgraph-probe-XXXXXX").string();
+  std::string probe = (ancestor / ".mechgraph-probe-XXXXXX").string();  // mkdtemp replaces the six Xs
   if (!::mkdtemp(probe.data())) io_failure("write results into", dir, errno);
   ::rmdir(probe.c_str());
 }

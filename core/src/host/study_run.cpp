@@ -172,14 +172,7 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
   for (std::size_t i = 0; i < n; ++i) options.cases[i] = i;
   MemoCache cache;
   const SweepSummary s = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
-    data.failures[r.index] = r.failure;
-    if (r.failure != CaseFailure::none) {
-      if (!data.first_failed || r.index < *data.first_failed) {
-        data.first_failed = r.index;
-        data.first_error = r.error;
-      }
-      return;
-    }
+    if (r.failure != CaseFailure::none) return data.record_failure(r.index, r.failure, r.error);
     for (std::size_t c = 0; c < columns.size(); ++c) data.values[c][r.index] = shown_value(r.outputs[where[c]].as_scalar(), columns[c]);
   });
   if (summary) *summary = s;

@@ -157,6 +157,21 @@ double read_decimal(std::string_view text) {
   return y;
 }
 
+// The double nearest x (x itself, else its neighbours out to 8 ulps) that `reads_back` takes, if
+// any: where x = si / scale - offset was rounded, a neighbour may be the one that multiplies back.
+template <class ReadsBack>
+std::optional<double> nearest_reading_back(double x, const ReadsBack& reads_back) {
+  if (reads_back(x)) return x;
+  double below = x, above = x;
+  for (int step = 0; step < 8; ++step) {
+    above = std::nextafter(above, std::numeric_limits<double>::infinity());
+    if (reads_back(above)) return above;
+    below = std::nextafter(below, -std::numeric_limits<double>::infinity());
+    if (reads_back(below)) return below;
+  }
+  return std::nullopt;
+}
+
 // A number of a row's inputs: text that reads back to the case's own double through the column's
 // unit (`reads_back`: (text + offset) * scale == si, as the cases reader takes a bare number under
 // a unit), so that a row reproduces its case exactly. printf's "%.15g" of x where it does (the
@@ -171,21 +186,9 @@ bool append_shown_number(std::string& out, double x, const ReadsBack& reads_back
   append_printf_g15(out, x);
   if (reads_back(read_decimal(std::string_view(out).substr(at)))) return true;
   out.resize(at);
-  if (reads_back(x)) {
-    append_shortest_g(out, x);
-    return true;
-  }
-  double below = x, above = x;
-  for (int step = 0; step < 8; ++step) {
-    above = std::nextafter(above, std::numeric_limits<double>::infinity());
-    below = std::nextafter(below, -std::numeric_limits<double>::infinity());
-    for (const double z : {above, below})
-      if (reads_back(z)) {
-        append_shortest_g(out, z);
-        return true;
-      }
-  }
-  return false;
+  const std::optional<double> z = nearest_reading_back(x, reads_back);
+  if (z) append_shortest_g(out, *z);
+  return z.has_value();
 }
 
 // Whether a cell's text is a number as JSON writes one (-?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?): such a
@@ -234,13 +237,7 @@ double expressible_in(double si, const std::optional<UnitScale>& u) {
   const double scale = u->scale, offset = u->offset;
   const auto reads_back = [&](double y) { return (y + offset) * scale == si; };
   const double x = si / scale - offset;
-  if (!std::isfinite(x) || reads_back(x)) return si;
-  double below = x, above = x;
-  for (int step = 0; step < 8; ++step) {
-    above = std::nextafter(above, std::numeric_limits<double>::infinity());
-    below = std::nextafter(below, -std::numeric_limits<double>::infinity());
-    if (reads_back(above) || reads_back(below)) return si;
-  }
+  if (!std::isfinite(x) || nearest_reading_back(x, reads_back)) return si;
   const double on = (x + offset) * scale;
   return std::isfinite(on) ? on : si;
 }
@@ -391,7 +388,8 @@ VarySpec parse_vary(std::string_view text) {
     if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
     for (long k = 0; k < n; ++k) {
-      // Ends exactly as written; the points between evenly spaced in SI.
+      // Ends exactly as written; the points between evenly spaced in SI, each put on the numbers
+      // of the range's unit (expressible_in) so that its row reads back to it.
       const double x = k == n - 1 ? to.value : expressible_in(between(from.value, to.value, static_cast<double>(k) / static_cast<double>(n - 1)),
                                                                from_unit.empty() ? to_unit_text : from_unit);
       require_finite(x, context);

@@ -32,7 +32,7 @@ std::size_t output_index(const StudyData& data, const std::string& label, const 
 // output: the message says what the output is and the unit its values are shown in.
 void check_dimension(const Dimension& written, const StudyColumn& output, const SourceLocation& where, const std::string& what) {
   if (written == output.dimension) return;
-  const std::string shown_in = output.unit.empty() ? output.dimension.si_unit() : output.unit;
+  const std::string shown_in = !output.shown.empty() ? output.shown : output.unit.empty() ? output.dimension.si_unit() : output.unit;
   if (written.dimensionless())
     throw_scene_error_at(where, what + " is a bare number, but '" + output.label + "' is " + output.dimension.describe() +
                      ": write the unit (its values are shown in " + shown_in + ")");

@@ -36,6 +36,14 @@ struct StudyData {
   /// for the log: a study whose cases fail says why.
   std::optional<std::size_t> first_failed;
   std::string first_error;
+  /// Case i failed (failure class and message): kept as the first when it is the lowest so far.
+  void record_failure(std::size_t i, CaseFailure failure, const std::string& error) {
+    failures[i] = failure;
+    if (!first_failed || i < *first_failed) {
+      first_failed = i;
+      first_error = error;
+    }
+  }
 };
 
 struct OutputAnswer {
