@@ -72,9 +72,20 @@ struct Cursor {
       : shard(&s),
         reader(s.file, max_row_bytes),
         checker({s.manifest.format, s.manifest.cases, s.manifest.shard, s.manifest.shards, s.manifest.inputs, {}}, s.file) {}
+  ForeignLineMarks marks;  // what another tool added (read past, written as mechgraph writes)
+  // The next line, without a byte order mark or a CR before its break; false at the end.
+  bool next_line(std::string& text) {
+    if (!reader.next(text)) return false;
+    const ForeignLineMarks found = strip_foreign_line_marks(text, reader.number());
+    if (found.any() && !marks.any())
+      spdlog::info("merge: {}: {}; merged as LF lines", excerpt(shard->file), foreign_line_marks_text(found));
+    marks.byte_order_mark |= found.byte_order_mark;
+    marks.carriage_return |= found.carriage_return;
+    return true;
+  }
   // The next row, checked; false at the end.
   bool advance() {
-    if (!reader.next(line)) return false;
+    if (!next_line(line)) return false;
     const RowChecker::Row row = checker.row(line, reader.number());
     index = row.index;
     failed = row.failed;
@@ -99,7 +110,7 @@ Counts merge_rows(const std::vector<Shard>& shards, std::ostream& out) {
     auto& c = *cursors.emplace_back(std::make_unique<Cursor>(s));
     if (s.manifest.format == RowFormat::csv) {
       std::string line;
-      if (!c.reader.next(line)) throw UsageError(s.file + ": empty; a rows file starts with its header");
+      if (!c.next_line(line)) throw UsageError(s.file + ": empty; a rows file starts with its header");
       c.checker.header(line, 1);
       if (header.empty()) {
         header = line;

@@ -68,6 +68,8 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
   LineReader reader(file, max_row_bytes);
   std::string line;
   if (!reader.next(line)) throw UsageError(file + ": empty; expected the rows of 'mechgraph sweep SCENE --study'");
+  // Rows that went through another tool (a byte order mark, CR LF line ends) are read past them.
+  strip_foreign_line_marks(line, 1);
   const std::vector<std::string> header = split_csv_line(line);
   const auto column_of = [&](const std::string& name) -> std::optional<std::size_t> {
     for (std::size_t k = 0; k < header.size(); ++k)
@@ -91,6 +93,7 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
   std::vector<bool> seen(n, false);
   std::size_t rows = 0;
   while (reader.next(line)) {
+    strip_foreign_line_marks(line, reader.number());
     const std::string where = file + ":" + std::to_string(reader.number()) + ": ";
     const std::vector<std::string> cells = split_csv_line(line);
     if (cells.size() != header.size()) throw UsageError(where + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));

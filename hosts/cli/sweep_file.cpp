@@ -147,6 +147,11 @@ void SweepFile::resume_part(const RowRules& rules) {
   std::string line;
   std::size_t number = 1;
   for (; reader.next(line); ++number) {
+    // Appended to as it is: CR LF line ends would be mixed with the LF ones this sweep writes.
+    if (const ForeignLineMarks marks = strip_foreign_line_marks(line, number); marks.any())
+      throw UsageError(excerpt(part_.string()) + ":" + std::to_string(number) + ": the line " + foreign_line_marks_text(marks) +
+                       "; --resume appends to the file as it is and would mix them: convert it back (dos2unix " +
+                       excerpt(part_.string()) + ") and resume, or start over with --force");
     if (number == 1 && manifest_.format == RowFormat::csv) {
       checker.header(line, number);
       resumed_header_ = checker.header_cells();

@@ -383,6 +383,46 @@ TEST_CASE("hostile merge and resume: huge manifests and edited rows are refused 
   CHECK(slurp(out) == rows);
 }
 
+TEST_CASE("hostile merge and resume: CR LF line ends and a byte order mark are read past by merge, refused by resume", "[hostile][sweep]") {
+  const fs::path dir = fresh_dir("line_ends");
+  const fs::path out = dir / "rows.csv", jsonl = dir / "rows.jsonl";
+  const std::string sweep = sweep_of(scene()) + "--vary len=1mm:5mm:5 --out " + q(out);
+  REQUIRE(run_cli(sweep).exit_code == 0);
+  REQUIRE(run_cli(sweep_of(scene()) + "--vary len=1mm:5mm:5 --format jsonl --out " + q(jsonl)).exit_code == 0);
+  const std::string rows = slurp(out), objects = slurp(jsonl);
+  const auto windows = [](const std::string& text) {
+    std::string saved;
+    for (char c : text) saved += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    return saved;
+  };
+  const std::string mark = "\xEF\xBB\xBF";
+  // merge: the shards as another tool saved them merge to the rows as the sweep wrote them.
+  for (const fs::path& file : {out, jsonl}) {
+    const std::string written = file == out ? rows : objects;
+    for (const std::string& saved : {windows(written), mark + written, mark + windows(written)}) {
+      write_file(file, saved);
+      const auto r = run_cli("merge " + q(file));
+      CHECK(r.exit_code == 0);
+      CHECK(r.out == written);
+      CHECK_THAT(r.err, Contains("merged as LF lines"));
+    }
+    write_file(file, written);
+  }
+  // --resume appends to FILE.part as it is: refused at line 1, the file left untouched.
+  fs::remove(out);
+  const std::string begun = rows.substr(0, rows.find("2,3,"));
+  for (const std::string& part : {windows(begun), mark + begun}) {
+    write_file(out.string() + ".part", part);
+    const auto r = run_cli(sweep + " --resume");
+    CHECK(r.exit_code == 2);
+    CHECK_THAT(r.err, Contains(out.string() + ".part:1:") && Contains("where mechgraph writes LF alone") && Contains("dos2unix"));
+    CHECK(slurp(out.string() + ".part") == part);
+  }
+  write_file(out.string() + ".part", begun);
+  REQUIRE(run_cli(sweep + " --resume").exit_code == 0);
+  CHECK(slurp(out) == rows);
+}
+
 TEST_CASE("hostile sweep values: finite, range-checked like scene values, one bad case does not end JSON Lines", "[hostile][sweep]") {
   const fs::path dir = fresh_dir("values");
   const std::string sweep = sweep_of(scene());

@@ -478,6 +478,20 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const auto from_rows = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --rows '" + merged + "'");
   REQUIRE(from_rows.exit_code == 0);
   CHECK(from_rows.out == whole.out);
+  // The same rows after a trip through a Windows editor (a byte order mark, CR LF line ends): the
+  // same answers.
+  {
+    std::ifstream in(merged, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string windows = "\xEF\xBB\xBF";
+    for (char c : text) windows += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    const std::string saved = (dir / "saved.csv").string();
+    std::ofstream(saved, std::ios::binary) << windows;
+    std::filesystem::copy_file(merged + ".json", saved + ".json");
+    const auto from_saved = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --rows '" + saved + "'");
+    REQUIRE(from_saved.exit_code == 0);
+    CHECK(from_saved.out == whole.out);
+  }
   // Rows of another seed are refused, naming the row.
   const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
   CHECK(other.exit_code == 2);

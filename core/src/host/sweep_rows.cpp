@@ -470,6 +470,27 @@ SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) con
 
 namespace mechgraph::host {
 
+ForeignLineMarks strip_foreign_line_marks(std::string& line, std::size_t number) {
+  ForeignLineMarks found;
+  constexpr std::string_view mark = "\xEF\xBB\xBF";
+  if (number == 1 && std::string_view(line).starts_with(mark)) {
+    line.erase(0, mark.size());
+    found.byte_order_mark = true;
+  }
+  if (!line.empty() && line.back() == '\r') {
+    line.pop_back();
+    found.carriage_return = true;
+  }
+  return found;
+}
+
+std::string foreign_line_marks_text(const ForeignLineMarks& marks) {
+  std::string text;
+  if (marks.byte_order_mark) text = "starts with a UTF-8 byte order mark";
+  if (marks.carriage_return) text += std::string(text.empty() ? "" : " and ") + "ends in CR LF (a Windows line end)";
+  return text + ", where mechgraph writes LF alone and no mark";
+}
+
 void RowChecker::refuse(std::size_t number, const std::string& why) const {
   throw UsageError(excerpt(file_) + ":" + std::to_string(number) + ": " + why +
                    "; refused: not a row mechgraph wrote for this sweep (edited or damaged?)");

@@ -110,6 +110,21 @@ class RowSequencer {
   std::vector<CaseResult> waiting_;
 };
 
+/// What another tool may have put around the lines of a rows file: a UTF-8 byte order mark before
+/// the first, a carriage return before each line break (CR LF, as Windows saves text). mechgraph
+/// writes neither.
+struct ForeignLineMarks {
+  bool byte_order_mark = false;
+  bool carriage_return = false;
+  bool any() const { return byte_order_mark || carriage_return; }
+};
+/// Removes them from `line` (line `number` of its file, 1-based) and says which were there: `merge`
+/// and `study --rows` read past them (merge writes LF, no mark), `--resume` refuses them (it
+/// appends to the file as it is, which would mix the line ends).
+ForeignLineMarks strip_foreign_line_marks(std::string& line, std::size_t number);
+/// The words for what was found (a clause: "ends in CR LF ..." / "starts with a UTF-8 byte order mark").
+std::string foreign_line_marks_text(const ForeignLineMarks& marks);
+
 /// The rules a row read back must follow.
 struct RowRules {
   RowFormat format = RowFormat::csv;
