@@ -1,8 +1,8 @@
 """The answers of an uncertainty study (``Scene.study``) as pandas DataFrames.
 
 Every number is the one ``mechgraph study --json`` prints (SI); ``samples`` holds each case of the
-design: the uncertain parameters in SI, the outputs in the units of their sweep columns, ``exit``
-(0, or the failure class: 2 scene, 3 evaluation).
+design as the rows of ``mechgraph sweep SCENE --study`` show it (parameters and outputs in the
+units of their column headers), ``exit`` (0, or the failure class: 2 scene, 3 evaluation).
 """
 import json
 from typing import Any, Dict
@@ -19,8 +19,9 @@ class Study:
 
     @property
     def samples(self):
-        """One row per case of the design: the uncertain parameters in SI, the outputs in the units
-        of their column headers (``name [unit]``), NaN where the case failed, ``exit`` (0, or
+        """One row per case of the design, in the columns of ``mechgraph sweep SCENE --study``'s
+        rows: the uncertain parameters and the outputs in the units of their headers
+        (``lash [mm]``, ``name [unit]``), NaN where the case failed, ``exit`` (0, or
         the failure class: 2 scene, 3 evaluation) and ``role``: ``"A"`` or ``"B"`` for the rows
         the statistics are made of, ``"AB name"`` for Saltelli's rows that move one parameter
         (with sensitivity; without, every row is ``"A"``). Statistics of a sensitivity study's

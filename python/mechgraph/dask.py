@@ -88,7 +88,7 @@ def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = N
     from ._study import Study
 
     args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si, settings)
-    design = scene._session.study_design(*args)
+    design, shown = scene._session.study_design(*args)
     # The design's parameters are in SI: marked so, for the unit rule of sweep columns.
     rows = sweep(client, scene, {name: SI(values) for name, values in design.items()}, chunk=chunk, set=set,
                  outputs=outputs, threads=threads, si=si)
@@ -96,7 +96,7 @@ def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = N
                if name not in design and name not in ("case", "exit", "error")}
     exits = [int(e) for e in rows["exit"]]
     json_text = scene._session.study_rows(*args, columns, exits)
-    cases = dict(design)
+    cases = dict(shown)
     cases.update(columns)
     cases["exit"] = exits
     return Study(json_text, cases)

@@ -58,6 +58,21 @@ std::string study_sample_column(const Graph& graph, const StudyColumn& c) {
   return unit.empty() || unit == "1" ? c.label : c.label + " [" + unit + "]";
 }
 
+// The design's parameters in Study.samples: the columns a sweep of the study's cases writes
+// (`lift [mm]`, its numbers in mm, each the double its row's text reads back to), so that no
+// column holds SI under a bare name and both the in-process study and mechgraph.dask.study show
+// the rows of `mechgraph sweep SCENE --study`.
+void add_study_parameters(py::dict& cases, const Graph& graph, const CaseTable& table) {
+  const host::SweepRows rows(graph, table, host::RowFormat::csv);
+  const std::vector<std::string> names = rows.input_headers();
+  std::vector<std::vector<double>> columns(names.size(), std::vector<double>(table.cases.size()));
+  for (std::size_t i = 0; i < table.cases.size(); ++i) {
+    const auto inputs = rows.input_values(i);
+    for (std::size_t v = 0; v < names.size(); ++v)
+      columns[v][i] = std::holds_alternative<double>(inputs[v]) ? std::get<double>(inputs[v]) : std::numeric_limits<double>::quiet_NaN();
+  }
+  for (std::size_t v = 0; v < names.size(); ++v) cases[py::str(names[v])] = columns[v];
+}
 
 // ---- plugins ------------------------------------------------------------------------------------
 
@@ -582,14 +597,11 @@ PYBIND11_MODULE(_core, m) {
         std::unique_ptr<host::StudyOutcome> outcome;
         run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
                           [&] { *stop = true; }, OnInterrupt::wait);
-        // The design's cases: the parameters in SI, the outputs in their shown units, the failure class.
+        // The design's cases as the sweep's rows show them: parameters and outputs in their
+        // columns' units, the failure class.
         py::dict cases;
         const host::StudyOutcome& o = *outcome;
-        for (std::size_t v = 0; v < o.table.variables.size(); ++v) {
-          std::vector<double> column(o.table.cases.size());
-          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o.table.cases[i][v].si;
-          cases[py::str(o.table.variables[v].name)] = column;
-        }
+        add_study_parameters(cases, o.graph, o.table);
         for (std::size_t c = 0; c < o.data.outputs.size(); ++c) cases[py::str(study_sample_column(o.graph, o.data.outputs[c]))] = o.data.values[c];
         std::vector<int> exits;
         for (CaseFailure f : o.data.failures) exits.push_back(host::exit_code_of(f));
@@ -599,18 +611,20 @@ PYBIND11_MODULE(_core, m) {
       .def("study_design", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                               const std::string& samples, const std::string& method, const std::string& seed,
                               const std::vector<std::string>& outputs) {
-        // The study's cases (parameters in SI) and the output columns its rows will carry.
+        // The study's cases: the parameters in SI by name (what the sweep is given), and as
+        // Study.samples shows them (the sweep's input columns).
         std::optional<RawValue> settings;
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
         const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
-        py::dict cases;
+        py::dict cases, shown;
         for (std::size_t v = 0; v < o->table.variables.size(); ++v) {
           std::vector<double> column(o->table.cases.size());
           for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o->table.cases[i][v].si;
           cases[py::str(o->table.variables[v].name)] = column;
         }
-        return cases;
+        add_study_parameters(shown, o->graph, o->table);
+        return py::make_tuple(cases, shown);
       })
       .def("study_rows", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                             const std::string& samples, const std::string& method, const std::string& seed,

@@ -41,8 +41,19 @@ def test_dask_study_equals_the_single_process_study(monkeypatch):
         with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
                 distributed.Client(cluster) as client:
             remote = mechgraph.dask.study(client, scene, samples=64, chunk=50)
+            # Parameters with units: the samples' columns are the sweep's (`x1 [mm]`, in mm) on both paths.
+            linear = mechgraph.Scene.from_text(
+                "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\n"
+                "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n")
+            distributions = {"x1": {"normal": {"mean": "1 mm", "sigma": "0.1 mm"}}, "x2": {"uniform": {"lower": "0 mm", "upper": "0.6 mm"}}}
+            local_linear = linear.study(distributions, samples=40, method="latin_hypercube")
+            remote_linear = mechgraph.dask.study(client, linear, distributions, samples=40, method="latin_hypercube", chunk=15)
         assert remote.json == local.json
-        pd.testing.assert_frame_equal(remote.samples[local.samples.columns], local.samples, check_exact=True, check_dtype=False)
+        assert list(remote.samples.columns) == list(local.samples.columns)
+        pd.testing.assert_frame_equal(remote.samples, local.samples, check_exact=True, check_dtype=False)
+        assert remote_linear.json == local_linear.json
+        assert list(local_linear.samples.columns) == ["x1 [mm]", "x2 [mm]", "f.y [mm]", "exit", "role"]
+        pd.testing.assert_frame_equal(remote_linear.samples, local_linear.samples, check_exact=True, check_dtype=False)
     finally:
         monkeypatch.delenv("MECHGRAPH_PLUGIN_PATH")
         mechgraph.load_plugins()

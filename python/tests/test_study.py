@@ -60,6 +60,12 @@ def test_distributions_from_python_merge_over_the_scene():
     assert row["mean"] == pytest.approx(1.3e-3, rel=0.01)
     assert row["standard_deviation"] == pytest.approx((0.1e-3 ** 2 + 0.6e-3 ** 2 / 12) ** 0.5, rel=0.03)
     assert row["cpk"] > 0
+    # The samples show each parameter as the sweep's rows do: its unit in the header, its numbers
+    # in that unit (never SI under a bare name).
+    samples = study.samples
+    assert "x1" not in samples.columns
+    assert samples["x1 [mm]"].mean() == pytest.approx(1.0, rel=0.01)
+    assert 0.0 <= samples["x2 [mm]"].min() and samples["x2 [mm]"].max() <= 0.6
     with pytest.raises(mechgraph.SceneError, match="sigma"):
         scene.study({"x1": {"normal": {"mean": "1 mm", "sigm": "0.1 mm"}}}, samples=10)
     with pytest.raises(mechgraph.SceneError, match="no 'uncertainty'|no 'parameters'"):

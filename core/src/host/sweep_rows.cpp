@@ -451,14 +451,20 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
   return format(cells, numeric);
 }
 
+std::vector<std::variant<std::monostate, double, std::string>> SweepRows::input_values(std::size_t i) const {
+  std::vector<std::variant<std::monostate, double, std::string>> inputs;
+  for (std::size_t v = 0; v < table_.variables.size(); ++v) {
+    std::string cell = table_.shown(i, v);
+    if (cell.empty()) inputs.emplace_back(std::monostate{});
+    else if (table_.cases[i][v].si.has_value() && finite_number_cell(cell)) inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
+    else inputs.emplace_back(std::move(cell));
+  }
+  return inputs;
+}
+
 SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) const {
   Values out;
-  for (std::size_t v = 0; v < table_.variables.size(); ++v) {
-    std::string cell = table_.shown(result.index, v);
-    if (cell.empty()) out.inputs.emplace_back(std::monostate{});
-    else if (table_.cases[result.index][v].si.has_value() && finite_number_cell(cell)) out.inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
-    else out.inputs.emplace_back(std::move(cell));
-  }
+  out.inputs = input_values(result.index);
   out.error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
   out.exit_code = result.failure == CaseFailure::none && !out.error.empty() ? evaluation_error : exit_code;
   if (result.failure == CaseFailure::none && out.error.empty())

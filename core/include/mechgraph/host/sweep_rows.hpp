@@ -64,6 +64,9 @@ class SweepRows {
     std::string error;  // "" when the case succeeded
   };
   Values values(const CaseResult& result, int exit_code) const;
+  /// The input columns' headers (`name [unit]`) and case i's inputs as Values::inputs holds them.
+  std::vector<std::string> input_headers() const;
+  std::vector<std::variant<std::monostate, double, std::string>> input_values(std::size_t i) const;
 
  private:
   struct Column {
@@ -77,7 +80,6 @@ class SweepRows {
   std::string shape_problem(const CaseResult& result) const;  // "" when its series fit the header
   double cell_value(const CaseResult& result, const Column& c) const;
   std::string format(const std::vector<std::string>& cells, const std::vector<bool>& numeric) const;
-  std::vector<std::string> input_headers() const;
   static void make_unique(std::vector<std::string>& names, const std::vector<std::string>& taken, const std::string& prefix);
 
   const Graph& graph_;
