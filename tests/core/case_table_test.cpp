@@ -111,11 +111,10 @@ TEST_CASE("Case tables: a row's inputs read back to the case's doubles, %.15g wh
       CHECK((parsed(shown) + u.offset) * u.scale == snapped[i]);
       CHECK(std::abs(snapped[i] - made[i]) <= 4 * std::abs(made[i]) * std::numeric_limits<double>::epsilon());
     }
-    // A value written with few digits in a unit that only scales is shown so again (an offset unit
-    // keeps the noise of its subtraction at 15 digits, 8.41000000000003 degC, as rows always did).
-    if (u.offset == 0.0) {
-      CHECK(table.shown(si.size() - 4, 0) == "8.41");
-      CHECK(table.shown(si.size() - 1, 0) == "120");
-    }
+    // A value written with few digits is shown so again, in an offset unit too (its subtraction's
+    // rounding, 8.410000000000025 degC, is not shown).
+    CHECK(table.shown(si.size() - 4, 0) == "8.41");
+    CHECK(table.shown(si.size() - 3, 0) == "0.25");
+    CHECK(table.shown(si.size() - 1, 0) == "120");
   }
 }

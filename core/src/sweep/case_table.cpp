@@ -191,6 +191,26 @@ bool append_shown_number(std::string& out, double x, const ReadsBack& reads_back
   return z.has_value();
 }
 
+// An offset unit's x = si / scale - offset carries the rounding of its subtraction in its last
+// digits (8.41 degC shows as 8.410000000000025): the fewest significant digits, up to 15, that
+// still read back to the case's double, so that the row shows the value as it was written.
+template <class ReadsBack>
+bool append_fewest_digits(std::string& out, double x, const ReadsBack& reads_back) {
+  char buffer[48];
+  // From as many digits as the integer part has: fewer would switch to the exponent form (1.2e+02).
+  const int integer_digits = std::abs(x) >= 1.0 ? static_cast<int>(std::floor(std::log10(std::abs(x)))) + 1 : 1;
+  for (int digits = std::clamp(integer_digits, 1, 15); digits <= 15; ++digits) {
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits);
+    if (ec != std::errc()) return false;
+    const std::string_view text(buffer, static_cast<std::size_t>(end - buffer));
+    if (reads_back(read_decimal(text))) {
+      out.append(text);
+      return true;
+    }
+  }
+  return false;
+}
+
 // Whether a cell's text is a number as JSON writes one (-?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?): such a
 // cell is shown as written, a plain number in CSV and JSON Lines alike; "+8", ".5", "08" or "5."
 // are shown as mechgraph writes numbers instead.
@@ -343,7 +363,9 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
       return false;
     }
     const double si = *value.si, scale = u->scale, offset = u->offset;
-    if (append_shown_number(out, x, [si, scale, offset](double y) { return (y + offset) * scale == si; })) return true;
+    const auto reads_back = [si, scale, offset](double y) { return (y + offset) * scale == si; };
+    if (offset != 0.0 && append_fewest_digits(out, x, reads_back)) return true;
+    if (append_shown_number(out, x, reads_back)) return true;
     // No number in the column's unit is this double: the value with its own unit, exactly (a cell
     // in another unit reads as such), so that the row still reproduces its case.
     out += value.written();
