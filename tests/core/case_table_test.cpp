@@ -118,3 +118,35 @@ TEST_CASE("Case tables: a row's inputs read back to the case's doubles, %.15g wh
     CHECK(table.shown(si.size() - 1, 0) == "120");
   }
 }
+
+TEST_CASE("Case tables: a grid's points in its unit are the doubles those numbers give as cells", "[core][sweep]") {
+  // 3000rpm:7000rpm:9 has 3500 rpm: the double `--set rpm=3500rpm` gives, and its row shows 3500.
+  struct Range {
+    std::string vary, unit;
+    double from, to;
+    long n;
+  };
+  for (const Range& r : {Range{"rpm=3000rpm:7000rpm:9", "rpm", 3000, 7000, 9}, Range{"a=0.1mm:0.7:7", "mm", 0.1, 0.7, 7},
+                         Range{"t=20degC:30degC:11", "degC", 20, 30, 11}, Range{"x=0:1:11", "", 0, 1, 11},
+                         Range{"phi=-20deg:40deg:13", "deg", -20, 40, 13}}) {
+    INFO(r.vary);
+    const CaseTable table = make_grid({parse_vary(r.vary)});
+    REQUIRE(table.cases.size() == static_cast<std::size_t>(r.n));
+    for (long k = 0; k < r.n; ++k) {
+      const double number = r.from + (r.to - r.from) * static_cast<double>(k) / static_cast<double>(r.n - 1);
+      char text[64];
+      std::snprintf(text, sizeof text, "%.15g %s", number, r.unit.c_str());
+      INFO(text);
+      CHECK(*table.cases[static_cast<std::size_t>(k)][0].si == parse_quantity(text).value);
+      std::snprintf(text, sizeof text, "%.15g", number);
+      CHECK(table.shown(static_cast<std::size_t>(k), 0) == text);
+    }
+  }
+  // Ends in different units: evenly spaced in SI, each on the numbers of the range's unit.
+  const CaseTable mixed = make_grid({parse_vary("a=1mm:0.5cm:5")});
+  for (std::size_t k = 0; k < mixed.cases.size(); ++k) {
+    const std::string shown = mixed.shown(k, 0);
+    INFO(shown);
+    CHECK(parse_quantity(shown + " mm").value == *mixed.cases[k][0].si);
+  }
+}

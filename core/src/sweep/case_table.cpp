@@ -286,6 +286,24 @@ std::pair<std::string, std::string> split_assignment(std::string_view text, cons
   return {trim(text.substr(0, eq)), trim(text.substr(eq + 1))};
 }
 
+// The numbers of a range's ends in their one unit ("3000rpm" and "7000" with "rpm": 3000 and 7000),
+// when both are written in it and read back to the ends' values through it; else nullopt.
+std::optional<std::pair<double, double>> range_numbers(const std::string& from_text, const std::string& to_text, const Quantity& from,
+                                                       const Quantity& to, const std::string& from_unit, const std::string& to_unit) {
+  if (from_unit.empty() || from_unit != to_unit) return std::nullopt;
+  const std::optional<UnitScale>& u = parse_unit_cached(from_unit);
+  if (!u) return std::nullopt;
+  const auto number = [](const std::string& text) -> std::optional<double> {
+    double x = 0.0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
+    if (ec != std::errc() || end == text.data()) return std::nullopt;
+    return x;
+  };
+  const std::optional<double> a = number(from_text), b = number(to_text);
+  if (!a || !b || (*a + u->offset) * u->scale != from.value || (*b + u->offset) * u->scale != to.value) return std::nullopt;
+  return std::make_pair(*a, *b);
+}
+
 // FROM and TO of a range; one of them may leave its unit to the other.
 std::pair<Quantity, std::string> range_end(const std::string& text, const std::string& other, const std::string& context) {
   std::string written = text;
@@ -409,11 +427,23 @@ VarySpec parse_vary(std::string_view text) {
       throw SceneError(context + ": N = '" + excerpt(parts[2]) + "' must be a whole number of points from 1 to 10^7");
     if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
+    // Where both ends are numbers in one unit (3000rpm:7000rpm, 3000:7000rpm), the points are
+    // spaced evenly in that unit and each is read as a cell of that number in that unit would be:
+    // 3500 rpm of the grid is the very double `--set rpm=3500rpm` gives, and its row shows 3500.
+    const std::optional<std::pair<double, double>> numbers = range_numbers(parts[0], parts[1], from, to, from_unit, to_unit_text);
     for (long k = 0; k < n; ++k) {
-      // Ends exactly as written; the points between evenly spaced in SI, each put on the numbers
-      // of the range's unit (expressible_in) so that its row reads back to it.
-      const double x = k == n - 1 ? to.value : expressible_in(between(from.value, to.value, static_cast<double>(k) / static_cast<double>(n - 1)),
-                                                               from_unit.empty() ? to_unit_text : from_unit);
+      const double t = static_cast<double>(k) / static_cast<double>(n - 1);
+      double x = 0.0;
+      if (k == 0 || k == n - 1) {
+        x = k == 0 ? from.value : to.value;  // the ends exactly as written
+      } else if (numbers) {
+        const UnitScale& u = *parse_unit_cached(spec.unit);
+        x = (between(numbers->first, numbers->second, t) + u.offset) * u.scale;
+      } else {
+        // Ends in different units: evenly spaced in SI, each put on the numbers of the range's
+        // unit (expressible_in) so that its row reads back to it.
+        x = expressible_in(between(from.value, to.value, t), spec.unit);
+      }
       require_finite(x, context);
       spec.values.push_back({exact_text(x, from.dimension), x, from.dimension});
     }
