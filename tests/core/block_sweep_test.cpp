@@ -77,6 +77,25 @@ TEST_CASE("block path: a case a node refuses is redone alone and carries the per
   CHECK(blocks.summary.in_blocks == blocks.rows.size() - alone.summary.failed);
 }
 
+TEST_CASE("block path: an output beyond a double in its shown unit fails its case as alone", "[sweep][blocks]") {
+  // A seat of 3e307 mm through a rocker of 100: time-areas finite in SI, beyond a double in mm^2*s.
+  // The per-case path refuses such a case (the evaluator's check of what a run shows); the block
+  // path must not write it as "inf" with exit 0. With a scene's units: (length in nm) the check is
+  // in those units, on both paths.
+  for (const std::string& units : {std::string(), std::string("units: { length: nm }\n")}) {
+    INFO(units);
+    CaseTable table = make_grid({parse_vary("seat=34mm,3e307mm,1e295mm"), parse_vary("rocker=1.5,100")});
+    const Prepared p = prepare(units + stages123, std::move(table), project_registry());
+    const Swept alone = sweep(p, 1, 0);
+    const Swept blocks = sweep(p, 1, 256);
+    require_same_rows(blocks, alone);
+    CHECK(alone.summary.failed >= 1);
+    CHECK(alone.summary.failed < 6);
+    CHECK(blocks.summary.failed == alone.summary.failed);
+    CHECK(blocks.summary.in_blocks == 6 - alone.summary.failed);
+  }
+}
+
 TEST_CASE("block path: nodes no case changes are made once and shared by every case", "[sweep][blocks]") {
   // Only the speed varies: the cams are the same for every case.
   const Prepared p = prepare(stages123, make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}), project_registry());

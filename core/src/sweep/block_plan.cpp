@@ -1,6 +1,7 @@
 #include <mechgraph/sweep/block_plan.hpp>
 
 #include <mechgraph/block.hpp>
+#include <mechgraph/display_units.hpp>
 #include <mechgraph/plugin_registry.hpp>
 
 #include "../node_context.hpp"
@@ -167,19 +168,35 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
     const auto& type = dynamic_cast<const BlockEvaluation&>(*graph.nodes[i].type->type);
     if (!evaluate_block_node(graph.nodes[i], type, std::move(varied[i]), state.nodes, cases, state.nodes[i])) return outcomes;
   }
-  // The requested outputs, read from their producers' columns.
-  std::vector<std::pair<const double*, std::size_t>> requested;  // column, stride
+  // The requested outputs, read from their producers' columns, each with the unit a run shows it
+  // in (the scene's units:, else the port's display unit; as check_displayable in the evaluator).
+  struct Requested {
+    const double* column;
+    std::size_t stride;
+    double scale, offset;
+  };
+  std::vector<Requested> requested;
   for (const RequestedOutput& o : graph.outputs) {
     const Produced& from = state.nodes[o.node];
     const auto port = std::find(from.ports.begin(), from.ports.end(), o.port);
     if (port == from.ports.end()) return outcomes;
-    requested.emplace_back(from.scalars[static_cast<std::size_t>(port - from.ports.begin())].data(), from.varied ? 1 : 0);
+    const std::string unit = graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit);
+    const std::optional<UnitScale> shown = unit.empty() ? std::nullopt : parse_unit_cached(unit);
+    requested.push_back({from.scalars[static_cast<std::size_t>(port - from.ports.begin())].data(), from.varied ? 1u : 0u,
+                         shown ? shown->scale : 1.0, shown ? shown->offset : 0.0});
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (cases.failed(k)) continue;
+    // A number beyond the range of a double in its shown unit (1e300 m in nm) leaves its case to
+    // the per-case path, which refuses it with the run's message: the rows never hold "inf".
+    const bool displayable = std::all_of(requested.begin(), requested.end(), [k](const Requested& r) {
+      const double a = std::abs(r.column[k * r.stride]);
+      return std::isfinite(a / r.scale - r.offset) && std::isfinite(-a / r.scale - r.offset);
+    });
+    if (!displayable) continue;
     std::vector<Value>& values = outcomes[k].outputs.emplace();
     values.reserve(requested.size());
-    for (const auto& [column, stride] : requested) values.push_back(Value::scalar(column[k * stride]));
+    for (const Requested& r : requested) values.push_back(Value::scalar(r.column[k * r.stride]));
   }
   return outcomes;
 }
