@@ -40,7 +40,8 @@ std::string unknown_name_message(std::string_view what, std::string_view name,
   if (!best.empty()) msg += "; did you mean '" + best + "'?";
   std::vector<std::string> sorted = candidates;
   std::sort(sorted.begin(), sorted.end());
-  msg += sorted.empty() ? std::string("; there are none") : "; valid " + std::string(what) + "s are: (";
+  const std::string plural = std::string(what) + (what.ends_with("s") ? "es" : "s");  // classes, units
+  msg += sorted.empty() ? std::string("; there are none") : "; valid " + plural + " are: (";
   for (std::size_t i = 0; i < sorted.size(); ++i) msg += (i ? " " : "") + sorted[i];
   if (!sorted.empty()) msg += ")";
   return msg;

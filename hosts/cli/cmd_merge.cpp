@@ -63,13 +63,15 @@ std::vector<Shard> read_manifests(const std::vector<std::string>& files) {
 // One shard being read: its checker and the row it is at.
 struct Cursor {
   const Shard* shard;
+  bool announce;  // whether to say what another tool added (once per file: not on merge's checking pass)
   LineReader reader;
   RowChecker checker;
   std::string line;
   std::size_t index = 0;  // the case of `line`
   bool failed = false;
-  Cursor(const Shard& s)
+  Cursor(const Shard& s, bool announce_marks)
       : shard(&s),
+        announce(announce_marks),
         reader(s.file, max_row_bytes),
         checker({s.manifest.format, s.manifest.cases, s.manifest.shard, s.manifest.shards, s.manifest.inputs, {}}, s.file) {}
   ForeignLineMarks marks;  // what another tool added (read past, written as mechgraph writes)
@@ -77,7 +79,7 @@ struct Cursor {
   bool next_line(std::string& text) {
     if (!reader.next(text)) return false;
     const ForeignLineMarks found = strip_foreign_line_marks(text, reader.number());
-    if (found.any() && !marks.any())
+    if (announce && found.any() && !marks.any())
       spdlog::info("merge: {}: {}; merged as LF lines", excerpt(shard->file), foreign_line_marks_text(found));
     marks.byte_order_mark |= found.byte_order_mark;
     marks.carriage_return |= found.carriage_return;
@@ -99,7 +101,7 @@ struct Counts {
 
 // Every row of every shard, checked, in case order to `out`; refuses (UsageError) a shard whose
 // columns differ from the first's, a case in two shards, or a case in none.
-Counts merge_rows(const std::vector<Shard>& shards, std::ostream& out) {
+Counts merge_rows(const std::vector<Shard>& shards, std::ostream& out, bool announce = true) {
   std::vector<std::unique_ptr<Cursor>> cursors;
   std::string header;           // CSV: the first shard's header line
   std::vector<std::string> keys;  // JSON Lines: the first row's keys
@@ -107,7 +109,7 @@ Counts merge_rows(const std::vector<Shard>& shards, std::ostream& out) {
   using Entry = std::pair<std::size_t, std::size_t>;  // (case, cursor)
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> next;
   for (const Shard& s : shards) {
-    auto& c = *cursors.emplace_back(std::make_unique<Cursor>(s));
+    auto& c = *cursors.emplace_back(std::make_unique<Cursor>(s, announce));
     if (s.manifest.format == RowFormat::csv) {
       std::string line;
       if (!c.next_line(line)) throw UsageError(s.file + ": empty; a rows file starts with its header");
@@ -187,12 +189,14 @@ int merge_command(const GlobalOptions&, const std::vector<std::string>& args) {
   visible.add_options()("help,h", "this text")("out", po::value<std::string>(), "write the merged rows to FILE (else stdout)")(
       "force", "replace an existing FILE that mechgraph wrote (its manifest FILE.json says so)");
   po::options_description all;
-  all.add(visible).add_options()("files", po::value<std::vector<std::string>>()->required(), "shard files");
+  all.add(visible).add_options()("files", po::value<std::vector<std::string>>(), "shard files");
   po::positional_options_description positional;
   positional.add("files", -1);
   po::variables_map vm;
-  if (!parse_options(args, visible, all, positional, vm, "mechgraph merge FILE... [--out FILE]   (e.g. mechgraph merge part-*.csv > all.csv)"))
+  if (!parse_options(args, visible, all, positional, vm, "mechgraph merge FILE... [--out FILE]   (e.g. mechgraph merge part-*.csv --out all.csv)"))
     return ok;
+  if (!vm.count("files"))
+    throw UsageError("no rows files to merge: name the shards' files, e.g. mechgraph merge part-*.csv --out all.csv");
 
   // The output is locked and checked before the shards are read: a second merge is refused at once.
   std::optional<OutputLock> lock;
@@ -216,7 +220,7 @@ int merge_command(const GlobalOptions&, const std::vector<std::string>& args) {
   if (!vm.count("out")) {
     NullBuffer nothing;
     std::ostream check(&nothing);
-    merge_rows(shards, check);  // everything refused before a byte reaches stdout
+    merge_rows(shards, check, false);  // everything refused before a byte reaches stdout
     counts = merge_rows(shards, std::cout);
     std::cout.flush();
     if (!std::cout) throw IoError("standard output: cannot write");

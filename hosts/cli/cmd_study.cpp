@@ -70,7 +70,17 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
   if (!reader.next(line)) throw UsageError(file + ": empty; expected the rows of 'mechgraph sweep SCENE --study'");
   // Rows that went through another tool (a byte order mark, CR LF line ends) are read past them.
   strip_foreign_line_marks(line, 1);
-  const std::vector<std::string> header = split_csv_line(line);
+  if (line.starts_with("{"))
+    throw UsageError(file + ":1: rows in JSON Lines; --rows reads the CSV rows of 'mechgraph sweep SCENE --study' (--format csv, the default)");
+  // A line that is not CSV (an unclosed quote) is refused at its line.
+  const auto cells_of = [&](const std::string& text, std::size_t number) {
+    try {
+      return split_csv_line(text);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(file + ":" + std::to_string(number) + ": " + e.what());
+    }
+  };
+  const std::vector<std::string> header = cells_of(line, 1);
   const auto column_of = [&](const std::string& name) -> std::optional<std::size_t> {
     for (std::size_t k = 0; k < header.size(); ++k)
       if (header[k] == name) return k;
@@ -95,7 +105,7 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
   while (reader.next(line)) {
     strip_foreign_line_marks(line, reader.number());
     const std::string where = file + ":" + std::to_string(reader.number()) + ": ";
-    const std::vector<std::string> cells = split_csv_line(line);
+    const std::vector<std::string> cells = cells_of(line, reader.number());
     if (cells.size() != header.size()) throw UsageError(where + std::to_string(cells.size()) + " cells, the header has " + std::to_string(header.size()));
     std::size_t i = 0;
     const auto [p, ec] = std::from_chars(cells[0].data(), cells[0].data() + cells[0].size(), i);

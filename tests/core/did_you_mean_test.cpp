@@ -19,4 +19,6 @@ TEST_CASE("unknown names suggest the closest and list all", "[did_you_mean]") {
                       Contains("(cam.cycloidal cam.kurz cam.polydyne cam.three_arc)"));
   CHECK(closest_match("zzzzzz", cams).empty());
   CHECK_THAT(unknown_name_message("effect", "x", {}), Contains("there are none"));
+  CHECK_THAT(unknown_name_message("node type", "x", cams), Contains("valid node types are"));
+  CHECK_THAT(unknown_name_message("failure class", "x", {"any", "scene"}), Contains("valid failure classes are"));
 }

@@ -491,6 +491,15 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
     const auto from_saved = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --rows '" + saved + "'");
     REQUIRE(from_saved.exit_code == 0);
     CHECK(from_saved.out == whole.out);
+    // Rows that are not CSV: JSON Lines are named as such; an unclosed quote is refused at its line.
+    const std::string first_line = text.substr(0, text.find('\n') + 1);
+    for (const auto& [content, says] : {std::pair<std::string, std::string>{"{\"case\":0}\n", "saved.csv:1: rows in JSON Lines"},
+                                        std::pair<std::string, std::string>{first_line + "0,\"unclosed\n", "saved.csv:2:"}}) {
+      std::ofstream(saved, std::ios::binary) << content;
+      const auto refused = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --rows '" + saved + "'");
+      CHECK(refused.exit_code == 2);
+      CHECK_THAT(refused.err, Contains(says));
+    }
   }
   // Rows of another seed are refused, naming the row.
   const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
