@@ -145,6 +145,16 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   // A truncation past what a double holds (1000 sigma out) keeps nothing: refused at its line.
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0 mm, sigma: 1 um }, truncate: { lower: 1 mm } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("keeps no probability"));
+  // Widths a double cannot hold: the draws would overflow. Refused at their lines.
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: -1e308, upper: 1e308 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("upper - lower is beyond the range of a double"));
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { triangular: { lower: -1e308, upper: 1e308 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("beyond the range of a double"));
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { lower: -1e308, upper: 1e308 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("beyond the range of a double"));
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0, sigma: 5e307 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("9 sigma is beyond the range of a double"));
+  CHECK(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: -1e300, upper: 1e300 } }\nnodes: {}\n") == "no error");
   // A name that reaches no parameter, and a distribution of the wrong dimension, at its line.
   const std::string scene = "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\nuncertainty:\n  parameters:\n    NAME: DIST\n"
                             "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";
@@ -201,6 +211,10 @@ TEST_CASE("Studies: limits and thresholds in their output's dimension, refused b
   // A value set on an uncertain parameter would be ignored by every sample: refused, at the parameter.
   CHECK_THAT(error_of("", {parse_override("x1=2 mm")}), Contains("study.yaml:5:5") && Contains("x1=2 mm") && Contains("uncertain"));
   CHECK(error_of("", {parse_override("x2=2 mm")}) == "no error");
+  // A distribution on a scene parameter and on the one node parameter it feeds: the node's own
+  // draws replace the scene parameter's, whose distribution would change nothing: refused at it.
+  CHECK_THAT(error_of("    f.x1: { normal: { mean: 2 mm, sigma: 1 um } }\n"),
+             Contains("study.yaml:5:5") && Contains("'x1' has a distribution, and so has every parameter it feeds (f.x1)"));
   // A choice of outputs leaves out the limits and events on the scene's other outputs (a name that
   // is no output of the scene is still refused).
   const std::string two = "params: { x1: 0 mm }\nuncertainty:\n  samples: 8\n  parameters:\n"

@@ -111,6 +111,30 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
                          "'), its distribution is " + p.marginal.dimension.describe());
     }
   }
+  // A scene parameter and a node parameter it feeds, both uncertain: the node's own draws replace
+  // the scene parameter's there (as `run --set node.param` does). Where that leaves the scene
+  // parameter acting nowhere, its distribution would change nothing and its Sobol' indices read
+  // "does not matter": refused. Where it still acts elsewhere, said once.
+  for (const UncertainParameter& p : spec.parameters) {
+    if (p.name.find('.') != std::string::npos) continue;
+    const auto uses = graph.scene_param_uses.find(p.name);
+    if (uses == graph.scene_param_uses.end()) continue;
+    std::string replaced;
+    std::size_t count = 0;
+    for (const SceneParamUse& use : uses->second) {
+      const std::string target = graph.nodes[use.node].name + "." + use.param;
+      if (std::none_of(spec.parameters.begin(), spec.parameters.end(), [&](const UncertainParameter& q) { return q.name == target; }))
+        continue;
+      replaced += (count++ ? ", " : "") + target;
+    }
+    if (count == 0) continue;
+    if (count == uses->second.size())
+      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' has a distribution, and so has every parameter it feeds (" +
+                                                    replaced + "): their own draws replace its draws, so its distribution changes nothing; "
+                                                    "drop the one or the others");
+    spdlog::warn("{}'{}' also feeds {}, which has a distribution of its own: there its draws replace '{}''s", p.where.str(), p.name,
+                 replaced, p.name);
+  }
 }
 
 void leave_out_unstudied(StudySpec& spec, const std::vector<StudyColumn>& columns, const std::set<std::string>& scene_outputs) {

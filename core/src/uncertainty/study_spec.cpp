@@ -142,6 +142,7 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   } else if (lower && upper && !mean && !sigma && !nominal && !tolerance) {
     const double lo = dims.take(*lower, "lower"), hi = dims.take(*upper, "upper");
     if (!(hi > lo)) fail(upper->where, "upper must be greater than lower");
+    if (!std::isfinite(hi - lo)) fail(upper->where, "upper - lower is beyond the range of a double");
     m.a = 0.5 * (lo + hi);
     m.b = (hi - lo) / (6.0 * process_capability);
   } else {
@@ -149,6 +150,9 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
                      "(spec limits with the process capability Cp, default 1)");
   }
   if (!(m.b > 0)) fail(body.where, "sigma must be greater than 0");
+  // The draws reach about 8.3 sigma either side (the quantile at 2^-53): they must stay doubles.
+  if (!std::isfinite(std::abs(m.a) + 9.0 * m.b))
+    fail(body.where, "mean +- 9 sigma is beyond the range of a double: the draws would overflow");
 }
 
 void read_uniform(const RawValue& body, Marginal& m, DimensionCheck& dims) {
@@ -160,6 +164,7 @@ void read_uniform(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   m.a = dims.take(*lower, "lower");
   m.b = dims.take(*upper, "upper");
   if (!(m.b > m.a)) fail(upper->where, "upper must be greater than lower");
+  if (!std::isfinite(m.b - m.a)) fail(upper->where, "upper - lower is beyond the range of a double");
 }
 
 void read_triangular(const RawValue& body, Marginal& m, DimensionCheck& dims) {
@@ -171,6 +176,7 @@ void read_triangular(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   m.a = dims.take(*lower, "lower");
   m.b = dims.take(*upper, "upper");
   if (!(m.b > m.a)) fail(upper->where, "upper must be greater than lower");
+  if (!std::isfinite(m.b - m.a)) fail(upper->where, "upper - lower is beyond the range of a double");
   m.c = mode ? dims.take(*mode, "mode") : 0.5 * (m.a + m.b);
   if (!(m.c >= m.a && m.c <= m.b)) fail(mode->where, "the mode must lie between lower and upper");
 }
