@@ -338,8 +338,13 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     std::signal(SIGTERM, previous_term);
     const SweepSummary& summary = outcome->summary;
     if (summary.stopped) {
-      spdlog::warn("study stopped after {} of {} cases; nothing is reported from a part of the design "
-                   "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
+      if (summary.run == outcome->table.cases.size())
+        spdlog::warn("study stopped while its answers were computed, after all {} cases; nothing is reported "
+                     "(to keep the cases: mechgraph sweep SCENE --study --out FILE, then mechgraph study SCENE --rows FILE)",
+                     summary.run);
+      else
+        spdlog::warn("study stopped after {} of {} cases; nothing is reported from a part of the design "
+                     "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
       return interrupted;
     }
     spdlog::info("study: {} cases in {:.3g} s, {} failed; {} in blocks", summary.run, summary.seconds, summary.failed, summary.in_blocks);

@@ -872,3 +872,20 @@ TEST_CASE("Sobol' bootstrap intervals equal those of resamples drawn one by one,
                                                          Catch::Matchers::WithinAbs(percentile(total[j], 1 - alpha / 2), 1e-12));
   }
 }
+
+TEST_CASE("Studies: asked to stop while the answers are made, they give none and say so", "[uncertainty]") {
+  // Ctrl-C or SIGTERM after the last case: the bootstrap stops drawing and the outcome is marked
+  // stopped (the command then exits 130), where it had finished the answers and exited 0.
+  InProcess r = run_study(ishigami_scene("sobol", 256), 2);
+  REQUIRE_FALSE(r->summary.stopped);
+  const std::atomic<bool> stop{true};
+  host::finish_study(*r, &stop);
+  CHECK(r->summary.stopped);
+  // Not asked: the same answers as before, bit for bit.
+  const std::string json = r->json;
+  InProcess again = run_study(ishigami_scene("sobol", 256), 2);
+  const std::atomic<bool> go_on{false};
+  host::finish_study(*again, &go_on);
+  CHECK_FALSE(again->summary.stopped);
+  CHECK(again->json == json);
+}

@@ -275,8 +275,12 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   return outcome;
 }
 
-void finish_study(StudyOutcome& outcome) {
-  outcome.answers = analyse_study(outcome.spec, outcome.data, outcome.threads);
+void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop) {
+  outcome.answers = analyse_study(outcome.spec, outcome.data, outcome.threads, stop);
+  if (stop && stop->load(std::memory_order_relaxed)) {
+    outcome.summary.stopped = true;  // asked to stop while the answers were made: none are given
+    return;
+  }
   std::ostringstream json;
   JsonWriter w(json);
   write_study_json(w, outcome.spec, outcome.answers);
@@ -306,7 +310,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
   phase_done("cases evaluated");
   if (!outcome->summary.stopped) {
-    finish_study(*outcome);
+    finish_study(*outcome, stop);
     phase_done("answers computed");
   }
   return outcome;

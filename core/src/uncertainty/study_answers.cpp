@@ -113,7 +113,7 @@ void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& 
                       "the threshold of event '" + e.name + "'");
 }
 
-StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads) {
+StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads, const std::atomic<bool>* stop) {
   StudyAnswers answers;
   const std::size_t d = spec.parameters.size();
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
@@ -152,7 +152,8 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
         if (!done[p] && sobol_kept[p] == sobol_kept[o]) group.push_back(p), done[p] = 1;
       std::vector<const SobolSamples*> samples;
       for (std::size_t p : group) samples.push_back(&sobol_samples[p]);
-      std::vector<SobolIndices> indices = sobol_indices(samples, spec.bootstrap, spec.confidence, spec.seed, threads);
+      std::vector<SobolIndices> indices = sobol_indices(samples, spec.bootstrap, spec.confidence, spec.seed, threads, stop);
+      if (stop && stop->load(std::memory_order_relaxed)) return answers;
       for (std::size_t g = 0; g < group.size(); ++g) {
         // An output that does not vary over the samples has no indices: V_j / V is 0 / 0 there, and
         // a 0 with an interval [0, 0] would read as "no parameter matters" (its variance says 0).

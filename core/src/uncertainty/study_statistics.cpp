@@ -332,7 +332,7 @@ SobolOutput prepare(const SobolSamples& f) {
 }  // namespace
 
 std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& samples, std::size_t bootstrap,
-                                        double confidence, std::uint64_t seed, unsigned threads) {
+                                        double confidence, std::uint64_t seed, unsigned threads, const std::atomic<bool>* stop) {
   const std::size_t outputs = samples.size();
   std::vector<SobolIndices> result(outputs);
   if (outputs == 0) return result;
@@ -359,6 +359,7 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
   const std::size_t groups = (bootstrap + resamples_at_once - 1) / resamples_at_once;
   run_chunks(groups, threads, [&] { return Worker{std::vector<std::uint32_t>(n * resamples_at_once), {}}; },
              [&](Worker& w, std::size_t group) {
+               if (stop && stop->load(std::memory_order_relaxed)) return;  // stopped: nothing more is drawn
                const std::size_t first_r = group * resamples_at_once, count = std::min(resamples_at_once, bootstrap - first_r);
                std::fill(w.times.begin(), w.times.end(), 0u);  // lanes past `count` stay 0
                for (std::size_t k = 0; k < count; ++k) {
@@ -376,6 +377,7 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
                    }
                }
              });
+  if (stop && stop->load(std::memory_order_relaxed)) return result;
   for (std::size_t o = 0; o < outputs; ++o) {
     result[o].variance = prepared[o].point.variance;
     for (std::size_t j = 0; j < d; ++j) {

@@ -87,7 +87,8 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
                                                   unsigned threads = 1);
 
 /// Analyses outcome.data into outcome.answers and outcome.json.
-void finish_study(StudyOutcome& outcome);
+/// `stop` (Ctrl-C, SIGTERM) ends it early; outcome.summary.stopped then says so.
+void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop = nullptr);
 
 /// prepare_scene_study, then runs its cases within `budget` on
 /// `threads` and analyses them. summary.stopped: `stop` was set, nothing analysed.

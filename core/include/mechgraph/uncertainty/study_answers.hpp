@@ -4,6 +4,7 @@
 // probability. Values are taken in each output's shown unit (the unit of its column in a sweep's
 // rows), so a study computed in process and one computed from the rows of its shards (written
 // exactly, read back to the same doubles) give the same bits. The JSON gives every number in SI.
+#include <atomic>
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/json_writer.hpp>
 #include <mechgraph/sweep/sweep_runner.hpp>
@@ -83,7 +84,8 @@ std::string confidence_percent(double confidence);
 /// Throws SceneError at the limit's or event's file:line:column.
 void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& outputs);
 
-StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads = 1);
+/// `stop` (Ctrl-C, SIGTERM) ends the analysis early: the answers are then not to be used.
+StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads = 1, const std::atomic<bool>* stop = nullptr);
 
 /// The answers as one JSON object (SI), the study's settings and parameters with them; `more`,
 /// when given, writes further members before the object closes (the command's provenance).

@@ -5,6 +5,7 @@
 // first order, Jansen total) with bootstrap intervals. Every formula and what it promises:
 // docs/methods/uncertainty.md. Deterministic: the same values in the same order give the same
 // bits; the bootstrap draws from counter_hash (sample_design.hpp).
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -83,7 +84,9 @@ struct SobolSamples {
 /// sobol_indices of several outputs over the same N base samples, each result the same as
 /// sobol_indices on that output alone: each resample is drawn once and serves every output.
 /// Throws std::invalid_argument when the outputs differ in N or in the number of parameters.
+/// `stop` (Ctrl-C, SIGTERM) ends the resampling early; the result is then not to be used.
 std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& samples, std::size_t bootstrap,
-                                        double confidence, std::uint64_t seed, unsigned threads = 1);
+                                        double confidence, std::uint64_t seed, unsigned threads = 1,
+                                        const std::atomic<bool>* stop = nullptr);
 
 }  // namespace mechgraph
