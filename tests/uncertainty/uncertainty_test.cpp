@@ -889,3 +889,19 @@ TEST_CASE("Studies: asked to stop while the answers are made, they give none and
   CHECK_FALSE(again->summary.stopped);
   CHECK(again->json == json);
 }
+
+TEST_CASE("Studies: what a study holds beside its cases and its bootstrap's work are budgeted", "[uncertainty]") {
+  // 256 base samples of the Ishigami function with sensitivity: 1280 cases, 50 resamples.
+  const auto study_within = [](double max_memory, double max_work) {
+    WorkBudget budget;
+    budget.max_memory = max_memory;
+    budget.max_work = max_work;
+    return host::run_scene_study(parse_scene(ishigami_scene("sobol", 256), "study.yaml"), uq_registry(), {}, std::nullopt, "", "", "",
+                                 std::nullopt, budget, 1, nullptr);
+  };
+  CHECK_THROWS_WITH(study_within(1e4, 1e12), Contains("study.yaml: the study would hold about") && Contains("--max-memory"));
+  CHECK_THROWS_WITH(study_within(4e9, 5e4), Contains("study.yaml: the study's bootstrap asks for about") && Contains("--max-work"));
+  CHECK(study_within(4e9, 1e9)->answers.cases == 1280);
+  // The design's own cap (values a parameter a case) says how many samples fit.
+  CHECK_THROWS_WITH(run_study(ishigami_scene("sobol", 1'500'000), 1), Contains("samples: 1500000") && Contains("at most 1333333 samples"));
+}

@@ -129,8 +129,12 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   const std::size_t d = spec.parameters.size(), n = spec.samples;
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
   if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_case_cells)
-    throw SceneError("uncertainty: " + std::to_string(spec.evaluations()) + " cases of " + std::to_string(d) + " values are more than " +
-                     std::to_string(max_case_cells) + " values in one study");
+    throw SceneError("uncertainty: samples: " + std::to_string(n) + " make " + std::to_string(spec.evaluations()) + " cases of " +
+                     std::to_string(d) + " values each, more than the " + std::to_string(max_case_cells) +
+                     " values one study's design holds in memory; at most " +
+                     std::to_string(max_case_cells / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
+                     (spec.sensitivity ? " with sensitivity (" + std::to_string(per_sample) + " cases a sample)" : std::string()) +
+                     ", or split the parameters into studies of fewer");
   CaseTable table;
   for (const UncertainParameter& p : spec.parameters) table.variables.push_back({p.name, p.unit});
   table.origin = "uncertainty: " + to_string(spec.method) + ", " + std::to_string(n) + " samples, seed " + std::to_string(spec.seed) +
