@@ -145,6 +145,9 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   // A truncation past what a double holds (1000 sigma out) keeps nothing: refused at its line.
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0 mm, sigma: 1 um }, truncate: { lower: 1 mm } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("keeps no probability"));
+  // A quantile level given twice would print its row twice: refused at the second.
+  CHECK_THAT(error_of("uncertainty:\n  quantiles: [0.5, 0.9, 0.5]\n  parameters:\n    a: { uniform: { lower: 0, upper: 1 } }\nnodes: {}\n"),
+             Contains("study.yaml:2:") && Contains("0.5 is given twice"));
   // Widths a double cannot hold: the draws would overflow. Refused at their lines.
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: -1e308, upper: 1e308 } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("upper - lower is beyond the range of a double"));

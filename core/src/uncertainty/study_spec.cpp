@@ -7,6 +7,7 @@
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -293,6 +294,8 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
     for (const RawValue& item : q->items) {
       const double p = plain_number(item, "a quantile level");
       if (!(p > 0 && p < 1)) fail(item.where, "a quantile level lies between 0 and 1");
+      if (std::find(spec.quantiles.begin(), spec.quantiles.end(), p) != spec.quantiles.end())
+        fail(item.where, "the quantile level " + item.text + " is given twice");
       spec.quantiles.push_back(p);
     }
   }
