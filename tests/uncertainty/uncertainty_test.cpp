@@ -158,6 +158,10 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0, sigma: 5e307 } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("9 sigma is beyond the range of a double"));
   CHECK(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: -1e300, upper: 1e300 } }\nnodes: {}\n") == "no error");
+  // A spread below the spacing of doubles at the mean: every draw would be the mean.
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 1e20, sigma: 1 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("below the spacing of doubles"));
+  CHECK(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 1e20, sigma: 1e6 } }\nnodes: {}\n") == "no error");
   // A name that reaches no parameter, and a distribution of the wrong dimension, at its line.
   const std::string scene = "params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\nuncertainty:\n  parameters:\n    NAME: DIST\n"
                             "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n";

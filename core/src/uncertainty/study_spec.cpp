@@ -154,6 +154,9 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   // The draws reach about 8.3 sigma either side (the quantile at 2^-53): they must stay doubles.
   if (!std::isfinite(std::abs(m.a) + 9.0 * m.b))
     fail(body.where, "mean +- 9 sigma is beyond the range of a double: the draws would overflow");
+  // Nor may the spread vanish in the mean's rounding: every draw would be the mean itself.
+  if (m.a + 9.0 * m.b == m.a && m.a - 9.0 * m.b == m.a)
+    fail(body.where, "sigma is below the spacing of doubles at the mean: every draw would be the mean itself");
 }
 
 void read_uniform(const RawValue& body, Marginal& m, DimensionCheck& dims) {
