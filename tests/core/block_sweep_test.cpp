@@ -96,6 +96,22 @@ TEST_CASE("block path: an output beyond a double in its shown unit fails its cas
   }
 }
 
+TEST_CASE("block path: a node parameter varied beside the scene parameter that feeds it wins, as case by case", "[sweep][blocks]") {
+  // arc.max_lift listed before lift, which feeds it: the node's own value wins on both paths,
+  // whatever the order of the columns (CaseBinder::apply_order).
+  for (const bool node_first : {true, false}) {
+    INFO(node_first);
+    std::vector<VarySpec> vary{parse_vary("arc.max_lift=7mm,9mm"), parse_vary("lift=8mm,8.5mm")};
+    if (!node_first) std::swap(vary[0], vary[1]);
+    const Prepared p = prepare(stages123, make_grid(vary), project_registry());
+    REQUIRE(BlockPlan(p.graph, *p.binder).usable());
+    const Swept alone = sweep(p, 1, 0);
+    const Swept blocks = sweep(p, 1, 256);
+    CHECK(blocks.summary.in_blocks == 4);
+    require_same_rows(blocks, alone);
+  }
+}
+
 TEST_CASE("block path: nodes no case changes are made once and shared by every case", "[sweep][blocks]") {
   // Only the speed varies: the cams are the same for every case.
   const Prepared p = prepare(stages123, make_grid({parse_vary("rpm=3000rpm:8000rpm:11")}), project_registry());

@@ -158,6 +158,11 @@ TEST_CASE("Distributions: errors name file:line:column and the valid names", "[u
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 0, sigma: 5e307 } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("9 sigma is beyond the range of a double"));
   CHECK(error_of("uncertainty:\n  parameters:\n    a: { uniform: { lower: -1e300, upper: 1e300 } }\nnodes: {}\n") == "no error");
+  // Ends near the largest double: the middle is taken without overflowing (a triangular's default
+  // mode, a normal's mean), not read through a missing mode; the normal's draws would overflow.
+  CHECK(error_of("uncertainty:\n  parameters:\n    a: { triangular: { lower: 1e308, upper: 1.7e308 } }\nnodes: {}\n") == "no error");
+  CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { lower: 1e308, upper: 1.7e308 } }\nnodes: {}\n"),
+             Contains("study.yaml:3:") && Contains("9 sigma is beyond the range of a double"));
   // A spread below the spacing of doubles at the mean: every draw would be the mean.
   CHECK_THAT(error_of("uncertainty:\n  parameters:\n    a: { normal: { mean: 1e20, sigma: 1 } }\nnodes: {}\n"),
              Contains("study.yaml:3:") && Contains("below the spacing of doubles"));

@@ -157,9 +157,10 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
       if (binder_.writes_number(v, value)) columns[v][k] = *value.si;
       else cases.fail(k);
     }
-  // Per node, the column of each varied parameter: the last variable that writes it wins, as in apply().
+  // Per node, the column of each varied parameter, written in apply()'s order: where a scene
+  // parameter and a node parameter it reaches are both varied, the node's own wins, as case by case.
   std::vector<std::map<std::string, BlockColumn, std::less<>>> varied(graph.nodes.size());
-  for (std::size_t v = 0; v < targets_.size(); ++v)
+  for (const std::size_t v : binder_.apply_order())
     for (const CaseBinder::Target& t : targets_[v]) varied[t.node][t.spec->name] = BlockColumn{columns[v].data(), 1};
 
   for (std::size_t i : graph.order) {

@@ -144,7 +144,7 @@ void read_normal(const RawValue& body, Marginal& m, DimensionCheck& dims) {
     const double lo = dims.take(*lower, "lower"), hi = dims.take(*upper, "upper");
     if (!(hi > lo)) fail(upper->where, "upper must be greater than lower");
     if (!std::isfinite(hi - lo)) fail(upper->where, "upper - lower is beyond the range of a double");
-    m.a = 0.5 * (lo + hi);
+    m.a = lo + 0.5 * (hi - lo);  // the middle, without overflowing at the ends of the doubles
     m.b = (hi - lo) / (6.0 * process_capability);
   } else {
     fail(body.where, "a normal distribution is { mean, sigma }, { nominal, tolerance[, cp] } or { lower, upper[, cp] } "
@@ -181,8 +181,8 @@ void read_triangular(const RawValue& body, Marginal& m, DimensionCheck& dims) {
   m.b = dims.take(*upper, "upper");
   if (!(m.b > m.a)) fail(upper->where, "upper must be greater than lower");
   if (!std::isfinite(m.b - m.a)) fail(upper->where, "upper - lower is beyond the range of a double");
-  m.c = mode ? dims.take(*mode, "mode") : 0.5 * (m.a + m.b);
-  if (!(m.c >= m.a && m.c <= m.b)) fail(mode->where, "the mode must lie between lower and upper");
+  m.c = mode ? dims.take(*mode, "mode") : m.a + 0.5 * (m.b - m.a);  // default: the middle (no overflow)
+  if (!(m.c >= m.a && m.c <= m.b)) fail((mode ? mode : &body)->where, "the mode must lie between lower and upper");
 }
 
 void read_iso286(const RawValue& body, Marginal& m, DimensionCheck& dims, const Iso286Limits& iso286) {

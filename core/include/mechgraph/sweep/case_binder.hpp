@@ -65,6 +65,9 @@ class CaseBinder {
   };
   /// Per variable, the node parameters it is written to (in the order apply() writes them).
   const std::vector<std::vector<Target>>& targets() const { return targets_; }
+  /// The order apply() writes the variables in (scene parameters, then node parameters: where both
+  /// reach one node parameter, the node's own wins); a block path follows it.
+  const std::vector<std::size_t>& apply_order() const { return apply_order_; }
 
  private:
   const SceneSpec& scene_;
