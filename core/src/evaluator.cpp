@@ -346,7 +346,7 @@ void check_displayable(const GraphNode& node, const std::string& label, const Va
     const UnitScale& u = *parsed;
     double largest = 0.0;
     for (double x : xs) largest = std::max(largest, std::abs(x));
-    if (!std::isfinite(largest / u.scale - u.offset) || !std::isfinite(-largest / u.scale - u.offset))
+    if (!finite_in_unit(largest, u))
       throw EvaluationError(node.where.str() + where_of(node) + " output '" + label + "'" + what + ": " +
                             format_double(largest) + " " + d.si_unit() + " is beyond the range of a double in " + unit +
                             " (the display unit); show it in a larger unit (the scene's units:) or check the inputs");

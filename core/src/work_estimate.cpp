@@ -268,6 +268,8 @@ WorkEstimate estimate_work(const Graph& graph) {
   return e;
 }
 
+std::string budget_amount(double v) { return amount(v); }
+
 void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudget& budget, double cases,
                        bool writes_curves, double concurrent, const std::string& where) {
   const auto biggest = [&](auto key) {

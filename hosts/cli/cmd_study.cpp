@@ -300,10 +300,13 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   const std::optional<std::string> outputs = vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt;
 
   std::unique_ptr<StudyOutcome> outcome;
+  WorkBudget budget = work_budget(vm);
+  if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
   if (vm.count("rows")) {
-    // The design again (it depends on the seed alone), the values from the rows.
+    // The design again (it depends on the seed alone), the values from the rows; what the study
+    // holds and its bootstrap within the budget, as in process.
     const unsigned workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers);
+    outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers, &budget);
     outcome->threads = workers;
     const std::string rows_file = vm["rows"].as<std::string>();
     outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
@@ -320,10 +323,24 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
       spdlog::warn("study: {} has no manifest beside it ({}): whether its rows come from this scene and these --set values "
                    "cannot be checked", rows_file, manifest_path(rows_file).filename().string());
     }
-    finish_study(*outcome);
+    // Ctrl-C or SIGTERM while the answers are made: none are reported (exit 130), as in process.
+    study_stop = false;
+    auto previous_int = std::signal(SIGINT, request_study_stop);
+    auto previous_term = std::signal(SIGTERM, request_study_stop);
+    try {
+      finish_study(*outcome, &study_stop);
+    } catch (...) {
+      std::signal(SIGINT, previous_int);
+      std::signal(SIGTERM, previous_term);
+      throw;
+    }
+    std::signal(SIGINT, previous_int);
+    std::signal(SIGTERM, previous_term);
+    if (outcome->summary.stopped) {
+      spdlog::warn("study stopped while its answers were computed from {}; nothing is reported", excerpt(rows_file, 200));
+      return interrupted;
+    }
   } else {
-    WorkBudget budget = work_budget(vm);
-    if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
     study_stop = false;
     auto previous_int = std::signal(SIGINT, request_study_stop);
     auto previous_term = std::signal(SIGTERM, request_study_stop);

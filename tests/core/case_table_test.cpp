@@ -128,7 +128,9 @@ TEST_CASE("Case tables: a grid's points in its unit are the doubles those number
   };
   for (const Range& r : {Range{"rpm=3000rpm:7000rpm:9", "rpm", 3000, 7000, 9}, Range{"a=0.1mm:0.7:7", "mm", 0.1, 0.7, 7},
                          Range{"t=20degC:30degC:11", "degC", 20, 30, 11}, Range{"x=0:1:11", "", 0, 1, 11},
-                         Range{"phi=-20deg:40deg:13", "deg", -20, 40, 13}}) {
+                         Range{"phi=-20deg:40deg:13", "deg", -20, 40, 13}, Range{"lash=1.1mm:1.3mm:3", "mm", 1.1, 1.3, 3},
+                         Range{"x=0.1mm:0.4mm:4", "mm", 0.1, 0.4, 4}, Range{"t=+5degC:10degC:3", "degC", 5, 10, 3},
+                         Range{"r=3000:7000rpm:5", "rpm", 3000, 7000, 5}}) {
     INFO(r.vary);
     const CaseTable table = make_grid({parse_vary(r.vary)});
     REQUIRE(table.cases.size() == static_cast<std::size_t>(r.n));

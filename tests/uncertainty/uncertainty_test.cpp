@@ -914,6 +914,14 @@ TEST_CASE("Studies: what a study holds beside its cases and its bootstrap's work
   CHECK_THROWS_WITH(study_within(1e4, 1e12), Contains("study.yaml: the study would hold about") && Contains("--max-memory"));
   CHECK_THROWS_WITH(study_within(4e9, 5e4), Contains("study.yaml: the study's bootstrap asks for about") && Contains("--max-work"));
   CHECK(study_within(4e9, 1e9)->answers.cases == 1280);
-  // The design's own cap (values a parameter a case) says how many samples fit.
+  // The design's own cap (values a parameter a case) says how many samples fit, and comes before
+  // the memory budget (raising --max-memory could not lift it).
+  {
+    WorkBudget tight;
+    tight.max_memory = 1e4;
+    CHECK_THROWS_WITH(host::run_scene_study(parse_scene(ishigami_scene("sobol", 1'500'000), "study.yaml"), uq_registry(), {}, std::nullopt,
+                                            "", "", "", std::nullopt, tight, 1, nullptr),
+                      Contains("at most 1333333 samples"));
+  }
   CHECK_THROWS_WITH(run_study(ishigami_scene("sobol", 1'500'000), 1), Contains("samples: 1500000") && Contains("at most 1333333 samples"));
 }

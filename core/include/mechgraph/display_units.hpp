@@ -8,6 +8,7 @@
 #include <mechgraph/scene.hpp>
 #include <mechgraph/units.hpp>
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,5 +49,11 @@ std::string unit_without_reference(const std::string& unit);
 /// parse_unit(unit), parsed once per thread and kept (a sweep shows the same few units in every
 /// case); nullopt for a unit that does not parse. The reference lives as long as the thread.
 const std::optional<UnitScale>& parse_unit_cached(std::string_view unit);
+
+/// Whether SI values up to `magnitude` either side of 0 stay finite shown in `u` (x / scale -
+/// offset): 1e300 m does not in nm. What a run refuses to show, and the block path with it.
+inline bool finite_in_unit(double magnitude, const UnitScale& u) {
+  return std::isfinite(magnitude / u.scale - u.offset) && std::isfinite(-magnitude / u.scale - u.offset);
+}
 
 }  // namespace mechgraph

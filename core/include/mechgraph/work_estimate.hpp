@@ -124,4 +124,7 @@ WorkEstimate estimate_work(const Graph& graph);
 void check_work_budget(const Graph& graph, const WorkEstimate& estimate, const WorkBudget& budget, double cases,
                        bool writes_curves, double concurrent = 1, const std::string& where = {});
 
+/// An amount as the budget messages write it: whole below 10^6, else three significant digits.
+std::string budget_amount(double v);
+
 }  // namespace mechgraph

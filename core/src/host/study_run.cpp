@@ -231,22 +231,13 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
 
 namespace mechgraph::host {
 
-namespace {
-
-std::string rounded(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, v < 1e6 ? "%.0f" : "%.3g", v);
-  return text;
-}
-
-}  // namespace
-
 // What a study holds and does beyond its cases (check_sweep_budget counts those): the design's
 // table (a value a parameter a case), every output's value of every case, the Sobol' rows (the
 // base samples' outputs, and a copy laid out for the resamples) and the bootstrap's draws; the
 // bootstrap's work (each resample passes over every output's rows: N (d + 2) values). Refused
 // before the design is made, naming the term and the flag that raises the budget.
-void check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file) {
+double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file) {
+  check_design_size(spec);  // the design's own cap first: raising a budget cannot lift it
   const double n = static_cast<double>(spec.samples), d = static_cast<double>(spec.parameters.size());
   const double cases = static_cast<double>(spec.evaluations()), out = static_cast<double>(outputs);
   struct Term {
@@ -265,16 +256,17 @@ void check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBu
     if (t.amount > biggest->amount) biggest = &t;
   }
   if (!(held <= budget.max_memory))
-    throw SceneError(file + ": the study would hold about " + rounded(held / (1 << 20)) + " MiB beside its cases (" +
+    throw SceneError(file + ": the study would hold about " + budget_amount(held / (1 << 20)) + " MiB beside its cases (" +
                      std::to_string(spec.evaluations()) + " cases, " + std::to_string(outputs) + " outputs), more than the budget of " +
-                     rounded(budget.max_memory / (1 << 20)) + " MiB; the biggest term is " + biggest->what +
-                     ". Fewer samples or outputs, or raise the budget with --max-memory " + rounded(held * 1.01));
+                     budget_amount(budget.max_memory / (1 << 20)) + " MiB; the biggest term is " + biggest->what +
+                     ". Fewer samples or outputs, or raise the budget with --max-memory " + budget_amount(held * 1.01));
   const double bootstrap = spec.sensitivity ? static_cast<double>(spec.bootstrap) * n * (1.0 + out * (d + 2.0)) : 0.0;
   if (!(bootstrap <= budget.max_work))
-    throw SceneError(file + ": the study's bootstrap asks for about " + rounded(bootstrap) + " work items (" + std::to_string(spec.bootstrap) +
+    throw SceneError(file + ": the study's bootstrap asks for about " + budget_amount(bootstrap) + " work items (" + std::to_string(spec.bootstrap) +
                      " resamples of " + std::to_string(spec.samples) + " base samples, " + std::to_string(outputs) +
-                     " outputs), more than the budget of " + rounded(budget.max_work) +
-                     ". Fewer resamples (bootstrap:), or raise the budget with --max-work " + rounded(bootstrap * 1.01));
+                     " outputs), more than the budget of " + budget_amount(budget.max_work) +
+                     ". Fewer resamples (bootstrap:), or raise the budget with --max-work " + budget_amount(bootstrap * 1.01));
+  return held;
 }
 
 RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue>& block) {
@@ -304,7 +296,7 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
-                                                  unsigned threads, const WorkBudget* budget) {
+                                                  unsigned threads, const WorkBudget* budget, double* held) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
@@ -317,7 +309,10 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   outcome->columns = study_columns(outcome->graph);
   if (outputs) leave_out_unstudied(outcome->spec, outcome->columns, scene_outputs);
   check_study_outputs(outcome->spec, outcome->columns);
-  if (budget) check_study_budget(outcome->spec, outcome->columns.size(), *budget, outcome->graph.file);
+  if (budget) {
+    const double own = check_study_budget(outcome->spec, outcome->columns.size(), *budget, outcome->graph.file);
+    if (held) *held = own;
+  }
   outcome->table = make_study_cases(outcome->spec, threads);
   return outcome;
 }
@@ -346,13 +341,16 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
     spdlog::debug("study: {} in {:.3f} s", what, std::chrono::duration<double>(now - phase_start).count());
     phase_start = now;
   };
-  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads, &budget);
+  double held = 0.0;  // what the study holds beside its cases: the cases get the rest of the memory budget
+  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads, &budget, &held);
   phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
   std::vector<std::size_t> all(outcome->table.cases.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   outcome->threads = threads;
-  check_sweep_budget(outcome->graph, binder, outcome->table, all, budget, threads);
+  WorkBudget for_cases = budget;
+  for_cases.max_memory = budget.max_memory - held;  // positive: check_study_budget kept held within it
+  check_sweep_budget(outcome->graph, binder, outcome->table, all, for_cases, threads);
   phase_done("work budget checked");
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
   phase_done("cases evaluated");

@@ -174,7 +174,7 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
   struct Requested {
     const double* column;
     std::size_t stride;
-    double scale, offset;
+    UnitScale shown;  // scale 1, offset 0 where the output is shown in SI
   };
   std::vector<Requested> requested;
   for (const RequestedOutput& o : graph.outputs) {
@@ -184,16 +184,14 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
     const std::string unit = graph.display_units.unit_for(o.spec->dimension, o.spec->display_unit);
     const std::optional<UnitScale> shown = unit.empty() ? std::nullopt : parse_unit_cached(unit);
     requested.push_back({from.scalars[static_cast<std::size_t>(port - from.ports.begin())].data(), from.varied ? 1u : 0u,
-                         shown ? shown->scale : 1.0, shown ? shown->offset : 0.0});
+                         shown.value_or(UnitScale{})});
   }
   for (std::size_t k = 0; k < n; ++k) {
     if (cases.failed(k)) continue;
     // A number beyond the range of a double in its shown unit (1e300 m in nm) leaves its case to
     // the per-case path, which refuses it with the run's message: the rows never hold "inf".
-    const bool displayable = std::all_of(requested.begin(), requested.end(), [k](const Requested& r) {
-      const double a = std::abs(r.column[k * r.stride]);
-      return std::isfinite(a / r.scale - r.offset) && std::isfinite(-a / r.scale - r.offset);
-    });
+    const bool displayable = std::all_of(requested.begin(), requested.end(),
+                                         [k](const Requested& r) { return finite_in_unit(std::abs(r.column[k * r.stride]), r.shown); });
     if (!displayable) continue;
     std::vector<Value>& values = outcomes[k].outputs.emplace();
     values.reserve(requested.size());

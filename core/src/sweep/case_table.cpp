@@ -197,18 +197,27 @@ bool append_shown_number(std::string& out, double x, const ReadsBack& reads_back
 template <class ReadsBack>
 bool append_fewest_digits(std::string& out, double x, const ReadsBack& reads_back) {
   char buffer[48];
-  // From as many digits as the integer part has: fewer would switch to the exponent form (1.2e+02).
-  const int integer_digits = std::abs(x) >= 1.0 ? static_cast<int>(std::floor(std::log10(std::abs(x)))) + 1 : 1;
-  for (int digits = std::clamp(integer_digits, 1, 15); digits <= 15; ++digits) {
+  const auto with = [&](int digits) -> std::string_view {
     const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits);
-    if (ec != std::errc()) return false;
-    const std::string_view text(buffer, static_cast<std::size_t>(end - buffer));
-    if (reads_back(read_decimal(text))) {
-      out.append(text);
-      return true;
-    }
+    return ec == std::errc() ? std::string_view(buffer, static_cast<std::size_t>(end - buffer)) : std::string_view();
+  };
+  const auto fits = [&](int digits) {
+    const std::string_view text = with(digits);
+    return !text.empty() && reads_back(read_decimal(text));
+  };
+  // From as many digits as the integer part has (fewer would switch to the exponent form,
+  // 1.2e+02) to 15; none if 15 do not read back. The fewest that do, by bisection (more digits
+  // come nearer x, so once they read back they keep doing so, but for the odd rounding a
+  // bisection may step over: what it finds reads back, checked).
+  int low = std::clamp(std::abs(x) >= 1.0 ? static_cast<int>(std::floor(std::log10(std::abs(x)))) + 1 : 1, 1, 15), high = 15;
+  if (!fits(high)) return false;
+  while (low < high) {
+    const int middle = (low + high) / 2;
+    if (fits(middle)) high = middle;
+    else low = middle + 1;
   }
-  return false;
+  out.append(with(high));
+  return true;
 }
 
 // Whether a cell's text is a number as JSON writes one (-?(0|[1-9]d*)(.d+)?([eE][+-]?d+)?): such a
@@ -295,8 +304,9 @@ std::optional<std::pair<double, double>> range_numbers(const std::string& from_t
   if (!u) return std::nullopt;
   const auto number = [](const std::string& text) -> std::optional<double> {
     double x = 0.0;
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
-    if (ec != std::errc() || end == text.data()) return std::nullopt;
+    const std::size_t sign = text.starts_with('+') ? 1 : 0;  // "+5degC" as parse_quantity reads it
+    const auto [end, ec] = std::from_chars(text.data() + sign, text.data() + text.size(), x);
+    if (ec != std::errc() || end == text.data() + sign) return std::nullopt;
     return x;
   };
   const std::optional<double> a = number(from_text), b = number(to_text);
@@ -437,8 +447,12 @@ VarySpec parse_vary(std::string_view text) {
       if (k == 0 || k == n - 1) {
         x = k == 0 ? from.value : to.value;  // the ends exactly as written
       } else if (numbers) {
+        // The point in the unit at 15 significant digits, as it would be written (1.1:1.3:3 has
+        // 1.2, not the 1.2000000000000002 of the arithmetic), then read as that cell would be.
         const UnitScale& u = *parse_unit_cached(spec.unit);
-        x = (between(numbers->first, numbers->second, t) + u.offset) * u.scale;
+        std::string written;
+        append_printf_g15(written, between(numbers->first, numbers->second, t));
+        x = (read_decimal(written) + u.offset) * u.scale;
       } else {
         // Ends in different units: evenly spaced in SI, each put on the numbers of the range's
         // unit (expressible_in) so that its row reads back to it.

@@ -125,7 +125,7 @@ std::vector<double> cholesky(const StudySpec& spec) {
 
 }  // namespace
 
-CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
+void check_design_size(const StudySpec& spec) {
   const std::size_t d = spec.parameters.size(), n = spec.samples;
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
   if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_case_cells)
@@ -135,6 +135,12 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
                      std::to_string(max_case_cells / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
                      (spec.sensitivity ? " with sensitivity (" + std::to_string(per_sample) + " cases a sample)" : std::string()) +
                      ", or split the parameters into studies of fewer");
+}
+
+CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
+  const std::size_t d = spec.parameters.size(), n = spec.samples;
+  const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
+  check_design_size(spec);
   CaseTable table;
   for (const UncertainParameter& p : spec.parameters) table.variables.push_back({p.name, p.unit});
   table.origin = "uncertainty: " + to_string(spec.method) + ", " + std::to_string(n) + " samples, seed " + std::to_string(spec.seed) +

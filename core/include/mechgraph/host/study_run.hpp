@@ -81,16 +81,17 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 /// Reads the study (`block` over the scene's), builds and checks its graph and makes its design
 /// (on `threads` workers, the same table on any number), running nothing: the outcome's spec,
 /// scene, graph, columns and table. With a `budget`, what the study holds beside its cases and
-/// its bootstrap's work are checked against it first (check_study_budget).
+/// its bootstrap's work are checked against it first (check_study_budget; `held` gets the bytes).
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
-                                                  unsigned threads = 1, const WorkBudget* budget = nullptr);
+                                                  unsigned threads = 1, const WorkBudget* budget = nullptr, double* held = nullptr);
 
 /// The memory a study holds beside its cases (the design, the outputs' values, the Sobol' rows
 /// and bootstrap draws) against budget.max_memory, its bootstrap's work against budget.max_work;
-/// throws SceneError "FILE: ..." naming the biggest term and the flag that raises the budget.
-void check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file);
+/// throws SceneError "FILE: ..." naming the biggest term and the flag that raises the budget (the
+/// design's own cap, check_design_size, first). Returns the bytes held.
+double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file);
 
 /// Analyses outcome.data into outcome.answers and outcome.json.
 /// `stop` (Ctrl-C, SIGTERM) ends it early; outcome.summary.stopped then says so.

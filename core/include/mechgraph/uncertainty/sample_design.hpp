@@ -56,4 +56,8 @@ class UnitDesign {
 /// not a valid correlation matrix (naming the first of them).
 CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 
+/// The design's own cap: at most max_case_cells values (cases times parameters) in its table.
+/// Throws SceneError naming the samples and the largest number that fits.
+void check_design_size(const StudySpec& spec);
+
 }  // namespace mechgraph
