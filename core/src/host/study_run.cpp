@@ -237,7 +237,7 @@ namespace mechgraph::host {
 // bootstrap's work (each resample passes over every output's rows: N (d + 2) values). Refused
 // before the design is made, naming the term and the flag that raises the budget.
 double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file) {
-  check_design_size(spec);  // the design's own cap first: raising a budget cannot lift it
+  check_design_size(spec);  // the design's own cap first: no budget flag removes it
   const double n = static_cast<double>(spec.samples), d = static_cast<double>(spec.parameters.size());
   const double cases = static_cast<double>(spec.evaluations()), out = static_cast<double>(outputs);
   struct Term {
