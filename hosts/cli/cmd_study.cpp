@@ -41,6 +41,27 @@ extern "C" void request_study_stop(int signal) {
   std::signal(signal, SIG_DFL);
 }
 
+// While it lives, Ctrl-C and SIGTERM set study_stop (a second one ends the process); the handlers
+// before it are put back after, whether the work returned or threw.
+class StopOnSignals {
+ public:
+  StopOnSignals() {
+    study_stop = false;
+    previous_int_ = std::signal(SIGINT, request_study_stop);
+    previous_term_ = std::signal(SIGTERM, request_study_stop);
+  }
+  ~StopOnSignals() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+  StopOnSignals(const StopOnSignals&) = delete;
+  StopOnSignals& operator=(const StopOnSignals&) = delete;
+
+ private:
+  void (*previous_int_)(int) = SIG_DFL;
+  void (*previous_term_)(int) = SIG_DFL;
+};
+
 std::string number(double x) {
   char buffer[32];
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 6);
@@ -324,35 +345,19 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
                    "cannot be checked", rows_file, manifest_path(rows_file).filename().string());
     }
     // Ctrl-C or SIGTERM while the answers are made: none are reported (exit 130), as in process.
-    study_stop = false;
-    auto previous_int = std::signal(SIGINT, request_study_stop);
-    auto previous_term = std::signal(SIGTERM, request_study_stop);
-    try {
+    {
+      const StopOnSignals signals;
       finish_study(*outcome, &study_stop);
-    } catch (...) {
-      std::signal(SIGINT, previous_int);
-      std::signal(SIGTERM, previous_term);
-      throw;
     }
-    std::signal(SIGINT, previous_int);
-    std::signal(SIGTERM, previous_term);
     if (outcome->summary.stopped) {
       spdlog::warn("study stopped while its answers were computed from {}; nothing is reported", excerpt(rows_file, 200));
       return interrupted;
     }
   } else {
-    study_stop = false;
-    auto previous_int = std::signal(SIGINT, request_study_stop);
-    auto previous_term = std::signal(SIGTERM, request_study_stop);
-    try {
+    {
+      const StopOnSignals signals;
       outcome = run_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, budget, threads, &study_stop);
-    } catch (...) {
-      std::signal(SIGINT, previous_int);
-      std::signal(SIGTERM, previous_term);
-      throw;
     }
-    std::signal(SIGINT, previous_int);
-    std::signal(SIGTERM, previous_term);
     const SweepSummary& summary = outcome->summary;
     if (summary.stopped) {
       if (summary.run == outcome->table.cases.size())
