@@ -8,6 +8,7 @@
 #include "line_reader.hpp"
 #include "options.hpp"
 #include "provenance.hpp"
+#include "stop_on_signals.hpp"
 #include "results_folder.hpp"
 #include "study_page.hpp"
 #include <mechgraph/host/study_run.hpp>
@@ -26,7 +27,6 @@
 #include <atomic>
 #include <charconv>
 #include <cmath>
-#include <csignal>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -34,33 +34,6 @@
 
 namespace mechgraph::cli {
 namespace {
-
-std::atomic<bool> study_stop{false};
-extern "C" void request_study_stop(int signal) {
-  study_stop = true;
-  std::signal(signal, SIG_DFL);
-}
-
-// While it lives, Ctrl-C and SIGTERM set study_stop (a second one ends the process); the handlers
-// before it are put back after, whether the work returned or threw.
-class StopOnSignals {
- public:
-  StopOnSignals() {
-    study_stop = false;
-    previous_int_ = std::signal(SIGINT, request_study_stop);
-    previous_term_ = std::signal(SIGTERM, request_study_stop);
-  }
-  ~StopOnSignals() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-  StopOnSignals(const StopOnSignals&) = delete;
-  StopOnSignals& operator=(const StopOnSignals&) = delete;
-
- private:
-  void (*previous_int_)(int) = SIG_DFL;
-  void (*previous_term_)(int) = SIG_DFL;
-};
 
 std::string number(double x) {
   char buffer[32];
@@ -347,7 +320,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     // Ctrl-C or SIGTERM while the answers are made: none are reported (exit 130), as in process.
     {
       const StopOnSignals signals;
-      finish_study(*outcome, &study_stop);
+      finish_study(*outcome, &stop_on_signals_flag());
     }
     if (outcome->summary.stopped) {
       spdlog::warn("study stopped while its answers were computed from {}; nothing is reported", excerpt(rows_file, 200));
@@ -356,7 +329,8 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   } else {
     {
       const StopOnSignals signals;
-      outcome = run_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, budget, threads, &study_stop);
+      outcome = run_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, budget, threads,
+                                &stop_on_signals_flag());
     }
     const SweepSummary& summary = outcome->summary;
     if (summary.stopped) {

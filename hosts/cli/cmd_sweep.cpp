@@ -3,6 +3,7 @@
 //                 [--format csv|jsonl] [--cache-size N] [--force]
 #include "cli.hpp"
 #include "options.hpp"
+#include "stop_on_signals.hpp"
 #include "sweep_file.hpp"
 #include "sweep_fingerprint.hpp"
 #include "sweep_progress.hpp"
@@ -22,7 +23,6 @@
 #include <algorithm>
 #include <chrono>
 #include <atomic>
-#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -33,30 +33,6 @@
 namespace mechgraph::cli {
 namespace {
 
-std::atomic<bool> stop_requested{false};
-
-extern "C" void request_stop(int signal) {
-  stop_requested = true;
-  std::signal(signal, SIG_DFL);  // a second Ctrl-C ends the process at once
-}
-
-// Ctrl-C and Slurm's SIGTERM let the started cases finish and their rows land.
-class StopOnSignal {
- public:
-  StopOnSignal() {
-    stop_requested = false;
-    previous_int_ = std::signal(SIGINT, request_stop);
-    previous_term_ = std::signal(SIGTERM, request_stop);
-  }
-  ~StopOnSignal() {
-    std::signal(SIGINT, previous_int_);
-    std::signal(SIGTERM, previous_term_);
-  }
-
- private:
-  void (*previous_int_)(int);
-  void (*previous_term_)(int);
-};
 
 struct Shard {
   std::size_t index = 0, count = 1;
@@ -215,7 +191,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   WorkBudget budget = work_budget(vm);
   if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
   check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
-  options.stop = &stop_requested;
+  options.stop = &stop_on_signals_flag();
 
   SweepManifest manifest;
   manifest.sweep = sweep_fingerprint(scene_file, sets, table, graph, format);
@@ -267,7 +243,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   MemoCache cache(cache_size);
   SweepSummary summary;
   {
-    StopOnSignal on_signal;
+    const StopOnSignals on_signal;  // Ctrl-C and Slurm's SIGTERM let the started cases finish and their rows land
     summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
       sequence(std::move(r));
       progress.update(written, failed);
