@@ -44,8 +44,11 @@ fuzz_one() {
   mkdir -p "$corpus"
   local seeds=(tests/fuzz/corpus/$name)
   [ "$t" = fuzz_scene ] && seeds+=(scenes)
+  # libFuzzer stops itself at -max_total_time and fails an input slower than -timeout; should the
+  # process hang all the same (in its own exit, say), timeout ends it and the run fails with its
+  # log, rather than CI waiting out its whole limit.
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-    build-fuzz/fuzz/"$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
+    timeout -k 30 $((seconds + 120)) build-fuzz/fuzz/"$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=8192 \
     -print_final_stats=1 -artifact_prefix=build-fuzz/artifacts/"$name"- "$corpus" "${seeds[@]}" 2> build-fuzz/"$t".log
 }
 status=0
