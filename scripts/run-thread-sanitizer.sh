@@ -17,10 +17,11 @@ cmake --build build-tsan --parallel "$(nproc)" --target mechgraph_thread_tests m
 cd build-tsan
 # halt_on_error: the first race ends the test program with TSan's exit code (66), failing the run;
 # the instrumented `mechgraph` the CLI tests start reports its races the same way.
-# A deadlock would hang the run: timeout ends it (exit 124) well inside CI's limit.
+# A deadlock would hang the run: timeout ends it (exit 124), its output shown, rather than CI
+# waiting out its whole limit with nothing said.
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4" timeout -k 30 1800 tests/mechgraph_thread_tests "~[slow]"
 tsan_runtime=$(g++ -print-file-name=libtsan.so)
 LD_PRELOAD="$tsan_runtime" TSAN_OPTIONS="halt_on_error=1 report_signal_unsafe=0" \
   PYTHONPATH="$PWD/lib/python3.11/dist-packages" MECHGRAPH_SOURCE_DIR="$PWD/.." MECHGRAPH_BINARY_DIR="$PWD" \
   MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE=1 \
-  timeout -k 30 900 /usr/bin/python3 -m pytest -q -p no:cacheprovider ../python/tests/test_sweep.py ../python/tests/test_interrupt.py
+  timeout -k 30 1800 /usr/bin/python3 -m pytest -q -p no:cacheprovider ../python/tests/test_sweep.py ../python/tests/test_interrupt.py
