@@ -65,7 +65,12 @@ for t in "${targets[@]}"; do
 done
 wait
 for t in "${targets[@]}"; do
-  if [ "$(cat build-fuzz/"$t".status 2>/dev/null)" != 0 ]; then
+  code=$(cat build-fuzz/"$t".status 2>/dev/null || echo none)
+  if [ "$code" = 124 ] || [ "$code" = 137 ]; then
+    echo "!! $t did not end within $((seconds + 120)) s (hung?); killed by timeout, the log in build-fuzz/$t.log:" >&2
+    tail -40 build-fuzz/"$t".log >&2
+    status=1
+  elif [ "$code" != 0 ]; then
     echo "!! $t found a problem; its input is in build-fuzz/artifacts/, the log in build-fuzz/$t.log:" >&2
     tail -40 build-fuzz/"$t".log >&2
     status=1

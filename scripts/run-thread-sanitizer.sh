@@ -19,9 +19,15 @@ cd build-tsan
 # the instrumented `mechgraph` the CLI tests start reports its races the same way.
 # A deadlock would hang the run: timeout ends it (exit 124), its output shown, rather than CI
 # waiting out its whole limit with nothing said.
-TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4" timeout -k 30 1800 tests/mechgraph_thread_tests "~[slow]"
+bounded() {
+  local code=0
+  timeout -k 30 1800 "$@" || code=$?
+  if [ "$code" = 124 ] || [ "$code" = 137 ]; then echo "run-thread-sanitizer: $* did not end within 1800 s (hung?)" >&2; fi
+  return "$code"
+}
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 history_size=4" bounded tests/mechgraph_thread_tests "~[slow]"
 tsan_runtime=$(g++ -print-file-name=libtsan.so)
 LD_PRELOAD="$tsan_runtime" TSAN_OPTIONS="halt_on_error=1 report_signal_unsafe=0" \
   PYTHONPATH="$PWD/lib/python3.11/dist-packages" MECHGRAPH_SOURCE_DIR="$PWD/.." MECHGRAPH_BINARY_DIR="$PWD" \
   MPLBACKEND=Agg PYTHONDONTWRITEBYTECODE=1 \
-  timeout -k 30 1800 /usr/bin/python3 -m pytest -q -p no:cacheprovider ../python/tests/test_sweep.py ../python/tests/test_interrupt.py
+  bounded /usr/bin/python3 -m pytest -q -p no:cacheprovider ../python/tests/test_sweep.py ../python/tests/test_interrupt.py
