@@ -128,7 +128,13 @@ class SceneReader {
     }
     if (const YAML::Node o = root["outputs"]; o && !o.IsNull()) {
       if (!o.IsSequence()) fail(at(o), "expected outputs as a list of node.port");
-      for (const auto& item : o) scene.outputs.push_back(parse_port_ref(scalar(item, "node.port"), at(item)));
+      for (const auto& item : o) {
+        PortRef ref = parse_port_ref(scalar(item, "node.port"), at(item));
+        if (const PortRef* earlier = listed_before(scene.outputs, ref))
+          fail(ref.where, "output '" + ref.str() + "' is listed twice in 'outputs' (first at line " +
+                              std::to_string(earlier->where.line) + "): list it once");
+        scene.outputs.push_back(std::move(ref));
+      }
     }
     if (const YAML::Node r = root["report"]; r && !r.IsNull()) {
       if (r.IsSequence())
@@ -252,6 +258,12 @@ PortRef parse_port_ref(std::string_view text, const SourceLocation& where) {
   if (dot == std::string_view::npos || dot == 0 || dot + 1 == text.size() || text.find('.', dot + 1) != std::string_view::npos)
     throw_scene_error_at(where, "expected 'node.port', found '" + std::string(text) + "'");
   return {std::string(text.substr(0, dot)), std::string(text.substr(dot + 1)), where};
+}
+
+const PortRef* listed_before(const std::vector<PortRef>& list, const PortRef& ref) {
+  for (const PortRef& earlier : list)
+    if (earlier.node == ref.node && earlier.port == ref.port) return &earlier;
+  return nullptr;
 }
 
 RawValue parse_raw_value(std::string_view text, const SourceLocation& where) {

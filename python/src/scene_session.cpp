@@ -40,7 +40,12 @@ SceneSpec SceneSession::with_outputs(const std::vector<std::string>& outputs) co
   if (!outputs.empty()) {
     scene.outputs.clear();
     scene.report.clear();
-    for (const std::string& o : outputs) scene.outputs.push_back(parse_port_ref(o, {"outputs=" + o, 0, 0}));
+    for (const std::string& o : outputs) {
+      PortRef ref = parse_port_ref(o, {"outputs=" + o, 0, 0});
+      if (listed_before(scene.outputs, ref))
+        throw SceneError("outputs: '" + ref.str() + "' is listed twice; each output is one value (one column): list it once");
+      scene.outputs.push_back(std::move(ref));
+    }
   }
   return scene;
 }

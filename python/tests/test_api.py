@@ -92,6 +92,13 @@ def test_unknown_parameter_names_the_valid_ones(scenes):
     assert "rpm" in str(e.value)
 
 
+def test_an_output_listed_twice_is_refused(scenes):
+    # Before, the repeat was shown once without a word.
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    with pytest.raises(mechgraph.SceneError, match="'kurz.max_lift' is listed twice"):
+        scene.run(outputs=["kurz.max_lift", "kurz.max_lift"])
+
+
 def test_infeasible_design_is_an_evaluation_error_naming_the_node(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     with pytest.raises(mechgraph.EvaluationError) as e:

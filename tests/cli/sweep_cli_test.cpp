@@ -120,6 +120,9 @@ TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {
   CHECK(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --cases x.csv").exit_code == 2);
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --sample len=1mm:2mm").err, Contains("--sample needs --n"));
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --outputs c.curv").err, Contains("did you mean 'curve'"));
+  const auto twice = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --outputs s.sum,s.sum");
+  CHECK(twice.exit_code == 2);  // before: one column, without a word
+  CHECK_THAT(twice.err, Contains("--outputs: 's.sum' is listed twice; each output is one column: list it once"));
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --shard 3/3").err, Contains("needs 0 <= I < N"));
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --resume").err, Contains("--resume needs --out"));
   const auto shard = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1mm:2mm:2 --shard auto");

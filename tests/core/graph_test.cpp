@@ -93,6 +93,9 @@ TEST_CASE("scene errors carry file:line:column and the valid choices", "[graph]"
   expect_scene_error("nodes: { a: { type: test.constant, params: { value: 1 mm } }\n", "scene.yaml:", "YAML syntax");
   expect_scene_error("nodes: { a: { type: test.constant, params: { value: 1 mm } } }\n", "scene.yaml:1:1:",
                      "requests no outputs");
+  // Before, the repeat was shown once without a word.
+  expect_scene_error("nodes: { a: { type: test.constant, params: { value: 1 mm } } }\noutputs: [a.out,\n  a.out]\n",
+                     "scene.yaml:3:3:", "output 'a.out' is listed twice in 'outputs' (first at line 2): list it once");
 }
 
 TEST_CASE("connections are checked for kind, dimension and count at load", "[graph]") {

@@ -140,5 +140,8 @@ std::optional<CellRef> parse_cell_ref(std::string_view text, const SourceLocatio
 
 /// Splits "node.port"; throws SceneError at `where` if malformed.
 PortRef parse_port_ref(std::string_view text, const SourceLocation& where);
+/// The entry of `list` naming the same output as `ref` (node.port), or null. A list of outputs
+/// names each once: a repeat would be shown once without a word (scene, --outputs, Python).
+const PortRef* listed_before(const std::vector<PortRef>& list, const PortRef& ref);
 
 }  // namespace mechgraph

@@ -26,7 +26,10 @@ Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const 
     for (std::size_t comma;; start = comma + 1) {
       comma = list.find(',', start);
       const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      scene.outputs.push_back(parse_port_ref(item, {"--outputs " + item, 0, 0}));
+      PortRef ref = parse_port_ref(item, {"--outputs " + item, 0, 0});
+      if (listed_before(scene.outputs, ref))
+        throw UsageError("--outputs: '" + ref.str() + "' is listed twice; each output is one column: list it once");
+      scene.outputs.push_back(std::move(ref));
       if (comma == std::string::npos) break;
     }
   }
