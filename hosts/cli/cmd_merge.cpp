@@ -47,6 +47,7 @@ std::vector<Shard> read_manifests(const std::vector<std::string>& files) {
   std::vector<Shard> shards;
   for (const std::string& f : files) {
     const SweepManifest m = read_manifest(f);
+    require_rows_format(m, f, "merge it with the mechgraph that wrote it, or run the shard again with this one");
     if (!m.complete) throw UsageError(f + ": this shard is not complete (its manifest says so); finish it with --resume first");
     // Without the count of input columns the outputs could not be told from inputs and checked.
     if (!m.inputs) throw UsageError(f + ": its manifest does not say how many input columns the rows have; run the shard again");

@@ -303,6 +303,10 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers, &budget);
     outcome->threads = workers;
     const std::string rows_file = vm["rows"].as<std::string>();
+    // Rows another mechgraph wrote would be refused row by row below as not this study's: say why.
+    if (has_sweep_manifest(rows_file))
+      require_rows_format(read_manifest_checked(rows_file), rows_file,
+                          "study them with the mechgraph that wrote them, or run the sweep again with this one");
     outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
     // Rows of this study, not of another scene, another --set or other files the scene reads: the
     // manifest beside them (sweep and merge write one) carries the sweep's fingerprint, which the

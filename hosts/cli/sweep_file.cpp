@@ -62,12 +62,23 @@ SweepManifest read_manifest_checked(const fs::path& file) {
     if (format != "csv" && format != "jsonl") throw UsageError("the format is neither csv nor jsonl");
     m.format = format == "jsonl" ? RowFormat::jsonl : RowFormat::csv;
     if (j["inputs"]) m.inputs = count_field(j["inputs"], "inputs", 100000);
+    m.rows_format = j["rows_format"] ? count_field(j["rows_format"], "rows_format", 1000000) : 1;
+    if (m.rows_format == 0) throw UsageError("'rows_format' is 0; formats count from 1");
     return m;
   } catch (const YAML::Exception& e) {
     throw UsageError(path.string() + ": not a sweep manifest (" + excerpt(e.what()) + ")");
   } catch (const UsageError& e) {
     throw UsageError(path.string() + ": not a sweep manifest: " + e.what());
   }
+}
+
+void require_rows_format(const SweepManifest& m, const std::string& file, const std::string& remedy) {
+  if (m.rows_format == rows_format_written) return;
+  const std::string by = m.rows_format < rows_format_written ? "an older mechgraph" : "a newer mechgraph";
+  throw UsageError(excerpt(file) + ": its rows were written by " + by + " (rows format " + std::to_string(m.rows_format) +
+                   ", its manifest says; this one writes format " + std::to_string(rows_format_written) +
+                   "): the formats write a case's cells and fingerprint differently, so these rows cannot be matched " +
+                   "to this program's; " + remedy);
 }
 
 bool has_sweep_manifest(const fs::path& file) {
@@ -98,6 +109,7 @@ void write_manifest(const fs::path& file, const SweepManifest& m) {
     json.key("origin").value(m.origin);
     json.key("format").value(m.format == RowFormat::jsonl ? "jsonl" : "csv");
     if (m.inputs) json.key("inputs").value(static_cast<long>(*m.inputs));
+    json.key("rows_format").value(static_cast<long>(m.rows_format));
     json.end_object();
     os << "\n";
   });
@@ -137,6 +149,8 @@ bool plausible_cut_line(std::string_view tail, RowFormat format, bool header_nex
 // cut (a file that is not this sweep's rows is refused untouched).
 void SweepFile::resume_part(const RowRules& rules) {
   const SweepManifest before = read_manifest(out_);
+  require_rows_format(before, part_.string(),
+                      "finish the sweep with the mechgraph that began it, or start over with --force");
   if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
     throw UsageError(part_.string() + " holds rows of another sweep (scene, a file it reads, --set, cases, outputs or shard "
                      "differ); remove it or use --force to start over");

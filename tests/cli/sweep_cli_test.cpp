@@ -248,6 +248,45 @@ TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps 
   CHECK_THAT(gaps.err, Contains("not 4 consecutive tasks"));
 }
 
+// The manifest of `rows` with its rows_format set to `format` (0: the key removed, as an older
+// mechgraph wrote it).
+static void set_rows_format(const fs::path& rows, int format) {
+  const std::string path = rows.string() + ".json";
+  std::string manifest = slurp(path);
+  const std::string key = ",\"rows_format\":2";
+  const std::size_t at = manifest.find(key);
+  REQUIRE(at != std::string::npos);
+  manifest.replace(at, key.size(), format ? ",\"rows_format\":" + std::to_string(format) : std::string());
+  std::ofstream(path) << manifest;
+}
+
+TEST_CASE("rows another mechgraph wrote are refused as such by --resume and merge, not as edited", "[cli][sweep]") {
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  const std::string base = arith_dir() + " sweep '" + scene + "' --vary len=1mm:4mm:4 -q";
+  std::string parts;
+  for (int i = 0; i < 2; ++i) {
+    const fs::path part = work_dir() / ("format-" + std::to_string(i) + ".csv");
+    fs::remove(part);
+    REQUIRE(run_cli(base + " --shard " + std::to_string(i) + "/2 --out '" + part.string() + "'").exit_code == 0);
+    parts += " '" + part.string() + "'";
+  }
+  REQUIRE(run_cli("merge" + parts).exit_code == 0);
+  set_rows_format(work_dir() / "format-1.csv", 0);
+  const auto older = run_cli("merge" + parts);
+  CHECK(older.exit_code == 2);
+  CHECK_THAT(older.err, Contains("format-1.csv: its rows were written by an older mechgraph (rows format 1") &&
+                            Contains("run the shard again with this one"));
+  // --resume of an unfinished file whose manifest a newer mechgraph wrote.
+  const fs::path unfinished = work_dir() / "format-0.csv";
+  fs::rename(unfinished, unfinished.string() + ".part");
+  set_rows_format(unfinished, 3);
+  const auto newer = run_cli(base + " --shard 0/2 --out '" + unfinished.string() + "' --resume");
+  CHECK(newer.exit_code == 2);
+  CHECK_THAT(newer.err, Contains("format-0.csv.part: its rows were written by a newer mechgraph (rows format 3") &&
+                            Contains("or start over with --force"));
+  CHECK(run_cli(base + " --shard 0/2 --out '" + unfinished.string() + "' --force").exit_code == 0);
+}
+
 TEST_CASE("sweep: a list value in --vary stays whole, and a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {
   const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/bench/peers/stages123_study.yaml";
   // The commas inside a value's brackets separate its elements, not the values varied.

@@ -536,6 +536,22 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const auto other_set = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --set f.a=6 --rows '" + merged + "'");
   CHECK(other_set.exit_code == 2);
   CHECK_THAT(other_set.err, Contains("all.csv: the rows of another sweep"));
+  // Rows an older mechgraph wrote (its manifest has no rows_format: format 1) are refused as
+  // such, before their cells are compared (which would call them another seed's or edited).
+  {
+    const std::string older = (dir / "older.csv").string();
+    std::filesystem::copy_file(merged, older);
+    std::ifstream in(merged + ".json");
+    std::string manifest((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t key = manifest.find(",\"rows_format\":2");
+    REQUIRE(key != std::string::npos);
+    manifest.erase(key, std::string(",\"rows_format\":2").size());
+    std::ofstream(older + ".json") << manifest;
+    const auto refused = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --rows '" + older + "'");
+    CHECK(refused.exit_code == 2);
+    CHECK_THAT(refused.err, Contains("older.csv: its rows were written by an older mechgraph (rows format 1") &&
+                                Contains("run the sweep again with this one"));
+  }
   // An exit that is not 0, 2 or 3 is refused, naming the line.
   {
     std::ifstream in(merged);
