@@ -5,6 +5,7 @@ import subprocess
 import pytest
 
 import mechgraph
+import mechgraph.dask
 from conftest import BINARY, SOURCE
 
 ISHIGAMI = SOURCE / "tests" / "uncertainty" / "ishigami.yaml"
@@ -148,3 +149,22 @@ def test_study_errors_carry_where_and_which_parameter_as_data():
     with pytest.raises(mechgraph.SceneError) as limit:
         scene.study(samples=8, limits={"f.z": {"upper": "1 mm"}})
     assert "f.y" in str(limit.value)  # the outputs it could name
+
+
+def test_a_dask_studys_design_keeps_scene_studys_budget():
+    # Sixty outputs of one uncertain parameter, 3e6 samples: within the design's cap (9e6 of 1e7
+    # evaluations), but the outputs' values and the Sobol' rows would hold about 12 GB beside the
+    # cases. Before, the Dask study's design (made here, its cases sent out) was made unchecked.
+    nodes = "".join(f"  f{i}: {{ type: test.linear, params: {{ x1: $x1, x2: {i} mm, x3: 0 mm }} }}\n" for i in range(60))
+    outputs = ", ".join(f"f{i}.y" for i in range(60))
+    scene = mechgraph.Scene.from_text(
+        "params: { x1: 0 mm }\nuncertainty:\n  parameters:\n    x1: { uniform: { lower: 0 mm, upper: 1 mm } }\n"
+        f"nodes:\n{nodes}outputs: [{outputs}]\n", name="wide.yaml")
+    messages = []
+    for study in (lambda: scene.study(samples=3_000_000, sensitivity=True),
+                  lambda: mechgraph.dask.study(None, scene, samples=3_000_000, sensitivity=True)):  # refused before a client is used
+        with pytest.raises(mechgraph.SceneError) as refused:
+            study()
+        messages.append(str(refused.value))
+    assert "the study would hold about" in messages[0] and "the Sobol' rows" in messages[0]
+    assert messages[1] == messages[0]
