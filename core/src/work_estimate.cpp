@@ -282,19 +282,19 @@ void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudg
     throw SceneError(graph.file + ": the scene asks for about " + amount(work) + " work items" + per_case +
                      ", more than the budget of " + amount(budget.max_work) + "; the biggest term is " +
                      biggest([](const WorkEstimate::Term& t) { return t.work; }) +
-                     ". Lower it, or raise the budget with --max-work " + amount(std::max(work * 1.01, 1.0)));
+                     ". Lower it, or raise the budget with " + budget.names.work + amount(std::max(work * 1.01, 1.0)));
   const double memory = e.memory * std::max(concurrent, 1.0);
   if (!(memory <= budget.max_memory))
     throw SceneError(graph.file + ": the scene would hold about " + mebibytes(memory) + " of memory" +
                      (concurrent > 1 ? " (" + amount(concurrent) + " cases at once)" : std::string()) +
                      ", more than the budget of " + mebibytes(budget.max_memory) + "; the biggest term is " +
                      biggest([](const WorkEstimate::Term& t) { return t.memory; }) +
-                     ". Lower it, or raise the budget with --max-memory " + amount(std::max(memory * 1.01, 1.0)));
+                     ". Lower it, or raise the budget with " + budget.names.memory + amount(std::max(memory * 1.01, 1.0)));
   if (writes_curves && !(e.bytes <= budget.max_bytes))
     throw SceneError(graph.file + ": the scene would write about " + amount(e.bytes / (1 << 20)) +
                      " MiB of curves, more than the budget of " + amount(budget.max_bytes / (1 << 20)) +
                      " MiB; the biggest term is " + biggest([](const WorkEstimate::Term& t) { return t.bytes; }) +
-                     ". Lower it, or raise the budget with --max-output " + amount(std::max(e.bytes * 1.01, 1.0)));
+                     ". Lower it, or raise the budget with " + budget.names.output + amount(std::max(e.bytes * 1.01, 1.0)));
 }
 
 }  // namespace mechgraph

@@ -96,7 +96,8 @@ class Scene:
 
     # ---- evaluating --------------------------------------------------------------------------
     def run(self, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-            threads: int = 1, si: bool = False) -> Result:
+            threads: int = 1, si: bool = False, *, max_work: Optional[float] = None,
+            max_memory: Optional[float] = None) -> Result:
         """Evaluates the scene and returns its :class:`Result`.
 
         set: values by name (a scene parameter ``rpm`` or a node's ``kurz.max_lift``), each with its
@@ -112,15 +113,21 @@ class Scene:
             readable in the result (``r.table("kurz.svaj")``, which the scene may not ask for).
         threads: independent nodes evaluated at once.
         si: every bare number in `set` is in SI (m, rad, rad/s ...).
+        max_work, max_memory: the work budget, as ``mechgraph run``'s ``--max-work`` (work items,
+            default 1e9) and ``--max-memory`` (bytes, default 4 GiB): the run's estimate with the
+            `set` values is checked first, and one beyond either is refused (SceneError naming the
+            biggest term and the value to pass).
         """
         entries = set_entries(set, si)
-        outcome = self._session.run(entries, list(outputs or []), threads, self._interruptible)
+        outcome = self._session.run(entries, list(outputs or []), threads, self._interruptible,
+                                    *_budget(max_work, max_memory))
         result = Result(outcome, self._session, entries)
         self._interruptible = outcome.seconds > _INTERRUPTIBLE_AFTER_S
         return result
 
     def sweep(self, cases: Any, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0, si: bool = False, progress: Any = True):
+              threads: int = 0, si: bool = False, progress: Any = True, *, max_work: Optional[float] = None,
+              max_memory: Optional[float] = None):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
         ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
@@ -139,6 +146,8 @@ class Scene:
         progress: a tqdm bar on stderr (or a Jupyter widget) once the sweep has run for a second
             (True, the default); False for none; or a callable ``progress(done, total)`` called
             about every 20 ms while cases run, and once more with the final count when they end.
+        max_work, max_memory: the work budget of all the cases together, as ``mechgraph sweep``'s
+            (default 1e12 work items, 4 GiB held by the threads at once).
         """
         import pandas as pd
 
@@ -147,7 +156,8 @@ class Scene:
         bar = progress_bar(progress, total, "sweep " + (os.path.basename(self.file) if self.file else "scene"))
         try:
             (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
-                                                            list(outputs or []), int(threads), bar)
+                                                            list(outputs or []), int(threads), bar,
+                                                            *_budget(max_work, max_memory))
         except BaseException:
             if isinstance(bar, _Bar):
                 bar.close()
@@ -162,7 +172,8 @@ class Scene:
               method: Optional[str] = None, seed: Optional[int] = None, sensitivity: Optional[bool] = None,
               limits: Optional[Mapping[str, Any]] = None, events: Optional[Mapping[str, Any]] = None,
               set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
-              threads: int = 0, si: bool = False, settings: Optional[Mapping[str, Any]] = None) -> "Study":
+              threads: int = 0, si: bool = False, settings: Optional[Mapping[str, Any]] = None,
+              max_work: Optional[float] = None, max_memory: Optional[float] = None) -> "Study":
         """An uncertainty study of the scene, as ``mechgraph study`` runs it (docs/python.md).
 
         parameters: distributions by parameter name, as the scene's ``uncertainty: parameters:``
@@ -176,11 +187,14 @@ class Scene:
             correlations), replacing the block's.
         A value with a unit is text ("0.25 mm"), a pint quantity or a (number, unit) pair; a bare
         number only where the quantity is dimensionless (limits and thresholds included).
+        max_work, max_memory: the work budget, as ``mechgraph study``'s (its cases and its
+            bootstrap: default 1e12 work items; what it holds: default 4 GiB).
         """
         from ._study import Study
 
         args = _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si, settings)
-        json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads))
+        json_text, cases = self._session.study(args[0], args[1], args[2], args[3], args[4], args[5], int(threads),
+                                               *_budget(max_work, max_memory))
         return Study(json_text, cases)
 
     def cache_info(self) -> Dict[str, int]:
@@ -194,6 +208,23 @@ class Scene:
 
     def __repr__(self) -> str:
         return f"Scene({self.title or self.file!r})"
+
+
+def _budget(max_work: Any, max_memory: Any) -> tuple:
+    """max_work and max_memory as the module takes them: 0.0 for the default, else a positive
+    finite number (ValueError otherwise; TypeError for a bool or a non-number)."""
+    values = []
+    for name, value in (("max_work", max_work), ("max_memory", max_memory)):
+        if value is None:
+            values.append(0.0)
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+            raise TypeError(f"{name}: a number, not {type(value).__name__}")
+        number = float(value)
+        if not (number > 0.0 and np.isfinite(number)):
+            raise ValueError(f"{name}: a positive finite number, not {value!r}")
+        values.append(number)
+    return tuple(values)
 
 
 def _study_arguments(parameters, samples, method, seed, sensitivity, limits, events, set, outputs, si=False,

@@ -553,23 +553,25 @@ PYBIND11_MODULE(_core, m) {
       .def("cache_counters", [](const SceneSession& s) { return py::make_tuple(s.cache_hits(), s.cache_misses()); })
       .def("clear_cache", &SceneSession::clear_cache)
       .def("run", [](const std::shared_ptr<SceneSession>& session, const py::list& sets, const std::vector<std::string>& outputs,
-                     unsigned threads, bool interruptible) {
+                     unsigned threads, bool interruptible, double max_work, double max_memory) {
         auto values = std::make_shared<std::vector<SetValue>>(set_values(sets));
         auto run = std::make_shared<SessionRun>();
+        const WorkBudget budget = python_budget(max_work, max_memory, false);
         if (interruptible) {
           // The work owns what it touches: on Ctrl-C it may finish after this call has raised.
-          run_interruptibly([session, values, outputs, threads, run] { *run = session->run(values, outputs, threads); }, [] {},
-                            OnInterrupt::detach);
+          run_interruptibly([session, values, outputs, threads, run, budget] { *run = session->run(values, outputs, threads, budget); },
+                            [] {}, OnInterrupt::detach);
         } else {
           py::gil_scoped_release released;
-          *run = session->run(values, outputs, threads);
+          *run = session->run(values, outputs, threads, budget);
         }
         return RunOutcome{session, run, outputs};
-      }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true)
+      }, py::arg("sets"), py::arg("outputs"), py::arg("threads") = 1, py::arg("interruptible") = true, py::arg("max_work") = 0.0,
+         py::arg("max_memory") = 0.0)
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
                        const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
                        const py::list& set, const std::vector<std::string>& outputs, unsigned threads,
-                       const py::object& progress) {
+                       const py::object& progress, double max_work, double max_memory) {
         const CaseTable table = case_table(*session, names, units, si, columns);
         const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
@@ -578,7 +580,7 @@ PYBIND11_MODULE(_core, m) {
         // progress(done, total), every 20 ms while the cases run (a tqdm bar, _progress.py)
         std::function<void()> tick;
         if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.cases.size()); };
-        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), &done); }, [&] { *stop = true; },
+        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), python_budget(max_work, max_memory, true), &done); }, [&] { *stop = true; },
                           OnInterrupt::wait, tick);
         py::dict summary;
         summary["cases"] = result.summary.run;
@@ -588,14 +590,15 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                        const std::string& samples, const std::string& method, const std::string& seed,
-                       const std::vector<std::string>& outputs, unsigned threads) {
+                       const std::vector<std::string>& outputs, unsigned threads, double max_work, double max_memory) {
         // `block`: the settings from Python as JSON text ("" for none), read as the scene's block is.
         std::optional<RawValue> settings;
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
         std::unique_ptr<host::StudyOutcome> outcome;
-        run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get()); },
+        run_interruptibly([&] { outcome = session->study(sets, settings, samples, method, seed, outputs, threads, stop.get(),
+                                                                  python_budget(max_work, max_memory, true)); },
                           [&] { *stop = true; }, OnInterrupt::wait);
         // The design's cases as the sweep's rows show them: parameters and outputs in their
         // columns' units, the failure class.
@@ -610,13 +613,13 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("study_design", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                               const std::string& samples, const std::string& method, const std::string& seed,
-                              const std::vector<std::string>& outputs) {
+                              const std::vector<std::string>& outputs, double max_work, double max_memory) {
         // The study's cases: the parameters in SI by name (what the sweep is given), and as
         // Study.samples shows them (the sweep's input columns).
         std::optional<RawValue> settings;
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
-        const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs, python_budget(max_work, max_memory, true));
         py::dict cases, shown;
         for (std::size_t v = 0; v < o->table.variables.size(); ++v) {
           std::vector<double> column(o->table.cases.size());
@@ -628,13 +631,14 @@ PYBIND11_MODULE(_core, m) {
       })
       .def("study_rows", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                             const std::string& samples, const std::string& method, const std::string& seed,
-                            const std::vector<std::string>& outputs, const py::dict& columns, const std::vector<int>& exits) {
+                            const std::vector<std::string>& outputs, const py::dict& columns, const std::vector<int>& exits,
+                            double max_work, double max_memory) {
         // The answers from rows a sweep of the study's cases gave (`name [unit]` columns in the
         // units the rows show, NaN where a case failed; exit per case), as Scene.study's.
         std::optional<RawValue> settings;
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
-        auto o = session->prepare_study(sets, settings, samples, method, seed, outputs);
+        auto o = session->prepare_study(sets, settings, samples, method, seed, outputs, python_budget(max_work, max_memory, true));
         const std::size_t n = o->table.cases.size();
         if (exits.size() != n) throw SceneError("study rows: " + std::to_string(exits.size()) + " rows for the design's " + std::to_string(n) + " cases");
         o->data.outputs = o->columns;

@@ -32,6 +32,15 @@ std::string joined(const std::vector<std::string>& items, char separator) {
 
 }  // namespace
 
+WorkBudget python_budget(double max_work, double max_memory, bool sweep) {
+  WorkBudget budget;
+  budget.names = python_budget_names;
+  if (sweep) budget.max_work = sweep_default_max_work;
+  if (max_work > 0.0) budget.max_work = max_work;
+  if (max_memory > 0.0) budget.max_memory = max_memory;
+  return budget;
+}
+
 SceneSession::SceneSession(std::shared_ptr<const PluginRegistry> registry, SceneSpec scene)
     : registry_(std::move(registry)), scene_(std::move(scene)) {}
 
@@ -52,7 +61,8 @@ SceneSpec SceneSession::with_outputs(const std::vector<std::string>& outputs) co
 
 void SceneSession::validate() {
   std::lock_guard lock(mutex_);
-  prepared({}, {}, {});
+  const Graph& graph = prepared({}, {}, {}).graph;
+  check_work_budget(graph, estimate_work(graph), python_budget(0.0, 0.0, false), 1, false);
 }
 
 std::optional<Dimension> SceneSession::dimension_of(const std::string& name) {
@@ -86,7 +96,6 @@ SceneSession::Prepared SceneSession::prepare(const std::vector<std::string>& out
   Prepared p;
   p.scene = std::make_unique<SceneSpec>(with_outputs(outputs));
   p.graph = build_graph(*p.scene, *registry_);
-  check_work_budget(p.graph, estimate_work(p.graph), WorkBudget{}, 1, false);
   std::vector<SweepVariable> variables;
   for (const std::string& n : names) variables.push_back({n, ""});
   p.binder = std::make_unique<CaseBinder>(p.graph, *p.scene, *registry_, std::vector<Override>{}, variables, BinderUse::set);
@@ -172,7 +181,7 @@ void SceneSession::give(const CaseBinder& binder, Graph& graph, const BoundSets&
 }
 
 SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs,
-                             unsigned threads) {
+                             unsigned threads, const WorkBudget& budget) {
   std::lock_guard lock(mutex_);
   SessionRun run;
   BoundSets bound = bound_sets(*sets);
@@ -180,6 +189,9 @@ SessionRun SceneSession::run(std::shared_ptr<const std::vector<SetValue>> sets, 
   // nothing of an earlier run's values stays behind.
   Prepared& p = prepared(outputs, bound.names, bound.list_names);
   give(*p.binder, p.graph, bound);
+  // With this run's values: a set= value (curve points, revolutions, samples) can ask for far more
+  // than the scene as written, which is all a check at preparation would see.
+  check_work_budget(p.graph, estimate_work(p.graph), budget, 1, false);
   const auto start = std::chrono::steady_clock::now();
   run.result = evaluate(p.graph, *cache_, threads);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -208,35 +220,30 @@ std::vector<Override> SceneSession::fixed_overrides(const std::vector<SetValue>&
 std::unique_ptr<host::StudyOutcome> SceneSession::study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                        const std::string& samples, const std::string& method, const std::string& seed,
                                                        const std::vector<std::string>& outputs, unsigned threads,
-                                                       const std::atomic<bool>* stop) {
+                                                       const std::atomic<bool>* stop, const WorkBudget& budget) {
   const std::vector<Override> overrides = fixed_overrides(sets);
-  WorkBudget budget;
-  budget.max_work = sweep_default_max_work;
   return host::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
                               outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
 }
 
 std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                                const std::string& samples, const std::string& method,
-                                                               const std::string& seed, const std::vector<std::string>& outputs) {
+                                                               const std::string& seed, const std::vector<std::string>& outputs,
+                                                               const WorkBudget& budget) {
   // Within the budget Scene.study keeps (what the study holds beside its cases, its bootstrap's
   // work): the design a Dask study sends out and analyses is refused as the in-process one is.
-  WorkBudget budget;
-  budget.max_work = sweep_default_max_work;
   return host::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
                                   outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), 1, &budget);
 }
 
 SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
                                  const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
-                                 std::atomic<std::size_t>* done) {
+                                 const WorkBudget& budget, std::atomic<std::size_t>* done) {
   SceneSpec scene = scene_;
   const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = host::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
-  WorkBudget budget;
-  budget.max_work = sweep_default_max_work;
   SweepOptions options;
   for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
   options.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());

@@ -54,16 +54,24 @@ struct SessionSweep {
   std::size_t failed = 0;
 };
 
+/// The budget of a call from Python: `max_work` and `max_memory` as given (0: the default of the
+/// command that does the same, `sweep` true for a sweep's or a study's work over all its cases),
+/// its refusals naming the keywords (max_work=...) instead of the command's flags.
+WorkBudget python_budget(double max_work, double max_memory, bool sweep);
+
 class SceneSession {
  public:
   SceneSession(std::shared_ptr<const PluginRegistry> registry, SceneSpec scene);
 
-  /// Builds the scene as written and checks it and its work estimate, evaluating nothing.
+  /// Builds the scene as written and checks it and its work estimate (the default budget),
+  /// evaluating nothing.
   void validate();
 
-  /// Evaluates `outputs` (empty: the scene's outputs and report) with `sets` applied; the memo
+  /// Evaluates `outputs` (empty: the scene's outputs and report) with `sets` applied, once its work
+  /// estimate with those values is within `budget` (as `mechgraph run --set` checks it); the memo
   /// cache is kept. Throws SceneError or EvaluationError.
-  SessionRun run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs, unsigned threads);
+  SessionRun run(std::shared_ptr<const std::vector<SetValue>> sets, const std::vector<std::string>& outputs, unsigned threads,
+                 const WorkBudget& budget);
 
   /// Runs one case per row of `table` on `threads` workers (0: one per core) with the rows of
   /// `mechgraph sweep`; `stop` set: no new case starts. `sets` are fixed for every case (text or
@@ -71,19 +79,20 @@ class SceneSession {
   /// `done` (if given) counts the cases finished, for a progress bar.
   SessionSweep sweep(const CaseTable& table, const std::vector<SetValue>& sets,
                      const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
-                     std::atomic<std::size_t>* done = nullptr);
+                     const WorkBudget& budget, std::atomic<std::size_t>* done = nullptr);
 
   /// An uncertainty study of the scene (study_run.hpp): `block` merged over its `uncertainty:`,
   /// `sets` fixed for every case (as sweep() takes them); empty samples/method/seed: the block's.
   std::unique_ptr<host::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                            const std::string& samples, const std::string& method, const std::string& seed,
-                                           const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop);
+                                           const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                                           const WorkBudget& budget);
 
   /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
   /// (mechgraph.dask.study), analysed with host::finish_study once their values are in.
   std::unique_ptr<host::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                    const std::string& samples, const std::string& method, const std::string& seed,
-                                                   const std::vector<std::string>& outputs);
+                                                   const std::vector<std::string>& outputs, const WorkBudget& budget);
 
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()

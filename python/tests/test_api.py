@@ -200,3 +200,33 @@ def test_a_scene_pickles_and_runs_where_it_lands(scenes):
     again = pickle.loads(pickle.dumps(scene))
     a = scene.run(outputs=["ta_kurz.time_area"])["ta_kurz.time_area"]
     assert again.run(outputs=["ta_kurz.time_area"])["ta_kurz.time_area"] == a
+
+
+def test_a_runs_set_values_are_within_its_budget_which_python_can_raise(scenes):
+    # Before, a run was checked against the budget only as the scene is written: these values
+    # (1e10 work items, refused by `mechgraph run --set`) ran for seconds, and could run for hours.
+    scene = mechgraph.Scene.load(scenes / "valvetrain_dynamics.yaml")
+    heavy = {"contacts.revolutions": 1000, "contacts.tolerance": 1e-13, "contacts.curve_points": 10_000_000}
+    with pytest.raises(mechgraph.SceneError) as refused:
+        scene.run(set=heavy, outputs=["contacts.bounces"])
+    message = str(refused.value)
+    assert "about 1e+10 work items" in message and "contacts.curve_points" in message
+    assert "raise the budget with max_work=1.01e+10" in message  # the keyword, not the command's flag
+    # The budget is the caller's: lowered, a light run is refused too, naming the keyword.
+    cams = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_work="):
+        cams.run(max_work=1000)
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_memory="):
+        cams.run(max_memory=1000)
+    assert cams.run(max_work=1e7, max_memory=1e9)["ta_kurz.time_area"] > 0
+    for bad, error in ((0, ValueError), (-1.0, ValueError), (float("nan"), ValueError), (True, TypeError), ("1e9", TypeError)):
+        with pytest.raises(error, match="max_work"):
+            cams.run(max_work=bad)
+
+
+def test_a_sweeps_budget_from_python_names_the_keyword(scenes):
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_work="):
+        scene.sweep({"rpm [rpm]": [5000, 6000, 7000]}, max_work=1000, progress=False)
+    rows = scene.sweep({"rpm [rpm]": [5000, 6000, 7000]}, max_work=1e9, progress=False)
+    assert (rows["exit"] == 0).all()

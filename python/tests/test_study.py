@@ -167,4 +167,9 @@ def test_a_dask_studys_design_keeps_scene_studys_budget():
             study()
         messages.append(str(refused.value))
     assert "the study would hold about" in messages[0] and "the Sobol' rows" in messages[0]
+    assert "raise the budget with max_memory=" in messages[0]  # the keyword, not the command's flag
     assert messages[1] == messages[0]
+    # The budget is the caller's: a small study under a small budget is refused, then allowed.
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_memory="):
+        scene.study(samples=64, max_memory=1e4)
+    assert scene.study(samples=64, max_memory=1e9, max_work=1e9).summary.loc["f0.y", "n"] == 64

@@ -52,10 +52,20 @@ inline constexpr double memory_per_item = 16.0;
 inline constexpr double memory_per_row = 128.0;  // a curve's row: up to 16 channels of 8 bytes
 inline constexpr double memory_per_input_piece = 4096.0;
 
+/// How the user raises each limit, as a refusal names it before the amount: the command line's
+/// flags, or Python's keywords (python_budget_names).
+struct BudgetNames {
+  const char* work = "--max-work ";
+  const char* memory = "--max-memory ";
+  const char* output = "--max-output ";
+};
+inline constexpr BudgetNames python_budget_names{"max_work=", "max_memory=", "max_output="};
+
 struct WorkBudget {
   double max_work = 1e9;                        // work items of one evaluation (a sweep: sweep_default_max_work, all cases)
   double max_bytes = 256.0 * (1 << 20);         // bytes of result files or of curves on standard output
   double max_memory = 4.0 * (1 << 30);          // bytes held by one evaluation (a sweep: by its threads together)
+  BudgetNames names;                            // in the refusals: how to raise each limit
 };
 
 /// One node's estimate: its terms (work, memory, bytes) and the size of what it outputs.

@@ -263,13 +263,13 @@ double check_study_budget(const StudySpec& spec, std::size_t outputs, const Work
     throw SceneError(file + ": the study would hold about " + budget_amount(held / (1 << 20)) + " MiB beside its cases (" +
                      std::to_string(spec.evaluations()) + " cases, " + std::to_string(outputs) + " outputs), more than the budget of " +
                      budget_amount(budget.max_memory / (1 << 20)) + " MiB; the biggest term is " + biggest->what +
-                     ". Fewer samples or outputs, or raise the budget with --max-memory " + budget_amount(held * 1.01));
+                     ". Fewer samples or outputs, or raise the budget with " + budget.names.memory + budget_amount(held * 1.01));
   const double bootstrap = spec.sensitivity ? static_cast<double>(spec.bootstrap) * n * (1.0 + out * (d + 2.0)) : 0.0;
   if (!(bootstrap <= budget.max_work))
     throw SceneError(file + ": the study's bootstrap asks for about " + budget_amount(bootstrap) + " work items (" + std::to_string(spec.bootstrap) +
                      " resamples of " + std::to_string(spec.samples) + " base samples, " + std::to_string(outputs) +
                      " outputs), more than the budget of " + budget_amount(budget.max_work) +
-                     ". Fewer resamples (bootstrap:), or raise the budget with --max-work " + budget_amount(bootstrap * 1.01));
+                     ". Fewer resamples (bootstrap:), or raise the budget with " + budget.names.work + budget_amount(bootstrap * 1.01));
   return held;
 }
 
