@@ -67,7 +67,20 @@ std::string read_bounded_file(const std::filesystem::path& path, std::size_t max
     // One byte more than the limit allows tells a file that grew past it from one that ends there.
     if (have == out.size()) {
       if (out.size() > max_bytes) break;
+      // Full at the size fstat gave: most files end here. The end is asked for into a small buffer
+      // first, so the common case never doubles (and copies) the whole file to find it.
+      char probe[512];
+      ssize_t n;
+      do n = ::read(file.fd, probe, sizeof probe);
+      while (n < 0 && errno == EINTR);
+      if (n < 0) throw FileReadError(FileReadError::Reason::read_failed, "cannot read " + shown + ": " + std::strerror(errno));
+      if (n == 0) break;
       out.resize(std::min(max_bytes + 1, std::max<std::size_t>(out.size() * 2, 4096)));
+      const std::size_t kept = std::min(static_cast<std::size_t>(n), out.size() - have);
+      std::memcpy(out.data() + have, probe, kept);
+      have += kept;
+      if (kept < static_cast<std::size_t>(n)) break;  // past the limit: refused below
+      continue;
     }
     const ssize_t n = ::read(file.fd, out.data() + have, out.size() - have);
     if (n < 0) {

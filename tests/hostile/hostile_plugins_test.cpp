@@ -262,6 +262,16 @@ TEST_CASE("the bounded reader: regular files only, with a size limit it names", 
   }
   CHECK_THROWS_WITH(read_bounded_file(dir.path), Contains("folder"));
   CHECK_THROWS_WITH(read_bounded_file(dir.path / "missing"), Contains("cannot open"));
+  // A file read whole at the size fstat gives, its end found past it; one whose size fstat does
+  // not know (a /proc file says 0) read in full all the same, and held to the limit.
+  std::string big;
+  for (int i = 0; i < 30000; ++i) big += std::to_string(i) + ",";
+  CHECK(read_bounded_file(dir.write("big.txt", big), big.size()) == big);
+  const std::string maps = read_bounded_file("/proc/self/maps");
+  CHECK(maps.size() > 512);  // more than the end-of-file probe's buffer
+  CHECK(maps.back() == '\n');
+  CHECK_THROWS_WITH(read_bounded_file("/proc/self/maps", 600), Contains("grew past the limit of 600 bytes"));
+  CHECK_THROWS_WITH(read_bounded_file("/proc/self/maps", 100), Contains("grew past the limit of 100 bytes"));
   CHECK(quoted_text_excerpt(std::string(200, 'a'), 80) == "'" + std::string(80, 'a') + "...'");
   CHECK(quoted_text_excerpt("a\nb\x1b", 80) == "'a\\x0Ab\\x1B'");
 }
