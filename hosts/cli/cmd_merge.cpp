@@ -47,17 +47,31 @@ std::vector<Shard> read_manifests(const std::vector<std::string>& files) {
   std::vector<Shard> shards;
   for (const std::string& f : files) {
     const SweepManifest m = read_manifest(f);
-    require_rows_format(m, f, "merge it with the mechgraph that wrote it, or run the shard again with this one");
     if (!m.complete) throw UsageError(f + ": this shard is not complete (its manifest says so); finish it with --resume first");
     // Without the count of input columns the outputs could not be told from inputs and checked.
     if (!m.inputs) throw UsageError(f + ": its manifest does not say how many input columns the rows have; run the shard again");
     if (!shards.empty()) {
       const SweepManifest& first = shards.front().manifest;
       if (m.sweep != first.sweep || m.cases != first.cases || m.format != first.format || m.inputs != first.inputs)
-        throw UsageError(f + " belongs to another sweep than " + shards.front().file + " (scene, a file it reads, --set, cases or columns differ)");
+        throw UsageError(f + " belongs to another sweep than " + shards.front().file + " (scene, a file it reads, --set, cases or columns differ)" +
+                         (m.rows_format ? unrecorded_format_note(first) : unrecorded_format_note(m)));
     }
     shards.push_back({f, m});
   }
+  // Shards whose manifests record different formats of rows were written by different mechgraphs:
+  // their cells would not be written alike. All are named at once (a cluster's reruns are costly).
+  const Shard* recorded = nullptr;
+  for (const Shard& s : shards)
+    if (s.manifest.rows_format && !recorded) recorded = &s;
+  std::string differing;
+  if (recorded)
+    for (const Shard& s : shards)
+      if (s.manifest.rows_format && *s.manifest.rows_format != *recorded->manifest.rows_format)
+        differing += (differing.empty() ? "" : ", ") + excerpt(s.file) + " (format " + std::to_string(*s.manifest.rows_format) + ")";
+  if (!differing.empty())
+    throw UsageError("the shards were written by different mechgraphs: " + excerpt(recorded->file) + " holds rows of format " +
+                     std::to_string(*recorded->manifest.rows_format) + ", " + differing +
+                     "; run the shards of one format again with the mechgraph that wrote the others");
   return shards;
 }
 
@@ -229,6 +243,8 @@ int merge_command(const GlobalOptions&, const std::vector<std::string>& args) {
     const fs::path out = vm["out"].as<std::string>();
     write_file_whole(out, force, [&](std::ostream& os) { counts = merge_rows(shards, os); });
     SweepManifest m = shards.front().manifest;
+    for (const Shard& s : shards)  // the format the shards record (they agree), if any records one
+      if (s.manifest.rows_format) m.rows_format = s.manifest.rows_format;
     m.shard = 0;
     m.shards = 1;
     m.complete = true;

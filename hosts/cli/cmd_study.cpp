@@ -303,20 +303,33 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     outcome = prepare_scene_study(scene, registry, overrides, std::nullopt, samples, method, seed, outputs, workers, &budget);
     outcome->threads = workers;
     const std::string rows_file = vm["rows"].as<std::string>();
+    // The manifest beside the rows, read once: one that is there but unreadable or damaged is
+    // refused (read_manifest_checked says why), never taken for none.
+    std::optional<SweepManifest> manifest;
+    if (kind_of(manifest_path(rows_file)) != "absent") {
+      try {
+        manifest = read_manifest_checked(rows_file);
+      } catch (const UsageError& e) {
+        throw UsageError(std::string(e.what()) + "; remove it to study the rows without checking where they come from");
+      }
+    }
     // Rows another mechgraph wrote would be refused row by row below as not this study's: say why.
-    if (has_sweep_manifest(rows_file))
-      require_rows_format(read_manifest_checked(rows_file), rows_file,
-                          "study them with the mechgraph that wrote them, or run the sweep again with this one");
-    outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
+    if (manifest)
+      require_rows_format(*manifest, rows_file, "study them with the mechgraph that wrote them, or run the sweep again with this one");
+    try {
+      outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
+    } catch (const UsageError& e) {
+      throw UsageError(std::string(e.what()) + (manifest ? unrecorded_format_note(*manifest) : std::string()));
+    }
     // Rows of this study, not of another scene, another --set or other files the scene reads: the
     // manifest beside them (sweep and merge write one) carries the sweep's fingerprint, which the
     // study's own must equal; the design's inputs (checked row by row first, which
     // names another seed, method or sample count) do not tell.
-    if (has_sweep_manifest(rows_file)) {
-      const SweepManifest manifest = read_manifest_checked(rows_file);
-      if (manifest.sweep != sweep_fingerprint(scene_file, sets, outcome->table, outcome->graph, RowFormat::csv))
+    if (manifest) {
+      if (manifest->sweep != sweep_fingerprint(scene_file, sets, outcome->table, outcome->graph, RowFormat::csv))
         throw UsageError(rows_file + ": the rows of another sweep: the scene, a file it reads, --set or --outputs differ from those " +
-                         "the rows were made with (mechgraph sweep " + excerpt(manifest.scene, 80) + " --study ...)");
+                         "the rows were made with (mechgraph sweep " + excerpt(manifest->scene, 80) + " --study ...)" +
+                         unrecorded_format_note(*manifest));
     } else {
       spdlog::warn("study: {} has no manifest beside it ({}): whether its rows come from this scene and these --set values "
                    "cannot be checked", rows_file, manifest_path(rows_file).filename().string());

@@ -62,8 +62,11 @@ SweepManifest read_manifest_checked(const fs::path& file) {
     if (format != "csv" && format != "jsonl") throw UsageError("the format is neither csv nor jsonl");
     m.format = format == "jsonl" ? RowFormat::jsonl : RowFormat::csv;
     if (j["inputs"]) m.inputs = count_field(j["inputs"], "inputs", 100000);
-    m.rows_format = j["rows_format"] ? count_field(j["rows_format"], "rows_format", 1000000) : 1;
-    if (m.rows_format == 0) throw UsageError("'rows_format' is 0; formats count from 1");
+    m.rows_format.reset();
+    if (j["rows_format"]) {
+      m.rows_format = count_field(j["rows_format"], "rows_format", 1000000);
+      if (*m.rows_format == 0) throw UsageError("'rows_format' is 0; formats count from 1");
+    }
     return m;
   } catch (const YAML::Exception& e) {
     throw UsageError(path.string() + ": not a sweep manifest (" + excerpt(e.what()) + ")");
@@ -73,12 +76,19 @@ SweepManifest read_manifest_checked(const fs::path& file) {
 }
 
 void require_rows_format(const SweepManifest& m, const std::string& file, const std::string& remedy) {
-  if (m.rows_format == rows_format_written) return;
-  const std::string by = m.rows_format < rows_format_written ? "an older mechgraph" : "a newer mechgraph";
-  throw UsageError(excerpt(file) + ": its rows were written by " + by + " (rows format " + std::to_string(m.rows_format) +
+  if (!m.rows_format || *m.rows_format == rows_format_written) return;
+  const std::string by = *m.rows_format < rows_format_written ? "an older mechgraph" : "a newer mechgraph";
+  throw UsageError(excerpt(file) + ": its rows were written by " + by + " (rows format " + std::to_string(*m.rows_format) +
                    ", its manifest says; this one writes format " + std::to_string(rows_format_written) +
                    "): the formats write a case's cells and fingerprint differently, so these rows cannot be matched " +
                    "to this program's; " + remedy);
+}
+
+std::string unrecorded_format_note(const SweepManifest& m) {
+  if (m.rows_format) return {};
+  return " (its manifest does not record the rows' format, as mechgraph before December 2026 wrote it: a mechgraph of "
+         "before then may have written grid points and generated values otherwise than this one does; if so, use that "
+         "mechgraph, or run the sweep again with this one)";
 }
 
 bool has_sweep_manifest(const fs::path& file) {
@@ -109,7 +119,7 @@ void write_manifest(const fs::path& file, const SweepManifest& m) {
     json.key("origin").value(m.origin);
     json.key("format").value(m.format == RowFormat::jsonl ? "jsonl" : "csv");
     if (m.inputs) json.key("inputs").value(static_cast<long>(*m.inputs));
-    json.key("rows_format").value(static_cast<long>(m.rows_format));
+    if (m.rows_format) json.key("rows_format").value(static_cast<long>(*m.rows_format));
     json.end_object();
     os << "\n";
   });
@@ -153,7 +163,7 @@ void SweepFile::resume_part(const RowRules& rules) {
                       "finish the sweep with the mechgraph that began it, or start over with --force");
   if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
     throw UsageError(part_.string() + " holds rows of another sweep (scene, a file it reads, --set, cases, outputs or shard "
-                     "differ); remove it or use --force to start over");
+                     "differ); remove it or use --force to start over" + unrecorded_format_note(before));
   file_ = open_existing_regular(part_);
   // A line at a time (memory: one row, whatever the file's size), the cut last line kept apart.
   LineReader reader(file_.get(), part_, max_row_bytes, LineReader::LastLine::keep);
@@ -171,7 +181,12 @@ void SweepFile::resume_part(const RowRules& rules) {
       resumed_header_ = checker.header_cells();
       continue;
     }
-    const RowChecker::Row row = checker.row(line, number);
+    RowChecker::Row row{};
+    try {
+      row = checker.row(line, number);
+    } catch (const UsageError& e) {
+      throw UsageError(std::string(e.what()) + unrecorded_format_note(before));
+    }
     resumed_cases_.push_back(row.index);
     if (row.failed) ++resumed_failed_;
   }

@@ -30,18 +30,16 @@
 namespace mechgraph::cli {
 
 /// How this mechgraph writes a sweep's rows and fingerprints its cases, recorded in each manifest
-/// ("rows_format"). Rows of another format are not this sweep's as this program writes it, even
-/// from the same scene and command: they are refused for what they are (another mechgraph wrote
-/// them), not as edited. Raised whenever a case's cells or the fingerprint change.
-///   1 (manifests without the key): grid points spaced in SI, a generated value in an offset unit
-///     written at 17 digits;
-///   2: grid points spaced in the range's unit at 15 significant digits, generated values in the
-///     fewest digits that read back.
+/// ("rows_format"); raised whenever a case's cells or the fingerprint change. 2: grid points
+/// spaced in the range's unit at 15 significant digits, generated values in the fewest digits
+/// that read back. Manifests written before the key existed do not say: their rows are format 1
+/// (grid points spaced in SI, offset units at 17 digits) or, from the builds just before the key,
+/// already format 2; only their rows themselves can tell.
 inline constexpr std::size_t rows_format_written = 2;
 
 struct SweepManifest {
   std::string sweep;          // fingerprint, hex
-  std::size_t rows_format = rows_format_written;  // 1 when the manifest has no "rows_format"
+  std::optional<std::size_t> rows_format = rows_format_written;  // absent: the manifest does not say
   std::size_t cases = 0;      // in the whole sweep
   std::size_t shard = 0, shards = 1;
   bool complete = false;
@@ -56,8 +54,13 @@ struct SweepManifest {
 inline constexpr std::size_t max_row_bytes = std::size_t{256} << 20;
 
 /// Throws UsageError when `m`, the manifest of `file`, records rows of another rows_format than
-/// this mechgraph writes: which program wrote them, what differs, and `remedy` (what to do).
+/// this mechgraph writes: which program wrote them, what differs, and `remedy` (what to do). A
+/// manifest that records none passes: its rows are checked as they are (unrecorded_format_note).
 void require_rows_format(const SweepManifest& m, const std::string& file, const std::string& remedy);
+
+/// What a refusal of the rows of `m` adds when their manifest does not record their format (the
+/// rows may be another mechgraph's, written otherwise); empty when it does.
+std::string unrecorded_format_note(const SweepManifest& m);
 
 /// Reads FILE.json beside `file`; throws UsageError naming it when absent, unreadable, larger than
 /// 64 KiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N

@@ -248,15 +248,16 @@ TEST_CASE("shards merged back equal the single-process sweep, gaps and overlaps 
   CHECK_THAT(gaps.err, Contains("not 4 consecutive tasks"));
 }
 
-// The manifest of `rows` with its rows_format set to `format` (0: the key removed, as an older
-// mechgraph wrote it).
+// The manifest of `rows` with its rows_format set to `format` (0: the key removed, as mechgraph
+// wrote manifests before it recorded the format).
 static void set_rows_format(const fs::path& rows, int format) {
   const std::string path = rows.string() + ".json";
   std::string manifest = slurp(path);
-  const std::string key = ",\"rows_format\":2";
-  const std::size_t at = manifest.find(key);
+  std::size_t at = manifest.find(",\"rows_format\":"), end = at;
+  if (at == std::string::npos) at = end = manifest.rfind('}');  // removed before: added back at the end
+  else end = manifest.find_first_of(",}", at + 1);
   REQUIRE(at != std::string::npos);
-  manifest.replace(at, key.size(), format ? ",\"rows_format\":" + std::to_string(format) : std::string());
+  manifest.replace(at, end - at, format ? ",\"rows_format\":" + std::to_string(format) : std::string());
   std::ofstream(path) << manifest;
 }
 
@@ -264,27 +265,45 @@ TEST_CASE("rows another mechgraph wrote are refused as such by --resume and merg
   const std::string scene = scratch_file("scene.yaml", scene_text);
   const std::string base = arith_dir() + " sweep '" + scene + "' --vary len=1mm:4mm:4 -q";
   std::string parts;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < 3; ++i) {
     const fs::path part = work_dir() / ("format-" + std::to_string(i) + ".csv");
     fs::remove(part);
-    REQUIRE(run_cli(base + " --shard " + std::to_string(i) + "/2 --out '" + part.string() + "'").exit_code == 0);
+    REQUIRE(run_cli(base + " --shard " + std::to_string(i) + "/3 --out '" + part.string() + "'").exit_code == 0);
+    CHECK_THAT(slurp(part.string() + ".json"), Contains(",\"rows_format\":2"));
     parts += " '" + part.string() + "'";
   }
-  REQUIRE(run_cli("merge" + parts).exit_code == 0);
+  const std::string whole = run_cli(base).out;
+  // A manifest that does not record the format (one written before the key) is not refused for
+  // that: its rows are checked as they are, and these are this program's.
   set_rows_format(work_dir() / "format-1.csv", 0);
-  const auto older = run_cli("merge" + parts);
-  CHECK(older.exit_code == 2);
-  CHECK_THAT(older.err, Contains("format-1.csv: its rows were written by an older mechgraph (rows format 1") &&
-                            Contains("run the shard again with this one"));
-  // --resume of an unfinished file whose manifest a newer mechgraph wrote.
+  const fs::path merged = work_dir() / "format-all.csv";
+  fs::remove(merged);
+  const auto unrecorded = run_cli("merge" + parts + " --out '" + merged.string() + "'");
+  REQUIRE(unrecorded.exit_code == 0);
+  CHECK(slurp(merged) == whole);
+  CHECK_THAT(slurp(merged.string() + ".json"), Contains(",\"rows_format\":2"));  // what the others record
+  // Shards of different recorded formats: every odd one named in one refusal.
+  set_rows_format(work_dir() / "format-1.csv", 1);
+  set_rows_format(work_dir() / "format-2.csv", 1);
+  const auto mixed = run_cli("merge" + parts);
+  CHECK(mixed.exit_code == 2);
+  CHECK_THAT(mixed.err, Contains("the shards were written by different mechgraphs") && Contains("format-1.csv (format 1)") &&
+                            Contains("format-2.csv (format 1)"));
+  // Shards all of one older format merge as they are.
+  set_rows_format(work_dir() / "format-0.csv", 1);
+  CHECK(run_cli("merge" + parts).out == whole);
+  // --resume of an unfinished file whose manifest a newer mechgraph wrote: refused up front.
   const fs::path unfinished = work_dir() / "format-0.csv";
   fs::rename(unfinished, unfinished.string() + ".part");
   set_rows_format(unfinished, 3);
-  const auto newer = run_cli(base + " --shard 0/2 --out '" + unfinished.string() + "' --resume");
+  const auto newer = run_cli(base + " --shard 0/3 --out '" + unfinished.string() + "' --resume");
   CHECK(newer.exit_code == 2);
   CHECK_THAT(newer.err, Contains("format-0.csv.part: its rows were written by a newer mechgraph (rows format 3") &&
                             Contains("or start over with --force"));
-  CHECK(run_cli(base + " --shard 0/2 --out '" + unfinished.string() + "' --force").exit_code == 0);
+  // Without the key it is resumed, its rows checked as they are.
+  set_rows_format(unfinished, 0);
+  CHECK(run_cli(base + " --shard 0/3 --out '" + unfinished.string() + "' --resume").exit_code == 0);
+  CHECK(fs::exists(unfinished));
 }
 
 TEST_CASE("sweep: a list value in --vary stays whole, and a node's parameter wins over the scene's that reaches it", "[cli][sweep]") {

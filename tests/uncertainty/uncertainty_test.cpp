@@ -536,21 +536,34 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const auto other_set = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --set f.a=6 --rows '" + merged + "'");
   CHECK(other_set.exit_code == 2);
   CHECK_THAT(other_set.err, Contains("all.csv: the rows of another sweep"));
-  // Rows an older mechgraph wrote (its manifest has no rows_format: format 1) are refused as
-  // such, before their cells are compared (which would call them another seed's or edited).
+  // The manifest's record of the rows' format: another than this program writes is refused up
+  // front (before, row by row as another seed's); none recorded (manifests before the key) is
+  // checked row by row as before; a damaged record is refused, never taken for no manifest.
   {
-    const std::string older = (dir / "older.csv").string();
-    std::filesystem::copy_file(merged, older);
     std::ifstream in(merged + ".json");
-    std::string manifest((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string manifest((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t key = manifest.find(",\"rows_format\":2");
     REQUIRE(key != std::string::npos);
-    manifest.erase(key, std::string(",\"rows_format\":2").size());
-    std::ofstream(older + ".json") << manifest;
-    const auto refused = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --rows '" + older + "'");
-    CHECK(refused.exit_code == 2);
-    CHECK_THAT(refused.err, Contains("older.csv: its rows were written by an older mechgraph (rows format 1") &&
+    const std::string older = (dir / "older.csv").string();
+    std::filesystem::copy_file(merged, older);
+    const auto with_record = [&](const std::string& record) {
+      std::string edited = manifest;
+      edited.replace(key, std::string(",\"rows_format\":2").size(), record);
+      std::ofstream(older + ".json") << edited;
+      return testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --rows '" + older + "'");
+    };
+    const auto format1 = with_record(",\"rows_format\":1");
+    CHECK(format1.exit_code == 2);
+    CHECK_THAT(format1.err, Contains("older.csv: its rows were written by an older mechgraph (rows format 1") &&
                                 Contains("run the sweep again with this one"));
+    const auto unrecorded = with_record("");
+    CHECK(unrecorded.exit_code == 0);
+    CHECK(unrecorded.out == whole.out);
+    for (const std::string& damaged : {",\"rows_format\":0", ",\"rows_format\":\"3.1\""}) {
+      const auto refused = with_record(damaged);
+      CHECK(refused.exit_code == 2);  // before: "no manifest beside it", and the study ran unchecked
+      CHECK_THAT(refused.err, Contains("older.csv.json: not a sweep manifest") && Contains("remove it to study the rows"));
+    }
   }
   // An exit that is not 0, 2 or 3 is refused, naming the line.
   {
