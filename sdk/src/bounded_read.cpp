@@ -92,7 +92,9 @@ std::string read_bounded_file(const std::filesystem::path& path, std::size_t max
   }
   if (have > max_bytes)
     throw FileReadError(FileReadError::Reason::too_large,
-                        shown + " grew past the limit of " + size_text(max_bytes) + " while it was read");
+                        st.st_size == 0 ? shown + " holds more than the limit of " + size_text(max_bytes) +
+                                              " (a file that does not tell its size before it is read, as /proc's)"
+                                        : shown + " grew past the limit of " + size_text(max_bytes) + " while it was read");
   out.resize(have);
   return out;
 }
