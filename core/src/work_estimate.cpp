@@ -29,7 +29,8 @@ std::string amount(double v) {
   return text;
 }
 
-std::string mebibytes(double bytes) { return amount(bytes / (1 << 20)) + " MiB"; }
+// Below a mebibyte in bytes ("4096 bytes", not "0 MiB": a budget of a few kilobytes is one).
+std::string mebibytes(double bytes) { return bytes < (1 << 20) ? amount(bytes) + " bytes" : amount(bytes / (1 << 20)) + " MiB"; }
 
 // A plugin's figure, made safe to add up: negative or NaN is no bound at all (infinite), so the
 // budget refuses it naming the node rather than admitting it.
@@ -284,12 +285,18 @@ void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudg
                      biggest([](const WorkEstimate::Term& t) { return t.work; }) +
                      ". Lower it, or raise the budget with " + budget.names.work + amount(std::max(work * 1.01, 1.0)));
   const double memory = e.memory * std::max(concurrent, 1.0);
-  if (!(memory <= budget.max_memory))
+  if (!(memory <= budget.max_memory)) {
+    // What the caller holds beside (a study's own storage) is in the budget the user gave and in
+    // the value that lets this through.
+    const double beside = budget.memory_beside, whole = memory + beside;
     throw SceneError(graph.file + ": the scene would hold about " + mebibytes(memory) + " of memory" +
                      (concurrent > 1 ? " (" + amount(concurrent) + " cases at once)" : std::string()) +
-                     ", more than the budget of " + mebibytes(budget.max_memory) + "; the biggest term is " +
+                     (beside > 0 ? ", " + mebibytes(whole) + " with the " + mebibytes(beside) + " the study holds beside them"
+                                 : std::string()) +
+                     ", more than the budget of " + mebibytes(budget.max_memory + beside) + "; the biggest term is " +
                      biggest([](const WorkEstimate::Term& t) { return t.memory; }) +
-                     ". Lower it, or raise the budget with " + budget.names.memory + amount(std::max(memory * 1.01, 1.0)));
+                     ". Lower it, or raise the budget with " + budget.names.memory + amount(std::max(whole * 1.01, 1.0)));
+  }
   if (writes_curves && !(e.bytes <= budget.max_bytes))
     throw SceneError(graph.file + ": the scene would write about " + amount(e.bytes / (1 << 20)) +
                      " MiB of curves, more than the budget of " + amount(budget.max_bytes / (1 << 20)) +

@@ -89,10 +89,11 @@ class Scene:
         """The outputs the scene asks for (``node.port``)."""
         return self._session.outputs
 
-    def validate(self) -> None:
+    def validate(self, *, max_work: Optional[float] = None, max_memory: Optional[float] = None) -> None:
         """Builds the scene against the loaded plugins and checks it, evaluating nothing
-        (``mechgraph validate``). Raises SceneError."""
-        self._session.validate()
+        (``mechgraph validate``), its work estimate within `max_work` and `max_memory` as
+        :meth:`run` takes them. Raises SceneError."""
+        self._session.validate(*_budget(max_work, max_memory))
 
     # ---- evaluating --------------------------------------------------------------------------
     def run(self, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
@@ -220,7 +221,10 @@ def _budget(max_work: Any, max_memory: Any) -> tuple:
             continue
         if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
             raise TypeError(f"{name}: a number, not {type(value).__name__}")
-        number = float(value)
+        try:
+            number = float(value)
+        except OverflowError:
+            number = float("inf")
         if not (number > 0.0 and np.isfinite(number)):
             raise ValueError(f"{name}: a positive finite number, not {value!r}")
         values.append(number)

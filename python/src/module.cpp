@@ -534,10 +534,11 @@ PYBIND11_MODULE(_core, m) {
       .def_static("from_text", [](const std::string& yaml, const std::string& label) {
         return std::make_shared<SceneSession>(registry(), parse_scene(yaml, label));
       })
-      .def("validate", [](SceneSession& s) {
+      .def("validate", [](SceneSession& s, double max_work, double max_memory) {
+        const WorkBudget budget = python_budget(max_work, max_memory, false);
         py::gil_scoped_release released;
-        s.validate();
-      })
+        s.validate(budget);
+      }, py::arg("max_work") = 0.0, py::arg("max_memory") = 0.0)
       .def_property_readonly("title", [](const SceneSession& s) { return s.scene().title; })
       .def_property_readonly("file", [](const SceneSession& s) { return s.scene().file; })
       .def_property_readonly("params", [](const SceneSession& s) {

@@ -59,10 +59,10 @@ SceneSpec SceneSession::with_outputs(const std::vector<std::string>& outputs) co
   return scene;
 }
 
-void SceneSession::validate() {
+void SceneSession::validate(const WorkBudget& budget) {
   std::lock_guard lock(mutex_);
   const Graph& graph = prepared({}, {}, {}).graph;
-  check_work_budget(graph, estimate_work(graph), python_budget(0.0, 0.0, false), 1, false);
+  check_work_budget(graph, estimate_work(graph), budget, 1, false);
 }
 
 std::optional<Dimension> SceneSession::dimension_of(const std::string& name) {
@@ -223,7 +223,8 @@ std::unique_ptr<host::StudyOutcome> SceneSession::study(const std::vector<SetVal
                                                        const std::atomic<bool>* stop, const WorkBudget& budget) {
   const std::vector<Override> overrides = fixed_overrides(sets);
   return host::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
-                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop);
+                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop,
+                              host::python_outputs_option);
 }
 
 std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
@@ -233,7 +234,8 @@ std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vecto
   // Within the budget Scene.study keeps (what the study holds beside its cases, its bootstrap's
   // work): the design a Dask study sends out and analyses is refused as the in-process one is.
   return host::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
-                                  outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), 1, &budget);
+                                  outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), 1, &budget, nullptr,
+                                  host::python_outputs_option);
 }
 
 SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
@@ -242,7 +244,8 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   SceneSpec scene = scene_;
   const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = host::build_sweep_graph(scene, *registry_, overrides,
-                                             outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')));
+                                             outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')),
+                                             host::python_outputs_option);
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
   SweepOptions options;
   for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);

@@ -63,9 +63,9 @@ class SceneSession {
  public:
   SceneSession(std::shared_ptr<const PluginRegistry> registry, SceneSpec scene);
 
-  /// Builds the scene as written and checks it and its work estimate (the default budget),
-  /// evaluating nothing.
-  void validate();
+  /// Builds the scene as written and checks it and its work estimate within `budget`, evaluating
+  /// nothing.
+  void validate(const WorkBudget& budget);
 
   /// Evaluates `outputs` (empty: the scene's outputs and report) with `sets` applied, once its work
   /// estimate with those values is within `budget` (as `mechgraph run --set` checks it); the memo

@@ -1,6 +1,7 @@
 """The Python API against the command line: the same values, the same errors, units in SI."""
 import json
 import math
+import re
 import subprocess
 
 import numpy as np
@@ -93,10 +94,16 @@ def test_unknown_parameter_names_the_valid_ones(scenes):
 
 
 def test_an_output_listed_twice_is_refused(scenes):
-    # Before, the repeat was shown once without a word.
+    # Before, the repeat was shown once without a word. Python's messages name outputs=, not the
+    # command line's --outputs.
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
-    with pytest.raises(mechgraph.SceneError, match="'kurz.max_lift' is listed twice"):
-        scene.run(outputs=["kurz.max_lift", "kurz.max_lift"])
+    twice = ["kurz.max_lift", "kurz.max_lift"]
+    with pytest.raises(mechgraph.SceneError, match="^outputs: 'kurz.max_lift' is listed twice"):
+        scene.run(outputs=twice)
+    with pytest.raises(mechgraph.SceneError, match="^outputs: 'kurz.max_lift' is listed twice"):
+        scene.sweep({"rpm [rpm]": [5000, 6000]}, outputs=twice, progress=False)
+    with pytest.raises(mechgraph.SceneError, match="^outputs: 'kurz.svaj' is a table, not one value per case; Scene.run"):
+        scene.sweep({"rpm [rpm]": [5000, 6000]}, outputs=["kurz.svaj"], progress=False)
 
 
 def test_infeasible_design_is_an_evaluation_error_naming_the_node(scenes):
@@ -219,9 +226,13 @@ def test_a_runs_set_values_are_within_its_budget_which_python_can_raise(scenes):
     with pytest.raises(mechgraph.SceneError, match="raise the budget with max_memory="):
         cams.run(max_memory=1000)
     assert cams.run(max_work=1e7, max_memory=1e9)["ta_kurz.time_area"] > 0
-    for bad, error in ((0, ValueError), (-1.0, ValueError), (float("nan"), ValueError), (True, TypeError), ("1e9", TypeError)):
+    for bad, error in ((0, ValueError), (-1.0, ValueError), (float("nan"), ValueError), (10**400, ValueError), (True, TypeError),
+                       ("1e9", TypeError)):
         with pytest.raises(error, match="max_work"):
             cams.run(max_work=bad)
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_work="):
+        cams.validate(max_work=1000)
+    cams.validate()
 
 
 def test_a_sweeps_budget_from_python_names_the_keyword(scenes):
@@ -230,3 +241,21 @@ def test_a_sweeps_budget_from_python_names_the_keyword(scenes):
         scene.sweep({"rpm [rpm]": [5000, 6000, 7000]}, max_work=1000, progress=False)
     rows = scene.sweep({"rpm [rpm]": [5000, 6000, 7000]}, max_work=1e9, progress=False)
     assert (rows["exit"] == 0).all()
+
+
+def test_a_studys_memory_refusal_names_a_value_that_lets_it_through(scenes):
+    # The cases get what the study's own storage leaves of the budget; before, their refusal
+    # named only their own memory, so the value it gave was refused again, and again.
+    scene = mechgraph.Scene.load(scenes / "valve_timing_tolerances.yaml")
+    budget, refusals = 2e5, []
+    for _ in range(4):
+        try:
+            scene.study(samples=200, max_memory=budget, threads=1)
+            break
+        except mechgraph.SceneError as e:
+            refusals.append(str(e))
+            budget = float(re.search(r"max_memory=([0-9.e+]+)", str(e)).group(1))
+    else:
+        pytest.fail("still refused after following its remedies: " + " | ".join(refusals))
+    assert 1 <= len(refusals) <= 2  # the study's own storage, then its cases
+    assert all("bytes" in r or "MiB" in r for r in refusals)

@@ -66,6 +66,8 @@ struct WorkBudget {
   double max_bytes = 256.0 * (1 << 20);         // bytes of result files or of curves on standard output
   double max_memory = 4.0 * (1 << 30);          // bytes held by one evaluation (a sweep: by its threads together)
   BudgetNames names;                            // in the refusals: how to raise each limit
+  double memory_beside = 0.0;                   // bytes the caller holds beside what is checked (a study's own
+                                                // storage), already taken off max_memory: a refusal counts them back
 };
 
 /// One node's estimate: its terms (work, memory, bytes) and the size of what it outputs.

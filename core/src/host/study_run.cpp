@@ -300,7 +300,8 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
-                                                  unsigned threads, const WorkBudget* budget, double* held) {
+                                                  unsigned threads, const WorkBudget* budget, double* held,
+                                                  const OutputsOption& outputs_option) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
@@ -308,7 +309,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
   std::set<std::string> scene_outputs;  // before a choice of outputs replaces them
   for (const PortRef& o : outcome->scene->outputs) scene_outputs.insert(o.str());
-  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs);
+  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs, outputs_option);
   check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
   outcome->columns = study_columns(outcome->graph);
   if (outputs) leave_out_unstudied(outcome->spec, outcome->columns, scene_outputs);
@@ -336,7 +337,7 @@ void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop) {
 std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
-                                              unsigned threads, const std::atomic<bool>* stop) {
+                                              unsigned threads, const std::atomic<bool>* stop, const OutputsOption& outputs_option) {
   threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   // Each phase's wall time in the debug log (-v), so a slow study shows where its time went.
   auto phase_start = std::chrono::steady_clock::now();
@@ -346,7 +347,8 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
     phase_start = now;
   };
   double held = 0.0;  // what the study holds beside its cases: the cases get the rest of the memory budget
-  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads, &budget, &held);
+  auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads, &budget, &held,
+                                     outputs_option);
   phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
   std::vector<std::size_t> all(outcome->table.cases.size());
@@ -354,6 +356,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   outcome->threads = threads;
   WorkBudget for_cases = budget;
   for_cases.max_memory = budget.max_memory - held;  // positive: check_study_budget kept held within it
+  for_cases.memory_beside = held;
   check_sweep_budget(outcome->graph, binder, outcome->table, all, for_cases, threads);
   phase_done("work budget checked");
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);

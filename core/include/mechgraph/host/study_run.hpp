@@ -5,6 +5,7 @@
 // (uncertainty/sample_design.hpp) and run by the sweep runner on the worker pool, the values taken
 // as the sweep's rows show them, then analysed (uncertainty/study_answers.hpp).
 #include <mechgraph/graph.hpp>
+#include <mechgraph/host/scene_loading.hpp>
 #include <mechgraph/work_estimate.hpp>
 #include <mechgraph/sweep/case_binder.hpp>
 #include <mechgraph/uncertainty/sample_design.hpp>
@@ -85,7 +86,8 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
-                                                  unsigned threads = 1, const WorkBudget* budget = nullptr, double* held = nullptr);
+                                                  unsigned threads = 1, const WorkBudget* budget = nullptr, double* held = nullptr,
+                                                  const OutputsOption& outputs_option = {});
 
 /// The memory a study holds beside its cases (the design, the outputs' values, the Sobol' rows
 /// and bootstrap draws) against budget.max_memory, its bootstrap's work against budget.max_work;
@@ -102,6 +104,6 @@ void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop = nullptr
 std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
-                                              unsigned threads, const std::atomic<bool>* stop);
+                                              unsigned threads, const std::atomic<bool>* stop, const OutputsOption& outputs_option = {});
 
 }  // namespace mechgraph::host
