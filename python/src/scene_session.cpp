@@ -224,7 +224,7 @@ std::unique_ptr<host::StudyOutcome> SceneSession::study(const std::vector<SetVal
   const std::vector<Override> overrides = fixed_overrides(sets);
   return host::run_scene_study(scene_, *registry_, overrides, block, samples, method, seed,
                               outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), budget, threads, stop,
-                              host::python_outputs_option);
+                              host::python_option_names);
 }
 
 std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
@@ -235,7 +235,7 @@ std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vecto
   // work): the design a Dask study sends out and analyses is refused as the in-process one is.
   return host::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
                                   outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), 1, &budget, nullptr,
-                                  host::python_outputs_option);
+                                  host::python_option_names);
 }
 
 SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
@@ -245,7 +245,7 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = host::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')),
-                                             host::python_outputs_option);
+                                             host::python_option_names);
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
   SweepOptions options;
   for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);

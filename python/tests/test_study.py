@@ -173,3 +173,10 @@ def test_a_dask_studys_design_keeps_scene_studys_budget():
     with pytest.raises(mechgraph.SceneError, match="raise the budget with max_memory="):
         scene.study(samples=64, max_memory=1e4)
     assert scene.study(samples=64, max_memory=1e9, max_work=1e9).summary.loc["f0.y", "n"] == 64
+
+
+def test_a_designs_refusals_name_the_keywords_not_the_flags():
+    # Before, Python users read "--samples 4000000: ...". (Python checks a method's name itself.)
+    scene = mechgraph.Scene.load(ISHIGAMI)
+    with pytest.raises(mechgraph.SceneError, match=r"^samples 4000000: the design would need 20000000 evaluations"):
+        scene.study(samples=4_000_000, sensitivity=True)

@@ -16,7 +16,7 @@ Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, c
 // Builds the graph to sweep: --outputs replace the scene's outputs and report; tables and
 // handles (not one number per case) are left out of a scene's own outputs with a note.
 Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
-                        const std::optional<std::string>& outputs, const OutputsOption& option) {
+                        const std::optional<std::string>& outputs, const OptionNames& option) {
   const bool chosen = outputs.has_value();
   if (chosen) {
     scene.outputs.clear();
@@ -26,9 +26,9 @@ Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const 
     for (std::size_t comma;; start = comma + 1) {
       comma = list.find(',', start);
       const std::string item = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      PortRef ref = parse_port_ref(item, {std::string(option.name) + " " + item, 0, 0});
+      PortRef ref = parse_port_ref(item, {std::string(option.outputs) + " " + item, 0, 0});
       if (listed_before(scene.outputs, ref))
-        throw UsageError(std::string(option.name) + ": '" + ref.str() + "' is listed twice; each output is one column: list it once");
+        throw UsageError(std::string(option.outputs) + ": '" + ref.str() + "' is listed twice; each output is one column: list it once");
       scene.outputs.push_back(std::move(ref));
       if (comma == std::string::npos) break;
     }
@@ -42,7 +42,7 @@ Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const 
       continue;
     }
     if (chosen)
-      throw UsageError(std::string(option.name) + ": '" + o.label + "' is a " + std::string(to_string(o.spec->kind)) +
+      throw UsageError(std::string(option.outputs) + ": '" + o.label + "' is a " + std::string(to_string(o.spec->kind)) +
                        ", not one value per case; " + option.one_design);
     spdlog::info("sweep: '{}' is a {}, not a column; left out (mechgraph run --out writes it)", o.label, to_string(o.spec->kind));
   }

@@ -207,7 +207,8 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
 
 namespace mechgraph::host {
 
-void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed) {
+void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed,
+                         const OptionNames& names) {
   const auto whole = [](const std::string& text, const char* option, std::size_t low, std::size_t high) {
     std::size_t n = 0;
     const auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
@@ -216,14 +217,15 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
                        std::to_string(high));
     return n;
   };
-  if (!samples.empty()) spec.samples = whole(samples, "--samples", 2, 10'000'000);
-  if (!seed.empty()) spec.seed = whole(seed, "--seed", 0, std::size_t{1} << 62);
+  if (!samples.empty()) spec.samples = whole(samples, names.samples, 2, 10'000'000);
+  if (!seed.empty()) spec.seed = whole(seed, names.seed, 0, std::size_t{1} << 62);
   if (method == "monte_carlo") spec.method = SamplingMethod::monte_carlo;
   else if (method == "latin_hypercube") spec.method = SamplingMethod::latin_hypercube;
   else if (method == "sobol") spec.method = SamplingMethod::sobol;
-  else if (!method.empty()) throw UsageError("--method " + excerpt(method, 40) + ": valid methods are monte_carlo, latin_hypercube, sobol");
+  else if (!method.empty())
+    throw UsageError(std::string(names.method) + " " + excerpt(method, 40) + ": valid methods are monte_carlo, latin_hypercube, sobol");
   if (spec.evaluations() > max_sweep_cases)
-    throw UsageError("--samples " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
+    throw UsageError(std::string(names.samples) + " " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
                      " evaluations, more than 10^7");
 }
 
@@ -301,15 +303,15 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
                                                   unsigned threads, const WorkBudget* budget, double* held,
-                                                  const OutputsOption& outputs_option) {
+                                                  const OptionNames& option_names) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
-  apply_study_options(outcome->spec, samples, method, seed);
+  apply_study_options(outcome->spec, samples, method, seed, option_names);
   outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
   std::set<std::string> scene_outputs;  // before a choice of outputs replaces them
   for (const PortRef& o : outcome->scene->outputs) scene_outputs.insert(o.str());
-  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs, outputs_option);
+  outcome->graph = build_sweep_graph(*outcome->scene, registry, overrides, outputs, option_names);
   check_study_parameters(outcome->spec, outcome->graph, *outcome->scene, registry, overrides);
   outcome->columns = study_columns(outcome->graph);
   if (outputs) leave_out_unstudied(outcome->spec, outcome->columns, scene_outputs);
@@ -337,7 +339,7 @@ void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop) {
 std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
-                                              unsigned threads, const std::atomic<bool>* stop, const OutputsOption& outputs_option) {
+                                              unsigned threads, const std::atomic<bool>* stop, const OptionNames& option_names) {
   threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   // Each phase's wall time in the debug log (-v), so a slow study shows where its time went.
   auto phase_start = std::chrono::steady_clock::now();
@@ -348,7 +350,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
   };
   double held = 0.0;  // what the study holds beside its cases: the cases get the rest of the memory budget
   auto outcome = prepare_scene_study(std::move(scene), registry, overrides, block, samples, method, seed, outputs, threads, &budget, &held,
-                                     outputs_option);
+                                     option_names);
   phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
   std::vector<std::size_t> all(outcome->table.cases.size());

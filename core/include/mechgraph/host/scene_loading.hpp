@@ -17,15 +17,19 @@ Graph load_graph(const SceneSpec& scene, const std::vector<std::string>& sets, c
 /// without them, tables and handles (not one number per case) are left out of the scene's own
 /// outputs with a note. Updates `scene.outputs` to what the graph requests. Throws UsageError for
 /// a chosen output that is not a scalar or a series.
-/// How a host names its choice of outputs in the messages: the command line's --outputs, or
-/// Python's outputs= (python_outputs_option).
-struct OutputsOption {
-  const char* name = "--outputs";
-  const char* one_design = "mechgraph run --out writes it for one design";
+/// How a host names its options in messages: the command line's flags, or Python's keywords
+/// (python_option_names).
+struct OptionNames {
+  const char* outputs = "--outputs";
+  const char* one_design = "mechgraph run --out writes it for one design";  // where a table or handle goes
+  const char* samples = "--samples";
+  const char* seed = "--seed";
+  const char* method = "--method";
 };
-inline constexpr OutputsOption python_outputs_option{"outputs", "Scene.run(outputs=[...]) gives it for one design"};
+inline constexpr OptionNames python_option_names{"outputs", "Scene.run(outputs=[...]) gives it for one design", "samples",
+                                                 "seed", "method"};
 
 Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
-                        const std::optional<std::string>& outputs, const OutputsOption& option = {});
+                        const std::optional<std::string>& outputs, const OptionNames& option = {});
 
 }  // namespace mechgraph::host

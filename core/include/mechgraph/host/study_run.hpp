@@ -53,8 +53,9 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
 namespace mechgraph::host {
 
 /// --samples, --method and --seed (empty: the scene's) over the scene's settings; throws
-/// UsageError for a value out of range, naming the option.
-void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed);
+/// UsageError for a value out of range, naming the option as `names` do.
+void apply_study_options(StudySpec& spec, const std::string& samples, const std::string& method, const std::string& seed,
+                         const OptionNames& names = {});
 
 }  // namespace mechgraph::host
 
@@ -87,7 +88,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
                                                   unsigned threads = 1, const WorkBudget* budget = nullptr, double* held = nullptr,
-                                                  const OutputsOption& outputs_option = {});
+                                                  const OptionNames& option_names = {});
 
 /// The memory a study holds beside its cases (the design, the outputs' values, the Sobol' rows
 /// and bootstrap draws) against budget.max_memory, its bootstrap's work against budget.max_work;
@@ -104,6 +105,6 @@ void finish_study(StudyOutcome& outcome, const std::atomic<bool>* stop = nullptr
 std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                               const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                               const std::string& seed, const std::optional<std::string>& outputs, const WorkBudget& budget,
-                                              unsigned threads, const std::atomic<bool>* stop, const OutputsOption& outputs_option = {});
+                                              unsigned threads, const std::atomic<bool>* stop, const OptionNames& option_names = {});
 
 }  // namespace mechgraph::host
