@@ -581,7 +581,8 @@ PYBIND11_MODULE(_core, m) {
         // progress(done, total), every 20 ms while the cases run (a tqdm bar, _progress.py)
         std::function<void()> tick;
         if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.cases.size()); };
-        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), python_budget(max_work, max_memory, true), &done); }, [&] { *stop = true; },
+        const WorkBudget budget = python_budget(max_work, max_memory, true);
+        run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), budget, &done); }, [&] { *stop = true; },
                           OnInterrupt::wait, tick);
         py::dict summary;
         summary["cases"] = result.summary.run;

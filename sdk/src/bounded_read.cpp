@@ -62,33 +62,34 @@ std::string read_bounded_file(const std::filesystem::path& path, std::size_t max
   if (const int flags = ::fcntl(file.fd, F_GETFL); flags >= 0) ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK);
   std::string out;
   out.resize(static_cast<std::size_t>(st.st_size));
+  // One read(2) into `to`, retried on EINTR: the bytes it gave, 0 at the end.
+  const auto read_some = [&](char* to, std::size_t size) -> std::size_t {
+    for (;;) {
+      const ssize_t n = ::read(file.fd, to, size);
+      if (n >= 0) return static_cast<std::size_t>(n);
+      if (errno != EINTR) throw FileReadError(FileReadError::Reason::read_failed, "cannot read " + shown + ": " + std::strerror(errno));
+    }
+  };
   std::size_t have = 0;
   for (;;) {
-    // One byte more than the limit allows tells a file that grew past it from one that ends there.
-    if (have == out.size()) {
-      if (out.size() > max_bytes) break;
-      // Full at the size fstat gave: most files end here. The end is asked for into a small buffer
-      // first, so the common case never doubles (and copies) the whole file to find it.
-      char probe[512];
-      ssize_t n;
-      do n = ::read(file.fd, probe, sizeof probe);
-      while (n < 0 && errno == EINTR);
-      if (n < 0) throw FileReadError(FileReadError::Reason::read_failed, "cannot read " + shown + ": " + std::strerror(errno));
+    if (have < out.size()) {
+      const std::size_t n = read_some(out.data() + have, out.size() - have);
       if (n == 0) break;
-      out.resize(std::min(max_bytes + 1, std::max<std::size_t>(out.size() * 2, 4096)));
-      const std::size_t kept = std::min(static_cast<std::size_t>(n), out.size() - have);
-      std::memcpy(out.data() + have, probe, kept);
-      have += kept;
-      if (kept < static_cast<std::size_t>(n)) break;  // past the limit: refused below
+      have += n;
       continue;
     }
-    const ssize_t n = ::read(file.fd, out.data() + have, out.size() - have);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw FileReadError(FileReadError::Reason::read_failed, "cannot read " + shown + ": " + std::strerror(errno));
-    }
+    // One byte more than the limit allows tells a file that grew past it from one that ends there.
+    if (out.size() > max_bytes) break;
+    // Full at the size fstat gave, where most files end: their end is asked for in a small buffer,
+    // so that finding it never doubles (and copies) the whole file.
+    char probe[512];
+    const std::size_t n = read_some(probe, sizeof probe);
     if (n == 0) break;
-    have += static_cast<std::size_t>(n);
+    out.resize(std::min(max_bytes + 1, std::max<std::size_t>(out.size() * 2, 4096)));
+    const std::size_t kept = std::min(n, out.size() - have);
+    std::memcpy(out.data() + have, probe, kept);
+    have += kept;
+    if (kept < n) break;  // past the limit: refused below
   }
   if (have > max_bytes)
     throw FileReadError(FileReadError::Reason::too_large,

@@ -559,7 +559,7 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
     const auto unrecorded = with_record("");
     CHECK(unrecorded.exit_code == 0);
     CHECK(unrecorded.out == whole.out);
-    for (const std::string& damaged : {",\"rows_format\":0", ",\"rows_format\":\"3.1\""}) {
+    for (const char* damaged : {",\"rows_format\":0", ",\"rows_format\":\"3.1\""}) {
       const auto refused = with_record(damaged);
       CHECK(refused.exit_code == 2);  // before: "no manifest beside it", and the study ran unchecked
       CHECK_THAT(refused.err, Contains("older.csv.json: not a sweep manifest") && Contains("remove it to study the rows"));

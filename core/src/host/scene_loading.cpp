@@ -44,7 +44,7 @@ Graph build_sweep_graph(SceneSpec& scene, const PluginRegistry& registry, const 
     if (chosen)
       throw UsageError(std::string(option.outputs) + ": '" + o.label + "' is a " + std::string(to_string(o.spec->kind)) +
                        ", not one value per case; " + option.one_design);
-    spdlog::info("sweep: '{}' is a {}, not a column; left out (mechgraph run --out writes it)", o.label, to_string(o.spec->kind));
+    spdlog::info("sweep: '{}' is a {}, not a column; left out ({})", o.label, to_string(o.spec->kind), option.one_design);
   }
   if (kept.size() != graph.scene_output_count) {
     scene.outputs = kept;
