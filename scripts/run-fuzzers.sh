@@ -17,21 +17,12 @@ targets=("$@")
 ((${#targets[@]})) || targets=(fuzz_scene fuzz_units fuzz_set fuzz_cam_table fuzz_cases fuzz_sweep_rows fuzz_csv_field fuzz_escape fuzz_gnuplot_data)
 
 scripts/install-deps.sh
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  sudo=""
-  [ "$(id -u)" -eq 0 ] || sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
-fi
 
-flags="-fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g1 -O1"
+flags="-fsanitize=address,undefined,fuzzer-no-link -fno-omit-frame-pointer -fno-sanitize-recover=undefined -O1"
 link="-fsanitize=address,undefined"
+# Line tables only: the Debug type's own -g comes after CMAKE_CXX_FLAGS, so it is replaced, not added to.
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ \
-  -DMECHGRAPH_FUZZ=ON -DMECHGRAPH_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS="$flags" \
+  -DMECHGRAPH_FUZZ=ON -DMECHGRAPH_BUILD_TESTS=OFF -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_DEBUG="-g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$link" -DCMAKE_SHARED_LINKER_FLAGS="$link" -DCMAKE_MODULE_LINKER_FLAGS="$link" >&2
 cmake --build build-fuzz --parallel "$(nproc)" --target "${targets[@]}" >&2
 

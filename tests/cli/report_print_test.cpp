@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 
 fs::path fresh_folder(const std::string& name) { return absent_dir("mg_print", name); }
 
-std::string scene(const char* name) { return std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/" + name; }
+std::string scene(const char* name) { return (std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "scenes" / name).string(); }
 
 // Ten lobes side by side: a report table of ten columns, events tables of twelve columns (the
 // installed lobes), lengths in inches (the scene's units) and angles in degrees (the reader's).

@@ -21,6 +21,7 @@
 #include <fstream>
 #include <numeric>
 #include <sstream>
+#include <string_view>
 #include <thread>
 
 using namespace mechgraph;
@@ -47,7 +48,7 @@ outputs: [ ta.time_area, poly.max_lift, ct.points ]
 ParamSet without(const ParamSet& params, std::initializer_list<const char*> drop) {
   ParamSet out;
   for (const auto& [name, value] : params.all())
-    if (std::find_if(drop.begin(), drop.end(), [&](const char* d) { return name == d; }) == drop.end()) out.set(name, value);
+    if (std::find(drop.begin(), drop.end(), std::string_view(name)) == drop.end()) out.set(name, value);
   return out;
 }
 

@@ -10,7 +10,7 @@ using namespace mechgraph;
 using namespace mechgraph::testing;
 
 TEST_CASE("a sweep evaluated on four threads with one shared cache equals the sequential sweep", "[evaluator][threads]") {
-  const SceneSpec scene = load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/valvetrain_cams.yaml");
+  const SceneSpec scene = load_scene(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "scenes" / "valvetrain_cams.yaml");
   std::vector<Graph> graphs;
   for (int i = 0; i < 16; ++i)
     graphs.push_back(build_graph(scene, project_registry(), {parse_override("rpm=" + std::to_string(3000 + 250 * i) + "rpm")}));
@@ -47,7 +47,7 @@ TEST_CASE("a sweep evaluated on four threads with one shared cache equals the se
 TEST_CASE("one graph on several threads: same results, runs in dependency order, failures reported", "[evaluator][threads]") {
   for (const char* name : {"valvetrain_cams.yaml", "backlash_chain.yaml"}) {
     INFO(name);
-    const Graph g = build_graph(load_scene(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes/" + name), project_registry());
+    const Graph g = build_graph(load_scene(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "scenes" / name), project_registry());
     MemoCache one, many;
     const RunResult sequential = evaluate(g, one, 1);
     const RunResult parallel = evaluate(g, many, 4);

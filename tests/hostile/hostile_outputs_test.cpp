@@ -5,6 +5,7 @@
 #include "hostile/hostile_support.hpp"
 #include "file_support.hpp"
 #include "test_support.hpp"
+#include "sanitizer_build.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -266,7 +267,7 @@ TEST_CASE("hostile merge: JSON Lines shards must have the same keys", "[hostile]
 }
 
 TEST_CASE("hostile merge: memory does not grow with the rows", "[hostile][sweep][slow]") {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(MECHGRAPH_TEST_ADDRESS_SANITIZER) || defined(MECHGRAPH_TEST_THREAD_SANITIZER)
   WARN("built with a sanitizer, whose shadow memory makes resident size meaningless: not measured");
   return;
 #endif

@@ -6,6 +6,7 @@
 // the capabilities to read and search any file (ambient DAC capabilities, which RLIMIT_NPROC does
 // not exempt), so the test also runs from a checkout in a folder only root may enter (mktemp -d).
 #include "hostile/hostile_support.hpp"
+#include "sanitizer_build.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -80,7 +81,7 @@ TEST_CASE("under a process limit no thread can start: every threaded command doe
   // The plugin probe forks; its verdicts are cached per user, so a first run without the limit fills
   // a cache the limited runs read (a probe that cannot fork refuses the file: nothing loads unprobed).
   Scratch scratch("nproc");
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(MECHGRAPH_TEST_ADDRESS_SANITIZER)
   // LeakSanitizer needs a thread of its own at exit, which this limit forbids: no leak check here
   // (the rest of the sanitized suite has it).
   ::setenv("ASAN_OPTIONS", "detect_leaks=0:abort_on_error=1:allocator_may_return_null=1", 1);
@@ -107,7 +108,7 @@ TEST_CASE("under a process limit no thread can start: every threaded command doe
 TEST_CASE("under an address-space limit threads that cannot map a stack are not started, no abort",
           "[hostile][threads][cli]") {
   // A 1 GiB stack for every thread and 3 GiB of address space: a thread or two start, the rest fail.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if defined(MECHGRAPH_TEST_ADDRESS_SANITIZER) || defined(MECHGRAPH_TEST_THREAD_SANITIZER)
   // A sanitizer maps terabytes of shadow memory when the program starts, which no address-space
   // limit admits: the uninstrumented suite (the README's test command) tests this limit.
   WARN("built with a sanitizer, which cannot start under an address-space limit: not tested in this build");

@@ -58,7 +58,7 @@ std::map<std::string, int> check_scene_objects(const std::string& scene_file, co
 
 TEST_CASE("the objects of every shipped scene pass mg_check_object", "[sdk][sdk1][objects]") {
   std::map<std::string, int> all;
-  for (const auto& entry : std::filesystem::directory_iterator(std::string(MECHGRAPH_SOURCE_DIR) + "/scenes")) {
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(MECHGRAPH_SOURCE_DIR) / "scenes")) {
     if (entry.path().extension() != ".yaml") continue;
     for (const auto& [name, count] : check_scene_objects("scenes/" + entry.path().filename().string(), project_registry()))
       all[name] += count;

@@ -150,7 +150,8 @@ class Arith final : public NodeType {
         if (mode == "nan") sum = std::numeric_limits<double>::quiet_NaN();
         if (mode == "sleep") std::this_thread::sleep_for(std::chrono::milliseconds(30));
         if (mode == "allocate") {  // far beyond any machine: the allocation fails, as std::vector's would
-          void* block = std::malloc(std::size_t{1} << 62);
+          // volatile: clang may drop a malloc whose block is only freed, and with it the failure
+          void* volatile block = std::malloc(std::size_t{1} << 62);
           if (!block) throw std::bad_alloc();
           std::free(block);
         }
