@@ -7,10 +7,12 @@
 #include <mechgraph/semantic_version.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cstddef>
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace mechgraph::detail {
@@ -27,13 +29,6 @@ std::map<std::string, std::string> fingerprint_fields(const std::string& fingerp
     else out["compiler"] = item;
   }
   return out;
-}
-
-std::string cxx_standard_name(const std::string& cplusplus) {
-  static const std::map<std::string, std::string> names{{"201402", "C++14"}, {"201703", "C++17"}, {"202002", "C++20"},
-                                                        {"202100", "C++23"}, {"202302", "C++23"}};
-  const auto it = names.find(cplusplus.substr(0, 6));
-  return it == names.end() ? "__cplusplus " + cplusplus : it->second + " (__cplusplus " + cplusplus + ")";
 }
 
 // Names each field of the build fingerprint that differs and what to rebuild with.
@@ -66,6 +61,20 @@ std::string explain_fingerprint_mismatch(const std::string& plugin, const std::s
 }
 
 }  // namespace
+
+// A standard's value is given before the standard is published, and differently by each compiler
+// (C++23: gcc 12 gives 202100, clang 14 202101, the standard 202302): each standard names the
+// values after its predecessor's, up to its own.
+std::string cxx_standard_name(const std::string& cplusplus) {
+  long value = 0;
+  const auto [end, error] = std::from_chars(cplusplus.data(), cplusplus.data() + cplusplus.size(), value);
+  if (error != std::errc() || end == cplusplus.data()) return "__cplusplus " + cplusplus;
+  static constexpr std::pair<long, const char*> standards[] = {
+      {199711, "C++98"}, {201103, "C++11"}, {201402, "C++14"}, {201703, "C++17"}, {202002, "C++20"}, {202302, "C++23"}};
+  for (const auto& [last, name] : standards)
+    if (value <= last) return std::string(name) + " (__cplusplus " + cplusplus + ")";
+  return "a standard after C++23 (__cplusplus " + cplusplus + ")";
+}
 
 void throw_plugin_load_failure(const std::string& where, const std::string& reason) {
   if (reason.find("libmechgraph.so") != std::string::npos || reason.find("libmechgraph_sdk.so") != std::string::npos)

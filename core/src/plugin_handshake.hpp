@@ -31,6 +31,10 @@ auto call_plugin(const std::string& where, const char* what, F&& f) -> decltype(
 /// the plugin was built against another libmechgraph.
 [[noreturn]] void throw_plugin_load_failure(const std::string& where, const std::string& reason);
 
+/// The language standard a build fingerprint's __cplusplus value ("202002L") names, with the value:
+/// "C++20 (__cplusplus 202002L)"; a drafted standard's value names the standard it became.
+std::string cxx_standard_name(const std::string& cplusplus);
+
 /// Calls the entry and checks the descriptor it returns; throws PluginError on any mismatch.
 const PluginDescriptor& checked_plugin_descriptor(PluginEntry* entry, const std::string& where);
 
