@@ -15,7 +15,7 @@ if [ "${1:-}" != "--study" ]; then
              pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
              python3-pytest python3-venv python3-pip python3-setuptools python3-wheel python3-distributed python3-nbclient python3-ipykernel python3-nbformat
              clang abigail-tools libc++-dev libc++abi-dev  # the SDK checks: C headers under clang, abidw/abidiff, a libc++ plugin
-             libclang-rt-14-dev  # clang's sanitizer runtimes and libFuzzer: the ASan + UBSan suite, the fuzzers
+             libclang-rt-14-dev  # clang's sanitizer runtimes and libFuzzer (scripts/run-fuzzers.sh)
              python3-openturns)  # the uncertainty study checked against OpenTURNS (python/tests/test_study_openturns.py)
 fi
 missing=()

@@ -1,8 +1,8 @@
 // The headers most test files include, compiled once per build folder and handed to every test
 // file as a precompiled header (tests/CMakeLists.txt, target_precompile_headers). Parsing them was
-// about half of compiling a short test file, in each of CI's builds that compile the tests.
-// Only headers nearly every test file includes anyway belong here: a test file still includes
-// what it uses, so it compiles without this header too (MECHGRAPH_TEST_PCH=OFF).
+// a third to a half of compiling a short test file, in each of CI's builds that compile the tests.
+// Only headers most test files include anyway belong here: a test file still includes what it
+// uses, so it compiles without this header too (MECHGRAPH_TEST_PCH=OFF).
 #pragma once
 
 #include "test_support.hpp"

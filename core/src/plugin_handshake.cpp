@@ -66,9 +66,11 @@ std::string explain_fingerprint_mismatch(const std::string& plugin, const std::s
 // (C++23: gcc 12 gives 202100, clang 14 202101, the standard 202302): each standard names the
 // values after its predecessor's, up to its own.
 std::string cxx_standard_name(const std::string& cplusplus) {
+  const char* const last_char = cplusplus.data() + cplusplus.size();
   long value = 0;
-  const auto [end, error] = std::from_chars(cplusplus.data(), cplusplus.data() + cplusplus.size(), value);
-  if (error != std::errc() || end == cplusplus.data()) return "__cplusplus " + cplusplus;
+  const auto [end, error] = std::from_chars(cplusplus.data(), last_char, value);
+  const bool whole = end == last_char || (*end == 'L' && end + 1 == last_char);
+  if (error != std::errc() || !whole || value < 199711) return "__cplusplus " + cplusplus;
   static constexpr std::pair<long, const char*> standards[] = {
       {199711, "C++98"}, {201103, "C++11"}, {201402, "C++14"}, {201703, "C++17"}, {202002, "C++20"}, {202302, "C++23"}};
   for (const auto& [last, name] : standards)

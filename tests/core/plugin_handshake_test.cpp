@@ -16,4 +16,7 @@ TEST_CASE("a fingerprint's __cplusplus names its standard, drafts included, whic
   CHECK(cxx_standard_name("201402L") == "C++14 (__cplusplus 201402L)");
   CHECK(cxx_standard_name("unknown") == "__cplusplus unknown");
   CHECK(cxx_standard_name("") == "__cplusplus ");
+  CHECK(cxx_standard_name("1") == "__cplusplus 1");  // gcc before 4.7
+  CHECK(cxx_standard_name("2017x") == "__cplusplus 2017x");
+  CHECK(cxx_standard_name("201703") == "C++17 (__cplusplus 201703)");
 }
