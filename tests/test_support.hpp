@@ -6,6 +6,7 @@
 #include <mechgraph/plugin_registry.hpp>
 #include <mechgraph/scene.hpp>
 #include <mechgraph/testing/node_harness.hpp>
+#include <mechgraph/detail/cxx_abi_key.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -38,6 +39,11 @@ inline ParamSet defaults_of(const NodeInfo& info, const std::map<std::string, Pa
   for (const auto& [k, v] : values) p.set(k, v);
   return p;
 }
+
+/// Whether the libraries this project's compiler builds from the SDK's headers share their C++
+/// layer, so that one's objects cross into another as themselves: with gcc; not with clang or
+/// libc++, whose builds have no key (mechgraph/detail/cxx_abi_key.hpp).
+inline constexpr bool shares_cxx_layer = mechgraph::detail::cxx_abi_key != nullptr;
 
 inline std::filesystem::path test_plugin(const std::string& name) {
   return std::filesystem::path(MECHGRAPH_TEST_PLUGIN_ROOT) / name / ("mechgraph_" + name + ".so");

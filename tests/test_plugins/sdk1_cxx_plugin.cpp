@@ -1,5 +1,6 @@
 // C++ node types exported through the SDK 1.x C boundary (MECHGRAPH_PLUGIN_1): built by the
-// project's compiler and, as test_sdk1_clang, by clang++, and loaded into the host either way.
+// project's compiler and, as test_sdk1_other, by the other one (clang++ for a gcc-built host, g++
+// for a clang-built one), and loaded into the host either way.
 //   cxx1.scale  out = gain * in (a scalar parameter and input), a note, a work counter
 //   cxx1.curve  a table x, y = a x^2 and a series, refusing a < 0 with a NodeError
 #include <mechgraph/plugin_sdk1.hpp>

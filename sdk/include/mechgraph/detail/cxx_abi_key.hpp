@@ -13,14 +13,20 @@
 // uses the shortcut (the tests that must see the C tables at work build so). Neither has one built
 // with libc++: each library has its own RTTI for the SDK's classes (hidden), and libc++ compares
 // type_info by address on ELF, so a dynamic_cast or a catch of NodeError across two libraries
-// would fail where libstdc++, which compares the names, succeeds.
+// would fail where libstdc++, which compares the names, succeeds. Nor one built by clang (with
+// libstdc++): libstdc++ compares two classes' type information by name unless the compiler marked
+// the name as its library's own ('*' first), which gcc does for a class in an anonymous namespace
+// and clang 14 does not. Two plugins built by clang from one template, each with its `ThreeArc` in
+// an anonymous namespace, would then take each other's objects for their own in a dynamic_cast
+// (tests/core/sdk1_objects_test.cpp, "A -> B -> A", found it). Defining the macro to 1 overrides
+// either default, at that risk.
 #include <mechgraph/version.hpp>
 
 #include <cstring>
 #include <version>
 
 #ifndef MECHGRAPH_SDK_CXX_SHORTCUT
-#if defined(_LIBCPP_VERSION)
+#if defined(_LIBCPP_VERSION) || defined(__clang__)
 #define MECHGRAPH_SDK_CXX_SHORTCUT 0
 #else
 #define MECHGRAPH_SDK_CXX_SHORTCUT 1
