@@ -11,7 +11,7 @@ from typing import Any, Dict, Iterable, Mapping, Optional, Tuple
 from ._cases import case_columns
 from ._scene import Scene
 from ._progress import _Bar, progress_bar
-from ._units import SI
+from ._units import SI, set_entries
 
 # Scenes built on this worker process, by their source (the scene travels as its text or path).
 _worker_scenes: Dict[Tuple[str, ...], Scene] = {}
@@ -42,20 +42,26 @@ def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optiona
     marks every number without a unit as SI). `progress`: a tqdm bar of the cases done, chunk by
     chunk, once the sweep has run for a second (False: none; a callable ``progress(done, total)``). The columns of a series output are fixed per
     chunk; a chunk whose cases all fail has only the scalar columns (its rows are aligned to the
-    others by name). `max_work`, `max_memory`: each chunk's budget, as :meth:`Scene.sweep` takes it."""
+    others by name). `max_work`: the work budget of all the cases together, as :meth:`Scene.sweep`
+    takes it (default 1e12 work items), checked here before any chunk is sent, case by case with its
+    own values (SceneError naming the case); `max_memory`: what one chunk's `threads` hold at once
+    (default 4 GiB), checked here for the whole sweep's largest case. Each worker checks its chunk
+    again."""
     import pandas as pd
 
     from ._scene import _budget
 
     if chunk < 1:
         raise ValueError("chunk must be at least 1")
-    _budget(max_work, max_memory)  # refused here, not on the workers
+    budget = _budget(max_work, max_memory)  # refused here, not on the workers
     names, units, marks, columns = case_columns(cases, si)
     headers = [f"{n} [{u}]" if u else n for n, u in zip(names, units)]
     total = len(columns[0]) if columns else 0
+    outs = list(outputs or [])
+    # The whole sweep within its budget before anything runs: the chunks alone would each pass.
+    scene._session.check_sweep(names, units, marks, columns, set_entries(set, si), outs, int(threads), *budget)
     source = scene._source
     sets = {k: (v if isinstance(v, SI) or not si else SI(v)) for k, v in dict(set or {}).items()}
-    outs = list(outputs or [])
     futures = []
     for first in range(0, total, chunk):
         part = {h: SI(c[first:first + chunk]) if m else c[first:first + chunk] for h, m, c in zip(headers, marks, columns)}

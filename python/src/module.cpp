@@ -590,6 +590,17 @@ PYBIND11_MODULE(_core, m) {
         summary["seconds"] = result.summary.seconds;
         return py::make_tuple(sweep_columns(result), summary);
       })
+      // What sweep() checks before its first case, for rows that run elsewhere (mechgraph.dask.sweep).
+      .def("check_sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
+                             const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
+                             const py::list& set, const std::vector<std::string>& outputs, unsigned threads, double max_work,
+                             double max_memory) {
+        const CaseTable table = case_table(*session, names, units, si, columns);
+        const std::vector<SetValue> sets = set_values(set);
+        const WorkBudget budget = python_budget(max_work, max_memory, true);
+        py::gil_scoped_release released;
+        session->check_sweep(table, sets, outputs, threads, budget);
+      })
       .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                        const std::string& samples, const std::string& method, const std::string& seed,
                        const std::vector<std::string>& outputs, unsigned threads, double max_work, double max_memory) {

@@ -238,24 +238,30 @@ std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vecto
                                   host::python_option_names);
 }
 
-SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
-                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
-                                 const WorkBudget& budget, std::atomic<std::size_t>* done) {
+void SceneSession::with_sweep_graph(const CaseTable& table, const std::vector<SetValue>& sets,
+                                    const std::vector<std::string>& outputs,
+                                    const std::function<void(const Graph&, const CaseBinder&)>& use) {
   SceneSpec scene = scene_;
   const std::vector<Override> overrides = fixed_overrides(sets);
   const Graph graph = host::build_sweep_graph(scene, *registry_, overrides,
                                              outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')),
                                              host::python_option_names);
   const CaseBinder binder(graph, scene, *registry_, overrides, table.variables);
+  use(graph, binder);
+}
+
+namespace {
+SweepOptions sweep_options(const CaseTable& table, unsigned threads) {
   SweepOptions options;
   for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
   options.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
-  // Every case with its own values, as `mechgraph sweep` estimates them (sweep/case_estimate.hpp).
-  check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
-  options.stop = stop;
+  return options;
+}
 
+// The rows of a sweep: the cases of `options` run, each row into `out` in case order.
+void run_rows(const Graph& graph, const CaseBinder& binder, const CaseTable& table, const SweepOptions& options,
+              std::atomic<std::size_t>* done, SessionSweep& out) {
   // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.
-  SessionSweep out;
   host::SweepRows rows(graph, table, host::RowFormat::jsonl);
   host::RowSequencer sequence(
       rows, [] {},
@@ -272,6 +278,28 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   sequence.finish();
   out.header = rows.header();
   out.inputs = table.variables.size();
+}
+}  // namespace
+
+void SceneSession::check_sweep(const CaseTable& table, const std::vector<SetValue>& sets, const std::vector<std::string>& outputs,
+                               unsigned threads, const WorkBudget& budget) {
+  with_sweep_graph(table, sets, outputs, [&](const Graph& graph, const CaseBinder& binder) {
+    const SweepOptions options = sweep_options(table, threads);
+    check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
+  });
+}
+
+SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetValue>& sets,
+                                 const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
+                                 const WorkBudget& budget, std::atomic<std::size_t>* done) {
+  SessionSweep out;
+  with_sweep_graph(table, sets, outputs, [&](const Graph& graph, const CaseBinder& binder) {
+    SweepOptions options = sweep_options(table, threads);
+    // Every case with its own values, as `mechgraph sweep` estimates them (sweep/case_estimate.hpp).
+    check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
+    options.stop = stop;
+    run_rows(graph, binder, table, options, done, out);
+  });
   return out;
 }
 

@@ -17,6 +17,7 @@
 
 #include <atomic>
 #include <map>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -81,6 +82,13 @@ class SceneSession {
                      const std::vector<std::string>& outputs, unsigned threads, const std::atomic<bool>* stop,
                      const WorkBudget& budget, std::atomic<std::size_t>* done = nullptr);
 
+  /// What sweep() checks before its first case, nothing run: the work of every row of `table`
+  /// within `budget`, what `threads` cases hold at once within its memory (check_sweep_budget).
+  /// For a sweep whose rows run elsewhere in chunks (mechgraph.dask.sweep): the whole is checked
+  /// here, not only each chunk there. Throws SceneError naming the case.
+  void check_sweep(const CaseTable& table, const std::vector<SetValue>& sets, const std::vector<std::string>& outputs,
+                   unsigned threads, const WorkBudget& budget);
+
   /// An uncertainty study of the scene (study_run.hpp): `block` merged over its `uncertainty:`,
   /// `sets` fixed for every case (as sweep() takes them); empty samples/method/seed: the block's.
   std::unique_ptr<host::StudyOutcome> study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
@@ -131,6 +139,10 @@ class SceneSession {
   // A sweep's or a study's fixed `sets` as overrides (each value one quoted YAML scalar).
   std::vector<Override> fixed_overrides(const std::vector<SetValue>& sets);
   Prepared prepare(const std::vector<std::string>& outputs, const std::vector<std::string>& names) const;
+  // A sweep's graph (the fixed `sets` applied, `outputs` or the scene's) and the binder of the
+  // table's variables, handed to `use`: sweep() runs them, check_sweep() estimates them.
+  void with_sweep_graph(const CaseTable& table, const std::vector<SetValue>& sets, const std::vector<std::string>& outputs,
+                        const std::function<void(const Graph&, const CaseBinder&)>& use);
   void give(const CaseBinder& binder, Graph& graph, const BoundSets& sets) const;
   Prepared& prepared(const std::vector<std::string>& outputs, const std::vector<std::string>& names,
                      const std::vector<std::string>& list_names);

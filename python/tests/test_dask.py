@@ -57,3 +57,27 @@ def test_dask_study_equals_the_single_process_study(monkeypatch):
     finally:
         monkeypatch.delenv("MECHGRAPH_PLUGIN_PATH")
         mechgraph.load_plugins()
+
+
+def test_dask_sweep_checks_the_whole_sweeps_budget_before_a_chunk_is_sent(scenes):
+    # max_work bounds all the cases together, as Scene.sweep's does: chunks of one case, each within
+    # the budget alone, must not let ten cases through. The refusal comes before any submit.
+    import re
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    rpm = np.linspace(4000, 8000, 10)
+    with pytest.raises(mechgraph.SceneError) as refused:
+        scene.sweep({"rpm [rpm]": rpm[:1]}, max_work=1, progress=False)
+    one_case = float(re.search(r"max_work=([0-9.e+]+)", str(refused.value)).group(1))  # the budget one case needs
+    budget = 3 * one_case
+    assert (scene.sweep({"rpm [rpm]": rpm[:1]}, max_work=budget, progress=False)["exit"] == 0).all()
+
+    class NoCluster:
+        def submit(self, *args, **kwargs):
+            raise AssertionError("a chunk was sent although the whole sweep is over its budget")
+
+    with pytest.raises(mechgraph.SceneError, match="raise the budget with max_work="):
+        mechgraph.dask.sweep(NoCluster(), scene, {"rpm [rpm]": rpm}, chunk=1, max_work=budget, progress=False)
+    # Within the budget, the check lets the chunks go.
+    with pytest.raises(AssertionError, match="a chunk was sent"):
+        mechgraph.dask.sweep(NoCluster(), scene, {"rpm [rpm]": rpm}, chunk=1, max_work=20 * one_case, progress=False)
