@@ -2,7 +2,9 @@
 # The SDK 1.x promise, checked against the sdk-1.0 release (docs/writing-plugins.md,
 # "Compatibility"; the reference commit is named in sdk/ABI_REFERENCE):
 #  1. the reference's sources (git archive of its commit) are built and installed into a cache
-#     folder: its libmechgraph_sdk.so.1, its SDK headers, its CMake package, its real plugins;
+#     folder: its libmechgraph_sdk.so.1 and host library, its SDK headers, its CMake package, its
+#     real plugin named below (not its program or its other plugins: the check runs the current
+#     host; a stand-in for the program, which refuses to run, is what the package's config finds);
 #  2. from them: examples/plugin (out of tree, against the reference's installed package), the
 #     reference's C test plugins (tests/test_plugins/c_*.c, against its C headers alone) and one
 #     real plugin (sdk/ABI_REFERENCE `real_plugin`, as the reference built it);
@@ -80,10 +82,26 @@ fi
 # every compiler command line, so ccache answers from the main build's entries.
 export CCACHE_BASEDIR=$ref_src CCACHE_NOHASHDIR=1
 log=$cache/build.log
+# Only what the check uses is built (the libraries, the real plugin: about a third of the tree) and
+# installed: the reference's own install() is wrapped, after its project(), to skip the rules of
+# the targets not built (its program, its other plugins). Everything else it installs as it did.
+cat > "$cache/install-used.cmake" <<EOF
+# Written by scripts/test-sdk-compat.sh: install the targets the SDK check builds, nothing else.
+function(install)
+  if(ARGV0 STREQUAL "TARGETS" AND NOT ARGV1 STREQUAL "mechgraph" AND NOT ARGV1 STREQUAL "$real_plugin")
+    return()
+  endif()
+  _install(\${ARGV})
+endfunction()
+EOF
 { cmake -S "$ref_src" -B "$ref_src/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMECHGRAPH_BUILD_TESTS=OFF \
-    -DMECHGRAPH_PYTHON=OFF -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON &&
-  cmake --build "$ref_src/build" --parallel "$(nproc)" &&
+    -DMECHGRAPH_PYTHON=OFF -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON -DCMAKE_PROJECT_INCLUDE="$cache/install-used.cmake" &&
+  cmake --build "$ref_src/build" --parallel "$(nproc)" --target mechgraph mechgraph_sdk_library "$real_plugin" &&
   cmake --install "$ref_src/build" --prefix "$prefix"; } > "$log" 2>&1 || { tail -n 40 "$log" >&2; fail "the reference did not build (log: $log)"; }
+# The package's config checks that its program is there (MECHGRAPH_EXECUTABLE); nothing here runs it.
+mkdir -p "$prefix/bin"
+printf '#!/bin/sh\necho "the sdk-1.0 reference of scripts/test-sdk-compat.sh: its program is not built" >&2\nexit 1\n' > "$prefix/bin/mechgraph"
+chmod +x "$prefix/bin/mechgraph"
 step "reference built and installed in $cache"
 
 # 3. Plugins from the reference's sources, against the reference's SDK.
