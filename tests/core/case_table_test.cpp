@@ -152,33 +152,3 @@ TEST_CASE("Case tables: a grid's points in its unit are the doubles those number
     CHECK(parse_quantity(shown + " mm").value == *mixed.cases[k][0].si);
   }
 }
-
-TEST_CASE("Case tables: a bare number in a --vary list takes the list's unit, as a range's bare end does", "[core][sweep]") {
-  // rpm=5000,6000,7000rpm is three speeds: each the double `--set rpm=5000rpm` gives, shown as written.
-  const CaseTable speeds = make_grid({parse_vary("rpm=5000, 6000rpm ,7000")});
-  REQUIRE(speeds.cases.size() == 3);
-  CHECK(speeds.variables[0].unit == "rpm");
-  const double rpm = parse_quantity("1 rpm").value;
-  for (std::size_t k = 0; k < 3; ++k) {
-    const double number = 5000.0 + 1000.0 * static_cast<double>(k);
-    CHECK(*speeds.cases[k][0].si == parse_quantity(std::to_string(static_cast<int>(number)) + " rpm").value);
-    CHECK_THAT(*speeds.cases[k][0].si, Catch::Matchers::WithinRel(number * rpm, 1e-15));
-    CHECK(speeds.cases[k][0].dimension == parse_quantity("1 rpm").dimension);
-    CHECK(speeds.shown(k, 0) == std::to_string(static_cast<int>(number)));
-  }
-  // Several units beside a bare number: which it means cannot be told.
-  CHECK_THROWS_WITH(parse_vary("rpm=5000,6000rpm,700rad/s"),
-                    Catch::Matchers::Contains("'5000' has no unit") && Catch::Matchers::Contains("(rpm, rad/s)") &&
-                        Catch::Matchers::Contains("write its unit"));
-  // Several units and no bare number, bare numbers alone, words: as before.
-  const VarySpec mixed = parse_vary("a=1mm,0.5cm");
-  CHECK(mixed.values[1].text == "0.5cm");
-  CHECK_THAT(*mixed.values[1].si, Catch::Matchers::WithinRel(0.005, 1e-15));
-  const VarySpec bare = parse_vary("ratio=1.5,1.6");
-  CHECK(bare.unit.empty());
-  CHECK(bare.values[0].dimension == Dimension{});
-  CHECK(*bare.values[1].si == 1.6);
-  const VarySpec words = parse_vary("integrator=cvode,3");
-  CHECK(words.values[0].text == "cvode");
-  CHECK(words.values[1].text == "3");
-}

@@ -475,31 +475,14 @@ VarySpec parse_vary(std::string_view text) {
     }
     return std::string::npos;
   };
-  std::vector<std::string> items;
-  for (std::size_t start = 0, comma;; start = comma + 1) {
+  std::size_t start = 0;
+  for (std::size_t comma;; start = comma + 1) {
     comma = next_comma(start);
-    items.push_back(trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (items.back().empty()) throw SceneError(context + ": an empty value in the list");
+    const std::string item = trim(rhs.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (item.empty()) throw SceneError(context + ": an empty value in the list");
+    spec.values.push_back(read_case_value(item, context));
+    if (spec.unit.empty() && spec.values.back().si) spec.unit = unit_of(item);
     if (comma == std::string::npos) break;
-  }
-  // A bare number among numbers with a unit takes theirs, as a range's bare end takes the other
-  // end's (3000:7000rpm): rpm=5000,6000,7000rpm is three speeds. Where the numbers with a unit
-  // have several, a bare one is refused: which it means cannot be told.
-  std::vector<std::string> units;  // of the numbers with one, each once
-  const std::string* bare = nullptr;
-  for (const std::string& item : items) {
-    if (bare_number(item)) {
-      bare = bare ? bare : &item;
-    } else if (const std::string unit = unit_of(item); !unit.empty() && read_case_value(item, context).si) {
-      if (std::find(units.begin(), units.end(), unit) == units.end()) units.push_back(unit);
-    }
-  }
-  if (bare && units.size() > 1)
-    throw SceneError(context + ": '" + excerpt(*bare) + "' has no unit, and the list's other numbers have several (" +
-                     excerpt(units[0]) + ", " + excerpt(units[1]) + "): write its unit");
-  for (const std::string& item : items) {
-    spec.values.push_back(read_case_value(bare && units.size() == 1 && bare_number(item) ? item + " " + units[0] : item, context));
-    if (spec.unit.empty() && spec.values.back().si) spec.unit = unit_of(spec.values.back().text);
   }
   return spec;
 }
