@@ -16,6 +16,7 @@
 # module is not built here (an instrumented extension cannot load into Debian's uninstrumented
 # python3); its C++ is the library the C++ tests run instrumented, and the README command runs its tests.
 set -euo pipefail
+dir=$(realpath -m "${1:-$(dirname "$0")/../build-asan}")
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
@@ -24,7 +25,6 @@ flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recove
 # The test programs' own files at -O0 (MECHGRAPH_TEST_COMPILE_OPTIONS): instrumented, they are the
 # slowest part of CI's builds, and -O0 compiles them in about 40 % less time; the code they test
 # stays at -O1.
-dir=${1:-build-asan}
 cmake -S . -B "$dir" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DMECHGRAPH_PYTHON=OFF -DMECHGRAPH_BENCH=OFF \
   -DCMAKE_CXX_FLAGS="$flags -O1" -DCMAKE_CXX_FLAGS_DEBUG="-g1" -DMECHGRAPH_TEST_COMPILE_OPTIONS="-O0;-g1" \
   -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags" >&2

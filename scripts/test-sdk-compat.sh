@@ -85,14 +85,35 @@ log=$cache/build.log
 # Only what the check uses is built (the libraries, the real plugin: about a third of the tree) and
 # installed: the reference's own install() is wrapped, after its project(), to skip the rules of
 # the targets not built (its program, its other plugins). Everything else it installs as it did.
+# (CMake keeps an overridden command as _install; a rule naming targets of both kinds fails
+# loudly, for a reference laid out otherwise than sdk-1.0.)
+used_targets="mechgraph mechgraph_sdk_library mechgraph_sdk mechgraph_host $real_plugin"
 cat > "$cache/install-used.cmake" <<EOF
 # Written by scripts/test-sdk-compat.sh: install the targets the SDK check builds, nothing else.
+include_guard(GLOBAL)
 function(install)
-  if(ARGV0 STREQUAL "TARGETS" AND NOT ARGV1 STREQUAL "mechgraph" AND NOT ARGV1 STREQUAL "$real_plugin")
-    return()
+  if(ARGV0 STREQUAL "TARGETS")
+    set(used 0)
+    set(unused 0)
+    list(SUBLIST ARGV 1 -1 names)
+    foreach(name IN LISTS names)
+      if(name MATCHES "^[A-Z_]+\$")
+        break()  # the first keyword (EXPORT, LIBRARY, DESTINATION, ...) ends the targets
+      elseif(name IN_LIST mechgraph_compat_used_targets)
+        math(EXPR used "\${used} + 1")
+      else()
+        math(EXPR unused "\${unused} + 1")
+      endif()
+    endforeach()
+    if(used AND unused)
+      message(FATAL_ERROR "test-sdk-compat: install(\${ARGV}) names targets the check builds and others")
+    elseif(unused)
+      return()
+    endif()
   endif()
   _install(\${ARGV})
 endfunction()
+set(mechgraph_compat_used_targets $used_targets)
 EOF
 { cmake -S "$ref_src" -B "$ref_src/build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMECHGRAPH_BUILD_TESTS=OFF \
     -DMECHGRAPH_PYTHON=OFF -DCMAKE_DISABLE_FIND_PACKAGE_benchmark=ON -DCMAKE_PROJECT_INCLUDE="$cache/install-used.cmake" &&

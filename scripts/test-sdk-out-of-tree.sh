@@ -34,10 +34,16 @@ plugin_dir=$work/loom/build/mechgraph-plugins
 plugin=$plugin_dir/mechgraph_loom.so
 nm -D --defined-only "$plugin" | grep -q ' mechgraph_plugin_entry_1$' || fail "the plugin does not export the SDK 1.x entry"
 # Built by this compiler from the installed headers, its C++ layer has the host's key (c/object_cxx.h):
-# its laws reach the host and the built-in plugins as their C++ objects.
+# its laws reach the host and the built-in plugins as their C++ objects. A host built by clang has
+# no key (detail/cxx_abi_key.hpp), and neither then has the plugin.
 host_key=$(grep -m1 '^mechgraph-sdk-.*/headers-' <<< "$(strings "$prefix/lib/libmechgraph.so")" || true)
-[[ -n $host_key ]] || fail "no C++ layer key in the installed libmechgraph"
-grep -qxF -- "$host_key" <<< "$(strings "$plugin")" || fail "the plugin's C++ layer key is not the host's ($host_key)"
+if [[ -n $host_key ]]; then
+  grep -qxF -- "$host_key" <<< "$(strings "$plugin")" || fail "the plugin's C++ layer key is not the host's ($host_key)"
+else
+  readelf -p .comment "$prefix/lib/libmechgraph.so" 2>/dev/null | grep -q clang ||
+    fail "no C++ layer key in the installed libmechgraph, which is not a clang build"
+  ! grep -q '^mechgraph-sdk-.*/headers-' <<< "$(strings "$plugin")" || fail "the plugin has a C++ layer key, the clang-built host none"
+fi
 mg() { "$prefix/bin/mechgraph" -q --plugin-dir "$plugin_dir" "$@"; }
 scene=$work/loom/loom.yaml
 

@@ -1,6 +1,6 @@
 // Whether this test program is built with AddressSanitizer or ThreadSanitizer, whichever compiler
 // built it: gcc defines __SANITIZE_ADDRESS__ and __SANITIZE_THREAD__, clang 14 answers only through
-// __has_feature (CI's sanitizer builds use gcc; the suite also builds with clang).
+// __has_feature (CI's ASan build uses clang, its ThreadSanitizer build gcc).
 #pragma once
 
 #if defined(__SANITIZE_ADDRESS__)

@@ -45,7 +45,8 @@ def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optiona
     others by name). `max_work`: the work budget of all the cases together, as :meth:`Scene.sweep`
     takes it (default 1e12 work items), checked here before any chunk is sent, case by case with its
     own values (SceneError naming the case); `max_memory`: what one chunk's `threads` hold at once
-    (default 4 GiB), checked here for the whole sweep's largest case. Each worker checks its chunk
+    (default 4 GiB), checked here for the whole sweep's largest case (`threads` 0 counts this
+    machine's cores, the workers' own check theirs). Each worker checks its chunk
     again."""
     import pandas as pd
 
@@ -96,8 +97,8 @@ def study(client: Any, scene: Scene, parameters: Optional[Mapping[str, Any]] = N
     workers of `client` by :func:`sweep`: the design is made here, its cases (parameters in SI)
     go out in chunks, the rows come back exact, and the answers are made from them: the same
     numbers as ``scene.study(...)`` in one process. `max_work`, `max_memory`: the study's budget
-    (what it holds beside its cases, its bootstrap) as :meth:`Scene.study` takes it; each chunk of
-    cases gets the same budget on its worker."""
+    (what it holds beside its cases, its bootstrap) as :meth:`Scene.study` takes it: checked here
+    for the whole study before its cases go out, and again for each chunk on its worker."""
     from ._scene import _budget, _study_arguments
     from ._study import Study
 
