@@ -176,8 +176,9 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   for (const std::string& s : sets) overrides.push_back(parse_override(s));
   const Graph graph = build_sweep_graph(scene, registry, overrides,
                                        vm.count("outputs") ? std::optional<std::string>(vm["outputs"].as<std::string>()) : std::nullopt);
-  const CaseTable table = make_cases(vm, scene, registry, graph, overrides);
+  CaseTable table = make_cases(vm, scene, registry, graph, overrides);
   const CaseBinder binder(graph, scene, registry, overrides, table.variables);
+  if (vm.count("vary")) read_bare_numbers_in_list_unit(table, binder);
 
   SweepOptions options;
   for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);

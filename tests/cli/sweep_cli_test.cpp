@@ -114,6 +114,36 @@ TEST_CASE("sweep --format jsonl: one JSON object per case, keys as the CSV's col
   CHECK(second["error"].IsNull());
 }
 
+TEST_CASE("sweep --vary: a bare number in a list takes the list's unit where the parameter has its dimension",
+          "[cli][sweep]") {
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  // len is a length: 1 is 1 mm, as in len=1:3mm:3; the rows show it as 1, in the column's mm.
+  const auto lengths = run_cli(arith_dir() + " sweep '" + scene + "' --vary len=1,2.5mm,3 --outputs s.sum --format jsonl");
+  INFO(lengths.out << lengths.err);
+  REQUIRE(lengths.exit_code == 0);
+  const auto rows = lines_of(lengths.out);
+  REQUIRE(rows.size() == 3);
+  const double sums[] = {0.003, 0.0075, 0.009};  // gain 1.5 * (len + len)
+  for (std::size_t i = 0; i < 3; ++i) {
+    const YAML::Node row = YAML::Load(rows[i]);
+    CHECK(row["exit"].as<int>() == 0);
+    CHECK_THAT(row["s.sum [m]"].as<double>(), Catch::Matchers::WithinRel(sums[i], 1e-15));
+  }
+  CHECK(YAML::Load(rows[0])["len [mm]"].as<std::string>() == "1");
+  // The same value as --set len=1mm gives, bit for bit.
+  const auto set = run_cli(arith_dir() + " run '" + scene + "' --set len=1mm --json");
+  REQUIRE(set.exit_code == 0);
+  CHECK(YAML::Load(set.out)["outputs"]["s.sum"]["value"].as<double>() == YAML::Load(rows[0])["s.sum [m]"].as<double>());
+  // gain is dimensionless: its bare numbers stay numbers and the 1mm is the mistake, in its own row.
+  const auto gains = run_cli(arith_dir() + " sweep '" + scene + "' --vary s.gain=-1,2,1mm --outputs s.sum --format jsonl");
+  INFO(gains.out << gains.err);
+  const auto gain_rows = lines_of(gains.out);
+  REQUIRE(gain_rows.size() == 3);
+  CHECK_THAT(YAML::Load(gain_rows[0])["error"].as<std::string>(), Contains("out of range"));
+  CHECK(YAML::Load(gain_rows[1])["exit"].as<int>() == 0);
+  CHECK_THAT(YAML::Load(gain_rows[2])["error"].as<std::string>(), Contains("is dimensionless") && Contains("the value is length"));
+}
+
 TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {
   const std::string scene = scratch_file("scene.yaml", scene_text);
   CHECK_THAT(run_cli(arith_dir() + " sweep '" + scene + "'").err, Contains("give the cases one way"));

@@ -4,10 +4,12 @@
 #include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/units.hpp>
+#include <mechgraph/display_units.hpp>
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <string_view>
 #include <unordered_set>
@@ -204,6 +206,31 @@ bool CaseBinder::writes_number(std::size_t v, const CaseValue& value) const {
   for (const Target& t : targets_[v])
     if (t.spec->kind != ParamKind::number || !admits_number(*t.spec, value)) return false;
   return true;
+}
+
+void read_bare_numbers_in_list_unit(CaseTable& table, const CaseBinder& binder) {
+  for (std::size_t v = 0; v < table.variables.size(); ++v) {
+    const std::string& unit = table.variables[v].unit;
+    if (unit.empty()) continue;
+    const std::optional<UnitScale>& scale = parse_unit_cached(unit);
+    if (!scale || scale->dimension.dimensionless()) continue;
+    const std::vector<CaseBinder::Target>& targets = binder.targets()[v];
+    const auto takes_the_unit = [&](const CaseBinder::Target& t) {
+      return (t.spec->kind == ParamKind::number || t.spec->kind == ParamKind::integer) && t.spec->dimension == scale->dimension;
+    };
+    if (targets.empty() || !std::all_of(targets.begin(), targets.end(), takes_the_unit)) continue;
+    for (std::vector<CaseValue>& row : table.cases) {
+      CaseValue& value = row[v];
+      // A number written without a unit: its text reads whole as the number (not a word, not "nan").
+      if (!value.si || !value.dimension.dimensionless() || value.text.empty()) continue;
+      double number = 0.0;
+      const char* end = value.text.data() + value.text.size();
+      const std::from_chars_result read = std::from_chars(value.text.data(), end, number);
+      if (read.ec != std::errc() || read.ptr != end || number != *value.si) continue;
+      // As a cases file's cell under its column's unit: "CELL UNIT", (number + offset) * scale.
+      value = CaseValue{value.text + " " + unit, (number + scale->offset) * scale->scale, scale->dimension};
+    }
+  }
 }
 
 }  // namespace mechgraph

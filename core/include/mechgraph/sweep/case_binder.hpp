@@ -82,4 +82,11 @@ class CaseBinder {
   bool rebuild_ = false;
 };
 
+/// A `--vary` list's bare numbers in the list's unit: `rpm=5000,6000rpm` is two speeds, as a
+/// range's bare end takes the other end's unit (3000:7000rpm). Only where the variable has a unit
+/// with a dimension (the first number written with one) and every parameter it reaches is a number
+/// of that dimension: a bare number there would be refused. Anywhere else nothing changes
+/// (`gain=-1,1mm` on a dimensionless gain keeps -1, and the 1mm is refused in its case).
+void read_bare_numbers_in_list_unit(CaseTable& table, const CaseBinder& binder);
+
 }  // namespace mechgraph
