@@ -142,6 +142,16 @@ TEST_CASE("sweep --vary: a bare number in a list takes the list's unit where the
   CHECK_THAT(YAML::Load(gain_rows[0])["error"].as<std::string>(), Contains("out of range"));
   CHECK(YAML::Load(gain_rows[1])["exit"].as<int>() == 0);
   CHECK_THAT(YAML::Load(gain_rows[2])["error"].as<std::string>(), Contains("is dimensionless") && Contains("the value is length"));
+  // A bare number beyond a double in the list's unit (1e308 h) fails its case as 1e308h written
+  // out does, naming node and parameter; the others run.
+  const std::string slow = scratch_file("slow.yaml", slow_scene);
+  const auto huge = run_cli(arith_dir() + " sweep '" + slow + "' --vary slow.delay=1e308,0h --format jsonl");
+  INFO(huge.out << huge.err);
+  const auto huge_rows = lines_of(huge.out);
+  REQUIRE(huge_rows.size() == 2);
+  CHECK_THAT(YAML::Load(huge_rows[0])["error"].as<std::string>(),
+             Contains("parameter 'delay' of node 'slow'") && Contains("beyond the range of a double"));
+  CHECK(YAML::Load(huge_rows[1])["exit"].as<int>() == 0);
 }
 
 TEST_CASE("sweep: usage errors name the fix", "[cli][sweep]") {

@@ -224,11 +224,13 @@ void read_bare_numbers_in_list_unit(CaseTable& table, const CaseBinder& binder) 
       // A number written without a unit: its text reads whole as the number (not a word, not "nan").
       if (!value.si || !value.dimension.dimensionless() || value.text.empty()) continue;
       double number = 0.0;
+      const char* first = value.text.data() + (value.text.front() == '+' ? 1 : 0);
       const char* end = value.text.data() + value.text.size();
-      const std::from_chars_result read = std::from_chars(value.text.data(), end, number);
+      const std::from_chars_result read = std::from_chars(first, end, number);
       if (read.ec != std::errc() || read.ptr != end || number != *value.si) continue;
-      // As a cases file's cell under its column's unit: "CELL UNIT", (number + offset) * scale.
-      value = CaseValue{value.text + " " + unit, (number + scale->offset) * scale->scale, scale->dimension};
+      // Read as a cases file's cell under its column's unit ("CELL UNIT"): the value --set gives;
+      // one beyond a double in that unit is then text, and its case fails as "1e308h" written out.
+      value = read_case_value(value.text + " " + unit, "--vary " + excerpt(table.variables[v].name));
     }
   }
 }
