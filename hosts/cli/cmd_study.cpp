@@ -316,6 +316,14 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     // Rows another mechgraph wrote would be refused row by row below as not this study's: say why.
     if (manifest)
       require_rows_format(*manifest, rows_file, "study them with the mechgraph that wrote them, or run the sweep again with this one");
+    // Rows of another design: said before the rows are read. Their first rows may well be this
+    // study's (a Sobol' or Monte Carlo design's first points do not depend on the sample count), and
+    // the count of rows alone would call a complete file of another design a part of this one.
+    if (manifest && !manifest->origin.empty() && manifest->origin != outcome->table.origin)
+      throw UsageError(rows_file + ": rows of another design (" + excerpt(manifest->origin, 160) + ", " +
+                       std::to_string(manifest->cases) + " cases); this study's is " + outcome->table.origin + ", " +
+                       std::to_string(outcome->table.cases.size()) + " cases: give the study the --samples, --method and --seed " +
+                       "the sweep had, or the scene the sweep read");
     try {
       outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
     } catch (const UsageError& e) {

@@ -204,6 +204,14 @@ void SweepFile::start_fresh(bool resume, bool force) {
   const std::string out_kind = kind_of(out_), part_kind = kind_of(part_);
   if (out_kind != "absent") {
     if (out_kind == "a regular file" && !force) {
+      if (resume && ours) {
+        // Complete, but of this sweep? Another's (another design, --set, scene) has nothing to resume either.
+        const SweepManifest before = read_manifest(out_);
+        if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
+          throw UsageError(out_.string() + " holds the complete rows of another sweep (" + excerpt(before.origin, 160) +
+                           "; the scene, a file it reads, --set, cases, outputs or shard differ): nothing of this one to resume; "
+                           "--force replaces them, or write this sweep to another --out");
+      }
       if (resume) throw UsageError(out_.string() + " is complete already; nothing to resume (--force runs it again)");
       throw UsageError(out_.string() + " exists; use --force to replace it");
     }

@@ -259,14 +259,25 @@ _STUDY_METHODS = ("monte_carlo", "latin_hypercube", "sobol")
 
 def _study_value(value: Any, context: str) -> Any:
     """A value of the study's block as its JSON takes it: a pint quantity or a (number, unit) pair
-    as text with its unit ("50 g"), numpy numbers as numbers, mappings and lists value by value."""
+    as text with its unit ("50 g"; a Celsius temperature in degC), numpy numbers as numbers, numpy
+    arrays as lists, mappings and lists value by value."""
     if isinstance(value, SI):
         raise TypeError(f"{context}: a study's value carries its unit ('50 g', a pint quantity or (50, 'g')); "
                         "mechgraph.si() is for set=")
     if hasattr(value, "items"):
         return {str(k): _study_value(v, f"{context}: {k}") for k, v in value.items()}
+    if is_pint(value) and not getattr(value, "_is_multiplicative", True):
+        # A temperature on an offset scale: a level (a mean, a limit) or a width (a sigma, a
+        # tolerance), which only the study's reader tells apart; so it goes as written, not
+        # converted to kelvin as a level (5 degC of sigma is 5 K, not 278.15 K).
+        if str(value.units) != "degree_Celsius" or np.ndim(value.magnitude):
+            raise TypeError(f"{context}: {value!r} is on an offset temperature scale mechgraph reads only as one "
+                            "number in degC: give it in degC or K")
+        return f"{float(value.magnitude)!r} degC"
     if is_pint(value) or _is_unit_pair(value):
         return scene_value(value) if is_pint(value) else f"{value[0]!r} {value[1]}".strip()
+    if isinstance(value, np.ndarray):
+        return [_study_value(v, context) for v in value.tolist()]
     if isinstance(value, (list, tuple)):
         return [_study_value(v, context) for v in value]
     if isinstance(value, np.generic):

@@ -2,6 +2,7 @@
 import json
 import subprocess
 
+import numpy as np
 import pytest
 
 import mechgraph
@@ -180,3 +181,29 @@ def test_a_designs_refusals_name_the_keywords_not_the_flags():
     scene = mechgraph.Scene.load(ISHIGAMI)
     with pytest.raises(mechgraph.SceneError, match=r"^samples 4000000: the design would need 20000000 evaluations"):
         scene.study(samples=4_000_000, sensitivity=True)
+
+
+FIT_AT_TEMPERATURE = ("params: { t: 20 degC }\n"
+                      "nodes:\n  fit: { type: fit.iso286, effects: [thermal], params: { size: 30 mm, hole: H7, shaft: g6, "
+                      "operating_temperature: $t } }\noutputs: [fit.clearance_mean]\n")
+
+
+def test_study_reads_a_celsius_width_as_a_width_and_numpy_arrays_as_lists():
+    import pint
+    ureg = pint.UnitRegistry()
+    scene = mechgraph.Scene.from_text(FIT_AT_TEMPERATURE)
+    as_text = scene.study({"t": {"normal": {"mean": "80 degC", "sigma": "5 degC"}}}, samples=64, seed=3)
+    # A pint temperature in degC is a level as a mean and a width as a sigma, as the text is: 5 degC
+    # of sigma is 5 K (converted to kelvin as a level it was 278.15 K, a spread of the whole scale).
+    as_pint = scene.study({"t": {"normal": {"mean": ureg.Quantity(80, "degC"), "sigma": ureg.Quantity(5, "degC")}}},
+                          samples=64, seed=3)
+    for key in ("mean", "standard_deviation"):
+        assert as_pint.summary.loc["fit.clearance_mean", key] == as_text.summary.loc["fit.clearance_mean", key]
+    assert as_pint.samples["t [degC]"].std() == pytest.approx(5.0, rel=0.2)
+    # Another offset scale has no reading mechgraph shares: refused, saying what to give.
+    with pytest.raises(TypeError, match="give it in degC or K"):
+        scene.study({"t": {"normal": {"mean": "80 degC", "sigma": ureg.Quantity(9, "degF")}}}, samples=8)
+    # A numpy array in the settings is the list it holds.
+    listed = scene.study({"t": {"normal": {"mean": "80 degC", "sigma": "5 degC"}}}, samples=64, seed=3,
+                         settings={"quantiles": np.array([0.1, 0.5, 0.9])})
+    assert list(listed.quantiles["level"]) == [0.1, 0.5, 0.9]

@@ -1,7 +1,8 @@
 // Test functions of uncertainty studies with closed-form answers (tests/core/uncertainty_test.cpp):
 //  - test.ishigami: y = sin x1 + a sin^2 x2 + b x3^4 sin x1 (Ishigami and Homma 1990), x_i plain
 //    numbers; the node fails (an evaluation error) when y > fail_above, for event probabilities.
-//  - test.linear: y = c1 x1 + c2 x2 + c3 x3 on lengths, so units cross the scene boundary.
+//  - test.linear: y = c1 x1 + c2 x2 + c3 x3 on lengths, so units cross the scene boundary (and an
+//    integer parameter, terms, it does not use).
 #include <mechgraph/plugin_abi.hpp>
 
 #include <cmath>
@@ -40,6 +41,8 @@ class Linear final : public NodeType {
     info_.summary = "c1 x1 + c2 x2 + c3 x3";
     for (const char* x : {"x1", "x2", "x3"}) info_.params.push_back(ParamSpec::number(x, dim::length, "input", "mm").with_default(0.0));
     for (const char* c : {"c1", "c2", "c3"}) info_.params.push_back(ParamSpec::number(c, dim::none, "coefficient").with_default(1.0));
+    // A whole number y does not use: a study must refuse a distribution on it before it runs.
+    info_.params.push_back(ParamSpec::integer("terms", "a whole number (unused)").with_default(3.0));
     info_.outputs = {PortSpec::scalar("y", dim::length, "c1 x1 + c2 x2 + c3 x3", "mm")};
   }
   const NodeInfo& info() const override { return info_; }

@@ -226,7 +226,18 @@ TEST_CASE("Studies: limits and thresholds in their output's dimension, refused b
   // A distribution on a scene parameter and on the one node parameter it feeds: the node's own
   // draws replace the scene parameter's, whose distribution would change nothing: refused at it.
   CHECK_THAT(error_of("    f.x1: { normal: { mean: 2 mm, sigma: 1 um } }\n"),
-             Contains("study.yaml:5:5") && Contains("'x1' has a distribution, and so has every parameter it feeds (f.x1)"));
+             Contains("study.yaml:5:5") && Contains("'x1' has a distribution, and every parameter it feeds (f.x1) has a distribution of its own"));
+  // ... or is set: the set value replaces the draws there, and the scene parameter reaches nothing.
+  CHECK_THAT(error_of("", {parse_override("f.x1=2 mm")}),
+             Contains("study.yaml:5:5") && Contains("'x1' is not used by any node: its distribution changes nothing"));
+  // A scene parameter set while every parameter it feeds has a distribution: the set value would
+  // reach no case (and the run's record would name it): refused at the distribution it loses to.
+  CHECK_THAT(error_of("    f.x2: { normal: { mean: 2 mm, sigma: 1 um } }\n", {parse_override("x2=5 mm")}),
+             Contains("study.yaml:6:5") && Contains("'x2' is set (x2=5 mm), and every parameter it feeds (f.x2) has a distribution"));
+  // A distribution reaching a whole-number parameter: every draw would be refused, so the study is,
+  // before it runs, at the distribution.
+  CHECK_THAT(error_of("    f.terms: { uniform: { lower: 1, upper: 4 } }\n"),
+             Contains("study.yaml:6:5") && Contains("'f.terms' reaches parameter 'terms', a whole number"));
   // A choice of outputs leaves out the limits and events on the scene's other outputs (a name that
   // is no output of the scene is still refused).
   const std::string two = "params: { x1: 0 mm }\nuncertainty:\n  samples: 8\n  parameters:\n"
@@ -491,6 +502,8 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
   const std::string scene = std::string(MECHGRAPH_SOURCE_DIR) + "/tests/uncertainty/ishigami.yaml";
   const auto whole = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --json --threads 2");
   REQUIRE(whole.exit_code == 0);
+  // Valid, but Sobol' points stratify only for a power of 2: said, with the two nearest.
+  CHECK_THAT(whole.err, Contains("300 Sobol' samples, not a power of 2") && Contains("(256 or 512)"));
   std::string parts;
   for (int shard = 0; shard < 3; ++shard) {
     const std::string part = (dir / ("part-" + std::to_string(shard) + ".csv")).string();
@@ -527,10 +540,34 @@ TEST_CASE("Studies: shards of a Slurm array give the in-process answers bit for 
       CHECK_THAT(refused.err, Contains(says));
     }
   }
-  // Rows of another seed are refused, naming the row.
-  const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + merged + "'");
-  CHECK(other.exit_code == 2);
-  CHECK_THAT(other.err, Contains("all.csv:2:") && Contains("another seed"));
+  // Rows of another seed or sample count are refused before they are read, by the design their
+  // manifest records (a Sobol' design's first rows are the same for 300 and 600 samples: counted,
+  // the rows of 300 were half of the 600's, and "run the missing shards" a dead end).
+  for (const std::string& other_design : {std::string("--samples 300 --seed 4"), std::string("--samples 600")}) {
+    const auto other = testing::run_cli(plugin + "study '" + scene + "' " + other_design + " --rows '" + merged + "'");
+    CHECK(other.exit_code == 2);
+    CHECK_THAT(other.err, Contains("all.csv: rows of another design (uncertainty: sobol, 300 samples, seed 3") &&
+                              Contains("this study's is uncertainty: sobol, " + std::string(other_design == "--samples 600" ? "600" : "300")) &&
+                              Contains("--samples, --method and --seed"));
+  }
+  // Without a manifest, row by row, naming the row.
+  {
+    const std::string bare = (dir / "bare.csv").string();
+    std::filesystem::copy_file(merged, bare);
+    const auto other = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --seed 4 --rows '" + bare + "'");
+    CHECK(other.exit_code == 2);
+    CHECK_THAT(other.err, Contains("bare.csv:2:") && Contains("another seed"));
+  }
+  // --resume of another design's complete rows: nothing of this sweep to resume, said so (not
+  // "complete already"), and the rows are left as they were.
+  {
+    const auto size_before = std::filesystem::file_size(merged);
+    const auto resumed = testing::run_cli(plugin + "sweep '" + scene + "' --study --samples 600 --threads 1 --resume --out '" + merged + "'");
+    CHECK(resumed.exit_code == 2);
+    CHECK_THAT(resumed.err, Contains("all.csv holds the complete rows of another sweep (uncertainty: sobol, 300 samples") &&
+                                Contains("--force replaces them"));
+    CHECK(std::filesystem::file_size(merged) == size_before);
+  }
   // Rows of another scene (here: another fixed value, --set, under the same design) are refused by
   // the manifest's fingerprint, though every sampled input matches.
   const auto other_set = testing::run_cli(plugin + "study '" + scene + "' --samples 300 --set f.a=6 --rows '" + merged + "'");

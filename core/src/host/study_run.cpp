@@ -96,44 +96,77 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
         // checked when each case's graph is built from the scene; here, that some number field of
         // the record has the distribution's dimension.
         const auto fits = [&](const ParamSpec& f) {
-          return (f.kind == ParamKind::number || f.kind == ParamKind::integer || f.kind == ParamKind::number_list) &&
-                 f.dimension == p.marginal.dimension;
+          return (f.kind == ParamKind::number || f.kind == ParamKind::number_list) && f.dimension == p.marginal.dimension;
         };
         if (std::none_of(s->fields.begin(), s->fields.end(), fits))
           throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' is used inside the records of parameter '" + s->name +
                            "', none of whose number fields is " + p.marginal.dimension.describe());
         continue;
       }
-      if (s->kind != ParamKind::number && s->kind != ParamKind::integer && s->kind != ParamKind::number_list)
+      // A draw is a real number: a whole-number parameter (a count of samples, of points) would
+      // refuse every case after the whole design had run.
+      if (s->kind == ParamKind::integer)
+        throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' reaches parameter '" + s->name +
+                                                      "', a whole number: a distribution draws real numbers (vary a whole number in a sweep)");
+      if (s->kind != ParamKind::number && s->kind != ParamKind::number_list)
         throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' reaches parameter '" + s->name + "', which is not a number");
       if (!(s->dimension == p.marginal.dimension))
         throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' is " + s->dimension.describe() + " (parameter '" + s->name +
                          "'), its distribution is " + p.marginal.dimension.describe());
     }
   }
-  // A scene parameter and a node parameter it feeds, both uncertain: the node's own draws replace
-  // the scene parameter's there (as `run --set node.param` does). Where that leaves the scene
-  // parameter acting nowhere, its distribution would change nothing and its Sobol' indices read
-  // "does not matter": refused. Where it still acts elsewhere, said once.
-  for (const UncertainParameter& p : spec.parameters) {
-    if (p.name.find('.') != std::string::npos) continue;
-    const auto uses = graph.scene_param_uses.find(p.name);
-    if (uses == graph.scene_param_uses.end()) continue;
-    std::string replaced;
+  // A scene parameter and a node parameter it feeds: the node parameter's own value, drawn from its
+  // distribution or set by --set, replaces the scene parameter's there (as `run --set node.param`
+  // does). Where that leaves an uncertain scene parameter acting nowhere, its distribution would
+  // change nothing and its Sobol' indices read "does not matter"; where it leaves a set one acting
+  // nowhere, the record of the run would name a value no case used: both refused. Where it still
+  // acts elsewhere, said once.
+  const auto uncertain = [&](const std::string& name) {
+    return std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const UncertainParameter& q) { return q.name == name; });
+  };
+  const auto set = [&](const std::string& name) {
+    return std::any_of(overrides.begin(), overrides.end(), [&](const Override& o) { return o.target == name; });
+  };
+  // The uses of scene parameter `name` whose node parameter `replaces` says is given its own value,
+  // listed, with whether that is every use (false where it has none).
+  const auto replaced_uses = [&](const std::string& name, const auto& replaces) {
+    std::pair<std::string, bool> out{{}, false};
+    const auto uses = graph.scene_param_uses.find(name);
+    if (uses == graph.scene_param_uses.end()) return out;
     std::size_t count = 0;
     for (const SceneParamUse& use : uses->second) {
       const std::string target = graph.nodes[use.node].name + "." + use.param;
-      if (std::none_of(spec.parameters.begin(), spec.parameters.end(), [&](const UncertainParameter& q) { return q.name == target; }))
-        continue;
-      replaced += (count++ ? ", " : "") + target;
+      if (replaces(target)) out.first += (count++ ? ", " : "") + target;
     }
-    if (count == 0) continue;
-    if (count == uses->second.size())
-      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' has a distribution, and so has every parameter it feeds (" +
-                                                    replaced + "): their own draws replace its draws, so its distribution changes nothing; "
-                                                    "drop the one or the others");
-    spdlog::warn("{}'{}' also feeds {}, which has a distribution of its own: there its draws replace '{}''s", p.where.str(), p.name,
-                 replaced, p.name);
+    out.second = count > 0 && count == uses->second.size();
+    return out;
+  };
+  for (const UncertainParameter& p : spec.parameters) {
+    if (p.name.find('.') != std::string::npos) continue;
+    const auto [replaced, everywhere] = replaced_uses(p.name, [&](const std::string& t) { return uncertain(t) || set(t); });
+    if (replaced.empty()) continue;
+    if (everywhere)
+      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' has a distribution, and every parameter it feeds (" +
+                                                    replaced + ") has a distribution of its own or is set: their own values replace its "
+                                                    "draws, so its distribution changes nothing; drop the one or the others");
+    spdlog::warn("{}'{}' also feeds {}, which has a distribution of its own or is set: there that replaces '{}''s draws", p.where.str(),
+                 p.name, replaced, p.name);
+  }
+  for (const Override& o : overrides) {
+    if (o.target.find('.') != std::string::npos || uncertain(o.target)) continue;  // the latter refused above
+    const auto [replaced, everywhere] = replaced_uses(o.target, uncertain);
+    if (replaced.empty()) continue;
+    if (everywhere) {
+      // Said at the distribution of the first parameter it feeds.
+      const std::string first = replaced.substr(0, replaced.find(','));
+      const UncertainParameter& q =
+          *std::find_if(spec.parameters.begin(), spec.parameters.end(), [&](const UncertainParameter& u) { return u.name == first; });
+      throw SceneErrorAt({q.where, {}, q.name}, q.where.str() + "'" + o.target + "' is set (" + o.text + "), and every parameter it feeds (" +
+                                                    replaced + ") has a distribution in this study: every sample draws its own value " +
+                                                    "there, so the set one would be ignored; drop the one or the other");
+    }
+    spdlog::warn("--set {}: {} has a distribution in this study: there each sample draws its own value, not '{}''s", o.text, replaced,
+                 o.target);
   }
 }
 
@@ -227,6 +260,14 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
   if (spec.evaluations() > max_sweep_cases)
     throw UsageError(std::string(names.samples) + " " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
                      " evaluations, more than 10^7");
+  // Sobol' points stratify (one in each 1/N of every coordinate) only for N a power of 2; other N
+  // are valid, the estimate unbiased over seeds, its variance that of a part of a net.
+  if (spec.method == SamplingMethod::sobol && (spec.samples & (spec.samples - 1)) != 0) {
+    std::size_t below = 1;
+    while (below * 2 < spec.samples) below *= 2;
+    spdlog::warn("study: {} Sobol' samples, not a power of 2: the points stratify only for a power of 2 ({} or {})", spec.samples,
+                 below, below * 2);
+  }
 }
 
 }  // namespace mechgraph::host
