@@ -6,6 +6,8 @@
 # shortcut between plugins is off there, detail/cxx_abi_key.hpp; the README's gcc build tests it).
 #   scripts/run-sanitized-tests.sh [BUILD_DIR]
 # CI runs it after the README's test command (.ci/run); it takes a few minutes more than that.
+# The folder is configured by scripts/configure-asan.sh, shared with the fuzzers (CI builds the
+# instrumented library once; this builds the fuzz targets too, the fuzzers only run them).
 # The SDK packaging test (label sdk) is left out: it builds an uninstrumented plugin project against
 # this instrumented library, which ASan cannot run; the README test command runs it. So is the one
 # slow docs test (label docs-slow): it replays the README's 1000-sample study listing through the
@@ -19,15 +21,7 @@ set -euo pipefail
 dir=$(realpath -m "${1:-$(dirname "$0")/../build-asan}")
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
-flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
-# Line tables only (-g1): a report still names file and line of every frame, and the build of a
-# cold machine is about a quarter faster than with full debug information (-g).
-# The test programs' own files at -O0 (MECHGRAPH_TEST_COMPILE_OPTIONS): instrumented, they are the
-# slowest part of CI's builds, and -O0 compiles them in about 40 % less time; the code they test
-# stays at -O1.
-cmake -S . -B "$dir" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DMECHGRAPH_PYTHON=OFF -DMECHGRAPH_BENCH=OFF \
-  -DCMAKE_CXX_FLAGS="$flags -O1" -DCMAKE_CXX_FLAGS_DEBUG="-g1" -DMECHGRAPH_TEST_COMPILE_OPTIONS="-O0;-g1" \
-  -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" -DCMAKE_MODULE_LINKER_FLAGS="$flags" >&2
+scripts/configure-asan.sh "$dir"
 cmake --build "$dir" --parallel "$(nproc)" >&2
 cd "$dir"
 # LeakSanitizer does not walk threads' TLS for roots (use_tls=0): its tracer (gcc 12's runtime, when
