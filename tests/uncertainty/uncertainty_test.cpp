@@ -234,6 +234,10 @@ TEST_CASE("Studies: limits and thresholds in their output's dimension, refused b
   // reach no case (and the run's record would name it): refused at the distribution it loses to.
   CHECK_THAT(error_of("    f.x2: { normal: { mean: 2 mm, sigma: 1 um } }\n", {parse_override("x2=5 mm")}),
              Contains("study.yaml:6:5") && Contains("'x2' is set (x2=5 mm), and every parameter it feeds (f.x2) has a distribution"));
+  // An unknown name is said in the study's words, with the scene's parameters.
+  CHECK_THAT(error_of("    x9: { normal: { mean: 2 mm, sigma: 1 um } }\n"),
+             Contains("study.yaml:6:5") && Contains("study: ") && Contains("x9") && Contains("given a distribution as node.param") &&
+                 !Contains("sweep"));
   // A distribution reaching a whole-number parameter: every draw would be refused, so the study is,
   // before it runs, at the distribution.
   CHECK_THAT(error_of("    f.terms: { uniform: { lower: 1, upper: 4 } }\n"),

@@ -50,6 +50,8 @@ std::string unknown_variable(const Graph& graph, const std::string& name, Binder
   for (const auto& [scene_param, uses] : graph.scene_param_uses) valid.push_back(scene_param);
   if (use == BinderUse::set)
     return about(use, name) + ": " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is set as node.param)";
+  if (use == BinderUse::study)
+    return "study: " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is given a distribution as node.param)";
   return "sweep: " + unknown_name_message("scene parameter", name, valid) + " (a node's parameter is varied as node.param)";
 }
 
