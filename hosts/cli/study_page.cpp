@@ -17,6 +17,11 @@ std::string num(double x, int digits = 6) {
   return std::string(buffer, end);
 }
 std::string maybe(const std::optional<double>& x) { return x ? num(*x) : "-"; }
+std::string interval(const Interval& i) { return "[" + maybe(i.lower) + ", " + maybe(i.upper) + "]"; }
+Interval per_million(const Interval& i) {
+  const auto scaled = [](const std::optional<double>& x) { return x ? std::optional<double>(1e6 * *x) : std::nullopt; };
+  return {scaled(i.lower), scaled(i.upper)};
+}
 std::string unit_of(const StudyColumn& c) {
   const std::string u = !c.shown.empty() ? c.shown : c.unit.empty() ? c.dimension.si_unit() : c.unit;
   return u == "1" ? "" : u;
@@ -142,15 +147,34 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
       p << "<p>No sample has a value.</p>\n";
       continue;
     }
+    // What the terminal prints, on paper too: the intervals, the quantiles, the counts beyond the
+    // limits, the indices as numbers (the charts' values are only in their tooltips).
     p << "<p>n " << o.moments.n << (o.failed ? " (" + std::to_string(o.failed) + " failed)" : "") << ", mean " << num(o.moments.mean)
-      << ", standard deviation " << num(o.moments.standard_deviation);
-    if (o.capability)
-      p << "; Cp " << maybe(o.capability->cp) << ", Cpk " << maybe(o.capability->cpk) << ", out of spec "
-        << num(1e6 * o.capability->out_of_spec.estimate) << " ppm";
-    p << "</p>\n" << histogram_svg(o);
-    if (o.sobol && !o.sobol->indices.empty())
+      << " " << interval(o.moments.mean_interval) << ", standard deviation " << num(o.moments.standard_deviation) << ", min "
+      << num(o.moments.min) << ", max " << num(o.moments.max) << "</p>\n";
+    if (o.capability) {
+      const Capability& c = *o.capability;
+      p << "<p>spec [" << maybe(o.lower) << ", " << maybe(o.upper) << "]: Cp " << maybe(c.cp) << ", Cpk " << maybe(c.cpk) << ", out of spec "
+        << num(1e6 * c.out_of_spec.estimate) << " ppm " << interval(per_million(c.out_of_spec.wilson)) << " (" << c.below << " below, " << c.above << " above; normal model "
+        << num(c.ppm_normal) << " ppm)</p>\n";
+    }
+    p << histogram_svg(o);
+    if (!o.quantiles.empty()) {
+      p << "<table><tr><th>quantile</th><th>value</th><th>interval</th></tr>\n";
+      for (const QuantileEstimate& q : o.quantiles)
+        p << "<tr><td>" << num(q.level) << "</td><td>" << num(q.value) << "</td><td>" << interval(q.interval) << "</td></tr>\n";
+      p << "</table>\n";
+    }
+    if (o.sobol && !o.sobol->indices.empty()) {
       p << "<h3>Sobol' indices (" << o.sobol->samples << " base samples): first order dark, total light, bootstrap intervals</h3>\n"
-        << sobol_svg(spec, *o.sobol);
+        << sobol_svg(spec, *o.sobol) << "<table><tr><th>parameter</th><th>first order</th><th>interval</th><th>total</th><th>interval</th></tr>\n";
+      for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
+        const SobolIndex& i = o.sobol->indices[j];
+        p << "<tr><td>" << html_text(spec.parameters[j].name) << "</td><td>" << num(i.first) << "</td><td>" << interval(i.first_interval)
+          << "</td><td>" << num(i.total) << "</td><td>" << interval(i.total_interval) << "</td></tr>\n";
+      }
+      p << "</table>\n";
+    }
   }
   if (!a.events.empty()) {
     p << "<h2>Events</h2>\n<table><tr><th>event</th><th>events</th><th>trials</th><th>probability</th><th>Wilson</th><th>Clopper-Pearson</th></tr>\n";

@@ -641,6 +641,37 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   // (x3's first-order lower end, -0.34, with 64 samples); the parameters are in their units.
   CHECK_THAT(page, Contains("<polygon points="));
   CHECK_THAT(page, Contains("<tr><td>x1</td>") && Contains("<th>mean</th><th>standard deviation</th>"));
+  // Every figure the terminal prints is on the page too (a printed page has no tooltips): the mean
+  // with its interval, the spec line with the ppm interval and the counts, each quantile with its
+  // interval, each Sobol' index with its interval; the same text, both written to 6 digits.
+  {
+    std::istringstream lines(r.out);
+    std::size_t mean_lines = 0, spec_lines = 0, quantile_lines = 0, index_lines = 0;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("  mean ", 0) == 0 || line.rfind("  spec [", 0) == 0) {
+        CHECK_THAT(page, Contains(line.substr(2)));
+        ++(line[2] == 'm' ? mean_lines : spec_lines);
+      } else if (line.rfind("  quantile ", 0) == 0) {
+        const std::size_t colon = line.find(": "), space = line.find(' ', colon + 2);
+        CHECK_THAT(page, Contains("<tr><td>" + line.substr(11, colon - 11) + "</td><td>" + line.substr(colon + 2, space - colon - 2) +
+                                  "</td><td>" + line.substr(space + 1) + "</td></tr>"));
+        ++quantile_lines;
+      } else if (const std::size_t s = line.find("S "), st = line.find("   ST "); s != std::string::npos && st != std::string::npos) {
+        std::istringstream fields(line);
+        std::string name;
+        fields >> name;
+        const std::string first = line.substr(s + 2, st - s - 2), total = line.substr(st + 6);
+        CHECK_THAT(page, Contains("<tr><td>" + name + "</td><td>" + first.substr(0, first.find(' ')) + "</td><td>" +
+                                  first.substr(first.find(' ') + 1) + "</td><td>" + total.substr(0, total.find(' ')) + "</td><td>" +
+                                  total.substr(total.find(' ') + 1) + "</td></tr>"));
+        ++index_lines;
+      }
+    }
+    CHECK(mean_lines == 1);
+    CHECK(spec_lines == 1);
+    CHECK(quantile_lines >= 3);
+    CHECK(index_lines == 3);
+  }
   {
     // An upper limit that bounds the histogram has its label left of its line, inside the picture.
     std::string wider = slurp_text(scene);
