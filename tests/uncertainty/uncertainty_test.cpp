@@ -226,10 +226,12 @@ TEST_CASE("Studies: limits and thresholds in their output's dimension, refused b
   // A distribution on a scene parameter and on the one node parameter it feeds: the node's own
   // draws replace the scene parameter's, whose distribution would change nothing: refused at it.
   CHECK_THAT(error_of("    f.x1: { normal: { mean: 2 mm, sigma: 1 um } }\n"),
-             Contains("study.yaml:5:5") && Contains("'x1' has a distribution, and every parameter it feeds (f.x1) has a distribution of its own"));
+             Contains("study.yaml:5:5") && Contains("'x1' has a distribution, and so has every parameter it feeds (f.x1)"));
   // ... or is set: the set value replaces the draws there, and the scene parameter reaches nothing.
   CHECK_THAT(error_of("", {parse_override("f.x1=2 mm")}),
              Contains("study.yaml:5:5") && Contains("'x1' is not used by any node: its distribution changes nothing"));
+  // A node parameter set to the uncertain scene parameter is one more use of it, drawn as the others.
+  CHECK(error_of("", {parse_override("f.x2=$x1")}) == "no error");
   // A scene parameter set while every parameter it feeds has a distribution: the set value would
   // reach no case (and the run's record would name it): refused at the distribution it loses to.
   CHECK_THAT(error_of("    f.x2: { normal: { mean: 2 mm, sigma: 1 um } }\n", {parse_override("x2=5 mm")}),

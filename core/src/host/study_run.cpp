@@ -115,46 +115,44 @@ void check_study_parameters(const StudySpec& spec, const Graph& graph, const Sce
                          "'), its distribution is " + p.marginal.dimension.describe());
     }
   }
-  // A scene parameter and a node parameter it feeds: the node parameter's own value, drawn from its
-  // distribution or set by --set, replaces the scene parameter's there (as `run --set node.param`
-  // does). Where that leaves an uncertain scene parameter acting nowhere, its distribution would
-  // change nothing and its Sobol' indices read "does not matter"; where it leaves a set one acting
+  // A scene parameter and a node parameter it feeds that has a distribution of its own: the node
+  // parameter's draws replace the scene parameter's value there (as `run --set node.param` does).
+  // Where that leaves an uncertain scene parameter acting nowhere, its distribution would change
+  // nothing and its Sobol' indices read "does not matter"; where it leaves a --set one acting
   // nowhere, the record of the run would name a value no case used: both refused. Where it still
-  // acts elsewhere, said once.
+  // acts elsewhere, said once. (A node parameter --set is no use of the scene parameter it was
+  // written with: the graph records the set value's uses, `--set 'A.x=$c'` one of c.)
   const auto uncertain = [&](const std::string& name) {
     return std::any_of(spec.parameters.begin(), spec.parameters.end(), [&](const UncertainParameter& q) { return q.name == name; });
   };
-  const auto set = [&](const std::string& name) {
-    return std::any_of(overrides.begin(), overrides.end(), [&](const Override& o) { return o.target == name; });
-  };
-  // The uses of scene parameter `name` whose node parameter `replaces` says is given its own value,
-  // listed, with whether that is every use (false where it has none).
-  const auto replaced_uses = [&](const std::string& name, const auto& replaces) {
+  // The uses of scene parameter `name` whose node parameter has a distribution, listed, with
+  // whether that is every use (false where it has none).
+  const auto replaced_uses = [&](const std::string& name) {
     std::pair<std::string, bool> out{{}, false};
     const auto uses = graph.scene_param_uses.find(name);
     if (uses == graph.scene_param_uses.end()) return out;
     std::size_t count = 0;
     for (const SceneParamUse& use : uses->second) {
       const std::string target = graph.nodes[use.node].name + "." + use.param;
-      if (replaces(target)) out.first += (count++ ? ", " : "") + target;
+      if (uncertain(target)) out.first += (count++ ? ", " : "") + target;
     }
     out.second = count > 0 && count == uses->second.size();
     return out;
   };
   for (const UncertainParameter& p : spec.parameters) {
     if (p.name.find('.') != std::string::npos) continue;
-    const auto [replaced, everywhere] = replaced_uses(p.name, [&](const std::string& t) { return uncertain(t) || set(t); });
+    const auto [replaced, everywhere] = replaced_uses(p.name);
     if (replaced.empty()) continue;
     if (everywhere)
-      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' has a distribution, and every parameter it feeds (" +
-                                                    replaced + ") has a distribution of its own or is set: their own values replace its "
-                                                    "draws, so its distribution changes nothing; drop the one or the others");
-    spdlog::warn("{}'{}' also feeds {}, which has a distribution of its own or is set: there that replaces '{}''s draws", p.where.str(),
-                 p.name, replaced, p.name);
+      throw SceneErrorAt({p.where, {}, p.name}, p.where.str() + "'" + p.name + "' has a distribution, and so has every parameter it feeds (" +
+                                                    replaced + "): their own draws replace its draws, so its distribution changes nothing; "
+                                                    "drop the one or the others");
+    spdlog::warn("{}'{}' also feeds {}, which has a distribution of its own: there its draws replace '{}''s", p.where.str(), p.name,
+                 replaced, p.name);
   }
   for (const Override& o : overrides) {
     if (o.target.find('.') != std::string::npos || uncertain(o.target)) continue;  // the latter refused above
-    const auto [replaced, everywhere] = replaced_uses(o.target, uncertain);
+    const auto [replaced, everywhere] = replaced_uses(o.target);
     if (replaced.empty()) continue;
     if (everywhere) {
       // Said at the distribution of the first parameter it feeds.
