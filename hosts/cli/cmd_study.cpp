@@ -11,6 +11,7 @@
 #include "stop_on_signals.hpp"
 #include "results_folder.hpp"
 #include "study_page.hpp"
+#include "study_text.hpp"
 #include <mechgraph/host/study_run.hpp>
 #include "sweep_file.hpp"
 #include "sweep_fingerprint.hpp"
@@ -35,23 +36,11 @@
 namespace mechgraph::cli {
 namespace {
 
-std::string number(double x) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 6);
-  return std::string(buffer, end);
-}
-std::string maybe(const std::optional<double>& x) { return x ? number(*x) : "-"; }
-std::string interval(const Interval& i) { return "[" + maybe(i.lower) + ", " + maybe(i.upper) + "]"; }
-std::string shown_unit(const StudyColumn& c) {
-  const std::string u = !c.shown.empty() ? c.shown : c.unit.empty() ? c.dimension.si_unit() : c.unit;
-  return u == "1" ? "" : u;
-}
-
 // The header of an output's column in the rows of a sweep of the study (sweep_rows.hpp).
 std::string study_column_name(const Graph& graph, const StudyColumn& c) {
   for (std::size_t j = 0; j < graph.outputs.size(); ++j)
     if (graph.outputs[j].label == c.label) return sweep_column_name(graph, j);
-  const std::string u = shown_unit(c);
+  const std::string u = study_unit(c);
   return u.empty() ? c.label : c.label + " [" + u + "]";
 }
 
@@ -143,22 +132,15 @@ std::string terminal_tables(const StudySpec& spec, const StudyAnswers& a) {
   const std::string level = confidence_percent(spec.confidence);
   out << "\nOutputs (intervals at " << level << " %)\n";
   for (const OutputAnswer& o : a.outputs) {
-    const std::string u = shown_unit(o.column);
+    const std::string u = study_unit(o.column);
     out << "\n" << o.column.label << (u.empty() ? "" : " [" + u + "]") << ": n " << o.moments.n;
     if (o.failed) out << " (" << o.failed << " failed)";
     out << "\n";
     if (o.moments.n == 0) continue;
-    out << "  mean " << number(o.moments.mean) << " " << interval(o.moments.mean_interval) << ", standard deviation "
-        << number(o.moments.standard_deviation) << ", min " << number(o.moments.min) << ", max " << number(o.moments.max) << "\n";
+    out << "  " << moments_text(o.moments) << "\n";
     for (const QuantileEstimate& q : o.quantiles)
-      out << "  quantile " << number(q.level) << ": " << number(q.value) << " " << interval(q.interval) << "\n";
-    if (o.capability) {
-      const Capability& c = *o.capability;
-      out << "  spec [" << maybe(o.lower) << ", " << maybe(o.upper) << "]: Cp " << maybe(c.cp) << ", Cpk " << maybe(c.cpk)
-          << ", out of spec " << number(1e6 * c.out_of_spec.estimate) << " ppm " << "[" << number(1e6 * *c.out_of_spec.wilson.lower)
-          << ", " << number(1e6 * *c.out_of_spec.wilson.upper) << "] (" << c.below << " below, " << c.above
-          << " above; normal model " << number(c.ppm_normal) << " ppm)\n";
-    }
+      out << "  quantile " << study_number(q.level) << ": " << study_number(q.value) << " " << study_interval(q.interval) << "\n";
+    if (o.capability) out << "  " << capability_text(o) << "\n";
   }
   bool any_sobol = false;
   for (const OutputAnswer& o : a.outputs) any_sobol = any_sobol || o.sobol.has_value();
@@ -173,16 +155,16 @@ std::string terminal_tables(const StudySpec& spec, const StudyAnswers& a) {
       for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
         const SobolIndex& s = o.sobol->indices[j];
         const std::string& name = spec.parameters[j].name;
-        out << "  " << name << std::string(name.size() < 28 ? 28 - name.size() : 1, ' ') << "S " << number(s.first) << " "
-            << interval(s.first_interval) << "   ST " << number(s.total) << " " << interval(s.total_interval) << "\n";
+        out << "  " << name << std::string(name.size() < 28 ? 28 - name.size() : 1, ' ') << "S " << study_number(s.first) << " "
+            << study_interval(s.first_interval) << "   ST " << study_number(s.total) << " " << study_interval(s.total_interval) << "\n";
       }
     }
   }
   if (!a.events.empty()) {
     out << "\nEvents (probability, Wilson and Clopper-Pearson intervals at " << level << " %)\n";
     for (const EventAnswer& e : a.events) {
-      out << "  " << e.event->name << ": " << e.probability.events << " of " << e.probability.trials << " = " << number(e.probability.estimate)
-          << " " << interval(e.probability.wilson) << " " << interval(e.probability.clopper_pearson);
+      out << "  " << e.event->name << ": " << e.probability.events << " of " << e.probability.trials << " = " << study_number(e.probability.estimate)
+          << " " << study_interval(e.probability.wilson) << " " << study_interval(e.probability.clopper_pearson);
       if (e.undecided) out << " (" << e.undecided << " cases without a value)";
       out << "\n";
     }
@@ -211,7 +193,7 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
   std::string histograms = csv_row({"output", "unit", "bin_low", "bin_high", "count"}) + "\n";
   std::string sobol = csv_row({"output", "parameter", "first", "first_lower", "first_upper", "total", "total_lower", "total_upper"}) + "\n";
   for (const OutputAnswer& o : a.outputs) {
-    const std::string u = shown_unit(o.column);
+    const std::string u = study_unit(o.column);
     const Moments& m = o.moments;
     const bool any = m.n > 0;
     std::optional<double> cp, cpk, ppm, ppm_lo, ppm_hi, ppm_normal;

@@ -1,31 +1,15 @@
 #include "study_page.hpp"
+#include "study_text.hpp"
 
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <sstream>
 
 namespace mechgraph::cli {
 namespace {
-
-std::string num(double x, int digits = 6) {
-  char buffer[32];
-  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, digits);
-  return std::string(buffer, end);
-}
-std::string maybe(const std::optional<double>& x) { return x ? num(*x) : "-"; }
-std::string interval(const Interval& i) { return "[" + maybe(i.lower) + ", " + maybe(i.upper) + "]"; }
-Interval per_million(const Interval& i) {
-  const auto scaled = [](const std::optional<double>& x) { return x ? std::optional<double>(1e6 * *x) : std::nullopt; };
-  return {scaled(i.lower), scaled(i.upper)};
-}
-std::string unit_of(const StudyColumn& c) {
-  const std::string u = !c.shown.empty() ? c.shown : c.unit.empty() ? c.dimension.si_unit() : c.unit;
-  return u == "1" ? "" : u;
-}
 
 // A histogram as SVG bars over [low, high], the spec limits as dashed red lines.
 std::string histogram_svg(const OutputAnswer& o) {
@@ -38,8 +22,8 @@ std::string histogram_svg(const OutputAnswer& o) {
   s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height << "\" role=\"img\">\n";
   for (std::size_t k = 0; k < h.counts.size(); ++k) {
     const double bar = static_cast<double>(h.counts[k]) / static_cast<double>(most) * plot_h;
-    s << "<rect x=\"" << num(x_of(low + h.width * static_cast<double>(k))) << "\" y=\"" << num(bottom - bar) << "\" width=\""
-      << num(std::max(plot_w / static_cast<double>(h.counts.size()) - 1, 0.5)) << "\" height=\"" << num(bar)
+    s << "<rect x=\"" << study_number(x_of(low + h.width * static_cast<double>(k))) << "\" y=\"" << study_number(bottom - bar) << "\" width=\""
+      << study_number(std::max(plot_w / static_cast<double>(h.counts.size()) - 1, 0.5)) << "\" height=\"" << study_number(bar)
       << "\" fill=\"#4a78b0\"><title>" << h.counts[k] << "</title></rect>\n";
   }
   s << "<line x1=\"" << left << "\" y1=\"" << bottom << "\" x2=\"" << left + plot_w << "\" y2=\"" << bottom << "\" stroke=\"black\"/>\n";
@@ -48,14 +32,14 @@ std::string histogram_svg(const OutputAnswer& o) {
     const double x = x_of(*limit);
     // The label right of its line, or left of it where it would run past the picture's edge (an
     // upper limit that bounds the histogram, the usual case): about 6.5 px a character at 11 px.
-    const std::string label = std::string(name) + " " + num(*limit);
+    const std::string label = std::string(name) + " " + study_number(*limit);
     const bool room_right = x + 3 + 6.5 * static_cast<double>(label.size()) <= width;
-    s << "<line x1=\"" << num(x) << "\" y1=\"12\" x2=\"" << num(x) << "\" y2=\"" << bottom
-      << "\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\n<text x=\"" << num(room_right ? x + 3 : x - 3) << "\" y=\"22\" font-size=\"11\" fill=\"#c0392b\""
+    s << "<line x1=\"" << study_number(x) << "\" y1=\"12\" x2=\"" << study_number(x) << "\" y2=\"" << bottom
+      << "\" stroke=\"#c0392b\" stroke-dasharray=\"5,3\"/>\n<text x=\"" << study_number(room_right ? x + 3 : x - 3) << "\" y=\"22\" font-size=\"11\" fill=\"#c0392b\""
       << (room_right ? "" : " text-anchor=\"end\"") << ">" << html_text(label) << "</text>\n";
   }
-  s << "<text x=\"" << left << "\" y=\"188\" font-size=\"11\">" << num(low) << "</text>\n<text x=\"" << left + plot_w
-    << "\" y=\"188\" font-size=\"11\" text-anchor=\"end\">" << num(high) << " " << html_text(unit_of(o.column)) << "</text>\n</svg>\n";
+  s << "<text x=\"" << left << "\" y=\"188\" font-size=\"11\">" << study_number(low) << "</text>\n<text x=\"" << left + plot_w
+    << "\" y=\"188\" font-size=\"11\" text-anchor=\"end\">" << study_number(high) << " " << html_text(study_unit(o.column)) << "</text>\n</svg>\n";
   return s.str();
 }
 
@@ -77,23 +61,23 @@ std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
   const auto x_of = [&](double v) { return name_w + (std::clamp(v, lo, hi) - lo) / (hi - lo) * plot_w; };
   const auto arrowhead = [](std::ostringstream& out, double x, double y, bool right) {
     const double tip = right ? x + 6 : x - 6;
-    out << "<polygon points=\"" << num(x) << "," << num(y - 4) << " " << num(tip) << "," << num(y) << " " << num(x) << "," << num(y + 4)
+    out << "<polygon points=\"" << study_number(x) << "," << study_number(y - 4) << " " << study_number(tip) << "," << study_number(y) << " " << study_number(x) << "," << study_number(y + 4)
         << "\" fill=\"black\"/>\n";
   };
   std::ostringstream s;
-  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << name_w + plot_w + 20 << "\" height=\"" << num(height) << "\" role=\"img\">\n";
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << name_w + plot_w + 20 << "\" height=\"" << study_number(height) << "\" role=\"img\">\n";
   for (std::size_t j = 0; j < si.indices.size(); ++j) {
     const SobolIndex& i = si.indices[j];
     const double y = 10 + row_h * static_cast<double>(j);
-    s << "<text x=\"" << name_w - 6 << "\" y=\"" << num(y + 16) << "\" font-size=\"12\" text-anchor=\"end\">" << html_text(spec.parameters[j].name)
+    s << "<text x=\"" << name_w - 6 << "\" y=\"" << study_number(y + 16) << "\" font-size=\"12\" text-anchor=\"end\">" << html_text(spec.parameters[j].name)
       << "</text>\n";
     const auto bar = [&](double value, const Interval& in, double top, const char* colour, const char* what) {
       const double a = x_of(std::min(0.0, value)), b = x_of(std::max(0.0, value));
-      s << "<rect x=\"" << num(a) << "\" y=\"" << num(top) << "\" width=\"" << num(std::max(b - a, 0.5)) << "\" height=\"11\" fill=\"" << colour
-        << "\"><title>" << what << " " << num(value) << " [" << maybe(in.lower) << ", " << maybe(in.upper) << "]</title></rect>\n";
+      s << "<rect x=\"" << study_number(a) << "\" y=\"" << study_number(top) << "\" width=\"" << study_number(std::max(b - a, 0.5)) << "\" height=\"11\" fill=\"" << colour
+        << "\"><title>" << what << " " << study_number(value) << " [" << study_number(in.lower) << ", " << study_number(in.upper) << "]</title></rect>\n";
       if (in.lower && in.upper) {
-        s << "<line x1=\"" << num(x_of(*in.lower)) << "\" y1=\"" << num(top + 5.5) << "\" x2=\"" << num(x_of(*in.upper)) << "\" y2=\""
-          << num(top + 5.5) << "\" stroke=\"black\"/>\n";
+        s << "<line x1=\"" << study_number(x_of(*in.lower)) << "\" y1=\"" << study_number(top + 5.5) << "\" x2=\"" << study_number(x_of(*in.upper)) << "\" y2=\""
+          << study_number(top + 5.5) << "\" stroke=\"black\"/>\n";
         if (*in.lower < lo) arrowhead(s, x_of(lo), top + 5.5, false);
         if (*in.upper > hi) arrowhead(s, x_of(hi), top + 5.5, true);
       }
@@ -102,10 +86,10 @@ std::string sobol_svg(const StudySpec& spec, const SobolIndices& si) {
     bar(i.total, i.total_interval, y + 15, "#9cc3e6", "total");
   }
   const double axis = 10 + row_h * static_cast<double>(si.indices.size());
-  s << "<line x1=\"" << num(x_of(0)) << "\" y1=\"6\" x2=\"" << num(x_of(0)) << "\" y2=\"" << num(axis) << "\" stroke=\"black\"/>\n";
-  s << "<line x1=\"" << num(x_of(1)) << "\" y1=\"6\" x2=\"" << num(x_of(1)) << "\" y2=\"" << num(axis) << "\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>\n";
-  s << "<text x=\"" << num(x_of(0)) << "\" y=\"" << num(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">0</text>\n";
-  s << "<text x=\"" << num(x_of(1)) << "\" y=\"" << num(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">1</text>\n</svg>\n";
+  s << "<line x1=\"" << study_number(x_of(0)) << "\" y1=\"6\" x2=\"" << study_number(x_of(0)) << "\" y2=\"" << study_number(axis) << "\" stroke=\"black\"/>\n";
+  s << "<line x1=\"" << study_number(x_of(1)) << "\" y1=\"6\" x2=\"" << study_number(x_of(1)) << "\" y2=\"" << study_number(axis) << "\" stroke=\"#999\" stroke-dasharray=\"3,3\"/>\n";
+  s << "<text x=\"" << study_number(x_of(0)) << "\" y=\"" << study_number(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">0</text>\n";
+  s << "<text x=\"" << study_number(x_of(1)) << "\" y=\"" << study_number(axis + 14) << "\" font-size=\"11\" text-anchor=\"middle\">1</text>\n</svg>\n";
   return s.str();
 }
 
@@ -136,12 +120,12 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
     if (unit.empty()) unit = q.marginal.dimension.dimensionless() ? std::string() : q.marginal.dimension.si_unit();
     const std::string with_unit = unit.empty() ? std::string() : " " + html_text(unit);
     p << "<tr><td>" << html_text(q.name) << "</td><td class=\"text\">" << html_text(q.written) << "</td><td>"
-      << num(q.marginal.mean() / scale - offset) << with_unit << "</td><td>" << num(q.marginal.standard_deviation() / scale) << with_unit
+      << study_number(q.marginal.mean() / scale - offset) << with_unit << "</td><td>" << study_number(q.marginal.standard_deviation() / scale) << with_unit
       << "</td></tr>\n";
   }
   p << "</table>\n";
   for (const OutputAnswer& o : a.outputs) {
-    const std::string u = unit_of(o.column);
+    const std::string u = study_unit(o.column);
     p << "<h2>" << html_text(o.column.label) << (u.empty() ? "" : " [" + html_text(u) + "]") << "</h2>\n";
     if (o.moments.n == 0) {
       p << "<p>No sample has a value.</p>\n";
@@ -149,20 +133,14 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
     }
     // What the terminal prints, on paper too: the intervals, the quantiles, the counts beyond the
     // limits, the indices as numbers (the charts' values are only in their tooltips).
-    p << "<p>n " << o.moments.n << (o.failed ? " (" + std::to_string(o.failed) + " failed)" : "") << ", mean " << num(o.moments.mean)
-      << " " << interval(o.moments.mean_interval) << ", standard deviation " << num(o.moments.standard_deviation) << ", min "
-      << num(o.moments.min) << ", max " << num(o.moments.max) << "</p>\n";
-    if (o.capability) {
-      const Capability& c = *o.capability;
-      p << "<p>spec [" << maybe(o.lower) << ", " << maybe(o.upper) << "]: Cp " << maybe(c.cp) << ", Cpk " << maybe(c.cpk) << ", out of spec "
-        << num(1e6 * c.out_of_spec.estimate) << " ppm " << interval(per_million(c.out_of_spec.wilson)) << " (" << c.below << " below, " << c.above << " above; normal model "
-        << num(c.ppm_normal) << " ppm)</p>\n";
-    }
+    p << "<p>n " << o.moments.n << (o.failed ? " (" + std::to_string(o.failed) + " failed)" : "") << ", "
+      << html_text(moments_text(o.moments)) << "</p>\n";
+    if (o.capability) p << "<p>" << html_text(capability_text(o)) << "</p>\n";
     p << histogram_svg(o);
     if (!o.quantiles.empty()) {
       p << "<table><tr><th>quantile</th><th>value</th><th>interval</th></tr>\n";
       for (const QuantileEstimate& q : o.quantiles)
-        p << "<tr><td>" << num(q.level) << "</td><td>" << num(q.value) << "</td><td>" << interval(q.interval) << "</td></tr>\n";
+        p << "<tr><td>" << study_number(q.level) << "</td><td>" << study_number(q.value) << "</td><td>" << study_interval(q.interval) << "</td></tr>\n";
       p << "</table>\n";
     }
     if (o.sobol && !o.sobol->indices.empty()) {
@@ -170,8 +148,8 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
         << sobol_svg(spec, *o.sobol) << "<table><tr><th>parameter</th><th>first order</th><th>interval</th><th>total</th><th>interval</th></tr>\n";
       for (std::size_t j = 0; j < o.sobol->indices.size(); ++j) {
         const SobolIndex& i = o.sobol->indices[j];
-        p << "<tr><td>" << html_text(spec.parameters[j].name) << "</td><td>" << num(i.first) << "</td><td>" << interval(i.first_interval)
-          << "</td><td>" << num(i.total) << "</td><td>" << interval(i.total_interval) << "</td></tr>\n";
+        p << "<tr><td>" << html_text(spec.parameters[j].name) << "</td><td>" << study_number(i.first) << "</td><td>" << study_interval(i.first_interval)
+          << "</td><td>" << study_number(i.total) << "</td><td>" << study_interval(i.total_interval) << "</td></tr>\n";
       }
       p << "</table>\n";
     }
@@ -180,9 +158,9 @@ std::string study_page(const std::string& title, const StudySpec& spec, const St
     p << "<h2>Events</h2>\n<table><tr><th>event</th><th>events</th><th>trials</th><th>probability</th><th>Wilson</th><th>Clopper-Pearson</th></tr>\n";
     for (const EventAnswer& e : a.events) {
       const Proportion& q = e.probability;
-      p << "<tr><td>" << html_text(e.event->name) << "</td><td>" << q.events << "</td><td>" << q.trials << "</td><td>" << num(q.estimate)
-        << "</td><td>[" << maybe(q.wilson.lower) << ", " << maybe(q.wilson.upper) << "]</td><td>[" << maybe(q.clopper_pearson.lower) << ", "
-        << maybe(q.clopper_pearson.upper) << "]</td></tr>\n";
+      p << "<tr><td>" << html_text(e.event->name) << "</td><td>" << q.events << "</td><td>" << q.trials << "</td><td>" << study_number(q.estimate)
+        << "</td><td>[" << study_number(q.wilson.lower) << ", " << study_number(q.wilson.upper) << "]</td><td>[" << study_number(q.clopper_pearson.lower) << ", "
+        << study_number(q.clopper_pearson.upper) << "]</td></tr>\n";
     }
     p << "</table>\n";
   }

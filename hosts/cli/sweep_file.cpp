@@ -140,6 +140,11 @@ SweepFile::SweepFile(const fs::path& out, SweepManifest manifest, bool resume, b
 
 namespace {
 
+// Whether a manifest read back records the rows of the sweep `m` describes: its fingerprint and shard.
+bool same_sweep(const SweepManifest& before, const SweepManifest& m) {
+  return before.sweep == m.sweep && before.shard == m.shard && before.shards == m.shards;
+}
+
 // Whether `tail`, the text after the last line break of FILE.part, can be the start of a line this
 // sweep writes, cut by a kill: a prefix of the header, of a CSV row (its case number first) or of
 // a JSON Lines row.
@@ -161,7 +166,7 @@ void SweepFile::resume_part(const RowRules& rules) {
   const SweepManifest before = read_manifest(out_);
   require_rows_format(before, part_.string(),
                       "finish the sweep with the mechgraph that began it, or start over with --force");
-  if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
+  if (!same_sweep(before, manifest_))
     throw UsageError(part_.string() + " holds rows of another sweep (scene, a file it reads, --set, cases, outputs or shard "
                      "differ); remove it or use --force to start over" + unrecorded_format_note(before));
   file_ = open_existing_regular(part_);
@@ -207,7 +212,7 @@ void SweepFile::start_fresh(bool resume, bool force) {
       if (resume && ours) {
         // Complete, but of this sweep? Another's (another design, --set, scene) has nothing to resume either.
         const SweepManifest before = read_manifest(out_);
-        if (before.sweep != manifest_.sweep || before.shard != manifest_.shard || before.shards != manifest_.shards)
+        if (!same_sweep(before, manifest_))
           throw UsageError(out_.string() + " holds the complete rows of another sweep (" + excerpt(before.origin, 160) +
                            "; the scene, a file it reads, --set, cases, outputs or shard differ): nothing of this one to resume; "
                            "--force replaces them, or write this sweep to another --out");

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <algorithm>
+#include <bit>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -260,12 +261,9 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
                      " evaluations, more than 10^7");
   // Sobol' points stratify (one in each 1/N of every coordinate) only for N a power of 2; other N
   // are valid, the estimate unbiased over seeds, its variance that of a part of a net.
-  if (spec.method == SamplingMethod::sobol && (spec.samples & (spec.samples - 1)) != 0) {
-    std::size_t below = 1;
-    while (below * 2 < spec.samples) below *= 2;
+  if (spec.method == SamplingMethod::sobol && !std::has_single_bit(spec.samples))
     spdlog::warn("study: {} Sobol' samples, not a power of 2: the points stratify only for a power of 2 ({} or {})", spec.samples,
-                 below, below * 2);
-  }
+                 std::bit_floor(spec.samples), std::bit_ceil(spec.samples));
 }
 
 }  // namespace mechgraph::host
