@@ -60,7 +60,7 @@ void BM_SweepRpm50(benchmark::State& state) {
   const CaseTable cases = make_grid({parse_vary("rpm=3000rpm:7900rpm:50")});
   const CaseBinder binder(g, scene, registry(), {}, cases.variables);
   SweepOptions options;
-  for (std::size_t i = 0; i < cases.cases.size(); ++i) options.cases.push_back(i);
+  for (std::size_t i = 0; i < cases.size(); ++i) options.cases.push_back(i);
   for (auto _ : state) {
     MemoCache cache;
     run_sweep(g, binder, cases, cache, options, [](CaseResult&& r) { benchmark::DoNotOptimize(r); });
@@ -95,13 +95,13 @@ void BM_SweepStages123(benchmark::State& state) {
   SweepOptions options;
   options.threads = static_cast<unsigned>(state.range(0));
   options.block_size = static_cast<std::size_t>(state.range(1));
-  for (std::size_t i = 0; i < cases.cases.size(); ++i) options.cases.push_back(i);
+  for (std::size_t i = 0; i < cases.size(); ++i) options.cases.push_back(i);
   std::size_t failed = 0;
   for (auto _ : state) {
     MemoCache cache;
     run_sweep(g, binder, cases, cache, options, [&](CaseResult&& r) { failed += r.failure != CaseFailure::none; });
   }
-  state.counters["designs/s"] = benchmark::Counter(3.0 * cases.cases.size() * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["designs/s"] = benchmark::Counter(3.0 * cases.size() * state.iterations(), benchmark::Counter::kIsRate);
   state.counters["failed"] = static_cast<double>(failed) / state.iterations();
 }
 BENCHMARK(BM_SweepStages123)->Args({1, 0})->Args({1, 256})->Args({2, 0})->Args({2, 256})->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -78,7 +78,7 @@ StudyData read_study_rows(const std::string& file, const Graph& graph, const Cas
     if (!k) throw UsageError(file + ":1: no column for output '" + columns[c].label + "' (the study reads the scene's scalar outputs)");
     at[c] = *k;
   }
-  const std::size_t n = table.cases.size(), inputs = table.variables.size();
+  const std::size_t n = table.size(), inputs = table.variables.size();
   StudyData data;
   data.outputs = columns;
   data.values.assign(columns.size(), std::vector<double>(n, std::nan("")));
@@ -304,7 +304,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     if (manifest && !manifest->origin.empty() && manifest->origin != outcome->table.origin)
       throw UsageError(rows_file + ": rows of another design (" + excerpt(manifest->origin, 160) + ", " +
                        std::to_string(manifest->cases) + " cases); this study's is " + outcome->table.origin + ", " +
-                       std::to_string(outcome->table.cases.size()) + " cases: give the study the --samples, --method and --seed " +
+                       std::to_string(outcome->table.size()) + " cases: give the study the --samples, --method and --seed " +
                        "the sweep had, or the scene the sweep read");
     try {
       outcome->data = read_study_rows(rows_file, outcome->graph, outcome->table, outcome->columns);
@@ -341,13 +341,13 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
     }
     const SweepSummary& summary = outcome->summary;
     if (summary.stopped) {
-      if (summary.run == outcome->table.cases.size())
+      if (summary.run == outcome->table.size())
         spdlog::warn("study stopped while its answers were computed, after all {} cases; nothing is reported "
                      "(to keep the cases: mechgraph sweep SCENE --study --out FILE, then mechgraph study SCENE --rows FILE)",
                      summary.run);
       else
         spdlog::warn("study stopped after {} of {} cases; nothing is reported from a part of the design "
-                     "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.cases.size());
+                     "(to stop and go on: mechgraph sweep SCENE --study --out FILE, then --resume)", summary.run, outcome->table.size());
       return interrupted;
     }
     spdlog::info("study: {} cases in {:.3g} s, {} failed; {} in blocks", summary.run, summary.seconds, summary.failed, summary.in_blocks);

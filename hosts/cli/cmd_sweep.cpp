@@ -181,7 +181,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   if (vm.count("vary")) read_bare_numbers_in_list_unit(table, binder);
 
   SweepOptions options;
-  for (std::size_t i = shard.index; i < table.cases.size(); i += shard.count) options.cases.push_back(i);
+  for (std::size_t i = shard.index; i < table.size(); i += shard.count) options.cases.push_back(i);
   options.threads = threads;
   options.block_size = block_size;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
@@ -196,14 +196,14 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
 
   SweepManifest manifest;
   manifest.sweep = sweep_fingerprint(scene_file, sets, table, graph, format);
-  manifest.cases = table.cases.size();
+  manifest.cases = table.size();
   manifest.shard = shard.index;
   manifest.shards = shard.count;
   manifest.scene = scene_file;
   manifest.origin = table.origin;
   manifest.format = format;
   manifest.inputs = table.variables.size();
-  const RowRules rules{format, table.cases.size(), shard.index, shard.count, table.variables.size(),
+  const RowRules rules{format, table.size(), shard.index, shard.count, table.variables.size(),
                        [&table](std::size_t i, std::size_t v) { return table.shown(i, v); }};
   SweepFile file(vm.count("out") ? vm["out"].as<std::string>() : std::string(), manifest, vm.count("resume") > 0,
                  vm.count("force") > 0, rules);

@@ -31,7 +31,7 @@ std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
     } else if (const auto uses = graph.scene_param_uses.find(name); uses != graph.scene_param_uses.end()) {
       for (const SceneParamUse& use : uses->second) names_file = names_file || is_path(use.node, use.param);
     }
-    if (names_file)
+    if (names_file)  // a path is a word: a table of numbers only (CaseTable::Numbers) names none
       for (const auto& row : table.cases)
         if (!row[v].text.empty()) files.insert(row[v].text);
   }
@@ -58,8 +58,9 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
   }
   for (const std::string& s : sets) h.add(s);
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
-  for (const auto& row : table.cases)
-    for (const CaseValue& v : row) {
+  std::vector<CaseValue> scratch;
+  for (std::size_t i = 0; i < table.size(); ++i)
+    for (const CaseValue& v : table.row(i, scratch)) {
       if (!v.text.empty()) h.add(std::string_view(v.text));  // written() without its copy
       else h.add(v.written());
     }

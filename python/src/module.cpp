@@ -65,8 +65,8 @@ std::string study_sample_column(const Graph& graph, const StudyColumn& c) {
 void add_study_parameters(py::dict& cases, const Graph& graph, const CaseTable& table) {
   const host::SweepRows rows(graph, table, host::RowFormat::csv);
   const std::vector<std::string> names = rows.input_headers();
-  std::vector<std::vector<double>> columns(names.size(), std::vector<double>(table.cases.size()));
-  for (std::size_t i = 0; i < table.cases.size(); ++i) {
+  std::vector<std::vector<double>> columns(names.size(), std::vector<double>(table.size()));
+  for (std::size_t i = 0; i < table.size(); ++i) {
     const auto inputs = rows.input_values(i);
     for (std::size_t v = 0; v < names.size(); ++v)
       columns[v][i] = std::holds_alternative<double>(inputs[v]) ? std::get<double>(inputs[v]) : std::numeric_limits<double>::quiet_NaN();
@@ -580,7 +580,7 @@ PYBIND11_MODULE(_core, m) {
         SessionSweep result;
         // progress(done, total), every 20 ms while the cases run (a tqdm bar, _progress.py)
         std::function<void()> tick;
-        if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.cases.size()); };
+        if (!progress.is_none()) tick = [&] { progress(done.load(std::memory_order_relaxed), table.size()); };
         const WorkBudget budget = python_budget(max_work, max_memory, true);
         run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), budget, &done); }, [&] { *stop = true; },
                           OnInterrupt::wait, tick);
@@ -635,8 +635,9 @@ PYBIND11_MODULE(_core, m) {
         const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs, python_budget(max_work, max_memory, true));
         py::dict cases, shown;
         for (std::size_t v = 0; v < o->table.variables.size(); ++v) {
-          std::vector<double> column(o->table.cases.size());
-          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o->table.cases[i][v].si;
+          std::vector<double> column(o->table.size());
+          CaseValue made;
+          for (std::size_t i = 0; i < column.size(); ++i) column[i] = *o->table.cell(i, v, made).si;
           cases[py::str(o->table.variables[v].name)] = column;
         }
         add_study_parameters(shown, o->graph, o->table);
@@ -652,7 +653,7 @@ PYBIND11_MODULE(_core, m) {
         if (!block.empty()) settings = parse_raw_value(block, SourceLocation{"Scene.study()", 0, 0});
         const std::vector<SetValue> sets = set_values(set);
         auto o = session->prepare_study(sets, settings, samples, method, seed, outputs, python_budget(max_work, max_memory, true));
-        const std::size_t n = o->table.cases.size();
+        const std::size_t n = o->table.size();
         if (exits.size() != n) throw SceneError("study rows: " + std::to_string(exits.size()) + " rows for the design's " + std::to_string(n) + " cases");
         o->data.outputs = o->columns;
         o->data.failures.resize(n);

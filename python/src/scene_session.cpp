@@ -253,7 +253,7 @@ void SceneSession::with_sweep_graph(const CaseTable& table, const std::vector<Se
 namespace {
 SweepOptions sweep_options(const CaseTable& table, unsigned threads) {
   SweepOptions options;
-  for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
+  for (std::size_t i = 0; i < table.size(); ++i) options.cases.push_back(i);
   options.threads = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
   return options;
 }

@@ -4,6 +4,9 @@
 #include "test_support.hpp"
 
 #include <mechgraph/host/study_run.hpp>
+#include <mechgraph/host/sweep_rows.hpp>
+#include <mechgraph/sweep/case_binder.hpp>
+#include <mechgraph/sweep/sweep_runner.hpp>
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/uncertainty/sample_design.hpp>
@@ -306,17 +309,82 @@ nodes: {}
   const CaseTable t = make_study_cases(spec);
   // Made in chunks on three workers: the same table, value for value.
   const CaseTable on_three = make_study_cases(spec, 3);
-  REQUIRE(on_three.cases.size() == t.cases.size());
-  bool same = true;
-  for (std::size_t i = 0; i < t.cases.size(); ++i)
-    for (std::size_t j = 0; j < t.cases[i].size(); ++j) same = same && *on_three.cases[i][j].si == *t.cases[i][j].si;
-  CHECK(same);
+  REQUIRE(t.size() == 40000);
+  REQUIRE(on_three.size() == t.size());
+  CHECK(on_three.numbers.si == t.numbers.si);
   double sxy = 0, sxx = 0, syy = 0;
-  for (const auto& row : t.cases) {
+  std::vector<CaseValue> scratch;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const std::vector<CaseValue>& row = t.row(i, scratch);
     const double za = *row[0].si / 2, zb = standard_normal_quantile(*row[1].si);
     sxy += za * zb, sxx += za * za, syy += zb * zb;
   }
   CHECK_THAT(sxy / std::sqrt(sxx * syy), Catch::Matchers::WithinAbs(0.6, 0.01));  // 4 standard errors
+}
+
+TEST_CASE("A study's design is kept as numbers only and reads as the rows it stands for", "[uncertainty]") {
+  // The stage 1-3 study (its nodes take the block path) with six parameters in mm, deg and rpm,
+  // the base radius drawn partly below zero so that the binder refuses some cases: the compact
+  // table (CaseTable::Numbers) gives what a table of the same values as rows of CaseValue gives,
+  // cell for cell and row for row, in blocks and case by case.
+  std::string scene = testing::source_file_text("bench/peers/stages123_study.yaml");
+  scene.replace(scene.find("\nnodes:"), 7, R"(
+uncertainty:
+  method: sobol
+  samples: 16
+  sensitivity: true
+  parameters:
+    lift:   { uniform: { lower: 7 mm, upper: 9 mm } }
+    action: { uniform: { lower: 120 deg, upper: 140 deg } }
+    accel:  { uniform: { lower: 15 deg, upper: 21 deg } }
+    r0:     { uniform: { lower: -4 mm, upper: 28 mm } }
+    rpm:    { uniform: { lower: 4000 rpm, upper: 7000 rpm } }
+    lash:   { uniform: { lower: 0.1 mm, upper: 0.4 mm } }
+nodes:)");
+  const InProcess study = run_study(scene, 1, testing::project_registry());
+  const CaseTable& numbers = study->table;
+  REQUIRE(numbers.cases.empty());
+  REQUIRE(numbers.size() == 16 * 8);
+  const std::size_t width = numbers.variables.size();
+  REQUIRE(width == 6);
+  CHECK(numbers.numbers.si.size() == numbers.size() * width);
+  CaseTable rows;
+  rows.variables = numbers.variables;
+  std::vector<CaseValue> scratch;
+  for (std::size_t i = 0; i < numbers.size(); ++i) rows.cases.push_back(numbers.row(i, scratch));
+  REQUIRE(rows.size() == numbers.size());
+  CaseValue made;
+  for (std::size_t i = 0; i < numbers.size(); ++i)
+    for (std::size_t v = 0; v < width; ++v) {
+      const CaseValue& c = numbers.cell(i, v, made);
+      REQUIRE(c.text.empty());
+      REQUIRE(*c.si == numbers.numbers.si[i * width + v]);
+      REQUIRE(numbers.shown(i, v) == rows.shown(i, v));
+    }
+  const CaseBinder binder(study->graph, *study->scene, testing::project_registry(), {}, numbers.variables, BinderUse::study);
+  const host::SweepRows lines(study->graph, numbers, host::RowFormat::csv), lines_of_rows(study->graph, rows, host::RowFormat::csv);
+  for (const std::size_t block : {std::size_t{0}, std::size_t{16}}) {
+    INFO("block size " << block);
+    const auto run = [&](const CaseTable& table, const host::SweepRows& writer, SweepSummary& summary) {
+      SweepOptions options;
+      options.block_size = block;
+      for (std::size_t i = 0; i < table.size(); ++i) options.cases.push_back(i);
+      MemoCache cache;
+      std::string out;
+      summary = run_sweep(study->graph, binder, table, cache, options, [&](CaseResult&& r) {
+        writer.append_line(out, r, r.failure == CaseFailure::none ? 0 : 1);
+      });
+      return out;
+    };
+    SweepSummary from_numbers_summary, from_rows_summary;
+    const std::string from_numbers = run(numbers, lines, from_numbers_summary), from_rows = run(rows, lines_of_rows, from_rows_summary);
+    CHECK(std::count(from_numbers.begin(), from_numbers.end(), '\n') == 128);
+    CHECK(from_numbers_summary.failed > 0);                     // the binder refused some cases
+    CHECK(from_numbers_summary.failed < 128);                   // and ran the others
+    CHECK(from_numbers_summary.in_blocks == (block ? 128 - from_numbers_summary.failed : 0));
+    CHECK(from_numbers_summary.failed == from_rows_summary.failed);
+    CHECK(from_numbers == from_rows);
+  }
 }
 
 TEST_CASE("Monte Carlo statistics against exact convolution", "[uncertainty]") {

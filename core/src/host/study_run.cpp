@@ -211,7 +211,7 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
                          unsigned threads, const std::atomic<bool>* stop, SweepSummary* summary) {
   StudyData data;
   data.outputs = columns;
-  const std::size_t n = table.cases.size();
+  const std::size_t n = table.size();
   data.values.assign(columns.size(), std::vector<double>(n, std::numeric_limits<double>::quiet_NaN()));
   data.failures.assign(n, CaseFailure::none);
   std::vector<std::size_t> where(columns.size());
@@ -390,7 +390,7 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
                                      option_names);
   phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
-  std::vector<std::size_t> all(outcome->table.cases.size());
+  std::vector<std::size_t> all(outcome->table.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   outcome->threads = threads;
   WorkBudget for_cases = budget;

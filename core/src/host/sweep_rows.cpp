@@ -433,9 +433,10 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
   }
   std::vector<std::string> cells = {std::to_string(result.index)};
   std::vector<bool> numeric = {true};
+  CaseValue made;
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
     cells.push_back(table_.shown(result.index, v));
-    numeric.push_back(table_.cases[result.index][v].si.has_value());
+    numeric.push_back(table_.cell(result.index, v, made).si.has_value());
   }
   std::string error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
   if (result.failure == CaseFailure::none && !error.empty()) exit_code = evaluation_error;
@@ -453,10 +454,11 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
 
 std::vector<std::variant<std::monostate, double, std::string>> SweepRows::input_values(std::size_t i) const {
   std::vector<std::variant<std::monostate, double, std::string>> inputs;
+  CaseValue made;
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
     std::string cell = table_.shown(i, v);
     if (cell.empty()) inputs.emplace_back(std::monostate{});
-    else if (table_.cases[i][v].si.has_value() && finite_number_cell(cell)) inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
+    else if (table_.cell(i, v, made).si.has_value() && finite_number_cell(cell)) inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
     else inputs.emplace_back(std::move(cell));
   }
   return inputs;

@@ -151,9 +151,10 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
   // would refuse leaves its case to the per-case path, which refuses it with its message.
   BlockCases cases(n);
   std::vector<std::vector<double>> columns(targets_.size(), std::vector<double>(n, 0.0));
+  CaseValue made;
   for (std::size_t v = 0; v < targets_.size(); ++v)
     for (std::size_t k = 0; k < n; ++k) {
-      const CaseValue& value = table.cases[indices[k]][v];
+      const CaseValue& value = table.cell(indices[k], v, made);
       if (binder_.writes_number(v, value)) columns[v][k] = *value.si;
       else cases.fail(k);
     }

@@ -79,9 +79,10 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
     std::vector<RepeatedNodeEstimate> repeated;
     std::vector<double> sizes;
     std::optional<std::pair<double, double>> alike;  // a case's work and memory, when cases_alike
+    std::vector<CaseValue> row;                      // a case's values, where the table keeps numbers only
   };
   const auto make_worker = [&] {
-    Worker w{marked, {}, {}, fixed_sizes, std::nullopt};
+    Worker w{marked, {}, {}, fixed_sizes, std::nullopt, {}};
     w.slots = binder.bind(w.copy);
     w.repeated.reserve(varied.size());
     for (std::size_t i : varied)
@@ -93,9 +94,9 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
     const std::size_t end = std::min(cases.size(), (chunk + 1) * cases_per_chunk);
     for (std::size_t k = chunk * cases_per_chunk; k < end; ++k) {
       const std::size_t c = cases[k];
-      if (c >= table.cases.size()) continue;
+      if (c >= table.size()) continue;
       try {
-        binder.apply(w.slots, w.copy, table.cases[c]);
+        binder.apply(w.slots, w.copy, table.row(c, w.row));
       } catch (const SceneError&) {
         continue;  // this case is refused before it runs: no work
       }
@@ -131,7 +132,8 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
   // The terms (for the message) are the largest case's, estimated once more with their words.
   if (largest >= 0) {
     Graph copy = marked;
-    binder.apply(binder.bind(copy), copy, table.cases[result.largest_case]);
+    std::vector<CaseValue> row;
+    binder.apply(binder.bind(copy), copy, table.row(result.largest_case, row));
     WorkEstimate e = estimate_work(copy);
     for (WorkEstimate::Term& t : e.terms) t.what += " in case " + std::to_string(result.largest_case);
     result.total.terms = std::move(e.terms);

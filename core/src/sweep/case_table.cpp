@@ -273,6 +273,22 @@ double expressible_in(double si, const std::optional<UnitScale>& u) {
 
 std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
 
+const CaseValue& CaseTable::cell(std::size_t i, std::size_t v, CaseValue& scratch) const {
+  if (!cases.empty()) return cases[i][v];
+  scratch.text.clear();
+  scratch.si = numbers.si[i * numbers.dimensions.size() + v];
+  scratch.dimension = numbers.dimensions[v];
+  return scratch;
+}
+
+const std::vector<CaseValue>& CaseTable::row(std::size_t i, std::vector<CaseValue>& scratch) const {
+  if (!cases.empty()) return cases[i];
+  const std::size_t width = numbers.dimensions.size();
+  scratch.resize(width);
+  for (std::size_t v = 0; v < width; ++v) cell(i, v, scratch[v]);
+  return scratch;
+}
+
 namespace {
 
 // splitmix64: a small generator whose output is fixed by its definition on every platform.
@@ -360,7 +376,8 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
 }
 
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const {
-  const CaseValue& value = cases[i][v];
+  CaseValue made;
+  const CaseValue& value = cell(i, v, made);
   if (!value.si) {
     out += value.text;
     return false;

@@ -60,11 +60,12 @@ SweepSummary run_sweep(const Graph& base, const CaseBinder& binder, const CaseTa
     std::optional<CaseBinder::Slots> slots;  // the varied parameters of this worker's graph
     if (!binder.rebuilds()) slots = binder.bind(graph);
     BlockPlan::WorkerState block_state;
+    std::vector<CaseValue> row;  // a case's values, where the table keeps numbers only
     // One case alone: the per-case path, with its messages.
     auto run_alone = [&](CaseResult& result) {
       try {
-        if (slots) binder.apply(*slots, graph, table.cases[result.index]);
-        else binder.apply(graph, table.cases[result.index]);
+        if (slots) binder.apply(*slots, graph, table.row(result.index, row));
+        else binder.apply(graph, table.row(result.index, row));
         if (binder.rebuilds()) binder.mark_unmemoised(graph);
         RunValues run = evaluate_values(graph, cache, node_threads);
         result.outputs = std::move(run.values);

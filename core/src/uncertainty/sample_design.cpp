@@ -147,7 +147,10 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
                  (spec.sensitivity ? ", Saltelli design (" + std::to_string(per_sample) + " cases a sample)" : "");
   const UnitDesign design(spec.method, n, spec.sensitivity ? 2 * d : d, spec.seed);
   const std::vector<double> l = spec.correlations.empty() ? std::vector<double>{} : cholesky(spec);
-  table.cases.resize(n * per_sample);
+  // Numbers only, compactly (CaseTable::Numbers): one allocation for the whole design.
+  table.numbers.cases = n * per_sample;
+  for (const UncertainParameter& p : spec.parameters) table.numbers.dimensions.push_back(p.marginal.dimension);
+  table.numbers.si.resize(table.numbers.cases * d);
   // Sample i fills rows i * per_sample ...: samples are independent (each point of the design is
   // fixed by its index), so chunks of them run on `threads` workers with the same table.
   constexpr std::size_t samples_per_chunk = 4096;
@@ -175,27 +178,24 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
         x[j] = spec.parameters[j].marginal.quantile(v);
       }
     };
-    const auto row = [&](const std::vector<double>& x) {
-      std::vector<CaseValue> values(d);
-      for (std::size_t j = 0; j < d; ++j) {
-        const Dimension& dim = spec.parameters[j].marginal.dimension;
-        // On the numbers of the unit the parameter was written in, so its rows show it there exactly.
-        values[j] = {std::string(), expressible_in(x[j], units[j]), dim};  // written() makes its text when asked
-      }
-      return values;
+    // A case's values into its row of the table, each on the numbers of the unit the parameter
+    // was written in, so its rows show it there exactly (their text made when asked).
+    const auto put = [&](std::size_t case_index, const std::vector<double>& x) {
+      double* out = table.numbers.si.data() + case_index * d;
+      for (std::size_t j = 0; j < d; ++j) out[j] = expressible_in(x[j], units[j]);
     };
     for (std::size_t i = chunk * samples_per_chunk; i < std::min(n, (chunk + 1) * samples_per_chunk); ++i) {
-      std::vector<CaseValue>* out = table.cases.data() + i * per_sample;
+      const std::size_t first = i * per_sample;
       design.point(i, w.u.data());
       to_values(w.u.data(), w.a);
-      out[0] = row(w.a);
+      put(first, w.a);
       if (!spec.sensitivity) continue;
       to_values(w.u.data() + d, w.b);
-      out[1] = row(w.b);
+      put(first + 1, w.b);
       for (std::size_t j = 0; j < d; ++j) {
         w.ab = w.a;
         w.ab[j] = w.b[j];
-        out[2 + j] = row(w.ab);
+        put(first + 2 + j, w.ab);
       }
     }
   });

@@ -75,8 +75,28 @@ struct ShownUnit {
 
 struct CaseTable {
   std::vector<SweepVariable> variables;
-  std::vector<std::vector<CaseValue>> cases;  // cases[i][v]: variable v in case i
-  std::string origin;                         // "--vary ...", "FILE.csv", "--sample ... --seed S"
+  /// cases[i][v]: variable v in case i, as read or made (a cases file, a grid, a sample, a
+  /// caller's table). Empty where `numbers` holds the cases.
+  std::vector<std::vector<CaseValue>> cases;
+  /// A table of numbers only, kept compactly: a study's design, a million cases or more, at 8
+  /// bytes a value where a row of CaseValue takes an allocation and 56 bytes a value (on a
+  /// virtual machine, touching that memory for the first time was a fifth of a study's time).
+  /// Used when `cases` is empty; read through size(), cell() and row() alike.
+  struct Numbers {
+    std::size_t cases = 0;
+    std::vector<Dimension> dimensions;  // of each variable's values
+    std::vector<double> si;             // si[i * dimensions.size() + v]: variable v in case i, SI
+  } numbers;
+  std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
+
+  /// How many cases the table holds, however it keeps them.
+  std::size_t size() const { return cases.empty() ? numbers.cases : cases.size(); }
+  bool empty() const { return size() == 0; }
+  /// Variable v of case i: the stored value, or `scratch` made from the numbers (a number with no
+  /// text: CaseValue::written() makes it when asked). Valid while both live.
+  const CaseValue& cell(std::size_t i, std::size_t v, CaseValue& scratch) const;
+  /// Case i's values, the same way (`scratch` keeps its storage from case to case).
+  const std::vector<CaseValue>& row(std::size_t i, std::vector<CaseValue>& scratch) const;
 
   /// The value of variable v in case i as the output shows it (in the variable's unit).
   std::string shown(std::size_t i, std::size_t v) const;
