@@ -156,10 +156,10 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   constexpr std::size_t samples_per_chunk = 4096;
   const std::size_t chunks = (n + samples_per_chunk - 1) / samples_per_chunk;
   struct Worker {
-    std::vector<double> u, z, a, b, ab;
+    std::vector<double> u, z, a, b;
   };
   const auto make_worker = [&] { return Worker{std::vector<double>(design.dims()), std::vector<double>(d), std::vector<double>(d),
-                                               std::vector<double>(d), std::vector<double>(d)}; };
+                                               std::vector<double>(d)}; };
   // Each parameter's unit, parsed once: its values are put on the numbers of that unit (below).
   std::vector<std::optional<UnitScale>> units;
   for (const UncertainParameter& p : spec.parameters) units.push_back(p.unit.empty() ? std::nullopt : parse_unit_cached(p.unit));
@@ -178,24 +178,27 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
         x[j] = spec.parameters[j].marginal.quantile(v);
       }
     };
-    // A case's values into its row of the table, each on the numbers of the unit the parameter
-    // was written in, so its rows show it there exactly (their text made when asked).
-    const auto put = [&](std::size_t case_index, const std::vector<double>& x) {
-      double* out = table.numbers.si.data() + case_index * d;
-      for (std::size_t j = 0; j < d; ++j) out[j] = expressible_in(x[j], units[j]);
+    // Each value on the numbers of the unit its parameter was written in, so that its rows show
+    // it there exactly (their text made when asked). Value by value: the rows A_B^(j) of
+    // Saltelli's design are made of A's and B's values as put there.
+    const auto put = [&](std::vector<double>& x) {
+      for (std::size_t j = 0; j < d; ++j) x[j] = expressible_in(x[j], units[j]);
     };
+    const auto row = [&](std::size_t case_index) { return table.numbers.si.data() + case_index * d; };
     for (std::size_t i = chunk * samples_per_chunk; i < std::min(n, (chunk + 1) * samples_per_chunk); ++i) {
       const std::size_t first = i * per_sample;
       design.point(i, w.u.data());
       to_values(w.u.data(), w.a);
-      put(first, w.a);
+      put(w.a);
+      std::copy(w.a.begin(), w.a.end(), row(first));
       if (!spec.sensitivity) continue;
       to_values(w.u.data() + d, w.b);
-      put(first + 1, w.b);
+      put(w.b);
+      std::copy(w.b.begin(), w.b.end(), row(first + 1));
       for (std::size_t j = 0; j < d; ++j) {
-        w.ab = w.a;
-        w.ab[j] = w.b[j];
-        put(first + 2 + j, w.ab);
+        double* ab = row(first + 2 + j);
+        std::copy(w.a.begin(), w.a.end(), ab);
+        ab[j] = w.b[j];
       }
     }
   });
