@@ -68,12 +68,19 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   const double phi_2 = jerk_continuous ? pi * pi * phi_3 * phi_3 / (12.0 * phi_y) : phi_y - sigma * phi_y;
   const double phi_1 = jerk_continuous ? phi_y - phi_2 : sigma * phi_y;
   const char* split_parameter = rise_split ? "rise_split" : "accel_angle";
-  // The shapes hold no state: one of each serves every law (a sweep makes a law per case).
+  // The shapes hold no state: one of each serves every law (a sweep makes a law per case). They
+  // live as long as the plugin, so the laws hold them uncounted (an aliasing shared_ptr with no
+  // owner, whose copies touch no counter): a law made or dropped on one thread then writes
+  // nothing another thread's laws write. Counted, every law's making and dropping incremented and
+  // decremented the same three counters from every thread.
   static const auto quarter_sine = std::make_shared<const QuarterSineRise>();
   static const auto quarter_cosine = std::make_shared<const QuarterCosineFall>();
   static const auto parabola = std::make_shared<const ParabolaToVertex>();
-  const ShapeSegment positive[] = {{quarter_sine, phi_1}, {quarter_cosine, phi_2}};
-  const ShapeSegment negative[] = {{parabola, phi_3}};
+  const auto uncounted = [](const std::shared_ptr<const AccelShape>& shape) {
+    return std::shared_ptr<const AccelShape>(std::shared_ptr<const AccelShape>(), shape.get());
+  };
+  const ShapeSegment positive[] = {{uncounted(quarter_sine), phi_1}, {uncounted(quarter_cosine), phi_2}};
+  const ShapeSegment negative[] = {{uncounted(parabola), phi_3}};
   std::shared_ptr<const ShocklessLaw> law;
   try {
     law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,

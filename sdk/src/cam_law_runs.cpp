@@ -204,6 +204,42 @@ std::vector<CamLawRuns::Peaks> CamLawRuns::peaks(std::initializer_list<const Cam
 }
 
 void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, double b, long& evaluations, Peaks* out) {
+  // One run set's least and greatest value over [a, b]: at each run's ends inside it (its
+  // one-sided points), in ascending order, each read through `at` (h, h', h'' at an angle).
+  const auto scan = [a, b](const CamLawRuns& r, auto&& at) {
+    const double lo_end = std::max(a, r.edges_.front()), hi_end = std::min(b, r.edges_.back());
+    Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
+    const auto first = std::upper_bound(r.edges_.begin(), r.edges_.end(), lo_end) - r.edges_.begin() - 1;
+    const auto order = static_cast<std::size_t>(r.order_);
+    for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r.edges_.size()); ++k) {
+      const double lo = r.edges_[static_cast<std::size_t>(k)], hi = r.edges_[static_cast<std::size_t>(k) + 1];
+      if (lo >= hi_end) break;
+      if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
+      const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
+      for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
+        const double f = at(r, std::clamp(x, inner_lo, inner_hi))[order];
+        if (f < p.min.value) p.min = {x, f};
+        if (f > p.max.value) p.max = {x, f};
+      }
+    }
+    return p;
+  };
+  if (runs.size() == 1) {
+    // One set (the acceleration alone, where a valve motion's velocity is not read): its points
+    // ascend, so a point can only repeat the one read just before it (both ends of a run of a
+    // few ulps), and no table of points is kept. The same points and evaluations as below.
+    double last_x = std::numeric_limits<double>::quiet_NaN();  // equal to no angle
+    double last[3] = {};
+    *out = scan(**runs.begin(), [&](const CamLawRuns& r, double x) -> const double* {
+      if (x == last_x) return last;
+      ++evaluations;
+      const LiftDerivatives d = at_edge_bounded(*r.law_, r.edges_, x);
+      last_x = x;
+      last[0] = d.lift, last[1] = d.velocity, last[2] = d.acceleration;
+      return last;
+    });
+    return;
+  }
   // The points each run set reads (as extreme() does), evaluated once each across the sets. They
   // are kept sorted by angle; each set reads its points in ascending order, so a point read before
   // is found by a cursor that only moves forward (the sets share most of their cuts): the first
@@ -240,23 +276,8 @@ void CamLawRuns::peaks(std::initializer_list<const CamLawRuns*> runs, double a, 
     return read[where];
   };
   for (const CamLawRuns* r : runs) {
-    const double lo_end = std::max(a, r->edges_.front()), hi_end = std::min(b, r->edges_.back());
-    Peaks p{{lo_end, std::numeric_limits<double>::infinity()}, {lo_end, -std::numeric_limits<double>::infinity()}};
-    const auto first = std::upper_bound(r->edges_.begin(), r->edges_.end(), lo_end) - r->edges_.begin() - 1;
-    const auto order = static_cast<std::size_t>(r->order_);
     cursor = 0;
-    for (auto k = std::max<std::ptrdiff_t>(first, 0); k + 1 < static_cast<std::ptrdiff_t>(r->edges_.size()); ++k) {
-      const double lo = r->edges_[static_cast<std::size_t>(k)], hi = r->edges_[static_cast<std::size_t>(k) + 1];
-      if (lo >= hi_end) break;
-      if (!has_interior(lo, hi)) continue;  // no angle of its own: its ends belong to its neighbours
-      const double inner_lo = one_sided_point(lo, hi), inner_hi = one_sided_point(hi, lo);
-      for (double x : {std::max(lo_end, lo), std::min(hi_end, hi)}) {
-        const double f = at(*r, std::clamp(x, inner_lo, inner_hi)).v[order];
-        if (f < p.min.value) p.min = {x, f};
-        if (f > p.max.value) p.max = {x, f};
-      }
-    }
-    *out++ = p;
+    *out++ = scan(*r, [&](const CamLawRuns& set, double x) -> const double* { return at(set, x).v; });
   }
 }
 

@@ -248,6 +248,54 @@ class Waves final : public CamLaw {
 
 }  // namespace
 
+TEST_CASE("monotone runs: one run set alone reads the points, values and count the shared table reads", "[sdk][cam_runs]") {
+  // peaks() of one set keeps no table of points (only the last one read); of several, a table
+  // shared between them. The same set given twice reads every point once: its count and answer
+  // are then the single set's. A run of two ulps (one double inside) gives the same point at both
+  // of its ends, read once either way.
+  class Ulps final : public CamLaw {
+   public:
+    double event_begin() const override { return -0.6; }
+    double event_end() const override { return 0.6; }
+    std::vector<double> breakpoints() const override { return {}; }
+    double max_lift() const override { return 0.01; }
+    double base_radius() const override { return 0.04; }
+    LiftDerivatives evaluate_in_event(double phi) const override { return inner_.evaluate_in_event(phi); }
+    bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+      if (order != 2) return inner_.monotone_breaks(order, breaks);
+      const double c = 0.1, two_ulps = std::nextafter(std::nextafter(c, 1.0), 1.0);
+      breaks = {-0.3, c, two_ulps, 0.45};
+      return true;
+    }
+
+   private:
+    Bump inner_{0.0, 0.6, 1};
+  };
+  const Bump bump(3 * deg, 70 * deg, 1);
+  const Ulps ulps;
+  for (const CamLaw* law : std::initializer_list<const CamLaw*>{&bump, &ulps}) {
+    const auto acceleration = CamLawRuns::of(*law, 2);
+    REQUIRE(acceleration);
+    const double e0 = law->event_begin(), e1 = law->event_end();
+    for (const auto& [a, b] : std::vector<std::pair<double, double>>{{e0, e1}, {e0 + 0.1, e1 - 0.2}, {0.05, 0.2}}) {
+      INFO("over [" << a << ", " << b << "] rad");
+      long alone = 0, twice = 0;
+      const auto one = CamLawRuns::peaks({&*acceleration}, a, b, alone);
+      const auto two = CamLawRuns::peaks({&*acceleration, &*acceleration}, a, b, twice);
+      REQUIRE(one.size() == 1);
+      REQUIRE(two.size() == 2);
+      CHECK(alone > 0);
+      CHECK(alone == twice);
+      for (const CamLawRuns::Peaks& p : two) {
+        CHECK(one[0].max.value == p.max.value);
+        CHECK(one[0].max.x == p.max.x);
+        CHECK(one[0].min.value == p.min.value);
+        CHECK(one[0].min.x == p.min.x);
+      }
+    }
+  }
+}
+
 TEST_CASE("monotone runs: peaks over more run ends than the stack holds, against the closed form and the generic search",
           "[sdk][cam_runs]") {
   // CamLawRuns::peaks keeps the points it reads in 32 slots on the stack and moves them to the heap
