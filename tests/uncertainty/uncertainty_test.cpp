@@ -1085,14 +1085,28 @@ TEST_CASE("Studies: what a study holds beside its cases and its bootstrap's work
   CHECK_THROWS_WITH(study_within(1e4, 1e12), Contains("study.yaml: the study would hold about") && Contains("--max-memory"));
   CHECK_THROWS_WITH(study_within(4e9, 5e4), Contains("study.yaml: the study's bootstrap asks for about") && Contains("--max-work"));
   CHECK(study_within(4e9, 1e9)->answers.cases == 1280);
-  // The design's own cap (values a parameter a case) says how many samples fit, and comes before
-  // the memory budget (raising --max-memory could not lift it).
-  {
-    WorkBudget tight;
-    tight.max_memory = 1e4;
-    CHECK_THROWS_WITH(host::run_scene_study(parse_scene(ishigami_scene("sobol", 1'500'000), "study.yaml"), uq_registry(), {}, std::nullopt,
-                                            "", "", "", std::nullopt, tight, 1, nullptr),
-                      Contains("at most 1333333 samples"));
-  }
-  CHECK_THROWS_WITH(run_study(ishigami_scene("sobol", 1'500'000), 1), Contains("samples: 1500000") && Contains("at most 1333333 samples"));
+  // The design's own cap, 2.5 x 10^8 values (a value a parameter a case), says how many samples
+  // fit, and comes before the memory budget (raising --max-memory could not lift it): 30
+  // parameters of 9 x 10^6 Monte Carlo samples are 2.7 x 10^8 values.
+  const auto uniforms = [](std::size_t samples, int parameters) {
+    std::string yaml = "uncertainty:\n  method: monte_carlo\n  samples: " + std::to_string(samples) + "\n  parameters:\n";
+    for (int k = 0; k < parameters; ++k) yaml += "    p" + std::to_string(k) + ": { uniform: { lower: 0, upper: 1 } }\n";
+    return study_of(yaml + "nodes: {}\n");
+  };
+  WorkBudget tight;
+  tight.max_memory = 1e4;
+  CHECK_THROWS_WITH(host::check_study_budget(uniforms(9'000'000, 30), 1, tight, "study.yaml"),
+                    Contains("samples: 9000000") && Contains("at most 8333333 samples"));
+  CHECK_NOTHROW(check_design_size(uniforms(8'333'333, 30)));
+  // The table keeps a double a value (CaseTable::Numbers), so the budget counts 8 bytes a value:
+  // 1.5 x 10^6 Sobol' samples of three parameters (7.5 x 10^6 cases, 2.25 x 10^7 values, which the
+  // cap of a table of CaseValue refused) are the memory budget's to judge, and it says so.
+  StudySpec sobol = study_of(ishigami_scene("sobol", 1'500'000));
+  CHECK_NOTHROW(check_design_size(sobol));
+  CHECK_THROWS_WITH(host::check_study_budget(sobol, 1, tight, "study.yaml"), Contains("the study would hold about") && Contains("--max-memory"));
+  WorkBudget roomy;
+  const double held = host::check_study_budget(sobol, 1, roomy, "study.yaml");
+  const double table = 7.5e6 * 3 * sizeof(double), outputs = 7.5e6 * (sizeof(double) + sizeof(CaseFailure));
+  const double sobol_rows = 2.0 * 1.5e6 * 5 * sizeof(double), draws = 2.0 * 3 * 50 * sizeof(double);
+  CHECK_THAT(held, Catch::Matchers::WithinRel(table + outputs + sobol_rows + draws, 1e-12));
 }

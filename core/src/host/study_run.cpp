@@ -283,12 +283,8 @@ double check_study_budget(const StudySpec& spec, std::size_t outputs, const Work
     const char* what;
     double amount;
   };
-  // Each case's row of the table is an allocation of its own: glibc's malloc adds its chunk
-  // header and rounding to every one (about 16 bytes on 64-bit Linux).
-  constexpr double allocation_overhead = 16.0;
   const Term memory[] = {
-      {"the design's table (a value a parameter a case)",
-       cases * (sizeof(std::vector<CaseValue>) + allocation_overhead + d * sizeof(CaseValue))},
+      {"the design's table (a value a parameter a case)", cases * d * sizeof(double)},  // CaseTable::Numbers
       {"the outputs' values (one a case an output)", cases * (out * sizeof(double) + sizeof(CaseFailure))},
       {"the Sobol' rows (every case of every output, twice)", spec.sensitivity ? 2.0 * out * n * (d + 2.0) * sizeof(double) : 0.0},
       {"the bootstrap's draws", spec.sensitivity ? 2.0 * out * d * static_cast<double>(spec.bootstrap) * sizeof(double) : 0.0}};

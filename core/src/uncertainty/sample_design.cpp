@@ -128,11 +128,11 @@ std::vector<double> cholesky(const StudySpec& spec) {
 void check_design_size(const StudySpec& spec) {
   const std::size_t d = spec.parameters.size(), n = spec.samples;
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
-  if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_case_cells)
+  if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_design_values)
     throw SceneError("uncertainty: samples: " + std::to_string(n) + " make " + std::to_string(spec.evaluations()) + " cases of " +
-                     std::to_string(d) + " values each, more than the " + std::to_string(max_case_cells) +
+                     std::to_string(d) + " values each, more than the " + std::to_string(max_design_values) +
                      " values one study's design holds in memory; at most " +
-                     std::to_string(max_case_cells / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
+                     std::to_string(max_design_values / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
                      (spec.sensitivity ? " with sensitivity (" + std::to_string(per_sample) + " cases a sample)" : std::string()) +
                      ", or split the parameters into studies of fewer");
 }

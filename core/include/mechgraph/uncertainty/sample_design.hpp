@@ -56,8 +56,13 @@ class UnitDesign {
 /// not a valid correlation matrix (naming the first of them).
 CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 
-/// The design's own cap: at most max_case_cells values (cases times parameters) in its table.
-/// Throws SceneError naming the samples and the largest number that fits.
+/// The most values (cases times parameters) a study's design may hold: 2.5 x 10^8, 2 GB as its
+/// table keeps them (CaseTable::Numbers, a double each). The memory budget (--max-memory) counts
+/// the table with the rest of the study; this cap holds whatever the budget is raised to.
+inline constexpr std::size_t max_design_values = 250'000'000;
+
+/// The design's own cap: at most max_design_values values in its table. Throws SceneError naming
+/// the samples and the largest number that fits.
 void check_design_size(const StudySpec& spec);
 
 }  // namespace mechgraph
