@@ -188,7 +188,7 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
   };
   std::string summary = csv_row({"output", "unit", "n", "failed", "mean", "mean_lower", "mean_upper", "standard_deviation", "min", "max",
                                  "lower_limit", "upper_limit", "below", "above", "cp", "cpk", "ppm", "ppm_lower", "ppm_upper",
-                                 "ppm_normal"}) + "\n";
+                                 "ppm_normal", "ppm_or_failed", "ppm_or_failed_lower", "ppm_or_failed_upper"}) + "\n";
   std::string quantiles = csv_row({"output", "unit", "level", "value", "lower", "upper"}) + "\n";
   std::string histograms = csv_row({"output", "unit", "bin_low", "bin_high", "count"}) + "\n";
   std::string sobol = csv_row({"output", "parameter", "first", "first_lower", "first_upper", "total", "total_lower", "total_upper"}) + "\n";
@@ -196,7 +196,7 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
     const std::string u = study_unit(o.column);
     const Moments& m = o.moments;
     const bool any = m.n > 0;
-    std::optional<double> cp, cpk, ppm, ppm_lo, ppm_hi, ppm_normal;
+    std::optional<double> cp, cpk, ppm, ppm_lo, ppm_hi, ppm_normal, ppm_failed, ppm_failed_lo, ppm_failed_hi;
     std::string below, above;  // cases below the lower limit and above the upper, with limits
     if (o.capability) {
       below = std::to_string(o.capability->below);
@@ -207,11 +207,15 @@ void write_csvs(const std::filesystem::path& dir, const StudySpec& spec, const S
       ppm_lo = 1e6 * *o.capability->out_of_spec.wilson.lower;
       ppm_hi = 1e6 * *o.capability->out_of_spec.wilson.upper;
       ppm_normal = o.capability->ppm_normal;
+      ppm_failed = 1e6 * o.capability->out_of_spec_or_failed.estimate;
+      ppm_failed_lo = 1e6 * *o.capability->out_of_spec_or_failed.wilson.lower;
+      ppm_failed_hi = 1e6 * *o.capability->out_of_spec_or_failed.wilson.upper;
     }
     const auto opt = [any](double x) { return any ? std::optional<double>(x) : std::nullopt; };
     summary += csv_row({o.column.label, u, std::to_string(m.n), std::to_string(o.failed), cell(opt(m.mean)), cell(m.mean_interval.lower),
                         cell(m.mean_interval.upper), cell(opt(m.standard_deviation)), cell(opt(m.min)), cell(opt(m.max)), cell(o.lower),
-                        cell(o.upper), below, above, cell(cp), cell(cpk), cell(ppm), cell(ppm_lo), cell(ppm_hi), cell(ppm_normal)}) + "\n";
+                        cell(o.upper), below, above, cell(cp), cell(cpk), cell(ppm), cell(ppm_lo), cell(ppm_hi), cell(ppm_normal),
+                        cell(ppm_failed), cell(ppm_failed_lo), cell(ppm_failed_hi)}) + "\n";
     for (const QuantileEstimate& q : o.quantiles)
       quantiles += csv_row({o.column.label, u, cell(q.level), cell(q.value), cell(q.interval.lower), cell(q.interval.upper)}) + "\n";
     for (std::size_t k = 0; k < o.histogram.counts.size(); ++k)

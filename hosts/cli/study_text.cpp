@@ -30,7 +30,12 @@ std::string capability_text(const OutputAnswer& o) {
   return "spec [" + study_number(o.lower) + ", " + study_number(o.upper) + "]: Cp " + study_number(c.cp) + ", Cpk " +
          study_number(c.cpk) + ", out of spec " + study_number(1e6 * c.out_of_spec.estimate) + " ppm " +
          study_interval({per_million(c.out_of_spec.wilson.lower), per_million(c.out_of_spec.wilson.upper)}) + " (" +
-         std::to_string(c.below) + " below, " + std::to_string(c.above) + " above; normal model " + study_number(c.ppm_normal) + " ppm)";
+         std::to_string(c.below) + " below, " + std::to_string(c.above) + " above; normal model " + study_number(c.ppm_normal) + " ppm)" +
+         (c.failed == 0 ? std::string()
+                        : "; with the " + std::to_string(c.failed) + " failed counted out of spec " +
+                              study_number(1e6 * c.out_of_spec_or_failed.estimate) + " ppm " +
+                              study_interval({per_million(c.out_of_spec_or_failed.wilson.lower),
+                                              per_million(c.out_of_spec_or_failed.wilson.upper)}));
 }
 
 }  // namespace mechgraph::cli

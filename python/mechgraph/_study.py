@@ -42,7 +42,8 @@ class Study:
     @property
     def summary(self):
         """One row per output: n, failed, mean (with its interval), standard deviation, min, max,
-        and against spec limits Cp, Cpk, the counted ppm (Wilson interval) and the normal model's."""
+        and against spec limits Cp, Cpk, the counted ppm (Wilson interval), the normal model's, and
+        the ppm with the failed cases counted out of spec (``ppm_or_failed``, Wilson interval)."""
         import pandas as pd
 
         rows = []
@@ -55,6 +56,10 @@ class Study:
                 row["below"], row["above"] = o["out_of_spec"].get("below"), o["out_of_spec"].get("above")
                 lo, hi = o["out_of_spec"]["wilson"]
                 row["ppm_lower"], row["ppm_upper"] = 1e6 * lo, 1e6 * hi
+            if "out_of_spec_or_failed" in o:
+                row["ppm_or_failed"] = o["ppm_or_failed"]
+                lo, hi = o["out_of_spec_or_failed"]["wilson"]
+                row["ppm_or_failed_lower"], row["ppm_or_failed_upper"] = 1e6 * lo, 1e6 * hi
             rows.append(row)
         return pd.DataFrame(rows).set_index("output")
 

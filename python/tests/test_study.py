@@ -74,6 +74,19 @@ def test_distributions_from_python_merge_over_the_scene():
         scene.study(samples=10)
 
 
+def test_study_summary_counts_the_failed_cases_out_of_spec_as_well():
+    # y = 4.957 + 1.1 sin x1 fails above 4.99 (about half the cases) and never reaches 5.5: no
+    # value is out of spec, yet every failed case may be; the summary says both.
+    scene = mechgraph.Scene.from_text("params: { x1: 0 }\nnodes:\n  f: { type: test.ishigami, params: "
+                                      "{ x1: $x1, x2: 1, x3: 1, fail_above: 4.99 } }\noutputs: [f.y]\n")
+    study = scene.study({"x1": {"uniform": {"lower": -3, "upper": 3}}}, samples=64, seed=2, limits={"f.y": {"upper": 5.5}})
+    row = study.summary.loc["f.y"]
+    assert 0 < row["failed"] < 64
+    assert row["ppm"] == 0
+    assert row["ppm_or_failed"] == pytest.approx(1e6 * row["failed"] / 64, rel=1e-12)
+    assert row["ppm_or_failed_lower"] < row["ppm_or_failed"] < row["ppm_or_failed_upper"]
+
+
 LINEAR = ("params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\n"
           "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\noutputs: [f.y]\n")
 

@@ -15,6 +15,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numeric>
@@ -452,6 +453,38 @@ outputs: [f.y]
   CHECK(1e6 * *k.out_of_spec.clopper_pearson.upper >= ppm);
 }
 
+TEST_CASE("Cp, Cpk and ppm: failed cases counted out of spec as well, the most the share can be", "[uncertainty]") {
+  // The Ishigami output against an upper limit of 8; the same design with the node failing above
+  // 10: every failed case lies above the limit (a tail), so the values alone understate the share
+  // out of spec, and counting the failures out of spec gives exactly the share the plain run counts.
+  const std::string limits = "  limits: { f.y: { upper: 8 } }\n";
+  const InProcess plain = run_study(ishigami_scene("monte_carlo", 4000, limits), 2);
+  std::string failing = ishigami_scene("monte_carlo", 4000, limits);
+  failing.replace(failing.find("x3: $x3 }"), 9, "x3: $x3, fail_above: 10 }");
+  const InProcess f = run_study(failing, 2);
+  const OutputAnswer& o = f->answers.outputs.at(0);
+  const Capability& all = *plain->answers.outputs.at(0).capability;
+  const Capability& k = *o.capability;
+  REQUIRE(o.failed > 0);
+  CHECK(all.failed == 0);
+  CHECK(all.out_of_spec_or_failed.events == all.out_of_spec.events);  // nothing failed: the same share
+  CHECK(all.out_of_spec_or_failed.trials == all.out_of_spec.trials);
+  CHECK(k.failed == o.failed);
+  const std::size_t samples = f->answers.samples;  // the A and B rows of Saltelli's design: 8000
+  REQUIRE(samples == 8000);
+  CHECK(k.out_of_spec.trials == samples - o.failed);
+  CHECK(k.out_of_spec.events + o.failed == all.out_of_spec.events);  // the values alone miss the failed tail
+  CHECK(k.out_of_spec_or_failed.events == all.out_of_spec.events);
+  CHECK(k.out_of_spec_or_failed.trials == samples);
+  CHECK(k.out_of_spec_or_failed.estimate == all.out_of_spec.estimate);
+  CHECK(*k.out_of_spec_or_failed.wilson.lower == *all.out_of_spec.wilson.lower);
+  CHECK(*k.out_of_spec_or_failed.wilson.upper == *all.out_of_spec.wilson.upper);
+  CHECK(k.out_of_spec.estimate < k.out_of_spec_or_failed.estimate);
+  CHECK_THAT(f->json, Contains("\"ppm_or_failed\":") && Contains("\"out_of_spec_or_failed\":{\"events\":" +
+                                                                       std::to_string(all.out_of_spec.events) + ",\"trials\":8000,\"failed\":" +
+                                                                       std::to_string(o.failed) + ","));
+}
+
 TEST_CASE("Moments at the edges: Student's interval, equal values, huge values", "[uncertainty]") {
   // [1, 2, 3]: mean 2, s 1; Student's t with 2 degrees of freedom has the closed-form quantile
   // t = (2p - 1) / sqrt(2 p (1 - p)), 4.3026527297494639 at p = 0.975.
@@ -799,6 +832,30 @@ TEST_CASE("mechgraph study: exit codes, --json and the CSVs of --out", "[uncerta
   const auto some_failed = testing::run_cli(plugin + "study '" + failing + "'");
   CHECK(some_failed.exit_code == 0);
   CHECK_THAT(some_failed.err, Contains("of 32 cases failed") && Contains("deliberate failure"));
+  // Against a limit, the failed cases counted out of spec as well: said on the spec line and in
+  // the summary CSV's last three columns.
+  {
+    std::ofstream(failing) << "params: {x1: 0}\nuncertainty:\n  samples: 32\n  parameters:\n    x1: { uniform: { lower: -3, upper: 3 } }\n"
+                              "  limits: { f.y: { upper: 5.5 } }\n"
+                              "nodes:\n  f: { type: test.ishigami, params: { x1: $x1, x2: 1, x3: 1, fail_above: 4.99 } }\noutputs: [f.y]\n";
+    const std::string out = (dir / "failing_out").string();
+    const auto limited = testing::run_cli(plugin + "study '" + failing + "' --out '" + out + "'");
+    REQUIRE(limited.exit_code == 0);
+    const auto failed_at = limited.out.find("failed counted out of spec ");
+    REQUIRE(failed_at != std::string::npos);
+    CHECK_THAT(limited.out, Contains("out of spec 0 ppm"));  // no value reaches 5.5
+    const std::string summary = slurp_text(out + "/summary.csv");
+    CHECK_THAT(summary, Contains(",ppm_normal,ppm_or_failed,ppm_or_failed_lower,ppm_or_failed_upper\n"));
+    // The share is failed / 32, as a ppm: the same number on the spec line and in the CSV (there
+    // as std::to_chars writes it).
+    const std::string shown = limited.out.substr(failed_at + 27, limited.out.find(' ', failed_at + 27) - failed_at - 27);
+    const double ppm = std::stod(shown);
+    CHECK(ppm > 0);
+    CHECK(std::fmod(ppm, 1e6 / 32) == 0);
+    char cell[32];
+    const auto written = std::to_chars(cell, cell + sizeof cell, ppm);
+    CHECK_THAT(summary, Contains("," + std::string(cell, written.ptr) + ","));
+  }
   // A parameter that reaches no node the outputs need: said once, at its line, in the study's words.
   const std::string unused = (dir / "unused.yaml").string();
   std::ofstream(unused) << "params: {x1: 0, x2: 0}\nuncertainty:\n  samples: 8\n  parameters:\n"

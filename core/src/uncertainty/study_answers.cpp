@@ -72,7 +72,11 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
     // The histogram shows the limits beside the values.
     if (a.lower) low = std::min(low, *a.lower), high = std::max(high, *a.lower);
     if (a.upper) low = std::min(low, *a.upper), high = std::max(high, *a.upper);
-    if (!values.empty()) a.capability = capability(values, a.moments, a.lower, a.upper, spec.confidence);
+    if (!values.empty()) {
+      Capability& c = a.capability.emplace(capability(values, a.moments, a.lower, a.upper, spec.confidence));
+      c.failed = a.failed;
+      c.out_of_spec_or_failed = proportion(c.below + c.above + a.failed, values.size() + a.failed, spec.confidence);
+    }
   }
   a.histogram = histogram(values, spec.bins, low, high);
   if (spec.sensitivity) {
@@ -275,6 +279,9 @@ void write_study_json(JsonWriter& out, const StudySpec& spec, const StudyAnswers
       write_proportion(out, k.out_of_spec, [&k](JsonWriter& j) {
         j.key("below").value(static_cast<long>(k.below)).key("above").value(static_cast<long>(k.above));
       });
+      out.key("ppm_or_failed").value(1e6 * k.out_of_spec_or_failed.estimate);
+      out.key("out_of_spec_or_failed");
+      write_proportion(out, k.out_of_spec_or_failed, [&k](JsonWriter& j) { j.key("failed").value(static_cast<long>(k.failed)); });
     }
     if (a.sobol) {
       out.key("sobol").begin_object().key("samples").value(static_cast<long>(a.sobol->samples));

@@ -52,8 +52,13 @@ Proportion proportion(std::size_t events, std::size_t trials, double confidence)
 struct Capability {
   std::optional<double> cp, cpk;     // cp needs both limits
   double ppm_normal = 0.0;           // out of spec under the normal model of mean and sigma
-  Proportion out_of_spec;            // counted
+  Proportion out_of_spec;            // counted among the values
   std::size_t below = 0, above = 0;
+  /// The samples that failed (no value) counted as out of spec too: (below + above + failed) /
+  /// (values + failed). Failures often sit where the design is extreme, in a tail; this is the
+  /// share the values alone cannot rule out. Equal to out_of_spec when nothing failed.
+  std::size_t failed = 0;
+  Proportion out_of_spec_or_failed;
 };
 Capability capability(const std::vector<double>& values, const Moments& m, std::optional<double> lower,
                       std::optional<double> upper, double confidence);
