@@ -16,8 +16,9 @@ std::string study_interval(const Interval& i);                // "[lower, upper]
 std::string study_unit(const StudyColumn& c);
 /// "mean M [lo, hi], standard deviation S, min A, max B".
 std::string moments_text(const Moments& m);
-/// "spec [LSL, USL]: Cp .., Cpk .., out of spec N ppm [lo, hi] (b below, a above; normal model P ppm)";
-/// for an output with limits (o.capability).
+/// "spec [LSL, USL]: Cp .., Cpk .., out of spec N ppm [lo, hi] (b below, a above; normal model P ppm)",
+/// and where samples failed "; with the F failed counted out of spec M ppm [lo, hi]"; for an
+/// output with limits (o.capability).
 std::string capability_text(const OutputAnswer& o);
 
 }  // namespace mechgraph::cli

@@ -69,16 +69,15 @@ std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, doubl
   const double phi_1 = jerk_continuous ? phi_y - phi_2 : sigma * phi_y;
   const char* split_parameter = rise_split ? "rise_split" : "accel_angle";
   // The shapes hold no state: one of each serves every law (a sweep makes a law per case). They
-  // live as long as the plugin, so the laws hold them uncounted (an aliasing shared_ptr with no
-  // owner, whose copies touch no counter): a law made or dropped on one thread then writes
-  // nothing another thread's laws write. Counted, every law's making and dropping incremented and
-  // decremented the same three counters from every thread.
-  static const auto quarter_sine = std::make_shared<const QuarterSineRise>();
-  static const auto quarter_cosine = std::make_shared<const QuarterCosineFall>();
-  static const auto parabola = std::make_shared<const ParabolaToVertex>();
-  const auto uncounted = [](const std::shared_ptr<const AccelShape>& shape) {
-    return std::shared_ptr<const AccelShape>(std::shared_ptr<const AccelShape>(), shape.get());
-  };
+  // are never destroyed (not even at exit, where a law on another thread may still be in use),
+  // so the laws hold them uncounted (an aliasing shared_ptr with no owner, whose copies touch no
+  // counter): a law made or dropped on one thread then writes nothing another thread's laws
+  // write. Counted, every law's making and dropping incremented and decremented the same three
+  // counters from every thread.
+  static const AccelShape* const quarter_sine = new QuarterSineRise();
+  static const AccelShape* const quarter_cosine = new QuarterCosineFall();
+  static const AccelShape* const parabola = new ParabolaToVertex();
+  const auto uncounted = [](const AccelShape* shape) { return std::shared_ptr<const AccelShape>(std::shared_ptr<const AccelShape>(), shape); };
   const ShapeSegment positive[] = {{uncounted(quarter_sine), phi_1}, {uncounted(quarter_cosine), phi_2}};
   const ShapeSegment negative[] = {{uncounted(parabola), phi_3}};
   std::shared_ptr<const ShocklessLaw> law;

@@ -220,3 +220,22 @@ def test_study_reads_a_celsius_width_as_a_width_and_numpy_arrays_as_lists():
     listed = scene.study({"t": {"normal": {"mean": "80 degC", "sigma": "5 degC"}}}, samples=64, seed=3,
                          settings={"quantiles": np.array([0.1, 0.5, 0.9])})
     assert list(listed.quantiles["level"]) == [0.1, 0.5, 0.9]
+
+
+def test_dask_study_refuses_a_design_beyond_a_sweeps_values_in_the_studys_words():
+    # mechgraph.dask.study sends its design out as a sweep's cases, which hold 2 x 10^7 values: a
+    # larger design (Scene.study holds it) is refused before anything is sent, naming the most
+    # samples that fit and the in-process study, not "split it into several sweeps".
+    scene = mechgraph.Scene.from_text("params: { x1: 0 mm, x2: 0 mm, x3: 0 mm }\n"
+                                      "nodes:\n  f: { type: test.linear, params: { x1: $x1, x2: $x2, x3: $x3 } }\n"
+                                      "outputs: [f.y]\n")
+    uniform = {"uniform": {"lower": "0 mm", "upper": "1 mm"}}
+
+    class NoCluster:
+        def submit(self, *args, **kwargs):
+            raise AssertionError("a chunk was sent although the design is refused")
+
+    with pytest.raises(mechgraph.SceneError, match=r"samples: 6700000 make 6700000 cases of 3 values each.*"
+                                                   r"at most 6666666 samples here.*Scene\.study"):
+        mechgraph.dask.study(NoCluster(), scene, {"x1": uniform, "x2": uniform, "x3": uniform}, samples=6_700_000,
+                             method="monte_carlo")

@@ -9,6 +9,7 @@
 #include <mechgraph/error_subject.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
+#include <mechgraph/large_arrays.hpp>
 #include <mechgraph/memo_cache.hpp>
 #include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/units.hpp>
@@ -212,7 +213,11 @@ StudyData evaluate_study(const Graph& graph, const CaseBinder& binder, const Cas
   StudyData data;
   data.outputs = columns;
   const std::size_t n = table.size();
-  data.values.assign(columns.size(), std::vector<double>(n, std::numeric_limits<double>::quiet_NaN()));
+  data.values.resize(columns.size());
+  for (std::vector<double>& column : data.values) {
+    reserve_large(column, n);
+    column.assign(n, std::numeric_limits<double>::quiet_NaN());
+  }
   data.failures.assign(n, CaseFailure::none);
   std::vector<std::size_t> where(columns.size());
   for (std::size_t c = 0; c < columns.size(); ++c)

@@ -3,6 +3,7 @@
 #include <mechgraph/display_units.hpp>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/large_arrays.hpp>
 #include <mechgraph/chunked_work.hpp>
 
 #include <boost/random/sobol.hpp>
@@ -148,9 +149,10 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {
   const UnitDesign design(spec.method, n, spec.sensitivity ? 2 * d : d, spec.seed);
   const std::vector<double> l = spec.correlations.empty() ? std::vector<double>{} : cholesky(spec);
   // Numbers only, compactly (CaseTable::Numbers): one allocation for the whole design.
-  table.numbers.cases = n * per_sample;
+  table.numbers.count = n * per_sample;
   for (const UncertainParameter& p : spec.parameters) table.numbers.dimensions.push_back(p.marginal.dimension);
-  table.numbers.si.resize(table.numbers.cases * d);
+  reserve_large(table.numbers.si, table.numbers.count * d);
+  table.numbers.si.resize(table.numbers.count * d);
   // Sample i fills rows i * per_sample ...: samples are independent (each point of the design is
   // fixed by its index), so chunks of them run on `threads` workers with the same table.
   constexpr std::size_t samples_per_chunk = 4096;

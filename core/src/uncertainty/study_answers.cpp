@@ -5,6 +5,7 @@
 #include <mechgraph/errors.hpp>
 
 #include <mechgraph/chunked_work.hpp>
+#include <mechgraph/large_arrays.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -54,12 +55,14 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
   a.column = data.outputs[o];
   const std::vector<double>& column = data.values[o];
   std::vector<double> values;
-  values.reserve(statistical.size());
+  reserve_large(values, statistical.size());
   for (std::size_t k : statistical)
     if (std::isfinite(column[k])) values.push_back(column[k]);
   a.failed = statistical.size() - values.size();
   a.moments = moments(values, spec.confidence);
-  std::vector<double> sorted = values;
+  std::vector<double> sorted;
+  reserve_large(sorted, values.size());
+  sorted.assign(values.begin(), values.end());
   std::sort(sorted.begin(), sorted.end());
   if (!sorted.empty())
     for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
@@ -72,21 +75,17 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
     // The histogram shows the limits beside the values.
     if (a.lower) low = std::min(low, *a.lower), high = std::max(high, *a.lower);
     if (a.upper) low = std::min(low, *a.upper), high = std::max(high, *a.upper);
-    if (!values.empty()) {
-      Capability& c = a.capability.emplace(capability(values, a.moments, a.lower, a.upper, spec.confidence));
-      c.failed = a.failed;
-      c.out_of_spec_or_failed = proportion(c.below + c.above + a.failed, values.size() + a.failed, spec.confidence);
-    }
+    if (!values.empty()) a.capability = capability(values, a.moments, a.lower, a.upper, spec.confidence, a.failed);
   }
   a.histogram = histogram(values, spec.bins, low, high);
   if (spec.sensitivity) {
     SobolSamples& f = *sobol;
     const std::size_t base_samples = cases / per_sample;
     kept->reserve(base_samples);
-    f.f_a.reserve(base_samples);
-    f.f_b.reserve(base_samples);
+    reserve_large(f.f_a, base_samples);
+    reserve_large(f.f_b, base_samples);
     f.f_ab.resize(d);
-    for (std::vector<double>& f_j : f.f_ab) f_j.reserve(base_samples);
+    for (std::vector<double>& f_j : f.f_ab) reserve_large(f_j, base_samples);
     for (std::size_t i = 0; i * per_sample < cases; ++i) {
       const std::size_t k = i * per_sample;
       bool whole = k + per_sample <= cases;

@@ -8,6 +8,7 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include <mechgraph/chunked_work.hpp>
+#include <mechgraph/large_arrays.hpp>
 
 #include <algorithm>
 #include <cstdint>
@@ -131,13 +132,15 @@ Proportion proportion(std::size_t events, std::size_t trials, double confidence)
 }
 
 Capability capability(const std::vector<double>& values, const Moments& m, std::optional<double> lower,
-                      std::optional<double> upper, double confidence) {
+                      std::optional<double> upper, double confidence, std::size_t failed) {
   Capability c;
   for (double x : values) {
     if (lower && x < *lower) ++c.below;
     if (upper && x > *upper) ++c.above;
   }
   c.out_of_spec = proportion(c.below + c.above, values.size(), confidence);
+  c.failed = failed;
+  c.out_of_spec_or_failed = proportion(c.below + c.above + failed, values.size() + failed, confidence);
   const double s = m.standard_deviation;
   if (!(s > 0)) {
     // No spread: the normal model is a point at the mean, all in spec or all out (Cp and Cpk, a
@@ -315,7 +318,9 @@ SobolOutput prepare(const SobolSamples& f) {
     for (const auto& f_j : f.f_ab) sum += f_j[i];
   }
   const double centre = sum / static_cast<double>(n * (2 + d));
-  SobolOutput out{{d + 2, std::vector<double>(n * (d + 2))}, {}};
+  SobolOutput out{{d + 2, {}}, {}};
+  reserve_large(out.rows.values, n * (d + 2));
+  out.rows.values.resize(n * (d + 2));
   for (std::size_t i = 0; i < n; ++i) {
     double* r = out.rows.values.data() + i * out.rows.width;
     r[0] = f.f_a[i] - centre;
@@ -357,7 +362,13 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
     SobolEstimate estimates[resamples_at_once];
   };
   const std::size_t groups = (bootstrap + resamples_at_once - 1) / resamples_at_once;
-  run_chunks(groups, threads, [&] { return Worker{std::vector<std::uint32_t>(n * resamples_at_once), {}}; },
+  run_chunks(groups, threads,
+             [&] {
+               Worker w;
+               reserve_large(w.times, n * resamples_at_once);
+               w.times.resize(n * resamples_at_once);
+               return w;
+             },
              [&](Worker& w, std::size_t group) {
                if (stop && stop->load(std::memory_order_relaxed)) return;  // stopped: nothing more is drawn
                const std::size_t first_r = group * resamples_at_once, count = std::min(resamples_at_once, bootstrap - first_r);

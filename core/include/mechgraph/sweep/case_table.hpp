@@ -81,17 +81,17 @@ struct CaseTable {
   /// A table of numbers only, kept compactly: a study's design, a million cases or more, at 8
   /// bytes a value where a row of CaseValue takes an allocation and 56 bytes a value (on a
   /// virtual machine, touching that memory for the first time was a fifth of a study's time).
-  /// Used when `cases` is empty; read through size(), cell() and row() alike.
+  /// A table keeps its cases one way or the other, never both: `numbers` only while `cases` is
+  /// empty. Read either through size(), cell() and row().
   struct Numbers {
-    std::size_t cases = 0;
+    std::size_t count = 0;              // cases
     std::vector<Dimension> dimensions;  // of each variable's values
     std::vector<double> si;             // si[i * dimensions.size() + v]: variable v in case i, SI
   } numbers;
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
   /// How many cases the table holds, however it keeps them.
-  std::size_t size() const { return cases.empty() ? numbers.cases : cases.size(); }
-  bool empty() const { return size() == 0; }
+  std::size_t size() const { return cases.empty() ? numbers.count : cases.size(); }
   /// Variable v of case i: the stored value, or `scratch` made from the numbers (a number with no
   /// text: CaseValue::written() makes it when asked). Valid while both live.
   const CaseValue& cell(std::size_t i, std::size_t v, CaseValue& scratch) const;

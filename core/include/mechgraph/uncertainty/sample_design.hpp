@@ -59,6 +59,7 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 /// The most values (cases times parameters) a study's design may hold: 2.5 x 10^8, 2 GB as its
 /// table keeps them (CaseTable::Numbers, a double each). The memory budget (--max-memory) counts
 /// the table with the rest of the study; this cap holds whatever the budget is raised to.
+/// (mechgraph.dask.study sends the design out as a sweep's cases, within max_case_cells.)
 inline constexpr std::size_t max_design_values = 250'000'000;
 
 /// The design's own cap: at most max_design_values values in its table. Throws SceneError naming

@@ -60,8 +60,10 @@ struct Capability {
   std::size_t failed = 0;
   Proportion out_of_spec_or_failed;
 };
+/// Against the limits, from the values and the samples that failed (no value; counted in
+/// out_of_spec_or_failed only).
 Capability capability(const std::vector<double>& values, const Moments& m, std::optional<double> lower,
-                      std::optional<double> upper, double confidence);
+                      std::optional<double> upper, double confidence, std::size_t failed = 0);
 
 struct SobolIndex {
   double first = 0.0, total = 0.0;
