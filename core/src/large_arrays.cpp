@@ -9,7 +9,7 @@
 
 namespace mechgraph {
 
-void advise_huge_pages(void* data, std::size_t bytes) {
+bool advise_huge_pages(void* data, std::size_t bytes) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   static const std::uintptr_t page = [] {
     const long size = ::sysconf(_SC_PAGESIZE);
@@ -17,10 +17,11 @@ void advise_huge_pages(void* data, std::size_t bytes) {
   }();
   const auto start = reinterpret_cast<std::uintptr_t>(data);
   const std::uintptr_t begin = (start + page - 1) / page * page, end = (start + bytes) / page * page;
-  if (end > begin) (void)::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);  // advice: a refusal changes nothing
+  return end > begin && ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE) == 0;  // advice: a refusal changes nothing
 #else
   (void)data;
   (void)bytes;
+  return false;
 #endif
 }
 

@@ -230,12 +230,13 @@ std::unique_ptr<host::StudyOutcome> SceneSession::study(const std::vector<SetVal
 std::unique_ptr<host::StudyOutcome> SceneSession::prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                                const std::string& samples, const std::string& method,
                                                                const std::string& seed, const std::vector<std::string>& outputs,
-                                                               const WorkBudget& budget) {
+                                                               const WorkBudget& budget,
+                                                               const std::function<void(const StudySpec&)>& check_spec) {
   // Within the budget Scene.study keeps (what the study holds beside its cases, its bootstrap's
   // work): the design a Dask study sends out and analyses is refused as the in-process one is.
   return host::prepare_scene_study(scene_, *registry_, fixed_overrides(sets), block, samples, method, seed,
                                   outputs.empty() ? std::nullopt : std::optional<std::string>(joined(outputs, ',')), 1, &budget, nullptr,
-                                  host::python_option_names);
+                                  host::python_option_names, check_spec);
 }
 
 void SceneSession::with_sweep_graph(const CaseTable& table, const std::vector<SetValue>& sets,

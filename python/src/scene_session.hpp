@@ -98,9 +98,11 @@ class SceneSession {
 
   /// The same study prepared (graph and design), nothing run: for a study whose cases run elsewhere
   /// (mechgraph.dask.study), analysed with host::finish_study once their values are in.
+  /// `check_spec`: as host::prepare_scene_study takes it (the settings, before anything is drawn).
   std::unique_ptr<host::StudyOutcome> prepare_study(const std::vector<SetValue>& sets, const std::optional<RawValue>& block,
                                                    const std::string& samples, const std::string& method, const std::string& seed,
-                                                   const std::vector<std::string>& outputs, const WorkBudget& budget);
+                                                   const std::vector<std::string>& outputs, const WorkBudget& budget,
+                                                   const std::function<void(const StudySpec&)>& check_spec = {});
 
   /// The graph a run evaluated, its parameters as the run used them (for the provenance): a copy
   /// of the graph prepared for the run's outputs and names, given the run's `sets` the way run()

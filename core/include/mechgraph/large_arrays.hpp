@@ -10,12 +10,14 @@
 
 namespace mechgraph {
 
-/// Arrays of at least this many bytes are advised (a huge page is 2 MiB: smaller ones gain nothing).
+/// Arrays of at least this many bytes are advised (a huge page is 2 MiB on x86-64: smaller arrays
+/// gain nothing).
 inline constexpr std::size_t large_array_bytes = std::size_t{4} << 20;
 
 /// Asks the kernel to back the whole pages inside [data, data + bytes) by transparent huge pages
-/// (madvise MADV_HUGEPAGE, Linux). Nothing happens where the system has none or declines.
-void advise_huge_pages(void* data, std::size_t bytes);
+/// (madvise MADV_HUGEPAGE, Linux). True when the kernel took the advice; false (and nothing done)
+/// where the range holds no whole page or the system has no such pages or declines.
+bool advise_huge_pages(void* data, std::size_t bytes);
 
 /// v.reserve(n), its storage advised as above when it is large. Call it before the elements are
 /// written: pages already touched stay as they are.

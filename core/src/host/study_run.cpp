@@ -341,11 +341,12 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
                                                   unsigned threads, const WorkBudget* budget, double* held,
-                                                  const OptionNames& option_names) {
+                                                  const OptionNames& option_names, const std::function<void(const StudySpec&)>& check_spec) {
   auto outcome = std::make_unique<StudyOutcome>();
   if (block) scene.uncertainty = merged_uncertainty(scene, block);
   outcome->spec = study_spec_of(scene, registry);
   apply_study_options(outcome->spec, samples, method, seed, option_names);
+  if (check_spec) check_spec(outcome->spec);
   outcome->scene = std::make_unique<SceneSpec>(std::move(scene));
   std::set<std::string> scene_outputs;  // before a choice of outputs replaces them
   for (const PortRef& o : outcome->scene->outputs) scene_outputs.insert(o.str());

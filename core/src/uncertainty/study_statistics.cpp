@@ -364,7 +364,7 @@ std::vector<SobolIndices> sobol_indices(const std::vector<const SobolSamples*>& 
   const std::size_t groups = (bootstrap + resamples_at_once - 1) / resamples_at_once;
   run_chunks(groups, threads,
              [&] {
-               Worker w;
+               Worker w{};  // its estimates zero, as they were made before
                reserve_large(w.times, n * resamples_at_once);
                w.times.resize(n * resamples_at_once);
                return w;

@@ -12,6 +12,7 @@
 #include <mechgraph/uncertainty/study_answers.hpp>
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -84,11 +85,14 @@ RawValue merged_uncertainty(const SceneSpec& scene, const std::optional<RawValue
 /// (on `threads` workers, the same table on any number), running nothing: the outcome's spec,
 /// scene, graph, columns and table. With a `budget`, what the study holds beside its cases and
 /// its bootstrap's work are checked against it first (check_study_budget; `held` gets the bytes).
+/// `check_spec`, when given, sees the study's settings complete (samples, method, parameters)
+/// before anything is built or drawn, and may refuse them by throwing.
 std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginRegistry& registry, const std::vector<Override>& overrides,
                                                   const std::optional<RawValue>& block, const std::string& samples, const std::string& method,
                                                   const std::string& seed, const std::optional<std::string>& outputs,
                                                   unsigned threads = 1, const WorkBudget* budget = nullptr, double* held = nullptr,
-                                                  const OptionNames& option_names = {});
+                                                  const OptionNames& option_names = {},
+                                                  const std::function<void(const StudySpec&)>& check_spec = {});
 
 /// The memory a study holds beside its cases (the design, the outputs' values, the Sobol' rows
 /// and bootstrap draws) against budget.max_memory, its bootstrap's work against budget.max_work;
