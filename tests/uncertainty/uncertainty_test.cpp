@@ -485,6 +485,42 @@ TEST_CASE("Cp, Cpk and ppm: failed cases counted out of spec as well, the most t
                                                                        std::to_string(o.failed) + ","));
 }
 
+TEST_CASE("Studies: a bare limit or threshold on an output shown in % is read as a plain number, and said so", "[uncertainty]") {
+  // The backlash chain's actuator share is a plain number shown in %: a bare 30 is 3000 %, valid
+  // (nothing is refused), but an easy slip for 30 %: a warning gives both readings and the spelling
+  // of the other; "30 %" or a length's limit draws none.
+  std::string scene = testing::source_file_text("scenes/backlash_chain.yaml");
+  const auto replace = [&scene](const std::string& from, const std::string& to) {
+    const auto at = scene.find(from);
+    REQUIRE(at != std::string::npos);
+    scene.replace(at, from.size(), to);
+  };
+  replace("actuator_backlash: 25 um", "actuator_backlash: $act");
+  replace("samples: 200000", "samples: 2000");
+  replace("\nparams:\n", "\nparams:\n  act: 25 um\n");
+  replace("outputs: [ chain.lever_arm ]", "outputs: [ chain.actuator_contribution_worst_case, chain.lever_arm ]");
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_bare_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto run = [&](const std::string& share, const std::string& threshold) {
+    const std::string file = (dir / "chain.yaml").string();
+    std::ofstream(file) << scene << "\nuncertainty:\n  samples: 4\n  parameters:\n    act: { uniform: { lower: 20 um, upper: 30 um } }\n"
+                        << "  limits:\n    chain.actuator_contribution_worst_case: { upper: " << share << " }\n"
+                        << "    chain.lever_arm: { lower: 400 mm }\n"
+                        << "  events:\n    big: { output: chain.actuator_contribution_worst_case, above: " << threshold << " }\n";
+    return testing::run_cli("study '" + file + "'");
+  };
+  const auto bare = run("30", "0.25");
+  REQUIRE(bare.exit_code == 0);
+  CHECK_THAT(bare.err, Contains("chain.yaml:") &&
+                           Contains("the upper limit of 'chain.actuator_contribution_worst_case' is the bare number 30, read as a plain "
+                                    "number: 3000 % as 'chain.actuator_contribution_worst_case' is shown; if 30 % was meant, write '30 %'") &&
+                           Contains("the threshold of event 'big' is the bare number 0.25, read as a plain number: 25 %"));
+  const auto with_units = run("30 %", "25 %");
+  REQUIRE(with_units.exit_code == 0);
+  CHECK(with_units.err.find("bare number") == std::string::npos);  // nor for the lever arm's limit in mm
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("Moments at the edges: Student's interval, equal values, huge values", "[uncertainty]") {
   // [1, 2, 3]: mean 2, s 1; Student's t with 2 degrees of freedom has the closed-form quantile
   // t = (2p - 1) / sqrt(2 p (1 - p)), 4.3026527297494639 at p = 0.975.

@@ -7,6 +7,8 @@
 #include <mechgraph/chunked_work.hpp>
 #include <mechgraph/large_arrays.hpp>
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -43,6 +45,22 @@ void check_dimension(const Dimension& written, const StudyColumn& output, const 
 
 double shown(double si, const StudyColumn& c) { return si / c.scale - c.offset; }
 double to_si(double v, const StudyColumn& c) { return (v + c.offset) * c.scale; }
+
+std::string plain(double x) {
+  char buffer[32];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, end);
+}
+
+// A bare number against a plain-number output shown in a scaled unit (a share in %, a rate in
+// ppm) is read as a plain number, as everywhere in a scene: 30 is 3000 %. Valid, so not refused,
+// but an easy slip for "30 %": said, with both readings and how to write the other.
+void warn_bare_against_scaled(double value, const StudyColumn& output, const SourceLocation& where, const std::string& what) {
+  if (!output.dimension.dimensionless() || (output.scale == 1.0 && output.offset == 0.0) || output.unit.empty()) return;
+  spdlog::warn("{}{} is the bare number {}, read as a plain number: {} {} as '{}' is shown; if {} {} was meant, write '{} {}'",
+               where.str(), what, plain(value), plain(shown(value, output)), output.unit, output.label, plain(value), output.unit,
+               plain(value), output.unit);
+}
 
 // The answer of output o alone (moments, quantiles, limits, histogram) and, for a sensitivity
 // study, its Saltelli samples: the base samples whose d + 2 cases all have a value.
@@ -108,12 +126,18 @@ std::string confidence_percent(double confidence) {
 }
 
 void check_study_outputs(const StudySpec& spec, const std::vector<StudyColumn>& outputs) {
-  for (const SpecLimits& l : spec.limits)
-    check_dimension(l.dimension, outputs[output_index(outputs, l.output, l.where)], l.where, "the limits of '" + l.output + "'");
+  for (const SpecLimits& l : spec.limits) {
+    const StudyColumn& output = outputs[output_index(outputs, l.output, l.where)];
+    check_dimension(l.dimension, output, l.where, "the limits of '" + l.output + "'");
+    if (l.lower && l.lower_bare) warn_bare_against_scaled(*l.lower, output, l.where, "the lower limit of '" + l.output + "'");
+    if (l.upper && l.upper_bare) warn_bare_against_scaled(*l.upper, output, l.where, "the upper limit of '" + l.output + "'");
+  }
   for (const StudyEvent& e : spec.events)
-    if (e.kind != StudyEvent::Kind::failure)
-      check_dimension(e.dimension, outputs[output_index(outputs, e.output, e.where)], e.where,
-                      "the threshold of event '" + e.name + "'");
+    if (e.kind != StudyEvent::Kind::failure) {
+      const StudyColumn& output = outputs[output_index(outputs, e.output, e.where)];
+      check_dimension(e.dimension, output, e.where, "the threshold of event '" + e.name + "'");
+      if (e.bare) warn_bare_against_scaled(e.threshold, output, e.where, "the threshold of event '" + e.name + "'");
+    }
 }
 
 StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigned threads, const std::atomic<bool>* stop) {

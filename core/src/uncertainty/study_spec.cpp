@@ -343,8 +343,8 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
       SpecLimits s{output, {}, {}, {}, body.key_where};
       parse_port_ref(output, body.key_where);
       DimensionCheck dims;
-      if (const RawValue* lo = field(body, "lower")) s.lower = dims.take(*lo, "lower");
-      if (const RawValue* hi = field(body, "upper")) s.upper = dims.take(*hi, "upper");
+      if (const RawValue* lo = field(body, "lower")) s.lower = dims.take(*lo, "lower"), s.lower_bare = dims.last_unit.empty();
+      if (const RawValue* hi = field(body, "upper")) s.upper = dims.take(*hi, "upper"), s.upper_bare = dims.last_unit.empty();
       if (!s.lower && !s.upper) fail(body.where, "limits need lower, upper or both");
       s.dimension = dims.dimension.value_or(Dimension{});
       if (s.lower && s.upper && !(*s.upper > *s.lower)) fail(body.where, "upper must be greater than lower");
@@ -373,9 +373,11 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
         ev.output = scalar(*output, "node.port");
         parse_port_ref(ev.output, output->where);
         ev.kind = above ? StudyEvent::Kind::above : StudyEvent::Kind::below;
-        const Quantity threshold = quantity(above ? *above : *below, above ? "above" : "below");
+        std::string written_unit;
+        const Quantity threshold = quantity(above ? *above : *below, above ? "above" : "below", &written_unit);
         ev.threshold = threshold.value;
         ev.dimension = threshold.dimension;
+        ev.bare = written_unit.empty();
       } else {
         fail(body.where, "an event is { output: node.port, above: VALUE } (or below), or { failure: any | scene | evaluation }");
       }

@@ -53,6 +53,7 @@ struct SpecLimits {
   std::optional<double> lower, upper;  // SI
   Dimension dimension;                 // of the limits as written (dimensionless for bare numbers)
   SourceLocation where;
+  bool lower_bare = false, upper_bare = false;  // written without a unit (a plain number)
 };
 
 struct StudyEvent {
@@ -63,6 +64,7 @@ struct StudyEvent {
   Dimension dimension;      // of the threshold as written (dimensionless for a bare number)
   enum class Failure { any, scene, evaluation } failure = Failure::any;
   SourceLocation where;
+  bool bare = false;        // the threshold written without a unit (a plain number)
 };
 
 struct StudySpec {
