@@ -637,14 +637,9 @@ PYBIND11_MODULE(_core, m) {
         // keeps a CaseValue a value: refused in the study's words before it is drawn, not later
         // as a sweep.
         const auto within_a_sweep = [](const StudySpec& spec) {
-          const std::size_t width = std::max<std::size_t>(spec.parameters.size(), 1), cases = spec.evaluations();
-          if (cases * width <= max_case_cells) return;
-          const std::size_t per_sample = std::max<std::size_t>(cases / std::max<std::size_t>(spec.samples, 1), 1);
-          throw SceneError("mechgraph.dask.study: samples: " + std::to_string(spec.samples) + " make " + std::to_string(cases) + " cases of " +
-                           std::to_string(width) + " values each, more than the " + std::to_string(max_case_cells) +
-                           " values a sweep sent out from Python holds; at most " + std::to_string(max_case_cells / (per_sample * width)) +
-                           " samples here, or run the study in one process (Scene.study, mechgraph study), whose design holds up to " +
-                           std::to_string(max_design_values) + " values");
+          if (const std::string excess = design_size_excess(spec, max_case_cells, "a sweep sent out from Python holds"); !excess.empty())
+            throw SceneError("mechgraph.dask.study: " + excess + ", or run the study in one process (Scene.study, mechgraph study), "
+                             "whose design holds up to " + std::to_string(max_design_values) + " values");
         };
         const auto o = session->prepare_study(sets, settings, samples, method, seed, outputs, python_budget(max_work, max_memory, true),
                                               within_a_sweep);

@@ -126,16 +126,19 @@ std::vector<double> cholesky(const StudySpec& spec) {
 
 }  // namespace
 
-void check_design_size(const StudySpec& spec) {
+std::string design_size_excess(const StudySpec& spec, std::size_t max_values, const std::string& holder) {
   const std::size_t d = spec.parameters.size(), n = spec.samples;
   const std::size_t per_sample = spec.sensitivity ? d + 2 : 1;
-  if (spec.evaluations() * std::max<std::size_t>(d, 1) > max_design_values)
-    throw SceneError("uncertainty: samples: " + std::to_string(n) + " make " + std::to_string(spec.evaluations()) + " cases of " +
-                     std::to_string(d) + " values each, more than the " + std::to_string(max_design_values) +
-                     " values one study's design holds in memory; at most " +
-                     std::to_string(max_design_values / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
-                     (spec.sensitivity ? " with sensitivity (" + std::to_string(per_sample) + " cases a sample)" : std::string()) +
-                     ", or split the parameters into studies of fewer");
+  if (spec.evaluations() * std::max<std::size_t>(d, 1) <= max_values) return {};
+  return "samples: " + std::to_string(n) + " make " + std::to_string(spec.evaluations()) + " cases of " + std::to_string(d) +
+         " values each, more than the " + std::to_string(max_values) + " values " + holder + "; at most " +
+         std::to_string(max_values / (per_sample * std::max<std::size_t>(d, 1))) + " samples here" +
+         (spec.sensitivity ? " with sensitivity (" + std::to_string(per_sample) + " cases a sample)" : std::string());
+}
+
+void check_design_size(const StudySpec& spec) {
+  if (const std::string excess = design_size_excess(spec, max_design_values, "one study's design holds in memory"); !excess.empty())
+    throw SceneError("uncertainty: " + excess + ", or split the parameters into studies of fewer");
 }
 
 CaseTable make_study_cases(const StudySpec& spec, unsigned threads) {

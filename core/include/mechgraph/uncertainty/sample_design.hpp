@@ -12,6 +12,7 @@
 #include <mechgraph/uncertainty/study_spec.hpp>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace mechgraph {
@@ -61,6 +62,11 @@ CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 /// the table with the rest of the study; this cap holds whatever the budget is raised to.
 /// (mechgraph.dask.study sends the design out as a sweep's cases, within max_case_cells.)
 inline constexpr std::size_t max_design_values = 250'000'000;
+
+/// Where the design of `spec` would hold more than `max_values` values: "samples: N make M cases of
+/// d values each, more than the MAX values HOLDER; at most K samples here" (with sensitivity, how
+/// many cases a sample makes); empty where it fits.
+std::string design_size_excess(const StudySpec& spec, std::size_t max_values, const std::string& holder);
 
 /// The design's own cap: at most max_design_values values in its table. Throws SceneError naming
 /// the samples and the largest number that fits.
