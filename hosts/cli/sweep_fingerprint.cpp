@@ -58,12 +58,25 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
   }
   for (const std::string& s : sets) h.add(s);
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
-  std::vector<CaseValue> scratch;
-  for (std::size_t i = 0; i < table.size(); ++i)
-    for (const CaseValue& v : table.row(i, scratch)) {
-      if (!v.text.empty()) h.add(std::string_view(v.text));  // written() without its copy
-      else h.add(v.written());
-    }
+  // Every case as written() gives it: a table of numbers (a sample of millions) hashes each
+  // value's exact text made in one buffer, each variable's unit made once.
+  if (table.cases.empty()) {
+    std::vector<std::string> units;
+    for (const Dimension& d : table.numbers.dimensions) units.push_back(d.dimensionless() ? std::string() : d.si_unit());
+    std::string text;
+    for (std::size_t i = 0; i < table.numbers.count; ++i)
+      for (std::size_t v = 0; v < units.size(); ++v) {
+        text.clear();
+        append_exact_text(text, table.numbers.si[i * units.size() + v], units[v]);
+        h.add(std::string_view(text));
+      }
+  } else {
+    for (const std::vector<CaseValue>& row : table.cases)
+      for (const CaseValue& v : row) {
+        if (!v.text.empty()) h.add(std::string_view(v.text));  // written() without its copy
+        else h.add(v.written());
+      }
+  }
   for (const RequestedOutput& o : graph.outputs) h.add(o.label);
   h.add(static_cast<std::uint64_t>(format));
   char hex[20];

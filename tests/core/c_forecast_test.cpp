@@ -148,7 +148,7 @@ TEST_CASE("a sweep's budget through C types equals the pre-1.0 build's and each 
   const CaseTable table = make_latin_hypercube(specs, 300, 5);
   Prepared c = prepare(stages123(), table, builtin_sdk1_registry());
   const Prepared cxx = prepare(stages123(), table, builtin_pre10_registry());
-  std::vector<std::size_t> all(table.cases.size());
+  std::vector<std::size_t> all(table.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   const SweepEstimate e = estimate_cases(c.graph, *c.binder, c.table, all);
   const SweepEstimate pre = estimate_cases(cxx.graph, *cxx.binder, cxx.table, all);
@@ -158,9 +158,10 @@ TEST_CASE("a sweep's budget through C types equals the pre-1.0 build's and each 
   const SweepEstimate two = estimate_cases(c.graph, *c.binder, c.table, all, 2);
   CHECK(two.total.work == e.total.work);
   double work = 0;
+  std::vector<CaseValue> row;
   for (std::size_t k : all) {
     Graph copy = c.graph;
-    c.binder->apply(c.binder->bind(copy), copy, c.table.cases[k]);
+    c.binder->apply(c.binder->bind(copy), copy, c.table.row(k, row));
     work += estimate_work(copy).work;
   }
   CHECK_THAT(e.total.work, Catch::Matchers::WithinRel(work, 1e-12));

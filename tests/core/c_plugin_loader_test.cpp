@@ -152,7 +152,7 @@ outputs: [ p.peak ]
     for (int k = 0; k < 100; ++k)
       table.cases.push_back({read_case_value(height ? std::to_string(10 + k % 7) + " mm" : std::to_string(3 + k % 5), variable)});
     const Prepared p = prepare(scene, table, r);
-    std::vector<std::size_t> all(table.cases.size());
+    std::vector<std::size_t> all(table.size());
     std::iota(all.begin(), all.end(), std::size_t{0});
     const long before = asked();
     const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all, 1);

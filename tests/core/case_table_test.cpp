@@ -152,3 +152,59 @@ TEST_CASE("Case tables: a grid's points in its unit are the doubles those number
     CHECK(parse_quantity(shown + " mm").value == *mixed.cases[k][0].si);
   }
 }
+
+TEST_CASE("Case tables: a Latin hypercube kept as numbers shows and writes what rows of text did", "[core][sweep]") {
+  // make_latin_hypercube keeps its cases as CaseTable::Numbers. The same values as rows of
+  // CaseValue with their exact text (how the sample was kept before) must give the same cells in
+  // every unit: a row, a fingerprint and a rebuilt case do not depend on how the table keeps them.
+  const std::vector<SampleSpec> specs{parse_sample("lift=7mm:9mm"), parse_sample("t=20degC:90degC"),
+                                      parse_sample("rpm=4000rpm:7000rpm"), parse_sample("ratio=1.4:1.6"),
+                                      parse_sample("action=120deg:140deg"), parse_sample("k=20N/mm:30N/mm")};
+  const std::size_t n = 500;
+  const CaseTable numbers = make_latin_hypercube(specs, n, 3);
+  REQUIRE(numbers.cases.empty());
+  REQUIRE(numbers.size() == n);
+  REQUIRE(numbers.numbers.si.size() == n * specs.size());
+  CaseTable texts;
+  texts.variables = numbers.variables;
+  CaseValue scratch;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<CaseValue> row;
+    for (std::size_t v = 0; v < specs.size(); ++v) {
+      const CaseValue& cell = numbers.cell(i, v, scratch);
+      REQUIRE(cell.si);
+      CHECK(cell.dimension == specs[v].dimension);
+      row.push_back({exact_text(*cell.si, cell.dimension), cell.si, cell.dimension});
+    }
+    texts.cases.push_back(std::move(row));
+  }
+  std::string text;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t v = 0; v < specs.size(); ++v) {
+      INFO("case " << i << ", " << specs[v].name);
+      CHECK(numbers.shown(i, v) == texts.shown(i, v));
+      const CaseValue& cell = numbers.cell(i, v, scratch);
+      CHECK(cell.written() == texts.cases[i][v].text);
+      text.clear();
+      append_exact_text(text, *cell.si, cell.dimension.dimensionless() ? std::string() : cell.dimension.si_unit());
+      CHECK(text == texts.cases[i][v].text);
+    }
+}
+
+TEST_CASE("Case tables: a sample's size is bounded by its numbers, not by rows of text", "[core][sweep][bounds]") {
+  // A sample of 3.4 x 10^6 cases of 6 values (2.04 x 10^7 values, 163 MB as numbers) was refused
+  // by the cap sized for rows of text (max_case_cells); a sample is held at 8 bytes a value.
+  std::vector<SampleSpec> six;
+  for (const char* s : {"a=1mm:2mm", "b=1:2", "c=1deg:2deg", "d=1rpm:2rpm", "e=1N:2N", "f=1s:2s"}) six.push_back(parse_sample(s));
+  const std::size_t n = max_case_cells / six.size() + 1;
+  const CaseTable big = make_latin_hypercube(six, n, 1);
+  CHECK(big.size() == n);
+  CHECK(big.numbers.si.size() == n * six.size());
+  CaseValue scratch;
+  CHECK(std::isfinite(*big.cell(n - 1, 5, scratch).si));
+  // Its own cap (max_number_cells) is checked before anything is allocated.
+  const std::vector<SampleSpec> many(max_number_cells / max_sweep_cases + 1, parse_sample("x=1:2"));
+  CHECK_THROWS_WITH(make_latin_hypercube(many, max_sweep_cases, 1),
+                    Catch::Matchers::Contains("cases of 26 values each are more than 250000000 values in one sweep"));
+  CHECK_THROWS_WITH(make_latin_hypercube(six, max_sweep_cases + 1, 1), Catch::Matchers::Contains("at most 10^7 cases"));
+}

@@ -168,20 +168,21 @@ TEST_CASE("a sweep's budget with forecasts asked once gives each case's figures"
     replace("38, 50] }", "38, 50], curve_points: $points }");
     CaseTable table = make_latin_hypercube(specs, 200, 11);
     if (std::string(varied).rfind("points", 0) == 0)
-      for (std::vector<CaseValue>& values : table.cases) {
-        values[0].si = std::round(*values[0].si);  // an integer parameter takes whole numbers
-        values[0].text.clear();
+      for (std::size_t i = 0; i < table.size(); ++i) {  // an integer parameter takes whole numbers
+        double& points = table.numbers.si[i * table.variables.size()];
+        points = std::round(points);
       }
     for (const PluginRegistry* registry : {&project_registry(), &builtin_sdk1_registry()}) {
       Prepared p = prepare(scene, table, *registry);
-      std::vector<std::size_t> all(table.cases.size());
+      std::vector<std::size_t> all(table.size());
       std::iota(all.begin(), all.end(), std::size_t{0});
       const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all);
       double work = 0, largest = -1;
       std::size_t largest_case = 0;
+      std::vector<CaseValue> row;
       for (std::size_t k : all) {
         Graph copy = p.graph;
-        p.binder->apply(p.binder->bind(copy), copy, p.table.cases[k]);
+        p.binder->apply(p.binder->bind(copy), copy, p.table.row(k, row));
         const double w = estimate_work(copy).work;
         work += w;
         if (w > largest) {
@@ -209,22 +210,21 @@ TEST_CASE("a sweep whose cases change no figure estimates one case and counts th
   CHECK(registry.find("cam.kurz")->offers_forecast);
   std::vector<SampleSpec> specs{parse_sample("lift=7mm:9mm"), parse_sample("rpm=4000rpm:7000rpm")};
   CaseTable table = make_latin_hypercube(specs, 50, 3);
-  for (std::size_t k : {std::size_t{0}, std::size_t{17}}) {
-    table.cases[k][0].si = -1e-3;  // refused by max_lift's range: the case never runs
-    table.cases[k][0].text.clear();
-  }
+  for (std::size_t k : {std::size_t{0}, std::size_t{17}})
+    table.numbers.si[k * table.variables.size()] = -1e-3;  // refused by max_lift's range: the case never runs
   Prepared p = prepare(stages123(), table, registry);
-  std::vector<std::size_t> all(table.cases.size());
+  std::vector<std::size_t> all(table.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   for (unsigned threads : {1u, 2u}) {
     INFO(threads << " threads");
     const SweepEstimate e = estimate_cases(p.graph, *p.binder, p.table, all, threads);
     double work = 0, largest = -1, memory = 0;
     std::size_t largest_case = 0, bound = 0;
+    std::vector<CaseValue> row;
     for (std::size_t k : all) {
       Graph copy = p.graph;
       try {
-        p.binder->apply(p.binder->bind(copy), copy, p.table.cases[k]);
+        p.binder->apply(p.binder->bind(copy), copy, p.table.row(k, row));
       } catch (const SceneError&) {
         continue;
       }

@@ -45,7 +45,7 @@ inline Swept sweep(const Prepared& p, unsigned threads, std::size_t block_size) 
   SweepOptions options;
   options.threads = threads;
   options.block_size = block_size;
-  for (std::size_t i = 0; i < p.table.cases.size(); ++i) options.cases.push_back(i);
+  for (std::size_t i = 0; i < p.table.size(); ++i) options.cases.push_back(i);
   MemoCache cache;
   Swept s;
   s.summary = run_sweep(p.graph, *p.binder, p.table, cache, options, [&](CaseResult&& r) { s.rows.push_back(std::move(r)); });

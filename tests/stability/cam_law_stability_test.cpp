@@ -122,7 +122,7 @@ TEST_CASE("stability: the default extremum sampling agrees with 200x denser samp
     const CaseBinder binder(g, scene, project_registry(), overrides, cases.variables);
     SweepOptions options;
     options.threads = 2;
-    for (std::size_t i = 0; i < cases.cases.size(); ++i) options.cases.push_back(i);
+    for (std::size_t i = 0; i < cases.size(); ++i) options.cases.push_back(i);
     MemoCache cache;
     std::vector<CaseResult> rows;
     run_sweep(g, binder, cases, cache, options, [&](CaseResult&& r) { rows.push_back(std::move(r)); });

@@ -28,7 +28,7 @@ outputs: [s.sum]
     table.cases.push_back({CaseValue{std::to_string(v), v, {}}});
   const CaseBinder binder(graph, scene, arith_registry(), {}, table.variables);
   SweepOptions options;
-  for (std::size_t i = 0; i < table.cases.size(); ++i) options.cases.push_back(i);
+  for (std::size_t i = 0; i < table.size(); ++i) options.cases.push_back(i);
   MemoCache cache;
   std::vector<CaseResult> rows;
   run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) { rows.push_back(std::move(r)); });

@@ -18,9 +18,13 @@ namespace mechgraph {
 /// The most cases one sweep may have (a grid, a sample, a cases file, a manifest a merge reads):
 /// 10^7. More is refused as a usage error, before anything is allocated for them.
 inline constexpr std::size_t max_sweep_cases = 10'000'000;
-/// The most values (cases x varied parameters) one sweep's table may hold: 2 x 10^7, about 2 GB
-/// as they are kept; checked before the table is built.
+/// The most values (cases x varied parameters) one sweep's table of written values may hold (a
+/// grid, a cases file, Python's columns: a CaseValue each, with its text): 2 x 10^7, about 2 GB as
+/// they are kept; checked before the table is built.
 inline constexpr std::size_t max_case_cells = 20'000'000;
+/// The most values a table of numbers only may hold (CaseTable::Numbers: a Latin hypercube, a
+/// study's design): 2.5 x 10^8, 2 GB at a double each; checked before the table is built.
+inline constexpr std::size_t max_number_cells = 250'000'000;
 /// The largest cases file read (256 MiB) and the largest sweep manifest (64 KiB: a dozen fields).
 inline constexpr std::size_t max_cases_file_bytes = std::size_t{256} << 20;
 inline constexpr std::size_t max_manifest_bytes = std::size_t{64} << 10;
@@ -48,6 +52,9 @@ struct CaseValue {
 /// x in SI as text that reads back as exactly x: the shortest such digits and the SI unit of `d`
 /// ("0.0025 m"); the text of a generated case value.
 std::string exact_text(double x, const Dimension& d);
+/// exact_text appended to `out`, the unit given as its text ("" for a dimensionless value,
+/// Dimension::si_unit() else): a writer of many values makes each variable's unit once.
+void append_exact_text(std::string& out, double x, std::string_view si_unit);
 
 /// The double nearest `si` that a number written in `unit` reads back to ((number + offset) *
 /// scale): `si` itself where some number does (a value written in that unit, most values), else
@@ -135,7 +142,8 @@ SampleSpec parse_sample(std::string_view text);
 
 /// n cases, each variable's range cut in n equal strata with one point in each, strata paired at
 /// random: the same (specs, n, seed) give the same cases on every machine (splitmix64 + own
-/// shuffle, nothing implementation-defined).
+/// shuffle, nothing implementation-defined). Kept as numbers (CaseTable::Numbers, within
+/// max_number_cells), each on its variable's unit's numbers (expressible_in).
 CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t n, std::uint64_t seed);
 
 /// A CSV file of cases: a header of parameter names (`name` or `name [unit]`), then one case per

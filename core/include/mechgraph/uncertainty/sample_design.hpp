@@ -57,11 +57,11 @@ class UnitDesign {
 /// not a valid correlation matrix (naming the first of them).
 CaseTable make_study_cases(const StudySpec& spec, unsigned threads = 1);
 
-/// The most values (cases times parameters) a study's design may hold: 2.5 x 10^8, 2 GB as its
-/// table keeps them (CaseTable::Numbers, a double each). The memory budget (--max-memory) counts
+/// The most values (cases times parameters) a study's design may hold: a table of numbers'
+/// (max_number_cells, 2.5 x 10^8, 2 GB at a double each). The memory budget (--max-memory) counts
 /// the table with the rest of the study; this cap holds whatever the budget is raised to.
 /// (mechgraph.dask.study sends the design out as a sweep's cases, within max_case_cells.)
-inline constexpr std::size_t max_design_values = 250'000'000;
+inline constexpr std::size_t max_design_values = max_number_cells;
 
 /// Where the design of `spec` would hold more than `max_values` values: "samples: N make M cases of
 /// d values each, more than the MAX values HOLDER; at most K samples here" (with sensitivity, how
