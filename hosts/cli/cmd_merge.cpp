@@ -9,7 +9,7 @@
 // stdout nothing may come out before everything is checked, so the shards are read twice (once
 // to check, once to write); `--out` is written once, into a temporary that a refusal removes. Every row is checked as
 // --resume checks it (RowChecker: cells, case number in range, in order, this shard's, numbers
-// finite) and each manifest's case count is capped (10^7), so an edited or hostile file is refused
+// finite) and each manifest's case count is capped (max_sweep_cases), so an edited or hostile file is refused
 // naming FILE:line instead of being carried over or spun on. `--out FILE` is written whole (a
 // temporary renamed over it), locked against a second writer, with a manifest of its own (one
 // shard of one: a merged file can be resumed from, merged again, or replaced with --force).

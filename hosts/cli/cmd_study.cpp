@@ -248,7 +248,7 @@ int study_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   po::options_description visible("study options");
   add_scene_options(visible);
   visible.add_options()
-      ("samples", po::value<std::string>(), "base samples N, 2 to 10^7 (default: the scene's, else 1000)")
+      ("samples", po::value<std::string>(), "base samples N, 2 to 2.5 x 10^8 (default: the scene's, else 1000)")
       ("method", po::value<std::string>(), "monte_carlo, latin_hypercube or sobol (default: the scene's, else latin_hypercube)")
       ("seed", po::value<std::string>(), "seed of every random number (default: the scene's, else 1)")
       ("threads", po::value<std::string>()->default_value("0"), "worker threads, 0 to 1024 (0: one per core); the answers do not depend on it")

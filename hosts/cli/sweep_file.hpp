@@ -63,7 +63,7 @@ void require_rows_format(const SweepManifest& m, const std::string& file, const 
 std::string unrecorded_format_note(const SweepManifest& m);
 
 /// Reads FILE.json beside `file`; throws UsageError naming it when absent, unreadable, larger than
-/// 64 KiB, not a regular file or out of range (more than 10^7 cases, a shard outside 0 <= I < N
+/// 64 KiB, not a regular file or out of range (more than max_sweep_cases, a shard outside 0 <= I < N
 /// <= 10^6, more rows than cases).
 SweepManifest read_manifest_checked(const std::filesystem::path& file);
 

@@ -250,7 +250,7 @@ def _study_arguments(parameters, samples, method, seed, sensitivity, limits, eve
             block[key] = _study_value(value, key)
     if method is not None and method not in _STUDY_METHODS:
         raise ValueError(f"method: {method!r} is not a sampling method; valid: {', '.join(_STUDY_METHODS)}")
-    return (json.dumps(block) if block else "", set_entries(set, si), _whole_text(samples, "samples", 2, 10_000_000),
+    return (json.dumps(block) if block else "", set_entries(set, si), _whole_text(samples, "samples", 2, 250_000_000),
             method or "", _whole_text(seed, "seed", 0, 2 ** 62), list(outputs or []))
 
 

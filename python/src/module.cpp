@@ -168,7 +168,8 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
     const ColumnValues column = column_values(columns[v], "cases: column '" + excerpt(name) + "'");
     if (v == 0) {
       n = column.size();
-      if (n > max_sweep_cases) throw SceneError("more than 10^7 cases in one sweep; split it into several sweeps");
+      if (n > max_sweep_cases)
+        throw SceneError("more than " + std::string(max_sweep_cases_text) + " cases in one sweep; split it into several sweeps");
       if (n * names.size() > max_case_cells)
         throw SceneError("more than " + std::to_string(max_case_cells) + " values in one sweep; split it into several sweeps");
       table.cases.assign(n, std::vector<CaseValue>(names.size()));

@@ -166,7 +166,7 @@ def test_study_errors_carry_where_and_which_parameter_as_data():
 
 
 def test_a_dask_studys_design_keeps_scene_studys_budget():
-    # Sixty outputs of one uncertain parameter, 3e6 samples: within the design's cap (9e6 of 1e7
+    # Sixty outputs of one uncertain parameter, 3e6 samples: within the design's cap (9e6
     # evaluations), but the outputs' values and the Sobol' rows would hold about 12 GB beside the
     # cases. Before, the Dask study's design (made here, its cases sent out) was made unchecked.
     nodes = "".join(f"  f{i}: {{ type: test.linear, params: {{ x1: $x1, x2: {i} mm, x3: 0 mm }} }}\n" for i in range(60))
@@ -190,10 +190,13 @@ def test_a_dask_studys_design_keeps_scene_studys_budget():
 
 
 def test_a_designs_refusals_name_the_keywords_not_the_flags():
-    # Before, Python users read "--samples 4000000: ...". (Python checks a method's name itself.)
+    # Before, Python users read "--samples 60000000: ...". (Python checks a method's name itself.)
     scene = mechgraph.Scene.load(ISHIGAMI)
-    with pytest.raises(mechgraph.SceneError, match=r"^samples 4000000: the design would need 20000000 evaluations"):
-        scene.study(samples=4_000_000, sensitivity=True)
+    with pytest.raises(mechgraph.SceneError,
+                       match=r"^samples 60000000: the design would need 300000000 evaluations, more than 2\.5 x 10\^8"):
+        scene.study(samples=60_000_000, sensitivity=True)
+    with pytest.raises(ValueError, match=r"^samples: 300000000 is not from 2 to 250000000"):
+        scene.study(samples=300_000_000)
 
 
 FIT_AT_TEMPERATURE = ("params: { t: 20 degC }\n"

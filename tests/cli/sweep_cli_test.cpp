@@ -187,6 +187,42 @@ TEST_CASE("sweep --out: complete under its name at the end, refused when it exis
   CHECK(run_cli(args + " --force").exit_code == 0);
 }
 
+TEST_CASE("sweep --sample: the rows and the fingerprint of a seeded sample are pinned", "[cli][sweep]") {
+  // Written by the build before samples were kept as numbers (each value with its exact text): a
+  // sample's draw, its values on the unit's numbers, the digits a row shows (a column in mm, one
+  // in the SI unit itself at magnitudes where %.15g and the shortest digits differ, a unitless
+  // one) and the manifest's fingerprint, which --resume and merge compare, must not move.
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  const fs::path out = work_dir() / "sample.csv";
+  struct Pinned {
+    const char* sample;
+    std::vector<std::string> rows;
+    const char* fingerprint;
+  };
+  const Pinned pinned[] = {
+      {"--sample len=1e15m:2e17m --sample s.gain=0.5:2",
+       {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+        "0,153875120154396320,0.7619135545255051,234479079499750592,0,0.25,1,0,",
+        "1,61517845661878880,1.516957347676121,186639895979985504,0,0.25,1,0,",
+        "2,132152060207450464,1.0550616890203839,278857151699992288,0,0.25,1,0,",
+        "3,7723506464412241,1.751000223702433,27047723093906040,0,0.25,1,0,"},
+       "249865a986934544"},
+      {"--sample len=1mm:3mm --sample s.gain=0.5:2",
+       {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+        "0,2.536433368385892,0.7619135545255051,0.0038650859270479903,0,0.25,1,0,",
+        "1,1.6082195543907427,1.516957347676121,0.004879200939418908,0,0.25,1,0,",
+        "2,2.318111157863824,1.0550616890203839,0.004891500547105607,0,0.25,1,0,",
+        "3,1.0675729292905753,1.751000223702433,0.003738640876012918,0,0.25,1,0,"},
+       "cfabda5dec2f859c"}};
+  for (const Pinned& p : pinned) {
+    INFO(p.sample);
+    const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' " + p.sample + " --n 4 --seed 3 --out '" + out.string() + "' --force");
+    REQUIRE(r.exit_code == 0);
+    CHECK(lines_of(slurp(out)) == p.rows);
+    CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == p.fingerprint);
+  }
+}
+
 TEST_CASE("sweep killed with kill -9, then --resume: no case lost or written twice", "[cli][sweep][slow]") {
   const std::string scene = scratch_file("slow.yaml", slow_scene);
   const fs::path out = work_dir() / "killed.csv", reference = work_dir() / "reference.csv";

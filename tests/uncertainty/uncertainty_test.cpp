@@ -1201,5 +1201,36 @@ TEST_CASE("Studies: what a study holds beside its cases and its bootstrap's work
   const double held = host::check_study_budget(sobol, 1, roomy, "study.yaml");
   const double table = 7.5e6 * 3 * sizeof(double), outputs = 7.5e6 * (sizeof(double) + sizeof(CaseFailure));
   const double sobol_rows = 2.0 * 1.5e6 * 5 * sizeof(double), draws = 2.0 * 3 * 50 * sizeof(double);
-  CHECK_THAT(held, Catch::Matchers::WithinRel(table + outputs + sobol_rows + draws, 1e-12));
+  const double order = 7.5e6 * sizeof(std::size_t);  // the cases' indices the sweep runs them by
+  CHECK_THAT(held, Catch::Matchers::WithinRel(table + outputs + sobol_rows + draws + order, 1e-12));
+}
+
+TEST_CASE("Studies: a rare event's study beyond 10^7 evaluations is the budget's to judge, not a count's", "[uncertainty][bounds]") {
+  // A 1 ppm event needs some 10^7 plain samples or more for a useful interval; the count cap of
+  // 10^7 cases (sized when a design kept written values) refused them. Now a study is bounded by
+  // its table (2.5 x 10^8 values) and the memory budget: 3 x 10^7 Monte Carlo samples of two
+  // parameters, and 4 x 10^6 Sobol' samples of three (2 x 10^7 cases), pass every check before
+  // the design is made; the count's own bound is the table's, and says so.
+  const auto uniforms = [](std::size_t samples, int parameters, const char* method) {
+    std::string yaml = std::string("uncertainty:\n  method: ") + method + "\n  samples: " + std::to_string(samples) + "\n  parameters:\n";
+    for (int k = 0; k < parameters; ++k) yaml += "    p" + std::to_string(k) + ": { uniform: { lower: 0, upper: 1 } }\n";
+    return study_of(yaml + "nodes: {}\n");
+  };
+  StudySpec plain = uniforms(30'000'000, 2, "monte_carlo");
+  CHECK(plain.evaluations() == 30'000'000);
+  CHECK_NOTHROW(check_design_size(plain));
+  const double held = host::check_study_budget(plain, 1, WorkBudget{}, "study.yaml");  // 4 GiB by default
+  CHECK_THAT(held, Catch::Matchers::WithinRel(3e7 * (2 * 8.0 + 8.0 + sizeof(CaseFailure) + sizeof(std::size_t)), 1e-12));
+  StudySpec sobol = study_of(ishigami_scene("sobol", 1024));
+  host::apply_study_options(sobol, "4000000", "", "");
+  CHECK(sobol.evaluations() == 20'000'000);
+  CHECK_NOTHROW(check_design_size(sobol));
+  WorkBudget study_defaults;  // a study's, as the command line and Python set them
+  study_defaults.max_work = 1e12;
+  CHECK_NOTHROW(host::check_study_budget(sobol, 1, study_defaults, "study.yaml"));
+  // Beyond the table's count: refused by name, before anything is made.
+  CHECK_THROWS_WITH(host::apply_study_options(sobol, "60000000", "", ""),
+                    Contains("the design would need 300000000 evaluations, more than 2.5 x 10^8"));
+  CHECK_THROWS_WITH(host::apply_study_options(sobol, "250000001", "", ""), Contains("is not a whole number from 2 to 250000000"));
+  CHECK_THROWS_WITH(uniforms(250'000'001, 1, "monte_carlo"), Contains("samples"));
 }

@@ -254,7 +254,7 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
                        std::to_string(high));
     return n;
   };
-  if (!samples.empty()) spec.samples = whole(samples, names.samples, 2, 10'000'000);
+  if (!samples.empty()) spec.samples = whole(samples, names.samples, 2, max_sweep_cases);
   if (!seed.empty()) spec.seed = whole(seed, names.seed, 0, std::size_t{1} << 62);
   if (method == "monte_carlo") spec.method = SamplingMethod::monte_carlo;
   else if (method == "latin_hypercube") spec.method = SamplingMethod::latin_hypercube;
@@ -263,7 +263,7 @@ void apply_study_options(StudySpec& spec, const std::string& samples, const std:
     throw UsageError(std::string(names.method) + " " + excerpt(method, 40) + ": valid methods are monte_carlo, latin_hypercube, sobol");
   if (spec.evaluations() > max_sweep_cases)
     throw UsageError(std::string(names.samples) + " " + std::to_string(spec.samples) + ": the design would need " + std::to_string(spec.evaluations()) +
-                     " evaluations, more than 10^7");
+                     " evaluations, more than " + std::string(max_sweep_cases_text));
   // Sobol' points stratify (one in each 1/N of every coordinate) only for N a power of 2; other N
   // are valid, the estimate unbiased over seeds, its variance that of a part of a net.
   if (spec.method == SamplingMethod::sobol && !std::has_single_bit(spec.samples))
@@ -291,6 +291,7 @@ double check_study_budget(const StudySpec& spec, std::size_t outputs, const Work
   const Term memory[] = {
       {"the design's table (a value a parameter a case)", cases * d * sizeof(double)},  // CaseTable::Numbers
       {"the outputs' values (one a case an output)", cases * (out * sizeof(double) + sizeof(CaseFailure))},
+      {"the cases' order (an index a case)", cases * sizeof(std::size_t)},  // SweepOptions::cases
       {"the Sobol' rows (every case of every output, twice)", spec.sensitivity ? 2.0 * out * n * (d + 2.0) * sizeof(double) : 0.0},
       {"the bootstrap's draws", spec.sensitivity ? 2.0 * out * d * static_cast<double>(spec.bootstrap) * sizeof(double) : 0.0}};
   double held = 0.0;

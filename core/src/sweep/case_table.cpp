@@ -368,7 +368,9 @@ namespace {
 
 // A variable's unit as append_shown reads it: none, or parsed (nullopt when it is not a unit).
 ShownUnit shown_unit(const std::string& unit) {
-  return {!unit.empty(), unit.empty() ? std::nullopt : parse_unit_cached(unit)};
+  ShownUnit shown{!unit.empty(), unit.empty() ? std::nullopt : parse_unit_cached(unit)};
+  shown.names_si = shown.scale && !shown.scale->dimension.dimensionless() && shown.scale->dimension.si_unit() == unit;
+  return shown;
 }
 
 }  // namespace
@@ -392,6 +394,14 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
     if (!u || !(u->dimension == value.dimension)) {
       out += value.written();
       return false;
+    }
+    // A number kept without its text (a sample, a study's design) in a column of its SI unit:
+    // the digits of its exact text ("X m", exact_text), as the branch below shows that text.
+    if (value.text.empty() && unit.names_si) {
+      const std::size_t at = out.size();
+      append_exact_text(out, *value.si, {});
+      if (json_number(std::string_view(out).substr(at))) return true;
+      out.resize(at);
     }
     // A cell read as a bare number under its column's unit (kept as "CELL UNIT"): the cell reads
     // back to this very double by construction, so it is shown as written (and costs a copy).
@@ -452,7 +462,7 @@ VarySpec parse_vary(std::string_view text) {
     char* end = nullptr;
     errno = 0;
     const long n = std::strtol(parts[2].c_str(), &end, 10);
-    if (end == parts[2].c_str() || *end != '\0' || errno || n < 1 || n > static_cast<long>(max_sweep_cases))
+    if (end == parts[2].c_str() || *end != '\0' || errno || n < 1 || n > static_cast<long>(max_range_points))
       throw SceneError(context + ": N = '" + excerpt(parts[2]) + "' must be a whole number of points from 1 to 10^7");
     if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
@@ -513,7 +523,8 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
     table.variables.push_back({s.name, s.unit});
     table.origin += (table.origin.empty() ? "--vary " : " --vary ") + s.name;
     if (total > max_sweep_cases / std::max<std::size_t>(s.values.size(), 1))
-      throw SceneError("--vary: the grid would have more than 10^7 cases; sample it instead (--sample NAME=LO:HI --n N)");
+      throw SceneError("--vary: the grid would have more than " + std::string(max_sweep_cases_text) +
+                       " cases; sample it instead (--sample NAME=LO:HI --n N)");
     total *= s.values.size();
   }
   if (total > max_case_cells / std::max<std::size_t>(specs.size(), 1))
@@ -549,7 +560,8 @@ SampleSpec parse_sample(std::string_view text) {
 
 CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t n, std::uint64_t seed) {
   if (n == 0) throw SceneError("--n: a sample needs at least one case");
-  if (n > max_sweep_cases) throw SceneError("--n " + std::to_string(n) + ": at most 10^7 cases in one sweep");
+  if (n > max_sweep_cases)
+    throw SceneError("--n " + std::to_string(n) + ": at most " + std::string(max_sweep_cases_text) + " cases in one sweep");
   const std::size_t width = specs.size();
   if (n > max_number_cells / std::max<std::size_t>(width, 1))
     throw SceneError("--n " + std::to_string(n) + " cases of " + std::to_string(width) + " values each are more than " +
@@ -654,7 +666,8 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       continue;
     }
     if (table.cases.size() >= max_sweep_cases)
-      throw SceneError(where + ":" + std::to_string(number) + ":1: more than 10^7 cases in one file; split it into several sweeps");
+      throw SceneError(where + ":" + std::to_string(number) + ":1: more than " + std::string(max_sweep_cases_text) +
+                       " cases in one file; split it into several sweeps");
     if ((table.cases.size() + 1) * std::max<std::size_t>(table.variables.size(), 1) > max_case_cells)
       throw SceneError(where + ":" + std::to_string(number) + ":1: more than " + std::to_string(max_case_cells) +
                        " values in one file; split it into several sweeps");

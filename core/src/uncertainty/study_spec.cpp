@@ -3,6 +3,7 @@
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/error_subject.hpp>
+#include <mechgraph/sweep/case_table.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
@@ -282,7 +283,7 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
     else if (name == "sobol") spec.method = SamplingMethod::sobol;
     else fail(m->where, unknown_name_message("sampling method", name, {"monte_carlo", "latin_hypercube", "sobol"}));
   }
-  if (const RawValue* n = field(block, "samples")) spec.samples = whole(*n, "samples", 2, 10'000'000);
+  if (const RawValue* n = field(block, "samples")) spec.samples = whole(*n, "samples", 2, max_sweep_cases);
   if (const RawValue* s = field(block, "seed")) spec.seed = whole(*s, "seed", 0, std::size_t{1} << 62);
   if (const RawValue* s = field(block, "sensitivity")) spec.sensitivity = boolean(*s, "sensitivity");
   if (const RawValue* b = field(block, "bootstrap")) spec.bootstrap = whole(*b, "bootstrap", 0, 10000);
@@ -308,9 +309,9 @@ StudySpec parse_study(const RawValue& block, const Iso286Limits& iso286) {
   if (params->fields.size() > max_study_parameters)
     fail(params->where, "more than " + std::to_string(max_study_parameters) + " uncertain parameters");
   for (const auto& [name, value] : params->fields) spec.parameters.push_back(parse_uncertain_parameter(name, value, iso286));
-  if (spec.evaluations() > 10'000'000)
-    fail(block.where, std::to_string(spec.samples) + " samples need " + std::to_string(spec.evaluations()) +
-                          " evaluations, more than the 10^7 cases of one study");
+  if (spec.evaluations() > max_sweep_cases)
+    fail(block.where, std::to_string(spec.samples) + " samples need " + std::to_string(spec.evaluations()) + " evaluations, more than the " +
+                          std::string(max_sweep_cases_text) + " cases of one study");
   const auto index_of = [&](const RawValue& v) {
     const std::string name = scalar(v, "a parameter name");
     std::vector<std::string> names;

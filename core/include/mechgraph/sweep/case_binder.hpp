@@ -87,6 +87,8 @@ class CaseBinder {
 /// with a dimension (the first number written with one) and every parameter it reaches is a number
 /// of that dimension: a bare number there would be refused. Anywhere else nothing changes
 /// (`gain=-1,1mm` on a dimensionless gain keeps -1, and the 1mm is refused in its case).
+/// It reads values as written (`table.cases`): a table of numbers (CaseTable::Numbers, a sample or
+/// a study's design) has no bare number to read and is left as it is.
 void read_bare_numbers_in_list_unit(CaseTable& table, const CaseBinder& binder);
 
 }  // namespace mechgraph

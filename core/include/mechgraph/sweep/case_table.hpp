@@ -15,16 +15,24 @@
 
 namespace mechgraph {
 
-/// The most cases one sweep may have (a grid, a sample, a cases file, a manifest a merge reads):
-/// 10^7. More is refused as a usage error, before anything is allocated for them.
-inline constexpr std::size_t max_sweep_cases = 10'000'000;
+/// The most values a table of numbers only may hold (CaseTable::Numbers: a Latin hypercube, a
+/// study's design): 2.5 x 10^8, 2 GB at a double each; checked before the table is built.
+inline constexpr std::size_t max_number_cells = 250'000'000;
 /// The most values (cases x varied parameters) one sweep's table of written values may hold (a
 /// grid, a cases file, Python's columns: a CaseValue each, with its text): 2 x 10^7, about 2 GB as
 /// they are kept; checked before the table is built.
 inline constexpr std::size_t max_case_cells = 20'000'000;
-/// The most values a table of numbers only may hold (CaseTable::Numbers: a Latin hypercube, a
-/// study's design): 2.5 x 10^8, 2 GB at a double each; checked before the table is built.
-inline constexpr std::size_t max_number_cells = 250'000'000;
+/// The most cases one sweep may have (a sample, a study's design, a grid, a cases file, a manifest
+/// a merge reads): 2.5 x 10^8, as many as a table of numbers holds values. It is the tables' own
+/// caps that bind first (max_number_cells, max_case_cells); this one bounds a count read from a
+/// file or an option before anything is allocated for it. (It was 10^7 while every table kept
+/// written values: a rare event's study needs more, docs/methods/uncertainty.md.)
+inline constexpr std::size_t max_sweep_cases = max_number_cells;
+/// max_sweep_cases as messages write it.
+inline constexpr std::string_view max_sweep_cases_text = "2.5 x 10^8";
+/// The most points of one `--vary` range: 10^7 (its values are made before the grid's size is
+/// checked).
+inline constexpr std::size_t max_range_points = 10'000'000;
 /// The largest cases file read (256 MiB) and the largest sweep manifest (64 KiB: a dozen fields).
 inline constexpr std::size_t max_cases_file_bytes = std::size_t{256} << 20;
 inline constexpr std::size_t max_manifest_bytes = std::size_t{64} << 10;
@@ -78,6 +86,7 @@ struct SweepVariable {
 struct ShownUnit {
   bool given = false;              // the variable has a unit ("" = SI)
   std::optional<UnitScale> scale;  // that unit parsed; nullopt when it is not one (values shown as written)
+  bool names_si = false;           // the unit is written as its dimension's SI unit ("m", "N/m"): exact_text's
 };
 
 struct CaseTable {

@@ -85,8 +85,9 @@ struct StudySpec {
   std::size_t evaluations() const;
 };
 
-/// The most base samples of a study (10^7, a sweep's case limit; with sensitivity the evaluations
-/// N (d + 2) must stay within it too) and the most uncertain parameters (1000).
+/// The most base samples of a study (max_sweep_cases, 2.5 x 10^8, a sweep's case limit; with
+/// sensitivity the evaluations N (d + 2) must stay within it too, and the design's table within
+/// max_design_values) and the most uncertain parameters (1000).
 inline constexpr std::size_t max_study_parameters = 1000;
 
 /// ISO 286 limits of `tolerance_class` (H7, g6) at nominal `size` (SI): {lower, upper} deviation
