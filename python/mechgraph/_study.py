@@ -33,11 +33,11 @@ class Study:
         return frame
 
     def _roles(self, cases: int):
-        if not self.json.get("sensitivity"):
-            return ["A"] * cases
-        names = [p["name"] for p in self.json["parameters"]]
-        pattern = ["A", "B"] + [f"AB {name}" for name in names]
-        return [pattern[k % len(pattern)] for k in range(cases)]
+        import numpy as np
+
+        names = [p["name"] for p in self.json["parameters"]] if self.json.get("sensitivity") else []
+        pattern = np.array(["A", "B"] + [f"AB {name}" for name in names] if names else ["A"], dtype=object)
+        return pattern[np.arange(cases) % len(pattern)]  # Python strings, as a list of them gave
 
     @property
     def summary(self):

@@ -15,6 +15,7 @@
 #include <charconv>
 #include <type_traits>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <cstdlib>
 #include <set>
@@ -454,14 +455,23 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
 
 std::vector<std::variant<std::monostate, double, std::string>> SweepRows::input_values(std::size_t i) const {
   std::vector<std::variant<std::monostate, double, std::string>> inputs;
-  CaseValue made;
+  std::string cell;
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
-    std::string cell = table_.shown(i, v);
+    const double number = input_number(i, v, cell);
     if (cell.empty()) inputs.emplace_back(std::monostate{});
-    else if (table_.cell(i, v, made).si.has_value() && finite_number_cell(cell)) inputs.emplace_back(std::strtod(cell.c_str(), nullptr));
-    else inputs.emplace_back(std::move(cell));
+    else if (!std::isnan(number)) inputs.emplace_back(number);
+    else inputs.emplace_back(cell);
   }
   return inputs;
+}
+
+double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) const {
+  // The cell as a row shows it (the column's unit parsed once), read back where it is a number.
+  cell.clear();
+  table_.append_shown(cell, i, v, input_units_[v]);
+  CaseValue made;
+  if (cell.empty() || !table_.cell(i, v, made).si.has_value() || !finite_number_cell(cell)) return std::numeric_limits<double>::quiet_NaN();
+  return std::strtod(cell.c_str(), nullptr);
 }
 
 SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) const {

@@ -67,6 +67,9 @@ class SweepRows {
   /// The input columns' headers (`name [unit]`) and case i's inputs as Values::inputs holds them.
   std::vector<std::string> input_headers() const;
   std::vector<std::variant<std::monostate, double, std::string>> input_values(std::size_t i) const;
+  /// Input v of case i as input_values gives a number, NaN where it gives none or text; `cell`
+  /// is scratch (its storage kept from call to call: a study's million rows make no string each).
+  double input_number(std::size_t i, std::size_t v, std::string& cell) const;
 
  private:
   struct Column {
