@@ -291,7 +291,7 @@ void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudg
     const double beside = budget.memory_beside, whole = memory + beside;
     throw SceneError(graph.file + ": the scene would hold about " + mebibytes(memory) + " of memory" +
                      (concurrent > 1 ? " (" + amount(concurrent) + " cases at once)" : std::string()) +
-                     (beside > 0 ? ", " + mebibytes(whole) + " with the " + mebibytes(beside) + " the study holds beside them"
+                     (beside > 0 ? ", " + mebibytes(whole) + " with the " + mebibytes(beside) + " " + budget.beside_holder + " holds beside them"
                                  : std::string()) +
                      ", more than the budget of " + mebibytes(budget.max_memory + beside) + "; the biggest term is " +
                      biggest([](const WorkEstimate::Term& t) { return t.memory; }) +

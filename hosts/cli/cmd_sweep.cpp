@@ -186,12 +186,14 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   options.block_size = block_size;
   if (options.threads == 0) options.threads = std::max(1u, std::thread::hardware_concurrency());
   // The work of every case of this shard, each with its own values (a cases file's, a grid's, a
-  // sample's), against the budget, and the memory of the largest case times the threads (a sweep's
+  // sample's), against the budget, and the memory of the largest case times the threads beside the
+  // table of cases and their order (a sweep's
   // default work budget is larger: its cases are many by intent, and memoised nodes make the
   // estimate an upper bound).
   WorkBudget budget = work_budget(vm);
   if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
-  check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
+  check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size(), graph.file),
+                     options.threads);
   options.stop = &stop_on_signals_flag();
 
   SweepManifest manifest;

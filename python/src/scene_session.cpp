@@ -285,6 +285,8 @@ void run_rows(const Graph& graph, const CaseBinder& binder, const CaseTable& tab
 void SceneSession::check_sweep(const CaseTable& table, const std::vector<SetValue>& sets, const std::vector<std::string>& outputs,
                                unsigned threads, const WorkBudget& budget) {
   with_sweep_graph(table, sets, outputs, [&](const Graph& graph, const CaseBinder& binder) {
+    // The whole sweep's work and largest case, before its chunks go out (mechgraph.dask.sweep):
+    // its memory budget is a chunk's, and each worker counts its own chunk's table (sweep below).
     const SweepOptions options = sweep_options(table, threads);
     check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
   });
@@ -297,7 +299,8 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   with_sweep_graph(table, sets, outputs, [&](const Graph& graph, const CaseBinder& binder) {
     SweepOptions options = sweep_options(table, threads);
     // Every case with its own values, as `mechgraph sweep` estimates them (sweep/case_estimate.hpp).
-    check_sweep_budget(graph, binder, table, options.cases, budget, options.threads);
+    check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size(), graph.file),
+                       options.threads);
     options.stop = stop;
     run_rows(graph, binder, table, options, done, out);
   });

@@ -194,6 +194,26 @@ TEST_CASE("Case tables: a Latin hypercube kept as numbers shows and writes what 
     }
 }
 
+TEST_CASE("Case tables: a table of numbers shows a sample's digits or a study's, as each did before", "[core][sweep]") {
+  // In a column named by its SI unit a sample's value showed its exact text's digits (to_chars'
+  // shortest), a study's design value %.15g where that reads back: rows written by earlier builds
+  // are resumed and read as rows of the same sweep or study only if each keeps its own.
+  CaseTable table;
+  table.variables = {{"len", "m"}, {"d", "mm"}};
+  table.numbers.count = 3;
+  table.numbers.dimensions = {dim::length, dim::length};
+  table.numbers.si = {1.5755532090945693e+17, 2e-3, 100000.0, 3e-3, 0.0003, 4e-3};
+  CHECK(table.shown(0, 0) == "1.5755532090945693e+17");
+  CHECK(table.shown(1, 0) == "100000");
+  CHECK(table.shown(2, 0) == "0.0003");
+  CHECK(table.shown(0, 1) == "2");
+  table.numbers.exact_text_digits = true;
+  CHECK(table.shown(0, 0) == "157555320909456928");
+  CHECK(table.shown(1, 0) == "1e+05");
+  CHECK(table.shown(2, 0) == "3e-04");
+  CHECK(table.shown(0, 1) == "2");  // another unit than the SI unit: the same either way
+}
+
 TEST_CASE("Case tables: a sample's size is bounded by its numbers, not by rows of text", "[core][sweep][bounds]") {
   // A sample of 3.4 x 10^6 cases of 6 values (2.04 x 10^7 values, 163 MB as numbers) was refused
   // by the cap sized for rows of text (max_case_cells); a sample is held at 8 bytes a value.

@@ -19,7 +19,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string path = "/proc/self/fd/" + std::to_string(fd);
   try {
     const mechgraph::CaseTable table = mechgraph::read_cases_csv(path);
-    if (table.variables.empty() || table.cases.empty() || table.cases.size() > mechgraph::max_sweep_cases) __builtin_trap();
+    if (table.variables.empty() || table.cases.empty() || table.cases.size() > mechgraph::max_sweep_cases ||
+        table.cases.size() * table.variables.size() > mechgraph::max_case_cells)
+      __builtin_trap();
     for (std::size_t i = 0; i < table.cases.size(); ++i) {
       if (table.cases[i].size() != table.variables.size()) __builtin_trap();
       for (std::size_t v = 0; v < table.variables.size(); ++v) {

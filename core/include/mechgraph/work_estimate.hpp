@@ -68,6 +68,7 @@ struct WorkBudget {
   BudgetNames names;                            // in the refusals: how to raise each limit
   double memory_beside = 0.0;                   // bytes the caller holds beside what is checked (a study's own
                                                 // storage), already taken off max_memory: a refusal counts them back
+  const char* beside_holder = "the study";      // who holds them, as a refusal names it
 };
 
 /// One node's estimate: its terms (work, memory, bytes) and the size of what it outputs.

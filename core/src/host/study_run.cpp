@@ -280,10 +280,13 @@ namespace mechgraph::host {
 // base samples' outputs, and a copy laid out for the resamples) and the bootstrap's draws; the
 // bootstrap's work (each resample passes over every output's rows: N (d + 2) values). Refused
 // before the design is made, naming the term and the flag that raises the budget.
-double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file) {
+double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file,
+                          unsigned threads) {
   check_design_size(spec);  // the design's own cap first: no budget flag removes it
   const double n = static_cast<double>(spec.samples), d = static_cast<double>(spec.parameters.size());
   const double cases = static_cast<double>(spec.evaluations()), out = static_cast<double>(outputs);
+  const double statistical = spec.sensitivity ? 2.0 * n : n;  // the A and B rows, or every case
+  const unsigned answer_threads = std::max({threads, std::thread::hardware_concurrency(), 1u});
   struct Term {
     const char* what;
     double amount;
@@ -292,6 +295,11 @@ double check_study_budget(const StudySpec& spec, std::size_t outputs, const Work
       {"the design's table (a value a parameter a case)", cases * d * sizeof(double)},  // CaseTable::Numbers
       {"the outputs' values (one a case an output)", cases * (out * sizeof(double) + sizeof(CaseFailure))},
       {"the cases' order (an index a case)", cases * sizeof(std::size_t)},  // SweepOptions::cases
+      // study_answers.cpp: the statistical rows' indices, and each output answered at once its
+      // values, sorted in place for the quantiles: up to one a core of this machine, whatever
+      // `threads` the answers get (a study and the same study from Dask rows count the same).
+      {"the answers' scratch (the statistical rows' indices and values)",
+       statistical * sizeof(std::size_t) + statistical * sizeof(double) * std::min(out, static_cast<double>(answer_threads))},
       {"the Sobol' rows (every case of every output, twice)", spec.sensitivity ? 2.0 * out * n * (d + 2.0) * sizeof(double) : 0.0},
       {"the bootstrap's draws", spec.sensitivity ? 2.0 * out * d * static_cast<double>(spec.bootstrap) * sizeof(double) : 0.0}};
   double held = 0.0;
@@ -357,7 +365,7 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
   if (outputs) leave_out_unstudied(outcome->spec, outcome->columns, scene_outputs);
   check_study_outputs(outcome->spec, outcome->columns);
   if (budget) {
-    const double own = check_study_budget(outcome->spec, outcome->columns.size(), *budget, outcome->graph.file);
+    const double own = check_study_budget(outcome->spec, outcome->columns.size(), *budget, outcome->graph.file, threads);
     if (held) *held = own;
   }
   outcome->table = make_study_cases(outcome->spec, threads);
@@ -393,13 +401,15 @@ std::unique_ptr<StudyOutcome> run_scene_study(SceneSpec scene, const PluginRegis
                                      option_names);
   phase_done("graph built and cases drawn");
   const CaseBinder binder(outcome->graph, *outcome->scene, registry, overrides, outcome->table.variables, BinderUse::study);
-  std::vector<std::size_t> all(outcome->table.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   outcome->threads = threads;
-  WorkBudget for_cases = budget;
-  for_cases.max_memory = budget.max_memory - held;  // positive: check_study_budget kept held within it
-  for_cases.memory_beside = held;
-  check_sweep_budget(outcome->graph, binder, outcome->table, all, for_cases, threads);
+  {
+    std::vector<std::size_t> all(outcome->table.size());  // freed before the cases run (they hold their own order)
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    WorkBudget for_cases = budget;
+    for_cases.max_memory = budget.max_memory - held;  // positive: check_study_budget kept held within it
+    for_cases.memory_beside = held;
+    check_sweep_budget(outcome->graph, binder, outcome->table, all, for_cases, threads);
+  }
   phase_done("work budget checked");
   outcome->data = evaluate_study(outcome->graph, binder, outcome->table, outcome->columns, threads, stop, &outcome->summary);
   phase_done("cases evaluated");

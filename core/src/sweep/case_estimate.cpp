@@ -151,4 +151,27 @@ void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const Case
   check_work_budget(graph, e.total, budget, 1, false, std::min(n, static_cast<double>(std::max(threads, 1u))), where);
 }
 
+double sweep_holdings(const CaseTable& table, std::size_t cases) {
+  double bytes = static_cast<double>(cases) * sizeof(std::size_t) + static_cast<double>(table.numbers.si.capacity()) * sizeof(double);
+  for (const std::vector<CaseValue>& row : table.cases) {
+    bytes += sizeof(row) + static_cast<double>(row.capacity()) * sizeof(CaseValue);
+    for (const CaseValue& v : row)
+      if (v.text.capacity() > std::string().capacity()) bytes += static_cast<double>(v.text.capacity()) + 1;  // beyond the string's own buffer
+  }
+  return bytes;
+}
+
+WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases, const std::string& file) {
+  const double held = sweep_holdings(table, cases);
+  if (!(held < budget.max_memory))
+    throw SceneError(file + ": the sweep's table of " + std::to_string(table.size()) + " cases and their order hold about " +
+                     budget_amount(held / (1 << 20)) + " MiB, more than the memory budget of " +
+                     budget_amount(budget.max_memory / (1 << 20)) + " MiB before any case runs. Fewer cases, or raise the budget with " +
+                     budget.names.memory + budget_amount(held * 1.5));
+  budget.max_memory -= held;
+  budget.memory_beside += held;
+  budget.beside_holder = "the sweep's table of cases and order";
+  return budget;
+}
+
 }  // namespace mechgraph

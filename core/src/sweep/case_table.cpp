@@ -395,9 +395,9 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
       out += value.written();
       return false;
     }
-    // A number kept without its text (a sample, a study's design) in a column of its SI unit:
-    // the digits of its exact text ("X m", exact_text), as the branch below shows that text.
-    if (value.text.empty() && unit.names_si) {
+    // A sample's number (kept without its text) in a column of its SI unit: the digits of its
+    // exact text ("X m", exact_text), as the branch below showed that text (Numbers::exact_text_digits).
+    if (cases.empty() && numbers.exact_text_digits && unit.names_si) {
       const std::size_t at = out.size();
       append_exact_text(out, *value.si, {});
       if (json_number(std::string_view(out).substr(at))) return true;
@@ -571,16 +571,18 @@ CaseTable make_latin_hypercube(const std::vector<SampleSpec>& specs, std::size_t
   // Numbers only (8 bytes a value): a sample of 10^6 cases kept as rows of CaseValue, each with
   // its text, took 3 s and 600 MB to make before its first case ran.
   table.numbers.count = n;
+  table.numbers.exact_text_digits = true;
   reserve_large(table.numbers.si, n * width);
   table.numbers.si.resize(n * width);
   SplitMix64 random{seed};
-  std::vector<std::size_t> stratum(n);
+  std::vector<std::uint32_t> stratum(n);  // n <= max_sweep_cases < 2^32: half the scratch of size_t
+  static_assert(max_sweep_cases <= 0xFFFFFFFFu);
   for (std::size_t v = 0; v < width; ++v) {
     const SampleSpec& s = specs[v];
     table.variables.push_back({s.name, s.unit});
     table.numbers.dimensions.push_back(s.dimension);
     const std::optional<UnitScale>& unit = s.unit.empty() ? std::nullopt : parse_unit_cached(s.unit);
-    std::iota(stratum.begin(), stratum.end(), std::size_t{0});
+    std::iota(stratum.begin(), stratum.end(), std::uint32_t{0});
     for (std::size_t i = n; i-- > 1;) std::swap(stratum[i], stratum[random.below(i + 1)]);  // Fisher-Yates
     for (std::size_t i = 0; i < n; ++i) {
       const double u = (static_cast<double>(stratum[i]) + random.uniform()) / static_cast<double>(n);

@@ -77,10 +77,10 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
   for (std::size_t k : statistical)
     if (std::isfinite(column[k])) values.push_back(column[k]);
   a.failed = statistical.size() - values.size();
-  a.moments = moments(values, spec.confidence);
-  std::vector<double> sorted;
-  reserve_large(sorted, values.size());
-  sorted.assign(values.begin(), values.end());
+  a.moments = moments(values, spec.confidence);  // in case order, before the values are sorted
+  // Sorted in place for the quantiles: what reads the values after (the capability's and the
+  // histogram's counts) does not depend on their order, and no copy is held beside them.
+  std::vector<double>& sorted = values;
   std::sort(sorted.begin(), sorted.end());
   if (!sorted.empty())
     for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
@@ -148,6 +148,7 @@ StudyAnswers analyse_study(const StudySpec& spec, const StudyData& data, unsigne
   for (CaseFailure f : data.failures) answers.failed += f != CaseFailure::none;
   // The statistical samples: every case, or the A and B rows of Saltelli's design.
   std::vector<std::size_t> statistical;
+  statistical.reserve(spec.sensitivity ? 2 * (answers.cases / per_sample) : answers.cases);  // as the budget counts it
   for (std::size_t k = 0; k < answers.cases; ++k)
     if (k % per_sample < (spec.sensitivity ? 2 : 1)) statistical.push_back(k);
   answers.samples = statistical.size();

@@ -94,11 +94,13 @@ std::unique_ptr<StudyOutcome> prepare_scene_study(SceneSpec scene, const PluginR
                                                   const OptionNames& option_names = {},
                                                   const std::function<void(const StudySpec&)>& check_spec = {});
 
-/// The memory a study holds beside its cases (the design, the outputs' values, the Sobol' rows
-/// and bootstrap draws) against budget.max_memory, its bootstrap's work against budget.max_work;
+/// The memory a study holds beside its cases (the design, the outputs' values, the cases' order,
+/// the answers' scratch on `threads` threads, the Sobol' rows and bootstrap draws) against
+/// budget.max_memory, its bootstrap's work against budget.max_work;
 /// throws SceneError "FILE: ..." naming the biggest term and the flag that raises the budget (the
 /// design's own cap, check_design_size, first). Returns the bytes held.
-double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file);
+double check_study_budget(const StudySpec& spec, std::size_t outputs, const WorkBudget& budget, const std::string& file,
+                          unsigned threads = 1);
 
 /// Analyses outcome.data into outcome.answers and outcome.json.
 /// `stop` (Ctrl-C, SIGTERM) ends it early; outcome.summary.stopped then says so.

@@ -29,4 +29,13 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
 void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
                         const std::vector<std::size_t>& cases, const WorkBudget& budget, unsigned threads);
 
+/// The bytes a sweep holds beside its cases' own memory: its table (a double a value kept as
+/// numbers; a CaseValue, its text and its row's share else) and the order of `cases` (an index a
+/// case).
+double sweep_holdings(const CaseTable& table, std::size_t cases);
+/// `budget` with sweep_holdings taken off its memory (memory_beside says so in a refusal): what a
+/// sweep's threads may hold at once beside its table. (A study counts its design in its own.)
+/// Throws SceneError "FILE: ..." where the table and order alone fill the budget.
+WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases, const std::string& file);
+
 }  // namespace mechgraph

@@ -103,6 +103,10 @@ struct CaseTable {
     std::size_t count = 0;              // cases
     std::vector<Dimension> dimensions;  // of each variable's values
     std::vector<double> si;             // si[i * dimensions.size() + v]: variable v in case i, SI
+    /// A value in a column named by its SI unit ("m") shows the digits of its exact text, as a
+    /// sample's rows did while each value kept that text (make_latin_hypercube sets it); else
+    /// as every number made in SI is shown (a study's design: %.15g where that reads back).
+    bool exact_text_digits = false;
   } numbers;
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
