@@ -289,12 +289,16 @@ void check_work_budget(const Graph& graph, const WorkEstimate& e, const WorkBudg
     // What the caller holds beside (a study's own storage) is in the budget the user gave and in
     // the value that lets this through.
     const double beside = budget.memory_beside, whole = memory + beside;
+    // The larger part named: the cases' biggest term, or what is held beside them (a sweep's
+    // table of millions of cases of a few bytes each).
+    const std::string biggest_part = beside > memory ? std::string("what ") + budget.beside_holder + " holds beside them"
+                                                     : biggest([](const WorkEstimate::Term& t) { return t.memory; });
     throw SceneError(graph.file + ": the scene would hold about " + mebibytes(memory) + " of memory" +
                      (concurrent > 1 ? " (" + amount(concurrent) + " cases at once)" : std::string()) +
                      (beside > 0 ? ", " + mebibytes(whole) + " with the " + mebibytes(beside) + " " + budget.beside_holder + " holds beside them"
                                  : std::string()) +
                      ", more than the budget of " + mebibytes(budget.max_memory + beside) + "; the biggest term is " +
-                     biggest([](const WorkEstimate::Term& t) { return t.memory; }) +
+                     biggest_part +
                      ". Lower it, or raise the budget with " + budget.names.memory + amount(std::max(whole * 1.01, 1.0)));
   }
   if (writes_curves && !(e.bytes <= budget.max_bytes))

@@ -192,8 +192,7 @@ int sweep_command(const GlobalOptions& g, const std::vector<std::string>& args) 
   // estimate an upper bound).
   WorkBudget budget = work_budget(vm);
   if (vm["max-work"].defaulted()) budget.max_work = sweep_default_max_work;
-  check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size(), graph.file),
-                     options.threads);
+  check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size()), options.threads);
   options.stop = &stop_on_signals_flag();
 
   SweepManifest manifest;

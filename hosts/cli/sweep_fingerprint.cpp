@@ -62,7 +62,7 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
   // value's exact text made in one buffer, each variable's unit made once.
   if (table.cases.empty()) {
     std::vector<std::string> units;
-    for (const Dimension& d : table.numbers.dimensions) units.push_back(d.dimensionless() ? std::string() : d.si_unit());
+    for (const Dimension& d : table.numbers.dimensions) units.push_back(exact_text_unit(d));
     std::string text;
     for (std::size_t i = 0; i < table.numbers.count; ++i)
       for (std::size_t v = 0; v < units.size(); ++v) {

@@ -299,8 +299,7 @@ SessionSweep SceneSession::sweep(const CaseTable& table, const std::vector<SetVa
   with_sweep_graph(table, sets, outputs, [&](const Graph& graph, const CaseBinder& binder) {
     SweepOptions options = sweep_options(table, threads);
     // Every case with its own values, as `mechgraph sweep` estimates them (sweep/case_estimate.hpp).
-    check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size(), graph.file),
-                       options.threads);
+    check_sweep_budget(graph, binder, table, options.cases, beside_the_table(budget, table, options.cases.size()), options.threads);
     options.stop = stop;
     run_rows(graph, binder, table, options, done, out);
   });

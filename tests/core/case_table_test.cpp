@@ -189,7 +189,7 @@ TEST_CASE("Case tables: a Latin hypercube kept as numbers shows and writes what 
       const CaseValue& cell = numbers.cell(i, v, scratch);
       CHECK(cell.written() == texts.cases[i][v].text);
       text.clear();
-      append_exact_text(text, *cell.si, cell.dimension.dimensionless() ? std::string() : cell.dimension.si_unit());
+      append_exact_text(text, *cell.si, exact_text_unit(cell.dimension));
       CHECK(text == texts.cases[i][v].text);
     }
 }

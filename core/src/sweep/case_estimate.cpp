@@ -161,14 +161,9 @@ double sweep_holdings(const CaseTable& table, std::size_t cases) {
   return bytes;
 }
 
-WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases, const std::string& file) {
+WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases) {
   const double held = sweep_holdings(table, cases);
-  if (!(held < budget.max_memory))
-    throw SceneError(file + ": the sweep's table of " + std::to_string(table.size()) + " cases and their order hold about " +
-                     budget_amount(held / (1 << 20)) + " MiB, more than the memory budget of " +
-                     budget_amount(budget.max_memory / (1 << 20)) + " MiB before any case runs. Fewer cases, or raise the budget with " +
-                     budget.names.memory + budget_amount(held * 1.5));
-  budget.max_memory -= held;
+  budget.max_memory -= held;  // below zero where the table alone fills it: every case is then refused, naming the table
   budget.memory_beside += held;
   budget.beside_holder = "the sweep's table of cases and order";
   return budget;

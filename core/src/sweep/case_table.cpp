@@ -247,9 +247,11 @@ bool json_number(std::string_view t) {
 
 std::string exact_text(double x, const Dimension& d) {
   std::string text;
-  append_exact_text(text, x, d.dimensionless() ? std::string() : d.si_unit());
+  append_exact_text(text, x, exact_text_unit(d));
   return text;
 }
+
+std::string exact_text_unit(const Dimension& d) { return d.dimensionless() ? std::string() : d.si_unit(); }
 
 void append_exact_text(std::string& out, double x, std::string_view si_unit) {
   // The shortest digits that read back as x (std::to_chars without a precision), then the unit.

@@ -80,13 +80,12 @@ void answer_output(const StudySpec& spec, const StudyData& data, const std::vect
   a.moments = moments(values, spec.confidence);  // in case order, before the values are sorted
   // Sorted in place for the quantiles: what reads the values after (the capability's and the
   // histogram's counts) does not depend on their order, and no copy is held beside them.
-  std::vector<double>& sorted = values;
-  std::sort(sorted.begin(), sorted.end());
-  if (!sorted.empty())
-    for (double level : spec.quantiles) a.quantiles.push_back(quantile(sorted, level, spec.confidence));
+  std::sort(values.begin(), values.end());
+  if (!values.empty())
+    for (double level : spec.quantiles) a.quantiles.push_back(quantile(values, level, spec.confidence));
   for (const SpecLimits& l : spec.limits)
     if (l.output == a.column.label) a.limits = &l;
-  double low = sorted.empty() ? 0.0 : sorted.front(), high = sorted.empty() ? 0.0 : sorted.back();
+  double low = values.empty() ? 0.0 : values.front(), high = values.empty() ? 0.0 : values.back();
   if (a.limits) {
     if (a.limits->lower) a.lower = shown(*a.limits->lower, a.column);
     if (a.limits->upper) a.upper = shown(*a.limits->upper, a.column);

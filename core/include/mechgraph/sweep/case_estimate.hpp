@@ -35,7 +35,7 @@ void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const Case
 double sweep_holdings(const CaseTable& table, std::size_t cases);
 /// `budget` with sweep_holdings taken off its memory (memory_beside says so in a refusal): what a
 /// sweep's threads may hold at once beside its table. (A study counts its design in its own.)
-/// Throws SceneError "FILE: ..." where the table and order alone fill the budget.
-WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases, const std::string& file);
+/// check_sweep_budget's refusal names the table where it is the larger part.
+WorkBudget beside_the_table(WorkBudget budget, const CaseTable& table, std::size_t cases);
 
 }  // namespace mechgraph

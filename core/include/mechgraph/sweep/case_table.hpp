@@ -60,9 +60,11 @@ struct CaseValue {
 /// x in SI as text that reads back as exactly x: the shortest such digits and the SI unit of `d`
 /// ("0.0025 m"); the text of a generated case value.
 std::string exact_text(double x, const Dimension& d);
-/// exact_text appended to `out`, the unit given as its text ("" for a dimensionless value,
-/// Dimension::si_unit() else): a writer of many values makes each variable's unit once.
+/// exact_text appended to `out`, the unit given as its text (exact_text_unit): a writer of many
+/// values makes each variable's unit once.
 void append_exact_text(std::string& out, double x, std::string_view si_unit);
+/// The unit exact_text writes for `d`: its SI unit, "" for a dimensionless value.
+std::string exact_text_unit(const Dimension& d);
 
 /// The double nearest `si` that a number written in `unit` reads back to ((number + offset) *
 /// scale): `si` itself where some number does (a value written in that unit, most values), else
