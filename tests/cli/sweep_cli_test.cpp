@@ -223,6 +223,41 @@ TEST_CASE("sweep --sample: the rows and the fingerprint of a seeded sample are p
   }
 }
 
+TEST_CASE("sweep --vary: the rows and the fingerprint of a grid of ranges are pinned", "[cli][sweep]") {
+  // Written by the build before grids of ranges were kept as numbers (each value with its exact
+  // text): the points, the digits a row shows (a column in the SI unit itself at magnitudes where
+  // %.15g and the shortest digits differ, one in mm, a unitless one) and the manifest's
+  // fingerprint, which --resume and merge compare, must not move.
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  const fs::path out = work_dir() / "grid.csv";
+  struct Pinned {
+    const char* vary;
+    std::vector<std::string> rows;
+    const char* fingerprint;
+  };
+  const Pinned pinned[] = {
+      {"--vary len=1e15m:2e17m:4 --vary s.gain=0.3:0.7:3",
+       {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+        "0,1e+15,0.3,6e+14,0,0.25,1,0,", "1,1e+15,0.5,1e+15,0,0.25,1,0,", "2,1e+15,0.7,1.4e+15,0,0.25,1,0,",
+        "3,67333333333333296,0.3,40399999999999976,0,0.25,1,0,", "4,67333333333333296,0.5,67333333333333296,0,0.25,1,0,",
+        "5,67333333333333296,0.7,94266666666666608,0,0.25,1,0,", "6,133666666666667008,0.3,80200000000000208,0,0.25,1,0,",
+        "7,133666666666667008,0.5,133666666666667008,0,0.25,1,0,", "8,133666666666667008,0.7,187133333333333792,0,0.25,1,0,",
+        "9,2e+17,0.3,1.2e+17,0,0.25,1,0,", "10,2e+17,0.5,2e+17,0,0.25,1,0,", "11,2e+17,0.7,279999999999999968,0,0.25,1,0,"},
+       "84ad8f67c721c108"},
+      {"--vary len=1mm:3mm:3 --vary s.gain=0.5:2:2",
+       {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+        "0,1,0.5,0.001,0,0.25,1,0,", "1,1,2,0.004,0,0.25,1,0,", "2,2,0.5,0.002,0,0.25,1,0,", "3,2,2,0.008,0,0.25,1,0,",
+        "4,3,0.5,0.003,0,0.25,1,0,", "5,3,2,0.012,0,0.25,1,0,"},
+       "ab34b8a904d3c2a9"}};
+  for (const Pinned& p : pinned) {
+    INFO(p.vary);
+    const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' " + p.vary + " --out '" + out.string() + "' --force");
+    REQUIRE(r.exit_code == 0);
+    CHECK(lines_of(slurp(out)) == p.rows);
+    CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == p.fingerprint);
+  }
+}
+
 TEST_CASE("sweep: the memory budget counts the table of cases and their order", "[cli][sweep][bounds]") {
   // 10^5 sampled cases of one value: 0.8 MB of table and 0.8 MB of order beside cases of a few
   // bytes each. Within 1 MB they are refused, naming the table as the larger part; within 10 MB

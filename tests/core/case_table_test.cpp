@@ -133,24 +133,85 @@ TEST_CASE("Case tables: a grid's points in its unit are the doubles those number
                          Range{"r=3000:7000rpm:5", "rpm", 3000, 7000, 5}}) {
     INFO(r.vary);
     const CaseTable table = make_grid({parse_vary(r.vary)});
-    REQUIRE(table.cases.size() == static_cast<std::size_t>(r.n));
+    REQUIRE(table.size() == static_cast<std::size_t>(r.n));
+    CaseValue scratch;
     for (long k = 0; k < r.n; ++k) {
       const double number = r.from + (r.to - r.from) * static_cast<double>(k) / static_cast<double>(r.n - 1);
       char text[64];
       std::snprintf(text, sizeof text, "%.15g %s", number, r.unit.c_str());
       INFO(text);
-      CHECK(*table.cases[static_cast<std::size_t>(k)][0].si == parse_quantity(text).value);
+      CHECK(*table.cell(static_cast<std::size_t>(k), 0, scratch).si == parse_quantity(text).value);
       std::snprintf(text, sizeof text, "%.15g", number);
       CHECK(table.shown(static_cast<std::size_t>(k), 0) == text);
     }
   }
   // Ends in different units: evenly spaced in SI, each on the numbers of the range's unit.
   const CaseTable mixed = make_grid({parse_vary("a=1mm:0.5cm:5")});
-  for (std::size_t k = 0; k < mixed.cases.size(); ++k) {
+  REQUIRE(mixed.size() == 5);
+  CaseValue scratch;
+  for (std::size_t k = 0; k < mixed.size(); ++k) {
     const std::string shown = mixed.shown(k, 0);
     INFO(shown);
-    CHECK(parse_quantity(shown + " mm").value == *mixed.cases[k][0].si);
+    CHECK(parse_quantity(shown + " mm").value == *mixed.cell(k, 0, scratch).si);
   }
+}
+
+TEST_CASE("Case tables: a grid of ranges kept as numbers shows and writes what rows of text did", "[core][sweep]") {
+  // Each range's values as parse_vary makes them (a number with its exact text), laid out as the
+  // grid was before it kept numbers: rows of those very values, the last range the fastest.
+  const std::vector<VarySpec> specs{parse_vary("lift=7mm:9mm:3"),      parse_vary("t=20degC:90degC:4"),
+                                    parse_vary("rpm=4000:7000rpm:3"),  parse_vary("ratio=1.4:1.6:2"),
+                                    parse_vary("action=120deg:140deg:3"), parse_vary("k=20N/mm:30N/mm:2"),
+                                    // In the SI unit itself, where %.15g and the exact text's digits differ;
+                                    // ends in different units, put on the range's unit's numbers.
+                                    parse_vary("x=1e15m:2e17m:4"),     parse_vary("a=1mm:0.5cm:3")};
+  const CaseTable numbers = make_grid(specs);
+  REQUIRE(numbers.cases.empty());
+  const std::size_t n = 3 * 4 * 3 * 2 * 3 * 2 * 4 * 3;
+  REQUIRE(numbers.size() == n);
+  REQUIRE(numbers.numbers.si.size() == n * specs.size());
+  CaseTable texts;
+  texts.variables = numbers.variables;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<CaseValue> row(specs.size());
+    std::size_t rest = i;
+    for (std::size_t v = specs.size(); v-- > 0;) {
+      row[v] = specs[v].values[rest % specs[v].values.size()];
+      rest /= specs[v].values.size();
+    }
+    texts.cases.push_back(std::move(row));
+  }
+  CaseValue scratch;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t v = 0; v < specs.size(); ++v) {
+      INFO("case " << i << ", " << specs[v].name);
+      const CaseValue& cell = numbers.cell(i, v, scratch);
+      REQUIRE(cell.si);
+      CHECK(*cell.si == *texts.cases[i][v].si);
+      CHECK(cell.dimension == texts.cases[i][v].dimension);
+      CHECK(cell.written() == texts.cases[i][v].text);
+      CHECK(numbers.shown(i, v) == texts.shown(i, v));
+    }
+  // A list among the ranges keeps the grid's values as written (a word, "3000rpm" as typed).
+  const CaseTable listed = make_grid({parse_vary("lift=7mm:9mm:3"), parse_vary("rpm=3000rpm,4000rpm")});
+  REQUIRE(listed.cases.size() == 6);
+  CHECK(listed.cases[1][1].text == "4000rpm");
+  CHECK(listed.shown(5, 0) == "9");
+}
+
+TEST_CASE("Case tables: a grid of ranges is bounded by its numbers, a grid with a list by rows of text", "[core][sweep][bounds]") {
+  // Two ranges of 3163 points: 1.0004 x 10^7 cases of 2 values, past max_case_cells (the rows of
+  // text it was refused by) and 160 MB as numbers.
+  const CaseTable big = make_grid({parse_vary("a=1mm:2mm:3163"), parse_vary("b=1:2:3163")});
+  CHECK(big.size() == 3163u * 3163u);
+  CaseValue scratch;
+  CHECK(*big.cell(big.size() - 1, 0, scratch).si == parse_quantity("2 mm").value);
+  // Each cap is checked before anything is allocated.
+  const VarySpec wide = parse_vary("w=1:2:4000");
+  CHECK_THROWS_WITH(make_grid({wide, wide, parse_vary("z=1:2:10")}),
+                    Catch::Matchers::Contains("160000000 cases of 3 values each are more than 250000000 values in one sweep"));
+  CHECK_THROWS_WITH(make_grid({wide, wide, parse_vary("z=1,2")}),
+                    Catch::Matchers::Contains("32000000 cases of 3 values each are more than 20000000 values in one sweep"));
 }
 
 TEST_CASE("Case tables: a Latin hypercube kept as numbers shows and writes what rows of text did", "[core][sweep]") {

@@ -448,7 +448,7 @@ std::string CaseTable::shown(std::size_t i, std::size_t v) const {
 
 VarySpec parse_vary(std::string_view text) {
   const auto [name, rhs] = split_assignment(text, "--vary", "NAME=FROM:TO:N (e.g. rpm=3000rpm:7000rpm:9) or NAME=A,B,C");
-  VarySpec spec{name, {}, {}};
+  VarySpec spec{name, {}, {}, false};
   const std::string context = "--vary " + excerpt(text);
   if (rhs.find(':') != std::string::npos) {
     std::vector<std::string> parts;
@@ -468,6 +468,7 @@ VarySpec parse_vary(std::string_view text) {
       throw SceneError(context + ": N = '" + excerpt(parts[2]) + "' must be a whole number of points from 1 to 10^7");
     if (n == 1 && from.value != to.value) throw SceneError(context + ": one point (N = 1) needs FROM = TO");
     spec.unit = from_unit.empty() ? to_unit_text : from_unit;
+    spec.range = true;
     // Where both ends are numbers in one unit (3000rpm:7000rpm, 3000:7000rpm), the points are
     // spaced evenly in that unit and each is read as a cell of that number in that unit would be:
     // 3500 rpm of the grid is the very double `--set rpm=3500rpm` gives, and its row shows 3500.
@@ -521,6 +522,7 @@ VarySpec parse_vary(std::string_view text) {
 CaseTable make_grid(const std::vector<VarySpec>& specs) {
   CaseTable table;
   std::size_t total = 1;
+  bool ranges_only = !specs.empty();
   for (const VarySpec& s : specs) {
     table.variables.push_back({s.name, s.unit});
     table.origin += (table.origin.empty() ? "--vary " : " --vary ") + s.name;
@@ -528,18 +530,41 @@ CaseTable make_grid(const std::vector<VarySpec>& specs) {
       throw SceneError("--vary: the grid would have more than " + std::string(max_sweep_cases_text) +
                        " cases; sample it instead (--sample NAME=LO:HI --n N)");
     total *= s.values.size();
+    ranges_only = ranges_only && s.range;
   }
-  if (total > max_case_cells / std::max<std::size_t>(specs.size(), 1))
-    throw SceneError("--vary: " + std::to_string(total) + " cases of " + std::to_string(specs.size()) + " values each are more than " +
-                     std::to_string(max_case_cells) + " values in one sweep");
-  table.cases.reserve(total);
-  for (std::size_t i = 0; i < total; ++i) {
-    std::vector<CaseValue> row(specs.size());
-    std::size_t rest = i;
-    for (std::size_t v = specs.size(); v-- > 0;) {
-      row[v] = specs[v].values[rest % specs[v].values.size()];
-      rest /= specs[v].values.size();
+  const std::size_t width = specs.size();
+  const std::size_t cap = ranges_only ? max_number_cells : max_case_cells;
+  if (total > cap / std::max<std::size_t>(width, 1))
+    throw SceneError("--vary: " + std::to_string(total) + " cases of " + std::to_string(width) + " values each are more than " +
+                     std::to_string(cap) + " values in one sweep");
+  // The cases in order, each spec's value index a digit of a mixed-radix counter whose last
+  // digit (the last spec) turns fastest.
+  std::vector<std::size_t> digit(width, 0);
+  const auto next_case = [&] {
+    for (std::size_t v = width; v-- > 0;) {
+      if (++digit[v] < specs[v].values.size()) return;
+      digit[v] = 0;
     }
+  };
+  if (ranges_only) {
+    // Every value a number written as its exact text, which a table of numbers makes again
+    // (CaseValue::written; append_shown with exact_text_digits): rows and fingerprint are the
+    // same, at 8 bytes a value. A grid of 10^6 cases as rows of CaseValue held 220 MB more and
+    // took 0.8 s longer before its first case ran.
+    table.numbers.count = total;
+    table.numbers.exact_text_digits = true;
+    for (const VarySpec& s : specs) table.numbers.dimensions.push_back(s.values.front().dimension);
+    reserve_large(table.numbers.si, total * width);
+    table.numbers.si.resize(total * width);
+    for (std::size_t i = 0; i < total; ++i, next_case())
+      for (std::size_t v = 0; v < width; ++v) table.numbers.si[i * width + v] = *specs[v].values[digit[v]].si;
+    return table;
+  }
+  table.cases.reserve(total);
+  for (std::size_t i = 0; i < total; ++i, next_case()) {
+    std::vector<CaseValue> row;
+    row.reserve(width);
+    for (std::size_t v = 0; v < width; ++v) row.push_back(specs[v].values[digit[v]]);
     table.cases.push_back(std::move(row));
   }
   return table;

@@ -140,10 +140,15 @@ struct VarySpec {
   std::string name;
   std::vector<CaseValue> values;
   std::string unit;
+  /// FROM:TO:N: every value a number whose text is its exact_text, which a table of numbers
+  /// makes again (make_grid keeps a grid of ranges only as numbers).
+  bool range = false;
 };
 VarySpec parse_vary(std::string_view text);
 
-/// The full grid of the specs; the last one varies fastest.
+/// The full grid of the specs; the last one varies fastest. A grid of ranges only is kept as
+/// numbers (CaseTable::Numbers, within max_number_cells), showing and fingerprinting as the same
+/// values kept as text; a grid with a list keeps its values as written (within max_case_cells).
 CaseTable make_grid(const std::vector<VarySpec>& specs);
 
 /// `NAME=LO:HI` for a Latin hypercube sample.
