@@ -18,6 +18,14 @@ Hasher& Hasher::add(std::string_view bytes) {
   return add_bytes(bytes.data(), bytes.size());
 }
 
+Hasher& Hasher::add_joined(std::initializer_list<std::string_view> parts) {
+  std::size_t size = 0;
+  for (const std::string_view part : parts) size += part.size();
+  add(static_cast<std::uint64_t>(size));
+  for (const std::string_view part : parts) add_bytes(part.data(), part.size());
+  return *this;
+}
+
 Hasher& Hasher::add(double v) {
   if (v == 0.0) v = 0.0;
   std::uint64_t bits;

@@ -31,9 +31,12 @@ std::set<std::string> files_read(const Graph& graph, const CaseTable& table) {
     } else if (const auto uses = graph.scene_param_uses.find(name); uses != graph.scene_param_uses.end()) {
       for (const SceneParamUse& use : uses->second) names_file = names_file || is_path(use.node, use.param);
     }
-    if (names_file)  // a path is a word: a table of numbers only (CaseTable::Numbers) names none
-      for (const auto& row : table.cases)
-        if (!row[v].text.empty()) files.insert(row[v].text);
+    const bool numbers_only = table.cases.empty() && table.numbers.written.ends.empty();
+    if (names_file && !numbers_only) {  // a path is a word: a table of numbers only (a sample, a design) names none
+      CaseValue scratch;
+      for (std::size_t i = 0; i < table.size(); ++i)
+        if (const CaseValue& value = table.cell(i, v, scratch); !value.text.empty()) files.insert(value.text);
+    }
   }
   return files;
 }
@@ -60,7 +63,17 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
   for (const SweepVariable& v : table.variables) h.add(v.name).add(v.unit);
   // Every case as written() gives it: a table of numbers (a sample of millions) hashes each
   // value's exact text made in one buffer, each variable's unit made once.
-  if (table.cases.empty()) {
+  if (table.cases.empty() && !table.numbers.written.ends.empty()) {
+    // A cases file's values as written: a bare number's "CELL UNIT" hashed from its parts.
+    const CaseTable::Numbers::Written& written = table.numbers.written;
+    const std::size_t width = table.numbers.dimensions.size();
+    for (std::size_t k = 0; k < written.ends.size(); ++k) {
+      const std::size_t begin = k == 0 ? 0 : written.ends[k - 1];
+      const std::string_view text(written.text.data() + begin, written.ends[k] - begin);
+      if (written.in_column_unit[k]) h.add_joined({text, " ", written.column_units[k % width]});
+      else h.add(text);
+    }
+  } else if (table.cases.empty()) {
     std::vector<std::string> units;
     for (const Dimension& d : table.numbers.dimensions) units.push_back(exact_text_unit(d));
     std::string text;

@@ -258,6 +258,28 @@ TEST_CASE("sweep --vary: the rows and the fingerprint of a grid of ranges are pi
   }
 }
 
+TEST_CASE("sweep --cases: the rows and the fingerprint of a cases file are pinned", "[cli][sweep]") {
+  // Written by the build before a cases file's values were kept as numbers with their texts
+  // beside them (a string each): bare numbers under the header's unit, a cell with its own unit,
+  // quoted and padded cells, a sign, a word the parameter refuses, and the fingerprint.
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  const std::string cases = scratch_file("pinned_cases.csv", "# pinned\nlen [mm],s.gain\n1,0.5\n2.5 mm,+2\n\"0.003 m\",1.5\n 4 ,abc\n"
+                                                            "1e-1,\"2\"\n5.000,0.25\n");
+  const fs::path out = work_dir() / "cases_rows.csv";
+  const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' --cases '" + cases + "' --out '" + out.string() + "' --force");
+  REQUIRE(r.exit_code == 0);
+  const std::vector<std::string> rows{
+      "case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+      "0,1,0.5,0.001,0,0.25,1,0,",
+      "1,2.5,2,0.01,0,0.25,1,0,",
+      "2,3,1.5,0.009000000000000001,0,0.25,1,0,",
+      "3,4,abc,,,,,2,s.gain = 'abc': parameter 'gain' of node 's' (test.add): expected a number at the start of 'abc'",
+      "4,1e-1,2,4e-04,0,0.25,1,0,",
+      "5,5.000,0.25,0.0025,0,0.25,1,0,"};
+  CHECK(lines_of(slurp(out)) == rows);
+  CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == "f2fe776143d4eb98");
+}
+
 TEST_CASE("sweep: the memory budget counts the table of cases and their order", "[cli][sweep][bounds]") {
   // 10^5 sampled cases of one value: 0.8 MB of table and 0.8 MB of order beside cases of a few
   // bytes each. Within 1 MB they are refused, naming the table as the larger part; within 10 MB

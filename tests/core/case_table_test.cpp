@@ -2,12 +2,17 @@
 // doubles exactly, through the column's unit, and are printf's "%.15g" wherever that already does
 // (what rows always held).
 #include <mechgraph/sweep/case_table.hpp>
+#include <mechgraph/sweep/case_estimate.hpp>
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/units.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <charconv>
+#include <filesystem>
+#include <fstream>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -291,4 +296,71 @@ TEST_CASE("Case tables: a sample's size is bounded by its numbers, not by rows o
   CHECK_THROWS_WITH(make_latin_hypercube(many, 10'000'000, 1),
                     Catch::Matchers::Contains("cases of 26 values each are more than 250000000 values in one sweep"));
   CHECK_THROWS_WITH(make_latin_hypercube(six, max_sweep_cases + 1, 1), Catch::Matchers::Contains("at most 2.5 x 10^8 cases"));
+}
+
+TEST_CASE("Case tables: a cases file is kept as numbers with each value's text beside them", "[core][sweep]") {
+  // What each cell's CaseValue held while a cases file kept a row of them: its text as written
+  // ("CELL UNIT" for a bare number under the header's unit), its number read from that text, a
+  // word with no number.
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_case_table_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "cases.csv";
+  // A column without a header unit takes its first number's ("5000 rpm"); a bare number under it
+  // stays bare.
+  std::ofstream(file) << "len [mm],gain,t [degC],n\n1,0.5,20,5000 rpm\n# a comment\n\n2.5 mm,+2,\"300 K\",6000\n"
+                         "\"0.003 m\",1.5,-5,7e3 rpm\n 4 ,abc,1e1,x\n";
+  const CaseTable table = read_cases_csv(file);
+  // Blank and comment lines reserve nothing: a file of one case under a wide header and many
+  // comments holds room for one case's values.
+  {
+    std::ofstream out(file);
+    out << "a,b,c,d,e,f,g,h\n";
+    for (int i = 0; i < 10000; ++i) out << "# ,,,,,,,,,,,,,,,,\n\n";
+    out << "1,2,3,4,5,6,7,8\n";
+  }
+  const CaseTable commented = read_cases_csv(file);
+  std::filesystem::remove_all(dir);
+  CHECK(commented.size() == 1);
+  CHECK(commented.numbers.si.capacity() <= 8);
+  CHECK(commented.numbers.written.text.capacity() <= 64);
+  REQUIRE(table.size() == 4);
+  CHECK(table.cases.empty());
+  CHECK(table.variables[3].unit == "rpm");
+  const std::vector<std::vector<std::string>> texts{{"1 mm", "0.5", "20 degC", "5000 rpm"},
+                                                    {"2.5 mm", "+2", "300 K", "6000"},
+                                                    {"0.003 m", "1.5", "-5 degC", "7e3 rpm"},
+                                                    {"4 mm", "abc", "1e1 degC", "x"}};
+  CaseTable rows;  // the same values as rows of CaseValue
+  rows.variables = table.variables;
+  for (const auto& line : texts) {
+    std::vector<CaseValue> row;
+    for (const std::string& text : line) row.push_back(read_case_value(text, "test"));
+    rows.cases.push_back(std::move(row));
+  }
+  CaseValue scratch, bare;
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t v = 0; v < 4; ++v) {
+      INFO("case " << i << ", variable " << v);
+      const CaseValue& expected = rows.cases[i][v];
+      const CaseValue& cell = table.cell(i, v, scratch);
+      CHECK(cell.text == expected.text);
+      CHECK(cell.written() == expected.text);
+      CHECK(cell.si == expected.si);
+      CHECK(cell.dimension == expected.dimension);
+      CHECK(table.shown(i, v) == rows.shown(i, v));
+      // The number alone, as a block's check reads it: the same number and dimension, no text.
+      const CaseValue& number = table.number_cell(i, v, bare);
+      CHECK(number.si == expected.si);
+      CHECK(number.dimension == expected.dimension);
+      CHECK(number.text.empty());
+    }
+  CHECK_FALSE(table.cell(3, 1, scratch).si);  // the word
+  // A bare number is shown as written, another unit's value in the column's unit.
+  CHECK(table.shown(3, 0) == "4");
+  CHECK(table.shown(2, 0) == "3");
+  // Its holdings count the texts and everything else kept beside the numbers.
+  const CaseTable::Numbers::Written& w = table.numbers.written;
+  CHECK(sweep_holdings(table, 0) == static_cast<double>(table.numbers.si.capacity() * sizeof(double) + w.text.capacity() +
+                                                         w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
+                                                         w.dimensions.capacity() * sizeof(Dimension)));
 }

@@ -116,12 +116,14 @@ TEST_CASE("sweep --cases: header units, units in cells, words, and located error
   const auto file = dir / "cases.csv";
   std::ofstream(file) << "# designs to try\nlift [mm],rpm,integrator\n8,5000 rpm,cvode\n\n9.5,6000rpm,\"dopri5\"\n";
   const CaseTable t = read_cases_csv(file);
-  REQUIRE(t.cases.size() == 2);
-  CHECK_THAT(*t.cases[1][0].si, WithinRel(9.5e-3, 1e-15));
+  REQUIRE(t.size() == 2);
+  CaseValue scratch;
+  CHECK_THAT(*t.cell(1, 0, scratch).si, WithinRel(9.5e-3, 1e-15));
   CHECK(t.variables[0].unit == "mm");
   CHECK(t.variables[1].unit == "rpm");
   CHECK(t.shown(1, 1) == "6000");
-  CHECK(t.cases[1][2].text == "dopri5");
+  CHECK(t.cell(1, 2, scratch).text == "dopri5");
+  CHECK_FALSE(t.cell(1, 2, scratch).si);
   std::ofstream(file) << "lift [mm],rpm\n8,5000 rpm\n9\n";
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 1 cells, the header has 2"));
   std::ofstream(file) << "lift [mm],rpm\n8,\n";
@@ -137,18 +139,18 @@ TEST_CASE("sweep --cases: header units, units in cells, words, and located error
   // A byte order mark, CRLF line ends, padded cells, no line break at the end.
   std::ofstream(file) << "\xEF\xBB\xBFlift [mm],rpm\r\n 8 ,5000 rpm\r\n\r\n9.5\t,\"6000 rpm\"";
   const CaseTable u = read_cases_csv(file);
-  REQUIRE(u.cases.size() == 2);
+  REQUIRE(u.size() == 2);
   CHECK(u.variables[0].name == "lift");
-  CHECK(u.cases[0][0].text == "8 mm");
-  CHECK(u.cases[1][0].text == "9.5 mm");
-  CHECK_THAT(*u.cases[1][1].si, WithinRel(6000.0 * std::numbers::pi / 30.0, 1e-15));
+  CHECK(u.cell(0, 0, scratch).text == "8 mm");
+  CHECK(u.cell(1, 0, scratch).text == "9.5 mm");
+  CHECK_THAT(*u.cell(1, 1, scratch).si, WithinRel(6000.0 * std::numbers::pi / 30.0, 1e-15));
   // A header as mechgraph's own CSVs write it, the angle reference after degrees: read as degrees.
   std::ofstream(file) << "timing [deg (crank)],rate [mm/deg (cam)]\n90,2\n";
   const CaseTable tagged = read_cases_csv(file);
   CHECK(tagged.variables[0].unit == "deg");
   CHECK(tagged.variables[1].unit == "mm/deg");
-  CHECK_THAT(*tagged.cases[0][0].si, WithinRel(std::numbers::pi / 2, 1e-15));
-  CHECK_THAT(*tagged.cases[0][1].si, WithinRel(2e-3 / (std::numbers::pi / 180.0), 1e-15));
+  CHECK_THAT(*tagged.cell(0, 0, scratch).si, WithinRel(std::numbers::pi / 2, 1e-15));
+  CHECK_THAT(*tagged.cell(0, 1, scratch).si, WithinRel(2e-3 / (std::numbers::pi / 180.0), 1e-15));
   std::ofstream(file) << "lift [mm],rpm\r\n8,5000 rpm\r\n\"9\",x y,\r\n";
   CHECK_THROWS_WITH(read_cases_csv(file), Contains("cases.csv:3:1: 3 cells, the header has 2"));
   std::filesystem::remove_all(dir);

@@ -154,7 +154,7 @@ std::vector<BlockPlan::CaseOutcome> BlockPlan::run(Graph& graph, const CaseTable
   CaseValue made;
   for (std::size_t v = 0; v < targets_.size(); ++v)
     for (std::size_t k = 0; k < n; ++k) {
-      const CaseValue& value = table.cell(indices[k], v, made);
+      const CaseValue& value = table.number_cell(indices[k], v, made);  // writes_number reads the number only
       if (binder_.writes_number(v, value)) columns[v][k] = *value.si;
       else cases.fail(k);
     }

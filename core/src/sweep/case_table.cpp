@@ -277,11 +277,38 @@ double expressible_in(double si, const std::optional<UnitScale>& u) {
 
 std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
 
+void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::size_t v) const {
+  const std::size_t begin = k == 0 ? 0 : ends[k - 1];
+  out.append(text.data() + begin, ends[k] - begin);
+  if (in_column_unit[k]) {
+    out.push_back(' ');
+    out.append(column_units[v]);
+  }
+}
+
 const CaseValue& CaseTable::cell(std::size_t i, std::size_t v, CaseValue& scratch) const {
   if (!cases.empty()) return cases[i][v];
+  const std::size_t k = i * numbers.dimensions.size() + v;
   scratch.text.clear();
-  scratch.si = numbers.si[i * numbers.dimensions.size() + v];
-  scratch.dimension = numbers.dimensions[v];
+  if (numbers.written.ends.empty()) {
+    scratch.si = numbers.si[k];
+    scratch.dimension = numbers.dimensions[v];
+    return scratch;
+  }
+  numbers.written.append(scratch.text, k, v);
+  if (const double x = numbers.si[k]; std::isnan(x)) scratch.si.reset();  // a word
+  else scratch.si = x;
+  scratch.dimension = numbers.written.dimensions[k];
+  return scratch;
+}
+
+const CaseValue& CaseTable::number_cell(std::size_t i, std::size_t v, CaseValue& scratch) const {
+  if (!cases.empty()) return cases[i][v];
+  const std::size_t k = i * numbers.dimensions.size() + v;
+  scratch.text.clear();
+  if (const double x = numbers.si[k]; std::isnan(x)) scratch.si.reset();  // a word
+  else scratch.si = x;
+  scratch.dimension = numbers.written.ends.empty() ? numbers.dimensions[v] : numbers.written.dimensions[k];
   return scratch;
 }
 
@@ -382,6 +409,21 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
 }
 
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const {
+  // A cases file's bare number under its column's unit, kept without its text: what the branch
+  // below makes of its "CELL UNIT" (the cell as written), without making that text.
+  if (cases.empty() && !numbers.written.ends.empty()) {
+    const std::size_t k = i * numbers.dimensions.size() + v;
+    const Numbers::Written& w = numbers.written;
+    if (w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions[k] &&
+        !(numbers.exact_text_digits && unit.names_si) && w.column_units[v] == variables[v].unit && !variables[v].unit.empty()) {
+      const std::size_t begin = k == 0 ? 0 : w.ends[k - 1];
+      const std::string_view cell(w.text.data() + begin, w.ends[k] - begin);
+      if (json_number(cell)) {
+        out.append(cell);
+        return true;
+      }
+    }
+  }
   CaseValue made;
   const CaseValue& value = cell(i, v, made);
   if (!value.si) {
@@ -637,6 +679,25 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
   std::vector<int> starts;  // each field's 1-based column in its line, for the messages
   std::vector<std::string> header_unit_errors;  // per column: why its header's unit is no unit ("" when it is)
   std::vector<int> header_columns;              // per column: where its header stands on line 1
+  // The cases as numbers with each value's text beside them (CaseTable::Numbers::Written): no
+  // string and no row of CaseValue a case (a million cases of six values held 700 MB that way).
+  // The kept texts are parts of the file (a bare number's unit is not repeated): their ends fit
+  // 32 bits.
+  static_assert(max_cases_file_bytes <= std::numeric_limits<std::uint32_t>::max());
+  CaseTable::Numbers::Written& written = table.numbers.written;
+  std::size_t width = 0;
+  std::vector<char> dimension_known;  // per column: its first number seen (its dimension the column's)
+  const auto keep = [&](std::size_t v, std::string_view text, bool in_column_unit, double si, const Dimension& dimension) {
+    written.text.append(text);
+    written.ends.push_back(static_cast<std::uint32_t>(written.text.size()));
+    written.in_column_unit.push_back(in_column_unit ? 1 : 0);
+    written.dimensions.push_back(dimension);
+    table.numbers.si.push_back(si);
+    if (!std::isnan(si) && !dimension_known[v]) {
+      dimension_known[v] = 1;
+      table.numbers.dimensions[v] = dimension;
+    }
+  };
   // Lines as std::getline gives them: split at '\n', a last line without one included.
   for (std::size_t at = 0; at < content.size();) {
     const std::size_t newline = content.find('\n', at);
@@ -692,19 +753,41 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         header_unit_errors.push_back(unit_error);
         header_columns.push_back(starts[table.variables.size() - 1]);
       }
+      width = table.variables.size();
+      written.column_units = header_units;
+      table.numbers.dimensions.assign(width, Dimension{});
+      dimension_known.assign(width, 0);
+      // Room for as many values as the rest of the file's case lines can hold (a value ends at a
+      // comma or its line's end; the cells' texts are parts of those lines): the arrays grow once,
+      // not by doubling a million-case table several times, and a file of few cases reserves
+      // little whatever its header, blank lines or comments (sweep_holdings counts what is reserved).
+      std::size_t room = 0, case_bytes = 0;
+      for (std::size_t from = at; from < content.size();) {
+        const std::size_t end = std::min(content.find('\n', from), content.size());
+        const std::string_view case_line = trimmed_view(std::string_view(content).substr(from, end - from));
+        if (!case_line.empty() && case_line[0] != '#') {
+          room += 1 + static_cast<std::size_t>(std::count(case_line.begin(), case_line.end(), ','));
+          case_bytes += case_line.size();
+        }
+        from = end + 1;
+      }
+      room = std::min(room, max_case_cells + width);
+      written.text.reserve(case_bytes);
+      reserve_large(table.numbers.si, room);
+      written.ends.reserve(room);
+      written.in_column_unit.reserve(room);
+      written.dimensions.reserve(room);
       continue;
     }
-    if (table.cases.size() >= max_sweep_cases)
+    if (table.numbers.count >= max_sweep_cases)
       throw SceneError(where + ":" + std::to_string(number) + ":1: more than " + std::string(max_sweep_cases_text) +
                        " cases in one file; split it into several sweeps");
-    if ((table.cases.size() + 1) * std::max<std::size_t>(table.variables.size(), 1) > max_case_cells)
+    if ((table.numbers.count + 1) * std::max<std::size_t>(width, 1) > max_case_cells)
       throw SceneError(where + ":" + std::to_string(number) + ":1: more than " + std::to_string(max_case_cells) +
                        " values in one file; split it into several sweeps");
     if (fields.size() != table.variables.size())
       throw SceneError(where + ":" + std::to_string(number) + ":1: " + std::to_string(fields.size()) +
                        " cells, the header has " + std::to_string(table.variables.size()));
-    std::vector<CaseValue> row;
-    row.reserve(fields.size());
     for (std::size_t v = 0; v < fields.size(); ++v) {
       const std::string_view cell = trimmed_view(fields[v]);
       const int column = starts[v];
@@ -722,10 +805,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         const auto [end, ec] = std::from_chars(first, last, x);
         const double si = (x + u->offset) * u->scale;
         if (ec == std::errc() && end == last && std::isfinite(x) && std::isfinite(si)) {
-          std::string text;  // "CELL UNIT", made once
-          text.reserve(cell.size() + 1 + unit.size());
-          text.append(cell).append(1, ' ').append(unit);
-          row.push_back(CaseValue{std::move(text), si, u->dimension});
+          keep(v, cell, true, si, u->dimension);  // "CELL UNIT"
           continue;
         }
       }
@@ -747,12 +827,16 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
       }
       if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell_text);
-      row.push_back(std::move(value));
+      // "CELL UNIT" kept as the cell and a mark, as above: the kept text stays within the file's size.
+      const bool in_unit = !unit.empty() && value.text.size() == cell_text.size() + 1 + unit.size() &&
+                           value.text.starts_with(cell_text) && value.text.ends_with(unit) && value.text[cell_text.size()] == ' ';
+      keep(v, in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
+           value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
     }
-    table.cases.push_back(std::move(row));
+    ++table.numbers.count;
   }
   if (!header) throw SceneError(where + ":1:1: no header (a line of parameter names, e.g. rpm,part.length [mm])");
-  if (table.cases.empty()) throw SceneError(where + ": no cases below the header");
+  if (table.numbers.count == 0) throw SceneError(where + ": no cases below the header");
   return table;
 }
 

@@ -103,12 +103,24 @@ struct CaseTable {
   /// empty. Read either through size(), cell() and row().
   struct Numbers {
     std::size_t count = 0;              // cases
-    std::vector<Dimension> dimensions;  // of each variable's values
+    std::vector<Dimension> dimensions;  // of each variable's values (a file's: its first number's)
     std::vector<double> si;             // si[i * dimensions.size() + v]: variable v in case i, SI
     /// A value in a column named by its SI unit ("m") shows the digits of its exact text, as a
     /// sample's rows did while each value kept that text (make_latin_hypercube sets it); else
     /// as every number made in SI is shown (a study's design: %.15g where that reads back).
     bool exact_text_digits = false;
+    /// The values as a file wrote them (a cases file), kept beside the numbers without a string
+    /// each: value k (k = i * width + v) is what a CaseValue of it held. Empty where the text is
+    /// made from the numbers.
+    struct Written {
+      std::string text;                          // every value's own text, one after another
+      std::vector<std::uint32_t> ends;           // value k's ends at ends[k], starts at ends[k - 1] (or 0)
+      std::vector<std::uint8_t> in_column_unit;  // 1: a bare number, its CaseValue text "TEXT UNIT"
+      std::vector<Dimension> dimensions;         // value k's own; a word's (NaN in si) none
+      std::vector<std::string> column_units;     // per variable: the UNIT of its bare numbers
+      /// Value k's CaseValue text appended to `out` (v: its variable).
+      void append(std::string& out, std::size_t k, std::size_t v) const;
+    } written;
   } numbers;
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
@@ -117,6 +129,9 @@ struct CaseTable {
   /// Variable v of case i: the stored value, or `scratch` made from the numbers (a number with no
   /// text: CaseValue::written() makes it when asked). Valid while both live.
   const CaseValue& cell(std::size_t i, std::size_t v, CaseValue& scratch) const;
+  /// cell() without the text a table of numbers keeps or makes: the number and its dimension (a
+  /// word: no number, its text empty), for a check that reads numbers only.
+  const CaseValue& number_cell(std::size_t i, std::size_t v, CaseValue& scratch) const;
   /// Case i's values, the same way (`scratch` keeps its storage from case to case).
   const std::vector<CaseValue>& row(std::size_t i, std::vector<CaseValue>& scratch) const;
 
