@@ -165,57 +165,99 @@ std::vector<SetValue> set_values(const py::list& sets) {
 // A sweep's cases from columns, each through the one conversion of Python values: numbers in the
 // column's unit, or in SI when the column is marked SI; or text cells read as a cases file's are (a
 // bare number takes the column's unit). Numbers without a unit for a parameter with a dimension
-// are refused (unit_rule.hpp).
+// are refused (unit_rule.hpp). Kept as a cases file is (CaseTable::Numbers with each value's text
+// beside it): a number in a unit is its 17 digits, read as the cell "DIGITS UNIT" would be.
 CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
                      const std::vector<bool>& si, const py::list& columns) {
   CaseTable table;
   table.origin = "python";
   if (py::len(columns) != names.size() || units.size() != names.size() || si.size() != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
                                                          std::to_string(py::len(columns)) + " columns");
+  const std::size_t width = names.size();
+  // Every column read and checked first, then the cases one after another.
+  std::vector<ColumnValues> values;
+  std::vector<std::optional<Dimension>> dimension_of(width);
+  std::vector<bool> bare_refused(width);
   std::size_t n = 0;
-  for (std::size_t v = 0; v < names.size(); ++v) {
+  for (std::size_t v = 0; v < width; ++v) {
     const std::string& name = names[v];
     const std::string& unit = units[v];
     table.variables.push_back({name, unit});
-    const ColumnValues column = column_values(columns[v], "cases: column '" + excerpt(name) + "'");
+    values.push_back(column_values(columns[v], "cases: column '" + excerpt(name) + "'"));
+    const ColumnValues& column = values.back();
     if (v == 0) {
       n = column.size();
       if (n > max_sweep_cases)
         throw SceneError("more than " + std::string(max_sweep_cases_text) + " cases in one sweep; split it into several sweeps");
-      if (n * names.size() > max_case_cells)
+      if (n * width > max_case_cells)
         throw SceneError("more than " + std::to_string(max_case_cells) + " values in one sweep; split it into several sweeps");
-      table.cases.assign(n, std::vector<CaseValue>(names.size()));
     } else if (column.size() != n) {
       throw SceneError("cases: column '" + excerpt(name) + "' has " + std::to_string(column.size()) + " values, the first " +
                        std::to_string(n));
     }
-    const auto context = [&](std::size_t i) { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
-    const std::optional<Dimension> d = unit.empty() ? session.dimension_of(name) : std::nullopt;
-    const auto refuse_bare = [&] {
-      throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *d,
-                                           session.scene_unit_of(name, *d), BareKind::column));
-    };
-    const bool bare_refused = unit.empty() && !si[v] && d && !d->dimensionless();
-    if (!column.text) {
-      if (bare_refused && n > 0) refuse_bare();
-      for (std::size_t i = 0; i < n; ++i) {
-        const double x = column.numbers[i];
-        if (!std::isfinite(x)) throw SceneError(context(i) + ": not a finite number");
-        table.cases[i][v] = unit.empty() ? value_from_si(x, d.value_or(Dimension{}), context(i))
-                                         : value_from_text(si_text(x, Dimension{}) + " " + unit, context(i));
-      }
-    } else {
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::string& cell = column.cells[i];
-        CaseValue value = value_from_text(cell, context(i));
-        const bool bare = value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos;
-        if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context(i));
-        else if (bare && bare_refused) refuse_bare();
-        else if (bare && si[v] && d) value = value_from_si(*value.si, *d, context(i));
-        table.cases[i][v] = std::move(value);
-      }
-    }
+    dimension_of[v] = unit.empty() ? session.dimension_of(name) : std::nullopt;
+    bare_refused[v] = unit.empty() && !si[v] && dimension_of[v] && !dimension_of[v]->dimensionless();
   }
+  CaseTable::Numbers::Written& written = table.numbers.written;
+  table.numbers.count = n;
+  table.numbers.dimensions.assign(width, Dimension{});  // each value keeps its own
+  written.column_units = units;
+  table.numbers.si.reserve(n * width);
+  written.ends.reserve(n * width);
+  written.in_column_unit.reserve(n * width);
+  written.dimensions.reserve(n * width);
+  std::vector<std::optional<UnitScale>> scales(width);
+  for (std::size_t v = 0; v < width; ++v)
+    if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);
+  // A value as a CaseValue gives it, kept: "TEXT UNIT" as TEXT and the mark.
+  const auto keep = [&table](std::size_t v, const CaseValue& value, const std::string& cell_text) {
+    const std::string& unit = table.numbers.written.column_units[v];
+    const bool in_unit = !unit.empty() && value.text.size() == cell_text.size() + 1 + unit.size() &&
+                         value.text.starts_with(cell_text) && value.text.ends_with(unit) && value.text[cell_text.size()] == ' ';
+    table.keep_written(in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
+                       value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
+  };
+  const auto refuse_bare = [&](std::size_t v) {
+    const std::string& name = names[v];
+    throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *dimension_of[v],
+                                         session.scene_unit_of(name, *dimension_of[v]), BareKind::column));
+  };
+  for (std::size_t v = 0; v < width; ++v)
+    if (!values[v].text && bare_refused[v] && n > 0) refuse_bare(v);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t v = 0; v < width; ++v) {
+      const std::string& name = names[v];
+      const std::string& unit = units[v];
+      const auto context = [&] { return "cases: column '" + excerpt(name) + "', row " + std::to_string(i); };
+      const ColumnValues& column = values[v];
+      if (!column.text) {
+        const double x = column.numbers[i];
+        if (!std::isfinite(x)) throw SceneError(context() + ": not a finite number");
+        if (unit.empty()) {  // value_from_si's value: its text si_text's
+          const Dimension d = dimension_of[v].value_or(Dimension{});
+          table.keep_written(si_text(x, d), false, x, d);
+          continue;
+        }
+        // The number's 17 digits in the column's unit (si_text's), read as the cell "DIGITS UNIT" is.
+        char buffer[40];
+        const auto printed = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
+        const std::string_view digits(buffer, static_cast<std::size_t>(printed.ptr - buffer));
+        if (scales[v])
+          if (const std::optional<double> number = bare_number_in(digits, *scales[v])) {
+            table.keep_written(digits, true, *number, scales[v]->dimension);
+            continue;
+          }
+        keep(v, value_from_text(std::string(digits) + " " + unit, context()), std::string(digits));
+        continue;
+      }
+      const std::string& cell = column.cells[i];
+      CaseValue value = value_from_text(cell, context());
+      const bool bare = value.si && value.dimension.dimensionless() && cell.find_first_not_of("0123456789.eE+- ") == std::string::npos;
+      if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context());
+      else if (bare && bare_refused[v]) refuse_bare(v);
+      else if (bare && si[v] && dimension_of[v]) value = value_from_si(*value.si, *dimension_of[v], context());
+      keep(v, value, cell);
+    }
   return table;
 }
 

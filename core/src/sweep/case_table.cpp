@@ -286,6 +286,27 @@ void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::s
   }
 }
 
+void CaseTable::keep_written(std::string_view text, bool in_column_unit, double si, const Dimension& dimension) {
+  Numbers::Written& w = numbers.written;
+  w.text.append(text);
+  w.ends.push_back(static_cast<std::uint32_t>(w.text.size()));
+  w.in_column_unit.push_back(in_column_unit ? 1 : 0);
+  w.dimensions.push_back(dimension);
+  numbers.si.push_back(si);
+}
+
+std::optional<double> bare_number_in(std::string_view text, const UnitScale& unit) {
+  // What parse_quantity makes of "TEXT UNIT": the number by from_chars, then (x + offset) * scale.
+  if (text.empty()) return std::nullopt;
+  const char* first = text.data() + (text.front() == '+' ? 1 : 0);
+  const char* last = text.data() + text.size();
+  double x = 0.0;
+  const auto [end, ec] = std::from_chars(first, last, x);
+  const double si = (x + unit.offset) * unit.scale;
+  if (ec != std::errc() || end != last || !std::isfinite(x) || !std::isfinite(si)) return std::nullopt;
+  return si;
+}
+
 const CaseValue& CaseTable::cell(std::size_t i, std::size_t v, CaseValue& scratch) const {
   if (!cases.empty()) return cases[i][v];
   const std::size_t k = i * numbers.dimensions.size() + v;
@@ -686,18 +707,6 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
   static_assert(max_cases_file_bytes <= std::numeric_limits<std::uint32_t>::max());
   CaseTable::Numbers::Written& written = table.numbers.written;
   std::size_t width = 0;
-  std::vector<char> dimension_known;  // per column: its first number seen (its dimension the column's)
-  const auto keep = [&](std::size_t v, std::string_view text, bool in_column_unit, double si, const Dimension& dimension) {
-    written.text.append(text);
-    written.ends.push_back(static_cast<std::uint32_t>(written.text.size()));
-    written.in_column_unit.push_back(in_column_unit ? 1 : 0);
-    written.dimensions.push_back(dimension);
-    table.numbers.si.push_back(si);
-    if (!std::isnan(si) && !dimension_known[v]) {
-      dimension_known[v] = 1;
-      table.numbers.dimensions[v] = dimension;
-    }
-  };
   // Lines as std::getline gives them: split at '\n', a last line without one included.
   for (std::size_t at = 0; at < content.size();) {
     const std::size_t newline = content.find('\n', at);
@@ -755,8 +764,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       }
       width = table.variables.size();
       written.column_units = header_units;
-      table.numbers.dimensions.assign(width, Dimension{});
-      dimension_known.assign(width, 0);
+      table.numbers.dimensions.assign(width, Dimension{});  // each value keeps its own
       // Room for as many values as the rest of the file's case lines can hold (a value ends at a
       // comma or its line's end; the cells' texts are parts of those lines): the arrays grow once,
       // not by doubling a million-case table several times, and a file of few cases reserves
@@ -798,17 +806,11 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       // A plain number under a column with a unit, the common cell, read at once: what
       // parse_quantity makes of "CELL UNIT" (the number by from_chars, then (x + offset) * scale
       // with the column's unit parsed once), else the general reading below, with its messages.
-      if (const std::optional<UnitScale>& u = column_units[v]) {
-        const char* first = cell.data() + (cell.front() == '+' ? 1 : 0);
-        const char* last = cell.data() + cell.size();
-        double x = 0.0;
-        const auto [end, ec] = std::from_chars(first, last, x);
-        const double si = (x + u->offset) * u->scale;
-        if (ec == std::errc() && end == last && std::isfinite(x) && std::isfinite(si)) {
-          keep(v, cell, true, si, u->dimension);  // "CELL UNIT"
+      if (const std::optional<UnitScale>& u = column_units[v])
+        if (const std::optional<double> si = bare_number_in(cell, *u)) {
+          table.keep_written(cell, true, *si, u->dimension);  // "CELL UNIT"
           continue;
         }
-      }
       const std::string at = where + ":" + std::to_string(number) + ":" + std::to_string(column);
       const std::string cell_text(cell);
       // A number beyond a double's range says so (1e400, 1e-400), not that it is no number.
@@ -830,8 +832,8 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       // "CELL UNIT" kept as the cell and a mark, as above: the kept text stays within the file's size.
       const bool in_unit = !unit.empty() && value.text.size() == cell_text.size() + 1 + unit.size() &&
                            value.text.starts_with(cell_text) && value.text.ends_with(unit) && value.text[cell_text.size()] == ' ';
-      keep(v, in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
-           value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
+      table.keep_written(in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
+                         value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
     }
     ++table.numbers.count;
   }

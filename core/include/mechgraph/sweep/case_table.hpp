@@ -75,6 +75,12 @@ double expressible_in(double si, const std::string& unit);
 /// The same for a unit parsed once (nullopt: `si` unchanged), for a design's millions of values.
 double expressible_in(double si, const std::optional<UnitScale>& unit);
 
+/// A number written without a unit in a column of `unit` (a cases file's bare cell, a Python
+/// column's number): (x + offset) * scale, the value read_case_value reads from "TEXT UNIT",
+/// without reading the unit again; nullopt where TEXT is not a plain number ("+" allowed) or the
+/// value is not finite (read_case_value's own reading then decides, with its message).
+std::optional<double> bare_number_in(std::string_view text, const UnitScale& unit);
+
 /// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
 /// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.
 CaseValue read_case_value(const std::string& text, const std::string& context);
@@ -103,7 +109,7 @@ struct CaseTable {
   /// empty. Read either through size(), cell() and row().
   struct Numbers {
     std::size_t count = 0;              // cases
-    std::vector<Dimension> dimensions;  // of each variable's values (a file's: its first number's)
+    std::vector<Dimension> dimensions;  // of each variable's values (none where `written` keeps each value's)
     std::vector<double> si;             // si[i * dimensions.size() + v]: variable v in case i, SI
     /// A value in a column named by its SI unit ("m") shows the digits of its exact text, as a
     /// sample's rows did while each value kept that text (make_latin_hypercube sets it); else
@@ -122,6 +128,11 @@ struct CaseTable {
       void append(std::string& out, std::size_t k, std::size_t v) const;
     } written;
   } numbers;
+  /// The next value of a table kept as numbers with their texts (Numbers::Written), value k =
+  /// i * width + v in that order: `text` as written (only the number before " UNIT" where
+  /// in_column_unit), `si` NaN for a word. The caller sizes dimensions and column_units first
+  /// and counts the cases.
+  void keep_written(std::string_view text, bool in_column_unit, double si, const Dimension& dimension);
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
   /// How many cases the table holds, however it keeps them.
