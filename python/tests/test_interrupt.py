@@ -43,3 +43,24 @@ def test_ctrl_c_stops_a_run(scenes):
     # the interrupted evaluation ends on its own thread; the scene then answers again
     r = scene.run(set={"contacts.revolutions": "3"}, outputs=["contacts.max_deviation"])
     assert r["contacts.max_deviation"] > 0
+
+
+def test_ctrl_c_stops_a_sweep_after_openturns_took_sigint(scenes):
+    # OpenTURNS' module replaces Python's SIGINT handler with one that throws a C++ exception from
+    # the signal handler; it surfaced in the wait for the sweep's thread and ended the process
+    # (std::terminate on a running thread). It is Ctrl-C all the same. Last in this file: the
+    # handler stays for the rest of the process.
+    openturns = pytest.importorskip("openturns")
+    assert openturns.__version__
+    scene = mechgraph.Scene.load(scenes / "backlash_chain.yaml")
+    cases = {"chain.seed": [str(s) for s in range(1, 20001)]}  # far more than a second of work
+    scene.sweep({"chain.seed": ["1"]}, outputs=["chain.angular_backlash_mc_q999"])
+    timer = interrupt_after(0.5)
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        scene.sweep(cases, outputs=["chain.angular_backlash_mc_q999"], threads=2)
+    elapsed = time.monotonic() - start
+    timer.join()
+    assert elapsed < 10, elapsed
+    frame = scene.sweep({"chain.seed": ["1", "2"]}, outputs=["chain.angular_backlash_mc_q999"])
+    assert list(frame["exit"]) == [0, 0]
