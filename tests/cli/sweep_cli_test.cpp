@@ -187,97 +187,76 @@ TEST_CASE("sweep --out: complete under its name at the end, refused when it exis
   CHECK(run_cli(args + " --force").exit_code == 0);
 }
 
+// A sweep of the arith scene whose rows and manifest fingerprint (which --resume and merge
+// compare) a build before wrote: they must not move with how the table of cases is kept.
+struct PinnedSweep {
+  std::string cases;  // the options that make the table: --sample ..., --vary ..., --cases FILE
+  std::vector<std::string> rows;
+  std::string fingerprint;
+};
+
+void check_pinned(const PinnedSweep& p) {
+  INFO(p.cases);
+  const std::string scene = scratch_file("scene.yaml", scene_text);
+  const fs::path out = work_dir() / "pinned.csv";
+  const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' " + p.cases + " --out '" + out.string() + "' --force");
+  REQUIRE(r.exit_code == 0);
+  CHECK(lines_of(slurp(out)) == p.rows);
+  CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == p.fingerprint);
+}
+
 TEST_CASE("sweep --sample: the rows and the fingerprint of a seeded sample are pinned", "[cli][sweep]") {
   // Written by the build before samples were kept as numbers (each value with its exact text): a
   // sample's draw, its values on the unit's numbers, the digits a row shows (a column in mm, one
   // in the SI unit itself at magnitudes where %.15g and the shortest digits differ, a unitless
-  // one) and the manifest's fingerprint, which --resume and merge compare, must not move.
-  const std::string scene = scratch_file("scene.yaml", scene_text);
-  const fs::path out = work_dir() / "sample.csv";
-  struct Pinned {
-    const char* sample;
-    std::vector<std::string> rows;
-    const char* fingerprint;
-  };
-  const Pinned pinned[] = {
-      {"--sample len=1e15m:2e17m --sample s.gain=0.5:2",
-       {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
-        "0,153875120154396320,0.7619135545255051,234479079499750592,0,0.25,1,0,",
-        "1,61517845661878880,1.516957347676121,186639895979985504,0,0.25,1,0,",
-        "2,132152060207450464,1.0550616890203839,278857151699992288,0,0.25,1,0,",
-        "3,7723506464412241,1.751000223702433,27047723093906040,0,0.25,1,0,"},
-       "249865a986934544"},
-      {"--sample len=1mm:3mm --sample s.gain=0.5:2",
-       {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
-        "0,2.536433368385892,0.7619135545255051,0.0038650859270479903,0,0.25,1,0,",
-        "1,1.6082195543907427,1.516957347676121,0.004879200939418908,0,0.25,1,0,",
-        "2,2.318111157863824,1.0550616890203839,0.004891500547105607,0,0.25,1,0,",
-        "3,1.0675729292905753,1.751000223702433,0.003738640876012918,0,0.25,1,0,"},
-       "cfabda5dec2f859c"}};
-  for (const Pinned& p : pinned) {
-    INFO(p.sample);
-    const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' " + p.sample + " --n 4 --seed 3 --out '" + out.string() + "' --force");
-    REQUIRE(r.exit_code == 0);
-    CHECK(lines_of(slurp(out)) == p.rows);
-    CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == p.fingerprint);
-  }
+  // one) and the fingerprint.
+  check_pinned({"--sample len=1e15m:2e17m --sample s.gain=0.5:2 --n 4 --seed 3",
+                {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+                 "0,153875120154396320,0.7619135545255051,234479079499750592,0,0.25,1,0,",
+                 "1,61517845661878880,1.516957347676121,186639895979985504,0,0.25,1,0,",
+                 "2,132152060207450464,1.0550616890203839,278857151699992288,0,0.25,1,0,",
+                 "3,7723506464412241,1.751000223702433,27047723093906040,0,0.25,1,0,"},
+                "249865a986934544"});
+  check_pinned({"--sample len=1mm:3mm --sample s.gain=0.5:2 --n 4 --seed 3",
+                {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+                 "0,2.536433368385892,0.7619135545255051,0.0038650859270479903,0,0.25,1,0,",
+                 "1,1.6082195543907427,1.516957347676121,0.004879200939418908,0,0.25,1,0,",
+                 "2,2.318111157863824,1.0550616890203839,0.004891500547105607,0,0.25,1,0,",
+                 "3,1.0675729292905753,1.751000223702433,0.003738640876012918,0,0.25,1,0,"},
+                "cfabda5dec2f859c"});
 }
 
 TEST_CASE("sweep --vary: the rows and the fingerprint of a grid of ranges are pinned", "[cli][sweep]") {
   // Written by the build before grids of ranges were kept as numbers (each value with its exact
   // text): the points, the digits a row shows (a column in the SI unit itself at magnitudes where
-  // %.15g and the shortest digits differ, one in mm, a unitless one) and the manifest's
-  // fingerprint, which --resume and merge compare, must not move.
-  const std::string scene = scratch_file("scene.yaml", scene_text);
-  const fs::path out = work_dir() / "grid.csv";
-  struct Pinned {
-    const char* vary;
-    std::vector<std::string> rows;
-    const char* fingerprint;
-  };
-  const Pinned pinned[] = {
-      {"--vary len=1e15m:2e17m:4 --vary s.gain=0.3:0.7:3",
-       {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
-        "0,1e+15,0.3,6e+14,0,0.25,1,0,", "1,1e+15,0.5,1e+15,0,0.25,1,0,", "2,1e+15,0.7,1.4e+15,0,0.25,1,0,",
-        "3,67333333333333296,0.3,40399999999999976,0,0.25,1,0,", "4,67333333333333296,0.5,67333333333333296,0,0.25,1,0,",
-        "5,67333333333333296,0.7,94266666666666608,0,0.25,1,0,", "6,133666666666667008,0.3,80200000000000208,0,0.25,1,0,",
-        "7,133666666666667008,0.5,133666666666667008,0,0.25,1,0,", "8,133666666666667008,0.7,187133333333333792,0,0.25,1,0,",
-        "9,2e+17,0.3,1.2e+17,0,0.25,1,0,", "10,2e+17,0.5,2e+17,0,0.25,1,0,", "11,2e+17,0.7,279999999999999968,0,0.25,1,0,"},
-       "84ad8f67c721c108"},
-      {"--vary len=1mm:3mm:3 --vary s.gain=0.5:2:2",
-       {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
-        "0,1,0.5,0.001,0,0.25,1,0,", "1,1,2,0.004,0,0.25,1,0,", "2,2,0.5,0.002,0,0.25,1,0,", "3,2,2,0.008,0,0.25,1,0,",
-        "4,3,0.5,0.003,0,0.25,1,0,", "5,3,2,0.012,0,0.25,1,0,"},
-       "ab34b8a904d3c2a9"}};
-  for (const Pinned& p : pinned) {
-    INFO(p.vary);
-    const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' " + p.vary + " --out '" + out.string() + "' --force");
-    REQUIRE(r.exit_code == 0);
-    CHECK(lines_of(slurp(out)) == p.rows);
-    CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == p.fingerprint);
-  }
+  // %.15g and the shortest digits differ, one in mm, a unitless one) and the fingerprint.
+  check_pinned({"--vary len=1e15m:2e17m:4 --vary s.gain=0.3:0.7:3",
+                {"case,len [m],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+                 "0,1e+15,0.3,6e+14,0,0.25,1,0,", "1,1e+15,0.5,1e+15,0,0.25,1,0,", "2,1e+15,0.7,1.4e+15,0,0.25,1,0,",
+                 "3,67333333333333296,0.3,40399999999999976,0,0.25,1,0,", "4,67333333333333296,0.5,67333333333333296,0,0.25,1,0,",
+                 "5,67333333333333296,0.7,94266666666666608,0,0.25,1,0,", "6,133666666666667008,0.3,80200000000000208,0,0.25,1,0,",
+                 "7,133666666666667008,0.5,133666666666667008,0,0.25,1,0,", "8,133666666666667008,0.7,187133333333333792,0,0.25,1,0,",
+                 "9,2e+17,0.3,1.2e+17,0,0.25,1,0,", "10,2e+17,0.5,2e+17,0,0.25,1,0,", "11,2e+17,0.7,279999999999999968,0,0.25,1,0,"},
+                "84ad8f67c721c108"});
+  check_pinned({"--vary len=1mm:3mm:3 --vary s.gain=0.5:2:2",
+                {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+                 "0,1,0.5,0.001,0,0.25,1,0,", "1,1,2,0.004,0,0.25,1,0,", "2,2,0.5,0.002,0,0.25,1,0,", "3,2,2,0.008,0,0.25,1,0,",
+                 "4,3,0.5,0.003,0,0.25,1,0,", "5,3,2,0.012,0,0.25,1,0,"},
+                "ab34b8a904d3c2a9"});
 }
 
 TEST_CASE("sweep --cases: the rows and the fingerprint of a cases file are pinned", "[cli][sweep]") {
   // Written by the build before a cases file's values were kept as numbers with their texts
   // beside them (a string each): bare numbers under the header's unit, a cell with its own unit,
   // quoted and padded cells, a sign, a word the parameter refuses, and the fingerprint.
-  const std::string scene = scratch_file("scene.yaml", scene_text);
   const std::string cases = scratch_file("pinned_cases.csv", "# pinned\nlen [mm],s.gain\n1,0.5\n2.5 mm,+2\n\"0.003 m\",1.5\n 4 ,abc\n"
                                                             "1e-1,\"2\"\n5.000,0.25\n");
-  const fs::path out = work_dir() / "cases_rows.csv";
-  const auto r = run_cli(arith_dir() + " -q sweep '" + scene + "' --cases '" + cases + "' --out '" + out.string() + "' --force");
-  REQUIRE(r.exit_code == 0);
-  const std::vector<std::string> rows{
-      "case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
-      "0,1,0.5,0.001,0,0.25,1,0,",
-      "1,2.5,2,0.01,0,0.25,1,0,",
-      "2,3,1.5,0.009000000000000001,0,0.25,1,0,",
-      "3,4,abc,,,,,2,s.gain = 'abc': parameter 'gain' of node 's' (test.add): expected a number at the start of 'abc'",
-      "4,1e-1,2,4e-04,0,0.25,1,0,",
-      "5,5.000,0.25,0.0025,0,0.25,1,0,"};
-  CHECK(lines_of(slurp(out)) == rows);
-  CHECK(YAML::LoadFile(out.string() + ".json")["sweep"].as<std::string>() == "f2fe776143d4eb98");
+  check_pinned({"--cases '" + cases + "'",
+                {"case,len [mm],s.gain,s.sum [m],c.curve[0] [m],c.curve[1] [m],c.curve[2] [m],exit,error",
+                 "0,1,0.5,0.001,0,0.25,1,0,", "1,2.5,2,0.01,0,0.25,1,0,", "2,3,1.5,0.009000000000000001,0,0.25,1,0,",
+                 "3,4,abc,,,,,2,s.gain = 'abc': parameter 'gain' of node 's' (test.add): expected a number at the start of 'abc'",
+                 "4,1e-1,2,4e-04,0,0.25,1,0,", "5,5.000,0.25,0.0025,0,0.25,1,0,"},
+                "f2fe776143d4eb98"});
 }
 
 TEST_CASE("sweep: the memory budget counts the table of cases and their order", "[cli][sweep][bounds]") {
