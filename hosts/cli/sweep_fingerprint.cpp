@@ -68,8 +68,7 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
     const CaseTable::Numbers::Written& written = table.numbers.written;
     const std::size_t width = table.numbers.dimensions.size();
     for (std::size_t k = 0; k < written.ends.size(); ++k) {
-      const std::size_t begin = k == 0 ? 0 : written.ends[k - 1];
-      const std::string_view text(written.text.data() + begin, written.ends[k] - begin);
+      const std::string_view text = written.own_text(k);
       if (written.in_column_unit[k]) h.add_joined({text, " ", written.column_units[k % width]});
       else h.add(text);
     }

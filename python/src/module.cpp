@@ -209,14 +209,6 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
   std::vector<std::optional<UnitScale>> scales(width);
   for (std::size_t v = 0; v < width; ++v)
     if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);
-  // A value as a CaseValue gives it, kept: "TEXT UNIT" as TEXT and the mark.
-  const auto keep = [&table](std::size_t v, const CaseValue& value, const std::string& cell_text) {
-    const std::string& unit = table.numbers.written.column_units[v];
-    const bool in_unit = !unit.empty() && value.text.size() == cell_text.size() + 1 + unit.size() &&
-                         value.text.starts_with(cell_text) && value.text.ends_with(unit) && value.text[cell_text.size()] == ' ';
-    table.keep_written(in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
-                       value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
-  };
   const auto refuse_bare = [&](std::size_t v) {
     const std::string& name = names[v];
     throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *dimension_of[v],
@@ -247,7 +239,7 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
             table.keep_written(digits, true, *number, scales[v]->dimension);
             continue;
           }
-        keep(v, value_from_text(std::string(digits) + " " + unit, context()), std::string(digits));
+        table.keep_written(value_from_text(std::string(digits) + " " + unit, context()), digits, v);
         continue;
       }
       const std::string& cell = column.cells[i];
@@ -256,7 +248,7 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
       if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context());
       else if (bare && bare_refused[v]) refuse_bare(v);
       else if (bare && si[v] && dimension_of[v]) value = value_from_si(*value.si, *dimension_of[v], context());
-      keep(v, value, cell);
+      table.keep_written(value, cell, v);
     }
   return table;
 }

@@ -278,8 +278,7 @@ double expressible_in(double si, const std::optional<UnitScale>& u) {
 std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
 
 void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::size_t v) const {
-  const std::size_t begin = k == 0 ? 0 : ends[k - 1];
-  out.append(text.data() + begin, ends[k] - begin);
+  out.append(own_text(k));
   if (in_column_unit[k]) {
     out.push_back(' ');
     out.append(column_units[v]);
@@ -293,6 +292,14 @@ void CaseTable::keep_written(std::string_view text, bool in_column_unit, double 
   w.in_column_unit.push_back(in_column_unit ? 1 : 0);
   w.dimensions.push_back(dimension);
   numbers.si.push_back(si);
+}
+
+void CaseTable::keep_written(const CaseValue& value, std::string_view cell, std::size_t v) {
+  const std::string& unit = numbers.written.column_units[v];
+  const bool in_unit = !unit.empty() && value.text.size() == cell.size() + 1 + unit.size() && value.text.starts_with(cell) &&
+                       value.text.ends_with(unit) && value.text[cell.size()] == ' ';
+  keep_written(in_unit ? cell : std::string_view(value.text), in_unit, value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(),
+               value.dimension);
 }
 
 std::optional<double> bare_number_in(std::string_view text, const UnitScale& unit) {
@@ -309,17 +316,8 @@ std::optional<double> bare_number_in(std::string_view text, const UnitScale& uni
 
 const CaseValue& CaseTable::cell(std::size_t i, std::size_t v, CaseValue& scratch) const {
   if (!cases.empty()) return cases[i][v];
-  const std::size_t k = i * numbers.dimensions.size() + v;
-  scratch.text.clear();
-  if (numbers.written.ends.empty()) {
-    scratch.si = numbers.si[k];
-    scratch.dimension = numbers.dimensions[v];
-    return scratch;
-  }
-  numbers.written.append(scratch.text, k, v);
-  if (const double x = numbers.si[k]; std::isnan(x)) scratch.si.reset();  // a word
-  else scratch.si = x;
-  scratch.dimension = numbers.written.dimensions[k];
+  number_cell(i, v, scratch);
+  if (!numbers.written.ends.empty()) numbers.written.append(scratch.text, i * numbers.dimensions.size() + v, v);
   return scratch;
 }
 
@@ -437,8 +435,7 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, con
     const Numbers::Written& w = numbers.written;
     if (w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions[k] &&
         !(numbers.exact_text_digits && unit.names_si) && w.column_units[v] == variables[v].unit && !variables[v].unit.empty()) {
-      const std::size_t begin = k == 0 ? 0 : w.ends[k - 1];
-      const std::string_view cell(w.text.data() + begin, w.ends[k] - begin);
+      const std::string_view cell = w.own_text(k);
       if (json_number(cell)) {
         out.append(cell);
         return true;
@@ -829,11 +826,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
         throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
       }
       if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell_text);
-      // "CELL UNIT" kept as the cell and a mark, as above: the kept text stays within the file's size.
-      const bool in_unit = !unit.empty() && value.text.size() == cell_text.size() + 1 + unit.size() &&
-                           value.text.starts_with(cell_text) && value.text.ends_with(unit) && value.text[cell_text.size()] == ' ';
-      table.keep_written(in_unit ? std::string_view(cell_text) : std::string_view(value.text), in_unit,
-                         value.si ? *value.si : std::numeric_limits<double>::quiet_NaN(), value.dimension);
+      table.keep_written(value, cell_text, v);  // "CELL UNIT" as the cell and a mark: within the file's size
     }
     ++table.numbers.count;
   }

@@ -124,6 +124,11 @@ struct CaseTable {
       std::vector<std::uint8_t> in_column_unit;  // 1: a bare number, its CaseValue text "TEXT UNIT"
       std::vector<Dimension> dimensions;         // value k's own; a word's (NaN in si) none
       std::vector<std::string> column_units;     // per variable: the UNIT of its bare numbers
+      /// Value k's own text (without " UNIT" where in_column_unit).
+      std::string_view own_text(std::size_t k) const {
+        const std::size_t begin = k == 0 ? 0 : ends[k - 1];
+        return std::string_view(text).substr(begin, ends[k] - begin);
+      }
       /// Value k's CaseValue text appended to `out` (v: its variable).
       void append(std::string& out, std::size_t k, std::size_t v) const;
     } written;
@@ -133,6 +138,9 @@ struct CaseTable {
   /// in_column_unit), `si` NaN for a word. The caller sizes dimensions and column_units first
   /// and counts the cases.
   void keep_written(std::string_view text, bool in_column_unit, double si, const Dimension& dimension);
+  /// keep_written of `value`, read from the cell `cell` of variable v: its text "CELL UNIT" (UNIT
+  /// the variable's written.column_units) kept as the cell and the mark.
+  void keep_written(const CaseValue& value, std::string_view cell, std::size_t v);
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
   /// How many cases the table holds, however it keeps them.
