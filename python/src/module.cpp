@@ -3,6 +3,7 @@
 // load_plugins(), MECHGRAPH_PLUGIN_PATH, the built-in folder beside libmechgraph), the scene
 // sessions, and the conversions; the Pythonic surface (Result, DataFrames, errors) is Python code.
 #include "case_values.hpp"
+#include "input_columns.hpp"
 #include "interruptible.hpp"
 #include "python_values.hpp"
 #include "report_tables.hpp"
@@ -75,15 +76,9 @@ py::array_t<T> numpy_column(const std::vector<T>& values) {
 void add_study_parameters(py::dict& cases, const Graph& graph, const CaseTable& table, unsigned threads) {
   const host::SweepRows rows(graph, table, host::RowFormat::csv);
   const std::vector<std::string> names = rows.input_headers();
-  // Each value as the row shows it, read back (the shortest digits in the column's unit): in
-  // chunks of rows on the study's threads, no Python object touched until every column is made.
-  constexpr std::size_t rows_a_chunk = 1 << 16;
-  const std::size_t n = table.size(), chunks_a_column = (n + rows_a_chunk - 1) / rows_a_chunk;
-  std::vector<std::vector<double>> columns(names.size(), std::vector<double>(n));
-  run_chunks(names.size() * chunks_a_column, threads, [] { return std::string(); }, [&](std::string& cell, std::size_t chunk) {
-    const std::size_t v = chunk / chunks_a_column, first = chunk % chunks_a_column * rows_a_chunk;
-    for (std::size_t i = first; i < std::min(n, first + rows_a_chunk); ++i) columns[v][i] = rows.input_number(i, v, cell);
-  });
+  // Each value as the row shows it, read back (the shortest digits in the column's unit), no
+  // Python object touched until every column is made.
+  const std::vector<std::vector<double>> columns = input_number_columns(rows, table.size(), nullptr, threads);
   for (std::size_t v = 0; v < names.size(); ++v) cases[py::str(names[v])] = numpy_column(columns[v]);
 }
 
@@ -364,44 +359,41 @@ py::dict provenance(const RunOutcome& r) {
 // or the text as written), `error` objects (None for a success). The same values as the rows of
 // `mechgraph sweep --format jsonl`, without text in between.
 py::tuple sweep_columns(const SessionSweep& s) {
-  const std::size_t n = s.rows.size();
+  const std::size_t n = s.cases.size();
   const std::size_t inputs = s.inputs;
   const std::size_t outputs = s.header.size() - 3 - inputs;
+  const py::module_ numpy = py::module_::import("numpy");
   py::dict columns;
   py::array_t<std::int64_t> cases(static_cast<py::ssize_t>(n)), exits(static_cast<py::ssize_t>(n));
   for (std::size_t i = 0; i < n; ++i) {
     cases.mutable_at(i) = static_cast<std::int64_t>(s.cases[i]);
-    exits.mutable_at(i) = s.rows[i].exit_code;
+    exits.mutable_at(i) = s.exits[i];
   }
   columns[py::str(s.header.front())] = cases;
   for (std::size_t v = 0; v < inputs; ++v) {
-    bool numbers = true;
-    for (const auto& row : s.rows) numbers = numbers && std::holds_alternative<double>(row.inputs[v]);
-    if (numbers) {
-      py::array_t<double> column(static_cast<py::ssize_t>(n));
-      for (std::size_t i = 0; i < n; ++i) column.mutable_at(i) = std::get<double>(s.rows[i].inputs[v]);
-      columns[python_text(s.header[1 + v])] = column;
-    } else {
-      py::list column;
-      for (const auto& row : s.rows) {
-        const auto& cell = row.inputs[v];
-        if (const auto* x = std::get_if<double>(&cell)) column.append(*x);
-        else if (const auto* text = std::get_if<std::string>(&cell)) column.append(python_text(*text));
-        else column.append(py::none());
-      }
-      columns[python_text(s.header[1 + v])] = py::module_::import("numpy").attr("array")(column, py::arg("dtype") = "object");
+    const SessionInputColumn& input = s.input_columns[v];
+    if (input.cells.empty()) {
+      columns[python_text(s.header[1 + v])] = numpy_column(input.numbers);
+      continue;
     }
+    py::list column;
+    for (const auto& cell : input.cells) {
+      if (const auto* x = std::get_if<double>(&cell)) column.append(*x);
+      else if (const auto* text = std::get_if<std::string>(&cell)) column.append(python_text(*text));
+      else column.append(py::none());
+    }
+    columns[python_text(s.header[1 + v])] = numpy.attr("array")(column, py::arg("dtype") = "object");
   }
   for (std::size_t o = 0; o < outputs; ++o) {
     py::array_t<double> column(static_cast<py::ssize_t>(n));
-    for (std::size_t i = 0; i < n; ++i)
-      column.mutable_at(i) = s.rows[i].outputs.empty() ? std::numeric_limits<double>::quiet_NaN() : s.rows[i].outputs[o];
+    double* out = column.mutable_data();
+    for (std::size_t i = 0; i < n; ++i) out[i] = s.outputs[i * outputs + o];
     columns[python_text(s.header[1 + inputs + o])] = column;
   }
   columns[py::str(s.header[s.header.size() - 2])] = exits;
-  py::list errors;
-  for (const auto& row : s.rows) errors.append(row.error.empty() ? py::object(py::none()) : py::object(python_text(row.error)));
-  columns[py::str(s.header.back())] = py::module_::import("numpy").attr("array")(errors, py::arg("dtype") = "object");
+  py::array errors = numpy.attr("full")(n, py::none(), py::arg("dtype") = "object");
+  for (const auto& [row, message] : s.errors) errors[py::int_(row)] = python_text(message);
+  columns[py::str(s.header.back())] = errors;
   py::list header;
   for (const std::string& h : s.header) header.append(python_text(h));
   return py::make_tuple(header, columns);

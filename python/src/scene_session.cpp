@@ -1,6 +1,7 @@
 #include "scene_session.hpp"
 
 #include "case_values.hpp"
+#include "input_columns.hpp"
 #include "unit_rule.hpp"
 
 #include <mechgraph/host/plugin_search.hpp>
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <chrono>
+#include <limits>
 #include <thread>
 
 namespace mechgraph::python {
@@ -259,17 +261,41 @@ SweepOptions sweep_options(const CaseTable& table, unsigned threads) {
   return options;
 }
 
+// Input v of the rows as SessionInputColumn keeps it: numbers, or the cells where a row holds text
+// or nothing (such a row's number is NaN: input_number).
+SessionInputColumn input_column(const host::SweepRows& rows, const std::vector<std::size_t>& cases, std::size_t v,
+                                std::vector<double>&& numbers) {
+  SessionInputColumn column;
+  if (std::none_of(numbers.begin(), numbers.end(), [](double x) { return std::isnan(x); })) {
+    column.numbers = std::move(numbers);
+    return column;
+  }
+  std::string cell;
+  column.cells.reserve(cases.size());
+  for (const std::size_t i : cases) column.cells.push_back(rows.input_value(i, v, cell));
+  return column;
+}
+
 // The rows of a sweep: the cases of `options` run, each row into `out` in case order.
 void run_rows(const Graph& graph, const CaseBinder& binder, const CaseTable& table, const SweepOptions& options,
               std::atomic<std::size_t>* done, SessionSweep& out) {
   // As `mechgraph sweep` does: rows wait until the first success fixes the columns of a series.
   host::SweepRows rows(graph, table, host::RowFormat::jsonl);
+  out.cases.reserve(options.cases.size());
+  out.exits.reserve(options.cases.size());
+  std::string error;
   host::RowSequencer sequence(
       rows, [] {},
       [&](const CaseResult& r) {
+        const std::size_t row = out.cases.size();
+        if (row == 0) out.outputs.reserve(options.cases.size() * rows.output_columns());
         out.cases.push_back(r.index);
-        out.rows.push_back(rows.values(r, host::exit_code_of(r.failure)));
-        if (out.rows.back().exit_code != 0) ++out.failed;
+        const std::size_t filled = out.outputs.size();
+        out.exits.push_back(rows.outcome(r, host::exit_code_of(r.failure), out.outputs, error));
+        if (out.exits.back() == 0) return;
+        ++out.failed;
+        out.outputs.resize(filled + rows.output_columns(), std::numeric_limits<double>::quiet_NaN());
+        if (!error.empty()) out.errors.emplace_back(row, error);
       });
   MemoCache cache;
   out.summary = run_sweep(graph, binder, table, cache, options, [&](CaseResult&& r) {
@@ -279,6 +305,9 @@ void run_rows(const Graph& graph, const CaseBinder& binder, const CaseTable& tab
   sequence.finish();
   out.header = rows.header();
   out.inputs = table.variables.size();
+  // The inputs column by column, as the rows show them, on the sweep's threads.
+  std::vector<std::vector<double>> numbers = input_number_columns(rows, out.cases.size(), out.cases.data(), options.threads);
+  for (std::size_t v = 0; v < numbers.size(); ++v) out.input_columns.push_back(input_column(rows, out.cases, v, std::move(numbers[v])));
 }
 }  // namespace
 

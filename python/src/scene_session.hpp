@@ -22,6 +22,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -45,12 +46,23 @@ struct SessionRun {
   double seconds = 0.0;                // wall time of the evaluation
 };
 
-/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header, as values.
+/// An input column of a sweep's rows: a number a row, or (where any row holds text or nothing) the
+/// cells as SweepRows::input_values gives them.
+struct SessionInputColumn {
+  std::vector<double> numbers;                                           // empty when `cells` holds the column
+  std::vector<std::variant<std::monostate, double, std::string>> cells;  // none, a number, or text as written
+};
+
+/// The rows of a sweep as `mechgraph sweep --format jsonl` writes them, with the header, as values
+/// kept by column (no allocation a row: a million rows are a few arrays).
 struct SessionSweep {
   std::vector<std::string> header;
   std::size_t inputs = 0;                            // varied-input columns after `case`
   std::vector<std::size_t> cases;                    // each row's case number, in case order
-  std::vector<host::SweepRows::Values> rows;          // one per case
+  std::vector<SessionInputColumn> input_columns;     // one per input
+  std::vector<double> outputs;                       // row by row, a value per output column (NaN: the case failed)
+  std::vector<int> exits;                            // each row's exit code
+  std::vector<std::pair<std::size_t, std::string>> errors;  // (row, message) of each failed row, in row order
   SweepSummary summary;
   std::size_t failed = 0;
 };

@@ -19,6 +19,21 @@ def cli_rows(cli, scene, csv_file, outputs, threads=2):
     return [json.loads(line) for line in out.splitlines() if line.strip()]
 
 
+def assert_rows_equal(frame, expected):
+    """The frame holds the JSON Lines rows `expected`, cell for cell (numbers bit for bit)."""
+    assert list(frame.columns) == list(expected[0].keys())
+    assert len(frame) == len(expected)
+    for row, want in zip(frame.to_dict("records"), expected):
+        for key, value in want.items():
+            got = row[key]
+            if isinstance(value, float) or (isinstance(value, int) and not isinstance(value, bool)):
+                assert got == value, (key, got, value)  # bit for bit: the same text, the same double
+            elif value is None:
+                assert got is None or (isinstance(got, float) and math.isnan(got))
+            else:
+                assert got == value, key
+
+
 def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
     rpm = [5000, 5600, 6200, 7000, 7600]
     r0 = [17, 16, 3, 18, 17.5]  # 3 mm: the three-arc cam cannot be made (a failed row)
@@ -29,20 +44,29 @@ def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     frame = scene.sweep(pd.DataFrame({"rpm [rpm]": rpm, "r0 [mm]": r0}), outputs=OUTPUTS, threads=2)
     assert isinstance(frame, pd.DataFrame)
-    assert list(frame.columns) == list(expected[0].keys())
-    assert len(frame) == len(expected) == 5
-    for row, want in zip(frame.to_dict("records"), expected):
-        for key, value in want.items():
-            got = row[key]
-            if isinstance(value, float) or (isinstance(value, int) and not isinstance(value, bool)):
-                assert got == value, (key, got, value)  # bit for bit: the same text, the same double
-            elif value is None:
-                assert got is None or (isinstance(got, float) and math.isnan(got))
-            else:
-                assert got == value, key
+    assert_rows_equal(frame, expected)
+    assert len(frame) == 5
     failed = frame[frame["exit"] != 0]
     assert len(failed) == 1 and int(failed["exit"].iloc[0]) == 3 and "arc" in failed["error"].iloc[0]
     assert frame.attrs["summary"]["failed"] == 1
+
+
+def test_text_cells_identical_to_the_command_line(scenes, cli, tmp_path):
+    # A column of text cells: numbers under the column's unit or in another unit of its dimension
+    # (numbers in the frame), and a cell of another dimension, which the row shows as written (an
+    # object column: floats and that text) and whose case fails as a scene error.
+    lash = ["0.25", "0.3 mm", "1 degC", "0.0002 m", "0.2"]
+    rpm = [5000, 5600, 6200, 7000, 7600]
+    csv_file = tmp_path / "cases.csv"
+    csv_file.write_text("rpm [rpm],lash [mm]\n" + "".join(f"{a},{b}\n" for a, b in zip(rpm, lash)))
+    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
+
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep({"rpm [rpm]": rpm, "lash [mm]": lash}, outputs=OUTPUTS, threads=2, progress=False)
+    assert_rows_equal(frame, expected)
+    assert frame["lash [mm]"].dtype == object and frame["lash [mm]"].iloc[2] == "1 degC"
+    assert list(frame["exit"]) == [0, 0, 2, 0, 0] and frame["error"].iloc[0] is None
+    assert "lash" in frame["error"].iloc[2]
 
 
 def test_si_numbers_and_dict_of_arrays(scenes):

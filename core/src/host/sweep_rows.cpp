@@ -453,16 +453,11 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
   return format(cells, numeric);
 }
 
-std::vector<std::variant<std::monostate, double, std::string>> SweepRows::input_values(std::size_t i) const {
-  std::vector<std::variant<std::monostate, double, std::string>> inputs;
-  std::string cell;
-  for (std::size_t v = 0; v < table_.variables.size(); ++v) {
-    const double number = input_number(i, v, cell);
-    if (cell.empty()) inputs.emplace_back(std::monostate{});
-    else if (!std::isnan(number)) inputs.emplace_back(number);
-    else inputs.emplace_back(cell);
-  }
-  return inputs;
+std::variant<std::monostate, double, std::string> SweepRows::input_value(std::size_t i, std::size_t v, std::string& cell) const {
+  const double number = input_number(i, v, cell);
+  if (cell.empty()) return std::monostate{};
+  if (!std::isnan(number)) return number;
+  return cell;
 }
 
 double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) const {
@@ -474,14 +469,11 @@ double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) 
   return std::strtod(cell.c_str(), nullptr);
 }
 
-SweepRows::Values SweepRows::values(const CaseResult& result, int exit_code) const {
-  Values out;
-  out.inputs = input_values(result.index);
-  out.error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
-  out.exit_code = result.failure == CaseFailure::none && !out.error.empty() ? evaluation_error : exit_code;
-  if (result.failure == CaseFailure::none && out.error.empty())
-    for (const Column& c : columns_) out.outputs.push_back(cell_value(result, c));
-  return out;
+int SweepRows::outcome(const CaseResult& result, int exit_code, std::vector<double>& outputs, std::string& error) const {
+  error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
+  if (result.failure != CaseFailure::none || !error.empty()) return result.failure == CaseFailure::none ? evaluation_error : exit_code;
+  for (const Column& c : columns_) outputs.push_back(cell_value(result, c));
+  return exit_code;
 }
 
 }  // namespace mechgraph::host

@@ -55,19 +55,20 @@ class SweepRows {
   /// line(result, exit_code) appended to `out` (CSV rows without a string per cell).
   void append_line(std::string& out, const CaseResult& result, int exit_code) const;
 
-  /// The row of one case as values, for a caller that keeps numbers as numbers (the Python
-  /// module's numpy columns): what line() writes as JSON Lines, before it becomes text.
-  struct Values {
-    std::vector<std::variant<std::monostate, double, std::string>> inputs;  // none, a number, or text as written
-    std::vector<double> outputs;  // one per output column, in its unit; empty when the case failed
-    int exit_code = 0;
-    std::string error;  // "" when the case succeeded
-  };
-  Values values(const CaseResult& result, int exit_code) const;
-  /// The input columns' headers (`name [unit]`) and case i's inputs as Values::inputs holds them.
+  /// The row of one case without its inputs, for a caller that keeps numbers as numbers (the
+  /// Python module's numpy columns): what line() writes as JSON Lines, before it becomes text. Its
+  /// exit code is returned; a success appends one value per output column (in its unit) to
+  /// `outputs`, a failure appends nothing and sets `error` (else cleared). The inputs come column
+  /// by column from input_number (input_value where a column holds text).
+  int outcome(const CaseResult& result, int exit_code, std::vector<double>& outputs, std::string& error) const;
+  /// The number of output columns a success appends (the header settled).
+  std::size_t output_columns() const { return columns_.size(); }
+  /// The input columns' headers (`name [unit]`).
   std::vector<std::string> input_headers() const;
-  std::vector<std::variant<std::monostate, double, std::string>> input_values(std::size_t i) const;
-  /// Input v of case i as input_values gives a number, NaN where it gives none or text; `cell`
+  /// Input v of case i as a row holds it: none (an empty cell), a number (the row's text read
+  /// back), or text as written; `cell` is scratch as for input_number.
+  std::variant<std::monostate, double, std::string> input_value(std::size_t i, std::size_t v, std::string& cell) const;
+  /// Input v of case i as input_value gives a number, NaN where it gives none or text; `cell`
   /// is scratch (its storage kept from call to call: a study's million rows make no string each).
   double input_number(std::size_t i, std::size_t v, std::string& cell) const;
 
