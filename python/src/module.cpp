@@ -23,6 +23,7 @@
 #include <mechgraph/host/terminal_output.hpp>
 
 #include <mechgraph/chunked_work.hpp>
+#include <mechgraph/large_arrays.hpp>
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/error_subject.hpp>
 #include <mechgraph/display_units.hpp>
@@ -197,10 +198,23 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
   table.numbers.count = n;
   table.numbers.dimensions.assign(width, Dimension{});  // each value keeps its own
   written.column_units = units;
-  table.numbers.si.reserve(n * width);
-  written.ends.reserve(n * width);
-  written.in_column_unit.reserve(n * width);
-  written.dimensions.reserve(n * width);
+  reserve_large(table.numbers.si, n * width);
+  reserve_large(written.ends, n * width);
+  reserve_large(written.in_column_unit, n * width);
+  reserve_large(written.dimensions, n * width);
+  // The texts' pool at its largest, so that it is not copied as it grows (10^6 rows of six columns
+  // wrote 110 MB): a number's 17 digits take at most 24 characters ("-1.2345678901234567e-308"),
+  // and its SI unit after a space where its column names no unit (si_text); a text cell about its
+  // own size with the column's unit.
+  std::size_t text_bytes = 0;
+  for (std::size_t v = 0; v < width; ++v) {
+    if (!values[v].text) {
+      text_bytes += n * (24 + (units[v].empty() ? 1 + dimension_of[v].value_or(Dimension{}).si_unit().size() : 0));
+      continue;
+    }
+    for (const std::string& cell : values[v].cells) text_bytes += cell.size() + 1 + units[v].size();
+  }
+  reserve_large(written.text, text_bytes);
   std::vector<std::optional<UnitScale>> scales(width);
   for (std::size_t v = 0; v < width; ++v)
     if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);
@@ -225,12 +239,13 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
           table.keep_written(si_text(x, d), false, x, d);
           continue;
         }
-        // The number's 17 digits in the column's unit (si_text's), read as the cell "DIGITS UNIT" is.
+        // The number's 17 digits in the column's unit (si_text's), read as the cell "DIGITS UNIT" is:
+        // 17 significant digits read back to x itself, so its value is that of x, unread.
         char buffer[40];
         const auto printed = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
         const std::string_view digits(buffer, static_cast<std::size_t>(printed.ptr - buffer));
         if (scales[v])
-          if (const std::optional<double> number = bare_number_in(digits, *scales[v])) {
+          if (const std::optional<double> number = bare_number_in(x, *scales[v])) {
             table.keep_written(digits, true, *number, scales[v]->dimension);
             continue;
           }

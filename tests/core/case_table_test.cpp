@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <bit>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -363,4 +364,28 @@ TEST_CASE("Case tables: a cases file is kept as numbers with each value's text b
   CHECK(sweep_holdings(table, 0) == static_cast<double>(table.numbers.si.capacity() * sizeof(double) + w.text.capacity() +
                                                          w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
                                                          w.dimensions.capacity() * sizeof(Dimension)));
+}
+
+TEST_CASE("Case tables: a number's value in a unit is that of its 17 digits read as a cell", "[core][sweep]") {
+  // Python's columns give numbers, kept with their 17 digits as text; the value is taken from the
+  // number itself (bare_number_in(double)), which must be what the text read as a cell gives.
+  std::mt19937_64 random(31);
+  std::uniform_real_distribution<double> exponent(-300.0, 300.0), unit_interval(0.0, 1.0);
+  const std::vector<std::string> units{"mm", "deg", "rpm", "degC", "degF", "um", "N/mm", "m"};
+  for (const std::string& unit : units) {
+    const UnitScale scale = *parse_unit_cached(unit);
+    for (int k = 0; k < 20000; ++k) {
+      const double magnitude = std::pow(10.0, exponent(random)) * unit_interval(random);
+      const double x = k % 2 ? -magnitude : magnitude;
+      char buffer[40];
+      const auto printed = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
+      const std::optional<double> from_text = bare_number_in(std::string_view(buffer, static_cast<std::size_t>(printed.ptr - buffer)), scale);
+      const std::optional<double> from_number = bare_number_in(x, scale);
+      REQUIRE(from_text.has_value() == from_number.has_value());
+      if (from_text) REQUIRE(std::bit_cast<std::uint64_t>(*from_text) == std::bit_cast<std::uint64_t>(*from_number));
+    }
+    // The largest numbers overflow in SI the same way read either way.
+    CHECK(bare_number_in(std::numeric_limits<double>::max(), scale).has_value() == bare_number_in("1.7976931348623157e308", scale).has_value());
+    CHECK(bare_number_in(0.0, scale) == bare_number_in("0", scale));
+  }
 }

@@ -384,6 +384,63 @@ outputs: [ ta.time_area, valve.max_acceleration, train.mass_without_spring ]
   }
 }
 
+TEST_CASE("sweep budget: a cases file's estimate equals the same cases kept as rows of text", "[sweep][bounds]") {
+  // The estimate binds a value that apply() writes as a number without its text, any other with
+  // it: words (a choice), values refused (another dimension, out of range) and integers.
+  const std::string yaml = R"(params: { len: 2 mm }
+nodes:
+  a: { type: test.constant, params: { value: $len } }
+  s: { type: test.add, inputs: { a: a.out, b: a.out }, params: { gain: 2 } }
+  q: { type: test.series, params: { points: 5 } }
+outputs: [ s.sum, q.curve ]
+)";
+  const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_estimate_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto file = dir / "cases.csv";
+  {
+    std::ofstream out(file);
+    out << "len [mm],a.mode,s.gain,q.points\n";
+    const char* modes[] = {"plain", "fancy", "odd"};
+    const char* lengths[] = {"3", "2.5 mm", "0.004 m", "3 s"};
+    for (int i = 0; i < 5000; ++i)  // more than one chunk of the parallel estimate
+      out << lengths[i % 4] << "," << modes[i % 3] << "," << (i % 7 == 0 ? "-1" : "1.5") << "," << (i % 5 == 0 ? 100000 : 10 + i % 9) << "\n";
+  }
+  Prepared numbers = prepare(yaml, read_cases_csv(file));
+  std::filesystem::remove_all(dir);
+  REQUIRE(numbers.table.cases.empty());  // kept as numbers with their texts
+  CaseTable rows_table;
+  rows_table.variables = numbers.table.variables;
+  for (std::size_t i = 0; i < numbers.table.size(); ++i) {
+    std::vector<CaseValue> row;
+    rows_table.cases.push_back(numbers.table.row(i, row));
+  }
+  Prepared rows = prepare(yaml, std::move(rows_table));
+  std::vector<std::size_t> all(numbers.table.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  for (unsigned threads : {1u, 2u}) {
+    const SweepEstimate a = estimate_cases(numbers.graph, *numbers.binder, numbers.table, all, threads);
+    const SweepEstimate b = estimate_cases(rows.graph, *rows.binder, rows.table, all, threads);
+    CHECK(a.total.work == b.total.work);
+    CHECK(a.largest_memory == b.largest_memory);
+    CHECK(a.largest_case == b.largest_case);
+  }
+  // Cases refused before they run (a word not among the choices, a time, a negative gain) have
+  // no work: the file's work is below that of its cases bound alike with none refused.
+  const SweepEstimate e = estimate_cases(numbers.graph, *numbers.binder, numbers.table, all);
+  std::size_t bound = 0;
+  for (std::size_t c : all) {
+    Graph copy = rows.graph;
+    try {
+      rows.binder->apply(rows.binder->bind(copy), copy, rows.table.cases[c]);
+      ++bound;
+    } catch (const SceneError&) {
+    }
+  }
+  CHECK(bound > 0);
+  CHECK(bound < all.size() / 2);
+  CHECK(e.total.work > 0);
+}
+
 TEST_CASE("sweep budget: the per-case estimate equals each case estimated alone (second method)", "[sweep][bounds]") {
   // Types without a forecast (the conventions): a real number changes nothing they count, an
   // integer does; RepeatedNodeEstimate keeps the first and recounts the second.

@@ -437,7 +437,7 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
   CaseValue made;
   for (std::size_t v = 0; v < table_.variables.size(); ++v) {
     cells.push_back(table_.shown(result.index, v));
-    numeric.push_back(table_.cell(result.index, v, made).si.has_value());
+    numeric.push_back(table_.number_cell(result.index, v, made).si.has_value());
   }
   std::string error = result.failure == CaseFailure::none ? shape_problem(result) : result.error;
   if (result.failure == CaseFailure::none && !error.empty()) exit_code = evaluation_error;
@@ -465,7 +465,7 @@ double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) 
   cell.clear();
   table_.append_shown(cell, i, v, input_units_[v]);
   CaseValue made;
-  if (cell.empty() || !table_.cell(i, v, made).si.has_value() || !finite_number_cell(cell)) return std::numeric_limits<double>::quiet_NaN();
+  if (cell.empty() || !table_.number_cell(i, v, made).si.has_value() || !finite_number_cell(cell)) return std::numeric_limits<double>::quiet_NaN();
   return std::strtod(cell.c_str(), nullptr);
 }
 

@@ -23,6 +23,18 @@ struct ChunkEstimate {
 // added up in chunk order: the same figures whatever the number of threads.
 constexpr std::size_t cases_per_chunk = 4096;
 
+// Case c's values as apply() needs them: a value it writes as a number without its text (a table
+// that keeps its cells' texts then makes none: a cases file's million rows), any other with it (a
+// word, a value refused: its message shows the text).
+const std::vector<CaseValue>& binding_row(const CaseTable& table, const CaseBinder& binder, std::size_t c,
+                                          std::vector<CaseValue>& row) {
+  if (!table.cases.empty()) return table.cases[c];
+  row.resize(table.numbers.dimensions.size());
+  for (std::size_t v = 0; v < row.size(); ++v)
+    if (!binder.writes_number(v, table.number_cell(c, v, row[v]))) table.cell(c, v, row[v]);
+  return row;
+}
+
 }  // namespace
 
 SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const CaseTable& table,
@@ -96,7 +108,7 @@ SweepEstimate estimate_cases(const Graph& graph, const CaseBinder& binder, const
       const std::size_t c = cases[k];
       if (c >= table.size()) continue;
       try {
-        binder.apply(w.slots, w.copy, table.row(c, w.row));
+        binder.apply(w.slots, w.copy, binding_row(table, binder, c, w.row));
       } catch (const SceneError&) {
         continue;  // this case is refused before it runs: no work
       }

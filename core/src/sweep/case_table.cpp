@@ -309,8 +309,13 @@ std::optional<double> bare_number_in(std::string_view text, const UnitScale& uni
   const char* last = text.data() + text.size();
   double x = 0.0;
   const auto [end, ec] = std::from_chars(first, last, x);
+  if (ec != std::errc() || end != last || !std::isfinite(x)) return std::nullopt;
+  return bare_number_in(x, unit);
+}
+
+std::optional<double> bare_number_in(double x, const UnitScale& unit) {
   const double si = (x + unit.offset) * unit.scale;
-  if (ec != std::errc() || end != last || !std::isfinite(x) || !std::isfinite(si)) return std::nullopt;
+  if (!std::isfinite(si)) return std::nullopt;
   return si;
 }
 

@@ -80,6 +80,9 @@ double expressible_in(double si, const std::optional<UnitScale>& unit);
 /// without reading the unit again; nullopt where TEXT is not a plain number ("+" allowed) or the
 /// value is not finite (read_case_value's own reading then decides, with its message).
 std::optional<double> bare_number_in(std::string_view text, const UnitScale& unit);
+/// The same for a number already read (finite x, as from_chars reads TEXT): nullopt where the value
+/// is not finite.
+std::optional<double> bare_number_in(double x, const UnitScale& unit);
 
 /// A number with its unit if `text` reads as one ("5600 rpm"), else a word (a choice). An infinite
 /// or NaN number ("1e400 m", "nan") is a SceneError naming `context`: no such value reaches a node.
