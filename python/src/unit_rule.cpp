@@ -2,6 +2,7 @@
 
 #include <mechgraph/display_units.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/number_prefix.hpp>
 #include <mechgraph/units.hpp>
 
 #include <charconv>
@@ -19,11 +20,9 @@ const RawValue* find_value(const std::vector<std::pair<std::string, RawValue>>& 
 
 // The unit part of "8 mm" ("mm"), if it is of dimension `d`; "" otherwise.
 std::string written_unit(const std::string& text, Dimension d) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  std::strtod(begin, &end);
-  if (end == begin) return {};
-  std::string unit(end);
+  const std::size_t end = number_prefix_end(text);
+  if (end == 0) return {};
+  std::string unit = text.substr(end);
   const auto first = unit.find_first_not_of(" \t");
   if (first == std::string::npos) return {};
   unit = unit.substr(first, unit.find_last_not_of(" \t") - first + 1);

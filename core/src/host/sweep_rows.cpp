@@ -201,11 +201,12 @@ const std::vector<std::string> reserved_columns = {"case", "exit", "error"};
 
 }  // namespace
 
-bool finite_number_cell(std::string_view text) {
-  if (text.empty() || text.front() == '+') return false;
+std::optional<double> finite_number_in_cell(std::string_view text) {
+  if (text.empty() || text.front() == '+') return std::nullopt;
   double value = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
 }
 
 void SweepRows::make_unique(std::vector<std::string>& names, const std::vector<std::string>& taken, const std::string& prefix) {
@@ -331,7 +332,7 @@ std::string SweepRows::format(const std::vector<std::string>& cells, const std::
     else if (c == 0 || c + 2 == cells.size()) json.value(std::strtol(cells[c].c_str(), nullptr, 10));  // case, exit
     // Shortest round-trip text: the same double. A cell that is not a finite number (a value
     // shown as written) goes as text: JSON has no inf or NaN, and one case must not end the sweep.
-    else if (numeric[c] && finite_number_cell(cells[c])) json.value(std::strtod(cells[c].c_str(), nullptr));
+    else if (const std::optional<double> x = numeric[c] ? finite_number_in_cell(cells[c]) : std::nullopt) json.value(*x);
     else json.value(cells[c]);
   }
   json.end_object();
@@ -465,8 +466,8 @@ double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) 
   cell.clear();
   table_.append_shown(cell, i, v, input_units_[v]);
   CaseValue made;
-  if (cell.empty() || !table_.number_cell(i, v, made).si.has_value() || !finite_number_cell(cell)) return std::numeric_limits<double>::quiet_NaN();
-  return std::strtod(cell.c_str(), nullptr);
+  if (cell.empty() || !table_.number_cell(i, v, made).si.has_value()) return std::numeric_limits<double>::quiet_NaN();
+  return finite_number_in_cell(cell).value_or(std::numeric_limits<double>::quiet_NaN());
 }
 
 int SweepRows::outcome(const CaseResult& result, int exit_code, std::vector<double>& outputs, std::string& error) const {
@@ -588,7 +589,10 @@ RowChecker::Row RowChecker::row(std::string_view line, std::size_t number) {
       if (rules_.format == RowFormat::csv) same = cell == csv_text(expected);
       else if (!plain[1 + v]) same = cell == expected;
       else if (cell.empty()) same = expected.empty();
-      else same = finite_number_cell(expected) && std::strtod(cell.c_str(), nullptr) == std::strtod(expected.c_str(), nullptr);
+      else {
+        const std::optional<double> x = finite_number_in_cell(expected);
+        same = x && finite_number_in_cell(cell) == x;
+      }
       if (!same)
         refuse(number, "column '" + excerpt(header_[1 + v], 60) + "' holds '" + excerpt(cell, 40) + "', case " + std::to_string(index) +
                            " of this sweep has '" + excerpt(expected, 40) + "'");

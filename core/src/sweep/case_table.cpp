@@ -5,6 +5,7 @@
 #include <mechgraph/bounded_read.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/large_arrays.hpp>
+#include <mechgraph/number_prefix.hpp>
 #include <mechgraph/printf_g15.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
@@ -42,18 +43,14 @@ std::string trim(std::string_view s) { return std::string(trimmed_view(s)); }
 
 // "5600 rpm" -> "rpm"; "3.5" -> ""; the unit a value was written in, to show the column in it.
 std::string unit_of(const std::string& text) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  std::strtod(begin, &end);
-  if (end == begin) return {};
-  return trim(std::string_view(end));
+  const std::size_t end = number_prefix_end(text);
+  if (end == 0) return {};
+  return trim(std::string_view(text).substr(end));
 }
 
 bool bare_number(const std::string& text) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  std::strtod(begin, &end);
-  return end != begin && trim(std::string_view(end)).empty();
+  const std::size_t end = number_prefix_end(text);
+  return end != 0 && trim(std::string_view(text).substr(end)).empty();
 }
 
 }  // namespace

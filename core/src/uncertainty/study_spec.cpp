@@ -5,6 +5,7 @@
 #include <mechgraph/error_subject.hpp>
 #include <mechgraph/sweep/case_table.hpp>
 #include <mechgraph/errors.hpp>
+#include <mechgraph/number_prefix.hpp>
 #include <mechgraph/text_escape.hpp>
 #include <mechgraph/units.hpp>
 
@@ -62,10 +63,7 @@ Quantity quantity(const RawValue& v, const std::string& what, std::string* unit 
   }
   if (!std::isfinite(q.value)) fail(v.where, what + ": " + quoted_text_excerpt(text) + " is not a finite number");
   if (unit) {
-    const char* begin = text.c_str();
-    char* end = nullptr;
-    std::strtod(begin, &end);
-    std::string rest(end ? end : begin);
+    std::string rest = text.substr(number_prefix_end(text));
     rest.erase(0, rest.find_first_not_of(" \t"));
     *unit = rest;
   }

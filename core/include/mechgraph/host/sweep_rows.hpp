@@ -166,8 +166,11 @@ class RowChecker {
   std::optional<std::size_t> previous_;
 };
 
-/// Whether a cell is a finite number as the rows write them (std::from_chars over all of it).
-bool finite_number_cell(std::string_view text);
+/// A cell's number when it is a finite number as the rows write them (std::from_chars over all of
+/// it, in no locale: strtod reads "8.5" as 8 where a program has set a German locale), else none.
+std::optional<double> finite_number_in_cell(std::string_view text);
+/// Whether a cell is a finite number as the rows write them.
+inline bool finite_number_cell(std::string_view text) { return finite_number_in_cell(text).has_value(); }
 
 /// The exit code a failed case's class maps to (2 scene or usage, 3 evaluation), 0 for success.
 int exit_code_of(CaseFailure failure);

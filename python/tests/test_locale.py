@@ -1,0 +1,65 @@
+"""A program's locale does not reach mechgraph's numbers. Under a German locale (decimal comma,
+set by locale.setlocale as a program may), a sweep and a study read and show every number as
+under "C": the C library's strtod, which reads by LC_NUMERIC, had shown 8.5 mm as 8.0 in the
+sweep's input column."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+GERMAN = "de_DE.UTF-8"
+
+CHILD = r"""
+import json, locale, sys
+import mechgraph
+if sys.argv[1] != "C":
+    locale.setlocale(locale.LC_ALL, sys.argv[1])
+    assert locale.localeconv()["decimal_point"] == ","
+scene = mechgraph.Scene.load(sys.argv[2])
+frame = scene.sweep({"lift [mm]": [8.5, 8.25], "rpm": ["5600.5 rpm", "6000 rpm"], "lash": ["0.25 mm", "0.3 mm"]},
+                    outputs=["ta_poly.time_area"], progress=False)
+study = scene.study({"lash": {"normal": {"mean": "0.25 mm", "sigma": "0.01 mm"}}}, samples=64, seed=3,
+                    limits={"ta_poly.time_area": {"lower": "4.5 mm^2*s"}}, outputs=["ta_poly.time_area"])
+print(json.dumps({"sweep": frame.to_dict("list"), "study": study.summary.to_dict("list"),
+                  "samples": study.samples.to_dict("list")}))
+"""
+
+
+@pytest.fixture(scope="module")
+def german_locale(tmp_path_factory):
+    """The environment in which GERMAN can be set: the system's, or one compiled here by
+    localedef (Debian's `locales` package) into a folder named by LOCPATH."""
+    env = dict(os.environ)
+    probe = [sys.executable, "-c", f"import locale; locale.setlocale(locale.LC_ALL, {GERMAN!r})"]
+    if subprocess.run(probe, env=env, capture_output=True).returncode == 0:
+        return env
+    localedef = shutil.which("localedef")
+    assert localedef, "localedef (Debian package locales) is needed to make a German locale"
+    folder = tmp_path_factory.mktemp("locales")
+    subprocess.run([localedef, "-i", "de_DE", "-f", "UTF-8", str(folder / GERMAN)], capture_output=True)
+    env["LOCPATH"] = str(folder)
+    assert subprocess.run(probe, env=env, capture_output=True).returncode == 0, "localedef made no usable de_DE.UTF-8"
+    return env
+
+
+def run_child(env, locale_name, scenes):
+    out = subprocess.run([sys.executable, "-c", CHILD, locale_name, str(scenes / "valvetrain_cams.yaml")], env=env,
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def test_a_german_locale_changes_no_number(scenes, german_locale):
+    plain = run_child(german_locale, "C", scenes)
+    german = run_child(german_locale, GERMAN, scenes)
+    sweep = german["sweep"]
+    assert sweep["lift [mm]"] == [8.5, 8.25]
+    # Text cells in a column without a unit: shown in SI (rad/s, m).
+    assert sweep["rpm"] == pytest.approx([5600.5 * math.pi / 30, 6000 * math.pi / 30], rel=1e-15, abs=0)
+    assert sweep["lash"] == pytest.approx([0.25e-3, 0.3e-3], rel=1e-15, abs=0)
+    assert sweep["exit"] == [0, 0]
+    assert german == plain  # every value of the sweep, the study's answers and its samples
