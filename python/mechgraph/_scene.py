@@ -128,7 +128,7 @@ class Scene:
 
     def sweep(self, cases: Any, set: Optional[Mapping[str, SetValue]] = None, outputs: Optional[Iterable[str]] = None,
               threads: int = 0, si: bool = False, progress: Any = True, *, max_work: Optional[float] = None,
-              max_memory: Optional[float] = None):
+              max_memory: Optional[float] = None, _column_units: Optional[list] = None):
         """Runs one case per row of `cases` (a DataFrame, or a dict of arrays) on `threads` worker
         threads (0: one per core) with the GIL released, and returns the rows of
         ``mechgraph sweep --cases`` as a DataFrame: ``case``, the inputs, the outputs (columns
@@ -139,7 +139,9 @@ class Scene:
         (``cam.max_lift [mm]``), or the values carry it (``(values, "mm")``, a pint quantity);
         numbers without a unit are taken only for a dimensionless parameter, or when marked SI
         (``mechgraph.si(values)``, or `si` True for every column); else SceneError. Text cells are
-        read as a cases file's ("6500 rpm", "roller"). Columns of dates or durations are refused.
+        read as a cases file's ("6500 rpm", "roller"): a column without a unit in its name is shown
+        in the unit of its first number written with one (``rpm [rpm]``). Columns of dates or
+        durations are refused.
 
         set: fixed values for every case, as :meth:`run` takes them (``{"rpm": "6000 rpm"}``);
             a text is taken as it is, never read as YAML.
@@ -150,6 +152,8 @@ class Scene:
         max_work, max_memory: the work budget of all the cases together, as ``mechgraph sweep``'s
             (default 1e12 work items, 4 GiB held by the threads at once).
         """
+        # _column_units (mechgraph.dask.sweep): each column's unit as the whole sweep shows it, so
+        # that a chunk names and shows its columns alike whatever its own first cells are.
         import pandas as pd
 
         names, units, marks, columns = case_columns(cases, si)
@@ -158,7 +162,7 @@ class Scene:
         try:
             (header, values), summary = self._session.sweep(names, units, marks, columns, set_entries(set, si),
                                                             list(outputs or []), int(threads), bar,
-                                                            *_budget(max_work, max_memory))
+                                                            *_budget(max_work, max_memory), list(_column_units or []))
         except BaseException:
             if isinstance(bar, _Bar):
                 bar.close()

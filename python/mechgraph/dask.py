@@ -26,9 +26,10 @@ def _worker_scene(source: Tuple[str, ...]) -> Scene:
 
 
 def _run_chunk(source: Tuple[str, ...], first: int, chunk: Dict[str, Any], sets: Optional[Mapping[str, str]],
-               outputs: Optional[list], threads: int, budget: Tuple[Optional[float], Optional[float]] = (None, None)):
+               outputs: Optional[list], threads: int, budget: Tuple[Optional[float], Optional[float]] = (None, None),
+               column_units: Optional[list] = None):
     frame = _worker_scene(source).sweep(chunk, set=sets, outputs=outputs, threads=threads, progress=False,
-                                        max_work=budget[0], max_memory=budget[1])
+                                        max_work=budget[0], max_memory=budget[1], _column_units=column_units)
     frame["case"] = frame["case"] + first
     return frame
 
@@ -59,14 +60,17 @@ def sweep(client: Any, scene: Scene, cases: Any, chunk: int = 1000, set: Optiona
     headers = [f"{n} [{u}]" if u else n for n, u in zip(names, units)]
     total = len(columns[0]) if columns else 0
     outs = list(outputs or [])
-    # The whole sweep within its budget before anything runs: the chunks alone would each pass.
-    scene._session.check_sweep(names, units, marks, columns, set_entries(set, si), outs, int(threads), *budget)
+    # The whole sweep within its budget before anything runs: the chunks alone would each pass. Its
+    # columns' units go with each chunk: a column without one shows the unit of its first number
+    # written with one, which a chunk's own first cells need not have.
+    column_units = scene._session.check_sweep(names, units, marks, columns, set_entries(set, si), outs, int(threads), *budget)
     source = scene._source
     sets = {k: (v if isinstance(v, SI) or not si else SI(v)) for k, v in dict(set or {}).items()}
     futures = []
     for first in range(0, total, chunk):
         part = {h: SI(c[first:first + chunk]) if m else c[first:first + chunk] for h, m, c in zip(headers, marks, columns)}
-        futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, (max_work, max_memory), pure=False))
+        futures.append(client.submit(_run_chunk, source, first, part, sets, outs, threads, (max_work, max_memory), column_units,
+                                     pure=False))
     bar = progress_bar(progress, total, "dask sweep")
     if bar is not None and futures:
         from distributed import as_completed

@@ -162,9 +162,11 @@ std::vector<SetValue> set_values(const py::list& sets) {
 // column's unit, or in SI when the column is marked SI; or text cells read as a cases file's are (a
 // bare number takes the column's unit). Numbers without a unit for a parameter with a dimension
 // are refused (unit_rule.hpp). Kept as a cases file is (CaseTable::Numbers with each value's text
-// beside it): a number in a unit is its 17 digits, read as the cell "DIGITS UNIT" would be.
+// beside it): a number in a unit is its 17 digits, read as the cell "DIGITS UNIT" would be. A
+// column with no unit takes that of its first number written with one, as a cases file's does;
+// `shown_units` (one a column, or none) gives it instead: the whole sweep's, for a chunk of it.
 CaseTable case_table(SceneSession& session, const std::vector<std::string>& names, const std::vector<std::string>& units,
-                     const std::vector<bool>& si, const py::list& columns) {
+                     const std::vector<bool>& si, const py::list& columns, const std::vector<std::string>& shown_units = {}) {
   CaseTable table;
   table.origin = "python";
   if (py::len(columns) != names.size() || units.size() != names.size() || si.size() != names.size()) throw SceneError("cases: " + std::to_string(names.size()) + " names for " +
@@ -258,8 +260,14 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
       if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context());
       else if (bare && bare_refused[v]) refuse_bare(v);
       else if (bare && si[v] && dimension_of[v]) value = value_from_si(*value.si, *dimension_of[v], context());
+      if (unit.empty()) table.adopt_unit(v, value, cell);
       table.keep_written(value, cell, v);
     }
+  if (!shown_units.empty()) {
+    if (shown_units.size() != width) throw SceneError("cases: " + std::to_string(shown_units.size()) + " column units for " + std::to_string(width) + " columns");
+    for (std::size_t v = 0; v < width; ++v)
+      if (units[v].empty()) table.variables[v].unit = shown_units[v];
+  }
   return table;
 }
 
@@ -627,8 +635,8 @@ PYBIND11_MODULE(_core, m) {
       .def("sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
                        const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
                        const py::list& set, const std::vector<std::string>& outputs, unsigned threads,
-                       const py::object& progress, double max_work, double max_memory) {
-        const CaseTable table = case_table(*session, names, units, si, columns);
+                       const py::object& progress, double max_work, double max_memory, const std::vector<std::string>& shown_units) {
+        const CaseTable table = case_table(*session, names, units, si, columns, shown_units);
         const std::vector<SetValue> sets = set_values(set);
         auto stop = std::make_shared<std::atomic<bool>>(false);
         std::atomic<std::size_t> done{0};
@@ -644,8 +652,10 @@ PYBIND11_MODULE(_core, m) {
         summary["failed"] = result.failed;
         summary["seconds"] = result.summary.seconds;
         return py::make_tuple(sweep_columns(result), summary);
-      })
+      }, py::arg("names"), py::arg("units"), py::arg("si"), py::arg("columns"), py::arg("set"), py::arg("outputs"), py::arg("threads"),
+         py::arg("progress"), py::arg("max_work"), py::arg("max_memory"), py::arg("shown_units") = std::vector<std::string>{})
       // What sweep() checks before its first case, for rows that run elsewhere (mechgraph.dask.sweep).
+      // Returns each column's unit as the whole sweep shows it (a chunk's sweep takes them).
       .def("check_sweep", [](const std::shared_ptr<SceneSession>& session, const std::vector<std::string>& names,
                              const std::vector<std::string>& units, const std::vector<bool>& si, const py::list& columns,
                              const py::list& set, const std::vector<std::string>& outputs, unsigned threads, double max_work,
@@ -653,8 +663,13 @@ PYBIND11_MODULE(_core, m) {
         const CaseTable table = case_table(*session, names, units, si, columns);
         const std::vector<SetValue> sets = set_values(set);
         const WorkBudget budget = python_budget(max_work, max_memory, true);
-        py::gil_scoped_release released;
-        session->check_sweep(table, sets, outputs, threads, budget);
+        {
+          py::gil_scoped_release released;
+          session->check_sweep(table, sets, outputs, threads, budget);
+        }
+        std::vector<std::string> shown_units;
+        for (const SweepVariable& variable : table.variables) shown_units.push_back(variable.unit);
+        return shown_units;
       })
       .def("study", [](const std::shared_ptr<SceneSession>& session, const std::string& block, const py::list& set,
                        const std::string& samples, const std::string& method, const std::string& seed,

@@ -14,7 +14,10 @@ def test_dask_sweep_equals_the_single_process_sweep(scenes):
     rpm = np.linspace(4000, 8000, 37)
     r0 = np.where(np.arange(37) == 11, 3.0, 17.0)  # one infeasible case, a failed row
     # units three ways: a header, a (values, unit) pair, numbers marked SI; each chunk keeps them
-    cases = {"rpm [rpm]": rpm, "r0": (r0, "mm"), "lift": mechgraph.si(np.linspace(0.007, 0.009, 37))}
+    # and text cells under a name without a unit: the column shows the unit of its first number
+    # (mm) in every chunk, though each chunk but the first starts with a cell in m
+    lash = ["0.00025 m" if i % 8 == 0 and i > 0 else "0.3 mm" if i % 2 else "0.25 mm" for i in range(37)]
+    cases = {"rpm [rpm]": rpm, "r0": (r0, "mm"), "lift": mechgraph.si(np.linspace(0.007, 0.009, 37)), "lash": lash}
     outputs = ["arc.min_curvature_radius", "v_kurz.max_acceleration", "ta_kurz.time_area"]
     local = scene.sweep(cases, outputs=outputs, threads=1)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
@@ -23,6 +26,7 @@ def test_dask_sweep_equals_the_single_process_sweep(scenes):
         workers = client.run(lambda: sorted(__import__("mechgraph.dask").dask._worker_scenes.keys()))
     assert len(workers) == 2
     assert list(remote.columns) == list(local.columns)
+    assert "lash [mm]" in local.columns and local["lash [mm]"].iloc[8] == 0.25
     pd.testing.assert_frame_equal(remote.reset_index(drop=True), local.reset_index(drop=True), check_exact=True)
     assert (remote["exit"] != 0).sum() == 1
 

@@ -69,6 +69,21 @@ def test_text_cells_identical_to_the_command_line(scenes, cli, tmp_path):
     assert "lash" in frame["error"].iloc[2]
 
 
+def test_a_column_without_a_unit_shows_its_first_units_as_the_command_line_does(scenes, cli, tmp_path):
+    # Text cells under a name without a unit: the column takes the unit of its first number written
+    # with one (rpm), as a cases file's does; a cell in another unit is shown in it, a cell of
+    # another dimension as written (its case refused).
+    rpm = ["5600.5 rpm", "600 rad/s", "6000 rpm", "6100 mm", "6200 rpm"]
+    csv_file = tmp_path / "cases.csv"
+    csv_file.write_text("rpm\n" + "".join(f"{a}\n" for a in rpm))
+    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep({"rpm": rpm}, outputs=OUTPUTS, threads=2, progress=False)
+    assert_rows_equal(frame, expected)
+    assert "rpm [rpm]" in frame.columns and frame["rpm [rpm]"].iloc[0] == 5600.5
+    assert list(frame["exit"]) == [0, 0, 0, 2, 0]
+
+
 def test_si_numbers_and_dict_of_arrays(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm_si = np.array([5000.0, 6000.0]) * 2 * math.pi / 60

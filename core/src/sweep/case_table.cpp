@@ -299,6 +299,10 @@ void CaseTable::keep_written(const CaseValue& value, std::string_view cell, std:
                value.dimension);
 }
 
+void CaseTable::adopt_unit(std::size_t v, const CaseValue& value, const std::string& cell) {
+  if (variables[v].unit.empty() && value.si) variables[v].unit = unit_of(cell);
+}
+
 std::optional<double> bare_number_in(std::string_view text, const UnitScale& unit) {
   // What parse_quantity makes of "TEXT UNIT": the number by from_chars, then (x + offset) * scale.
   if (text.empty()) return std::nullopt;
@@ -827,7 +831,7 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
                            excerpt(unit) + "] is not a unit: " + header_unit_errors[v]);
         throw SceneError(at + ": '" + excerpt(cell_text) + "' is not a number in " + excerpt(unit));
       }
-      if (table.variables[v].unit.empty() && value.si) table.variables[v].unit = unit_of(cell_text);
+      table.adopt_unit(v, value, cell_text);
       table.keep_written(value, cell_text, v);  // "CELL UNIT" as the cell and a mark: within the file's size
     }
     ++table.numbers.count;

@@ -144,6 +144,10 @@ struct CaseTable {
   /// keep_written of `value`, read from the cell `cell` of variable v: its text "CELL UNIT" (UNIT
   /// the variable's written.column_units) kept as the cell and the mark.
   void keep_written(const CaseValue& value, std::string_view cell, std::size_t v);
+  /// A column whose header names no unit takes the unit of its first number written with one
+  /// ("5000 rpm": rpm), so that its rows show the numbers in it: `value` read from `cell` of
+  /// variable v. The unit it reads bare numbers in stays the header's (none).
+  void adopt_unit(std::size_t v, const CaseValue& value, const std::string& cell);
   std::string origin;  // "--vary ...", "FILE.csv", "--sample ... --seed S"
 
   /// How many cases the table holds, however it keeps them.
