@@ -40,6 +40,17 @@ nodes:
 outputs: [ s.sum, a.out ]
 )";
 
+// The scene of the budget's tests: a real number, an integer and a choice to vary, and types
+// without a forecast (the conventions).
+const char* estimated_scene = R"(params: { len: 2 mm }
+nodes:
+  c: { type: test.constant, params: { value: $len } }
+  s: { type: test.add, inputs: { a: c.out, b: c.out }, params: { gain: 2 } }
+  q: { type: test.series, params: { points: 5 } }
+  t: { type: test.table, params: { points: 4 } }
+outputs: [ s.sum, q.curve, t.curves ]
+)";
+
 std::vector<CaseResult> sweep_all(const Prepared& p, unsigned threads, MemoCache& cache) {
   SweepOptions options;
   options.threads = threads;
@@ -387,19 +398,13 @@ outputs: [ ta.time_area, valve.max_acceleration, train.mass_without_spring ]
 TEST_CASE("sweep budget: a cases file's estimate equals the same cases kept as rows of text", "[sweep][bounds]") {
   // The estimate binds a value that apply() writes as a number without its text, any other with
   // it: words (a choice), values refused (another dimension, out of range) and integers.
-  const std::string yaml = R"(params: { len: 2 mm }
-nodes:
-  a: { type: test.constant, params: { value: $len } }
-  s: { type: test.add, inputs: { a: a.out, b: a.out }, params: { gain: 2 } }
-  q: { type: test.series, params: { points: 5 } }
-outputs: [ s.sum, q.curve ]
-)";
+  const std::string yaml = estimated_scene;
   const auto dir = std::filesystem::temp_directory_path() / ("mechgraph_estimate_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const auto file = dir / "cases.csv";
   {
     std::ofstream out(file);
-    out << "len [mm],a.mode,s.gain,q.points\n";
+    out << "len [mm],c.mode,s.gain,q.points\n";
     const char* modes[] = {"plain", "fancy", "odd"};
     const char* lengths[] = {"3", "2.5 mm", "0.004 m", "3 s"};
     for (int i = 0; i < 5000; ++i)  // more than one chunk of the parallel estimate
@@ -444,14 +449,7 @@ outputs: [ s.sum, q.curve ]
 TEST_CASE("sweep budget: the per-case estimate equals each case estimated alone (second method)", "[sweep][bounds]") {
   // Types without a forecast (the conventions): a real number changes nothing they count, an
   // integer does; RepeatedNodeEstimate keeps the first and recounts the second.
-  const std::string yaml = R"(params: { len: 2 mm }
-nodes:
-  c: { type: test.constant, params: { value: $len } }
-  s: { type: test.add, inputs: { a: c.out, b: c.out }, params: { gain: 2 } }
-  q: { type: test.series, params: { points: 5 } }
-  t: { type: test.table, params: { points: 4 } }
-outputs: [ s.sum, q.curve, t.curves ]
-)";
+  const std::string yaml = estimated_scene;
   // 4800 cases: more than one chunk of the parallel estimate.
   Prepared p = prepare(yaml, make_grid({parse_vary("len=1mm:4mm:600"), parse_vary("s.gain=1,3"), parse_vary("q.points=10,100000"),
                                         parse_vary("t.points=7,9")}));
