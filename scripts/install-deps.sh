@@ -11,7 +11,7 @@ if [ "${1:-}" != "--study" ]; then
   packages+=(python3-pint python3-tqdm)  # the Python module: units (pint), sweep progress bars (tqdm)
   packages+=(time)  # /usr/bin/time -f %M: the resident size of merge (tests/hostile/hostile_outputs_test.cpp)
   packages+=(git)   # python/tests/test_pip_install.py copies what git tracks
-  packages+=(locales)  # localedef: python/tests/test_locale.py makes a German locale (decimal comma)
+  packages+=(locales)  # the locales' sources: python/tests/test_locale.py makes a German locale (localedef)
   packages+=(libbenchmark-dev gnuplot-nox python3-ezdxf chromium python3-pil graphviz poppler-utils
              pybind11-dev python3-pybind11 python3-numpy python3-pandas python3-scipy python3-matplotlib
              python3-pytest python3-venv python3-pip python3-setuptools python3-wheel python3-distributed python3-nbclient python3-ipykernel python3-nbformat

@@ -47,7 +47,7 @@ struct SessionRun {
 };
 
 /// An input column of a sweep's rows: a number a row, or (where any row holds text or nothing) the
-/// cells as SweepRows::input_values gives them.
+/// cells as SweepRows::input_value gives them.
 struct SessionInputColumn {
   std::vector<double> numbers;                                           // empty when `cells` holds the column
   std::vector<std::variant<std::monostate, double, std::string>> cells;  // none, a number, or text as written

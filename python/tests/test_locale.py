@@ -4,6 +4,7 @@ under "C": the C library's strtod, which reads by LC_NUMERIC, had shown 8.5 mm a
 sweep's input column."""
 import json
 import os
+import pathlib
 import shutil
 import subprocess
 import sys
@@ -13,7 +14,7 @@ import pytest
 GERMAN = "de_DE.UTF-8"
 
 CHILD = r"""
-import json, locale, sys
+import json, locale, re, sys
 import mechgraph
 if sys.argv[1] != "C":
     locale.setlocale(locale.LC_ALL, sys.argv[1])
@@ -23,8 +24,16 @@ frame = scene.sweep({"lift [mm]": [8.5, 8.25], "rpm": ["5600.5 rpm", "6000 rpm"]
                     outputs=["ta_poly.time_area"], progress=False)
 study = scene.study({"lash": {"normal": {"mean": "0.25 mm", "sigma": "0.01 mm"}}}, samples=64, seed=3,
                     limits={"ta_poly.time_area": {"lower": "4.5 mm^2*s"}}, outputs=["ta_poly.time_area"])
+try:  # a bare number for a length: the refusal names the scene's unit, read from "0.25 mm"
+    scene.run(set={"lash": 0.3})
+    refusal = None
+except mechgraph.SceneError as e:
+    refusal = str(e)
+# the first case fails (an infeasible base radius): its row and the rows after it
+failing = scene.sweep({"r0 [mm]": [3.0, 17.5]}, outputs=["arc.min_curvature_radius"], progress=False)
 print(json.dumps({"sweep": frame.to_dict("list"), "study": study.summary.to_dict("list"),
-                  "samples": study.samples.to_dict("list")}))
+                  "samples": study.samples.to_dict("list"), "refusal": refusal, "failing": failing.to_dict("list"),
+                  "shown": re.sub(r" in \S+ ms", "", str(scene.run(outputs=["ta_poly.time_area"])))}))
 """
 
 
@@ -37,11 +46,13 @@ def german_locale(tmp_path_factory):
     if subprocess.run(probe, env=env, capture_output=True).returncode == 0:
         return env
     localedef = shutil.which("localedef")
-    assert localedef, "localedef (Debian package locales) is needed to make a German locale"
+    assert localedef, "localedef (Debian package libc-bin) is needed to make a German locale"
+    assert pathlib.Path("/usr/share/i18n/locales/de_DE").is_file(), "the locales' sources are needed: Debian package locales"
     folder = tmp_path_factory.mktemp("locales")
-    subprocess.run([localedef, "-i", "de_DE", "-f", "UTF-8", str(folder / GERMAN)], capture_output=True)
+    made = subprocess.run([localedef, "-c", "-i", "de_DE", "-f", "UTF-8", str(folder / GERMAN)], capture_output=True, text=True)
     env["LOCPATH"] = str(folder)
-    assert subprocess.run(probe, env=env, capture_output=True).returncode == 0, "localedef made no usable de_DE.UTF-8"
+    assert subprocess.run(probe, env=env, capture_output=True).returncode == 0, \
+        f"localedef made no usable {GERMAN} (exit {made.returncode}): {made.stderr}"
     return env
 
 
@@ -61,4 +72,5 @@ def test_a_german_locale_changes_no_number(scenes, german_locale):
     assert sweep["rpm [rpm]"] == [5600.5, 6000.0]
     assert sweep["lash [mm]"] == [0.25, 0.3]
     assert sweep["exit"] == [0, 0]
+    assert "mm" in german["refusal"] and german["failing"]["exit"] == [3, 0]
     assert german == plain  # every value of the sweep, the study's answers and its samples

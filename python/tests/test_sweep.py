@@ -84,6 +84,19 @@ def test_a_column_without_a_unit_shows_its_first_units_as_the_command_line_does(
     assert list(frame["exit"]) == [0, 0, 0, 2, 0]
 
 
+@pytest.mark.parametrize("r0", [[3, 17, 16], [3, 2.5]], ids=["the first fails", "all fail"])
+def test_failed_first_rows_identical_to_the_command_line(scenes, cli, tmp_path, r0):
+    # Rows wait for the first success to fix the columns; when none succeeds the columns are the
+    # scalar outputs alone and every output is NaN (null in the JSON rows).
+    csv_file = tmp_path / "cases.csv"
+    csv_file.write_text("r0 [mm]\n" + "".join(f"{x}\n" for x in r0))
+    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep({"r0 [mm]": r0}, outputs=OUTPUTS, threads=2, progress=False)
+    assert_rows_equal(frame, expected)
+    assert frame["exit"].iloc[0] == 3 and frame.attrs["summary"]["failed"] == sum(1 for x in r0 if x < 10)
+
+
 def test_si_numbers_and_dict_of_arrays(scenes):
     scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
     rpm_si = np.array([5000.0, 6000.0]) * 2 * math.pi / 60

@@ -359,9 +359,10 @@ TEST_CASE("Case tables: a cases file is kept as numbers with each value's text b
   // A bare number is shown as written, another unit's value in the column's unit.
   CHECK(table.shown(3, 0) == "4");
   CHECK(table.shown(2, 0) == "3");
-  // Its holdings count the texts and everything else kept beside the numbers.
+  // Its holdings count the texts (as written, not as reserved) and everything else kept beside the
+  // numbers.
   const CaseTable::Numbers::Written& w = table.numbers.written;
-  CHECK(sweep_holdings(table, 0) == static_cast<double>(table.numbers.si.capacity() * sizeof(double) + w.text.capacity() +
+  CHECK(sweep_holdings(table, 0) == static_cast<double>(table.numbers.si.capacity() * sizeof(double) + w.text.size() +
                                                          w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
                                                          w.dimensions.capacity() * sizeof(Dimension)));
 }

@@ -4,7 +4,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <clocale>
 #include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
 #include <limits>
 #include <numbers>
 
@@ -43,4 +47,18 @@ TEST_CASE("table_largest: the largest finite magnitude of the columns of one dim
   CHECK(table_largest(t, dim::angle) == 1.13);
   CHECK(table_largest(t, dim::length) == 0.00127);
   CHECK(table_largest(t, dim::mass) == 0.0);
+}
+
+TEST_CASE("shown_number: printf's %.6g as the C locale writes it (second method)", "[core][shown_number]") {
+  // The test process runs in the "C" locale: snprintf there is the reference the text must equal,
+  // which a program's locale (a decimal comma) no longer changes.
+  REQUIRE(std::string(std::setlocale(LC_NUMERIC, nullptr)) == "C");
+  std::mt19937_64 random(17);
+  std::uniform_real_distribution<double> exponent(-300.0, 300.0);
+  for (int k = 0; k < 20000; ++k) {
+    const double x = (k % 2 ? -1.0 : 1.0) * std::pow(10.0, exponent(random)) * (k % 5 ? 1.0 : 0.999999951);
+    char expected[40];
+    std::snprintf(expected, sizeof expected, "%.6g", x);
+    REQUIRE(shown_number(x, x, 0.0) == expected);
+  }
 }

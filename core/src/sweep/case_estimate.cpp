@@ -166,7 +166,9 @@ void check_sweep_budget(const Graph& graph, const CaseBinder& binder, const Case
 double sweep_holdings(const CaseTable& table, std::size_t cases) {
   double bytes = static_cast<double>(cases) * sizeof(std::size_t) + static_cast<double>(table.numbers.si.capacity()) * sizeof(double);
   const CaseTable::Numbers::Written& written = table.numbers.written;
-  bytes += static_cast<double>(written.text.capacity() + written.ends.capacity() * sizeof(std::uint32_t) +
+  // The texts as held: their pool may be reserved beyond them (Python's tables reserve the most a
+  // number's 17 digits can take), address space whose pages are never touched.
+  bytes += static_cast<double>(written.text.size() + written.ends.capacity() * sizeof(std::uint32_t) +
                                written.in_column_unit.capacity() + written.dimensions.capacity() * sizeof(Dimension));
   for (const std::vector<CaseValue>& row : table.cases) {
     bytes += sizeof(row) + static_cast<double>(row.capacity()) * sizeof(CaseValue);
