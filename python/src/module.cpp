@@ -260,7 +260,7 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
       if (bare && !unit.empty()) value = value_from_text(cell + " " + unit, context());
       else if (bare && bare_refused[v]) refuse_bare(v);
       else if (bare && si[v] && dimension_of[v]) value = value_from_si(*value.si, *dimension_of[v], context());
-      if (unit.empty()) table.adopt_unit(v, value, cell);
+      table.adopt_unit(v, value, cell);
       table.keep_written(value, cell, v);
     }
   if (!shown_units.empty()) {

@@ -20,12 +20,8 @@ const RawValue* find_value(const std::vector<std::pair<std::string, RawValue>>& 
 
 // The unit part of "8 mm" ("mm"), if it is of dimension `d`; "" otherwise.
 std::string written_unit(const std::string& text, Dimension d) {
-  const std::size_t end = number_prefix_end(text);
-  if (end == 0) return {};
-  std::string unit = text.substr(end);
-  const auto first = unit.find_first_not_of(" \t");
-  if (first == std::string::npos) return {};
-  unit = unit.substr(first, unit.find_last_not_of(" \t") - first + 1);
+  const std::string unit(unit_after_number(text));
+  if (unit.empty()) return {};
   try {
     return parse_unit(unit).dimension == d ? unit : std::string();
   } catch (const UnitError&) {

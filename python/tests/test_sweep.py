@@ -51,19 +51,25 @@ def test_rows_identical_to_the_command_line(scenes, cli, tmp_path):
     assert frame.attrs["summary"]["failed"] == 1
 
 
+def sweep_like_the_command_line(scenes, cli, tmp_path, columns):
+    """Scene.sweep of `columns` (name: cells), checked cell for cell against the JSON rows of
+    `mechgraph sweep` of the same cells written as a cases file; returns the frame."""
+    csv_file = tmp_path / "cases.csv"
+    lines = [",".join(columns)] + [",".join(str(c) for c in row) for row in zip(*columns.values())]
+    csv_file.write_text("\n".join(lines) + "\n")
+    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
+    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
+    frame = scene.sweep(columns, outputs=OUTPUTS, threads=2, progress=False)
+    assert_rows_equal(frame, expected)
+    return frame
+
+
 def test_text_cells_identical_to_the_command_line(scenes, cli, tmp_path):
     # A column of text cells: numbers under the column's unit or in another unit of its dimension
     # (numbers in the frame), and a cell of another dimension, which the row shows as written (an
     # object column: floats and that text) and whose case fails as a scene error.
     lash = ["0.25", "0.3 mm", "1 degC", "0.0002 m", "0.2"]
-    rpm = [5000, 5600, 6200, 7000, 7600]
-    csv_file = tmp_path / "cases.csv"
-    csv_file.write_text("rpm [rpm],lash [mm]\n" + "".join(f"{a},{b}\n" for a, b in zip(rpm, lash)))
-    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
-
-    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
-    frame = scene.sweep({"rpm [rpm]": rpm, "lash [mm]": lash}, outputs=OUTPUTS, threads=2, progress=False)
-    assert_rows_equal(frame, expected)
+    frame = sweep_like_the_command_line(scenes, cli, tmp_path, {"rpm [rpm]": [5000, 5600, 6200, 7000, 7600], "lash [mm]": lash})
     assert frame["lash [mm]"].dtype == object and frame["lash [mm]"].iloc[2] == "1 degC"
     assert list(frame["exit"]) == [0, 0, 2, 0, 0] and frame["error"].iloc[0] is None
     assert "lash" in frame["error"].iloc[2]
@@ -74,12 +80,7 @@ def test_a_column_without_a_unit_shows_its_first_units_as_the_command_line_does(
     # with one (rpm), as a cases file's does; a cell in another unit is shown in it, a cell of
     # another dimension as written (its case refused).
     rpm = ["5600.5 rpm", "600 rad/s", "6000 rpm", "6100 mm", "6200 rpm"]
-    csv_file = tmp_path / "cases.csv"
-    csv_file.write_text("rpm\n" + "".join(f"{a}\n" for a in rpm))
-    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
-    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
-    frame = scene.sweep({"rpm": rpm}, outputs=OUTPUTS, threads=2, progress=False)
-    assert_rows_equal(frame, expected)
+    frame = sweep_like_the_command_line(scenes, cli, tmp_path, {"rpm": rpm})
     assert "rpm [rpm]" in frame.columns and frame["rpm [rpm]"].iloc[0] == 5600.5
     assert list(frame["exit"]) == [0, 0, 0, 2, 0]
 
@@ -88,12 +89,7 @@ def test_a_column_without_a_unit_shows_its_first_units_as_the_command_line_does(
 def test_failed_first_rows_identical_to_the_command_line(scenes, cli, tmp_path, r0):
     # Rows wait for the first success to fix the columns; when none succeeds the columns are the
     # scalar outputs alone and every output is NaN (null in the JSON rows).
-    csv_file = tmp_path / "cases.csv"
-    csv_file.write_text("r0 [mm]\n" + "".join(f"{x}\n" for x in r0))
-    expected = cli_rows(cli, scenes / "valvetrain_cams.yaml", csv_file, OUTPUTS)
-    scene = mechgraph.Scene.load(scenes / "valvetrain_cams.yaml")
-    frame = scene.sweep({"r0 [mm]": r0}, outputs=OUTPUTS, threads=2, progress=False)
-    assert_rows_equal(frame, expected)
+    frame = sweep_like_the_command_line(scenes, cli, tmp_path, {"r0 [mm]": r0})
     assert frame["exit"].iloc[0] == 3 and frame.attrs["summary"]["failed"] == sum(1 for x in r0 if x < 10)
 
 

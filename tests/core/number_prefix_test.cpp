@@ -28,6 +28,16 @@ TEST_CASE("number_prefix_end: the number that starts a value's text", "[core][un
   CHECK_THROWS_AS(parse_quantity("0x10 mm"), UnitError);
 }
 
+TEST_CASE("unit_after_number: the unit a value was written in", "[core][units]") {
+  CHECK(unit_after_number("8.5 mm") == "mm");
+  CHECK(unit_after_number(" +8.5mm ") == "mm");
+  CHECK(unit_after_number("4000 N/mm\t") == "N/mm");
+  CHECK(unit_after_number("3.5") == "");
+  CHECK(unit_after_number("3.5  ") == "");
+  CHECK(unit_after_number("roller") == "");  // no number: no unit
+  CHECK(unit_after_number("") == "");
+}
+
 TEST_CASE("number_prefix_end: where strtod ends in the C locale, for decimal numbers (second method)", "[core][units]") {
   // The test process runs in the "C" locale, where strtod reads a decimal point: the same ends
   // for numbers of every size written as the scene language writes them, with a unit after.

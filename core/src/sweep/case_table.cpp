@@ -42,16 +42,9 @@ std::string_view trimmed_view(std::string_view s) {
 std::string trim(std::string_view s) { return std::string(trimmed_view(s)); }
 
 // "5600 rpm" -> "rpm"; "3.5" -> ""; the unit a value was written in, to show the column in it.
-std::string unit_of(const std::string& text) {
-  const std::size_t end = number_prefix_end(text);
-  if (end == 0) return {};
-  return trim(std::string_view(text).substr(end));
-}
+std::string unit_of(const std::string& text) { return std::string(unit_after_number(text)); }
 
-bool bare_number(const std::string& text) {
-  const std::size_t end = number_prefix_end(text);
-  return end != 0 && trim(std::string_view(text).substr(end)).empty();
-}
+bool bare_number(const std::string& text) { return number_prefix_end(text) != 0 && unit_after_number(text).empty(); }
 
 }  // namespace
 

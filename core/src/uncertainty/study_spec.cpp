@@ -63,9 +63,7 @@ Quantity quantity(const RawValue& v, const std::string& what, std::string* unit 
   }
   if (!std::isfinite(q.value)) fail(v.where, what + ": " + quoted_text_excerpt(text) + " is not a finite number");
   if (unit) {
-    std::string rest = text.substr(number_prefix_end(text));
-    rest.erase(0, rest.find_first_not_of(" \t"));
-    *unit = rest;
+    *unit = std::string(unit_after_number(text));
   }
   return q;
 }
