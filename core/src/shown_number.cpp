@@ -1,12 +1,11 @@
 // Numbers as a person reads them: see shown_number.hpp for the rule and why.
 #include "mechgraph/shown_number.hpp"
 
+#include <mechgraph/printf_number.hpp>
 #include <mechgraph/units.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 
 namespace mechgraph {
@@ -32,10 +31,8 @@ double table_largest(const Table& table, const Dimension& dimension) {
 std::string shown_number(double shown, double si, double floor) {
   if (shown == 0.0 || (std::isfinite(si) && std::abs(si) < floor)) return "0";
   // printf's "%.6g" as the C locale writes it, whatever the program's locale (a Python session
-  // may have set one with a decimal comma): to_chars with a precision is defined as that printf.
-  char buffer[32];
-  const auto printed = std::to_chars(buffer, buffer + sizeof buffer, shown, std::chars_format::general, 6);
-  return std::string(buffer, printed.ptr);
+  // may have set one with a decimal comma).
+  return printf_g(shown, 6);
 }
 
 std::string format_value(double si, Dimension dimension, const std::string& unit) {

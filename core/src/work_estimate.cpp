@@ -3,10 +3,10 @@
 #include "c_node_type.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <set>
@@ -23,11 +23,7 @@ constexpr double bytes_per_row = 180.0;
 // A node whose curves have no points parameter writes a few hundred rows.
 constexpr double default_rows = 361.0;
 
-std::string amount(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, v < 1e6 ? "%.0f" : "%.3g", v);
-  return text;
-}
+std::string amount(double v) { return v < 1e6 ? printf_f(v, 0) : printf_g(v, 3); }
 
 // Below a mebibyte in bytes ("4096 bytes", not "0 MiB": a budget of a few kilobytes is one).
 std::string mebibytes(double bytes) { return bytes < (1 << 20) ? amount(bytes) + " bytes" : amount(bytes / (1 << 20)) + " MiB"; }

@@ -1,11 +1,11 @@
 #pragma once
 // The node types of the backlash plugin, and the few things their descriptions share.
 #include <mechgraph/node.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <thread>
 
@@ -53,18 +53,10 @@ inline ParamSpec threads_param() {
 }
 
 /// A number as text for messages, with up to six significant digits.
-inline std::string number_text(double x) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
+inline std::string number_text(double x) { return printf_g(x, 6); }
 
 /// A length as text for messages, in mm with four significant digits.
-inline std::string mm_text(double metres) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.4g mm", metres * 1e3);
-  return buffer;
-}
+inline std::string mm_text(double metres) { return printf_g(metres * 1e3, 4) + " mm"; }
 
 /// Reads and re-checks the Monte Carlo knobs (a node may be called without the scene's checks).
 inline std::size_t read_samples(const ParamSet& p) {
@@ -91,10 +83,8 @@ inline unsigned read_threads(const ParamSet& p) {
 /// How a Monte Carlo result was made, for the results' notes: "Monte Carlo: 1000000 samples,
 /// seed 1, standard error of the mean 0.00011 mm".
 inline std::string monte_carlo_note(std::size_t samples, std::uint64_t seed, double mean_error) {
-  char text[160];
-  std::snprintf(text, sizeof text, "Monte Carlo: %zu samples, seed %llu, standard error of the mean %.3g mm", samples,
-                static_cast<unsigned long long>(seed), mean_error * 1e3);
-  return text;
+  return "Monte Carlo: " + std::to_string(samples) + " samples, seed " + std::to_string(seed) +
+         ", standard error of the mean " + printf_g(mean_error * 1e3, 3) + " mm";
 }
 
 }  // namespace mechgraph::backlash

@@ -64,8 +64,9 @@
 //    3 < d <= 500 mm, where Delta would apply, are reported as not defined.
 #include "iso286.hpp"
 
+#include <mechgraph/printf_number.hpp>
+
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -457,11 +458,7 @@ std::string grade_name(int grade) {
     return grade == kGradeIt01 ? std::string("IT01") : "IT" + std::to_string(grade);
 }
 
-std::string format_mm(double mm) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.10g", mm);
-    return buf;
-}
+std::string format_mm(double mm) { return printf_g(mm, 10); }
 
 std::string valid_letters(bool hole) {
     std::string s;

@@ -14,10 +14,10 @@
 
 #include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/domain/valve_motion.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -135,11 +135,7 @@ void add_lash_take_up(Table& t, const ValveMotion& motion, const ValveSimulation
   add_event(t, open, 10.0, w * std::abs(y.velocity), sim.model.force_after_event(at, ChainState(2 * sim.model.positions(), 0.0)), 0.0);
 }
 
-std::string degrees(double radians) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", radians * 180.0 / pi);
-  return text;
-}
+std::string degrees(double radians) { return printf_f(radians * 180.0 / pi, 1); }
 
 // One note per kind of departure in the last revolution, in words: where it began, how often.
 void describe_events(const SimulationResult& run, double last, double w, OutputSet& out) {
@@ -159,10 +155,9 @@ void describe_events(const SimulationResult& run, double last, double w, OutputS
   const auto say = [&](const std::string& kind, const std::string& what) {
     const auto it = seen.find(kind);
     if (it == seen.end()) return;
-    char text[200];
-    std::snprintf(text, sizeof text, "%s: %d time%s in the last revolution, first at cam angle %s deg (%.3g m/s)", what.c_str(),
-                  it->second.count, it->second.count == 1 ? "" : "s", degrees(it->second.first).c_str(), it->second.speed);
-    out.note(text);
+    out.note(what + ": " + std::to_string(it->second.count) + (it->second.count == 1 ? " time" : " times") +
+             " in the last revolution, first at cam angle " + degrees(it->second.first) + " deg (" +
+             printf_g(it->second.speed, 3) + " m/s)");
   };
   say("contact_loss", "the follower leaves the cam (valve float)");
   say("bounce", "the valve bounces on its seat");
@@ -610,12 +605,9 @@ class DynamicsType final : public NodeType {
     }
     if (!std::isfinite(min_contact)) min_contact = 0.0;  // never off the seat
     if (min_contact < 0.0 && !ctx.effect("contact_loss")) {
-      char text[300];
-      std::snprintf(text, sizeof text,
-                    "bilateral drive: the least cam force, %.0f N, is a pull that no real cam can give; there the valve "
-                    "would leave the cam (switch on contact_loss to simulate it)",
-                    min_contact);
-      out.note(text);
+      out.note("bilateral drive: the least cam force, " + printf_f(min_contact, 0) +
+               " N, is a pull that no real cam can give; there the valve would leave the cam (switch on contact_loss "
+               "to simulate it)");
     }
     if (!elastic) max_spring = *std::max_element(spring.begin(), spring.end());
     out.set_scalar("max_spring_force", max_spring);

@@ -1,12 +1,12 @@
 #include "valve_simulation.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
 #include <numbers>
@@ -97,14 +97,11 @@ IntegratorChoice choose_integrator(const ChainParams& chain, double step) {
 }
 
 std::string IntegratorChoice::reason() const {
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "the fastest mode (|lambda| <= %.3g 1/s, %s) times the step cap is %.3g, %s dopri5's stability "
-                "interval (%.3g): %s",
-                fastest_rate, overdamped ? "overdamped" : "oscillating", stiffness_ratio,
-                stiffness_ratio > explicit_limit ? "beyond" : "inside", explicit_limit,
-                stiff ? "stiff, implicit BDF (cvode)" : "not stiff, explicit Dormand-Prince 5(4) (dopri5)");
-  return text;
+  return "the fastest mode (|lambda| <= " + printf_g(fastest_rate, 3) + " 1/s, " +
+         (overdamped ? "overdamped" : "oscillating") + ") times the step cap is " + printf_g(stiffness_ratio, 3) + ", " +
+         (stiffness_ratio > explicit_limit ? "beyond" : "inside") + " dopri5's stability interval (" +
+         printf_g(explicit_limit, 3) + "): " +
+         (stiff ? "stiff, implicit BDF (cvode)" : "not stiff, explicit Dormand-Prince 5(4) (dopri5)");
 }
 
 std::vector<double> natural_frequencies(const ChainParams& chain) {

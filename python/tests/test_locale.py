@@ -1,10 +1,11 @@
 """A program's locale does not reach mechgraph's numbers. Under a German locale (decimal comma,
 set by locale.setlocale as a program may), a sweep and a study read and show every number as
 under "C": the C library's strtod, which reads by LC_NUMERIC, had shown 8.5 mm as 8.0 in the
-sweep's input column."""
+sweep's input column, and the plugins' messages and notes, written by printf, had "8,25 mm"."""
 import json
 import os
 import pathlib
+import re
 import shutil
 import subprocess
 import sys
@@ -31,9 +32,18 @@ except mechgraph.SceneError as e:
     refusal = str(e)
 # the first case fails (an infeasible base radius): its row and the rows after it
 failing = scene.sweep({"r0 [mm]": [3.0, 17.5]}, outputs=["arc.min_curvature_radius"], progress=False)
+# the plugins' words: a node's error and notes with numbers in them (a cam, the valve, the backlash chain)
+try:
+    scene.run(set={"arc.checking_lift": "8.25 mm"}, outputs=["arc.opening_angle"])
+    plugin_error = None
+except mechgraph.EvaluationError as e:
+    plugin_error = str(e)
+notes = scene.run(set={"lash": "0.3 mm"}, outputs=["v_arc.opening_angle"]).notes
+notes += mechgraph.Scene.load(sys.argv[3]).run().notes
 print(json.dumps({"sweep": frame.to_dict("list"), "study": study.summary.to_dict("list"),
                   "samples": study.samples.to_dict("list"), "refusal": refusal, "failing": failing.to_dict("list"),
-                  "shown": re.sub(r" in \S+ ms", "", str(scene.run(outputs=["ta_poly.time_area"])))}))
+                  "shown": re.sub(r" in \S+ ms", "", str(scene.run(outputs=["ta_poly.time_area"]))),
+                  "plugin_error": plugin_error, "notes": notes}))
 """
 
 
@@ -57,8 +67,8 @@ def german_locale(tmp_path_factory):
 
 
 def run_child(env, locale_name, scenes):
-    out = subprocess.run([sys.executable, "-c", CHILD, locale_name, str(scenes / "valvetrain_cams.yaml")], env=env,
-                         capture_output=True, text=True)
+    out = subprocess.run([sys.executable, "-c", CHILD, locale_name, str(scenes / "valvetrain_cams.yaml"),
+                          str(scenes / "backlash_chain.yaml")], env=env, capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout)
 
@@ -73,4 +83,8 @@ def test_a_german_locale_changes_no_number(scenes, german_locale):
     assert sweep["lash [mm]"] == [0.25, 0.3]
     assert sweep["exit"] == [0, 0]
     assert "mm" in german["refusal"] and german["failing"]["exit"] == [3, 0]
+    # The plugins write their numbers with a point too (printf_number.hpp; printf had "8,25 mm").
+    assert "checking_lift 8.25 mm is not below" in german["plugin_error"]
+    assert any(re.search(r"opens \d+\.\d deg", text) for _, text in german["notes"]), german["notes"]
+    assert any(re.search(r"standard error of the mean \d+\.\d+ mm", text) for _, text in german["notes"]), german["notes"]
     assert german == plain  # every value of the sweep, the study's answers and its samples

@@ -2,10 +2,10 @@
 
 #include <mechgraph/errors.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <numbers>
@@ -184,11 +184,7 @@ Table events_table(const std::function<double(double)>& lift, std::span<const do
 
 namespace {
 
-std::string degrees(double rad) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f deg", std::abs(rad) * 180.0 / std::numbers::pi);
-  return text;
-}
+std::string degrees(double rad) { return printf_f(std::abs(rad) * 180.0 / std::numbers::pi, 1) + " deg"; }
 
 // An angle after the overlap TDC as "x deg BTDC/ATDC" about `dead_centre` (0 for TDC, +-pi for BDC).
 std::string about(double after_tdc, double dead_centre, const char* centre) {
@@ -350,12 +346,11 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
                    table.channels[3].values[0]};  // centreline from the nose (opening, closing from the law's zero)
   if (ctx.wanted("events")) out.set("events", Value::table(std::move(table)));
   if (!e) {
-    char m[240];
-    std::snprintf(m, sizeof m, "checking_lift %g mm is not below the %s's lift %g mm: the events need a checking lift the %s reaches",
-                  checking_lift * 1e3, whose.c_str(), max_lift * 1e3, whose.c_str());
+    const std::string m = "checking_lift " + printf_g(checking_lift * 1e3) + " mm is not below the " + whose + "'s lift " +
+                          printf_g(max_lift * 1e3) + " mm: the events need a checking lift the " + whose + " reaches";
     for (const char* port : {"opening_angle", "closing_angle", "duration", "crank_duration", "centreline"})
       if (ctx.wanted(port)) throw NodeError("checking_lift", m);
-    out.note(std::string(m) + " (the events table has only the rows of the lifts reached)");
+    out.note(m + " (the events table has only the rows of the lifts reached)");
     return;
   }
   out.set_scalar("opening_angle", e->opening);
@@ -364,9 +359,7 @@ void set_lift_events(OutputSet& out, const EvalContext& ctx, const ParamSet& p, 
   out.set_scalar("crank_duration", 2.0 * e->duration);
   out.set_scalar("centreline", e->centreline);  // the table's, already from the nose
   if (nose_timing) {
-    char at[64];
-    std::snprintf(at, sizeof at, " at %g mm %s lift", checking_lift * 1e3, whose.c_str());
-    out.note(quote_events(*e, *nose_timing, nose) + at);
+    out.note(quote_events(*e, *nose_timing, nose) + " at " + printf_g(checking_lift * 1e3) + " mm " + whose + " lift");
   }
 }
 

@@ -4,9 +4,9 @@
 // range check as the host, ParamSpec::value_problem), defaults filled in; a context that records
 // work and logs and reads every output. Used by the conformance suites and by plugin authors' tests.
 #include <mechgraph/node.hpp>
+#include <mechgraph/printf_number.hpp>
 #include <mechgraph/units.hpp>
 
-#include <cstdio>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -33,9 +33,7 @@ class HarnessContext final : public EvalContext {
 
 /// An SI value as scene text that parses back to the same double ("0.0090000000000000002 m").
 inline std::string si_text(double value, const char* si_unit) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g %s", value, si_unit);
-  return buffer;
+  return printf_g(value, 17) + " " + si_unit;
 }
 
 /// The type's parameters: `values` (scene text, numbers with their unit) parsed and checked, then
