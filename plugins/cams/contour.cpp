@@ -7,6 +7,7 @@
 #include <string>
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/printf_number.hpp>
 
 namespace mechgraph::cams {
 
@@ -46,7 +47,7 @@ struct Tracer {
     const double pm = 0.5 * (pa + pb);
     const FollowerContact m = at(pm);
     const double e = stray(a, b, m);
-    if (!std::isfinite(e)) throw NodeError("chord_error", "the contour is not finite near cam angle " + std::to_string(pm * 180.0 / std::numbers::pi) + " deg");
+    if (!std::isfinite(e)) throw NodeError("chord_error", "the contour is not finite near cam angle " + printf_g(pm * 180.0 / std::numbers::pi) + " deg");
     bool fine = depth >= 40 || e <= tol;
     if (fine && depth < 40) {
       // The midpoint alone can sit on the chord of an S-shaped stretch: look at the quarters too.

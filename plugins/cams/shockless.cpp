@@ -1,5 +1,7 @@
 #include "shockless.hpp"
 
+#include <mechgraph/printf_number.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -228,7 +230,7 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   if (!(amplitude_pos_ > 0.0) || !(amplitude_neg_ < 0.0) || !std::isfinite(amplitude_pos_) ||
       !std::isfinite(amplitude_neg_)) {
     throw std::invalid_argument("shockless law: the shapes give no rising law (amplitudes " +
-                                std::to_string(amplitude_pos_) + ", " + std::to_string(amplitude_neg_) + ")");
+                                printf_g(amplitude_pos_) + ", " + printf_g(amplitude_neg_) + ")");
   }
 
   // The pieces with their starting lift and velocity for the actual amplitudes.

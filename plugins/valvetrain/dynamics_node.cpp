@@ -540,8 +540,8 @@ class DynamicsType final : public NodeType {
       double first_landing = std::numeric_limits<double>::infinity();
       for (const EventRecord& e : run.events) {
         ctx.log(LogLevel::debug, "revolution " + std::to_string(static_cast<int>(e.t / period) + 1) + ", cam angle " +
-                                     std::to_string((-pi + w * std::fmod(e.t, period)) * 180.0 / pi) + " deg: " + e.kind +
-                                     (e.speed > 0.0 ? " at " + std::to_string(e.speed) + " m/s" : ""));
+                                     printf_g((-pi + w * std::fmod(e.t, period)) * 180.0 / pi) + " deg: " + e.kind +
+                                     (e.speed > 0.0 ? " at " + printf_g(e.speed) + " m/s" : ""));
         if (e.t < last) continue;
         if (e.kind == "contact_loss") floats = 1.0;
         if (e.kind == "bounce") bounces += 1.0;

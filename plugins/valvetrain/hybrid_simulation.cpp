@@ -5,6 +5,8 @@
 #include "extremum_tracker.hpp"
 #include "ode_backend.hpp"
 
+#include <mechgraph/printf_number.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <iterator>
@@ -209,8 +211,8 @@ class Driver {
     while (next_output_ < output_times.size() && within_rounding(output_times[next_output_], t))
       record(output_times[next_output_], current_.state, current_.mode);
     if (next_output_ < output_times.size())
-      throw std::logic_error("simulate: output times after the end of the run (" + std::to_string(output_times[next_output_]) +
-                             " s > " + std::to_string(t1) + " s)");
+      throw std::logic_error("simulate: output times after the end of the run (" + printf_g(output_times[next_output_]) +
+                             " s > " + printf_g(t1) + " s)");
     for (std::size_t k = 0; k < trackers_.size(); ++k) trackers_[k].finish(result_.extremes[k]);
     backend_->add_work(result_.work);
     result_.work["events"] = static_cast<double>(event_count_);

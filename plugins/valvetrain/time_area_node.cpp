@@ -13,6 +13,7 @@
 
 #include <mechgraph/domain/cam_curves.hpp>
 #include <mechgraph/numerics/piecewise.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include <algorithm>
 #include <optional>
@@ -104,8 +105,8 @@ double integrated_angle_area(const ValveMotion& motion, const FlowArea& area, co
 // any valve, but a law can be given one) overflows; refused, naming the input.
 void require_finite_area(double angle_area, double camshaft_speed, const CamLaw& cam, double rocker_ratio) {
   if (!std::isfinite(angle_area) || !std::isfinite(angle_area / camshaft_speed))
-    throw NodeError("valve", "the time-area of this valve motion (cam lift " + std::to_string(cam.max_lift()) +
-                                 " m, rocker ratio " + std::to_string(rocker_ratio) + ") is beyond the range of a double");
+    throw NodeError("valve", "the time-area of this valve motion (cam lift " + printf_g(cam.max_lift()) +
+                                 " m, rocker ratio " + printf_g(rocker_ratio) + ") is beyond the range of a double");
 }
 
 class TimeAreaType final : public NodeType, public BlockEvaluation {

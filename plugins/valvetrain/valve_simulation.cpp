@@ -183,7 +183,7 @@ ValveSimulation simulate_valve(const ValveMotion& motion, const SpringDesign& de
   if (drive.coil_bind && std::isfinite(solid_lift)) {
     if (!(solid_lift > 0.0))
       throw NodeError("design", "the spring is solid at the installed length (solid deflection " +
-                                    std::to_string(solid_lift * 1e3) + " mm): the valve cannot open");
+                                    printf_g(solid_lift * 1e3) + " mm): the valve cannot open");
     mp.limits.push_back({solid_lift, drive.coil_bind_stiffness,
                          restitution_damping(drive.coil_bind_restitution, drive.coil_bind_stiffness, mp.mass.back()), true,
                          "coil_bind"});

@@ -647,6 +647,10 @@ PYBIND11_MODULE(_core, m) {
         const WorkBudget budget = python_budget(max_work, max_memory, true);
         run_interruptibly([&] { result = session->sweep(table, sets, outputs, threads, stop.get(), budget, &done); }, [&] { *stop = true; },
                           OnInterrupt::wait, tick);
+        if (result.summary.stopped) {  // only Ctrl-C stops it, and that raised above: never a frame of part of the rows
+          PyErr_SetNone(PyExc_KeyboardInterrupt);
+          throw py::error_already_set();
+        }
         py::dict summary;
         summary["cases"] = result.summary.run;
         summary["failed"] = result.failed;

@@ -303,8 +303,8 @@ void run_rows(const Graph& graph, const CaseBinder& binder, const CaseTable& tab
     if (done) done->fetch_add(1, std::memory_order_relaxed);
   });
   sequence.finish();
-  // Stopped by Ctrl-C: the caller raises KeyboardInterrupt and reads none of it, so the rows done
-  // are not made into input columns (0.2 s at 10^6 rows, before the interrupt reached Python).
+  // Stopped by Ctrl-C: the caller raises and reads none of it, so the rows done are not made into
+  // input columns (0.2 s at 10^6 rows, before the interrupt reached Python).
   if (out.summary.stopped) return;
   out.header = rows.header();
   out.inputs = table.variables.size();

@@ -32,14 +32,15 @@ except mechgraph.SceneError as e:
     refusal = str(e)
 # the first case fails (an infeasible base radius): its row and the rows after it
 failing = scene.sweep({"r0 [mm]": [3.0, 17.5]}, outputs=["arc.min_curvature_radius"], progress=False)
-# the plugins' words: a node's error and notes with numbers in them (a cam, the valve, the backlash chain)
+# the plugins' words: a node's error and notes with numbers in them (a cam, the valve, the backlash
+# chain, the valve train's dynamics)
 try:
     scene.run(set={"arc.checking_lift": "8.25 mm"}, outputs=["arc.opening_angle"])
     plugin_error = None
 except mechgraph.EvaluationError as e:
     plugin_error = str(e)
 notes = scene.run(set={"lash": "0.3 mm"}, outputs=["v_arc.opening_angle"]).notes
-notes += mechgraph.Scene.load(sys.argv[3]).run().notes
+notes += mechgraph.Scene.load(sys.argv[3]).run().notes + mechgraph.Scene.load(sys.argv[4]).run().notes
 print(json.dumps({"sweep": frame.to_dict("list"), "study": study.summary.to_dict("list"),
                   "samples": study.samples.to_dict("list"), "refusal": refusal, "failing": failing.to_dict("list"),
                   "shown": re.sub(r" in \S+ ms", "", str(scene.run(outputs=["ta_poly.time_area"]))),
@@ -68,7 +69,8 @@ def german_locale(tmp_path_factory):
 
 def run_child(env, locale_name, scenes):
     out = subprocess.run([sys.executable, "-c", CHILD, locale_name, str(scenes / "valvetrain_cams.yaml"),
-                          str(scenes / "backlash_chain.yaml")], env=env, capture_output=True, text=True)
+                          str(scenes / "backlash_chain.yaml"), str(scenes / "valvetrain_dynamics.yaml")], env=env,
+                         capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout)
 
@@ -87,4 +89,6 @@ def test_a_german_locale_changes_no_number(scenes, german_locale):
     assert "checking_lift 8.25 mm is not below" in german["plugin_error"]
     assert any(re.search(r"opens \d+\.\d deg", text) for _, text in german["notes"]), german["notes"]
     assert any(re.search(r"standard error of the mean \d+\.\d+ mm", text) for _, text in german["notes"]), german["notes"]
+    assert any(re.search(r"step cap is \d+\.\d+, inside", text) for _, text in german["notes"]), german["notes"]
+    assert any(re.search(r"first at cam angle -?\d+\.\d deg \(\d+\.\d+ m/s\)", text) for _, text in german["notes"]), german["notes"]
     assert german == plain  # every value of the sweep, the study's answers and its samples

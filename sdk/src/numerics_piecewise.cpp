@@ -1,6 +1,7 @@
 #include <mechgraph/numerics/piecewise.hpp>
 
 #include <mechgraph/numerics/chebyshev.hpp>
+#include <mechgraph/printf_number.hpp>
 
 #include "piece_points.hpp"
 
@@ -79,7 +80,7 @@ void SmoothPieces::resolve(double a, double b, int n, int depth) {
     ++work_.evaluations;
     for (std::size_t f = 0; f < count_; ++f)
       if (!std::isfinite(v[f]))
-        throw std::domain_error("a function searched for its extremes or crossings is not finite at x = " + std::to_string(x));
+        throw std::domain_error("a function searched for its extremes or crossings is not finite at x = " + printf_g(x));
   };
   values.assign(static_cast<std::size_t>(n + 1) * count_, 0.0);
   for (int j = 0; j <= n; ++j) sample_point(j, n);

@@ -50,7 +50,15 @@ TEST_CASE("printf_g: printf's %.*g as the C locale writes it", "[sdk][printf_num
   CHECK(mechgraph::printf_g(0.1) == "0.1");  // six digits by default
   CHECK(mechgraph::printf_g(1.0 / 3.0) == "0.333333");
   CHECK(mechgraph::printf_g(0.25, 0) == "0.2");  // precision 0 counts as 1, as in printf
-  CHECK(mechgraph::printf_g(std::nan("")) == by_snprintf("%.*g", 6, std::nan("")));
+  for (const double nan : {std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::quiet_NaN(), 0.0 * std::numeric_limits<double>::infinity()}) {
+    CHECK(mechgraph::printf_g(nan) == by_snprintf("%.*g", 6, nan));
+    CHECK(mechgraph::printf_f(nan, 2) == by_snprintf("%.*f", 2, nan));
+  }
+  CHECK(mechgraph::printf_g(-std::numeric_limits<double>::quiet_NaN()) == "-nan");
+  for (int precision = 18; precision <= 40; ++precision) {  // more digits than a double holds
+    CHECK(mechgraph::printf_g(0.1, precision) == by_snprintf("%.*g", precision, 0.1));
+    CHECK(mechgraph::printf_g(-1.0 / 3.0, precision) == by_snprintf("%.*g", precision, -1.0 / 3.0));
+  }
 }
 
 TEST_CASE("printf_f: printf's %.*f as the C locale writes it, the largest double included", "[sdk][printf_number]") {
@@ -70,5 +78,6 @@ TEST_CASE("printf_f: printf's %.*f as the C locale writes it, the largest double
   }
   CHECK(mechgraph::printf_f(2.25, 1) == "2.2");  // ties to even on the binary value, as printf
   CHECK(mechgraph::printf_f(-0.04, 1) == "-0.0");
-  CHECK(mechgraph::printf_f(std::numeric_limits<double>::max(), 40).size() == 309 + 1 + 40);
+  CHECK(mechgraph::printf_f(std::numeric_limits<double>::max(), 40) == by_snprintf("%.*f", 40, std::numeric_limits<double>::max()));
+  CHECK(mechgraph::printf_f(-std::numeric_limits<double>::max(), 40).size() == 1 + 309 + 1 + 40);
 }
