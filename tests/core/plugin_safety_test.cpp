@@ -266,3 +266,72 @@ TEST_CASE("a plugin the probe cache names is loaded without a probe, only its wh
   }
   fs::remove_all(dir);
 }
+
+// Every build, upgrade or removed build tree leaves the keys of its plugin files in the cache, and
+// each start reads the whole file. Past 32 KiB, the next line written first drops the lines of
+// files that changed or are gone, and repeated lines; the lines of files still there are kept.
+TEST_CASE("the probe cache drops the lines of changed and removed files when it grows",
+          "[plugins][safety][probe]") {
+  const MarkerFile marker("probe_prune");
+  const fs::path dir = fresh_dir(fs::temp_directory_path(), "mg_probe_prune_" + std::to_string(::getpid()));
+  const fs::path plugins = dir / "plugins with a space";
+  fs::create_directories(plugins);
+  fs::permissions(plugins, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec | fs::perms::others_read |
+                               fs::perms::others_exec);
+  const fs::path first = plugins / "mechgraph_marker_good.so";
+  fs::copy_file(test_plugin("test_marker_good"), first);
+  const ScopedVariable cache_home("XDG_CACHE_HOME", (dir / "cache").string());
+  const fs::path probes = dir / "cache" / "mechgraph" / "plugin-probes";
+  const auto processes_that_loaded = [&] {
+    fs::remove(marker.path);
+    const CommandResult r = run_cli("-q --only-plugin-dir '" + plugins.string() + "' plugins");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    return marks(marker.path).size();
+  };
+  const auto key_of = [](const fs::path& file) {
+    struct stat st {};
+    REQUIRE(::stat(file.c_str(), &st) == 0);
+    return fs::canonical(file).string() + " " + std::to_string(st.st_size) + " " + std::to_string(st.st_ctim.tv_sec) + "." +
+           std::to_string(st.st_ctim.tv_nsec) + " " + std::to_string(st.st_ino);
+  };
+  CHECK(processes_that_loaded() == 2);  // probed, then remembered with what it provides
+  const std::string first_key = key_of(first);
+  const std::string first_lines = slurp(probes);
+  REQUIRE(first_lines.find(first_key + "\n") != std::string::npos);
+  REQUIRE(first_lines.find(first_key + "\tprovides marker_good\n") != std::string::npos);
+  // Stale lines: files that are gone (one in a folder with spaces), and the first file as it was
+  // before a rebuild (another change time); the current lines twice.
+  std::string stale;
+  for (int i = 0; i < 600; ++i) {
+    const std::string gone = "/gone/build " + std::to_string(i) + "/mechgraph_marker_good.so 4096 1795902881.259305667 " + std::to_string(i);
+    stale += gone + "\n" + gone + "\tprovides marker_good\n";
+  }
+  const std::string rebuilt = fs::canonical(first).string() + " 4096 1.5 7";
+  stale += rebuilt + "\n" + rebuilt + "\tprovides marker_good\n";
+  const std::string grown = stale + first_lines + first_lines;
+  write_file(probes, grown);
+  REQUIRE(grown.size() > (32u << 10));
+  CHECK(processes_that_loaded() == 1);  // known: loaded without a probe
+  CHECK(slurp(probes) == grown);        // nothing written, nothing dropped
+  // A new file is probed and its lines written: the stale lines go first.
+  const fs::path second = plugins / "mechgraph_test_arith.so";
+  fs::copy_file(test_plugin("test_arith"), second);
+  CHECK(processes_that_loaded() == 1);  // the marker plugin still from the cache
+  const std::string after = slurp(probes);
+  INFO(after);
+  CHECK(after.find("/gone/") == std::string::npos);
+  CHECK(after.find(rebuilt) == std::string::npos);
+  const std::string second_key = key_of(second);
+  for (const std::string& line : {first_key + "\n", first_key + "\tprovides marker_good\n", second_key + "\n"}) {
+    const std::size_t at = after.find(line);
+    CHECK(at != std::string::npos);
+    CHECK(after.find(line, at + 1) == std::string::npos);  // once
+  }
+  CHECK(after.find(second_key + "\tprovides test_arith ") != std::string::npos);
+  CHECK(after.size() < 2048);
+  // What is kept still counts: neither file is probed again, so nothing more is written.
+  CHECK(processes_that_loaded() == 1);
+  CHECK(slurp(probes) == after);
+  fs::remove_all(dir);
+}
