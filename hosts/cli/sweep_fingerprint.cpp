@@ -67,8 +67,9 @@ std::string sweep_fingerprint(const std::string& scene_file, const std::vector<s
     // A cases file's values as written: a bare number's "CELL UNIT" hashed from its parts.
     const CaseTable::Numbers::Written& written = table.numbers.written;
     const std::size_t width = table.numbers.dimensions.size();
+    CaseTable::Numbers::Written::Digits digits;
     for (std::size_t k = 0; k < written.ends.size(); ++k) {
-      const std::string_view text = written.own_text(k);
+      const std::string_view text = written.own_text(k, digits);
       if (written.in_column_unit[k]) h.add_joined({text, " ", written.column_units[k % width]});
       else h.add(text);
     }

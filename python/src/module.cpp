@@ -204,22 +204,26 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
   reserve_large(written.ends, n * width);
   reserve_large(written.in_column_unit, n * width);
   reserve_large(written.dimensions, n * width);
-  // The texts' pool at its largest, so that it is not copied as it grows (10^6 rows of six columns
-  // wrote 110 MB): a number's 17 digits take at most 24 characters ("-1.2345678901234567e-308"),
-  // and its SI unit after a space where its column names no unit (si_text); a text cell about its
-  // own size with the column's unit.
+  std::vector<std::optional<UnitScale>> scales(width);
+  for (std::size_t v = 0; v < width; ++v)
+    if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);
+  // The texts' pool at its largest, so that it is not copied as it grows: a number in a column
+  // without a unit takes its 17 digits (at most 24 characters, "-1.2345678901234567e-308") and
+  // its SI unit after a space (si_text); a text cell about its own size with the column's unit.
+  // A number in a column with a unit is kept as given (CaseTable::keep_given), without text: 10^6
+  // rows of six such columns wrote 110 MB of digits, which the frame's input columns read back.
   std::size_t text_bytes = 0;
+  bool given = false;
   for (std::size_t v = 0; v < width; ++v) {
     if (!values[v].text) {
-      text_bytes += n * (24 + (units[v].empty() ? 1 + dimension_of[v].value_or(Dimension{}).si_unit().size() : 0));
+      if (scales[v]) given = true;
+      else text_bytes += n * (24 + (units[v].empty() ? 1 + dimension_of[v].value_or(Dimension{}).si_unit().size() : 0));
       continue;
     }
     for (const std::string& cell : values[v].cells) text_bytes += cell.size() + 1 + units[v].size();
   }
   reserve_large(written.text, text_bytes);
-  std::vector<std::optional<UnitScale>> scales(width);
-  for (std::size_t v = 0; v < width; ++v)
-    if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);
+  if (given) reserve_large(written.given, n * width);
   const auto refuse_bare = [&](std::size_t v) {
     const std::string& name = names[v];
     throw SceneErrorAt(subject_of(name), bare_number_refusal("cases: column '" + excerpt(name) + "'", excerpt(name), "", *dimension_of[v],
@@ -241,16 +245,15 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
           table.keep_written(si_text(x, d), false, x, d);
           continue;
         }
-        // The number's 17 digits in the column's unit (si_text's), read as the cell "DIGITS UNIT" is:
-        // 17 significant digits read back to x itself, so its value is that of x, unread.
-        char buffer[40];
-        const auto printed = std::to_chars(buffer, buffer + sizeof buffer, x, std::chars_format::general, 17);
-        const std::string_view digits(buffer, static_cast<std::size_t>(printed.ptr - buffer));
+        // The cell "DIGITS UNIT", DIGITS the number's 17 significant digits (which read back to x
+        // itself): its value is that of x, kept as given, unread and unwritten.
         if (scales[v])
           if (const std::optional<double> number = bare_number_in(x, *scales[v])) {
-            table.keep_written(digits, true, *number, scales[v]->dimension);
+            table.keep_given(x, *number, scales[v]->dimension);
             continue;
           }
+        CaseTable::Numbers::Written::Digits buffer;
+        const std::string_view digits = CaseTable::Numbers::Written::given_text(x, buffer);
         table.keep_written(value_from_text(std::string(digits) + " " + unit, context()), digits, v);
         continue;
       }

@@ -368,7 +368,7 @@ TEST_CASE("Case tables: a cases file is kept as numbers with each value's text b
 }
 
 TEST_CASE("Case tables: a number's value in a unit is that of its 17 digits read as a cell", "[core][sweep]") {
-  // Python's columns give numbers, kept with their 17 digits as text; the value is taken from the
+  // Python's columns give numbers (kept as given, CaseTable::keep_given, shown as their 17 digits); the value is taken from the
   // number itself (bare_number_in(double)), which must be what the text read as a cell gives.
   std::mt19937_64 random(31);
   std::uniform_real_distribution<double> exponent(-300.0, 300.0), unit_interval(0.0, 1.0);
@@ -389,4 +389,66 @@ TEST_CASE("Case tables: a number's value in a unit is that of its 17 digits read
     CHECK(bare_number_in(std::numeric_limits<double>::max(), scale).has_value() == bare_number_in("1.7976931348623157e308", scale).has_value());
     CHECK(bare_number_in(0.0, scale) == bare_number_in("0", scale));
   }
+}
+
+TEST_CASE("Case tables: a number given as a double is kept without text and shown as its 17 digits", "[core][sweep]") {
+  // Python's numpy columns with a unit: CaseTable::keep_given keeps the number, and everything a
+  // table shows of it is what keep_written of its 17 digits as the cell "DIGITS UNIT" showed.
+  const std::vector<std::string> units{"", "mm", "degC"};  // a word column first: the given numbers come later
+  const auto make = [&](bool given) {
+    CaseTable table;
+    for (std::size_t v = 0; v < units.size(); ++v) table.variables.push_back({"x" + std::to_string(v), units[v]});
+    table.numbers.dimensions.assign(units.size(), Dimension{});
+    table.numbers.written.column_units = units;
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> exponent(-30.0, 30.0);
+    for (std::size_t i = 0; i < 200; ++i) {
+      table.keep_written(i % 2 ? "roller" : "flat", false, std::numeric_limits<double>::quiet_NaN(), Dimension{});
+      for (std::size_t v = 1; v < units.size(); ++v) {
+        const UnitScale scale = *parse_unit_cached(units[v]);
+        const double x = (i % 3 ? 1.0 : -1.0) * std::pow(10.0, exponent(random)) * (i == 5 ? 0.0 : 1.0);
+        const double si = *bare_number_in(x, scale);
+        if (given) {
+          table.keep_given(x, si, scale.dimension);
+        } else {
+          CaseTable::Numbers::Written::Digits digits;
+          table.keep_written(CaseTable::Numbers::Written::given_text(x, digits), true, si, scale.dimension);
+        }
+      }
+      ++table.numbers.count;
+    }
+    return table;
+  };
+  const CaseTable given = make(true), written = make(false);
+  CHECK(given.numbers.written.text.size() < written.numbers.written.text.size() / 4);  // the words' text only
+  const std::vector<ShownUnit> shown_units = given.shown_units();
+  CaseValue a, b;
+  for (std::size_t i = 0; i < given.size(); ++i)
+    for (std::size_t v = 0; v < units.size(); ++v) {
+      INFO("case " << i << ", variable " << v);
+      const CaseValue& g = given.cell(i, v, a);
+      const CaseValue& w = written.cell(i, v, b);
+      CHECK(g.text == w.text);
+      CHECK(g.si == w.si);
+      CHECK(g.dimension == w.dimension);
+      CHECK(given.shown(i, v) == written.shown(i, v));
+      std::string shown_given, shown_written;
+      CHECK(given.append_shown(shown_given, i, v, shown_units[v]) == written.append_shown(shown_written, i, v, shown_units[v]));
+      CHECK(shown_given == shown_written);
+      // The number the row shows, without its digits: the digits read back.
+      const double number = given.shown_given_number(i, v, shown_units[v]);
+      if (v == 0) {
+        CHECK(std::isnan(number));
+      } else {
+        double read = 0.0;
+        REQUIRE(std::from_chars(shown_written.data(), shown_written.data() + shown_written.size(), read).ec == std::errc());
+        CHECK(std::bit_cast<std::uint64_t>(number) == std::bit_cast<std::uint64_t>(read));
+      }
+      CHECK(std::isnan(written.shown_given_number(i, v, shown_units[v])));  // a written cell is read as written
+    }
+  // Its holdings count the given numbers.
+  const CaseTable::Numbers::Written& w = given.numbers.written;
+  CHECK(sweep_holdings(given, 0) == static_cast<double>(given.numbers.si.capacity() * sizeof(double) + w.text.size() +
+                                                         w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
+                                                         w.dimensions.capacity() * sizeof(Dimension) + w.given.capacity() * sizeof(double)));
 }

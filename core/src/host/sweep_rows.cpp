@@ -455,13 +455,16 @@ std::string SweepRows::line(const CaseResult& result, int exit_code) const {
 }
 
 std::variant<std::monostate, double, std::string> SweepRows::input_value(std::size_t i, std::size_t v, std::string& cell) const {
-  const double number = input_number(i, v, cell);
-  if (cell.empty()) return std::monostate{};
+  cell.clear();
+  const double number = input_number(i, v, cell);  // a number only where the cell shows one
   if (!std::isnan(number)) return number;
+  if (cell.empty()) return std::monostate{};
   return cell;
 }
 
 double SweepRows::input_number(std::size_t i, std::size_t v, std::string& cell) const {
+  // A number given as a double and shown as its digits: the number itself, which they read back to.
+  if (const double given = table_.shown_given_number(i, v, input_units_[v]); !std::isnan(given)) return given;
   // The cell as a row shows it (the column's unit parsed once), read back where it is a number.
   cell.clear();
   table_.append_shown(cell, i, v, input_units_[v]);

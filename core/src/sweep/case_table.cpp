@@ -267,8 +267,14 @@ double expressible_in(double si, const std::optional<UnitScale>& u) {
 
 std::string CaseValue::written() const { return !text.empty() || !si ? text : exact_text(*si, dimension); }
 
+std::string_view CaseTable::Numbers::Written::given_text(double x, Digits& digits) {
+  const auto printed = std::to_chars(digits.data(), digits.data() + digits.size(), x, std::chars_format::general, 17);
+  return std::string_view(digits.data(), static_cast<std::size_t>(printed.ptr - digits.data()));
+}
+
 void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::size_t v) const {
-  out.append(own_text(k));
+  Digits digits;
+  out.append(own_text(k, digits));
   if (in_column_unit[k]) {
     out.push_back(' ');
     out.append(column_units[v]);
@@ -279,7 +285,18 @@ void CaseTable::keep_written(std::string_view text, bool in_column_unit, double 
   Numbers::Written& w = numbers.written;
   w.text.append(text);
   w.ends.push_back(static_cast<std::uint32_t>(w.text.size()));
-  w.in_column_unit.push_back(in_column_unit ? 1 : 0);
+  w.in_column_unit.push_back(in_column_unit ? Numbers::Written::bare_number : Numbers::Written::as_written);
+  w.dimensions.push_back(dimension);
+  numbers.si.push_back(si);
+  if (!w.given.empty()) w.given.push_back(std::numeric_limits<double>::quiet_NaN());
+}
+
+void CaseTable::keep_given(double x, double si, const Dimension& dimension) {
+  Numbers::Written& w = numbers.written;
+  w.given.resize(w.ends.size(), std::numeric_limits<double>::quiet_NaN());  // the values before it, if none was given
+  w.given.push_back(x);
+  w.ends.push_back(static_cast<std::uint32_t>(w.text.size()));  // no text of its own
+  w.in_column_unit.push_back(Numbers::Written::given_number);
   w.dimensions.push_back(dimension);
   numbers.si.push_back(si);
 }
@@ -426,19 +443,32 @@ bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v) con
   return append_shown(out, i, v, shown_unit(variables[v].unit));
 }
 
+bool CaseTable::shown_as_written(std::size_t i, std::size_t v, const ShownUnit& unit) const {
+  if (!cases.empty() || numbers.written.ends.empty()) return false;
+  const std::size_t k = i * numbers.dimensions.size() + v;
+  const Numbers::Written& w = numbers.written;
+  return w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions[k] &&
+         !(numbers.exact_text_digits && unit.names_si) && w.column_units[v] == variables[v].unit && !variables[v].unit.empty();
+}
+
+double CaseTable::shown_given_number(std::size_t i, std::size_t v, const ShownUnit& unit) const {
+  // append_shown's first branch shows a given number's digits (a finite number's 17 digits are
+  // always a JSON number), which read back to the number itself.
+  if (!shown_as_written(i, v, unit)) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t k = i * numbers.dimensions.size() + v;
+  const Numbers::Written& w = numbers.written;
+  return w.in_column_unit[k] == Numbers::Written::given_number ? w.given[k] : std::numeric_limits<double>::quiet_NaN();
+}
+
 bool CaseTable::append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const {
   // A cases file's bare number under its column's unit, kept without its text: what the branch
   // below makes of its "CELL UNIT" (the cell as written), without making that text.
-  if (cases.empty() && !numbers.written.ends.empty()) {
-    const std::size_t k = i * numbers.dimensions.size() + v;
-    const Numbers::Written& w = numbers.written;
-    if (w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions[k] &&
-        !(numbers.exact_text_digits && unit.names_si) && w.column_units[v] == variables[v].unit && !variables[v].unit.empty()) {
-      const std::string_view cell = w.own_text(k);
-      if (json_number(cell)) {
-        out.append(cell);
-        return true;
-      }
+  if (shown_as_written(i, v, unit)) {
+    Numbers::Written::Digits digits;
+    const std::string_view cell = numbers.written.own_text(i * numbers.dimensions.size() + v, digits);
+    if (json_number(cell)) {
+      out.append(cell);
+      return true;
     }
   }
   CaseValue made;

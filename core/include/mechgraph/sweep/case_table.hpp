@@ -6,6 +6,7 @@
 #include <mechgraph/dimension.hpp>
 #include <mechgraph/units.hpp>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -122,16 +123,29 @@ struct CaseTable {
     /// each: value k (k = i * width + v) is what a CaseValue of it held. Empty where the text is
     /// made from the numbers.
     struct Written {
-      std::string text;                          // every value's own text, one after another
+      /// in_column_unit's marks: the text as written; a bare number, its CaseValue text
+      /// "TEXT UNIT"; the same for a number given as a double in its column's unit (a Python
+      /// column's), kept in `given`, its TEXT the 17 significant digits made when asked.
+      static constexpr std::uint8_t as_written = 0, bare_number = 1, given_number = 2;
+      std::string text;                          // every value's own text, one after another (none for a given number)
       std::vector<std::uint32_t> ends;           // value k's ends at ends[k], starts at ends[k - 1] (or 0)
-      std::vector<std::uint8_t> in_column_unit;  // 1: a bare number, its CaseValue text "TEXT UNIT"
+      std::vector<std::uint8_t> in_column_unit;  // as_written, bare_number or given_number
       std::vector<Dimension> dimensions;         // value k's own; a word's (NaN in si) none
       std::vector<std::string> column_units;     // per variable: the UNIT of its bare numbers
-      /// Value k's own text (without " UNIT" where in_column_unit).
-      std::string_view own_text(std::size_t k) const {
+      /// given[k]: value k's number where in_column_unit[k] is given_number, else NaN; empty where
+      /// no value is given so. 8 bytes a value where its digits took up to 24 and were read back.
+      std::vector<double> given;
+      /// Room for the text of a given number.
+      using Digits = std::array<char, 32>;
+      /// Value k's own text (without " UNIT" where in_column_unit), made in `digits` for a given
+      /// number.
+      std::string_view own_text(std::size_t k, Digits& digits) const {
+        if (in_column_unit[k] == given_number) return given_text(given[k], digits);
         const std::size_t begin = k == 0 ? 0 : ends[k - 1];
         return std::string_view(text).substr(begin, ends[k] - begin);
       }
+      /// A given number's text: std::to_chars with 17 significant digits, which reads back to x.
+      static std::string_view given_text(double x, Digits& digits);
       /// Value k's CaseValue text appended to `out` (v: its variable).
       void append(std::string& out, std::size_t k, std::size_t v) const;
     } written;
@@ -144,6 +158,10 @@ struct CaseTable {
   /// keep_written of `value`, read from the cell `cell` of variable v: its text "CELL UNIT" (UNIT
   /// the variable's written.column_units) kept as the cell and the mark.
   void keep_written(const CaseValue& value, std::string_view cell, std::size_t v);
+  /// The next value as a number `x` given in its column's unit (Written::given_number): what
+  /// keep_written keeps of the cell "DIGITS UNIT", DIGITS x's 17 significant digits, without
+  /// making them. `si`: (x + offset) * scale of that unit, finite.
+  void keep_given(double x, double si, const Dimension& dimension);
   /// A column whose header names no unit takes the unit of its first number written with one
   /// ("5000 rpm": rpm), so that its rows show the numbers in it: `value` read from `cell` of
   /// variable v. The unit it reads bare numbers in stays the header's (none).
@@ -169,6 +187,13 @@ struct CaseTable {
   bool append_shown(std::string& out, std::size_t i, std::size_t v) const;
   /// The same with variable v's unit parsed beforehand (shown_units()[v]).
   bool append_shown(std::string& out, std::size_t i, std::size_t v, const ShownUnit& unit) const;
+  /// Where append_shown shows a given number (Written::given_number) as its digits, that number
+  /// (the digits read back to it), else NaN: a reader of the shown numbers skips making and
+  /// reading them.
+  double shown_given_number(std::size_t i, std::size_t v, const ShownUnit& unit) const;
+  /// Whether append_shown shows value (i, v) as its own text (a number written or given in its
+  /// column's unit, shown in that unit), where that text is a number.
+  bool shown_as_written(std::size_t i, std::size_t v, const ShownUnit& unit) const;
   /// Each variable's unit, parsed (append_shown parses it at each call).
   std::vector<ShownUnit> shown_units() const;
 };
