@@ -72,6 +72,34 @@ const std::map<std::string, std::string> unwitnessed = {
 
 bool simulates(const std::string& type) { return type == "valvetrain.dynamics" || type == "valvetrain.float_speed"; }
 
+// The scene's graph cut to node `node` and its producers, which compute what they computed in the
+// whole scene (the same wanted outputs). The walk asks whether the node itself computes or refuses
+// a value; its consumers cannot change the answer (a consumer's refusal counted as accepted, as
+// the node computing does), so they are not run: every bound upstream of the dynamics would
+// otherwise integrate it once more. What consumers do with the values a node makes at its ends is
+// the property walk's question (parameter_walk_test.cpp).
+Graph cut_to_producers(const SceneSpec& scene, const Override& set, std::size_t node) {
+  Graph g = build_graph(scene, project_registry(), {set});
+  std::vector<bool> keep(g.nodes.size(), false);
+  std::vector<std::size_t> stack{node};
+  while (!stack.empty()) {
+    const std::size_t i = stack.back();
+    stack.pop_back();
+    if (keep[i]) continue;
+    keep[i] = true;
+    for (std::size_t u : g.nodes[i].upstream) stack.push_back(u);
+  }
+  std::vector<std::size_t> order;
+  for (std::size_t i : g.order)
+    if (keep[i]) order.push_back(i);
+  g.order = std::move(order);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
+  g.outputs.clear();
+  g.scene_output_count = 0;
+  g.reports.clear();
+  return g;
+}
+
 // The type, parameter and side of each bound whose inside value its node refuses in every scene
 // that holds the type. A value the other parameters of one node make infeasible (a ramp_length
 // no action angle of that node leaves room for, a checking lift above that cam's lift) is valid
@@ -111,15 +139,15 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
           if (!p.knob) {
             walked.insert(bound);
             try {
-              Graph g = build_graph(scene, project_registry(), {parse_override(inside)});
+              const Graph g = cut_to_producers(scene, parse_override(inside), i);
               MemoCache cache;
               (void)evaluate(g, cache);  // the evaluator's guard checks every value is finite
               computed.insert(bound);
               accepted.insert(bound);
             } catch (const std::exception& e) {
-              // Another node, or this node over another parameter, may refuse the design the value
-              // makes (a spring that no longer fits, a contour that undercuts): feasibility, not a
-              // range. This node refusing this very parameter inside its declared range is the
+              // The node may refuse the design the value makes over another of its parameters or
+              // inputs (a checking lift above that cam's lift, a contour that undercuts): feasibility,
+              // not a range. This node refusing this very parameter inside its declared range is the
               // contradiction looked for, unless a witness elsewhere computes the value.
               const std::string what = e.what();
               refusal[bound] = file.filename().string() + ": --set " + inside + ": " + what;
@@ -131,7 +159,7 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
           {
             INFO(file.filename().string() << ": " << node.info().type << ": --set " << outside << " (just outside)");
             try {
-              Graph g = build_graph(scene, project_registry(), {parse_override(outside)});
+              const Graph g = cut_to_producers(scene, parse_override(outside), i);
               MemoCache cache;
               (void)evaluate(g, cache);
               FAIL_CHECK("accepted");
@@ -157,7 +185,9 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
     CHECK(!accepted.count(b));
   }
   // Stricter, for the record (not yet required): the bounds no node of the type computes, where
-  // every refusal came from another node or parameter (a design the walk's scenes cannot make).
+  // every refusal was over another parameter or input (a design the other values of the walk's
+  // scenes cannot make). Consumers do not run (cut_to_producers), so a design only a consumer
+  // refuses (a spring that no longer fits) counts as computed.
   std::size_t uncomputed = 0;
   for (const std::string& b : walked)
     if (!computed.count(b)) {
