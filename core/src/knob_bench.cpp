@@ -3,6 +3,7 @@
 #include <mechgraph/did_you_mean.hpp>
 #include <mechgraph/errors.hpp>
 #include <mechgraph/evaluator.hpp>
+#include <mechgraph/graph_cut.hpp>
 #include <mechgraph/knob_bench_outputs.hpp>
 #include <mechgraph/units.hpp>
 
@@ -21,27 +22,7 @@ constexpr double unknown = std::numeric_limits<double>::infinity();
 // (an output brought by an effect that is off for the node is not there).
 Graph focus_on(const Graph& graph, std::size_t node) {
   Graph g = graph;
-  g.reports.clear();
-  g.outputs.clear();
-  std::vector<bool> keep(g.nodes.size(), false);
-  std::vector<std::size_t> stack{node};
-  while (!stack.empty()) {
-    const std::size_t i = stack.back();
-    stack.pop_back();
-    if (keep[i]) continue;
-    keep[i] = true;
-    for (std::size_t u : g.nodes[i].upstream) stack.push_back(u);
-  }
-  std::vector<std::size_t> order;
-  for (std::size_t i : graph.order)
-    if (keep[i]) order.push_back(i);
-  // Keep the node even when the scene did not need it (bench --node on a culled node).
-  if (std::find(order.begin(), order.end(), node) == order.end()) {
-    for (std::size_t i = 0; i < g.nodes.size(); ++i)
-      if (keep[i] && std::find(order.begin(), order.end(), i) == order.end()) order.push_back(i);
-  }
-  g.order = std::move(order);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
+  cut_to_producers(g, node);
   mark_wanted_outputs(g);
   // The node is asked for every output it has; what it produces (some need an effect or a
   // parameter) is what the bench compares.

@@ -10,6 +10,7 @@
 #include "test_support.hpp"
 
 #include <mechgraph/errors.hpp>
+#include <mechgraph/graph_cut.hpp>
 #include <mechgraph/node.hpp>
 
 #include <catch2/catch.hpp>
@@ -78,25 +79,9 @@ bool simulates(const std::string& type) { return type == "valvetrain.dynamics" |
 // the node computing does), so they are not run: every bound upstream of the dynamics would
 // otherwise integrate it once more. What consumers do with the values a node makes at its ends is
 // the property walk's question (parameter_walk_test.cpp).
-Graph cut_to_producers(const SceneSpec& scene, const Override& set, std::size_t node) {
+Graph cut_graph(const SceneSpec& scene, const Override& set, std::size_t node) {
   Graph g = build_graph(scene, project_registry(), {set});
-  std::vector<bool> keep(g.nodes.size(), false);
-  std::vector<std::size_t> stack{node};
-  while (!stack.empty()) {
-    const std::size_t i = stack.back();
-    stack.pop_back();
-    if (keep[i]) continue;
-    keep[i] = true;
-    for (std::size_t u : g.nodes[i].upstream) stack.push_back(u);
-  }
-  std::vector<std::size_t> order;
-  for (std::size_t i : g.order)
-    if (keep[i]) order.push_back(i);
-  g.order = std::move(order);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i) g.nodes[i].needed = keep[i];
-  g.outputs.clear();
-  g.scene_output_count = 0;
-  g.reports.clear();
+  cut_to_producers(g, node);
   return g;
 }
 
@@ -139,7 +124,7 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
           if (!p.knob) {
             walked.insert(bound);
             try {
-              const Graph g = cut_to_producers(scene, parse_override(inside), i);
+              const Graph g = cut_graph(scene, parse_override(inside), i);
               MemoCache cache;
               (void)evaluate(g, cache);  // the evaluator's guard checks every value is finite
               computed.insert(bound);
@@ -159,7 +144,7 @@ void walk_limits(bool simulating, std::set<std::string>& contradictions) {
           {
             INFO(file.filename().string() << ": " << node.info().type << ": --set " << outside << " (just outside)");
             try {
-              const Graph g = cut_to_producers(scene, parse_override(outside), i);
+              const Graph g = cut_graph(scene, parse_override(outside), i);
               MemoCache cache;
               (void)evaluate(g, cache);
               FAIL_CHECK("accepted");
