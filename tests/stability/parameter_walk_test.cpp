@@ -54,6 +54,11 @@ std::set<std::string> walk(bool (*include)(const std::string& type)) {
     const auto entry = std::filesystem::directory_entry(file);
     const SceneSpec scene = load_scene(entry.path());
     const Graph base = build_graph(scene, project_registry());
+    // One memo cache for the scene's runs: a node the changed parameter does not reach has the
+    // memo key it had in the run before (its parameters and its producers' keys are the same), so
+    // its outputs, checked when first made, are taken as they are instead of made again (the
+    // dynamics of a branch the parameter is not on). Every node the parameter reaches runs.
+    MemoCache cache(1024);
     for (std::size_t i : base.order) {
       const GraphNode& node = base.nodes[i];
       if (!include(node.info().type)) continue;
@@ -66,7 +71,6 @@ std::set<std::string> walk(bool (*include)(const std::string& type)) {
           ++runs;
           try {
             Graph g = build_graph(scene, project_registry(), {parse_override(set)});
-            MemoCache cache;
             const RunResult r = evaluate(g, cache);
             (void)r;  // the evaluator's guard has checked every value is finite
           } catch (const SceneError& e) {
