@@ -1,10 +1,16 @@
 #include <mechgraph/graph_cut.hpp>
 
+#include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace mechgraph {
 
 void cut_to_producers(Graph& graph, std::size_t node) {
+  if (node >= graph.nodes.size())
+    throw std::out_of_range("cut_to_producers: node " + std::to_string(node) + " of a graph of " +
+                            std::to_string(graph.nodes.size()) + " nodes");
   std::vector<bool> keep(graph.nodes.size(), false);
   std::vector<std::size_t> stack{node};
   while (!stack.empty()) {

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -72,5 +73,12 @@ TEST_CASE("a graph cut to a node keeps it and its producers in dependency order"
     REQUIRE(r.outputs.size() == 1);
     CHECK_THAT(r.outputs[0].value.as_scalar(), Catch::Matchers::WithinRel(12e-3, 1e-15) || Catch::Matchers::WithinAbs(12e-3, 1e-18));
     CHECK(r.runs.size() == 5);
+  }
+  SECTION("a node index past the graph's nodes is refused, the graph unchanged") {
+    Graph g = graph_from(culled_chain);
+    const std::vector<std::string> before = names_in_order(g);
+    CHECK_THROWS_AS(cut_to_producers(g, g.nodes.size()), std::out_of_range);
+    CHECK(names_in_order(g) == before);
+    CHECK(g.outputs.size() == 1);
   }
 }
