@@ -331,21 +331,23 @@ void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s)
 
 }  // namespace
 
-LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const {
+LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi) {
   // x^(m) = h (1 - u)^(5-m) q_m(u) / phi_p^m, the four q_m by Horner in one pass in double: q_0
   // has only positive and q_1 only negative coefficients, so lift and velocity carry a relative
   // error of a few times n_max * eps on the whole event, seat included (checked against a
   // 100-digit reference in tests/plugins/cams/polydyne_test.cpp).
-  const double phi_p = half_action_;
+  const double phi_p = lane.half_action;
   const double w = (phi_p - std::abs(phi)) / phi_p;  // 1 - u; phi_p - |phi| is exact near the seat
   const double u = 1.0 - w;
   const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in u: odd derivatives change sign
   double s[4];
-  horner4(series_->interleaved.data(), series_->interleaved.size(), u, s);
-  const double w2 = w * w, w3 = w2 * w, h = max_lift_;
+  horner4(lane.interleaved, lane.terms, u, s);
+  const double w2 = w * w, w3 = w2 * w, h = lane.max_lift;
   return {h * (w3 * w2) * s[0], sign * h * (w2 * w2) * s[1] / phi_p, h * w3 * s[2] / (phi_p * phi_p),
           sign * h * w2 * s[3] / (phi_p * phi_p * phi_p)};
 }
+
+LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const { return polydyne_point(lane(), phi); }
 
 RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {

@@ -24,6 +24,7 @@
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -79,6 +80,21 @@ struct PolydyneSeries {
   SparsePolynomial lift_primitive_sparse, square_primitive_sparse;  // the same, by their nonzero terms
 };
 
+/// What a point of one polydyne law of integer exponents needs: its half action angle and lift
+/// (SI) and its exponent set's q_0..q_3 in double, power by power (PolydyneSeries::interleaved,
+/// not owned).
+struct PolydyneLane {
+  double half_action = 0.0;  // phi_p, rad
+  double max_lift = 0.0;     // h, m
+  const std::array<double, 4>* interleaved = nullptr;
+  std::size_t terms = 0;
+};
+
+/// Lift and three derivatives over cam angle at phi inside the event. PolydyneLaw evaluates
+/// through this one function, and so will a family of laws over arrays of cases, so that a case
+/// gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi);
+
 class PolydyneLaw final : public CamLaw {
  public:
   /// `exponents` as returned by validate_polydyne_exponents.
@@ -103,6 +119,8 @@ class PolydyneLaw final : public CamLaw {
   const std::vector<double>& coefficients() const { return series_->coefficients; }
   /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
   long double normalized_derivative(int m, long double w) const;
+  /// What a point needs (polydyne_point).
+  PolydyneLane lane() const { return {half_action_, max_lift_, series_->interleaved.data(), series_->interleaved.size()}; }
 
  private:
   double max_lift_ = 0.0;

@@ -134,7 +134,7 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
   // G(x) sums them from the start of lift to x; P(phi) = G(phi_p + phi) before the nose and
   // 2 G(phi_p) - G(phi_p - phi) after it (the law is symmetric); the answer is P(b) - P(a).
   // A piece wholly inside [0, x] (tau = 1: every piece before x's) takes its shape's kept moments.
-  auto piece_integrals = [](const Piece& p, double tau, double& f1, double& f2) {
+  auto piece_integrals = [](const ShocklessPiece& p, double tau, double& f1, double& f2) {
     double i3, j1, j2;
     if (tau == 1.0) {
       const ShapeEnds& e = p.shape->ends();
@@ -151,7 +151,7 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
   };
   auto G = [&](double x, double& g1, double& g2) {
     g1 = g2 = 0.0;
-    for (const Piece& p : pieces_) {
+    for (const ShocklessPiece& p : pieces_) {
       const double tau = std::clamp((x - p.start) / p.length, 0.0, 1.0);
       if (tau <= 0.0) break;
       double f1, f2;
@@ -239,7 +239,10 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   auto add = [&](const ShapeSegment& s, double A) {
     const double L = s.length;
     const ShapeEnds& e = s.shape->ends();
-    pieces_.push_back({s.shape, x, L, A, lift, vel});
+    // A shape someone owns is kept alive by the law; one held uncounted (no owner, as the Kurz
+    // law's shared shapes) outlives every law already, and keeping it would cost an allocation.
+    if (s.shape.use_count() > 0) shapes_.push_back(s.shape);
+    pieces_.push_back({s.shape.get(), x, L, A, lift, vel});
     lift += vel * L + A * L * L * e.integral2;
     vel += A * L * e.integral1;
     x += L;
@@ -254,7 +257,7 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
     breakpoints_.push_back(-(half_action_ - xj));
     breakpoints_.push_back(half_action_ - xj);
   }
-  const Piece& last = pieces_.back();
+  const ShocklessPiece& last = pieces_.back();
   // h''' is odd about the nose: it jumps there unless the last shape ends with zero slope.
   if (std::abs(last.shape->ends().slope1) > 1e-12) breakpoints_.push_back(0.0);
   std::sort(breakpoints_.begin(), breakpoints_.end());
@@ -266,13 +269,13 @@ std::vector<double> ShocklessLaw::junctions_from_start() const {
   return out;
 }
 
-LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
+LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count, double half_action, double phi) {
   // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
-  const double x = half_action_ - std::abs(phi);
+  const double x = half_action - std::abs(phi);
   const double sign = phi < 0.0 ? 1.0 : -1.0;
   std::size_t k = 0;
-  while (k + 1 < pieces_.size() && x >= pieces_[k + 1].start) ++k;
-  const Piece& p = pieces_[k];
+  while (k + 1 < count && x >= pieces[k + 1].start) ++k;
+  const ShocklessPiece& p = pieces[k];
   const double y = x - p.start;
   const double tau = std::clamp(y / p.length, 0.0, 1.0);
   const double A = p.amplitude, L = p.length;
@@ -284,13 +287,17 @@ LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
   return {H, sign * H1, H2, sign * H3};
 }
 
+LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
+  return shockless_point(pieces_.data(), pieces_.size(), half_action_, phi);
+}
+
 }  // namespace mechgraph::cams
 
 namespace mechgraph::cams {
 
 bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
   if (order < 0 || order > 2) return false;
-  for (const Piece& p : pieces_)
+  for (const ShocklessPiece& p : pieces_)
     if (!p.shape->monotone()) return false;
   if (order == 0) {
     // The velocity is 0 at the start, rises through the positive phase and falls back to 0 at the

@@ -16,6 +16,7 @@
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <atomic>
+#include <cstddef>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -101,6 +102,25 @@ class ParabolaToVertex final : public AccelShape {
   bool moments(double tau, double& i3, double& j1, double& j2) const override;
 };
 
+/// One segment of a law's acceleration diagram with the law's numbers at its start, in SI. With x
+/// from the start of lift and y = x - start, tau = y / length:
+///   h = lift0 + velocity0 y + A L^2 I2(tau),  h' = velocity0 + A L I1(tau),  h'' = A a(tau),
+///   h''' = A a'(tau) / L.
+struct ShocklessPiece {
+  const AccelShape* shape = nullptr;  // not owned: the law keeps its shapes
+  double start = 0.0;                 // x_k from the start of lift, rad
+  double length = 0.0;                // rad
+  double amplitude = 0.0;             // A+ or A-, m/rad^2
+  double lift0 = 0.0;                 // h at x_k, m
+  double velocity0 = 0.0;             // h' at x_k, m/rad
+};
+
+/// Lift and three derivatives over cam angle at phi inside the event of a shockless law, from its
+/// `count` pieces (in order from the start of lift) and its half action angle phi_p. The law
+/// evaluates through this one function, and so will a family of laws over arrays of cases, so that
+/// a case gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count, double half_action, double phi);
+
 struct ShapeSegment {
   std::shared_ptr<const AccelShape> shape;
   double length = 0.0;  // rad of cam angle
@@ -141,22 +161,17 @@ class ShocklessLaw final : public CamLaw {
   std::vector<double> junctions_from_start() const;
   /// breakpoints() without the copy.
   const std::vector<double>& breakpoint_list() const { return breakpoints_; }
+  /// The pieces from the start of lift to the nose (shockless_point), their shapes kept by the law.
+  const std::vector<ShocklessPiece>& pieces() const { return pieces_; }
 
  private:
-  struct Piece {
-    std::shared_ptr<const AccelShape> shape;
-    double start = 0.0;   // x_k from the start of lift
-    double length = 0.0;
-    double amplitude = 0.0;
-    double lift0 = 0.0;      // h at x_k
-    double velocity0 = 0.0;  // h' at x_k
-  };
   double max_lift_ = 0.0;
   double half_action_ = 0.0;
   double base_radius_ = 0.0;
   double amplitude_pos_ = 0.0;
   double amplitude_neg_ = 0.0;
-  std::vector<Piece> pieces_;
+  std::vector<std::shared_ptr<const AccelShape>> shapes_;  // the owned shapes the pieces point at
+  std::vector<ShocklessPiece> pieces_;
   std::vector<double> breakpoints_;
 };
 

@@ -25,23 +25,6 @@ std::string mm(double m) {
   return s.str();
 }
 
-// The roller centre on an offset arc of radius R whose centre is c from the cam centre, at angle
-// t: s = +-c cos t + g, g = sqrt(q), q = R^2 - c^2 sin^2 t. Returns R - g = c^2 sin^2 t / (R + g)
-// (no cancellation) and the first three derivatives of g over t, from those of q:
-// g1 = q1/2g, g2 = q2/2g - q1^2/4gq, g3 = q3/2g - 3 q1 q2/4gq + 3 q1^3/8gq^2.
-struct ArcRoot {
-  double excess, d1, d2, d3;
-};
-ArcRoot arc_root(double c, double R, double t) {
-  const double c2 = c * c, st = std::sin(t);
-  const double q = R * R - c2 * st * st;
-  const double g = std::sqrt(q);
-  const double sin2 = std::sin(2.0 * t), cos2 = std::cos(2.0 * t);
-  const double q1 = -c2 * sin2, q2 = -2.0 * c2 * cos2, q3 = 4.0 * c2 * sin2;
-  return {c2 * st * st / (R + g), q1 / (2.0 * g), q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q),
-          q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q)};
-}
-
 // Completes the geometry from h, phi_p, r0, r2 (so a) and e, and checks the tangency closes.
 ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* parameter) {
   ThreeArcGeometry g;
@@ -154,23 +137,34 @@ ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& b, double r2) {
   return complete(b, r2, e, "nose_radius");
 }
 
-ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
-    : g_(geometry), roller_radius_(roller_radius) {
-  if (roller_radius_ <= 0.0) {
-    switch_angle_ = g_.junction_normal;
-    return;
+ThreeArcLane three_arc_lane(const ThreeArcGeometry& g, double roller_radius) {
+  ThreeArcLane k;
+  k.half_action = g.half_action;
+  k.max_lift = g.max_lift;
+  k.base_radius = g.base_radius;
+  k.nose_radius = g.nose_radius;
+  k.nose_centre = g.nose_centre;
+  k.flank_centre = g.flank_centre;
+  k.roller_radius = roller_radius;
+  if (roller_radius <= 0.0) {
+    k.switch_angle = g.junction_normal;
+    return k;
   }
   // Roller: the pitch-curve junction N + (r2 + rr) n_alpha, seen from O.
-  const double R2 = g_.nose_radius + roller_radius_;
-  const double px = g_.nose_centre + R2 * std::cos(g_.junction_normal);
-  const double py = R2 * std::sin(g_.junction_normal);
-  switch_angle_ = std::atan2(py, px);
-  const double sb = std::sin(switch_angle_);
-  if (!(R2 * R2 - g_.nose_centre * g_.nose_centre * sb * sb > 0.0) || !(switch_angle_ > 0.0)) {
+  const double R2 = g.nose_radius + roller_radius;
+  const double px = g.nose_centre + R2 * std::cos(g.junction_normal);
+  const double py = R2 * std::sin(g.junction_normal);
+  k.switch_angle = std::atan2(py, px);
+  const double sb = std::sin(k.switch_angle);
+  if (!(R2 * R2 - g.nose_centre * g.nose_centre * sb * sb > 0.0) || !(k.switch_angle > 0.0)) {
     throw NodeError("roller_radius", "the roller pitch curve of this three-arc cam has no nose contact (roller_radius = " +
-                                         mm(roller_radius_) + ")");
+                                         mm(roller_radius) + ")");
   }
+  return k;
 }
+
+ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
+    : g_(geometry), lane_(three_arc_lane(geometry, roller_radius)) {}
 
 bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
   // Flat tappet only (the roller's pitch-curve lift has no such simple signs). On the flank
@@ -180,12 +174,12 @@ bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const 
   // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
   // The lift itself (order 0) rises on the whole rise and falls on the whole return: h' changes
   // sign at the nose only, so the nose is its one cut.
-  if (roller_radius_ > 0.0 || order < 0 || order > 2) return false;
+  if (lane_.roller_radius > 0.0 || order < 0 || order > 2) return false;
   if (order == 0) {
     breaks = {0.0};
     return true;
   }
-  const double alpha = switch_angle_;
+  const double alpha = lane_.switch_angle;
   breaks = {-alpha, 0.0, alpha};
   if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {
     const double quarter = g_.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
@@ -230,8 +224,8 @@ bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& i
   // Flat tappet: flank h = e m(x), x = phi_p - |phi|; nose h = H - A m(t), t = |phi| (A the
   // nose-centre distance). P(phi) = the integrals from the start of lift to phi, piece by piece;
   // the answer is P(b) - P(a).
-  if (roller_radius_ > 0.0) return false;
-  const double e = g_.flank_centre, A = g_.nose_centre, H = g_.max_lift, alpha = switch_angle_;
+  if (lane_.roller_radius > 0.0) return false;
+  const double e = g_.flank_centre, A = g_.nose_centre, H = g_.max_lift, alpha = lane_.switch_angle;
   const double x1 = g_.half_action - alpha;  // the flank's span
   auto flank = [&](double x, double& p1, double& p2) {
     const ArcIntegrals m = arc_integrals(x);
@@ -270,75 +264,6 @@ bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& i
   integral = pb1 - pa1;
   integral_of_square = pb2 - pa2;
   return true;
-}
-
-LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
-  // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
-  const double psi = std::abs(phi);
-  const double sign = phi < 0.0 ? -1.0 : 1.0;
-  const double a = g_.nose_centre, e = g_.flank_centre, rr = roller_radius_;
-  double H = 0.0, H1 = 0.0, H2 = 0.0, H3 = 0.0;  // derivatives over psi
-  if (psi <= switch_angle_) {
-    const double t = psi;
-    double st, ct;
-    ::sincos(t, &st, &ct);
-    const double omc = ct >= 0.0 ? st * st / (1.0 + ct) : 1.0 - ct;  // 1 - cos t without cancellation
-    if (rr <= 0.0) {
-      // Flat tappet on the nose arc: h = a cos t - (r0 - r2) = h_max - a (1 - cos t).
-      H = g_.max_lift - a * omc;
-      H1 = -a * st;
-      H2 = -a * ct;
-      H3 = a * st;
-    } else {
-      // Roller centre on the pitch nose arc (centre distance a, radius R2 = r2 + rr, theta = t):
-      // s = a cos t + sqrt(R2^2 - a^2 sin^2 t); h = s - (r0 + rr), and a + R2 = r0 + rr + h_max, so
-      // h = h_max - a (1 - cos t) - a^2 sin^2 t / (R2 + sqrt(...)).
-      const ArcRoot r = arc_root(a, g_.nose_radius + rr, t);
-      H = g_.max_lift - a * omc - r.excess;
-      H1 = -a * st + r.d1;
-      H2 = -a * ct + r.d2;
-      H3 = a * st + r.d3;
-    }
-  } else {
-    // Flank, x = phi_p - psi from the start of lift: d/dpsi = -d/dx.
-    const double x = g_.half_action - psi;
-    double sx, cx;
-    ::sincos(x, &sx, &cx);
-    const double omc = cx >= 0.0 ? sx * sx / (1.0 + cx) : 1.0 - cx;  // 1 - cos x without cancellation
-    double F = 0.0, F1 = 0.0, F2 = 0.0, F3 = 0.0;  // derivatives over x
-    if (rr <= 0.0) {
-      // Flat tappet on the flank arc: h = e (1 - cos x).
-      F = e * omc;
-      F1 = e * sx;
-      F2 = e * cx;
-      F3 = -e * sx;
-    } else {
-      // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr = e + c0,
-      // c0 = r0 + rr, the centre opposite the follower): s = sqrt(R1^2 - e^2 sin^2 x) - e cos x.
-      // Near the largest nose radius e is many times c0 and that difference cancels (and so do its
-      // derivatives, e cos x against e^2 terms). Without cancellation: with u = e cos x and
-      // g = sqrt(u^2 + c0 (2e + c0)), s = c0 (2e + c0) / (g + u), so (ln s)' = w = e sin x / g,
-      //   s' = s w,  s'' = s (w^2 + w'),  s''' = s (w^3 + 3 w w' + w''),
-      //   w' = u R1^2 / g^3,  w'' = R1^2 e sin x (3 u^2 - g^2) / g^5   (g^2 + e^2 sin^2 x = R1^2);
-      // and h = s - c0 = c0 [e (1 - cos x) + e^2 sin^2 x / (R1 + g)] / (g + u).
-      const double c0 = g_.base_radius + rr, R1 = e + c0;
-      const double u = e * cx, n = c0 * (2.0 * e + c0);
-      const double g = std::sqrt(u * u + n);
-      const double D = u >= 0.0 ? g + u : n / (g - u);  // g + u without cancellation when u < 0
-      const double S = n / D;
-      const double w = e * sx / g, g2 = g * g, g3 = g2 * g;
-      const double w1 = u * R1 * R1 / g3, w2 = R1 * R1 * e * sx * (3.0 * u * u - g2) / (g3 * g2);
-      F = c0 * (e * omc + e * e * sx * sx / (R1 + g)) / D;
-      F1 = S * w;
-      F2 = S * (w * w + w1);
-      F3 = S * (w * w * w + 3.0 * w * w1 + w2);
-    }
-    H = F;
-    H1 = -F1;
-    H2 = F2;
-    H3 = -F3;
-  }
-  return {H, sign * H1, H2, sign * H3};
 }
 
 namespace {
