@@ -361,7 +361,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation, public Foreca
     CamLawCaseFactory prepared;
     if (prepare_block_) {
       try {
-        prepared = prepare_block_(p);
+        prepared = prepare_block_(p, cases.size());
       } catch (const NodeError&) {
         prepared = nullptr;  // each case alone says why
       }

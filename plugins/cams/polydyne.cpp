@@ -1,4 +1,5 @@
 #include "polydyne.hpp"
+#include "polydyne_array.hpp"
 
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -249,35 +250,35 @@ long double SparsePolynomial::operator()(long double u) const {
   return sum;
 }
 
-bool PolydyneLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+void polydyne_lift_integrals(const PolydyneLane& lane, double a, double b, double& integral, double& integral_of_square) {
   // h = H x(|phi| / phi_p): the primitives S(phi) = sign(phi) phi_p F(|phi| / phi_p) with the
   // polynomial primitives F of x and x^2 (from the nose, so no cancellation near the seat), by
   // their nonzero terms.
-  const long double phi_p = half_action_, H = max_lift_;
+  const long double phi_p = lane.half_action, H = lane.max_lift;
+  const PolydyneSeries& series = *lane.series;
   auto S = [&](double phi, const SparsePolynomial& p) {
     const long double u = std::min<long double>(std::abs(static_cast<long double>(phi)) / phi_p, 1.0L);
     return (phi < 0.0 ? -1.0L : 1.0L) * phi_p * p(u);
   };
-  integral = static_cast<double>(H * (S(b, series_->lift_primitive_sparse) - S(a, series_->lift_primitive_sparse)));
+  integral = static_cast<double>(H * (S(b, series.lift_primitive_sparse) - S(a, series.lift_primitive_sparse)));
   integral_of_square =
-      static_cast<double>(H * H * (S(b, series_->square_primitive_sparse) - S(a, series_->square_primitive_sparse)));
-  return true;
+      static_cast<double>(H * H * (S(b, series.square_primitive_sparse) - S(a, series.square_primitive_sparse)));
 }
 
-bool PolydyneLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+bool polydyne_monotone_breaks(const PolydyneLane& lane, int order, std::vector<double>& breaks) {
   if (order < 0 || order > 2) return false;
   // h^(order) is monotone between the sign changes of h^(order+1) = (h / phi_p^m) x^(m)(|phi| / phi_p)
   // (mirrored, with the sign of phi for odd m): those of q_m at u = |phi| / phi_p, and the nose.
-  const std::vector<double>& u = series_->sign_changes[static_cast<std::size_t>(order + 1)];
+  const std::vector<double>& u = lane.series->sign_changes[static_cast<std::size_t>(order + 1)];
   breaks.clear();
-  for (auto it = u.rbegin(); it != u.rend(); ++it) breaks.push_back(-*it * half_action_);
+  for (auto it = u.rbegin(); it != u.rend(); ++it) breaks.push_back(-*it * lane.half_action);
   breaks.push_back(0.0);
-  for (double v : u) breaks.push_back(v * half_action_);
+  for (double v : u) breaks.push_back(v * lane.half_action);
   return true;
 }
 
-long double PolydyneLaw::normalized_derivative(int m, long double w) const {
-  const std::vector<long double>& q = series_->q[static_cast<std::size_t>(m)];
+long double polydyne_normalized_derivative(const PolydyneSeries& series, int m, long double w) {
+  const std::vector<long double>& q = series.q[static_cast<std::size_t>(m)];
   const long double u = 1.0L - w;
   long double sum = 0.0L;
   for (std::size_t k = q.size(); k-- > 0;) sum = sum * u + q[k];
@@ -286,14 +287,13 @@ long double PolydyneLaw::normalized_derivative(int m, long double w) const {
   return factor * sum;
 }
 
-bool PolydyneLaw::higher_derivatives(double phi, double& d4, double& d5) const {
-  const long double phi_p = half_action_;
+void polydyne_higher_derivatives(const PolydyneLane& lane, double phi, double& d4, double& d5) {
+  const long double phi_p = lane.half_action;
   const long double w = (phi_p - std::abs(static_cast<long double>(phi))) / phi_p;
-  const long double h = max_lift_;
+  const long double h = lane.max_lift;
   const long double scale4 = h / (phi_p * phi_p * phi_p * phi_p);
-  d4 = static_cast<double>(scale4 * normalized_derivative(4, w));  // even in phi
-  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * normalized_derivative(5, w));
-  return true;
+  d4 = static_cast<double>(scale4 * polydyne_normalized_derivative(*lane.series, 4, w));  // even in phi
+  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * polydyne_normalized_derivative(*lane.series, 5, w));
 }
 
 namespace {
@@ -341,7 +341,7 @@ LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi) {
   const double u = 1.0 - w;
   const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in u: odd derivatives change sign
   double s[4];
-  horner4(lane.interleaved, lane.terms, u, s);
+  horner4(lane.series->interleaved.data(), lane.series->interleaved.size(), u, s);
   const double w2 = w * w, w3 = w2 * w, h = lane.max_lift;
   return {h * (w3 * w2) * s[0], sign * h * (w2 * w2) * s[1] / phi_p, h * w3 * s[2] / (phi_p * phi_p),
           sign * h * w2 * s[3] / (phi_p * phi_p * phi_p)};
@@ -509,15 +509,17 @@ CamLawDefinition polydyne_definition() {
                                                std::move(exponents));
   };
   // A block: the exponents (a list, never varied in a block) checked and their series found once;
-  // each case is then its lift, action angle and base radius. With accel_angle q is found per case.
-  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
+  // each case is then its lift, action angle and base radius, lane k of one array over the block.
+  // With accel_angle q is found per case.
+  d.prepare_block = [](const BlockParams& p, std::size_t cases) -> CamLawCaseFactory {
     if (p.fixed().has("accel_angle")) return {};
     const std::vector<int> exponents = validate_polydyne_exponents(p.fixed().numbers("exponents"));
     const double q = exponents[1];
-    return [series = polydyne_series(exponents), q](const CamBasics& basics, const ParamSet&, std::size_t,
-                                                     OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    return [array = std::make_shared<PolydyneArray>(cases, polydyne_series(exponents)), q](
+               const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
       extra.set_scalar("exponent_q", q);
-      return std::make_shared<const PolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius, series);
+      array->set(k, basics.max_lift, basics.action_angle, basics.base_radius);
+      return std::make_shared<const CamLawLane>(array, k);
     };
   };
   return d;

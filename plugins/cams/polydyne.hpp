@@ -80,20 +80,27 @@ struct PolydyneSeries {
   SparsePolynomial lift_primitive_sparse, square_primitive_sparse;  // the same, by their nonzero terms
 };
 
-/// What a point of one polydyne law of integer exponents needs: its half action angle and lift
-/// (SI) and its exponent set's q_0..q_3 in double, power by power (PolydyneSeries::interleaved,
-/// not owned).
+/// What one polydyne law of integer exponents is: its half action angle and lift (SI) and its
+/// exponent set's series (not owned: kept by the law or the array of laws).
 struct PolydyneLane {
   double half_action = 0.0;  // phi_p, rad
   double max_lift = 0.0;     // h, m
-  const std::array<double, 4>* interleaved = nullptr;
-  std::size_t terms = 0;
+  const PolydyneSeries* series = nullptr;
 };
 
-/// Lift and three derivatives over cam angle at phi inside the event. PolydyneLaw evaluates
-/// through this one function, and so will a family of laws over arrays of cases, so that a case
-/// gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+// The law's answers from its lane. PolydyneLaw answers through these functions, and so does the
+// array of polydyne laws (polydyne_array.hpp): one implementation for both, so that a case gives
+// the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+/// Lift and three derivatives over cam angle at phi inside the event.
 LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi);
+/// CamLaw::higher_derivatives: d4h/dphi4 and d5h/dphi5 (always given).
+void polydyne_higher_derivatives(const PolydyneLane& lane, double phi, double& d4, double& d5);
+/// CamLaw::monotone_breaks: the nose and the sign changes of q_(order+1), mirrored.
+bool polydyne_monotone_breaks(const PolydyneLane& lane, int order, std::vector<double>& breaks);
+/// CamLaw::lift_integrals: the integrals of h and h^2 from the exact polynomial primitives.
+void polydyne_lift_integrals(const PolydyneLane& lane, double a, double b, double& integral, double& integral_of_square);
+/// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
+long double polydyne_normalized_derivative(const PolydyneSeries& series, int m, long double w);
 
 class PolydyneLaw final : public CamLaw {
  public:
@@ -105,22 +112,31 @@ class PolydyneLaw final : public CamLaw {
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
   LiftDerivatives evaluate_in_event(double phi) const override;
-  bool higher_derivatives(double phi, double& d4, double& d5) const override;
+  bool higher_derivatives(double phi, double& d4, double& d5) const override {
+    polydyne_higher_derivatives(lane(), phi, d4, d5);
+    return true;
+  }
   std::vector<double> breakpoints() const override { return {}; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
   /// The nose and the sign changes of q_(order+1), mirrored (x is even in u).
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    return polydyne_monotone_breaks(lane(), order, breaks);
+  }
   /// The integrals of h and h^2 from the exact polynomial primitives.
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
+    polydyne_lift_integrals(lane(), a, b, integral, integral_of_square);
+    return true;
+  }
 
   const std::vector<int>& exponents() const { return series_->exponents; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
   const std::vector<double>& coefficients() const { return series_->coefficients; }
   /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
-  long double normalized_derivative(int m, long double w) const;
-  /// What a point needs (polydyne_point).
-  PolydyneLane lane() const { return {half_action_, max_lift_, series_->interleaved.data(), series_->interleaved.size()}; }
+  long double normalized_derivative(int m, long double w) const { return polydyne_normalized_derivative(*series_, m, w); }
+  /// The law as its lane (the functions above).
+  PolydyneLane lane() const { return {half_action_, max_lift_, series_.get()}; }
+  const std::shared_ptr<const PolydyneSeries>& series() const { return series_; }
 
  private:
   double max_lift_ = 0.0;

@@ -127,7 +127,8 @@ bool ParabolaToVertex::moments(double tau, double& i3, double& j1, double& j2) c
   return true;
 }
 
-bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double half_action, double a, double b,
+                              double& integral, double& integral_of_square) {
   // Per piece, from its start over y = L tau (h = h_k + v_k y + A L^2 I2(tau)):
   //   F1 = L [h_k tau + v_k L tau^2/2 + A L^2 I3],
   //   F2 = L [h_k^2 tau + h_k v_k L tau^2 + v_k^2 L^2 tau^3/3 + 2 h_k A L^2 I3 + 2 v_k A L^3 J1 + A^2 L^4 J2];
@@ -151,7 +152,7 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
   };
   auto G = [&](double x, double& g1, double& g2) {
     g1 = g2 = 0.0;
-    for (const ShocklessPiece& p : pieces_) {
+    for (const ShocklessPiece& p : pieces) {
       const double tau = std::clamp((x - p.start) / p.length, 0.0, 1.0);
       if (tau <= 0.0) break;
       double f1, f2;
@@ -162,12 +163,12 @@ bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& 
     return true;
   };
   double half1, half2;
-  if (!G(half_action_, half1, half2)) return false;
+  if (!G(half_action, half1, half2)) return false;
   auto P = [&](double phi, double& p1, double& p2) {
-    phi = std::clamp(phi, -half_action_, half_action_);
-    if (phi <= 0.0) return G(half_action_ + phi, p1, p2);
+    phi = std::clamp(phi, -half_action, half_action);
+    if (phi <= 0.0) return G(half_action + phi, p1, p2);
     double g1, g2;
-    const bool ok = G(half_action_ - phi, g1, g2);
+    const bool ok = G(half_action - phi, g1, g2);
     p1 = 2.0 * half1 - g1;
     p2 = 2.0 * half2 - g2;
     return ok;
@@ -295,9 +296,10 @@ LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
 
 namespace mechgraph::cams {
 
-bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+bool shockless_monotone_breaks(std::span<const ShocklessPiece> pieces, std::span<const double> breakpoints, int order,
+                               std::vector<double>& breaks) {
   if (order < 0 || order > 2) return false;
-  for (const ShocklessPiece& p : pieces_)
+  for (const ShocklessPiece& p : pieces)
     if (!p.shape->monotone()) return false;
   if (order == 0) {
     // The velocity is 0 at the start, rises through the positive phase and falls back to 0 at the
@@ -305,7 +307,7 @@ bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const
     breaks = {0.0};
     return true;
   }
-  breaks = breakpoints_;
+  breaks.assign(breakpoints.begin(), breakpoints.end());
   if (!std::binary_search(breaks.begin(), breaks.end(), 0.0)) breaks.insert(std::upper_bound(breaks.begin(), breaks.end(), 0.0), 0.0);
   return true;
 }

@@ -121,6 +121,16 @@ struct ShocklessPiece {
 /// a case gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
 LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count, double half_action, double phi);
 
+/// CamLaw::monotone_breaks of a shockless law of these pieces and breakpoints: with monotone shapes,
+/// the junctions and the nose for the velocity and the acceleration, the nose alone for the lift.
+bool shockless_monotone_breaks(std::span<const ShocklessPiece> pieces, std::span<const double> breakpoints, int order,
+                               std::vector<double>& breaks);
+
+/// CamLaw::lift_integrals of a shockless law of these pieces: with shapes that give their moments,
+/// the integrals of h and h^2 in closed form.
+bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double half_action, double a, double b,
+                              double& integral, double& integral_of_square);
+
 struct ShapeSegment {
   std::shared_ptr<const AccelShape> shape;
   double length = 0.0;  // rad of cam angle
@@ -151,9 +161,13 @@ class ShocklessLaw final : public CamLaw {
   /// nose alone for the lift (the shapes are non-negative bumps, A+ > 0 > A-: h'' keeps one sign
   /// per phase, so h' rises then falls back to 0 at the nose and the lift is monotone on each side
   /// of it).
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    return shockless_monotone_breaks(pieces_, breakpoints_, order, breaks);
+  }
   /// With shapes that give their moments: the integrals of h and h^2 in closed form.
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
+    return shockless_lift_integrals(pieces_, half_action_, a, b, integral, integral_of_square);
+  }
 
   double positive_amplitude() const { return amplitude_pos_; }  // A+, m/rad^2
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)
@@ -163,6 +177,9 @@ class ShocklessLaw final : public CamLaw {
   const std::vector<double>& breakpoint_list() const { return breakpoints_; }
   /// The pieces from the start of lift to the nose (shockless_point), their shapes kept by the law.
   const std::vector<ShocklessPiece>& pieces() const { return pieces_; }
+  /// Whether the law keeps shapes alive (shapes given counted); the Kurz law's shared shapes are
+  /// never destroyed, and a law of only those keeps none.
+  bool owns_shapes() const { return !shapes_.empty(); }
 
  private:
   double max_lift_ = 0.0;

@@ -1,4 +1,5 @@
 #include "three_arc.hpp"
+#include "three_arc_array.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -166,7 +167,7 @@ ThreeArcLane three_arc_lane(const ThreeArcGeometry& g, double roller_radius) {
 ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
     : g_(geometry), lane_(three_arc_lane(geometry, roller_radius)) {}
 
-bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
+bool three_arc_monotone_breaks(const ThreeArcLane& k, int order, std::vector<double>& breaks) {
   // Flat tappet only (the roller's pitch-curve lift has no such simple signs). On the flank
   // h = e (1 - cos x), x = phi_p - |phi| in [0, phi_1], phi_1 < phi_p < pi: h' ~ sin x and
   // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
@@ -174,15 +175,16 @@ bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const 
   // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
   // The lift itself (order 0) rises on the whole rise and falls on the whole return: h' changes
   // sign at the nose only, so the nose is its one cut.
-  if (lane_.roller_radius > 0.0 || order < 0 || order > 2) return false;
+  if (k.roller_radius > 0.0 || order < 0 || order > 2) return false;
   if (order == 0) {
     breaks = {0.0};
     return true;
   }
-  const double alpha = lane_.switch_angle;
+  const double alpha = k.switch_angle;
   breaks = {-alpha, 0.0, alpha};
-  if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {
-    const double quarter = g_.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
+  const double flank_angle = k.half_action - alpha;  // phi_1 (the flat tappet switches at alpha)
+  if (order == 1 && flank_angle > 0.5 * std::numbers::pi) {
+    const double quarter = k.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
     breaks = {-quarter, -alpha, 0.0, alpha, quarter};
   }
   return true;
@@ -220,13 +222,13 @@ ArcIntegrals arc_integrals(double X) {
 
 }  // namespace
 
-bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
+bool three_arc_lift_integrals(const ThreeArcLane& k, double a, double b, double& integral, double& integral_of_square) {
   // Flat tappet: flank h = e m(x), x = phi_p - |phi|; nose h = H - A m(t), t = |phi| (A the
   // nose-centre distance). P(phi) = the integrals from the start of lift to phi, piece by piece;
   // the answer is P(b) - P(a).
-  if (lane_.roller_radius > 0.0) return false;
-  const double e = g_.flank_centre, A = g_.nose_centre, H = g_.max_lift, alpha = lane_.switch_angle;
-  const double x1 = g_.half_action - alpha;  // the flank's span
+  if (k.roller_radius > 0.0) return false;
+  const double e = k.flank_centre, A = k.nose_centre, H = k.max_lift, alpha = k.switch_angle;
+  const double x1 = k.half_action - alpha;  // the flank's span
   auto flank = [&](double x, double& p1, double& p2) {
     const ArcIntegrals m = arc_integrals(x);
     p1 = e * m.m;
@@ -243,7 +245,7 @@ bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& i
   auto P = [&](double phi, double& p1, double& p2) {
     double q1, q2;
     if (phi <= -alpha) {
-      flank(g_.half_action + phi, p1, p2);
+      flank(k.half_action + phi, p1, p2);
     } else if (phi <= 0.0) {
       nose(-phi, q1, q2);
       p1 = f1 + n1 - q1;
@@ -253,14 +255,14 @@ bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& i
       p1 = f1 + n1 + q1;
       p2 = f2 + n2 + q2;
     } else {
-      flank(g_.half_action - phi, q1, q2);
+      flank(k.half_action - phi, q1, q2);
       p1 = 2.0 * (f1 + n1) - q1;
       p2 = 2.0 * (f2 + n2) - q2;
     }
   };
   double pa1, pa2, pb1, pb2;
-  P(std::clamp(a, -g_.half_action, g_.half_action), pa1, pa2);
-  P(std::clamp(b, -g_.half_action, g_.half_action), pb1, pb2);
+  P(std::clamp(a, -k.half_action, k.half_action), pa1, pa2);
+  P(std::clamp(b, -k.half_action, k.half_action), pb1, pb2);
   integral = pb1 - pa1;
   integral_of_square = pb2 - pa2;
   return true;
@@ -289,14 +291,15 @@ ThreeArcChoice three_arc_choice(const ParamSet& params) {
   return {has_accel, is_roller};
 }
 
-// The law of the choice, its accel_angle or nose_radius `shape` and its roller radius (0: flat).
-std::shared_ptr<const CamLaw> make_three_arc(const CamBasics& basics, const ThreeArcChoice& c, double shape, double roller,
-                                             OutputSet& extra) {
+// The geometry of the choice, its accel_angle or nose_radius `shape` and its roller radius (0:
+// flat), with its extra outputs set.
+ThreeArcGeometry three_arc_geometry(const CamBasics& basics, const ThreeArcChoice& c, double shape, double roller,
+                                    OutputSet& extra) {
   if (c.roller && !(roller > 0.0)) throw NodeError("roller_radius", "roller_radius = " + mm(roller) + " must be > 0");
   const ThreeArcGeometry g = c.by_accel_angle ? three_arc_from_accel_angle(basics, shape) : three_arc_from_nose_radius(basics, shape);
   extra.set_scalar("flank_radius", g.flank_radius);
   extra.set_scalar("nose_radius", g.nose_radius);
-  return std::make_shared<const ThreeArcLaw>(g, roller);
+  return g;
 }
 
 }  // namespace
@@ -340,18 +343,23 @@ CamLawDefinition three_arc_definition() {
   };
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
     const ThreeArcChoice c = three_arc_choice(params);
-    return make_three_arc(basics, c, params.number(c.by_accel_angle ? "accel_angle" : "nose_radius"),
-                          c.roller ? params.number("roller_radius") : 0.0, extra);
+    const double roller = c.roller ? params.number("roller_radius") : 0.0;
+    const ThreeArcGeometry g =
+        three_arc_geometry(basics, c, params.number(c.by_accel_angle ? "accel_angle" : "nose_radius"), roller, extra);
+    return std::make_shared<const ThreeArcLaw>(g, roller);
   };
   // A block: which parameters are given and the follower (the same for every case) read once; each
-  // case reads its accel_angle or nose_radius and roller radius from the columns.
-  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
+  // case reads its accel_angle or nose_radius and roller radius from the columns, and its law is
+  // lane k of one array over the block.
+  d.prepare_block = [](const BlockParams& p, std::size_t cases) -> CamLawCaseFactory {
     const ThreeArcChoice c = three_arc_choice(p.fixed());
     const BlockColumn shape = p.number(c.by_accel_angle ? "accel_angle" : "nose_radius");
     const BlockColumn roller = c.roller ? p.number("roller_radius") : BlockColumn{};
-    return [c, shape, roller](const CamBasics& basics, const ParamSet&, std::size_t k,
-                              OutputSet& extra) -> std::shared_ptr<const CamLaw> {
-      return make_three_arc(basics, c, shape[k], c.roller ? roller[k] : 0.0, extra);
+    return [c, shape, roller, array = std::make_shared<ThreeArcArray>(cases)](
+               const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+      const double rr = c.roller ? roller[k] : 0.0;
+      array->set(k, three_arc_lane(three_arc_geometry(basics, c, shape[k], rr, extra), rr));
+      return std::make_shared<const CamLawLane>(array, k);
     };
   };
   return d;

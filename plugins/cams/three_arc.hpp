@@ -71,11 +71,12 @@ class ThreeArcLaw final : public CamLaw {
   double max_lift() const override { return g_.max_lift; }
   double base_radius() const override { return g_.base_radius; }
   double roller_radius() const override { return lane_.roller_radius; }
-  /// Flat tappet: the flank/nose switches and the nose (plus 90 deg into a long flank for the
-  /// velocity). A roller: false (the generic search).
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
-  /// Flat tappet: the integrals of h and h^2 in closed form (arcs: x - sin x and its square's).
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
+    return three_arc_monotone_breaks(lane_, order, breaks);
+  }
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
+    return three_arc_lift_integrals(lane_, a, b, integral, integral_of_square);
+  }
 
   const ThreeArcGeometry& geometry() const { return g_; }
   /// |phi| (from the nose) where the follower passes from flank to nose: alpha for the flat

@@ -1,12 +1,13 @@
 #pragma once
-// One point of a three-arc law from its constants alone (docs/methods/valvetrain.md, stage 1; the
-// contour and the followers as three_arc.hpp states them). ThreeArcLaw evaluates through this
-// function, and so will a law family evaluated over arrays of cases: one inline kernel for both,
-// so that a lane gives exactly the bits of its scalar law (docs/design/sdk-1.6-laws-over-arrays.md,
-// step 1).
+// A three-arc law from its constants alone (docs/methods/valvetrain.md, stage 1; the contour and
+// the followers as three_arc.hpp states them): a point, the monotone runs and the lift integrals.
+// ThreeArcLaw answers through these functions, and so does the array of three-arc laws
+// (three_arc_array.hpp): one implementation for both, so that a lane gives exactly the bits of its
+// scalar law (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <cmath>
+#include <vector>
 
 namespace mechgraph::cams {
 
@@ -113,5 +114,13 @@ inline LiftDerivatives three_arc_point(const ThreeArcLane& k, double phi) {
   }
   return {H, sign * H1, H2, sign * H3};
 }
+
+/// CamLaw::monotone_breaks of the law. Flat tappet: the flank/nose switches and the nose (plus
+/// 90 deg into a long flank for the velocity). A roller: false (the generic search).
+bool three_arc_monotone_breaks(const ThreeArcLane& k, int order, std::vector<double>& breaks);
+
+/// CamLaw::lift_integrals of the law. Flat tappet: the integrals of h and h^2 in closed form (arcs:
+/// x - sin x and its square's). A roller: false (quadrature).
+bool three_arc_lift_integrals(const ThreeArcLane& k, double a, double b, double& integral, double& integral_of_square);
 
 }  // namespace mechgraph::cams
