@@ -178,7 +178,8 @@ CamLawDefinition kurz_definition() {
     const bool split_given = p.fixed().has("rise_split");
     const BlockColumn accel = p.number("accel_angle");
     const BlockColumn split = split_given ? p.number("rise_split") : BlockColumn{};
-    return [split_given, accel, split, array = std::make_shared<ShocklessArray>(cases)](
+    // The Kurz law has three pieces: the quarter sine, the quarter cosine and the parabola.
+    return [split_given, accel, split, array = std::make_shared<ShocklessArray>(cases, 3)](
                const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
       const double phi_y = accel[k];
       const std::optional<double> rise_split = split_given ? std::optional<double>(split[k]) : std::nullopt;

@@ -296,7 +296,7 @@ void polydyne_higher_derivatives(const PolydyneLane& lane, double phi, double& d
   d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * polydyne_normalized_derivative(*lane.series, 5, w));
 }
 
-namespace {
+namespace polydyne_detail {
 
 // q_0..q_3 at u by split Horner, the four as the lanes of one vector (GCC vector extensions: two
 // SSE2 operations per step on any x86-64, one AVX operation where the processor has it; NEON on
@@ -329,23 +329,7 @@ void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s)
   std::memcpy(s, &acc, sizeof acc);
 }
 
-}  // namespace
-
-LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi) {
-  // x^(m) = h (1 - u)^(5-m) q_m(u) / phi_p^m, the four q_m by Horner in one pass in double: q_0
-  // has only positive and q_1 only negative coefficients, so lift and velocity carry a relative
-  // error of a few times n_max * eps on the whole event, seat included (checked against a
-  // 100-digit reference in tests/plugins/cams/polydyne_test.cpp).
-  const double phi_p = lane.half_action;
-  const double w = (phi_p - std::abs(phi)) / phi_p;  // 1 - u; phi_p - |phi| is exact near the seat
-  const double u = 1.0 - w;
-  const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in u: odd derivatives change sign
-  double s[4];
-  horner4(lane.series->interleaved.data(), lane.series->interleaved.size(), u, s);
-  const double w2 = w * w, w3 = w2 * w, h = lane.max_lift;
-  return {h * (w3 * w2) * s[0], sign * h * (w2 * w2) * s[1] / phi_p, h * w3 * s[2] / (phi_p * phi_p),
-          sign * h * w2 * s[3] / (phi_p * phi_p * phi_p)};
-}
+}  // namespace polydyne_detail
 
 LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const { return polydyne_point(lane(), phi); }
 

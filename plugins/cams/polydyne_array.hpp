@@ -24,7 +24,9 @@ class PolydyneArray final : public CamLawArray {
   std::size_t lanes() const override { return lanes_.size(); }
   CamLawColumns columns() const override;
   void evaluate(const std::uint32_t* lane, const double* phi, std::size_t n, LiftDerivatives* out) const override;
-  LiftDerivatives evaluate_one(std::size_t lane, double phi) const override { return polydyne_point(lanes_[lane], phi); }
+  Point point(std::size_t lane) const override {
+    return {[](const void* data, double phi) { return polydyne_point(*static_cast<const PolydyneLane*>(data), phi); }, &lanes_[lane]};
+  }
   std::span<const double> breakpoints(std::size_t) const override { return {}; }
   bool higher_derivatives(std::size_t lane, double phi, double& d4, double& d5) const override {
     polydyne_higher_derivatives(lanes_[lane], phi, d4, d5);

@@ -270,24 +270,6 @@ std::vector<double> ShocklessLaw::junctions_from_start() const {
   return out;
 }
 
-LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count, double half_action, double phi) {
-  // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
-  const double x = half_action - std::abs(phi);
-  const double sign = phi < 0.0 ? 1.0 : -1.0;
-  std::size_t k = 0;
-  while (k + 1 < count && x >= pieces[k + 1].start) ++k;
-  const ShocklessPiece& p = pieces[k];
-  const double y = x - p.start;
-  const double tau = std::clamp(y / p.length, 0.0, 1.0);
-  const double A = p.amplitude, L = p.length;
-  const ShapeValues v = p.shape->all(tau);
-  const double H = p.lift0 + p.velocity0 * y + A * L * L * v.integral2;
-  const double H1 = p.velocity0 + A * L * v.integral;
-  const double H2 = A * v.value;
-  const double H3 = A * v.slope / L;
-  return {H, sign * H1, H2, sign * H3};
-}
-
 LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
   return shockless_point(pieces_.data(), pieces_.size(), half_action_, phi);
 }

@@ -15,7 +15,9 @@
 // Every shape gives these in closed form, so the lift and its derivatives are exact.
 #include <mechgraph/domain/cam_law.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <mutex>
@@ -117,9 +119,27 @@ struct ShocklessPiece {
 
 /// Lift and three derivatives over cam angle at phi inside the event of a shockless law, from its
 /// `count` pieces (in order from the start of lift) and its half action angle phi_p. The law
-/// evaluates through this one function, and so will a family of laws over arrays of cases, so that
-/// a case gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
-LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count, double half_action, double phi);
+/// evaluates through this one function, and so does the array of such laws (shockless_array.hpp),
+/// so that a case gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step
+/// 1); inlined into each caller, so that a point costs one call either way.
+[[gnu::always_inline]] inline LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count,
+                                                              double half_action, double phi) {
+  // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
+  const double x = half_action - std::abs(phi);
+  const double sign = phi < 0.0 ? 1.0 : -1.0;
+  std::size_t k = 0;
+  while (k + 1 < count && x >= pieces[k + 1].start) ++k;
+  const ShocklessPiece& p = pieces[k];
+  const double y = x - p.start;
+  const double tau = std::clamp(y / p.length, 0.0, 1.0);
+  const double A = p.amplitude, L = p.length;
+  const ShapeValues v = p.shape->all(tau);
+  const double H = p.lift0 + p.velocity0 * y + A * L * L * v.integral2;
+  const double H1 = p.velocity0 + A * L * v.integral;
+  const double H2 = A * v.value;
+  const double H3 = A * v.slope / L;
+  return {H, sign * H1, H2, sign * H3};
+}
 
 /// CamLaw::monotone_breaks of a shockless law of these pieces and breakpoints: with monotone shapes,
 /// the junctions and the nose for the velocity and the acceleration, the nose alone for the lift.

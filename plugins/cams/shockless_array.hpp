@@ -15,42 +15,51 @@ namespace mechgraph::cams {
 
 class ShocklessArray final : public CamLawArray {
  public:
-  /// `lanes` lanes, each to be set (set()) before a law of it is made.
-  explicit ShocklessArray(std::size_t lanes);
+  /// `lanes` lanes of laws of at most `max_pieces` pieces (the Kurz law's three), each to be set
+  /// (set()) before a law of it is made.
+  ShocklessArray(std::size_t lanes, std::size_t max_pieces);
   /// Lane k as `law`, whose numbers are copied; once per lane, only while the array is being made.
-  /// Throws std::invalid_argument for a law that keeps its shapes alive (the array would not), a
-  /// lane set already or past the array.
+  /// Throws std::invalid_argument for a law that keeps its shapes alive (the array would not) or
+  /// has more pieces than the array holds, a lane set already or past the array.
   void set(std::size_t k, const ShocklessLaw& law);
 
-  std::size_t lanes() const override { return half_action_.size(); }
+  std::size_t lanes() const override { return views_.size(); }
   CamLawColumns columns() const override;
   void evaluate(const std::uint32_t* lane, const double* phi, std::size_t n, LiftDerivatives* out) const override;
-  LiftDerivatives evaluate_one(std::size_t lane, double phi) const override {
-    return shockless_point(pieces_.data() + piece_from_[lane], piece_count_[lane], half_action_[lane], phi);
+  Point point(std::size_t lane) const override {
+    return {[](const void* data, double phi) {
+              const auto& v = *static_cast<const LaneView*>(data);
+              return shockless_point(v.pieces, v.count, v.half_action, phi);
+            },
+            &views_[lane]};
   }
   std::span<const double> breakpoints(std::size_t lane) const override {
-    return {breaks_.data() + break_from_[lane], break_count_[lane]};
+    return {breaks_.data() + lane * max_breaks_, break_count_[lane]};
   }
   bool higher_derivatives(std::size_t, double, double&, double&) const override { return false; }
   bool monotone_breaks(std::size_t lane, int order, std::vector<double>& breaks) const override {
-    return shockless_monotone_breaks(pieces_of(lane), breakpoints(lane), order, breaks);
+    return shockless_monotone_breaks({views_[lane].pieces, views_[lane].count}, breakpoints(lane), order, breaks);
   }
   bool lift_integrals(std::size_t lane, double a, double b, double& integral, double& integral_of_square) const override {
-    return shockless_lift_integrals(pieces_of(lane), half_action_[lane], a, b, integral, integral_of_square);
+    return shockless_lift_integrals({views_[lane].pieces, views_[lane].count}, views_[lane].half_action, a, b, integral,
+                                    integral_of_square);
   }
 
  private:
-  std::span<const ShocklessPiece> pieces_of(std::size_t lane) const {
-    return {pieces_.data() + piece_from_[lane], piece_count_[lane]};
-  }
-
-  // The figures as columns (the event is -phi_p to phi_p; no roller).
-  std::vector<double> event_begin_, half_action_, max_lift_, base_radius_, roller_radius_;
-  // Lane k's pieces are piece_count_[k] from pieces_[piece_from_[k]], its breakpoints likewise (a
-  // lane not set holds none).
+  // What a point of a lane reads: its pieces (in pieces_, which never moves) and phi_p.
+  struct LaneView {
+    const ShocklessPiece* pieces = nullptr;
+    std::size_t count = 0;  // 0: a lane not set
+    double half_action = 0.0;
+  };
+  std::size_t max_pieces_, max_breaks_;
+  // Lane k's pieces from pieces_[k * max_pieces_], its breakpoints from breaks_[k * max_breaks_].
   std::vector<ShocklessPiece> pieces_;
   std::vector<double> breaks_;
-  std::vector<std::size_t> piece_from_, piece_count_, break_from_, break_count_;
+  std::vector<LaneView> views_;
+  std::vector<std::size_t> break_count_;
+  // The figures as columns (the event is -phi_p to phi_p; no roller).
+  std::vector<double> event_begin_, event_end_, max_lift_, base_radius_, roller_radius_;
 };
 
 }  // namespace mechgraph::cams

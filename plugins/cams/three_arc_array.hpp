@@ -22,7 +22,9 @@ class ThreeArcArray final : public CamLawArray {
   std::size_t lanes() const override { return lanes_.size(); }
   CamLawColumns columns() const override;
   void evaluate(const std::uint32_t* lane, const double* phi, std::size_t n, LiftDerivatives* out) const override;
-  LiftDerivatives evaluate_one(std::size_t lane, double phi) const override { return three_arc_point(lanes_[lane], phi); }
+  Point point(std::size_t lane) const override {
+    return {[](const void* data, double phi) { return three_arc_point(*static_cast<const ThreeArcLane*>(data), phi); }, &lanes_[lane]};
+  }
   std::span<const double> breakpoints(std::size_t lane) const override { return {&breaks_[2 * lane], 2}; }
   bool higher_derivatives(std::size_t, double, double&, double&) const override { return false; }
   bool monotone_breaks(std::size_t lane, int order, std::vector<double>& breaks) const override {

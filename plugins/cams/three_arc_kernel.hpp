@@ -46,7 +46,9 @@ inline ArcRoot arc_root(double c, double R, double t) {
 }  // namespace three_arc_detail
 
 /// Lift and three derivatives over cam angle at phi inside the event (-phi_p < phi < phi_p).
-inline LiftDerivatives three_arc_point(const ThreeArcLane& k, double phi) {
+/// Inlined into each caller (the law's evaluate_in_event, the array's point function), so that a
+/// point costs one call either way.
+[[gnu::always_inline]] inline LiftDerivatives three_arc_point(const ThreeArcLane& k, double phi) {
   // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
   const double psi = std::abs(phi);
   const double sign = phi < 0.0 ? -1.0 : 1.0;

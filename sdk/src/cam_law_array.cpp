@@ -16,6 +16,8 @@ CamLawLane::CamLawLane(std::shared_ptr<const CamLawArray> array, std::size_t lan
     throw std::out_of_range("CamLawLane: lane " + std::to_string(lane_) + " of an array of " +
                             std::to_string(array_->lanes()));
   columns_ = array_->columns();
+  point_ = array_->point(lane_);
+  if (!point_.function) throw std::invalid_argument("CamLawLane: the array gives no point function");
 }
 
 CamLawLane::~CamLawLane() = default;

@@ -11,6 +11,7 @@
 #include <memory>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 using namespace mechgraph;
@@ -25,6 +26,7 @@ class BumpArray final : public CamLawArray {
   BumpArray(std::vector<double> lift, std::vector<double> half, double nan_lane = -1)
       : lift_(std::move(lift)), half_(std::move(half)), nan_lane_(nan_lane) {
     for (std::size_t k = 0; k < lift_.size(); ++k) {
+      at_.emplace_back(this, k);
       begin_.push_back(-half_[k]);
       base_.push_back(0.02);
       roller_.push_back(0.005 * static_cast<double>(k));
@@ -35,7 +37,14 @@ class BumpArray final : public CamLawArray {
   void evaluate(const std::uint32_t* lane, const double* phi, std::size_t n, LiftDerivatives* out) const override {
     for (std::size_t i = 0; i < n; ++i) out[i] = evaluate_one(lane ? lane[i] : i, phi[i]);
   }
-  LiftDerivatives evaluate_one(std::size_t lane, double phi) const override {
+  Point point(std::size_t lane) const override {
+    return {[](const void* data, double phi) {
+              const auto* at = static_cast<const std::pair<const BumpArray*, std::size_t>*>(data);
+              return at->first->evaluate_one(at->second, phi);
+            },
+            &at_[lane]};
+  }
+  LiftDerivatives evaluate_one(std::size_t lane, double phi) const {
     if (static_cast<double>(lane) == nan_lane_) return {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0, 0.0};
     const double L = lift_[lane], w = std::numbers::pi / half_[lane], c = std::cos(w * phi), s = std::sin(w * phi);
     return {0.5 * L * (1.0 + c), -0.5 * L * w * s, -0.5 * L * w * w * c, 0.5 * L * w * w * w * s};
@@ -61,6 +70,7 @@ class BumpArray final : public CamLawArray {
 
  private:
   std::vector<double> lift_, half_, begin_, base_, roller_;
+  std::vector<std::pair<const BumpArray*, std::size_t>> at_;  // each lane's data: the array and the lane
   double nan_lane_;
   double nose_ = 0.0;
 };
@@ -97,7 +107,10 @@ TEST_CASE("cam law arrays: a lane answers every question from its array", "[sdk]
   CHECK(lane.roller_radius() == 0.005);
   CHECK(lane.breakpoints() == std::vector<double>{0.0});
   for (double phi : {-1.0, -0.3, 0.0, 0.7}) {
-    const LiftDerivatives a = lane.evaluate_in_event(phi), b = array->evaluate_one(1, phi);
+    const std::uint32_t one = 1;
+    LiftDerivatives b;
+    array->evaluate(&one, &phi, 1, &b);
+    const LiftDerivatives a = lane.evaluate_in_event(phi);
     CHECK(a.lift == b.lift);
     CHECK(a.velocity == b.velocity);
     CHECK(a.acceleration == b.acceleration);

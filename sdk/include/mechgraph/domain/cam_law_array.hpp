@@ -43,8 +43,14 @@ class MECHGRAPH_INTERFACE CamLawArray {
   /// n points: point k at angle phi[k] on lane lane[k] (lane k when `lane` is null), each strictly
   /// inside its lane's event, into out[k]: the same bits that lane's law gives at that angle.
   virtual void evaluate(const std::uint32_t* lane, const double* phi, std::size_t n, LiftDerivatives* out) const = 0;
-  /// One point: evaluate() of one (the path of a lane's evaluate_in_event).
-  virtual LiftDerivatives evaluate_one(std::size_t lane, double phi) const = 0;
+  /// One point of one lane, evaluate() of one, as a plain function and the lane's data it reads:
+  /// point(k).function(point(k).data, phi). A lane's evaluate_in_event calls it directly, one
+  /// indirect call a point. Valid, and the same, for the array's whole life.
+  struct Point {
+    LiftDerivatives (*function)(const void* data, double phi) = nullptr;
+    const void* data = nullptr;
+  };
+  virtual Point point(std::size_t lane) const = 0;
   /// The lane's breakpoints (CamLaw::breakpoints), kept by the array.
   virtual std::span<const double> breakpoints(std::size_t lane) const = 0;
   /// The lane's answers to the optional queries of CamLaw, with the same meaning.
@@ -64,7 +70,7 @@ class MECHGRAPH_INTERFACE CamLawLane final : public CamLaw {
 
   double event_begin() const override { return columns_.event_begin[lane_]; }
   double event_end() const override { return columns_.event_end[lane_]; }
-  LiftDerivatives evaluate_in_event(double phi) const override { return array_->evaluate_one(lane_, phi); }
+  LiftDerivatives evaluate_in_event(double phi) const override { return point_.function(point_.data, phi); }
   std::vector<double> breakpoints() const override;
   double max_lift() const override { return columns_.max_lift[lane_]; }
   double base_radius() const override { return columns_.base_radius[lane_]; }
@@ -78,7 +84,8 @@ class MECHGRAPH_INTERFACE CamLawLane final : public CamLaw {
 
  private:
   std::shared_ptr<const CamLawArray> array_;
-  CamLawColumns columns_;  // the array's, read once
+  CamLawColumns columns_;                 // the array's, read once
+  CamLawArray::Point point_;              // the array's, read once
   std::size_t lane_;
 };
 
