@@ -34,7 +34,7 @@ include(GNUInstallDirs)
 set(MECHGRAPH_SDK_CXX_SOURCES
   dimension.cpp units.cpp node.cpp value.cpp bounded_read.cpp numerics_piecewise.cpp
   numerics_chebyshev.cpp tolerance.cpp cam_law.cpp cam_geometry.cpp cam_law_runs.cpp cam_curves.cpp
-  interfaces.cpp block.cpp cam_law_array.cpp)
+  interfaces.cpp block.cpp)
 set(MECHGRAPH_SDK_CXX_PRIVATE_HEADERS piece_points.hpp decimal_number.hpp)
 
 # mechgraph_sdk_cxx: the C++ layer as an OBJECT library of this project (once, whatever number of

@@ -361,7 +361,7 @@ class CamNodeType final : public NodeType, public BlockEvaluation, public Foreca
     CamLawCaseFactory prepared;
     if (prepare_block_) {
       try {
-        prepared = prepare_block_(p, cases.size());
+        prepared = prepare_block_(p);
       } catch (const NodeError&) {
         prepared = nullptr;  // each case alone says why
       }

@@ -63,13 +63,11 @@ using CamLawCostFunction = std::function<CamLawCost(const ParamSet&)>;
 /// (the varied ones as case k has them) and k, the index into the block's columns.
 using CamLawCaseFactory =
     std::function<std::shared_ptr<const CamLaw>(const CamBasics&, const ParamSet&, std::size_t k, OutputSet& extra)>;
-/// Reads, checks and computes once for a block of `cases` cases what no case of it changes
-/// (choices, lists, which optional parameters are given: only numbers vary in a block) and returns
-/// the factory of its cases, which must give each case a law that answers exactly as the law
-/// `make` gives it (the same bits), and the same extras; it may make them lanes of one array over
-/// the block (mechgraph/domain/cam_law_array.hpp). An empty function, or a NodeError, where it
-/// cannot: then `make` runs per case and says why.
-using CamLawBlockFactory = std::function<CamLawCaseFactory(const BlockParams&, std::size_t cases)>;
+/// Reads, checks and computes once for a block of cases what no case of it changes (choices,
+/// lists, which optional parameters are given: only numbers vary in a block) and returns the
+/// factory of its cases, which must give each case the very law and extras `make` gives it. An
+/// empty function, or a NodeError, where it cannot: then `make` runs per case and says why.
+using CamLawBlockFactory = std::function<CamLawCaseFactory(const BlockParams&)>;
 
 struct CamLawDefinition {
   std::string type;     // "cam.kurz"

@@ -1,5 +1,4 @@
 #include "kurz.hpp"
-#include "shockless_array.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +39,8 @@ double kurz_default_split(double phi_y, double phi_p) {
   return jerk_continuous > 0.0 ? jerk_continuous : kurz_minimax_split(phi_y, phi_p);
 }
 
-ShocklessLaw kurz_law(const CamBasics& basics, double phi_y, std::optional<double> rise_split) {
+std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double phi_y,
+                                                  std::optional<double> rise_split) {
   const double phi_p = 0.5 * basics.action_angle;
   // The limits are the mathematics' and a double's only: the phases must exist (0 < phi_y < phi_p,
   // 0 < sigma < 1), each wave must hold an angle of its own (a double strictly inside it), and the
@@ -80,18 +80,15 @@ ShocklessLaw kurz_law(const CamBasics& basics, double phi_y, std::optional<doubl
   const auto uncounted = [](const AccelShape* shape) { return std::shared_ptr<const AccelShape>(std::shared_ptr<const AccelShape>(), shape); };
   const ShapeSegment positive[] = {{uncounted(quarter_sine), phi_1}, {uncounted(quarter_cosine), phi_2}};
   const ShapeSegment negative[] = {{uncounted(parabola), phi_3}};
-  const auto make = [&] {
-    try {
-      return ShocklessLaw(basics.max_lift, basics.action_angle, basics.base_radius, std::span<const ShapeSegment>(positive),
-                          std::span<const ShapeSegment>(negative));
-    } catch (const std::invalid_argument& e) {
-      throw NodeError(phi_1 < phi_3 || phi_2 < phi_3 ? split_parameter : "accel_angle",
-                      std::string("accel_angle = ") + deg(phi_y) + " and rise_split = " + std::to_string(sigma) +
-                          " give no law: " + e.what());
-    }
-  };
-  ShocklessLaw made = make();
-  const ShocklessLaw* const law = &made;
+  std::shared_ptr<const ShocklessLaw> law;
+  try {
+    law = std::make_shared<const ShocklessLaw>(basics.max_lift, basics.action_angle, basics.base_radius,
+                                               std::span<const ShapeSegment>(positive), std::span<const ShapeSegment>(negative));
+  } catch (const std::invalid_argument& e) {
+    throw NodeError(phi_1 < phi_3 || phi_2 < phi_3 ? split_parameter : "accel_angle",
+                    std::string("accel_angle = ") + deg(phi_y) + " and rise_split = " + std::to_string(sigma) +
+                        " give no law: " + e.what());
+  }
   // The waves as the law cuts them (knots: start, sine | cosine, cosine | parabola, ...): each
   // needs a double strictly inside, else it has no angle of its own.
   const std::vector<double>& breaks = law->breakpoint_list();
@@ -121,11 +118,7 @@ ShocklessLaw kurz_law(const CamBasics& basics, double phi_y, std::optional<doubl
         << " deg) is so narrow that its jerk leaves the range of a double (larger than 1.8e308 m/rad^3)";
     throw NodeError(i == 2 ? "accel_angle" : split_parameter, msg.str());
   }
-  return made;
-}
-
-std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double phi_y, std::optional<double> rise_split) {
-  return std::make_shared<const ShocklessLaw>(kurz_law(basics, phi_y, rise_split));
+  return law;
 }
 
 CamLawDefinition kurz_definition() {
@@ -171,22 +164,6 @@ CamLawDefinition kurz_definition() {
     auto law = make_kurz_law(basics, phi_y, split);
     extra.set_scalar("rise_split", split ? *split : kurz_default_split(phi_y, 0.5 * basics.action_angle));
     return law;
-  };
-  // A block: whether rise_split is given read once; each case reads accel_angle (and rise_split)
-  // from the columns, and its law is lane k of one array over the block.
-  d.prepare_block = [](const BlockParams& p, std::size_t cases) -> CamLawCaseFactory {
-    const bool split_given = p.fixed().has("rise_split");
-    const BlockColumn accel = p.number("accel_angle");
-    const BlockColumn split = split_given ? p.number("rise_split") : BlockColumn{};
-    // The Kurz law has three pieces: the quarter sine, the quarter cosine and the parabola.
-    return [split_given, accel, split, array = std::make_shared<ShocklessArray>(cases, 3)](
-               const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
-      const double phi_y = accel[k];
-      const std::optional<double> rise_split = split_given ? std::optional<double>(split[k]) : std::nullopt;
-      array->set(k, kurz_law(basics, phi_y, rise_split));
-      extra.set_scalar("rise_split", rise_split ? *rise_split : kurz_default_split(phi_y, 0.5 * basics.action_angle));
-      return std::make_shared<const CamLawLane>(array, k);
-    };
   };
   return d;
 }

@@ -32,8 +32,6 @@ double kurz_minimax_split(double accel_angle, double half_action);
 double kurz_default_split(double accel_angle, double half_action);
 
 /// Builds the law; throws NodeError naming accel_angle or rise_split when infeasible.
-ShocklessLaw kurz_law(const CamBasics& basics, double accel_angle, std::optional<double> rise_split);
-/// The same, shared.
 std::shared_ptr<const ShocklessLaw> make_kurz_law(const CamBasics& basics, double accel_angle,
                                                   std::optional<double> rise_split);
 

@@ -1,5 +1,4 @@
 #include "polydyne.hpp"
-#include "polydyne_array.hpp"
 
 #include <mechgraph/numerics/piecewise.hpp>
 
@@ -493,17 +492,15 @@ CamLawDefinition polydyne_definition() {
                                                std::move(exponents));
   };
   // A block: the exponents (a list, never varied in a block) checked and their series found once;
-  // each case is then its lift, action angle and base radius, lane k of one array over the block.
-  // With accel_angle q is found per case.
-  d.prepare_block = [](const BlockParams& p, std::size_t cases) -> CamLawCaseFactory {
+  // each case is then its lift, action angle and base radius. With accel_angle q is found per case.
+  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
     if (p.fixed().has("accel_angle")) return {};
     const std::vector<int> exponents = validate_polydyne_exponents(p.fixed().numbers("exponents"));
     const double q = exponents[1];
-    return [array = std::make_shared<PolydyneArray>(cases, polydyne_series(exponents)), q](
-               const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    return [series = polydyne_series(exponents), q](const CamBasics& basics, const ParamSet&, std::size_t,
+                                                     OutputSet& extra) -> std::shared_ptr<const CamLaw> {
       extra.set_scalar("exponent_q", q);
-      array->set(k, basics.max_lift, basics.action_angle, basics.base_radius);
-      return std::make_shared<const CamLawLane>(array, k);
+      return std::make_shared<const PolydyneLaw>(basics.max_lift, basics.action_angle, basics.base_radius, series);
     };
   };
   return d;

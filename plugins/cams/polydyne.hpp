@@ -82,24 +82,23 @@ struct PolydyneSeries {
 };
 
 /// What one polydyne law of integer exponents is: its half action angle and lift (SI) and its
-/// exponent set's series (not owned: kept by the law or the array of laws).
+/// exponent set's series (not owned: kept by the law).
 struct PolydyneLane {
   double half_action = 0.0;  // phi_p, rad
   double max_lift = 0.0;     // h, m
   const PolydyneSeries* series = nullptr;
 };
 
-// The law's answers from its lane. PolydyneLaw answers through these functions, and so does the
-// array of polydyne laws (polydyne_array.hpp): one implementation for both, so that a case gives
-// the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+// The law's answers from its lane. PolydyneLaw answers through these functions, and so could a
+// family of polydyne laws over arrays of cases, with the same bits (docs/design/
+// sdk-1.6-laws-over-arrays.md, step 1).
 namespace polydyne_detail {
 /// q_0..q_3 at u by split Horner over `n` powers of interleaved coefficients (polydyne.cpp).
 void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s);
 }  // namespace polydyne_detail
 
-/// Lift and three derivatives over cam angle at phi inside the event; inlined into each caller
-/// (the law's evaluate_in_event, the array's point function), so that a point costs the call of
-/// horner4 either way.
+/// Lift and three derivatives over cam angle at phi inside the event; inlined into each caller, so
+/// that a point costs the call of horner4 only.
 [[gnu::always_inline]] inline LiftDerivatives polydyne_point(const PolydyneLane& lane, double phi) {
   // x^(m) = h (1 - u)^(5-m) q_m(u) / phi_p^m, the four q_m by Horner in one pass in double: q_0
   // has only positive and q_1 only negative coefficients, so lift and velocity carry a relative

@@ -119,9 +119,9 @@ struct ShocklessPiece {
 
 /// Lift and three derivatives over cam angle at phi inside the event of a shockless law, from its
 /// `count` pieces (in order from the start of lift) and its half action angle phi_p. The law
-/// evaluates through this one function, and so does the array of such laws (shockless_array.hpp),
-/// so that a case gives the same bits either way (docs/design/sdk-1.6-laws-over-arrays.md, step
-/// 1); inlined into each caller, so that a point costs one call either way.
+/// evaluates through this one function, and so could a family of such laws over arrays of cases,
+/// with the same bits (docs/design/sdk-1.6-laws-over-arrays.md, step 1); inlined into each caller,
+/// so that a point costs one call.
 [[gnu::always_inline]] inline LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count,
                                                               double half_action, double phi) {
   // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
@@ -197,9 +197,6 @@ class ShocklessLaw final : public CamLaw {
   const std::vector<double>& breakpoint_list() const { return breakpoints_; }
   /// The pieces from the start of lift to the nose (shockless_point), their shapes kept by the law.
   const std::vector<ShocklessPiece>& pieces() const { return pieces_; }
-  /// Whether the law keeps shapes alive (shapes given counted); the Kurz law's shared shapes are
-  /// never destroyed, and a law of only those keeps none.
-  bool owns_shapes() const { return !shapes_.empty(); }
 
  private:
   double max_lift_ = 0.0;

@@ -1,5 +1,4 @@
 #include "three_arc.hpp"
-#include "three_arc_array.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -349,17 +348,15 @@ CamLawDefinition three_arc_definition() {
     return std::make_shared<const ThreeArcLaw>(g, roller);
   };
   // A block: which parameters are given and the follower (the same for every case) read once; each
-  // case reads its accel_angle or nose_radius and roller radius from the columns, and its law is
-  // lane k of one array over the block.
-  d.prepare_block = [](const BlockParams& p, std::size_t cases) -> CamLawCaseFactory {
+  // case reads its accel_angle or nose_radius and roller radius from the columns.
+  d.prepare_block = [](const BlockParams& p) -> CamLawCaseFactory {
     const ThreeArcChoice c = three_arc_choice(p.fixed());
     const BlockColumn shape = p.number(c.by_accel_angle ? "accel_angle" : "nose_radius");
     const BlockColumn roller = c.roller ? p.number("roller_radius") : BlockColumn{};
-    return [c, shape, roller, array = std::make_shared<ThreeArcArray>(cases)](
-               const CamBasics& basics, const ParamSet&, std::size_t k, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
+    return [c, shape, roller](const CamBasics& basics, const ParamSet&, std::size_t k,
+                              OutputSet& extra) -> std::shared_ptr<const CamLaw> {
       const double rr = c.roller ? roller[k] : 0.0;
-      array->set(k, three_arc_lane(three_arc_geometry(basics, c, shape[k], rr, extra), rr));
-      return std::make_shared<const CamLawLane>(array, k);
+      return std::make_shared<const ThreeArcLaw>(three_arc_geometry(basics, c, shape[k], rr, extra), rr);
     };
   };
   return d;

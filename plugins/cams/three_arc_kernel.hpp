@@ -1,9 +1,9 @@
 #pragma once
 // A three-arc law from its constants alone (docs/methods/valvetrain.md, stage 1; the contour and
 // the followers as three_arc.hpp states them): a point, the monotone runs and the lift integrals.
-// ThreeArcLaw answers through these functions, and so does the array of three-arc laws
-// (three_arc_array.hpp): one implementation for both, so that a lane gives exactly the bits of its
-// scalar law (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+// ThreeArcLaw answers through these functions, and so could a family of three-arc laws over arrays
+// of cases: one implementation for both, so that a lane would give exactly the bits of its scalar
+// law (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <cmath>
@@ -46,8 +46,7 @@ inline ArcRoot arc_root(double c, double R, double t) {
 }  // namespace three_arc_detail
 
 /// Lift and three derivatives over cam angle at phi inside the event (-phi_p < phi < phi_p).
-/// Inlined into each caller (the law's evaluate_in_event, the array's point function), so that a
-/// point costs one call either way.
+/// Inlined into each caller, so that a point costs one call.
 [[gnu::always_inline]] inline LiftDerivatives three_arc_point(const ThreeArcLane& k, double phi) {
   // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
   const double psi = std::abs(phi);

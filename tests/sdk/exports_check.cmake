@@ -3,8 +3,8 @@
 # functions mg_*, and, temporarily until migration step 6, the C++ helpers in namespace mechgraph
 # (with their type info, vtables and guard variables). Every symbol carries the version
 # MECHGRAPH_SDK_1.0, but the C functions a later minor added (MECHGRAPH_SDK_1.<minor>: mg_*) and
-# the C++ interface classes it added (their destructor, type info and vtable, and the functions
-# of theirs a plugin calls), and the C functions of sdk_lib.h are there.
+# the C++ interface classes it added (their destructor, type info and vtable), and the C functions
+# of sdk_lib.h are there.
 cmake_minimum_required(VERSION 3.25)
 execute_process(COMMAND ${NM} -D --defined-only --demangle ${LIBRARY} OUTPUT_VARIABLE listing RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
@@ -30,11 +30,6 @@ foreach(line IN LISTS lines)
   # A C++ interface class a later minor added for plugins of the pre-1.0 entry (ForecastReads, 1.3):
   # its destructor, type info and vtable under that minor's version, named in the map.
   if(symbol MATCHES "^((typeinfo|typeinfo name|vtable) for )?mechgraph::[A-Za-z]+(::~[A-Za-z]+\\(\\))?@@?MECHGRAPH_SDK_1\\.[1-9][0-9]*$")
-    continue()
-  endif()
-  # The C++ functions a later minor added that plugins call (CamLawLane's constructor and lanes_of,
-  # 1.6), named one by one in the map.
-  if(symbol MATCHES "^mechgraph::[A-Za-z_:]+\\(.*\\)( const)?@@?MECHGRAPH_SDK_1\\.[1-9][0-9]*$")
     continue()
   endif()
   if(NOT symbol MATCHES "@@?MECHGRAPH_SDK_1\\.0$")

@@ -2,18 +2,16 @@
 // evaluation, bit for bit: the common numbers read from the block's columns, the law's own
 // preparation for a block (CamLawDefinition::prepare_block: the polydyne's exponent series, the
 // three-arc's choices, found once per block), the law's own scalars kept in one set per block, the
-// cases a node refuses (alone, or every case when the preparation itself refuses), and the laws
-// made as lanes of one array over the block (three-arc, Kurz, polydyne of integer exponents).
+// cases a node refuses (alone, or every case when the preparation itself refuses); every answer of
+// a law compared, not only its points.
 #include "cam_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <mechgraph/block.hpp>
-#include <mechgraph/domain/cam_law_array.hpp>
 #include <mechgraph/domain/cam_law_block.hpp>
 
 #include <cmath>
-#include <cstdint>
 #include <map>
 #include <numbers>
 #include <string>
@@ -27,10 +25,6 @@ namespace {
 
 constexpr double deg = std::numbers::pi / 180.0;
 constexpr double mm = 1e-3;
-
-// Whether a block's laws are to come as lanes of one array over the block
-// (mechgraph/domain/cam_law_array.hpp), or as laws of their own.
-enum class Lanes { of_one_array, none };
 
 // Every answer of `law` equal bit for bit to `alone`'s: the figures, the breakpoints, the points at
 // 33 angles and one ulp either side of every knot, the monotone runs, the lift integrals over
@@ -79,10 +73,10 @@ void check_law_equals(const CamLaw& law, const CamLaw& alone) {
 // Evaluates `type` as one block of the cases given by `varied` (a column of values per name) on top
 // of `given`, and checks each case against the single evaluation of its parameters: refused by
 // both or by neither; every answer of the law (check_law_equals) and the scalar outputs `scalars`
-// equal bit for bit; the laws lanes of one array over the block or not, as `lanes` says.
+// equal bit for bit.
 void check_block_equals_single(const std::string& type, const std::map<std::string, ParamValue>& given,
                                const std::map<std::string, std::vector<double>>& varied,
-                               const std::vector<std::string>& scalars, Lanes lanes = Lanes::none) {
+                               const std::vector<std::string>& scalars) {
   const NodeType& node = cam_type(type);
   const auto* blocks = dynamic_cast<const BlockEvaluation*>(&node);
   REQUIRE(blocks);
@@ -115,40 +109,13 @@ void check_block_equals_single(const std::string& type, const std::map<std::stri
     check_law_equals(law, alone);
     for (const std::string& port : scalars) CHECK(out.scalars().at(port)[k] == single.all().at(port).as_scalar());
   }
-  // Lanes: every computed case's law is lane k of one array, whose batch evaluation gives the
-  // bits of the lane's own, lane by lane and in any order of lanes.
-  const CamLawArray* array = lanes_of(laws);
-  bool any_computed = false;
-  for (std::size_t k = 0; k < n; ++k) any_computed = any_computed || !cases.failed(k);
-  CHECK((array != nullptr) == (lanes == Lanes::of_one_array && any_computed));
-  if (!array) return;
-  REQUIRE(array->lanes() == n);
-  std::vector<std::uint32_t> lane;
-  std::vector<double> phi;
-  for (std::size_t k = n; k-- > 0;) {
-    if (cases.failed(k)) continue;
-    const CamLaw& law = laws.law(k);
-    for (int j = 1; j < 8; ++j) {
-      lane.push_back(static_cast<std::uint32_t>(k));
-      phi.push_back(law.event_begin() + (law.event_end() - law.event_begin()) * j / 8.0);
-    }
-  }
-  std::vector<LiftDerivatives> batch(phi.size());
-  array->evaluate(lane.data(), phi.data(), phi.size(), batch.data());
-  for (std::size_t i = 0; i < phi.size(); ++i) {
-    const LiftDerivatives one = laws.law(lane[i]).evaluate_in_event(phi[i]);
-    CHECK(batch[i].lift == one.lift);
-    CHECK(batch[i].velocity == one.velocity);
-    CHECK(batch[i].acceleration == one.acceleration);
-    CHECK(batch[i].jerk == one.jerk);
-  }
 }
 
 ParamValue number(double v) { return ParamValue::of_number(v); }
 
 }  // namespace
 
-TEST_CASE("cam blocks: three-arc cases are lanes of one array, equal to their single evaluations", "[cams][blocks]") {
+TEST_CASE("cam blocks: three-arc cases equal their single evaluations, by accel_angle and by nose_radius", "[cams][blocks]") {
   const std::map<std::string, ParamValue> common{{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)},
                                                  {"base_radius", number(26 * mm)}};
   auto with = [&](std::map<std::string, ParamValue> more) {
@@ -158,19 +125,19 @@ TEST_CASE("cam blocks: three-arc cases are lanes of one array, equal to their si
   // A flat tappet by accel_angle; 80 deg is past half the action angle: that case alone is refused.
   check_block_equals_single("cam.three_arc", with({{"accel_angle", number(18 * deg)}}),
                             {{"accel_angle", {16 * deg, 18 * deg, 80 * deg, 20 * deg}}, {"max_lift", {7 * mm, 8 * mm, 8 * mm, 9 * mm}}},
-                            {"max_lift", "flank_radius", "nose_radius"}, Lanes::of_one_array);
+                            {"max_lift", "flank_radius", "nose_radius"});
   // A roller by nose_radius, its radius varied (0 is refused by the law: that case alone).
   check_block_equals_single("cam.three_arc",
                             with({{"nose_radius", number(6 * mm)}, {"follower", ParamValue::of_choice("roller")},
                                   {"roller_radius", number(10 * mm)}}),
                             {{"roller_radius", {8 * mm, 0.0, 12 * mm}}, {"nose_radius", {5 * mm, 6 * mm, 7 * mm}}},
-                            {"max_lift", "flank_radius"}, Lanes::of_one_array);
+                            {"max_lift", "flank_radius"});
   // Both accel_angle and nose_radius: the block's preparation refuses, so each case is refused alone.
   check_block_equals_single("cam.three_arc", with({{"accel_angle", number(18 * deg)}, {"nose_radius", number(6 * mm)}}),
                             {{"accel_angle", {16 * deg, 18 * deg}}}, {"max_lift"});
 }
 
-TEST_CASE("cam blocks: polydyne cases are lanes of one array of one exponent series, equal to their single evaluations", "[cams][blocks]") {
+TEST_CASE("cam blocks: polydyne cases share one exponent series and equal their single evaluations", "[cams][blocks]") {
   const std::map<std::string, ParamValue> common{{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)},
                                                  {"base_radius", number(26 * mm)}};
   auto with = [&](std::map<std::string, ParamValue> more) {
@@ -181,8 +148,8 @@ TEST_CASE("cam blocks: polydyne cases are lanes of one array of one exponent ser
                                                           {"action_angle", {120 * deg, 130 * deg, 140 * deg}},
                                                           {"base_radius", {24 * mm, 26 * mm, 28 * mm}}};
   check_block_equals_single("cam.polydyne", with({{"exponents", ParamValue::of_list({2, 14, 26, 38, 50})}}), varied,
-                            {"max_lift", "exponent_q"}, Lanes::of_one_array);
-  check_block_equals_single("cam.polydyne", common, varied, {"max_lift", "exponent_q"}, Lanes::of_one_array);  // the default exponents
+                            {"max_lift", "exponent_q"});
+  check_block_equals_single("cam.polydyne", common, varied, {"max_lift", "exponent_q"});  // the default exponents
   // accel_angle: q found per case (no block preparation).
   check_block_equals_single("cam.polydyne", with({{"accel_angle", number(30 * deg)}}),
                             {{"accel_angle", {28 * deg, 30 * deg}}, {"max_lift", {8 * mm, 9 * mm}}}, {"max_lift", "exponent_q"});
@@ -191,16 +158,16 @@ TEST_CASE("cam blocks: polydyne cases are lanes of one array of one exponent ser
                             {{"max_lift", {7 * mm, 8 * mm}}}, {"max_lift"});
 }
 
-TEST_CASE("cam blocks: Kurz cases are lanes of one array, equal to their single evaluations, rise_split kept per case", "[cams][blocks]") {
+TEST_CASE("cam blocks: Kurz cases equal their single evaluations, rise_split kept per case", "[cams][blocks]") {
   check_block_equals_single("cam.kurz",
                             {{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)}, {"base_radius", number(26 * mm)},
                              {"accel_angle", number(18 * deg)}},
                             {{"accel_angle", {16 * deg, 18 * deg, 70 * deg, 20 * deg}}, {"action_angle", {120 * deg, 130 * deg, 130 * deg, 140 * deg}}},
-                            {"max_lift", "rise_split"}, Lanes::of_one_array);
+                            {"max_lift", "rise_split"});
   // rise_split given and varied; 1.2 is refused by the law, that case alone.
   check_block_equals_single("cam.kurz",
                             {{"max_lift", number(8 * mm)}, {"action_angle", number(130 * deg)}, {"base_radius", number(26 * mm)},
                              {"accel_angle", number(18 * deg)}, {"rise_split", number(0.5)}},
                             {{"rise_split", {0.3, 1.2, 0.55, 0.7}}, {"base_radius", {24 * mm, 26 * mm, 27 * mm, 28 * mm}}},
-                            {"max_lift", "rise_split"}, Lanes::of_one_array);
+                            {"max_lift", "rise_split"});
 }

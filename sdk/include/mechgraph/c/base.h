@@ -42,7 +42,7 @@ MG_EXTERN_C_BEGIN
 /* The SDK these headers describe. A plugin records the numbers it was compiled with (mg_plugin);
    a host loads it when the major is equal and the plugin's minor is not above its own. */
 #define MG_SDK_MAJOR 1
-#define MG_SDK_MINOR 6
+#define MG_SDK_MINOR 5
 
 /* Statuses (OpenFX's kOfxStat*, FMI's graded status). Readers treat an unknown code as
    MG_ERR_INTERNAL. */
