@@ -249,12 +249,12 @@ long double SparsePolynomial::operator()(long double u) const {
   return sum;
 }
 
-void polydyne_lift_integrals(const PolydyneLane& lane, double a, double b, double& integral, double& integral_of_square) {
+void polydyne_lift_integrals(const PolydyneConstants& law, double a, double b, double& integral, double& integral_of_square) {
   // h = H x(|phi| / phi_p): the primitives S(phi) = sign(phi) phi_p F(|phi| / phi_p) with the
   // polynomial primitives F of x and x^2 (from the nose, so no cancellation near the seat), by
   // their nonzero terms.
-  const long double phi_p = lane.half_action, H = lane.max_lift;
-  const PolydyneSeries& series = *lane.series;
+  const long double phi_p = law.half_action, H = law.max_lift;
+  const PolydyneSeries& series = *law.series;
   auto S = [&](double phi, const SparsePolynomial& p) {
     const long double u = std::min<long double>(std::abs(static_cast<long double>(phi)) / phi_p, 1.0L);
     return (phi < 0.0 ? -1.0L : 1.0L) * phi_p * p(u);
@@ -264,15 +264,15 @@ void polydyne_lift_integrals(const PolydyneLane& lane, double a, double b, doubl
       static_cast<double>(H * H * (S(b, series.square_primitive_sparse) - S(a, series.square_primitive_sparse)));
 }
 
-bool polydyne_monotone_breaks(const PolydyneLane& lane, int order, std::vector<double>& breaks) {
+bool polydyne_monotone_breaks(const PolydyneConstants& law, int order, std::vector<double>& breaks) {
   if (order < 0 || order > 2) return false;
   // h^(order) is monotone between the sign changes of h^(order+1) = (h / phi_p^m) x^(m)(|phi| / phi_p)
   // (mirrored, with the sign of phi for odd m): those of q_m at u = |phi| / phi_p, and the nose.
-  const std::vector<double>& u = lane.series->sign_changes[static_cast<std::size_t>(order + 1)];
+  const std::vector<double>& u = law.series->sign_changes[static_cast<std::size_t>(order + 1)];
   breaks.clear();
-  for (auto it = u.rbegin(); it != u.rend(); ++it) breaks.push_back(-*it * lane.half_action);
+  for (auto it = u.rbegin(); it != u.rend(); ++it) breaks.push_back(-*it * law.half_action);
   breaks.push_back(0.0);
-  for (double v : u) breaks.push_back(v * lane.half_action);
+  for (double v : u) breaks.push_back(v * law.half_action);
   return true;
 }
 
@@ -286,13 +286,13 @@ long double polydyne_normalized_derivative(const PolydyneSeries& series, int m, 
   return factor * sum;
 }
 
-void polydyne_higher_derivatives(const PolydyneLane& lane, double phi, double& d4, double& d5) {
-  const long double phi_p = lane.half_action;
+void polydyne_higher_derivatives(const PolydyneConstants& law, double phi, double& d4, double& d5) {
+  const long double phi_p = law.half_action;
   const long double w = (phi_p - std::abs(static_cast<long double>(phi))) / phi_p;
-  const long double h = lane.max_lift;
+  const long double h = law.max_lift;
   const long double scale4 = h / (phi_p * phi_p * phi_p * phi_p);
-  d4 = static_cast<double>(scale4 * polydyne_normalized_derivative(*lane.series, 4, w));  // even in phi
-  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * polydyne_normalized_derivative(*lane.series, 5, w));
+  d4 = static_cast<double>(scale4 * polydyne_normalized_derivative(*law.series, 4, w));  // even in phi
+  d5 = (phi < 0.0 ? -1.0 : 1.0) * static_cast<double>(scale4 / phi_p * polydyne_normalized_derivative(*law.series, 5, w));
 }
 
 namespace polydyne_detail {
@@ -330,7 +330,7 @@ void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s)
 
 }  // namespace polydyne_detail
 
-LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const { return polydyne_point(lane(), phi); }
+LiftDerivatives PolydyneLaw::evaluate_in_event(double phi) const { return polydyne_point(constants(), phi); }
 
 RealPolydyneLaw::RealPolydyneLaw(double max_lift, double action_angle, double base_radius, std::vector<long double> exponents)
     : max_lift_(max_lift), half_action_(0.5 * action_angle), base_radius_(base_radius) {

@@ -137,8 +137,8 @@ ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& b, double r2) {
   return complete(b, r2, e, "nose_radius");
 }
 
-ThreeArcLane three_arc_lane(const ThreeArcGeometry& g, double roller_radius) {
-  ThreeArcLane k;
+ThreeArcConstants three_arc_constants(const ThreeArcGeometry& g, double roller_radius) {
+  ThreeArcConstants k;
   k.half_action = g.half_action;
   k.max_lift = g.max_lift;
   k.base_radius = g.base_radius;
@@ -164,9 +164,9 @@ ThreeArcLane three_arc_lane(const ThreeArcGeometry& g, double roller_radius) {
 }
 
 ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
-    : g_(geometry), lane_(three_arc_lane(geometry, roller_radius)) {}
+    : g_(geometry), constants_(three_arc_constants(geometry, roller_radius)) {}
 
-bool three_arc_monotone_breaks(const ThreeArcLane& k, int order, std::vector<double>& breaks) {
+bool three_arc_monotone_breaks(const ThreeArcConstants& k, int order, std::vector<double>& breaks) {
   // Flat tappet only (the roller's pitch-curve lift has no such simple signs). On the flank
   // h = e (1 - cos x), x = phi_p - |phi| in [0, phi_1], phi_1 < phi_p < pi: h' ~ sin x and
   // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
@@ -221,7 +221,7 @@ ArcIntegrals arc_integrals(double X) {
 
 }  // namespace
 
-bool three_arc_lift_integrals(const ThreeArcLane& k, double a, double b, double& integral, double& integral_of_square) {
+bool three_arc_lift_integrals(const ThreeArcConstants& k, double a, double b, double& integral, double& integral_of_square) {
   // Flat tappet: flank h = e m(x), x = phi_p - |phi|; nose h = H - A m(t), t = |phi| (A the
   // nose-centre distance). P(phi) = the integrals from the start of lift to phi, piece by piece;
   // the answer is P(b) - P(a).

@@ -56,7 +56,7 @@ ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& basics, double nose
 
 /// The constants of the law of this contour with a roller of `roller_radius` (0: flat-faced
 /// tappet). Throws NodeError naming roller_radius when the roller's pitch curve misses the nose.
-ThreeArcLane three_arc_lane(const ThreeArcGeometry& geometry, double roller_radius);
+ThreeArcConstants three_arc_constants(const ThreeArcGeometry& geometry, double roller_radius);
 
 /// The lift of a flat or roller tappet on a three-arc cam, exactly, with three derivatives.
 class ThreeArcLaw final : public CamLaw {
@@ -66,28 +66,28 @@ class ThreeArcLaw final : public CamLaw {
 
   double event_begin() const override { return -g_.half_action; }
   double event_end() const override { return g_.half_action; }
-  LiftDerivatives evaluate_in_event(double phi) const override { return three_arc_point(lane_, phi); }
-  std::vector<double> breakpoints() const override { return {-lane_.switch_angle, lane_.switch_angle}; }
+  LiftDerivatives evaluate_in_event(double phi) const override { return three_arc_point(constants_, phi); }
+  std::vector<double> breakpoints() const override { return {-constants_.switch_angle, constants_.switch_angle}; }
   double max_lift() const override { return g_.max_lift; }
   double base_radius() const override { return g_.base_radius; }
-  double roller_radius() const override { return lane_.roller_radius; }
+  double roller_radius() const override { return constants_.roller_radius; }
   bool monotone_breaks(int order, std::vector<double>& breaks) const override {
-    return three_arc_monotone_breaks(lane_, order, breaks);
+    return three_arc_monotone_breaks(constants_, order, breaks);
   }
   bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
-    return three_arc_lift_integrals(lane_, a, b, integral, integral_of_square);
+    return three_arc_lift_integrals(constants_, a, b, integral, integral_of_square);
   }
 
   const ThreeArcGeometry& geometry() const { return g_; }
   /// |phi| (from the nose) where the follower passes from flank to nose: alpha for the flat
   /// tappet, beta for the roller.
-  double switch_angle() const { return lane_.switch_angle; }
+  double switch_angle() const { return constants_.switch_angle; }
   /// What a point needs (three_arc_point).
-  const ThreeArcLane& lane() const { return lane_; }
+  const ThreeArcConstants& constants() const { return constants_; }
 
  private:
   ThreeArcGeometry g_;
-  ThreeArcLane lane_;
+  ThreeArcConstants constants_;
 };
 
 /// cam.three_arc: parameters accel_angle | nose_radius, follower, roller_radius; extra outputs

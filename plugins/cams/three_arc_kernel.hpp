@@ -2,8 +2,8 @@
 // A three-arc law from its constants alone (docs/methods/valvetrain.md, stage 1; the contour and
 // the followers as three_arc.hpp states them): a point, the monotone runs and the lift integrals.
 // ThreeArcLaw answers through these functions, and so could a family of three-arc laws over arrays
-// of cases: one implementation for both, so that a lane would give exactly the bits of its scalar
-// law (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
+// of cases: one implementation for both, so that each case would give exactly the bits of its
+// scalar law (docs/design/sdk-1.6-laws-over-arrays.md, step 1).
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <cmath>
@@ -13,7 +13,7 @@ namespace mechgraph::cams {
 
 /// What a point of one three-arc law needs, in SI (m, rad): plain numbers, so that a column of
 /// cases can hold them.
-struct ThreeArcLane {
+struct ThreeArcConstants {
   double half_action = 0.0;    // phi_p
   double max_lift = 0.0;       // h_max
   double base_radius = 0.0;    // r0
@@ -47,7 +47,7 @@ inline ArcRoot arc_root(double c, double R, double t) {
 
 /// Lift and three derivatives over cam angle at phi inside the event (-phi_p < phi < phi_p).
 /// Inlined into each caller, so that a point costs one call.
-[[gnu::always_inline]] inline LiftDerivatives three_arc_point(const ThreeArcLane& k, double phi) {
+[[gnu::always_inline]] inline LiftDerivatives three_arc_point(const ThreeArcConstants& k, double phi) {
   // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
   const double psi = std::abs(phi);
   const double sign = phi < 0.0 ? -1.0 : 1.0;
@@ -118,10 +118,10 @@ inline ArcRoot arc_root(double c, double R, double t) {
 
 /// CamLaw::monotone_breaks of the law. Flat tappet: the flank/nose switches and the nose (plus
 /// 90 deg into a long flank for the velocity). A roller: false (the generic search).
-bool three_arc_monotone_breaks(const ThreeArcLane& k, int order, std::vector<double>& breaks);
+bool three_arc_monotone_breaks(const ThreeArcConstants& k, int order, std::vector<double>& breaks);
 
 /// CamLaw::lift_integrals of the law. Flat tappet: the integrals of h and h^2 in closed form (arcs:
 /// x - sin x and its square's). A roller: false (quadrature).
-bool three_arc_lift_integrals(const ThreeArcLane& k, double a, double b, double& integral, double& integral_of_square);
+bool three_arc_lift_integrals(const ThreeArcConstants& k, double a, double b, double& integral, double& integral_of_square);
 
 }  // namespace mechgraph::cams
