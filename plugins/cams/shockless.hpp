@@ -109,7 +109,7 @@ class ParabolaToVertex final : public AccelShape {
 ///   h = lift0 + velocity0 y + A L^2 I2(tau),  h' = velocity0 + A L I1(tau),  h'' = A a(tau),
 ///   h''' = A a'(tau) / L.
 struct ShocklessPiece {
-  const AccelShape* shape = nullptr;  // not owned: the law keeps its shapes
+  const AccelShape* shape = nullptr;  // not owned: the law keeps it, or it is never destroyed (Kurz)
   double start = 0.0;                 // x_k from the start of lift, rad
   double length = 0.0;                // rad
   double amplitude = 0.0;             // A+ or A-, m/rad^2
