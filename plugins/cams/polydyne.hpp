@@ -24,8 +24,6 @@
 #include <mechgraph/domain/cam_law.hpp>
 
 #include <array>
-#include <cmath>
-#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -81,48 +79,6 @@ struct PolydyneSeries {
   SparsePolynomial lift_primitive_sparse, square_primitive_sparse;  // the same, by their nonzero terms
 };
 
-/// What one polydyne law of integer exponents is: its half action angle and lift (SI) and its
-/// exponent set's series (not owned: kept by the law).
-struct PolydyneConstants {
-  double half_action = 0.0;  // phi_p, rad
-  double max_lift = 0.0;     // h, m
-  const PolydyneSeries* series = nullptr;
-};
-
-// The law's answers from its law. PolydyneLaw answers through these functions, and so could a
-// family of polydyne laws over arrays of cases, with the same bits (docs/design/
-// sdk-1.6-laws-over-arrays.md, step 1).
-namespace polydyne_detail {
-/// q_0..q_3 at u by split Horner over `n` powers of interleaved coefficients (polydyne.cpp).
-void horner4(const std::array<double, 4>* c, std::size_t n, double u, double* s);
-}  // namespace polydyne_detail
-
-/// Lift and three derivatives over cam angle at phi inside the event; inlined into each caller, so
-/// that a point costs the call of horner4 only.
-[[gnu::always_inline]] inline LiftDerivatives polydyne_point(const PolydyneConstants& law, double phi) {
-  // x^(m) = h (1 - u)^(5-m) q_m(u) / phi_p^m, the four q_m by Horner in one pass in double: q_0
-  // has only positive and q_1 only negative coefficients, so lift and velocity carry a relative
-  // error of a few times n_max * eps on the whole event, seat included (checked against a
-  // 100-digit reference in tests/plugins/cams/polydyne_test.cpp).
-  const double phi_p = law.half_action;
-  const double w = (phi_p - std::abs(phi)) / phi_p;  // 1 - u; phi_p - |phi| is exact near the seat
-  const double u = 1.0 - w;
-  const double sign = phi < 0.0 ? -1.0 : 1.0;  // x is even in u: odd derivatives change sign
-  double s[4];
-  polydyne_detail::horner4(law.series->interleaved.data(), law.series->interleaved.size(), u, s);
-  const double w2 = w * w, w3 = w2 * w, h = law.max_lift;
-  return {h * (w3 * w2) * s[0], sign * h * (w2 * w2) * s[1] / phi_p, h * w3 * s[2] / (phi_p * phi_p),
-          sign * h * w2 * s[3] / (phi_p * phi_p * phi_p)};
-}
-/// CamLaw::higher_derivatives: d4h/dphi4 and d5h/dphi5 (always given).
-void polydyne_higher_derivatives(const PolydyneConstants& law, double phi, double& d4, double& d5);
-/// CamLaw::monotone_breaks: the nose and the sign changes of q_(order+1), mirrored.
-bool polydyne_monotone_breaks(const PolydyneConstants& law, int order, std::vector<double>& breaks);
-/// CamLaw::lift_integrals: the integrals of h and h^2 from the exact polynomial primitives.
-void polydyne_lift_integrals(const PolydyneConstants& law, double a, double b, double& integral, double& integral_of_square);
-/// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
-long double polydyne_normalized_derivative(const PolydyneSeries& series, int m, long double w);
-
 class PolydyneLaw final : public CamLaw {
  public:
   /// `exponents` as returned by validate_polydyne_exponents.
@@ -133,31 +89,20 @@ class PolydyneLaw final : public CamLaw {
   double event_begin() const override { return -half_action_; }
   double event_end() const override { return half_action_; }
   LiftDerivatives evaluate_in_event(double phi) const override;
-  bool higher_derivatives(double phi, double& d4, double& d5) const override {
-    polydyne_higher_derivatives(constants(), phi, d4, d5);
-    return true;
-  }
+  bool higher_derivatives(double phi, double& d4, double& d5) const override;
   std::vector<double> breakpoints() const override { return {}; }
   double max_lift() const override { return max_lift_; }
   double base_radius() const override { return base_radius_; }
   /// The nose and the sign changes of q_(order+1), mirrored (x is even in u).
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
-    return polydyne_monotone_breaks(constants(), order, breaks);
-  }
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
   /// The integrals of h and h^2 from the exact polynomial primitives.
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
-    polydyne_lift_integrals(constants(), a, b, integral, integral_of_square);
-    return true;
-  }
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   const std::vector<int>& exponents() const { return series_->exponents; }
   /// C2, Cp, Cq, Cr, Cs, each the correctly rounded double of the exact fraction.
   const std::vector<double>& coefficients() const { return series_->coefficients; }
   /// d^m/du^m of x(u)/h at u = 1 - w (0 <= w <= 1), m = 0..5, in long double.
-  long double normalized_derivative(int m, long double w) const { return polydyne_normalized_derivative(*series_, m, w); }
-  /// The law's constants (the functions above).
-  PolydyneConstants constants() const { return {half_action_, max_lift_, series_.get()}; }
-  const std::shared_ptr<const PolydyneSeries>& series() const { return series_; }
+  long double normalized_derivative(int m, long double w) const;
 
  private:
   double max_lift_ = 0.0;

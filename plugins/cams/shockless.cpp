@@ -127,15 +127,14 @@ bool ParabolaToVertex::moments(double tau, double& i3, double& j1, double& j2) c
   return true;
 }
 
-bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double half_action, double a, double b,
-                              double& integral, double& integral_of_square) {
+bool ShocklessLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
   // Per piece, from its start over y = L tau (h = h_k + v_k y + A L^2 I2(tau)):
   //   F1 = L [h_k tau + v_k L tau^2/2 + A L^2 I3],
   //   F2 = L [h_k^2 tau + h_k v_k L tau^2 + v_k^2 L^2 tau^3/3 + 2 h_k A L^2 I3 + 2 v_k A L^3 J1 + A^2 L^4 J2];
   // G(x) sums them from the start of lift to x; P(phi) = G(phi_p + phi) before the nose and
   // 2 G(phi_p) - G(phi_p - phi) after it (the law is symmetric); the answer is P(b) - P(a).
   // A piece wholly inside [0, x] (tau = 1: every piece before x's) takes its shape's kept moments.
-  auto piece_integrals = [](const ShocklessPiece& p, double tau, double& f1, double& f2) {
+  auto piece_integrals = [](const Piece& p, double tau, double& f1, double& f2) {
     double i3, j1, j2;
     if (tau == 1.0) {
       const ShapeEnds& e = p.shape->ends();
@@ -152,7 +151,7 @@ bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double hal
   };
   auto G = [&](double x, double& g1, double& g2) {
     g1 = g2 = 0.0;
-    for (const ShocklessPiece& p : pieces) {
+    for (const Piece& p : pieces_) {
       const double tau = std::clamp((x - p.start) / p.length, 0.0, 1.0);
       if (tau <= 0.0) break;
       double f1, f2;
@@ -163,12 +162,12 @@ bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double hal
     return true;
   };
   double half1, half2;
-  if (!G(half_action, half1, half2)) return false;
+  if (!G(half_action_, half1, half2)) return false;
   auto P = [&](double phi, double& p1, double& p2) {
-    phi = std::clamp(phi, -half_action, half_action);
-    if (phi <= 0.0) return G(half_action + phi, p1, p2);
+    phi = std::clamp(phi, -half_action_, half_action_);
+    if (phi <= 0.0) return G(half_action_ + phi, p1, p2);
     double g1, g2;
-    const bool ok = G(half_action - phi, g1, g2);
+    const bool ok = G(half_action_ - phi, g1, g2);
     p1 = 2.0 * half1 - g1;
     p2 = 2.0 * half2 - g2;
     return ok;
@@ -240,10 +239,7 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
   auto add = [&](const ShapeSegment& s, double A) {
     const double L = s.length;
     const ShapeEnds& e = s.shape->ends();
-    // A shape someone owns is kept alive by the law; one held uncounted (no owner, as the Kurz
-    // law's shared shapes) outlives every law already, and keeping it would cost an allocation.
-    if (s.shape.use_count() > 0) shapes_.push_back(s.shape);
-    pieces_.push_back({s.shape.get(), x, L, A, lift, vel});
+    pieces_.push_back({s.shape, x, L, A, lift, vel});
     lift += vel * L + A * L * L * e.integral2;
     vel += A * L * e.integral1;
     x += L;
@@ -258,7 +254,7 @@ ShocklessLaw::ShocklessLaw(double max_lift, double action_angle, double base_rad
     breakpoints_.push_back(-(half_action_ - xj));
     breakpoints_.push_back(half_action_ - xj);
   }
-  const ShocklessPiece& last = pieces_.back();
+  const Piece& last = pieces_.back();
   // h''' is odd about the nose: it jumps there unless the last shape ends with zero slope.
   if (std::abs(last.shape->ends().slope1) > 1e-12) breakpoints_.push_back(0.0);
   std::sort(breakpoints_.begin(), breakpoints_.end());
@@ -271,17 +267,30 @@ std::vector<double> ShocklessLaw::junctions_from_start() const {
 }
 
 LiftDerivatives ShocklessLaw::evaluate_in_event(double phi) const {
-  return shockless_point(pieces_.data(), pieces_.size(), half_action_, phi);
+  // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
+  const double x = half_action_ - std::abs(phi);
+  const double sign = phi < 0.0 ? 1.0 : -1.0;
+  std::size_t k = 0;
+  while (k + 1 < pieces_.size() && x >= pieces_[k + 1].start) ++k;
+  const Piece& p = pieces_[k];
+  const double y = x - p.start;
+  const double tau = std::clamp(y / p.length, 0.0, 1.0);
+  const double A = p.amplitude, L = p.length;
+  const ShapeValues v = p.shape->all(tau);
+  const double H = p.lift0 + p.velocity0 * y + A * L * L * v.integral2;
+  const double H1 = p.velocity0 + A * L * v.integral;
+  const double H2 = A * v.value;
+  const double H3 = A * v.slope / L;
+  return {H, sign * H1, H2, sign * H3};
 }
 
 }  // namespace mechgraph::cams
 
 namespace mechgraph::cams {
 
-bool shockless_monotone_breaks(std::span<const ShocklessPiece> pieces, std::span<const double> breakpoints, int order,
-                               std::vector<double>& breaks) {
+bool ShocklessLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
   if (order < 0 || order > 2) return false;
-  for (const ShocklessPiece& p : pieces)
+  for (const Piece& p : pieces_)
     if (!p.shape->monotone()) return false;
   if (order == 0) {
     // The velocity is 0 at the start, rises through the positive phase and falls back to 0 at the
@@ -289,7 +298,7 @@ bool shockless_monotone_breaks(std::span<const ShocklessPiece> pieces, std::span
     breaks = {0.0};
     return true;
   }
-  breaks.assign(breakpoints.begin(), breakpoints.end());
+  breaks = breakpoints_;
   if (!std::binary_search(breaks.begin(), breaks.end(), 0.0)) breaks.insert(std::upper_bound(breaks.begin(), breaks.end(), 0.0), 0.0);
   return true;
 }

@@ -15,10 +15,7 @@
 // Every shape gives these in closed form, so the lift and its derivatives are exact.
 #include <mechgraph/domain/cam_law.hpp>
 
-#include <algorithm>
 #include <atomic>
-#include <cmath>
-#include <cstddef>
 #include <memory>
 #include <mutex>
 #include <span>
@@ -104,53 +101,6 @@ class ParabolaToVertex final : public AccelShape {
   bool moments(double tau, double& i3, double& j1, double& j2) const override;
 };
 
-/// One segment of a law's acceleration diagram with the law's numbers at its start, in SI. With x
-/// from the start of lift and y = x - start, tau = y / length:
-///   h = lift0 + velocity0 y + A L^2 I2(tau),  h' = velocity0 + A L I1(tau),  h'' = A a(tau),
-///   h''' = A a'(tau) / L.
-struct ShocklessPiece {
-  const AccelShape* shape = nullptr;  // not owned: the law keeps it, or it is never destroyed (Kurz)
-  double start = 0.0;                 // x_k from the start of lift, rad
-  double length = 0.0;                // rad
-  double amplitude = 0.0;             // A+ or A-, m/rad^2
-  double lift0 = 0.0;                 // h at x_k, m
-  double velocity0 = 0.0;             // h' at x_k, m/rad
-};
-
-/// Lift and three derivatives over cam angle at phi inside the event of a shockless law, from its
-/// `count` pieces (in order from the start of lift) and its half action angle phi_p. The law
-/// evaluates through this one function, and so could a family of such laws over arrays of cases,
-/// with the same bits (docs/design/sdk-1.6-laws-over-arrays.md, step 1); inlined into each caller,
-/// so that a point costs one call.
-[[gnu::always_inline]] inline LiftDerivatives shockless_point(const ShocklessPiece* pieces, std::size_t count,
-                                                              double half_action, double phi) {
-  // x from the start of lift; dx/dphi = +1 before the nose (phi < 0), -1 after it.
-  const double x = half_action - std::abs(phi);
-  const double sign = phi < 0.0 ? 1.0 : -1.0;
-  std::size_t k = 0;
-  while (k + 1 < count && x >= pieces[k + 1].start) ++k;
-  const ShocklessPiece& p = pieces[k];
-  const double y = x - p.start;
-  const double tau = std::clamp(y / p.length, 0.0, 1.0);
-  const double A = p.amplitude, L = p.length;
-  const ShapeValues v = p.shape->all(tau);
-  const double H = p.lift0 + p.velocity0 * y + A * L * L * v.integral2;
-  const double H1 = p.velocity0 + A * L * v.integral;
-  const double H2 = A * v.value;
-  const double H3 = A * v.slope / L;
-  return {H, sign * H1, H2, sign * H3};
-}
-
-/// CamLaw::monotone_breaks of a shockless law of these pieces and breakpoints: with monotone shapes,
-/// the junctions and the nose for the velocity and the acceleration, the nose alone for the lift.
-bool shockless_monotone_breaks(std::span<const ShocklessPiece> pieces, std::span<const double> breakpoints, int order,
-                               std::vector<double>& breaks);
-
-/// CamLaw::lift_integrals of a shockless law of these pieces: with shapes that give their moments,
-/// the integrals of h and h^2 in closed form.
-bool shockless_lift_integrals(std::span<const ShocklessPiece> pieces, double half_action, double a, double b,
-                              double& integral, double& integral_of_square);
-
 struct ShapeSegment {
   std::shared_ptr<const AccelShape> shape;
   double length = 0.0;  // rad of cam angle
@@ -181,13 +131,9 @@ class ShocklessLaw final : public CamLaw {
   /// nose alone for the lift (the shapes are non-negative bumps, A+ > 0 > A-: h'' keeps one sign
   /// per phase, so h' rises then falls back to 0 at the nose and the lift is monotone on each side
   /// of it).
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
-    return shockless_monotone_breaks(pieces_, breakpoints_, order, breaks);
-  }
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
   /// With shapes that give their moments: the integrals of h and h^2 in closed form.
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
-    return shockless_lift_integrals(pieces_, half_action_, a, b, integral, integral_of_square);
-  }
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   double positive_amplitude() const { return amplitude_pos_; }  // A+, m/rad^2
   double negative_amplitude() const { return amplitude_neg_; }  // A-, m/rad^2 (< 0)
@@ -195,17 +141,22 @@ class ShocklessLaw final : public CamLaw {
   std::vector<double> junctions_from_start() const;
   /// breakpoints() without the copy.
   const std::vector<double>& breakpoint_list() const { return breakpoints_; }
-  /// The pieces from the start of lift to the nose (shockless_point), their shapes kept by the law.
-  const std::vector<ShocklessPiece>& pieces() const { return pieces_; }
 
  private:
+  struct Piece {
+    std::shared_ptr<const AccelShape> shape;
+    double start = 0.0;   // x_k from the start of lift
+    double length = 0.0;
+    double amplitude = 0.0;
+    double lift0 = 0.0;      // h at x_k
+    double velocity0 = 0.0;  // h' at x_k
+  };
   double max_lift_ = 0.0;
   double half_action_ = 0.0;
   double base_radius_ = 0.0;
   double amplitude_pos_ = 0.0;
   double amplitude_neg_ = 0.0;
-  std::vector<std::shared_ptr<const AccelShape>> shapes_;  // the owned shapes the pieces point at
-  std::vector<ShocklessPiece> pieces_;
+  std::vector<Piece> pieces_;
   std::vector<double> breakpoints_;
 };
 

@@ -25,6 +25,23 @@ std::string mm(double m) {
   return s.str();
 }
 
+// The roller centre on an offset arc of radius R whose centre is c from the cam centre, at angle
+// t: s = +-c cos t + g, g = sqrt(q), q = R^2 - c^2 sin^2 t. Returns R - g = c^2 sin^2 t / (R + g)
+// (no cancellation) and the first three derivatives of g over t, from those of q:
+// g1 = q1/2g, g2 = q2/2g - q1^2/4gq, g3 = q3/2g - 3 q1 q2/4gq + 3 q1^3/8gq^2.
+struct ArcRoot {
+  double excess, d1, d2, d3;
+};
+ArcRoot arc_root(double c, double R, double t) {
+  const double c2 = c * c, st = std::sin(t);
+  const double q = R * R - c2 * st * st;
+  const double g = std::sqrt(q);
+  const double sin2 = std::sin(2.0 * t), cos2 = std::cos(2.0 * t);
+  const double q1 = -c2 * sin2, q2 = -2.0 * c2 * cos2, q3 = 4.0 * c2 * sin2;
+  return {c2 * st * st / (R + g), q1 / (2.0 * g), q2 / (2.0 * g) - q1 * q1 / (4.0 * g * q),
+          q3 / (2.0 * g) - 3.0 * q1 * q2 / (4.0 * g * q) + 3.0 * q1 * q1 * q1 / (8.0 * g * q * q)};
+}
+
 // Completes the geometry from h, phi_p, r0, r2 (so a) and e, and checks the tangency closes.
 ThreeArcGeometry complete(const CamBasics& b, double r2, double e, const char* parameter) {
   ThreeArcGeometry g;
@@ -137,36 +154,25 @@ ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& b, double r2) {
   return complete(b, r2, e, "nose_radius");
 }
 
-ThreeArcConstants three_arc_constants(const ThreeArcGeometry& g, double roller_radius) {
-  ThreeArcConstants k;
-  k.half_action = g.half_action;
-  k.max_lift = g.max_lift;
-  k.base_radius = g.base_radius;
-  k.nose_radius = g.nose_radius;
-  k.nose_centre = g.nose_centre;
-  k.flank_centre = g.flank_centre;
-  k.roller_radius = roller_radius;
-  if (roller_radius <= 0.0) {
-    k.switch_angle = g.junction_normal;
-    return k;
+ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
+    : g_(geometry), roller_radius_(roller_radius) {
+  if (roller_radius_ <= 0.0) {
+    switch_angle_ = g_.junction_normal;
+    return;
   }
   // Roller: the pitch-curve junction N + (r2 + rr) n_alpha, seen from O.
-  const double R2 = g.nose_radius + roller_radius;
-  const double px = g.nose_centre + R2 * std::cos(g.junction_normal);
-  const double py = R2 * std::sin(g.junction_normal);
-  k.switch_angle = std::atan2(py, px);
-  const double sb = std::sin(k.switch_angle);
-  if (!(R2 * R2 - g.nose_centre * g.nose_centre * sb * sb > 0.0) || !(k.switch_angle > 0.0)) {
+  const double R2 = g_.nose_radius + roller_radius_;
+  const double px = g_.nose_centre + R2 * std::cos(g_.junction_normal);
+  const double py = R2 * std::sin(g_.junction_normal);
+  switch_angle_ = std::atan2(py, px);
+  const double sb = std::sin(switch_angle_);
+  if (!(R2 * R2 - g_.nose_centre * g_.nose_centre * sb * sb > 0.0) || !(switch_angle_ > 0.0)) {
     throw NodeError("roller_radius", "the roller pitch curve of this three-arc cam has no nose contact (roller_radius = " +
-                                         mm(roller_radius) + ")");
+                                         mm(roller_radius_) + ")");
   }
-  return k;
 }
 
-ThreeArcLaw::ThreeArcLaw(const ThreeArcGeometry& geometry, double roller_radius)
-    : g_(geometry), constants_(three_arc_constants(geometry, roller_radius)) {}
-
-bool three_arc_monotone_breaks(const ThreeArcConstants& k, int order, std::vector<double>& breaks) {
+bool ThreeArcLaw::monotone_breaks(int order, std::vector<double>& breaks) const {
   // Flat tappet only (the roller's pitch-curve lift has no such simple signs). On the flank
   // h = e (1 - cos x), x = phi_p - |phi| in [0, phi_1], phi_1 < phi_p < pi: h' ~ sin x and
   // h''' ~ sin x keep their signs, h'' = e cos x changes sign at x = 90 deg if the flank reaches
@@ -174,16 +180,15 @@ bool three_arc_monotone_breaks(const ThreeArcConstants& k, int order, std::vecto
   // construction): h' ~ sin t, h'' = -a cos t, h''' ~ sin t change sign at the nose only.
   // The lift itself (order 0) rises on the whole rise and falls on the whole return: h' changes
   // sign at the nose only, so the nose is its one cut.
-  if (k.roller_radius > 0.0 || order < 0 || order > 2) return false;
+  if (roller_radius_ > 0.0 || order < 0 || order > 2) return false;
   if (order == 0) {
     breaks = {0.0};
     return true;
   }
-  const double alpha = k.switch_angle;
+  const double alpha = switch_angle_;
   breaks = {-alpha, 0.0, alpha};
-  const double flank_angle = k.half_action - alpha;  // phi_1 (the flat tappet switches at alpha)
-  if (order == 1 && flank_angle > 0.5 * std::numbers::pi) {
-    const double quarter = k.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
+  if (order == 1 && g_.flank_angle > 0.5 * std::numbers::pi) {
+    const double quarter = g_.half_action - 0.5 * std::numbers::pi;  // |phi| where x = 90 deg
     breaks = {-quarter, -alpha, 0.0, alpha, quarter};
   }
   return true;
@@ -221,13 +226,13 @@ ArcIntegrals arc_integrals(double X) {
 
 }  // namespace
 
-bool three_arc_lift_integrals(const ThreeArcConstants& k, double a, double b, double& integral, double& integral_of_square) {
+bool ThreeArcLaw::lift_integrals(double a, double b, double& integral, double& integral_of_square) const {
   // Flat tappet: flank h = e m(x), x = phi_p - |phi|; nose h = H - A m(t), t = |phi| (A the
   // nose-centre distance). P(phi) = the integrals from the start of lift to phi, piece by piece;
   // the answer is P(b) - P(a).
-  if (k.roller_radius > 0.0) return false;
-  const double e = k.flank_centre, A = k.nose_centre, H = k.max_lift, alpha = k.switch_angle;
-  const double x1 = k.half_action - alpha;  // the flank's span
+  if (roller_radius_ > 0.0) return false;
+  const double e = g_.flank_centre, A = g_.nose_centre, H = g_.max_lift, alpha = switch_angle_;
+  const double x1 = g_.half_action - alpha;  // the flank's span
   auto flank = [&](double x, double& p1, double& p2) {
     const ArcIntegrals m = arc_integrals(x);
     p1 = e * m.m;
@@ -244,7 +249,7 @@ bool three_arc_lift_integrals(const ThreeArcConstants& k, double a, double b, do
   auto P = [&](double phi, double& p1, double& p2) {
     double q1, q2;
     if (phi <= -alpha) {
-      flank(k.half_action + phi, p1, p2);
+      flank(g_.half_action + phi, p1, p2);
     } else if (phi <= 0.0) {
       nose(-phi, q1, q2);
       p1 = f1 + n1 - q1;
@@ -254,17 +259,86 @@ bool three_arc_lift_integrals(const ThreeArcConstants& k, double a, double b, do
       p1 = f1 + n1 + q1;
       p2 = f2 + n2 + q2;
     } else {
-      flank(k.half_action - phi, q1, q2);
+      flank(g_.half_action - phi, q1, q2);
       p1 = 2.0 * (f1 + n1) - q1;
       p2 = 2.0 * (f2 + n2) - q2;
     }
   };
   double pa1, pa2, pb1, pb2;
-  P(std::clamp(a, -k.half_action, k.half_action), pa1, pa2);
-  P(std::clamp(b, -k.half_action, k.half_action), pb1, pb2);
+  P(std::clamp(a, -g_.half_action, g_.half_action), pa1, pa2);
+  P(std::clamp(b, -g_.half_action, g_.half_action), pb1, pb2);
   integral = pb1 - pa1;
   integral_of_square = pb2 - pa2;
   return true;
+}
+
+LiftDerivatives ThreeArcLaw::evaluate_in_event(double phi) const {
+  // Work in psi = |phi| (from the nose); h is even in phi, h' and h''' odd.
+  const double psi = std::abs(phi);
+  const double sign = phi < 0.0 ? -1.0 : 1.0;
+  const double a = g_.nose_centre, e = g_.flank_centre, rr = roller_radius_;
+  double H = 0.0, H1 = 0.0, H2 = 0.0, H3 = 0.0;  // derivatives over psi
+  if (psi <= switch_angle_) {
+    const double t = psi;
+    double st, ct;
+    ::sincos(t, &st, &ct);
+    const double omc = ct >= 0.0 ? st * st / (1.0 + ct) : 1.0 - ct;  // 1 - cos t without cancellation
+    if (rr <= 0.0) {
+      // Flat tappet on the nose arc: h = a cos t - (r0 - r2) = h_max - a (1 - cos t).
+      H = g_.max_lift - a * omc;
+      H1 = -a * st;
+      H2 = -a * ct;
+      H3 = a * st;
+    } else {
+      // Roller centre on the pitch nose arc (centre distance a, radius R2 = r2 + rr, theta = t):
+      // s = a cos t + sqrt(R2^2 - a^2 sin^2 t); h = s - (r0 + rr), and a + R2 = r0 + rr + h_max, so
+      // h = h_max - a (1 - cos t) - a^2 sin^2 t / (R2 + sqrt(...)).
+      const ArcRoot r = arc_root(a, g_.nose_radius + rr, t);
+      H = g_.max_lift - a * omc - r.excess;
+      H1 = -a * st + r.d1;
+      H2 = -a * ct + r.d2;
+      H3 = a * st + r.d3;
+    }
+  } else {
+    // Flank, x = phi_p - psi from the start of lift: d/dpsi = -d/dx.
+    const double x = g_.half_action - psi;
+    double sx, cx;
+    ::sincos(x, &sx, &cx);
+    const double omc = cx >= 0.0 ? sx * sx / (1.0 + cx) : 1.0 - cx;  // 1 - cos x without cancellation
+    double F = 0.0, F1 = 0.0, F2 = 0.0, F3 = 0.0;  // derivatives over x
+    if (rr <= 0.0) {
+      // Flat tappet on the flank arc: h = e (1 - cos x).
+      F = e * omc;
+      F1 = e * sx;
+      F2 = e * cx;
+      F3 = -e * sx;
+    } else {
+      // Roller centre on the pitch flank arc (centre distance e, radius R1 = r1 + rr = e + c0,
+      // c0 = r0 + rr, the centre opposite the follower): s = sqrt(R1^2 - e^2 sin^2 x) - e cos x.
+      // Near the largest nose radius e is many times c0 and that difference cancels (and so do its
+      // derivatives, e cos x against e^2 terms). Without cancellation: with u = e cos x and
+      // g = sqrt(u^2 + c0 (2e + c0)), s = c0 (2e + c0) / (g + u), so (ln s)' = w = e sin x / g,
+      //   s' = s w,  s'' = s (w^2 + w'),  s''' = s (w^3 + 3 w w' + w''),
+      //   w' = u R1^2 / g^3,  w'' = R1^2 e sin x (3 u^2 - g^2) / g^5   (g^2 + e^2 sin^2 x = R1^2);
+      // and h = s - c0 = c0 [e (1 - cos x) + e^2 sin^2 x / (R1 + g)] / (g + u).
+      const double c0 = g_.base_radius + rr, R1 = e + c0;
+      const double u = e * cx, n = c0 * (2.0 * e + c0);
+      const double g = std::sqrt(u * u + n);
+      const double D = u >= 0.0 ? g + u : n / (g - u);  // g + u without cancellation when u < 0
+      const double S = n / D;
+      const double w = e * sx / g, g2 = g * g, g3 = g2 * g;
+      const double w1 = u * R1 * R1 / g3, w2 = R1 * R1 * e * sx * (3.0 * u * u - g2) / (g3 * g2);
+      F = c0 * (e * omc + e * e * sx * sx / (R1 + g)) / D;
+      F1 = S * w;
+      F2 = S * (w * w + w1);
+      F3 = S * (w * w * w + 3.0 * w * w1 + w2);
+    }
+    H = F;
+    H1 = -F1;
+    H2 = F2;
+    H3 = -F3;
+  }
+  return {H, sign * H1, H2, sign * H3};
 }
 
 namespace {
@@ -290,15 +364,14 @@ ThreeArcChoice three_arc_choice(const ParamSet& params) {
   return {has_accel, is_roller};
 }
 
-// The geometry of the choice, its accel_angle or nose_radius `shape` and its roller radius (0:
-// flat), with its extra outputs set.
-ThreeArcGeometry three_arc_geometry(const CamBasics& basics, const ThreeArcChoice& c, double shape, double roller,
-                                    OutputSet& extra) {
+// The law of the choice, its accel_angle or nose_radius `shape` and its roller radius (0: flat).
+std::shared_ptr<const CamLaw> make_three_arc(const CamBasics& basics, const ThreeArcChoice& c, double shape, double roller,
+                                             OutputSet& extra) {
   if (c.roller && !(roller > 0.0)) throw NodeError("roller_radius", "roller_radius = " + mm(roller) + " must be > 0");
   const ThreeArcGeometry g = c.by_accel_angle ? three_arc_from_accel_angle(basics, shape) : three_arc_from_nose_radius(basics, shape);
   extra.set_scalar("flank_radius", g.flank_radius);
   extra.set_scalar("nose_radius", g.nose_radius);
-  return g;
+  return std::make_shared<const ThreeArcLaw>(g, roller);
 }
 
 }  // namespace
@@ -342,10 +415,8 @@ CamLawDefinition three_arc_definition() {
   };
   d.make = [](const CamBasics& basics, const ParamSet& params, OutputSet& extra) -> std::shared_ptr<const CamLaw> {
     const ThreeArcChoice c = three_arc_choice(params);
-    const double roller = c.roller ? params.number("roller_radius") : 0.0;
-    const ThreeArcGeometry g =
-        three_arc_geometry(basics, c, params.number(c.by_accel_angle ? "accel_angle" : "nose_radius"), roller, extra);
-    return std::make_shared<const ThreeArcLaw>(g, roller);
+    return make_three_arc(basics, c, params.number(c.by_accel_angle ? "accel_angle" : "nose_radius"),
+                          c.roller ? params.number("roller_radius") : 0.0, extra);
   };
   // A block: which parameters are given and the follower (the same for every case) read once; each
   // case reads its accel_angle or nose_radius and roller radius from the columns.
@@ -355,8 +426,7 @@ CamLawDefinition three_arc_definition() {
     const BlockColumn roller = c.roller ? p.number("roller_radius") : BlockColumn{};
     return [c, shape, roller](const CamBasics& basics, const ParamSet&, std::size_t k,
                               OutputSet& extra) -> std::shared_ptr<const CamLaw> {
-      const double rr = c.roller ? roller[k] : 0.0;
-      return std::make_shared<const ThreeArcLaw>(three_arc_geometry(basics, c, shape[k], rr, extra), rr);
+      return make_three_arc(basics, c, shape[k], c.roller ? roller[k] : 0.0, extra);
     };
   };
   return d;

@@ -22,7 +22,6 @@
 //    It switches from flank to nose where the follower line passes through the pitch-curve
 //    junction N + (r2 + rr) n_alpha, at |phi| = beta < alpha.
 #include "cam_node.hpp"
-#include "three_arc_kernel.hpp"
 
 #include <mechgraph/domain/cam_law.hpp>
 
@@ -54,10 +53,6 @@ ThreeArcGeometry three_arc_from_accel_angle(const CamBasics& basics, double acce
 /// nose_radius when the request is infeasible.
 ThreeArcGeometry three_arc_from_nose_radius(const CamBasics& basics, double nose_radius);
 
-/// The constants of the law of this contour with a roller of `roller_radius` (0: flat-faced
-/// tappet). Throws NodeError naming roller_radius when the roller's pitch curve misses the nose.
-ThreeArcConstants three_arc_constants(const ThreeArcGeometry& geometry, double roller_radius);
-
 /// The lift of a flat or roller tappet on a three-arc cam, exactly, with three derivatives.
 class ThreeArcLaw final : public CamLaw {
  public:
@@ -66,28 +61,26 @@ class ThreeArcLaw final : public CamLaw {
 
   double event_begin() const override { return -g_.half_action; }
   double event_end() const override { return g_.half_action; }
-  LiftDerivatives evaluate_in_event(double phi) const override { return three_arc_point(constants_, phi); }
-  std::vector<double> breakpoints() const override { return {-constants_.switch_angle, constants_.switch_angle}; }
+  LiftDerivatives evaluate_in_event(double phi) const override;
+  std::vector<double> breakpoints() const override { return {-switch_angle_, switch_angle_}; }
   double max_lift() const override { return g_.max_lift; }
   double base_radius() const override { return g_.base_radius; }
-  double roller_radius() const override { return constants_.roller_radius; }
-  bool monotone_breaks(int order, std::vector<double>& breaks) const override {
-    return three_arc_monotone_breaks(constants_, order, breaks);
-  }
-  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override {
-    return three_arc_lift_integrals(constants_, a, b, integral, integral_of_square);
-  }
+  double roller_radius() const override { return roller_radius_; }
+  /// Flat tappet: the flank/nose switches and the nose (plus 90 deg into a long flank for the
+  /// velocity). A roller: false (the generic search).
+  bool monotone_breaks(int order, std::vector<double>& breaks) const override;
+  /// Flat tappet: the integrals of h and h^2 in closed form (arcs: x - sin x and its square's).
+  bool lift_integrals(double a, double b, double& integral, double& integral_of_square) const override;
 
   const ThreeArcGeometry& geometry() const { return g_; }
   /// |phi| (from the nose) where the follower passes from flank to nose: alpha for the flat
   /// tappet, beta for the roller.
-  double switch_angle() const { return constants_.switch_angle; }
-  /// What a point needs (three_arc_point).
-  const ThreeArcConstants& constants() const { return constants_; }
+  double switch_angle() const { return switch_angle_; }
 
  private:
   ThreeArcGeometry g_;
-  ThreeArcConstants constants_;
+  double roller_radius_ = 0.0;
+  double switch_angle_ = 0.0;
 };
 
 /// cam.three_arc: parameters accel_angle | nose_radius, follower, roller_radius; extra outputs
