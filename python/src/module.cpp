@@ -203,7 +203,6 @@ CaseTable case_table(SceneSession& session, const std::vector<std::string>& name
   reserve_large(table.numbers.si, n * width);
   reserve_large(written.ends, n * width);
   reserve_large(written.in_column_unit, n * width);
-  reserve_large(written.dimensions, n * width);
   std::vector<std::optional<UnitScale>> scales(width);
   for (std::size_t v = 0; v < width; ++v)
     if (!units[v].empty()) scales[v] = parse_unit_cached(units[v]);

@@ -364,7 +364,36 @@ TEST_CASE("Case tables: a cases file is kept as numbers with each value's text b
   const CaseTable::Numbers::Written& w = table.numbers.written;
   CHECK(sweep_holdings(table, 0) == static_cast<double>(table.numbers.si.capacity() * sizeof(double) + w.text.size() +
                                                          w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
-                                                         w.dimensions.capacity() * sizeof(Dimension)));
+                                                         w.dimensions.bytes_held()));
+}
+
+TEST_CASE("Case tables: values' dimensions are kept once a column until one differs", "[core][sweep]") {
+  // Three variables; rows 0 to 2 alike (length, angle, none), row 3's angle a word (none).
+  const std::vector<Dimension> row{dim::length, dim::angle, dim::none};
+  CaseTable table;
+  table.numbers.dimensions.assign(row.size(), Dimension{});
+  table.numbers.written.column_units = {"mm", "deg", ""};
+  for (int i = 0; i < 3; ++i)
+    for (std::size_t v = 0; v < row.size(); ++v) table.keep_written("1", v < 2, 1.0, row[v]);
+  table.numbers.count = 3;
+  const CaseTable::Numbers::Written::ValueDimensions& d = table.numbers.written.dimensions;
+  CHECK(d.size() == 9);
+  CHECK(d.bytes_held() == 3 * sizeof(Dimension));  // the first row's alone, not one a value
+  for (std::size_t k = 0; k < 9; ++k) CHECK(d.at(k, k % 3) == row[k % 3]);
+  // A value unlike its column's: every value keeps its own from then on, those before included.
+  table.keep_written("1", true, 1.0, dim::length);
+  table.keep_written("auto", false, std::numeric_limits<double>::quiet_NaN(), dim::none);
+  table.keep_written("1", false, 1.0, dim::none);
+  table.keep_written("2", true, 2.0, dim::length);  // a row after the change
+  table.numbers.count = 4;
+  CHECK(d.size() == 13);
+  CHECK(d.bytes_held() >= 13 * sizeof(Dimension));
+  for (std::size_t k = 0; k < 12; ++k) CHECK(d.at(k, k % 3) == (k == 10 ? dim::none : row[k % 3]));
+  CHECK(d.at(12, 0) == dim::length);
+  CaseValue scratch;
+  CHECK(table.number_cell(3, 1, scratch).dimension == dim::none);
+  CHECK_FALSE(table.number_cell(3, 1, scratch).si);
+  CHECK(table.number_cell(2, 1, scratch).dimension == dim::angle);
 }
 
 TEST_CASE("Case tables: a number's value in a unit is that of its 17 digits read as a cell", "[core][sweep]") {
@@ -450,5 +479,5 @@ TEST_CASE("Case tables: a number given as a double is kept without text and show
   const CaseTable::Numbers::Written& w = given.numbers.written;
   CHECK(sweep_holdings(given, 0) == static_cast<double>(given.numbers.si.capacity() * sizeof(double) + w.text.size() +
                                                          w.ends.capacity() * sizeof(std::uint32_t) + w.in_column_unit.capacity() +
-                                                         w.dimensions.capacity() * sizeof(Dimension) + w.given.capacity() * sizeof(double)));
+                                                         w.dimensions.bytes_held() + w.given.capacity() * sizeof(double)));
 }

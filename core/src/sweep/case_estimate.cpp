@@ -169,7 +169,7 @@ double sweep_holdings(const CaseTable& table, std::size_t cases) {
   // The texts as held: their pool may be reserved beyond them (Python's tables reserve the most a
   // number's 17 digits can take), address space whose pages are never touched.
   bytes += static_cast<double>(written.text.size() + written.ends.capacity() * sizeof(std::uint32_t) +
-                               written.in_column_unit.capacity() + written.dimensions.capacity() * sizeof(Dimension) +
+                               written.in_column_unit.capacity() + written.dimensions.bytes_held() +
                                written.given.capacity() * sizeof(double));
   for (const std::vector<CaseValue>& row : table.cases) {
     bytes += sizeof(row) + static_cast<double>(row.capacity()) * sizeof(CaseValue);

@@ -281,12 +281,30 @@ void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::s
   }
 }
 
+void CaseTable::Numbers::Written::ValueDimensions::push_back(const Dimension& d, std::size_t width) {
+  const std::size_t k = count_++;
+  if (!each_.empty()) {
+    each_.push_back(d);
+    return;
+  }
+  if (k < width) {
+    if (k == 0) column_.reserve(width);
+    column_.push_back(d);
+    return;
+  }
+  if (d == column_[k % width]) return;
+  // The first value unlike its column's: from here every value keeps its own.
+  each_.reserve(2 * count_);
+  for (std::size_t j = 0; j < k; ++j) each_.push_back(column_[j % width]);
+  each_.push_back(d);
+}
+
 void CaseTable::keep_written(std::string_view text, bool in_column_unit, double si, const Dimension& dimension) {
   Numbers::Written& w = numbers.written;
   w.text.append(text);
   w.ends.push_back(static_cast<std::uint32_t>(w.text.size()));
   w.in_column_unit.push_back(in_column_unit ? Numbers::Written::bare_number : Numbers::Written::as_written);
-  w.dimensions.push_back(dimension);
+  w.dimensions.push_back(dimension, numbers.dimensions.size());
   numbers.si.push_back(si);
   if (!w.given.empty()) w.given.push_back(std::numeric_limits<double>::quiet_NaN());
 }
@@ -297,7 +315,7 @@ void CaseTable::keep_given(double x, double si, const Dimension& dimension) {
   w.given.push_back(x);
   w.ends.push_back(static_cast<std::uint32_t>(w.text.size()));  // no text of its own
   w.in_column_unit.push_back(Numbers::Written::given_number);
-  w.dimensions.push_back(dimension);
+  w.dimensions.push_back(dimension, numbers.dimensions.size());
   numbers.si.push_back(si);
 }
 
@@ -343,7 +361,7 @@ const CaseValue& CaseTable::number_cell(std::size_t i, std::size_t v, CaseValue&
   scratch.text.clear();
   if (const double x = numbers.si[k]; std::isnan(x)) scratch.si.reset();  // a word
   else scratch.si = x;
-  scratch.dimension = numbers.written.ends.empty() ? numbers.dimensions[v] : numbers.written.dimensions[k];
+  scratch.dimension = numbers.written.ends.empty() ? numbers.dimensions[v] : numbers.written.dimensions.at(k, v);
   return scratch;
 }
 
@@ -447,7 +465,7 @@ bool CaseTable::shown_as_written(std::size_t i, std::size_t v, const ShownUnit& 
   if (!cases.empty() || numbers.written.ends.empty()) return false;
   const std::size_t k = i * numbers.dimensions.size() + v;
   const Numbers::Written& w = numbers.written;
-  return w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions[k] &&
+  return w.in_column_unit[k] && unit.given && unit.scale && unit.scale->dimension == w.dimensions.at(k, v) &&
          !(numbers.exact_text_digits && unit.names_si) && w.column_units[v] == variables[v].unit && !variables[v].unit.empty();
 }
 
@@ -810,7 +828,6 @@ CaseTable read_cases_csv(const std::filesystem::path& file) {
       reserve_large(table.numbers.si, room);
       written.ends.reserve(room);
       written.in_column_unit.reserve(room);
-      written.dimensions.reserve(room);
       continue;
     }
     if (table.numbers.count >= max_sweep_cases)
