@@ -394,6 +394,13 @@ TEST_CASE("Case tables: values' dimensions are kept once a column until one diff
   CHECK(table.number_cell(3, 1, scratch).dimension == dim::none);
   CHECK_FALSE(table.number_cell(3, 1, scratch).si);
   CHECK(table.number_cell(2, 1, scratch).dimension == dim::angle);
+  // Without a width there are no columns to share: every value keeps its own.
+  CaseTable::Numbers::Written::ValueDimensions unshared;
+  unshared.push_back(dim::length, 0);
+  unshared.push_back(dim::time, 0);
+  CHECK(unshared.size() == 2);
+  CHECK(unshared.at(0, 0) == dim::length);
+  CHECK(unshared.at(1, 0) == dim::time);
 }
 
 TEST_CASE("Case tables: a number's value in a unit is that of its 17 digits read as a cell", "[core][sweep]") {

@@ -283,7 +283,7 @@ void CaseTable::Numbers::Written::append(std::string& out, std::size_t k, std::s
 
 void CaseTable::Numbers::Written::ValueDimensions::push_back(const Dimension& d, std::size_t width) {
   const std::size_t k = count_++;
-  if (!each_.empty()) {
+  if (!each_.empty() || width == 0) {  // no columns to share (never so in a table with values): each its own
     each_.push_back(d);
     return;
   }

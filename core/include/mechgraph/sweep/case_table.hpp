@@ -135,7 +135,7 @@ struct CaseTable {
       /// 10^6 x 6), each value's own from the first value that differs.
       class ValueDimensions {
        public:
-        /// The next value's (k = size(), variable k % width).
+        /// The next value's (k = size(), variable k % width; width 0 keeps every value's own).
         void push_back(const Dimension& d, std::size_t width);
         /// Value k's, of variable v (k = i * width + v).
         const Dimension& at(std::size_t k, std::size_t v) const { return each_.empty() ? column_[v] : each_[k]; }
